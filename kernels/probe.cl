@@ -1,0 +1,19 @@
+/* probe.cl — Stage: none; a self-check run by tests on each device.
+ * Launch: one work-item. Writes the sizes of the shared structs as the device compiler sees
+ * them, and a float expression whose value differs when a*b+c is contracted into an fma. */
+#include "shared/types.h"
+#include "shared/math.h"
+
+__kernel void probe_layout(__global int* out, float a, float b, float c)
+{
+    if (get_global_id(0) != 0) return;
+    out[0] = (int)sizeof(BtgBodyProps);
+    out[1] = (int)sizeof(BtgShape);
+    out[2] = (int)sizeof(BtgFace);
+    out[3] = (int)sizeof(BtgPair);
+    out[4] = (int)sizeof(BtgManifold);
+    out[5] = (int)sizeof(BtgContact);
+    out[6] = (int)sizeof(BtgStepParams);
+    float r = a * b + c; /* with contraction this is fma(a, b, c): a different float */
+    out[7] = as_int(r);
+}

@@ -1,0 +1,141 @@
+/* types.h — every struct that crosses the host/device boundary, and the flags they carry.
+ * Only 4-byte scalars and 16-byte vectors, padding spelled out; host static_asserts in
+ * src/world/layout_checks.cpp and the probe kernel (kernels/probe.cl) check the layout on
+ * each device. Units are in the field comments. */
+#ifndef BTG_TYPES_H
+#define BTG_TYPES_H
+#include "prelude.h"
+
+/* Body flags (BtgBodyProps.flags). */
+#define BTG_BODY_DYNAMIC 1u      /* moved by the solver: finite mass */
+#define BTG_BODY_KINEMATIC 2u    /* moved by the app through its motion state; infinite mass */
+#define BTG_BODY_STATIC 4u       /* never moves */
+#define BTG_BODY_NO_RESPONSE 8u  /* CF_NO_CONTACT_RESPONSE: detected, never solved */
+#define BTG_BODY_SLEEPING 16u    /* deactivated: not integrated, not a pair source */
+#define BTG_BODY_EXCLUDED 32u    /* bad input or an empty row: takes no part at all */
+#define BTG_BODY_GYRO 64u        /* BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY */
+#define BTG_BODY_LARGE 128u      /* too big for the uniform grid: tested against every body */
+
+/* Shape kinds (BtgShape.type). Boxes are hulls with 8 vertices and 6 faces. */
+#define BTG_SHAPE_SPHERE 0
+#define BTG_SHAPE_HULL 1
+#define BTG_SHAPE_PLANE 2
+
+#define BTG_MAX_POINTS 4 /* contact points per manifold, as Bullet's btPersistentManifold */
+
+/* Static per-body properties; rewritten only when the app changes them. */
+typedef struct {
+    BtgFloat4 invInertiaLocal; /* 1/(kg m^2) on the principal axes; w: inverse mass 1/kg */
+    BtgFloat4 linearFactor;    /* per-axis factor (0..1); w: linear damping, 1/s fraction */
+    BtgFloat4 angularFactor;   /* per-axis factor (0..1); w: angular damping */
+    BtgFloat4 gravity;         /* m/s^2, this body's own gravity; w: friction coefficient */
+    float restitution;         /* coefficient, combined by product */
+    int shape;                 /* row in the shape table */
+    uint flags;                /* BTG_BODY_* */
+    int group;                 /* broadphase collision filter group */
+    int mask;                  /* broadphase collision filter mask */
+    float sleepLinear;         /* m/s: linear sleeping threshold */
+    float sleepAngular;        /* rad/s: angular sleeping threshold */
+    float pad0;
+} BtgBodyProps;
+
+/* One collision shape; hull data live in the shared vertex/face/index/edge tables. */
+typedef struct {
+    BtgFloat4 localAabbMin; /* m, margin included */
+    BtgFloat4 localAabbMax; /* m, margin included */
+    BtgFloat4 param;        /* sphere: x radius m; plane: xyz unit normal, w constant m
+                               (points p with n.p = w lie on it); hull: unused */
+    int type;               /* BTG_SHAPE_* */
+    int firstVertex;        /* hull: rows in the vertex table (BtgFloat4, m, local frame) */
+    int numVertices;
+    int firstFace;          /* hull: rows in the face table */
+    int numFaces;
+    int firstEdge;          /* hull: unique edge directions (BtgFloat4, unit, local frame) */
+    int numEdges;
+    float margin;           /* m: distance added around the hull (0 for boxes, whose margin
+                               lies inside the extents as in Bullet) */
+} BtgShape;
+
+/* A hull face: its outward plane and its vertex loop (counter-clockwise seen from outside). */
+typedef struct {
+    BtgFloat4 plane; /* xyz unit outward normal; w = -n.p for points p on the face (m) */
+    int firstIndex;  /* rows in the face-index table, which holds vertex numbers of the hull */
+    int numIndices;
+    int pad0;
+    int pad1;
+} BtgFace;
+
+/* A candidate pair from the broadphase: body rows, a < b. */
+typedef struct {
+    int a;
+    int b;
+} BtgPair;
+
+/* Narrowphase output for one pair (same index as the pair); numPoints 0 means no contact. */
+typedef struct {
+    BtgFloat4 normal;                 /* world unit normal from B towards A (normalWorldOnB) */
+    BtgFloat4 pointB[BTG_MAX_POINTS]; /* world point on B's surface, m; w: signed distance m,
+                                         negative when penetrating; the point on A is
+                                         pointB + normal * distance */
+    int bodyA;
+    int bodyB;
+    int numPoints;
+    int pad0;
+} BtgManifold;
+
+/* One solver row set per manifold: normal, two friction directions, split impulse. */
+typedef struct {
+    BtgFloat4 normal;                  /* B towards A; w: combined friction */
+    BtgFloat4 t1;                      /* friction direction 1; w: combined restitution */
+    BtgFloat4 t2;                      /* friction direction 2 */
+    BtgFloat4 rA[BTG_MAX_POINTS];      /* contact point on A minus A's centre, m;
+                                          w: target normal velocity m/s (restitution, bias) */
+    BtgFloat4 rB[BTG_MAX_POINTS];      /* contact point on A minus B's centre, m;
+                                          w: split-impulse target push velocity m/s */
+    BtgFloat4 localA[BTG_MAX_POINTS];  /* contact point in A's body frame, m (cache key);
+                                          w: signed distance m */
+    BtgFloat4 normalImpulse;           /* accumulated per point, N s */
+    BtgFloat4 pushImpulse;             /* accumulated split (position) impulse per point */
+    BtgFloat4 friction1Impulse;        /* accumulated along t1 per point */
+    BtgFloat4 friction2Impulse;        /* accumulated along t2 per point */
+    BtgFloat4 normalMass;              /* 1 / (J M^-1 J^T) per point, kg */
+    BtgFloat4 friction1Mass;
+    BtgFloat4 friction2Mass;
+    int bodyA;
+    int bodyB;
+    int numPoints;
+    int color;                         /* batch: no dynamic body twice in one color */
+} BtgContact;
+
+/* Per-step scalars, passed by value to the kernels that need them. */
+typedef struct {
+    float dt;                    /* s */
+    float erp;                   /* btContactSolverInfo::m_erp */
+    float erp2;                  /* m_erp2 (split-impulse erp) */
+    float splitPenetrationThreshold; /* m_splitImpulsePenetrationThreshold, m (negative) */
+    float splitTurnErp;          /* m_splitImpulseTurnErp */
+    float warmstartFactor;       /* m_warmstartingFactor (0 when warm starting is off) */
+    float restitutionThreshold;  /* m_restitutionVelocityThreshold, m/s */
+    float contactThreshold;      /* m: points up to this far apart become contacts */
+    float deactivationTime;      /* s: gDeactivationTime; 0 disables sleeping */
+    int splitImpulse;            /* m_splitImpulse != 0 */
+    int numBodies;
+    int pad0;
+} BtgStepParams;
+
+/* Device status flags (one uint, read back with the transforms). */
+#define BTG_STATUS_PAIR_OVERFLOW 1u
+#define BTG_STATUS_CONTACT_OVERFLOW 2u
+#define BTG_STATUS_NAN 4u
+
+#ifndef __OPENCL_C_VERSION__
+static_assert(sizeof(BtgBodyProps) == 96, "BtgBodyProps layout");
+static_assert(sizeof(BtgShape) == 80, "BtgShape layout");
+static_assert(sizeof(BtgFace) == 32, "BtgFace layout");
+static_assert(sizeof(BtgPair) == 8, "BtgPair layout");
+static_assert(sizeof(BtgManifold) == 96, "BtgManifold layout");
+static_assert(sizeof(BtgContact) == 16 * 22 + 16, "BtgContact layout");
+static_assert(sizeof(BtgStepParams) == 48, "BtgStepParams layout");
+#endif
+
+#endif

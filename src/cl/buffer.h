@@ -1,0 +1,99 @@
+// buffer.h — RAII device buffers. DeviceArray<T> is a typed column that grows on demand
+// (geometrically, optionally keeping its contents) and counts its bytes in the context's
+// memory total, so the Report can say how much device memory the scene uses.
+#pragma once
+#include "cl/context.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace btgpu::cl {
+
+class Buffer {
+public:
+    Buffer() = default;
+    ~Buffer() { release(); }
+    Buffer(const Buffer&) = delete;
+    Buffer& operator=(const Buffer&) = delete;
+    Buffer(Buffer&& o) noexcept { *this = std::move(o); }
+    Buffer& operator=(Buffer&& o) noexcept;
+
+    // Replaces the buffer by one of `bytes` (contents lost).
+    void allocate(Context& ctx, size_t bytes);
+    void release();
+    cl_mem mem() const { return m_mem; }
+    size_t bytes() const { return m_bytes; }
+
+private:
+    cl_mem m_mem = nullptr;
+    size_t m_bytes = 0;
+    Context* m_ctx = nullptr;
+};
+
+template <typename T>
+class DeviceArray {
+public:
+    // Makes room for at least n elements; grows by 1.5x so repeated growth stays cheap.
+    // When preserve is set the old contents are copied on the device.
+    void reserve(Context& ctx, size_t n, bool preserve = false)
+    {
+        if (n <= m_capacity && m_buf.mem()) return;
+        size_t cap = m_capacity ? m_capacity : 16;
+        while (cap < n) cap += cap / 2 + 16;
+        Buffer fresh;
+        fresh.allocate(ctx, cap * sizeof(T));
+        if (preserve && m_buf.mem() && m_capacity)
+            BTGPU_CL_CHECK(clEnqueueCopyBuffer(ctx.queue(), m_buf.mem(), fresh.mem(), 0, 0, m_capacity * sizeof(T), 0, nullptr, nullptr));
+        m_buf = std::move(fresh);
+        m_capacity = cap;
+    }
+    void upload(Context& ctx, const T* data, size_t n, size_t offset = 0)
+    {
+        if (n == 0) return;
+        reserve(ctx, offset + n, offset != 0);
+        BTGPU_CL_CHECK(clEnqueueWriteBuffer(ctx.queue(), m_buf.mem(), CL_TRUE, offset * sizeof(T), n * sizeof(T), data, 0, nullptr, nullptr));
+    }
+    void upload(Context& ctx, const std::vector<T>& v) { upload(ctx, v.data(), v.size()); }
+    void download(Context& ctx, T* data, size_t n, size_t offset = 0) const
+    {
+        if (n == 0) return;
+        BTGPU_CL_CHECK(clEnqueueReadBuffer(ctx.queue(), m_buf.mem(), CL_TRUE, offset * sizeof(T), n * sizeof(T), data, 0, nullptr, nullptr));
+    }
+    std::vector<T> download(Context& ctx, size_t n) const
+    {
+        std::vector<T> v(n);
+        download(ctx, v.data(), n);
+        return v;
+    }
+    // Sets the first n elements to a byte pattern of zero.
+    void zero(Context& ctx, size_t n)
+    {
+        if (n == 0) return;
+        reserve(ctx, n, true);
+        T z{};
+        BTGPU_CL_CHECK(clEnqueueFillBuffer(ctx.queue(), m_buf.mem(), &z, sizeof(T) <= 128 && (sizeof(T) & (sizeof(T) - 1)) == 0 ? sizeof(T) : 4, 0, n * sizeof(T), 0, nullptr, nullptr));
+    }
+    void copyFrom(Context& ctx, const DeviceArray<T>& src, size_t n)
+    {
+        if (n == 0) return;
+        reserve(ctx, n);
+        BTGPU_CL_CHECK(clEnqueueCopyBuffer(ctx.queue(), src.mem(), m_buf.mem(), 0, 0, n * sizeof(T), 0, nullptr, nullptr));
+    }
+    void release()
+    {
+        m_buf.release();
+        m_capacity = 0;
+    }
+    cl_mem mem() const { return m_buf.mem(); }
+    size_t capacity() const { return m_capacity; }
+    size_t bytes() const { return m_buf.bytes(); }
+
+private:
+    Buffer m_buf;
+    size_t m_capacity = 0;
+};
+
+// Total bytes of all live Buffers per context (device memory in use).
+size_t bytesInUse(const Context& ctx);
+
+}  // namespace btgpu::cl

@@ -1,0 +1,63 @@
+// context.h — one OpenCL device, its context, its in-order profiling queue and its program
+// cache. Device choice: BTGPU_DEVICE (gpu | cpu | substring of platform or device name)
+// overrides the preference passed in; the default is the first GPU, else the first CPU device.
+#pragma once
+#include "cl/error.h"
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace btgpu::cl {
+
+struct DeviceInfo {
+    cl_platform_id platform = nullptr;
+    cl_device_id device = nullptr;
+    std::string platformName;
+    std::string deviceName;
+    bool isGpu = false;
+    bool correctlyRoundedSqrt = false;  // CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT is supported
+    size_t maxWorkGroupSize = 1;
+    cl_ulong globalMemBytes = 0;
+    std::string describe() const;
+};
+
+// All OpenCL devices on all platforms; empty when there is no platform (no ICD).
+std::vector<DeviceInfo> listDevices();
+
+// Picks a device by preference ("" = default rule); throws Error when none matches.
+DeviceInfo selectDevice(const std::string& preference);
+
+class Program;
+
+class Context {
+public:
+    explicit Context(const DeviceInfo& device);
+    ~Context();
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    cl_context context() const { return m_context; }
+    cl_command_queue queue() const { return m_queue; }
+    const DeviceInfo& device() const { return m_device; }
+
+    // The built program for a kernel stem ("narrowphase", "prims/scan"), built once per
+    // (stem, options) and kept for the context's life.
+    Program& program(const std::string& stem, const std::string& extraOptions = {});
+    // Stems built so far, in build order (the Report's proof of what the plan compiled).
+    const std::vector<std::string>& builtPrograms() const { return m_built; }
+    double buildSeconds() const { return m_buildSeconds; }
+
+    void finish();
+
+private:
+    DeviceInfo m_device;
+    cl_context m_context = nullptr;
+    cl_command_queue m_queue = nullptr;
+    std::map<std::string, std::unique_ptr<Program>> m_programs;
+    std::vector<std::string> m_built;
+    double m_buildSeconds = 0.0;
+};
+
+}  // namespace btgpu::cl

@@ -1,0 +1,55 @@
+// program.cpp — builds programs from kernel sources, reports build logs, caches kernels.
+#include "cl/program.h"
+
+#include "cl/context.h"
+#include "cl/kernel_source.h"
+
+namespace btgpu::cl {
+
+std::string baseBuildOptions(const Context& context)
+{
+    std::string opts = "-cl-std=CL1.2";
+    if (context.device().correctlyRoundedSqrt) opts += " -cl-fp32-correctly-rounded-divide-sqrt";
+    return opts;
+}
+
+Program::Program(Context& context, const std::string& stem, const std::string& extraOptions) : m_stem(stem)
+{
+    std::string src = kernelSource(stem);
+    const char* text = src.c_str();
+    size_t len = src.size();
+    cl_int err = CL_SUCCESS;
+    m_program = clCreateProgramWithSource(context.context(), 1, &text, &len, &err);
+    if (err != CL_SUCCESS) fail("clCreateProgramWithSource", err, __FILE__, __LINE__);
+    std::string opts = baseBuildOptions(context) + (extraOptions.empty() ? "" : " " + extraOptions);
+    cl_device_id dev = context.device().device;
+    err = clBuildProgram(m_program, 1, &dev, opts.c_str(), nullptr, nullptr);
+    if (err != CL_SUCCESS) {
+        size_t n = 0;
+        clGetProgramBuildInfo(m_program, dev, CL_PROGRAM_BUILD_LOG, 0, nullptr, &n);
+        std::string log(n, '\0');
+        if (n) clGetProgramBuildInfo(m_program, dev, CL_PROGRAM_BUILD_LOG, n, log.data(), nullptr);
+        clReleaseProgram(m_program);
+        m_program = nullptr;
+        throw Error("clBuildProgram(" + stem + ".cl, \"" + opts + "\")", err, __FILE__, __LINE__, log);
+    }
+}
+
+Program::~Program()
+{
+    for (auto& k : m_kernels) clReleaseKernel(k.second);
+    if (m_program) clReleaseProgram(m_program);
+}
+
+cl_kernel Program::kernel(const std::string& name)
+{
+    auto it = m_kernels.find(name);
+    if (it != m_kernels.end()) return it->second;
+    cl_int err = CL_SUCCESS;
+    cl_kernel k = clCreateKernel(m_program, name.c_str(), &err);
+    if (err != CL_SUCCESS) fail(("clCreateKernel(" + m_stem + "::" + name + ")").c_str(), err, __FILE__, __LINE__);
+    m_kernels.emplace(name, k);
+    return k;
+}
+
+}  // namespace btgpu::cl

@@ -1,0 +1,13 @@
+// solve_constraints.h — Stage: batched projected Gauss–Seidel on the contacts, color by color
+// (one launch per color per iteration; the last color serially). First applies the
+// warm-start impulses, then `iterations` passes over normal and friction rows (friction
+// clamped by friction * normal impulse), then, when params.splitImpulse, the same number of
+// passes on the push velocities for the split rows.
+// Reads contacts, props, invInertiaWorld, counters. Writes linVel, angVel, pushLin, pushAng,
+// contacts (accumulated impulses, kept for next step's warm start).
+#pragma once
+#include "world/device_world.h"
+
+namespace btgpu {
+void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iterations, int numColors);
+}

@@ -1,0 +1,72 @@
+// device_world.h — DeviceWorld: every device buffer of one simulated world, as struct-of-arrays
+// columns indexed by dense body row, plus the shape tables and the per-step work lists.
+// Rows are assigned by compat/ (the map from Bullet objects to rows lives there). Columns grow
+// with the scene; nothing has a maximum the user must set.
+#pragma once
+#include "cl/buffer.h"
+#include "cl/launch.h"
+#include "shared/types.h"
+
+namespace btgpu {
+
+// Slots of the `counters` buffer: device-side counts and the status word, read back together.
+enum Counter : int {
+    kPairCount = 0,         // pairs written by find_pairs (may exceed capacity: overflow)
+    kContactCount = 1,      // manifolds with points, compacted into `contacts`
+    kPrevContactCount = 2,  // contacts of the previous step (warm-start cache)
+    kStatus = 3,            // BTG_STATUS_* bits
+    kNanBody = 4,           // lowest body row found non-finite (0xffffffff: none)
+    kNumCounters = 8
+};
+
+struct DeviceWorld {
+    explicit DeviceWorld(cl::Context& c) : ctx(c) {}
+    cl::Context& ctx;
+    cl::Profiler profiler;
+    int numBodies = 0;  // rows in use (some may be BTG_BODY_EXCLUDED)
+
+    // --- bodies (N rows) ---
+    cl::DeviceArray<BtgFloat4> pos;        // m, centre of mass
+    cl::DeviceArray<BtgFloat4> rot;        // unit quaternion (x, y, z, w)
+    cl::DeviceArray<BtgFloat4> linVel;     // m/s
+    cl::DeviceArray<BtgFloat4> angVel;     // rad/s
+    cl::DeviceArray<BtgBodyProps> props;
+    cl::DeviceArray<BtgFloat4> extForce;   // N, app forces for this stepSimulation call
+    cl::DeviceArray<BtgFloat4> extTorque;  // N m
+    cl::DeviceArray<BtgFloat4> invInertiaWorld;  // 3 rows per body (3N): R diag(I^-1) R^T
+    cl::DeviceArray<BtgFloat4> pushLin;    // split-impulse velocities, m/s (solver scratch)
+    cl::DeviceArray<BtgFloat4> pushAng;    // rad/s
+    cl::DeviceArray<BtgFloat4> aabbMin;    // m, world AABB grown by the contact threshold
+    cl::DeviceArray<BtgFloat4> aabbMax;
+    cl::DeviceArray<float> sleepTime;      // s spent under the sleeping thresholds
+    cl::DeviceArray<BtgFloat4> linVel0;    // m/s before this substep's forces (restitution uses it, as Bullet)
+    cl::DeviceArray<BtgFloat4> angVel0;    // rad/s before this substep's forces
+
+    // --- shapes ---
+    cl::DeviceArray<BtgShape> shapes;
+    cl::DeviceArray<BtgFloat4> hullVertices;  // m, shape-local
+    cl::DeviceArray<BtgFace> hullFaces;
+    cl::DeviceArray<int> hullIndices;
+    cl::DeviceArray<BtgFloat4> hullEdges;     // unit directions, shape-local
+    int numShapes = 0;
+
+    // --- broadphase ---
+    cl::DeviceArray<int> largeBodies;  // rows flagged BTG_BODY_LARGE (planes excluded)
+    int numLarge = 0;
+    cl::DeviceArray<int> planeBodies;  // rows whose shape is a plane
+    int numPlanes = 0;
+    cl::DeviceArray<BtgPair> pairs;    // sorted by (a, b) after find_pairs
+    size_t pairCapacity = 0;
+
+    // --- narrowphase and contacts ---
+    cl::DeviceArray<BtgManifold> manifolds;  // one per pair slot
+    cl::DeviceArray<BtgContact> contacts;    // this step's, in pair order
+    cl::DeviceArray<BtgContact> prevContacts;
+    size_t contactCapacity = 0;
+    int numColors = 0;                       // batches the solver launches (host estimate)
+
+    // --- counts and status ---
+    cl::DeviceArray<uint> counters;  // Counter slots
+};
+
+}  // namespace btgpu

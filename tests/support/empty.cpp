@@ -1,0 +1,1 @@
+// empty.cpp — keeps the scene library non-empty while scenes are added.
