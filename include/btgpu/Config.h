@@ -1,0 +1,35 @@
+// Config.h — every option of a btGpuDynamicsWorld: device choice, what to keep in step with
+// the CPU side, contact and solver settings the btContactSolverInfo does not carry.
+// No global variable changes behaviour: everything lives here (BTGPU_DEVICE, the one
+// environment override, picks the device).
+#pragma once
+#include <functional>
+#include <string>
+
+namespace btgpu {
+
+struct Issue;
+
+struct Config {
+    // "" (first GPU, else a CPU device), "gpu", "cpu", or a substring of the platform or device
+    // name. The environment variable BTGPU_DEVICE overrides it.
+    std::string device;
+    // Run on the base class's CPU path regardless (for comparisons and debugging).
+    bool forceCpu = false;
+    // Keep the CPU broadphase's AABBs current after each step so rayTest, convexSweepTest and
+    // contactTest see the bodies where they are. Apps that never query may turn it off.
+    bool syncBroadphaseAabbs = true;
+    // Per-stage device times from OpenCL profiling events (Report::stageMs).
+    bool profile = false;
+    // m: points closer than this become contacts (Bullet's gContactBreakingThreshold).
+    float contactThreshold = 0.02f;
+    // Upper bound on the solver's batches per iteration; contacts beyond it run serially.
+    int maxColors = 24;
+    // A body whose bounding size exceeds this multiple of the median body size is paired by
+    // brute force against all bodies instead of through the uniform grid.
+    float largeBodyFactor = 4.0f;
+    // Called for each problem the world reports (bad body input, OpenCL failure, fallback).
+    std::function<void(const Issue&)> onIssue;
+};
+
+}  // namespace btgpu

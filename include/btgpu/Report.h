@@ -1,0 +1,38 @@
+// Report.h — what a btGpuDynamicsWorld tells its app: the device, whether the GPU path runs
+// (and why not), the plan (stages, built programs), per-stage times, counts, memory, and
+// problems found (bad bodies, OpenCL failures, overflows).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace btgpu {
+
+struct Issue {
+    enum class Kind { BadBody, OpenCL, Fallback, Overflow, Device };
+    Kind kind;
+    std::string message;
+    int bodyIndex = -1;  // index in getCollisionObjectArray(), for BadBody
+    int userIndex = -1;  // the body's getUserIndex()
+    int shapeType = -1;  // the body's shape type (BroadphaseNativeTypes)
+};
+
+struct Report {
+    std::string device;               // the OpenCL device in use, "" when none
+    bool gpuPath = false;             // the last step ran on the OpenCL pipeline
+    std::string cpuPathReason;        // why the base class's CPU path runs, when it does
+    std::vector<std::string> stages;  // the plan: stages the step launches, in order
+    std::vector<std::string> builtPrograms;  // OpenCL programs compiled so far
+    double buildSeconds = 0.0;        // time spent compiling them
+    std::map<std::string, double> stageMs;   // device ms per stage, last step (Config::profile)
+    int launches = 0;                 // kernel launches in the last stepSimulation call
+    std::size_t deviceBytes = 0;      // device memory held by this world
+    int pairs = 0;                    // broadphase pairs, last substep
+    int contacts = 0;                 // manifolds with points, last substep
+    int redoneSteps = 0;              // steps redone after a buffer grew (since creation)
+    std::vector<Issue> issues;        // every issue so far (also passed to Config::onIssue)
+};
+
+}  // namespace btgpu
