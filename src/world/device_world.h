@@ -5,6 +5,7 @@
 #pragma once
 #include "cl/buffer.h"
 #include "cl/launch.h"
+#include "shared/counters.h"
 #include "shared/types.h"
 
 namespace btgpu {
@@ -18,6 +19,10 @@ enum Counter : int {
     kNanBody = 4,           // lowest body row found non-finite (0xffffffff: none)
     kNumCounters = 8
 };
+static_assert(kPairCount == BTG_COUNTER_PAIRS && kContactCount == BTG_COUNTER_CONTACTS &&
+                  kPrevContactCount == BTG_COUNTER_PREV_CONTACTS && kStatus == BTG_COUNTER_STATUS &&
+                  kNanBody == BTG_COUNTER_NAN_BODY,
+              "counter slots agree with kernels/shared/counters.h");
 
 struct DeviceWorld {
     explicit DeviceWorld(cl::Context& c) : ctx(c) {}
