@@ -2,6 +2,7 @@
 // event is kept under the current stage name so the Report can give per-stage device times.
 #pragma once
 #include "cl/buffer.h"
+#include "cl/program.h"
 
 #include <map>
 #include <string>

@@ -70,6 +70,11 @@ struct DeviceWorld {
     size_t contactCapacity = 0;
     int numColors = 0;                       // batches the solver launches (host estimate)
 
+    // --- sync_in staging (kept across calls: a quiet step allocates nothing) ---
+    cl::DeviceArray<int> stagingRows;
+    cl::DeviceArray<BtgFloat4> stagingStates;  // 6 per row: pos, rot, linVel, angVel, force, torque
+    cl::DeviceArray<BtgBodyProps> stagingProps;
+
     // --- counts and status ---
     cl::DeviceArray<uint> counters;  // Counter slots
 };

@@ -1,0 +1,84 @@
+// body_rows.cpp — reading Bullet bodies into rows.
+#include "body_rows.h"
+
+#include <btBulletDynamicsCommon.h>
+
+#include <cmath>
+
+namespace btgpu {
+
+namespace {
+BtgFloat4 f4(const btVector3& v, float w = 0.0f) { return btgMake4(v.x(), v.y(), v.z(), w); }
+bool finite(const btVector3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+}  // namespace
+
+BtgBodyProps bodyProps(const btCollisionObject* obj, int shapeRow, const BtgShape& shape, bool excluded)
+{
+    BtgBodyProps p{};
+    const btRigidBody* rb = btRigidBody::upcast(obj);
+    uint flags = 0;
+    if (obj->isStaticObject() || !rb) flags |= BTG_BODY_STATIC;
+    else if (obj->isKinematicObject()) flags |= BTG_BODY_KINEMATIC;
+    else flags |= BTG_BODY_DYNAMIC;
+    if (!obj->hasContactResponse()) flags |= BTG_BODY_NO_RESPONSE;
+    int state = obj->getActivationState();
+    if (state == ISLAND_SLEEPING) flags |= BTG_BODY_SLEEPING;
+    if (state == DISABLE_SIMULATION || excluded) flags |= BTG_BODY_EXCLUDED;
+    if (shape.type == BTG_SHAPE_PLANE) flags = (flags & ~(BTG_BODY_DYNAMIC | BTG_BODY_KINEMATIC)) | BTG_BODY_STATIC;
+    if (rb) {
+        if (rb->getFlags() & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY) flags |= BTG_BODY_GYRO;
+        float invMass = (flags & BTG_BODY_DYNAMIC) ? rb->getInvMass() : 0.0f;
+        p.invInertiaLocal = f4(rb->getInvInertiaDiagLocal(), invMass);
+        p.linearFactor = f4(rb->getLinearFactor(), rb->getLinearDamping());
+        p.angularFactor = f4(rb->getAngularFactor(), rb->getAngularDamping());
+        p.gravity = f4(rb->getGravity(), obj->getFriction());
+        p.sleepLinear = rb->getLinearSleepingThreshold();
+        p.sleepAngular = rb->getAngularSleepingThreshold();
+    } else {
+        p.linearFactor = btgMake4(1, 1, 1, 0);
+        p.angularFactor = btgMake4(1, 1, 1, 0);
+        p.gravity = btgMake4(0, 0, 0, obj->getFriction());
+    }
+    p.restitution = obj->getRestitution();
+    p.shape = shapeRow;
+    p.flags = flags;
+    const btBroadphaseProxy* proxy = obj->getBroadphaseHandle();
+    p.group = proxy ? proxy->m_collisionFilterGroup : -1;
+    p.mask = proxy ? proxy->m_collisionFilterMask : -1;
+    return p;
+}
+
+BodyState bodyState(const btCollisionObject* obj)
+{
+    BodyState s{};
+    const btTransform& t = obj->getWorldTransform();
+    btQuaternion q = t.getRotation();
+    s.pos = f4(t.getOrigin());
+    s.rot = btgMake4(q.x(), q.y(), q.z(), q.w());
+    if (const btRigidBody* rb = btRigidBody::upcast(obj)) {
+        s.linVel = f4(rb->getLinearVelocity());
+        s.angVel = f4(rb->getAngularVelocity());
+        s.force = f4(rb->getTotalForce());
+        s.torque = f4(rb->getTotalTorque());
+    }
+    return s;
+}
+
+std::string badInput(const btCollisionObject* obj)
+{
+    const btTransform& t = obj->getWorldTransform();
+    const btMatrix3x3& b = t.getBasis();
+    if (!finite(t.getOrigin()) || !finite(b[0]) || !finite(b[1]) || !finite(b[2])) return "non-finite transform";
+    const btRigidBody* rb = btRigidBody::upcast(obj);
+    if (!rb) return "";
+    if (!finite(rb->getLinearVelocity()) || !finite(rb->getAngularVelocity())) return "non-finite velocity";
+    if (!finite(rb->getTotalForce()) || !finite(rb->getTotalTorque())) return "non-finite force or torque";
+    if (!std::isfinite(rb->getInvMass()) || rb->getInvMass() < 0.0f) return "negative or non-finite mass";
+    btVector3 ii = rb->getInvInertiaDiagLocal();
+    if (!finite(ii) || ii.x() < 0.0f || ii.y() < 0.0f || ii.z() < 0.0f) return "negative or non-finite inertia";
+    if (!obj->isStaticOrKinematicObject() && rb->getInvMass() == 0.0f)
+        return "zero inverse mass on a body that is neither static nor kinematic";
+    return "";
+}
+
+}  // namespace btgpu

@@ -1,0 +1,431 @@
+// gpu_world.cpp — the GPU path of btGpuDynamicsWorld::stepSimulation: device choice, the
+// scene → rows rebuild and plan, per-call sync of what the app changed, the device substeps
+// with redo on overflow, and the write-back that leaves every body as stock Bullet would.
+#include "gpu_world.h"
+
+#include "body_rows.h"
+#include "shared/integrate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <iostream>
+
+namespace btgpu {
+
+namespace {
+
+bool sameTransform(const btTransform& a, const btTransform& b)
+{
+    const btVector3 &o1 = a.getOrigin(), &o2 = b.getOrigin();
+    if (o1.x() != o2.x() || o1.y() != o2.y() || o1.z() != o2.z()) return false;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+            if (a.getBasis()[r][c] != b.getBasis()[r][c]) return false;
+    return true;
+}
+
+bool sameVec(const btVector3& a, const btVector3& b) { return a.x() == b.x() && a.y() == b.y() && a.z() == b.z(); }
+
+BtgFloat4 finiteOrZero(BtgFloat4 v) { return btgIsFinite4(v) ? v : btgZero4(); }
+
+}  // namespace
+
+GpuWorld::GpuWorld(btGpuDynamicsWorld& world, const Config& config) : m_config(config), m_world(world) {}
+
+GpuWorld::~GpuWorld()
+{
+    m_dev.reset();
+    m_snapshot = Snapshot();
+    m_ctx.reset();
+}
+
+void GpuWorld::report(Issue issue)
+{
+    if (m_config.onIssue) m_config.onIssue(issue);
+    m_report.issues.push_back(std::move(issue));
+}
+
+void GpuWorld::failDevice(const std::string& what)
+{
+    m_deviceFailed = true;
+    m_report.gpuPath = false;
+    m_report.cpuPathReason = "OpenCL failure: " + what;
+    std::cerr << "btgpu: " << m_report.cpuPathReason << "\n         continuing on the CPU path\n";
+    report({Issue::Kind::OpenCL, what});
+    m_dev.reset();
+    m_snapshot = Snapshot();
+    m_ctx.reset();
+}
+
+bool GpuWorld::ensureDevice()
+{
+    if (m_ctx) return true;
+    if (m_deviceFailed) return false;
+    try {
+        cl::DeviceInfo d = cl::selectDevice(m_config.device);
+        m_ctx = std::make_unique<cl::Context>(d);
+        m_dev = std::make_unique<DeviceWorld>(*m_ctx);
+        m_dev->profiler.enabled = m_config.profile;
+        m_report.device = d.describe();
+        std::cerr << "btgpu: OpenCL device " << m_report.device << "\n";
+        return true;
+    } catch (const std::exception& e) {
+        m_deviceFailed = true;
+        m_report.cpuPathReason = std::string("no usable OpenCL device: ") + e.what();
+        std::cerr << "btgpu: running on the CPU path (" << m_report.cpuPathReason << ")\n";
+        report({Issue::Kind::Device, m_report.cpuPathReason});
+        return false;
+    }
+}
+
+std::string GpuWorld::unsupportedReason()
+{
+    if (m_world.getNumConstraints() > 0) return "constraints (addConstraint) are not on the GPU path yet";
+    if (m_world.m_actions.size() > 0) return "actions (addAction, vehicles, characters) are not on the GPU path yet";
+    const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
+    ShapeTables probe;
+    for (int i = 0; i < objs.size(); ++i) {
+        const btCollisionObject* o = objs[i];
+        int type = o->getInternalType();
+        if (type != btCollisionObject::CO_RIGID_BODY && type != btCollisionObject::CO_COLLISION_OBJECT)
+            return "collision object " + std::to_string(i) + " is not a rigid body (ghost, soft or other object)";
+        std::string why;
+        if (probe.add(o->getCollisionShape(), &why) < 0) return "body " + std::to_string(i) + ": " + why;
+    }
+    return "";
+}
+
+void GpuWorld::makePlan()
+{
+    Plan plan;
+    int spheres = 0, hulls = 0, planes = 0, movSpheres = 0, movHulls = 0;
+    std::vector<float> sizes;
+    std::vector<int> large, planeRows;
+    const std::vector<BtgShape>& shapes = m_shapes.shapes;
+    for (size_t r = 0; r < m_rows.size(); ++r) {
+        const btCollisionObject* o = m_rows[r];
+        const BtgShape& s = shapes[m_shapes.rowOf.at(o->getCollisionShape())];
+        bool movable = !o->isStaticObject();
+        if (!o->isStaticOrKinematicObject()) plan.hasDynamic = true;
+        if (s.type == BTG_SHAPE_SPHERE) { ++spheres; movSpheres += movable; }
+        if (s.type == BTG_SHAPE_HULL) { ++hulls; movHulls += movable; }
+        if (s.type == BTG_SHAPE_PLANE) { ++planes; planeRows.push_back(int(r)); }
+        if (s.type != BTG_SHAPE_PLANE) sizes.push_back(2.0f * boundingRadius(s));
+        if (const btRigidBody* rb = btRigidBody::upcast(o))
+            if (rb->getFlags() & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY) plan.gyroscopic = true;
+    }
+    int movable = movSpheres + movHulls;
+    plan.kinds.sphereSphere = spheres >= 2 && movSpheres >= 1;
+    plan.kinds.sphereHull = spheres >= 1 && hulls >= 1 && movable >= 1;
+    plan.kinds.hullHull = hulls >= 2 && movHulls >= 1;
+    plan.kinds.spherePlane = planes >= 1 && movSpheres >= 1;
+    plan.kinds.hullPlane = planes >= 1 && movHulls >= 1;
+    // Sizes alike go in the uniform grid; the few much larger than the median (a ground box)
+    // are paired against everything instead, so they do not inflate the cell size.
+    float median = 0.0f;
+    if (!sizes.empty()) {
+        std::vector<float> sorted = sizes;
+        std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+        median = sorted[sorted.size() / 2];
+    }
+    float cell = 0.0f;
+    for (size_t r = 0, k = 0; r < m_rows.size(); ++r) {
+        const BtgShape& s = shapes[m_shapes.rowOf.at(m_rows[r]->getCollisionShape())];
+        if (s.type == BTG_SHAPE_PLANE) continue;
+        float size = sizes[k++];
+        if (size > m_config.largeBodyFactor * median) large.push_back(int(r));
+        else cell = std::max(cell, size);
+    }
+    plan.cellSize = std::max(cell + 2.0f * m_config.contactThreshold, 1e-3f);
+    plan.hasLarge = !large.empty();
+    plan.hasPlanes = !planeRows.empty();
+    m_plan = plan;
+    DeviceWorld& w = *m_dev;
+    w.numLarge = int(large.size());
+    w.numPlanes = int(planeRows.size());
+    large.push_back(-1);  // never an empty buffer
+    planeRows.push_back(-1);
+    w.largeBodies.upload(w.ctx, large);
+    w.planeBodies.upload(w.ctx, planeRows);
+    m_report.stages = plan.stages();
+}
+
+void GpuWorld::rebuild()
+{
+    DeviceWorld& w = *m_dev;
+    const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
+    m_rows.clear();
+    for (int i = 0; i < objs.size(); ++i) m_rows.push_back(objs[i]);
+    m_shapes.clear();
+    for (btCollisionObject* o : m_rows) {
+        std::string why;
+        m_shapes.add(o->getCollisionShape(), &why);  // checked by unsupportedReason()
+    }
+    resizeBodies(w, int(m_rows.size()));
+    auto uploadTable = [&](auto& arr, auto v) {
+        if (v.empty()) v.resize(1);  // a bound buffer even when the table is empty
+        arr.upload(w.ctx, v);
+    };
+    uploadTable(w.shapes, m_shapes.shapes);
+    uploadTable(w.hullVertices, m_shapes.vertices);
+    uploadTable(w.hullFaces, m_shapes.faces);
+    uploadTable(w.hullIndices, m_shapes.indices);
+    uploadTable(w.hullEdges, m_shapes.edges);
+    w.numShapes = int(m_shapes.shapes.size());
+    makePlan();
+    // Rows changed meaning: the warm-start cache is dropped (one step without warm start).
+    size_t n = m_rows.size();
+    w.pairCapacity = std::max(w.pairCapacity, std::max<size_t>(256, 4 * n));
+    w.contactCapacity = std::max(w.contactCapacity, std::max<size_t>(256, 2 * n));
+    w.pairs.reserve(w.ctx, w.pairCapacity);
+    w.manifolds.reserve(w.ctx, w.pairCapacity);
+    w.contacts.reserve(w.ctx, w.contactCapacity);
+    w.prevContacts.reserve(w.ctx, w.contactCapacity);
+    std::vector<uint> counters(kNumCounters, 0u);
+    counters[kNanBody] = 0xffffffffu;
+    w.counters.upload(w.ctx, counters);
+    w.sleepTime.zero(w.ctx, std::max<size_t>(n, 1));
+    m_mirror.assign(n, Mirror());
+    syncIn(w, changedRows(true));
+    m_structureDirty = false;
+}
+
+std::vector<BodyRowUpdate> GpuWorld::changedRows(bool all)
+{
+    std::vector<BodyRowUpdate> out;
+    for (size_t r = 0; r < m_rows.size(); ++r) {
+        btCollisionObject* o = m_rows[r];
+        Mirror& m = m_mirror[r];
+        std::string bad = badInput(o);
+        bool excluded = !bad.empty();
+        if (excluded && !m.excluded) {
+            const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
+            int index = objs.findLinearSearch(o);
+            report({Issue::Kind::BadBody,
+                    "body " + std::to_string(index) + " (user index " + std::to_string(o->getUserIndex()) + ", shape " +
+                        o->getCollisionShape()->getName() + "): " + bad + "; kept out of the simulation until fixed",
+                    index, o->getUserIndex(), o->getCollisionShape()->getShapeType()});
+        }
+        int shapeRow = m_shapes.rowOf.at(o->getCollisionShape());
+        BtgBodyProps props = bodyProps(o, shapeRow, m_shapes.shapes[shapeRow], excluded);
+        const btRigidBody* rb = btRigidBody::upcast(o);
+        btVector3 lin = rb ? rb->getLinearVelocity() : btVector3(0, 0, 0);
+        btVector3 ang = rb ? rb->getAngularVelocity() : btVector3(0, 0, 0);
+        btVector3 force = rb ? rb->getTotalForce() : btVector3(0, 0, 0);
+        btVector3 torque = rb ? rb->getTotalTorque() : btVector3(0, 0, 0);
+        bool changed = all || excluded != m.excluded || std::memcmp(&props, &m.props, sizeof(props)) != 0 ||
+                       !sameTransform(o->getWorldTransform(), m.xf) || !sameVec(lin, m.linVel) ||
+                       !sameVec(ang, m.angVel) || !sameVec(force, m.force) || !sameVec(torque, m.torque);
+        if (!changed) continue;
+        BodyState s = bodyState(o);
+        BodyRowUpdate u;
+        u.row = int(r);
+        u.pos = finiteOrZero(s.pos);
+        u.rot = btgIsFinite4(s.rot) ? s.rot : btgMake4(0, 0, 0, 1);
+        u.linVel = finiteOrZero(s.linVel);
+        u.angVel = finiteOrZero(s.angVel);
+        u.force = finiteOrZero(s.force);
+        u.torque = finiteOrZero(s.torque);
+        u.props = props;
+        out.push_back(u);
+        m.xf = o->getWorldTransform();
+        m.linVel = lin;
+        m.angVel = ang;
+        m.force = force;
+        m.torque = torque;
+        m.props = props;
+        m.excluded = excluded;
+    }
+    return out;
+}
+
+StepSettings GpuWorld::settings(int substeps, btScalar dt) const
+{
+    const btContactSolverInfo& info = m_world.getSolverInfo();
+    StepSettings s;
+    BtgStepParams& p = s.params;
+    p = BtgStepParams{};
+    p.dt = dt;
+    p.erp = info.m_erp;
+    p.erp2 = info.m_erp2;
+    p.splitPenetrationThreshold = info.m_splitImpulsePenetrationThreshold;
+    p.splitTurnErp = info.m_splitImpulseTurnErp;
+    p.warmstartFactor = (info.m_solverMode & SOLVER_USE_WARMSTARTING) ? info.m_warmstartingFactor : 0.0f;
+    p.restitutionThreshold = info.m_restitutionVelocityThreshold;
+    p.contactThreshold = m_config.contactThreshold;
+    p.deactivationTime = 0.0f;
+    p.splitImpulse = info.m_splitImpulse ? 1 : 0;
+    p.numBodies = m_dev->numBodies;
+    s.substeps = substeps;
+    s.iterations = std::max(info.m_numIterations, 1);
+    s.maxColors = std::max(m_config.maxColors, 2);
+    return s;
+}
+
+void GpuWorld::runOnDevice(int substeps, btScalar dt)
+{
+    DeviceWorld& w = *m_dev;
+    StepSettings s = settings(substeps, dt);
+    resetStatus(w);
+    takeSnapshot(w, m_snapshot);
+    // A buffer that overflowed grows and the call is redone from the snapshot: no contact is
+    // ever dropped. Growth is geometric, so this settles after a few tries.
+    for (int attempt = 0;; ++attempt) {
+        runSubsteps(w, m_plan, s);
+        syncOut(w, m_readback);
+        uint status = m_readback.counters[kStatus];
+        bool pairOverflow = status & BTG_STATUS_PAIR_OVERFLOW;
+        bool contactOverflow = status & BTG_STATUS_CONTACT_OVERFLOW;
+        if ((!pairOverflow && !contactOverflow) || attempt >= 8) break;
+        size_t pairs = m_readback.counters[kPairCount];
+        if (pairOverflow) w.pairCapacity = std::max(w.pairCapacity * 2, pairs + pairs / 4 + 64);
+        if (contactOverflow || pairOverflow) w.contactCapacity = std::max(w.contactCapacity * 2, std::min(w.pairCapacity, pairs + 64));
+        w.pairs.reserve(w.ctx, w.pairCapacity);
+        w.manifolds.reserve(w.ctx, w.pairCapacity);
+        w.contacts.reserve(w.ctx, w.contactCapacity);
+        w.prevContacts.reserve(w.ctx, w.contactCapacity, true);
+        ++m_report.redoneSteps;
+        report({Issue::Kind::Overflow, "pair/contact buffers grew to " + std::to_string(w.pairCapacity) + "/" +
+                                           std::to_string(w.contactCapacity) + "; step redone"});
+        restoreSnapshot(w, m_snapshot);
+        resetStatus(w);
+    }
+    m_report.pairs = int(std::min<size_t>(m_readback.counters[kPairCount], w.pairCapacity));
+    m_report.contacts = int(m_readback.counters[kContactCount]);
+}
+
+void GpuWorld::writeBack(const BodyReadback& rb)
+{
+    for (size_t r = 0; r < m_rows.size(); ++r) {
+        Mirror& m = m_mirror[r];
+        if (!btgIsMoving(m.props.flags)) continue;
+        btRigidBody* body = btRigidBody::upcast(m_rows[r]);
+        if (!body) continue;
+        BtgFloat4 p = rb.pos[r], q = rb.rot[r], v = rb.linVel[r], a = rb.angVel[r];
+        if (!btgIsFinite4(p) || !btgIsFinite4(q) || !btgIsFinite4(v) || !btgIsFinite4(a)) {
+            int index = m_world.getCollisionObjectArray().findLinearSearch(body);
+            report({Issue::Kind::BadBody,
+                    "body " + std::to_string(index) + " (user index " + std::to_string(body->getUserIndex()) +
+                        ") became non-finite on the device; its last good state is kept",
+                    index, body->getUserIndex(), body->getCollisionShape()->getShapeType()});
+            m.props.flags = 0xffffffffu;  // forces the good state back up next call
+            continue;
+        }
+        body->setLinearVelocity(btVector3(v.x, v.y, v.z));
+        body->setAngularVelocity(btVector3(a.x, a.y, a.z));
+        // As Bullet's integrateTransforms → proceedToTransform: also sets the interpolation
+        // transform and velocities that synchronizeMotionStates extrapolates from.
+        body->setCenterOfMassTransform(btTransform(btQuaternion(q.x, q.y, q.z, q.w), btVector3(p.x, p.y, p.z)));
+        m.xf = body->getWorldTransform();
+        m.linVel = body->getLinearVelocity();
+        m.angVel = body->getAngularVelocity();
+    }
+}
+
+bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, int* substepsDone)
+{
+    if (m_config.forceCpu) {
+        m_report.gpuPath = false;
+        m_report.cpuPathReason = "Config::forceCpu";
+        return false;
+    }
+    if (!ensureDevice()) {
+        m_report.gpuPath = false;
+        return false;
+    }
+    if (m_structureDirty) {
+        std::string why = unsupportedReason();
+        if (!why.empty()) {
+            if (!m_onCpuPath || why != m_report.cpuPathReason) {
+                std::cerr << "btgpu: running on the CPU path: " << why << "\n";
+                report({Issue::Kind::Fallback, why});
+            }
+            m_onCpuPath = true;
+            m_report.cpuPathReason = why;
+            m_report.gpuPath = false;
+            return false;  // structure stays dirty: re-checked when something is added or removed
+        }
+        rebuild();
+        m_onCpuPath = false;
+        m_report.cpuPathReason.clear();
+    }
+
+    // Time bookkeeping exactly as btDiscreteDynamicsWorld::stepSimulation.
+    btScalar localTime = m_world.m_localTime;
+    int numSubSteps = 0;
+    if (maxSubSteps) {
+        localTime += timeStep;
+        if (localTime >= fixedTimeStep) {
+            numSubSteps = int(localTime / fixedTimeStep);
+            localTime -= numSubSteps * fixedTimeStep;
+        }
+    } else {
+        fixedTimeStep = timeStep;
+        localTime = m_world.m_latencyMotionStateInterpolation ? 0 : timeStep;
+        if (btFuzzyZero(timeStep)) {
+            numSubSteps = 0;
+            maxSubSteps = 0;
+        } else {
+            numSubSteps = 1;
+            maxSubSteps = 1;
+        }
+    }
+
+    m_dev->profiler.resetLaunchCount();
+    if (numSubSteps) {
+        int clamped = numSubSteps > maxSubSteps ? maxSubSteps : numSubSteps;
+        m_world.saveKinematicState(fixedTimeStep * clamped);
+        bool perSubstep = m_world.m_internalTickCallback || m_world.m_internalPreTickCallback;
+        int batches = perSubstep ? clamped : 1;
+        int perBatch = perSubstep ? 1 : clamped;
+        for (int b = 0; b < batches; ++b) {
+            if (m_world.m_internalPreTickCallback) m_world.m_internalPreTickCallback(&m_world, fixedTimeStep);
+            syncIn(*m_dev, changedRows(false));
+            runOnDevice(perBatch, fixedTimeStep);
+            writeBack(m_readback);
+            if (m_world.m_internalTickCallback) m_world.m_internalTickCallback(&m_world, fixedTimeStep);
+        }
+    }
+    m_world.m_localTime = localTime;
+    m_world.m_fixedTimeStep = maxSubSteps ? fixedTimeStep : 0;
+    m_world.synchronizeMotionStates();
+    m_world.clearForces();
+    if (m_config.syncBroadphaseAabbs) m_world.updateAabbs();
+    if (m_config.profile) {
+        m_report.stageMs.clear();
+        m_dev->profiler.collect(m_report.stageMs);
+    }
+    m_report.launches = m_dev->profiler.launches();
+    m_report.builtPrograms = m_ctx->builtPrograms();
+    m_report.buildSeconds = m_ctx->buildSeconds();
+    m_report.deviceBytes = cl::bytesInUse(*m_ctx);
+    m_report.gpuPath = true;
+    *substepsDone = numSubSteps;
+    return true;
+}
+
+std::uint64_t GpuWorld::stateHash() const
+{
+    std::uint64_t h = 1469598103934665603ull;
+    auto mix = [&](const void* p, size_t n) {
+        const unsigned char* c = static_cast<const unsigned char*>(p);
+        for (size_t i = 0; i < n; ++i) h = (h ^ c[i]) * 1099511628211ull;
+    };
+    const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
+    for (int i = 0; i < objs.size(); ++i) {
+        const btTransform& t = objs[i]->getWorldTransform();
+        float v[12] = {t.getOrigin().x(), t.getOrigin().y(), t.getOrigin().z(), t.getBasis()[0][0], t.getBasis()[0][1],
+                       t.getBasis()[0][2], t.getBasis()[1][0], t.getBasis()[1][1], t.getBasis()[1][2],
+                       t.getBasis()[2][0], t.getBasis()[2][1], t.getBasis()[2][2]};
+        mix(v, sizeof(v));
+        if (const btRigidBody* rb = btRigidBody::upcast(objs[i])) {
+            float u[6] = {rb->getLinearVelocity().x(), rb->getLinearVelocity().y(), rb->getLinearVelocity().z(),
+                          rb->getAngularVelocity().x(), rb->getAngularVelocity().y(), rb->getAngularVelocity().z()};
+            mix(u, sizeof(u));
+        }
+    }
+    return h;
+}
+
+}  // namespace btgpu

@@ -1,0 +1,68 @@
+// gpu_world.h — GpuWorld: everything btGpuDynamicsWorld adds to its base class. It owns the
+// OpenCL context and the DeviceWorld, maps Bullet objects to body rows, decides between the
+// GPU path and the base class's CPU path, and runs stepSimulation's substeps on the device
+// with Bullet's time, kinematic, motion-state and force semantics around them.
+#pragma once
+#include "btgpu/btGpuDynamicsWorld.h"
+#include "pipeline.h"
+#include "shape_tables.h"
+#include "stages/sync_bodies.h"
+#include "world/device_world.h"
+#include "world/plan.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace btgpu {
+
+class GpuWorld {
+public:
+    GpuWorld(btGpuDynamicsWorld& world, const Config& config);
+    ~GpuWorld();
+
+    // The whole stepSimulation on the GPU path. Returns false (having changed nothing) when
+    // the CPU path must run this call instead.
+    bool step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, int* substepsDone);
+
+    void structureChanged() { m_structureDirty = true; }
+    // An OpenCL failure during a step: reported once, and the world stays on the CPU path.
+    void failDevice(const std::string& what);
+    void report(Issue issue);
+    std::uint64_t stateHash() const;
+
+    Report m_report;
+    Config m_config;
+
+private:
+    struct Mirror {  // what the device holds for a row, as last written or read back
+        btTransform xf;
+        btVector3 linVel, angVel, force, torque;
+        BtgBodyProps props;
+        bool excluded = false;
+    };
+
+    bool ensureDevice();
+    std::string unsupportedReason();
+    void rebuild();
+    void makePlan();
+    std::vector<BodyRowUpdate> changedRows(bool all);
+    void runOnDevice(int substeps, btScalar dt);
+    void writeBack(const BodyReadback& rb);
+    StepSettings settings(int substeps, btScalar dt) const;
+
+    btGpuDynamicsWorld& m_world;
+    std::unique_ptr<cl::Context> m_ctx;
+    std::unique_ptr<DeviceWorld> m_dev;
+    bool m_deviceFailed = false;
+    bool m_structureDirty = true;
+    bool m_onCpuPath = false;
+    Plan m_plan;
+    ShapeTables m_shapes;
+    std::vector<btCollisionObject*> m_rows;
+    std::vector<Mirror> m_mirror;
+    Snapshot m_snapshot;
+    BodyReadback m_readback;
+};
+
+}  // namespace btgpu

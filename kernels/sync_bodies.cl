@@ -1,0 +1,22 @@
+/* sync_bodies.cl — Stage: sync_in. Writes the rows the app changed between steps.
+ * Launch: one work-item per changed row. Reads rows, states (6 float4 per row: pos, rot,
+ * linVel, angVel, force, torque), rowProps. Writes pos, rot, linVel, angVel, extForce,
+ * extTorque, props at those rows. */
+#include "shared/types.h"
+
+__kernel void scatter_bodies(int n, __global const int* restrict rows, __global const BtgFloat4* restrict states,
+                             __global const BtgBodyProps* restrict rowProps, __global BtgFloat4* pos,
+                             __global BtgFloat4* rot, __global BtgFloat4* linVel, __global BtgFloat4* angVel,
+                             __global BtgFloat4* extForce, __global BtgFloat4* extTorque, __global BtgBodyProps* props)
+{
+    int k = get_global_id(0);
+    if (k >= n) return;
+    int r = rows[k];
+    pos[r] = states[6 * k + 0];
+    rot[r] = states[6 * k + 1];
+    linVel[r] = states[6 * k + 2];
+    angVel[r] = states[6 * k + 3];
+    extForce[r] = states[6 * k + 4];
+    extTorque[r] = states[6 * k + 5];
+    props[r] = rowProps[k];
+}

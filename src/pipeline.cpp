@@ -1,0 +1,96 @@
+// pipeline.cpp — one substep, top to bottom, as the talk lays it out: integrate/predict →
+// AABBs → pairs → contacts → forces → contact cache → constraint setup → batching → PGS →
+// integrate transforms. Stages absent from the plan are neither built nor launched.
+#include "pipeline.h"
+
+#include "stages/color_constraints.h"
+#include "stages/contact_cache.h"
+#include "stages/find_pairs.h"
+#include "stages/integrate.h"
+#include "stages/narrowphase.h"
+#include "stages/prepare_contacts.h"
+#include "stages/solve_constraints.h"
+#include "stages/update_aabbs.h"
+
+#include <utility>
+
+namespace btgpu {
+
+namespace {
+
+void fillCounters(DeviceWorld& w, int first, int count, uint value)
+{
+    BTGPU_CL_CHECK(clEnqueueFillBuffer(w.ctx.queue(), w.counters.mem(), &value, sizeof(uint), first * sizeof(uint),
+                                       count * sizeof(uint), 0, nullptr, nullptr));
+}
+
+// This substep's contacts become the next one's warm-start cache.
+void rotateContactCache(DeviceWorld& w)
+{
+    std::swap(w.contacts, w.prevContacts);
+    BTGPU_CL_CHECK(clEnqueueCopyBuffer(w.ctx.queue(), w.counters.mem(), w.counters.mem(), kContactCount * sizeof(uint),
+                                       kPrevContactCount * sizeof(uint), sizeof(uint), 0, nullptr, nullptr));
+}
+
+void runSubstep(DeviceWorld& w, const Plan& plan, const StepSettings& s)
+{
+    const BtgStepParams& p = s.params;
+    const bool collide = plan.kinds.any();
+    fillCounters(w, kPairCount, 2, 0u);  // pair and contact counts
+    predictMotion(w, p.dt);
+    if (collide) {
+        updateAabbs(w, p.contactThreshold);
+        findPairs(w, plan.cellSize);
+        narrowphase(w, plan.kinds, p.contactThreshold);
+    }
+    applyForces(w, p.dt);
+    if (collide) {
+        buildContacts(w, p);
+        prepareContacts(w, p);
+        colorConstraints(w, s.maxColors);
+        solveConstraints(w, p, s.iterations, s.maxColors);
+    }
+    integrateTransforms(w, p.dt, p.splitTurnErp);
+    if (collide) rotateContactCache(w);
+}
+
+}  // namespace
+
+void runSubsteps(DeviceWorld& w, const Plan& plan, const StepSettings& s)
+{
+    if (w.numBodies == 0) return;
+    for (int i = 0; i < s.substeps; ++i) runSubstep(w, plan, s);
+}
+
+void resetStatus(DeviceWorld& w)
+{
+    fillCounters(w, kStatus, 1, 0u);
+    fillCounters(w, kNanBody, 1, 0xffffffffu);
+}
+
+void takeSnapshot(DeviceWorld& w, Snapshot& s)
+{
+    size_t n = size_t(w.numBodies);
+    s.pos.copyFrom(w.ctx, w.pos, n);
+    s.rot.copyFrom(w.ctx, w.rot, n);
+    s.linVel.copyFrom(w.ctx, w.linVel, n);
+    s.angVel.copyFrom(w.ctx, w.angVel, n);
+    s.prevContacts.copyFrom(w.ctx, w.prevContacts, w.prevContacts.capacity());
+    s.counters.copyFrom(w.ctx, w.counters, kNumCounters);
+}
+
+void restoreSnapshot(DeviceWorld& w, const Snapshot& s)
+{
+    size_t n = size_t(w.numBodies);
+    w.pos.copyFrom(w.ctx, s.pos, n);
+    w.rot.copyFrom(w.ctx, s.rot, n);
+    w.linVel.copyFrom(w.ctx, s.linVel, n);
+    w.angVel.copyFrom(w.ctx, s.angVel, n);
+    // The cache keeps the capacity it has grown to; only the old entries come back.
+    size_t m = s.prevContacts.capacity() < w.prevContacts.capacity() ? s.prevContacts.capacity() : w.prevContacts.capacity();
+    BTGPU_CL_CHECK(clEnqueueCopyBuffer(w.ctx.queue(), s.prevContacts.mem(), w.prevContacts.mem(), 0, 0,
+                                       m * sizeof(BtgContact), 0, nullptr, nullptr));
+    w.counters.copyFrom(w.ctx, s.counters, kNumCounters);
+}
+
+}  // namespace btgpu

@@ -1,0 +1,32 @@
+// pipeline.h — the whole step on the device: the substeps of one stepSimulation call,
+// enqueued back to back with no host round trip, plus the snapshot that lets the caller redo
+// the call after a buffer overflowed.
+#pragma once
+#include "world/device_world.h"
+#include "world/plan.h"
+
+namespace btgpu {
+
+struct StepSettings {
+    BtgStepParams params;  // dt is the fixed substep
+    int substeps = 1;
+    int iterations = 10;   // btContactSolverInfo::m_numIterations
+    int maxColors = 24;
+};
+
+// Enqueues `s.substeps` substeps of the plan (the caller reads back once afterwards).
+void runSubsteps(DeviceWorld& w, const Plan& plan, const StepSettings& s);
+
+// What a redo needs: the body state and the warm-start cache as they were before the call.
+struct Snapshot {
+    cl::DeviceArray<BtgFloat4> pos, rot, linVel, angVel;
+    cl::DeviceArray<BtgContact> prevContacts;
+    cl::DeviceArray<uint> counters;
+};
+void takeSnapshot(DeviceWorld& w, Snapshot& s);
+void restoreSnapshot(DeviceWorld& w, const Snapshot& s);
+
+// Clears the status word and the NaN marker at the start of a call.
+void resetStatus(DeviceWorld& w);
+
+}  // namespace btgpu

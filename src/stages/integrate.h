@@ -1,0 +1,12 @@
+// integrate.h — Stage: integrate (kernels/integrate.cl). Three launches per substep, in
+// Bullet's order: predictMotion (damping) before collision detection, applyForces (gravity,
+// app forces and torques, gyroscopic term; caches world inverse inertia) before the contact
+// setup, integrateTransforms (split-impulse push, then velocity) after the solver.
+#pragma once
+#include "world/device_world.h"
+
+namespace btgpu {
+void predictMotion(DeviceWorld& w, float dt);
+void applyForces(DeviceWorld& w, float dt);
+void integrateTransforms(DeviceWorld& w, float dt, float splitTurnErp);
+}  // namespace btgpu

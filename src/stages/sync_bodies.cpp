@@ -1,0 +1,74 @@
+// sync_bodies.cpp — column sizing, scatter of changed rows, readback.
+#include "stages/sync_bodies.h"
+
+namespace btgpu {
+
+void resizeBodies(DeviceWorld& w, int n)
+{
+    cl::Context& c = w.ctx;
+    size_t rows = size_t(n > 0 ? n : 1);
+    w.pos.reserve(c, rows, true);
+    w.rot.reserve(c, rows, true);
+    w.linVel.reserve(c, rows, true);
+    w.angVel.reserve(c, rows, true);
+    w.props.reserve(c, rows, true);
+    w.extForce.reserve(c, rows, true);
+    w.extTorque.reserve(c, rows, true);
+    w.invInertiaWorld.reserve(c, 3 * rows);
+    w.pushLin.reserve(c, rows);
+    w.pushAng.reserve(c, rows);
+    w.linVel0.reserve(c, rows);
+    w.angVel0.reserve(c, rows);
+    w.aabbMin.reserve(c, rows);
+    w.aabbMax.reserve(c, rows);
+    w.sleepTime.reserve(c, rows, true);
+    w.counters.reserve(c, kNumCounters, true);
+    w.numBodies = n;
+}
+
+void syncIn(DeviceWorld& w, const std::vector<BodyRowUpdate>& updates)
+{
+    if (updates.empty()) return;
+    std::vector<int> rows;
+    std::vector<BtgFloat4> states;
+    std::vector<BtgBodyProps> props;
+    rows.reserve(updates.size());
+    states.reserve(6 * updates.size());
+    props.reserve(updates.size());
+    for (const BodyRowUpdate& u : updates) {
+        rows.push_back(u.row);
+        states.insert(states.end(), {u.pos, u.rot, u.linVel, u.angVel, u.force, u.torque});
+        props.push_back(u.props);
+    }
+    w.stagingRows.upload(w.ctx, rows);
+    w.stagingStates.upload(w.ctx, states);
+    w.stagingProps.upload(w.ctx, props);
+    w.profiler.stage = "sync";
+    int n = int(updates.size());
+    cl::Launch(w.ctx, w.ctx.program("sync_bodies").kernel("scatter_bodies"), &w.profiler)
+        .arg(n).arg(w.stagingRows).arg(w.stagingStates).arg(w.stagingProps).arg(w.pos).arg(w.rot).arg(w.linVel).arg(w.angVel)
+        .arg(w.extForce).arg(w.extTorque).arg(w.props)
+        .run(size_t(n));
+}
+
+void syncOut(DeviceWorld& w, BodyReadback& out)
+{
+    size_t n = size_t(w.numBodies);
+    out.pos.resize(n);
+    out.rot.resize(n);
+    out.linVel.resize(n);
+    out.angVel.resize(n);
+    out.counters.resize(kNumCounters);
+    // Non-blocking reads queued together, one wait: a single round trip per call.
+    cl_command_queue q = w.ctx.queue();
+    if (n) {
+        BTGPU_CL_CHECK(clEnqueueReadBuffer(q, w.pos.mem(), CL_FALSE, 0, n * sizeof(BtgFloat4), out.pos.data(), 0, nullptr, nullptr));
+        BTGPU_CL_CHECK(clEnqueueReadBuffer(q, w.rot.mem(), CL_FALSE, 0, n * sizeof(BtgFloat4), out.rot.data(), 0, nullptr, nullptr));
+        BTGPU_CL_CHECK(clEnqueueReadBuffer(q, w.linVel.mem(), CL_FALSE, 0, n * sizeof(BtgFloat4), out.linVel.data(), 0, nullptr, nullptr));
+        BTGPU_CL_CHECK(clEnqueueReadBuffer(q, w.angVel.mem(), CL_FALSE, 0, n * sizeof(BtgFloat4), out.angVel.data(), 0, nullptr, nullptr));
+    }
+    BTGPU_CL_CHECK(clEnqueueReadBuffer(q, w.counters.mem(), CL_FALSE, 0, kNumCounters * sizeof(uint), out.counters.data(), 0, nullptr, nullptr));
+    BTGPU_CL_CHECK(clFinish(q));
+}
+
+}  // namespace btgpu

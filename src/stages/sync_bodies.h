@@ -1,0 +1,30 @@
+// sync_bodies.h — Stage: sync_in / sync_out. The host side of the device world: sizing the
+// body columns, writing only the rows the app changed (one scatter launch), and the one
+// readback per stepSimulation call (transforms, velocities, counters together).
+#pragma once
+#include "world/device_world.h"
+
+#include <vector>
+
+namespace btgpu {
+
+// One changed body row as the host sends it.
+struct BodyRowUpdate {
+    int row;
+    BtgFloat4 pos, rot, linVel, angVel, force, torque;
+    BtgBodyProps props;
+};
+
+// Sizes every body column for n rows (contents of new rows undefined until written).
+void resizeBodies(DeviceWorld& w, int n);
+// Writes the given rows through staging buffers and one scatter launch.
+void syncIn(DeviceWorld& w, const std::vector<BodyRowUpdate>& rows);
+
+struct BodyReadback {
+    std::vector<BtgFloat4> pos, rot, linVel, angVel;
+    std::vector<uint> counters;
+};
+// Blocking readback of every row's state and the counters.
+void syncOut(DeviceWorld& w, BodyReadback& out);
+
+}  // namespace btgpu
