@@ -24,6 +24,7 @@ BtgBodyProps bodyProps(const btCollisionObject* obj, int shapeRow, const BtgShap
     int state = obj->getActivationState();
     if (state == ISLAND_SLEEPING) flags |= BTG_BODY_SLEEPING;
     if (state == DISABLE_SIMULATION || excluded) flags |= BTG_BODY_EXCLUDED;
+    if (state == DISABLE_DEACTIVATION || obj->isKinematicObject()) flags |= BTG_BODY_NEVER_SLEEP;
     if (shape.type == BTG_SHAPE_PLANE) flags = (flags & ~(BTG_BODY_DYNAMIC | BTG_BODY_KINEMATIC)) | BTG_BODY_STATIC;
     if (rb) {
         if (rb->getFlags() & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY) flags |= BTG_BODY_GYRO;

@@ -186,6 +186,8 @@ void GpuWorld::rebuild()
     counters[kNanBody] = 0xffffffffu;
     w.counters.upload(w.ctx, counters);
     w.sleepTime.zero(w.ctx, std::max<size_t>(n, 1));
+    std::vector<uint> never(std::max<size_t>(n, 1), 0x7f800000u);  // +inf: no island yet
+    w.islandTime.upload(w.ctx, never);
     m_mirror.assign(n, Mirror());
     syncIn(w, changedRows(true));
     m_structureDirty = false;
@@ -254,7 +256,7 @@ StepSettings GpuWorld::settings(int substeps, btScalar dt) const
     p.warmstartFactor = (info.m_solverMode & SOLVER_USE_WARMSTARTING) ? info.m_warmstartingFactor : 0.0f;
     p.restitutionThreshold = info.m_restitutionVelocityThreshold;
     p.contactThreshold = m_config.contactThreshold;
-    p.deactivationTime = 0.0f;
+    p.deactivationTime = gDisableDeactivation ? 0.0f : gDeactivationTime;
     p.splitImpulse = info.m_splitImpulse ? 1 : 0;
     p.numBodies = m_dev->numBodies;
     s.substeps = substeps;
@@ -299,7 +301,11 @@ void GpuWorld::writeBack(const BodyReadback& rb)
 {
     for (size_t r = 0; r < m_rows.size(); ++r) {
         Mirror& m = m_mirror[r];
-        if (!btgIsMoving(m.props.flags)) continue;
+        uint f = m.props.flags;
+        if (!(f & BTG_BODY_DYNAMIC) || (f & BTG_BODY_EXCLUDED)) continue;
+        bool wasAsleep = (f & BTG_BODY_SLEEPING) != 0;
+        bool asleep = rb.sleepState[r] != 0;
+        if (wasAsleep && asleep) continue;  // nothing moved
         btRigidBody* body = btRigidBody::upcast(m_rows[r]);
         if (!body) continue;
         BtgFloat4 p = rb.pos[r], q = rb.rot[r], v = rb.linVel[r], a = rb.angVel[r];
@@ -317,6 +323,17 @@ void GpuWorld::writeBack(const BodyReadback& rb)
         // As Bullet's integrateTransforms → proceedToTransform: also sets the interpolation
         // transform and velocities that synchronizeMotionStates extrapolates from.
         body->setCenterOfMassTransform(btTransform(btQuaternion(q.x, q.y, q.z, q.w), btVector3(p.x, p.y, p.z)));
+        if (asleep) {
+            // Stock Bullet stops a body before its island sleeps; this one moved in the step
+            // it fell asleep, so its motion state gets that last move now.
+            body->setActivationState(ISLAND_SLEEPING);
+            m_world.synchronizeSingleMotionState(body);
+            m.props.flags |= BTG_BODY_SLEEPING;
+        } else if (wasAsleep) {
+            body->setActivationState(ACTIVE_TAG);
+            body->setDeactivationTime(0);
+            m.props.flags &= ~BTG_BODY_SLEEPING;
+        }
         m.xf = body->getWorldTransform();
         m.linVel = body->getLinearVelocity();
         m.angVel = body->getAngularVelocity();

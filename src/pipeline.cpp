@@ -1,6 +1,6 @@
 // pipeline.cpp — one substep, top to bottom, as the talk lays it out: integrate/predict →
 // AABBs → pairs → contacts → forces → contact cache → constraint setup → batching → PGS →
-// integrate transforms. Stages absent from the plan are neither built nor launched.
+// integrate transforms → deactivation. Stages absent from the plan are neither built nor launched.
 #include "pipeline.h"
 
 #include "stages/color_constraints.h"
@@ -11,6 +11,7 @@
 #include "stages/prepare_contacts.h"
 #include "stages/solve_constraints.h"
 #include "stages/update_aabbs.h"
+#include "stages/update_activation.h"
 
 #include <utility>
 
@@ -51,6 +52,7 @@ void runSubstep(DeviceWorld& w, const Plan& plan, const StepSettings& s)
         solveConstraints(w, p, s.iterations, s.maxColors);
     }
     integrateTransforms(w, p.dt, p.splitTurnErp);
+    updateActivation(w, p.dt, p.deactivationTime);
     if (collide) rotateContactCache(w);
 }
 

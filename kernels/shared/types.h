@@ -15,6 +15,7 @@
 #define BTG_BODY_EXCLUDED 32u    /* bad input or an empty row: takes no part at all */
 #define BTG_BODY_GYRO 64u        /* BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY */
 #define BTG_BODY_LARGE 128u      /* too big for the uniform grid: tested against every body */
+#define BTG_BODY_NEVER_SLEEP 256u /* DISABLE_DEACTIVATION, or a kinematic body */
 
 /* Shape kinds (BtgShape.type). Boxes are hulls with 8 vertices and 6 faces. */
 #define BTG_SHAPE_SPHERE 0

@@ -22,6 +22,10 @@ void resizeBodies(DeviceWorld& w, int n)
     w.aabbMin.reserve(c, rows);
     w.aabbMax.reserve(c, rows);
     w.sleepTime.reserve(c, rows, true);
+    w.islandTime.reserve(c, rows, true);
+    w.islandScratch.reserve(c, rows);
+    w.wake.reserve(c, rows);
+    w.sleepState.reserve(c, rows, true);
     w.counters.reserve(c, kNumCounters, true);
     w.numBodies = n;
 }
@@ -58,6 +62,7 @@ void syncOut(DeviceWorld& w, BodyReadback& out)
     out.rot.resize(n);
     out.linVel.resize(n);
     out.angVel.resize(n);
+    out.sleepState.resize(n);
     out.counters.resize(kNumCounters);
     // Non-blocking reads queued together, one wait: a single round trip per call.
     cl_command_queue q = w.ctx.queue();
@@ -66,6 +71,7 @@ void syncOut(DeviceWorld& w, BodyReadback& out)
         BTGPU_CL_CHECK(clEnqueueReadBuffer(q, w.rot.mem(), CL_FALSE, 0, n * sizeof(BtgFloat4), out.rot.data(), 0, nullptr, nullptr));
         BTGPU_CL_CHECK(clEnqueueReadBuffer(q, w.linVel.mem(), CL_FALSE, 0, n * sizeof(BtgFloat4), out.linVel.data(), 0, nullptr, nullptr));
         BTGPU_CL_CHECK(clEnqueueReadBuffer(q, w.angVel.mem(), CL_FALSE, 0, n * sizeof(BtgFloat4), out.angVel.data(), 0, nullptr, nullptr));
+        BTGPU_CL_CHECK(clEnqueueReadBuffer(q, w.sleepState.mem(), CL_FALSE, 0, n * sizeof(uint), out.sleepState.data(), 0, nullptr, nullptr));
     }
     BTGPU_CL_CHECK(clEnqueueReadBuffer(q, w.counters.mem(), CL_FALSE, 0, kNumCounters * sizeof(uint), out.counters.data(), 0, nullptr, nullptr));
     BTGPU_CL_CHECK(clFinish(q));

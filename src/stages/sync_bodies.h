@@ -22,6 +22,7 @@ void syncIn(DeviceWorld& w, const std::vector<BodyRowUpdate>& rows);
 
 struct BodyReadback {
     std::vector<BtgFloat4> pos, rot, linVel, angVel;
+    std::vector<uint> sleepState;  // 1: asleep
     std::vector<uint> counters;
 };
 // Blocking readback of every row's state and the counters.

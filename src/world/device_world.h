@@ -44,6 +44,10 @@ struct DeviceWorld {
     cl::DeviceArray<BtgFloat4> aabbMin;    // m, world AABB grown by the contact threshold
     cl::DeviceArray<BtgFloat4> aabbMax;
     cl::DeviceArray<float> sleepTime;      // s spent under the sleeping thresholds
+    cl::DeviceArray<uint> islandTime;      // float bits: least timer over the body's island
+    cl::DeviceArray<uint> islandScratch;   // ping-pong partner of islandTime
+    cl::DeviceArray<uint> wake;            // 1: a moving body touched this sleeping one
+    cl::DeviceArray<uint> sleepState;      // 1: asleep after this step (read back)
     cl::DeviceArray<BtgFloat4> linVel0;    // m/s before this substep's forces (restitution uses it, as Bullet)
     cl::DeviceArray<BtgFloat4> angVel0;    // rad/s before this substep's forces
 

@@ -13,7 +13,7 @@ std::vector<std::string> Plan::stages() const
         if (kinds.hullHull) s.push_back("narrowphase_sat");
         s.insert(s.end(), {"contact_cache", "prepare_contacts", "color_constraints", "solve_constraints"});
     }
-    s.insert(s.end(), {"integrate_transforms", "sync_out"});
+    s.insert(s.end(), {"integrate_transforms", "update_activation", "sync_out"});
     return s;
 }
 

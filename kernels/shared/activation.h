@@ -1,0 +1,25 @@
+/* activation.h — Bullet's deactivation rules as shared functions: a body's own timer
+ * (btRigidBody::updateDeactivation) and its island's (the least timer among the bodies its
+ * contacts connect it to; an island sleeps when every body in it has been slow for
+ * gDeactivationTime, as btSimulationIslandManager decides). Timers are non-negative floats,
+ * compared as their uint bits so atomic_min orders them exactly. */
+#ifndef BTG_ACTIVATION_H
+#define BTG_ACTIVATION_H
+#include "types.h"
+
+#define BTG_NEVER_UINT 0x7f800000u /* +inf: takes no part in an island */
+
+/* Bodies that can fall asleep and that make up islands: dynamic, awake, in the simulation. */
+static inline int btgCanSleep(uint flags)
+{
+    return (flags & BTG_BODY_DYNAMIC) && !(flags & (BTG_BODY_SLEEPING | BTG_BODY_EXCLUDED));
+}
+
+static inline float btgOwnTimer(float timer, BtgFloat4 v, BtgFloat4 w, BtgBodyProps p, float dt)
+{
+    if (p.flags & BTG_BODY_NEVER_SLEEP) return 0.0f;
+    int slow = btgDot3(v, v) < p.sleepLinear * p.sleepLinear && btgDot3(w, w) < p.sleepAngular * p.sleepAngular;
+    return slow ? timer + dt : 0.0f;
+}
+
+#endif

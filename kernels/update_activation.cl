@@ -1,0 +1,71 @@
+/* update_activation.cl — Stage: update_activation (deactivation, as Bullet's).
+ * own_timers      one work-item per body. Reads linVel, angVel, props. Writes sleepTime (own
+ *                 timer), islandTime (min(own, island + dt)), wake (cleared).
+ * island_min      one work-item per contact. Reads contacts, counters, props, islandSrc.
+ *                 Writes islandDst (atomic_min over both bodies: deterministic, min is order-
+ *                 free), wake (a sleeping body touched by a moving, non-slow body).
+ * apply_sleep     one work-item per body. Reads islandTime, wake, sleepTime. Writes props.flags
+ *                 (BTG_BODY_SLEEPING), linVel/angVel (zero when falling asleep), sleepState. */
+#include "shared/activation.h"
+#include "shared/counters.h"
+
+__kernel void own_timers(int n, __global const BtgFloat4* restrict linVel, __global const BtgFloat4* restrict angVel,
+                         __global const BtgBodyProps* restrict props, __global float* sleepTime,
+                         __global uint* islandTime, __global uint* wake, float dt)
+{
+    int i = get_global_id(0);
+    if (i >= n) return;
+    BtgBodyProps p = props[i];
+    wake[i] = 0u;
+    if (!btgCanSleep(p.flags)) {
+        islandTime[i] = BTG_NEVER_UINT;
+        return;
+    }
+    float own = btgOwnTimer(sleepTime[i], linVel[i], angVel[i], p, dt);
+    sleepTime[i] = own;
+    float island = as_float(islandTime[i]);
+    island = (as_uint(island) == BTG_NEVER_UINT) ? own : fmin(own, island + dt);
+    islandTime[i] = as_uint(island);
+}
+
+__kernel void island_min(__global const BtgContact* restrict contacts, __global const uint* restrict counters,
+                         int capacity, __global const BtgBodyProps* restrict props, __global const float* restrict sleepTime,
+                         __global const uint* restrict islandSrc, __global uint* islandDst, __global uint* wake)
+{
+    int k = get_global_id(0);
+    int count = min((int)counters[BTG_COUNTER_CONTACTS], capacity);
+    if (k >= count) return;
+    BtgContact c = contacts[k];
+    if (c.numPoints <= 0) return;
+    uint fa = props[c.bodyA].flags, fb = props[c.bodyB].flags;
+    if (btgCanSleep(fa) && btgCanSleep(fb)) {
+        atomic_min(&islandDst[c.bodyA], islandSrc[c.bodyB]);
+        atomic_min(&islandDst[c.bodyB], islandSrc[c.bodyA]);
+    }
+    /* A moving body that touches a sleeping one wakes it, as joining an active island does. */
+    if (btgCanSleep(fa) && (fb & BTG_BODY_SLEEPING) && !(fb & BTG_BODY_EXCLUDED) && sleepTime[c.bodyA] == 0.0f) wake[c.bodyB] = 1u;
+    if (btgCanSleep(fb) && (fa & BTG_BODY_SLEEPING) && !(fa & BTG_BODY_EXCLUDED) && sleepTime[c.bodyB] == 0.0f) wake[c.bodyA] = 1u;
+}
+
+__kernel void apply_sleep(int n, __global const uint* restrict islandTime, __global const uint* restrict wake,
+                          __global float* sleepTime, __global BtgBodyProps* props, __global BtgFloat4* linVel,
+                          __global BtgFloat4* angVel, __global uint* sleepState, float deactivationTime)
+{
+    int i = get_global_id(0);
+    if (i >= n) return;
+    uint f = props[i].flags;
+    if ((f & BTG_BODY_SLEEPING) && wake[i]) {
+        props[i].flags = f & ~BTG_BODY_SLEEPING;
+        sleepTime[i] = 0.0f;
+        sleepState[i] = 0u;
+        return;
+    }
+    if (btgCanSleep(f) && deactivationTime > 0.0f && as_float(islandTime[i]) > deactivationTime) {
+        props[i].flags = f | BTG_BODY_SLEEPING;
+        linVel[i] = (float4)(0.0f);
+        angVel[i] = (float4)(0.0f);
+        sleepState[i] = 1u;
+        return;
+    }
+    sleepState[i] = (f & BTG_BODY_SLEEPING) ? 1u : 0u;
+}

@@ -1,0 +1,73 @@
+// update_activation.cpp (reference) — Bullet's deactivation on the CPU.
+#include "reference/update_activation.h"
+
+#include "shared/activation.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace btgpu::reference {
+
+namespace {
+float asFloat(uint u)
+{
+    float f;
+    std::memcpy(&f, &u, 4);
+    return f;
+}
+uint asUint(float f)
+{
+    uint u;
+    std::memcpy(&u, &f, 4);
+    return u;
+}
+}  // namespace
+
+void updateActivation(ActivationState& s, const std::vector<BtgContact>& contacts, float dt, float deactivationTime,
+                      int rounds)
+{
+    size_t n = s.props.size();
+    std::vector<uint> wake(n, 0u);
+    for (size_t i = 0; i < n; ++i) {
+        const BtgBodyProps& p = s.props[i];
+        if (!btgCanSleep(p.flags)) {
+            s.islandTime[i] = BTG_NEVER_UINT;
+            continue;
+        }
+        float own = btgOwnTimer(s.sleepTime[i], s.linVel[i], s.angVel[i], p, dt);
+        s.sleepTime[i] = own;
+        float island = s.islandTime[i] == BTG_NEVER_UINT ? own : std::fmin(own, asFloat(s.islandTime[i]) + dt);
+        s.islandTime[i] = asUint(island);
+    }
+    if (deactivationTime <= 0.0f) rounds = 0;
+    for (int r = 0; r < rounds; ++r) {
+        std::vector<uint> dst = s.islandTime;
+        for (const BtgContact& c : contacts) {
+            if (c.numPoints <= 0) continue;
+            uint fa = s.props[c.bodyA].flags, fb = s.props[c.bodyB].flags;
+            if (btgCanSleep(fa) && btgCanSleep(fb)) {
+                dst[c.bodyA] = std::min(dst[c.bodyA], s.islandTime[c.bodyB]);
+                dst[c.bodyB] = std::min(dst[c.bodyB], s.islandTime[c.bodyA]);
+            }
+            if (btgCanSleep(fa) && (fb & BTG_BODY_SLEEPING) && !(fb & BTG_BODY_EXCLUDED) && s.sleepTime[c.bodyA] == 0.0f) wake[c.bodyB] = 1;
+            if (btgCanSleep(fb) && (fa & BTG_BODY_SLEEPING) && !(fa & BTG_BODY_EXCLUDED) && s.sleepTime[c.bodyB] == 0.0f) wake[c.bodyA] = 1;
+        }
+        s.islandTime = dst;
+    }
+    for (size_t i = 0; i < n; ++i) {
+        uint f = s.props[i].flags;
+        if ((f & BTG_BODY_SLEEPING) && wake[i]) {
+            s.props[i].flags = f & ~BTG_BODY_SLEEPING;
+            s.sleepTime[i] = 0.0f;
+            s.sleepState[i] = 0;
+        } else if (btgCanSleep(f) && deactivationTime > 0.0f && asFloat(s.islandTime[i]) > deactivationTime) {
+            s.props[i].flags = f | BTG_BODY_SLEEPING;
+            s.linVel[i] = s.angVel[i] = btgZero4();
+            s.sleepState[i] = 1;
+        } else {
+            s.sleepState[i] = (f & BTG_BODY_SLEEPING) ? 1 : 0;
+        }
+    }
+}
+
+}  // namespace btgpu::reference

@@ -1,0 +1,21 @@
+// update_activation.h (reference) — the deactivation stage on the CPU, same shared rules
+// (kernels/shared/activation.h), same double-buffered island rounds.
+#pragma once
+#include "shared/types.h"
+
+#include <vector>
+
+namespace btgpu::reference {
+
+struct ActivationState {
+    std::vector<BtgFloat4> linVel, angVel;
+    std::vector<BtgBodyProps> props;
+    std::vector<float> sleepTime;
+    std::vector<uint> islandTime;  // float bits
+    std::vector<uint> sleepState;
+};
+
+void updateActivation(ActivationState& s, const std::vector<BtgContact>& contacts, float dt, float deactivationTime,
+                      int rounds = 4);
+
+}  // namespace btgpu::reference

@@ -1,0 +1,33 @@
+// update_activation.cpp — host launcher of the deactivation stage.
+#include "stages/update_activation.h"
+
+#include <utility>
+
+namespace btgpu {
+
+void updateActivation(DeviceWorld& w, float dt, float deactivationTime, int rounds)
+{
+    w.profiler.stage = "activation";
+    cl::Program& prog = w.ctx.program("update_activation");
+    const int n = w.numBodies;
+    cl::Launch(w.ctx, prog.kernel("own_timers"), &w.profiler)
+        .arg(n).arg(w.linVel).arg(w.angVel).arg(w.props).arg(w.sleepTime).arg(w.islandTime).arg(w.wake).arg(dt)
+        .run(n);
+    const int capacity = int(w.contactCapacity);
+    // With deactivation off only apply_sleep runs, to report the sleep state the app set.
+    if (deactivationTime <= 0.0f) rounds = 0;
+    for (int r = 0; r < rounds; ++r) {
+        w.islandScratch.copyFrom(w.ctx, w.islandTime, size_t(n));
+        cl::Launch(w.ctx, prog.kernel("island_min"), &w.profiler)
+            .arg(w.contacts).arg(w.counters).arg(capacity).arg(w.props).arg(w.sleepTime).arg(w.islandTime)
+            .arg(w.islandScratch).arg(w.wake)
+            .run(w.contactCapacity);
+        std::swap(w.islandTime, w.islandScratch);
+    }
+    cl::Launch(w.ctx, prog.kernel("apply_sleep"), &w.profiler)
+        .arg(n).arg(w.islandTime).arg(w.wake).arg(w.sleepTime).arg(w.props).arg(w.linVel).arg(w.angVel)
+        .arg(w.sleepState).arg(deactivationTime)
+        .run(n);
+}
+
+}  // namespace btgpu

@@ -1,0 +1,13 @@
+// update_activation.h — Stage: update_activation (kernels/update_activation.cl). Bullet's
+// deactivation on the device: per-body timers, island minimum spread over contacts
+// (`rounds` hops per substep, double-buffered so the result is order-free), sleep when the
+// island has been slow for `deactivationTime` s, wake when a moving body touches a sleeper.
+// Reads linVel, angVel, props, contacts, counters. Writes sleepTime, islandTime, wake,
+// props.flags (SLEEPING), linVel/angVel (zeroed on falling asleep), sleepState.
+// deactivationTime 0 (gDisableDeactivation) turns sleeping off.
+#pragma once
+#include "world/device_world.h"
+
+namespace btgpu {
+void updateActivation(DeviceWorld& w, float dt, float deactivationTime, int rounds = 4);
+}

@@ -1,0 +1,121 @@
+// update_activation_test.cpp — deactivation on the device against the CPU reference, and
+// Bullet's rules: an island sleeps only when all its bodies have been slow for the
+// deactivation time; one moving body keeps its island awake; a moving body touching a
+// sleeper wakes it; DISABLE_DEACTIVATION never sleeps.
+#include "reference/update_activation.h"
+#include "shared/activation.h"
+#include "stages/sync_bodies.h"
+#include "stages/update_activation.h"
+#include "test_device.h"
+
+#include <gtest/gtest.h>
+
+using namespace btgpu;
+
+namespace {
+
+struct Scene {
+    reference::ActivationState s;
+    std::vector<BtgContact> contacts;
+};
+
+// A chain 0-1-2-3 of dynamic bodies in contact, body 4 apart, body 5 static under body 0.
+Scene chain()
+{
+    Scene sc;
+    const int n = 6;
+    for (int i = 0; i < n; ++i) {
+        BtgBodyProps p{};
+        p.flags = i == 5 ? BTG_BODY_STATIC : BTG_BODY_DYNAMIC;
+        p.invInertiaLocal = btgMake4(1, 1, 1, i == 5 ? 0.0f : 1.0f);
+        p.sleepLinear = 0.8f;
+        p.sleepAngular = 1.0f;
+        sc.s.props.push_back(p);
+        sc.s.linVel.push_back(btgZero4());
+        sc.s.angVel.push_back(btgZero4());
+        sc.s.sleepTime.push_back(0.0f);
+        sc.s.islandTime.push_back(BTG_NEVER_UINT);
+        sc.s.sleepState.push_back(0);
+    }
+    int links[4][2] = {{0, 1}, {1, 2}, {2, 3}, {0, 5}};
+    for (auto& l : links) {
+        BtgContact c{};
+        c.bodyA = l[0];
+        c.bodyB = l[1];
+        c.numPoints = 1;
+        sc.contacts.push_back(c);
+    }
+    return sc;
+}
+
+struct Device {
+    DeviceWorld w{test::context()};
+    explicit Device(const Scene& sc)
+    {
+        int n = int(sc.s.props.size());
+        resizeBodies(w, n);
+        w.linVel.upload(w.ctx, sc.s.linVel);
+        w.angVel.upload(w.ctx, sc.s.angVel);
+        w.props.upload(w.ctx, sc.s.props);
+        w.sleepTime.upload(w.ctx, sc.s.sleepTime);
+        w.islandTime.upload(w.ctx, sc.s.islandTime);
+        w.contactCapacity = sc.contacts.size();
+        w.contacts.upload(w.ctx, sc.contacts);
+        std::vector<uint> counters(kNumCounters, 0);
+        counters[kContactCount] = uint(sc.contacts.size());
+        w.counters.upload(w.ctx, counters);
+    }
+    std::vector<uint> sleepState() { return w.sleepState.download(w.ctx, size_t(w.numBodies)); }
+};
+
+}  // namespace
+
+TEST(UpdateActivation, IslandSleepsTogetherAndMatchesReference)
+{
+    Scene sc = chain();
+    sc.s.linVel[3] = btgMake4(2, 0, 0, 0);  // the chain's far end keeps moving
+    Device d(sc);
+    const float dt = 1.0f / 60.0f;
+    for (int step = 0; step < 150; ++step) {
+        updateActivation(d.w, dt, 2.0f);
+        reference::updateActivation(sc.s, sc.contacts, dt, 2.0f);
+    }
+    std::vector<uint> dev = d.sleepState();
+    EXPECT_EQ(dev, sc.s.sleepState);
+    // Body 4 is alone and still: asleep after 2 s. The chain holds a moving body: awake.
+    EXPECT_EQ(dev[4], 1u);
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(dev[i], 0u) << i;
+    EXPECT_EQ(dev[5], 0u);  // static bodies never report sleep
+    auto t = d.w.islandTime.download(d.w.ctx, 6);
+    EXPECT_EQ(t, sc.s.islandTime);
+}
+
+TEST(UpdateActivation, WholeIslandSleepsThenWakes)
+{
+    Scene sc = chain();
+    sc.s.props[4].flags |= BTG_BODY_NEVER_SLEEP;
+    Device d(sc);
+    const float dt = 1.0f / 60.0f;
+    for (int step = 0; step < 130; ++step) updateActivation(d.w, dt, 2.0f);
+    std::vector<uint> st = d.sleepState();
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(st[i], 1u) << i;
+    EXPECT_EQ(st[4], 0u);  // DISABLE_DEACTIVATION
+    // Wake: body 4 moves and touches body 3.
+    std::vector<BtgContact> cs = sc.contacts;
+    BtgContact c{};
+    c.bodyA = 3;
+    c.bodyB = 4;
+    c.numPoints = 1;
+    cs.push_back(c);
+    d.w.contactCapacity = cs.size();
+    d.w.contacts.upload(d.w.ctx, cs);
+    std::vector<uint> counters(kNumCounters, 0);
+    counters[kContactCount] = uint(cs.size());
+    d.w.counters.upload(d.w.ctx, counters);
+    std::vector<BtgFloat4> v(6, btgZero4());
+    v[4] = btgMake4(3, 0, 0, 0);
+    d.w.linVel.upload(d.w.ctx, v);
+    updateActivation(d.w, dt, 2.0f);
+    st = d.sleepState();
+    EXPECT_EQ(st[3], 0u);  // woken by the moving body
+}
