@@ -11,7 +11,9 @@ __kernel void update_aabbs(__global const BtgFloat4* restrict pos, __global cons
     int i = (int)get_global_id(0);
     if (i >= numBodies) return;
     BtgBodyProps p = props[i];
-    BtgAabb a = btgBodyAabb(pos[i], rot[i], shapes[p.shape], p.flags, threshold);
+    /* An excluded (possibly empty) row's shape index may be invalid: do not read it. */
+    BtgAabb a = (p.flags & BTG_BODY_EXCLUDED) ? btgEmptyAabb()
+                                              : btgBodyAabb(pos[i], rot[i], shapes[p.shape], p.flags, threshold);
     aabbMin[i] = a.lo;
     aabbMax[i] = a.hi;
 }

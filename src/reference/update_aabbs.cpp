@@ -11,7 +11,9 @@ void updateAabbs(const std::vector<BtgFloat4>& pos, const std::vector<BtgFloat4>
     aabbMin.resize(pos.size());
     aabbMax.resize(pos.size());
     for (size_t i = 0; i < pos.size(); ++i) {
-        BtgAabb a = btgBodyAabb(pos[i], rot[i], shapes[size_t(props[i].shape)], props[i].flags, threshold);
+        BtgAabb a = (props[i].flags & BTG_BODY_EXCLUDED)
+                        ? btgEmptyAabb()
+                        : btgBodyAabb(pos[i], rot[i], shapes[size_t(props[i].shape)], props[i].flags, threshold);
         aabbMin[i] = a.lo;
         aabbMax[i] = a.hi;
     }

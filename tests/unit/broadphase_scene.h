@@ -86,7 +86,7 @@ inline BroadphaseScene makeBroadphaseScene(int n, float side, unsigned seed, boo
             unsigned r = rng() % 40;
             if (r == 0) p.flags = BTG_BODY_STATIC;
             else if (r == 1) p.flags = BTG_BODY_DYNAMIC | BTG_BODY_SLEEPING;
-            else if (r == 2) p.flags = BTG_BODY_EXCLUDED;
+            else if (r == 2) { p.flags = BTG_BODY_EXCLUDED; p.shape = -1; }  // an empty row
             else if (r == 3) p.flags = BTG_BODY_DYNAMIC | BTG_BODY_NO_RESPONSE;
             else if (r == 4) p.flags = BTG_BODY_KINEMATIC;
             else if (r == 5) { p.group = 2; p.mask = ~2; }  // collides with nothing else of group 2
