@@ -7,6 +7,7 @@
 #include "cl/launch.h"
 #include "shared/counters.h"
 #include "shared/types.h"
+#include "world/broadphase_scratch.h"
 
 namespace btgpu {
 
@@ -66,6 +67,7 @@ struct DeviceWorld {
     int numPlanes = 0;
     cl::DeviceArray<BtgPair> pairs;    // sorted by (a, b) after find_pairs
     size_t pairCapacity = 0;
+    BroadphaseScratch broadphase;      // find_pairs' own temporaries
 
     // --- narrowphase and contacts ---
     cl::DeviceArray<BtgManifold> manifolds;  // one per pair slot

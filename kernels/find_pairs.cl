@@ -1,0 +1,181 @@
+/* find_pairs.cl — broadphase: uniform-grid pairs of small bodies, large bodies against every
+ * body, planes against every body; unsorted pairs appended with an atomic counter, then sorted
+ * by (a, b) with prims/radix_sort (launched from the host between these kernels).
+ * Stage: broadphase. Launch: per kernel below (bodies, sorted grid entries or pair slots).
+ * Reads: aabbMin, aabbMax, props, shapes, pos, rot, largeBodies, planeBodies.
+ * Writes: pairs, counters[pairSlot] (all pairs found, even past capacity), counters[statusSlot]
+ * (BTG_STATUS_PAIR_OVERFLOW), and the scratch of BroadphaseScratch. */
+#include "shared/broadphase.h"
+
+#define BTG_NO_KEY 0xffffffffu
+
+static inline int btgGridded(BtgBodyProps p, __global const BtgShape* restrict shapes)
+{
+    /* Rows that can never pair stay out of the grid, as do large bodies and planes (own passes). */
+    uint skip = BTG_BODY_LARGE | BTG_BODY_EXCLUDED | BTG_BODY_NO_RESPONSE;
+    return !(p.flags & skip) && shapes[p.shape].type != BTG_SHAPE_PLANE;
+}
+
+/* Every pair found is counted; only those that fit are stored (the caller grows and redoes). */
+static inline void btgAppendPair(__global BtgPair* restrict raw, volatile __global uint* counters, int pairSlot,
+                                 uint capacity, int a, int b)
+{
+    uint slot = atomic_inc(&counters[pairSlot]);
+    if (slot < capacity) {
+        BtgPair p;
+        p.a = a < b ? a : b;
+        p.b = a < b ? b : a;
+        raw[slot] = p;
+    }
+}
+
+/* Launch: one work-item. Runs before every appending kernel. */
+__kernel void pairs_reset(__global uint* counters, int pairSlot)
+{
+    if (get_global_id(0) == 0) counters[pairSlot] = 0u;
+}
+
+/* Launch: one work-item per body row. Key: the cell hash, or BTG_NO_KEY (sorts last). */
+__kernel void grid_hash(__global const BtgFloat4* restrict aabbMin, __global const BtgFloat4* restrict aabbMax,
+                        __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes,
+                        __global uint* restrict keys, __global uint* restrict rows, int numBodies,
+                        float invCellSize, uint tableMask)
+{
+    int i = (int)get_global_id(0);
+    if (i >= numBodies) return;
+    uint key = BTG_NO_KEY;
+    if (btgGridded(props[i], shapes)) {
+        BtgInt4 c = btgGridCell(aabbMin[i], aabbMax[i], invCellSize);
+        key = btgGridHash(c.x, c.y, c.z, tableMask);
+    }
+    keys[i] = key;
+    rows[i] = (uint)i;
+}
+
+/* Launch: one work-item per sorted grid entry. cellRange (zeroed before) gets, per hash, the
+ * [start, end) of its entries in the sorted list. */
+__kernel void grid_cell_ranges(__global const uint* restrict keys, __global uint* restrict cellRange, int numBodies)
+{
+    int k = (int)get_global_id(0);
+    if (k >= numBodies) return;
+    uint h = keys[k];
+    if (h == BTG_NO_KEY) return;
+    if (k == 0 || keys[k - 1] != h) cellRange[2 * h] = (uint)k;
+    if (k == numBodies - 1 || keys[k + 1] != h) cellRange[2 * h + 1] = (uint)(k + 1);
+}
+
+/* Launch: one work-item per sorted grid entry. Scans the 27 neighbour cells' buckets (each
+ * bucket once, though hash collisions map several cells to it) and keeps pairs with a higher
+ * row only, so each pair is found once. */
+__kernel void grid_pairs(__global const BtgFloat4* restrict aabbMin, __global const BtgFloat4* restrict aabbMax,
+                         __global const BtgBodyProps* restrict props, __global const uint* restrict keys,
+                         __global const uint* restrict rows, __global const uint* restrict cellRange,
+                         __global BtgPair* restrict raw, volatile __global uint* counters, int pairSlot,
+                         uint capacity, int numBodies, float invCellSize, uint tableMask)
+{
+    int k = (int)get_global_id(0);
+    if (k >= numBodies || keys[k] == BTG_NO_KEY) return;
+    int i = (int)rows[k];
+    BtgFloat4 iMin = aabbMin[i], iMax = aabbMax[i];
+    BtgBodyProps pi = props[i];
+    BtgInt4 c = btgGridCell(iMin, iMax, invCellSize);
+    uint seen[27];
+    int numSeen = 0;
+    for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                uint h = btgGridHash(c.x + dx, c.y + dy, c.z + dz, tableMask);
+                int dup = 0;
+                for (int s = 0; s < numSeen; ++s) dup |= seen[s] == h;
+                if (dup) continue;
+                seen[numSeen++] = h;
+                uint end = cellRange[2 * h + 1];
+                for (uint m = cellRange[2 * h]; m < end; ++m) {
+                    int j = (int)rows[m];
+                    if (j <= i) continue;
+                    if (!btgAabbOverlap(iMin, iMax, aabbMin[j], aabbMax[j])) continue;
+                    if (!btgPairAllowed(pi, props[j])) continue;
+                    btgAppendPair(raw, counters, pairSlot, capacity, i, j);
+                }
+            }
+}
+
+/* Launch: one work-item per body row: that body against every large body. A pair of two
+ * large bodies is kept by its lower row only. */
+__kernel void large_pairs(__global const BtgFloat4* restrict aabbMin, __global const BtgFloat4* restrict aabbMax,
+                          __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes,
+                          __global const int* restrict largeBodies, int numLarge, __global BtgPair* restrict raw,
+                          volatile __global uint* counters, int pairSlot, uint capacity, int numBodies)
+{
+    int i = (int)get_global_id(0);
+    if (i >= numBodies) return;
+    BtgBodyProps pi = props[i];
+    if ((pi.flags & (BTG_BODY_EXCLUDED | BTG_BODY_NO_RESPONSE)) || shapes[pi.shape].type == BTG_SHAPE_PLANE) return;
+    int iLarge = (pi.flags & BTG_BODY_LARGE) != 0;
+    BtgFloat4 iMin = aabbMin[i], iMax = aabbMax[i];
+    for (int l = 0; l < numLarge; ++l) {
+        int j = largeBodies[l];
+        if (j == i || (iLarge && j < i)) continue;
+        if (!btgAabbOverlap(iMin, iMax, aabbMin[j], aabbMax[j])) continue;
+        if (!btgPairAllowed(pi, props[j])) continue;
+        btgAppendPair(raw, counters, pairSlot, capacity, i, j);
+    }
+}
+
+/* Launch: one work-item per body row: that body against every plane. */
+__kernel void plane_pairs(__global const BtgFloat4* restrict aabbMin, __global const BtgFloat4* restrict aabbMax,
+                          __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes,
+                          __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,
+                          __global const int* restrict planeBodies, int numPlanes, __global BtgPair* restrict raw,
+                          volatile __global uint* counters, int pairSlot, uint capacity, int numBodies)
+{
+    int i = (int)get_global_id(0);
+    if (i >= numBodies) return;
+    BtgBodyProps pi = props[i];
+    if ((pi.flags & (BTG_BODY_EXCLUDED | BTG_BODY_NO_RESPONSE)) || shapes[pi.shape].type == BTG_SHAPE_PLANE) return;
+    BtgFloat4 iMin = aabbMin[i], iMax = aabbMax[i];
+    for (int l = 0; l < numPlanes; ++l) {
+        int j = planeBodies[l];
+        BtgBodyProps pj = props[j];
+        if (!btgPairAllowed(pi, pj)) continue;
+        BtgFloat4 plane = btgPlaneWorld(pos[j], rot[j], shapes[pj.shape].param);
+        if (!btgAabbReachesPlane(iMin, iMax, plane)) continue;
+        btgAppendPair(raw, counters, pairSlot, capacity, i, j);
+    }
+}
+
+/* Launch: one work-item per pair slot (capacity). Sort keys for the stored pairs, slots past
+ * them padded with BTG_NO_KEY. mode 0: (a << bits) | b in one key (when 2 bits <= 32), order
+ * = identity; mode 1: b, order = identity (first of two stable passes); mode 2: a of the
+ * pair that the first pass put at this slot (order kept). */
+__kernel void pair_sort_keys(__global const BtgPair* restrict raw, __global uint* restrict order,
+                             __global uint* restrict keys, __global const uint* restrict counters, int pairSlot,
+                             uint capacity, int mode, uint bits)
+{
+    uint k = get_global_id(0);
+    if (k >= capacity) return;
+    uint count = min(counters[pairSlot], capacity);
+    if (mode == 2) {
+        keys[k] = k < count ? (uint)raw[order[k]].a : BTG_NO_KEY;
+        return;
+    }
+    order[k] = k;
+    if (k >= count) {
+        keys[k] = BTG_NO_KEY;
+        return;
+    }
+    BtgPair p = raw[k];
+    keys[k] = mode == 0 ? (((uint)p.a << bits) | (uint)p.b) : (uint)p.b;
+}
+
+/* Launch: one work-item per pair slot (capacity). Gathers the sorted pairs into the world's
+ * list and flags an overflow. */
+__kernel void pairs_write(__global const BtgPair* restrict raw, __global const uint* restrict order,
+                          __global BtgPair* restrict pairs, __global uint* counters, int pairSlot, int statusSlot,
+                          uint capacity)
+{
+    uint k = get_global_id(0);
+    uint total = counters[pairSlot];
+    if (k == 0 && total > capacity) atomic_or(&counters[statusSlot], BTG_STATUS_PAIR_OVERFLOW);
+    if (k < min(total, capacity)) pairs[k] = raw[order[k]];
+}

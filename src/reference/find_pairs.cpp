@@ -1,0 +1,42 @@
+// find_pairs.cpp (reference) — two nested loops over the rows that can pair at all, in row
+// order, so the output is already sorted by (a, b).
+#include "reference/find_pairs.h"
+
+#include "shared/broadphase.h"
+
+namespace btgpu::ref {
+std::vector<BtgPair> findPairs(const std::vector<BtgFloat4>& aabbMin, const std::vector<BtgFloat4>& aabbMax,
+                               const std::vector<BtgBodyProps>& props, const std::vector<BtgShape>& shapes,
+                               const std::vector<BtgFloat4>& pos, const std::vector<BtgFloat4>& rot)
+{
+    std::vector<BtgPair> out;
+    const int n = int(props.size());
+    auto isPlane = [&](int i) { return shapes[size_t(props[size_t(i)].shape)].type == BTG_SHAPE_PLANE; };
+    // Excluded and no-response rows never pair: dropping them first keeps sparse scenes with
+    // many rows (the two-pass pair sort needs > 65536) quick to check.
+    std::vector<int> live;
+    for (int i = 0; i < n; ++i)
+        if (!(props[size_t(i)].flags & (BTG_BODY_EXCLUDED | BTG_BODY_NO_RESPONSE))) live.push_back(i);
+    for (size_t ia = 0; ia < live.size(); ++ia) {
+        for (size_t ib = ia + 1; ib < live.size(); ++ib) {
+            const int a = live[ia], b = live[ib];
+            const BtgBodyProps& pa = props[size_t(a)];
+            const BtgBodyProps& pb = props[size_t(b)];
+            if (!btgPairAllowed(pa, pb)) continue;
+            bool planeA = isPlane(a), planeB = isPlane(b);
+            bool keep;
+            if (planeA && planeB) {
+                keep = false;
+            } else if (planeA || planeB) {
+                int p = planeA ? a : b, o = planeA ? b : a;
+                BtgFloat4 plane = btgPlaneWorld(pos[size_t(p)], rot[size_t(p)], shapes[size_t(props[size_t(p)].shape)].param);
+                keep = btgAabbReachesPlane(aabbMin[size_t(o)], aabbMax[size_t(o)], plane);
+            } else {
+                keep = btgAabbOverlap(aabbMin[size_t(a)], aabbMax[size_t(a)], aabbMin[size_t(b)], aabbMax[size_t(b)]);
+            }
+            if (keep) out.push_back(BtgPair{a, b});
+        }
+    }
+    return out;
+}
+}  // namespace btgpu::ref

@@ -1,0 +1,107 @@
+// find_pairs.cpp — host launcher of kernels/find_pairs.cl: grid hash, radix sort of (hash,
+// row), cell ranges, the three appending passes (grid, large, planes), then a radix sort of the
+// appended pairs by (a, b) and the gather into w.pairs. The pair count stays on the device:
+// the pair sort runs over pairCapacity slots and its kernels read the count (no readback).
+#include "stages/find_pairs.h"
+
+#include "cl/program.h"
+#include "stages/prims/radix_sort.h"
+
+#include <algorithm>
+
+namespace btgpu {
+namespace {
+
+// Hash table size: a power of two at least twice the bodies, so buckets hold ~0.5 cells.
+cl_uint gridTableSize(size_t numBodies)
+{
+    cl_uint t = 2;
+    while (t < 2 * numBodies) t *= 2;
+    return t;
+}
+
+int log2Exact(cl_uint pow2)
+{
+    int b = 0;
+    while ((cl_uint(1) << b) < pow2) ++b;
+    return b;
+}
+
+}  // namespace
+
+void findPairs(DeviceWorld& w, float cellSize)
+{
+    cl::Context& ctx = w.ctx;
+    BroadphaseScratch& s = w.broadphase;
+    cl::Program& prog = ctx.program("find_pairs");
+    w.profiler.stage = "broadphase";
+    const size_t n = w.numBodies > 0 ? size_t(w.numBodies) : 0;
+    const cl_int numBodies = cl_int(n);
+    const cl_int pairSlot = kPairCount, statusSlot = kStatus;
+    // Never write past the pair buffer, whatever pairCapacity claims.
+    const cl_uint capacity = cl_uint(std::min(w.pairCapacity, w.pairs.capacity()));
+    const float invCellSize = 1.0f / cellSize;
+    s.rawPairs.reserve(ctx, std::max<size_t>(capacity, 1));
+
+    cl::Launch(ctx, prog.kernel("pairs_reset"), &w.profiler).arg(w.counters).arg(pairSlot).run(1, 1);
+
+    if (n > 0) {
+        const cl_uint table = gridTableSize(n);
+        const cl_uint tableMask = table - 1;
+        s.cellKeys.reserve(ctx, n);
+        s.cellRows.reserve(ctx, n);
+        cl::Launch(ctx, prog.kernel("grid_hash"), &w.profiler)
+            .arg(w.aabbMin).arg(w.aabbMax).arg(w.props).arg(w.shapes).arg(s.cellKeys).arg(s.cellRows)
+            .arg(numBodies).arg(invCellSize).arg(tableMask)
+            .run(n);
+        // One bit above the hash so the 0xffffffff of ungridded rows sorts after every bucket.
+        radixSort(ctx, &w.profiler, s.cellKeys, s.cellRows, n, log2Exact(table) + 1, s.sort);
+        s.cellRange.zero(ctx, 2 * size_t(table));
+        cl::Launch(ctx, prog.kernel("grid_cell_ranges"), &w.profiler).arg(s.cellKeys).arg(s.cellRange).arg(numBodies).run(n);
+        cl::Launch(ctx, prog.kernel("grid_pairs"), &w.profiler)
+            .arg(w.aabbMin).arg(w.aabbMax).arg(w.props).arg(s.cellKeys).arg(s.cellRows).arg(s.cellRange)
+            .arg(s.rawPairs).arg(w.counters).arg(pairSlot).arg(capacity).arg(numBodies).arg(invCellSize).arg(tableMask)
+            .run(n);
+        if (w.numLarge > 0)
+            cl::Launch(ctx, prog.kernel("large_pairs"), &w.profiler)
+                .arg(w.aabbMin).arg(w.aabbMax).arg(w.props).arg(w.shapes).arg(w.largeBodies).arg(cl_int(w.numLarge))
+                .arg(s.rawPairs).arg(w.counters).arg(pairSlot).arg(capacity).arg(numBodies)
+                .run(n);
+        if (w.numPlanes > 0)
+            cl::Launch(ctx, prog.kernel("plane_pairs"), &w.profiler)
+                .arg(w.aabbMin).arg(w.aabbMax).arg(w.props).arg(w.shapes).arg(w.pos).arg(w.rot).arg(w.planeBodies)
+                .arg(cl_int(w.numPlanes)).arg(s.rawPairs).arg(w.counters).arg(pairSlot).arg(capacity).arg(numBodies)
+                .run(n);
+    }
+
+    if (capacity > 0) {
+        s.pairKeys.reserve(ctx, capacity);
+        s.pairOrder.reserve(ctx, capacity);
+        const cl_uint rowBits = cl_uint(radixBitsFor(n > 1 ? cl_uint(n - 1) : 0u));
+        auto keys = [&](cl_int mode) {
+            cl::Launch(ctx, prog.kernel("pair_sort_keys"), &w.profiler)
+                .arg(s.rawPairs).arg(s.pairOrder).arg(s.pairKeys).arg(w.counters).arg(pairSlot).arg(capacity)
+                .arg(mode).arg(rowBits)
+                .run(capacity);
+        };
+        if (2 * rowBits <= 32) {
+            keys(0);  // (a, b) packed in one key: a single sort
+            radixSort(ctx, &w.profiler, s.pairKeys, s.pairOrder, capacity, int(2 * rowBits), s.sort);
+        } else {
+            // Two stable passes, minor key first. Padding keys are all ones in rowBits; a real b
+            // can tie with them, but padding starts after every real slot and the sort is stable.
+            keys(1);
+            radixSort(ctx, &w.profiler, s.pairKeys, s.pairOrder, capacity, int(rowBits), s.sort);
+            keys(2);
+            radixSort(ctx, &w.profiler, s.pairKeys, s.pairOrder, capacity, int(rowBits), s.sort);
+        }
+    } else {
+        s.pairOrder.reserve(ctx, 1);
+    }
+    cl::Launch(ctx, prog.kernel("pairs_write"), &w.profiler)
+        .arg(s.rawPairs).arg(s.pairOrder).arg(w.pairs.mem() ? w.pairs : s.rawPairs).arg(w.counters).arg(pairSlot)
+        .arg(statusSlot).arg(capacity)
+        .run(std::max<size_t>(capacity, 1));
+}
+
+}  // namespace btgpu
