@@ -137,7 +137,8 @@ void GpuWorld::makePlan()
         if (size > m_config.largeBodyFactor * median) large.push_back(int(r));
         else cell = std::max(cell, size);
     }
-    plan.cellSize = std::max(cell + 2.0f * m_config.contactThreshold, 1e-3f);
+    // 1% slack: an AABB exactly one cell wide must not be missed by rounding of centre / cell.
+    plan.cellSize = std::max(1.01f * (cell + 2.0f * m_config.contactThreshold), 1e-3f);
     plan.hasLarge = !large.empty();
     plan.hasPlanes = !planeRows.empty();
     m_plan = plan;

@@ -42,9 +42,8 @@ __kernel void island_min(__global const BtgContact* restrict contacts, __global 
         atomic_min(&islandDst[c.bodyA], islandSrc[c.bodyB]);
         atomic_min(&islandDst[c.bodyB], islandSrc[c.bodyA]);
     }
-    /* A moving body that touches a sleeping one wakes it, as joining an active island does. */
-    if (btgCanSleep(fa) && (fb & BTG_BODY_SLEEPING) && !(fb & BTG_BODY_EXCLUDED) && sleepTime[c.bodyA] == 0.0f) wake[c.bodyB] = 1u;
-    if (btgCanSleep(fb) && (fa & BTG_BODY_SLEEPING) && !(fa & BTG_BODY_EXCLUDED) && sleepTime[c.bodyB] == 0.0f) wake[c.bodyA] = 1u;
+    if (btgWakes(fa, fb, sleepTime[c.bodyA])) wake[c.bodyB] = 1u;
+    if (btgWakes(fb, fa, sleepTime[c.bodyB])) wake[c.bodyA] = 1u;
 }
 
 __kernel void apply_sleep(int n, __global const uint* restrict islandTime, __global const uint* restrict wake,

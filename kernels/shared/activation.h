@@ -22,4 +22,14 @@ static inline float btgOwnTimer(float timer, BtgFloat4 v, BtgFloat4 w, BtgBodyPr
     return slow ? timer + dt : 0.0f;
 }
 
+/* Whether body a (flags fa, own timer ta) wakes the sleeping body b it touches: a moving
+ * dynamic body does (joining an active island), and so does any kinematic one (Bullet's
+ * "kinematic objects don't merge islands, but wake up all connected objects"). */
+static inline int btgWakes(uint fa, uint fb, float ta)
+{
+    if (!(fb & BTG_BODY_SLEEPING) || (fb & BTG_BODY_EXCLUDED)) return 0;
+    if ((fa & BTG_BODY_KINEMATIC) && !(fa & (BTG_BODY_EXCLUDED | BTG_BODY_NO_RESPONSE))) return 1;
+    return btgCanSleep(fa) && ta == 0.0f;
+}
+
 #endif

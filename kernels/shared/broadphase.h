@@ -23,7 +23,10 @@ static inline int btgPairAllowed(BtgBodyProps a, BtgBodyProps b)
     if ((a.flags | b.flags) & bad) return 0;
     int aActive = (a.flags & BTG_BODY_DYNAMIC) && !(a.flags & BTG_BODY_SLEEPING);
     int bActive = (b.flags & BTG_BODY_DYNAMIC) && !(b.flags & BTG_BODY_SLEEPING);
-    if (!aActive && !bActive) return 0;
+    /* A kinematic body reaching a sleeping one must be seen: it wakes it, as in Bullet. */
+    int aWakes = (a.flags & BTG_BODY_KINEMATIC) && (b.flags & BTG_BODY_DYNAMIC) && (b.flags & BTG_BODY_SLEEPING);
+    int bWakes = (b.flags & BTG_BODY_KINEMATIC) && (a.flags & BTG_BODY_DYNAMIC) && (a.flags & BTG_BODY_SLEEPING);
+    if (!aActive && !bActive && !aWakes && !bWakes) return 0;
     return (a.group & b.mask) != 0 && (b.group & a.mask) != 0;
 }
 

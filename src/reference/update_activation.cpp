@@ -49,8 +49,8 @@ void updateActivation(ActivationState& s, const std::vector<BtgContact>& contact
                 dst[c.bodyA] = std::min(dst[c.bodyA], s.islandTime[c.bodyB]);
                 dst[c.bodyB] = std::min(dst[c.bodyB], s.islandTime[c.bodyA]);
             }
-            if (btgCanSleep(fa) && (fb & BTG_BODY_SLEEPING) && !(fb & BTG_BODY_EXCLUDED) && s.sleepTime[c.bodyA] == 0.0f) wake[c.bodyB] = 1;
-            if (btgCanSleep(fb) && (fa & BTG_BODY_SLEEPING) && !(fa & BTG_BODY_EXCLUDED) && s.sleepTime[c.bodyB] == 0.0f) wake[c.bodyA] = 1;
+            if (btgWakes(fa, fb, s.sleepTime[c.bodyA])) wake[c.bodyB] = 1;
+            if (btgWakes(fb, fa, s.sleepTime[c.bodyB])) wake[c.bodyA] = 1;
         }
         s.islandTime = dst;
     }
