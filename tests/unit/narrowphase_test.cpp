@@ -10,6 +10,7 @@
 #include "tolerances.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <gtest/gtest.h>
 
@@ -348,4 +349,70 @@ TEST(Narrowphase, SpheresOnlyBuildsNoSatProgram)
     const std::vector<std::string>& built = ctx.builtPrograms();
     EXPECT_NE(std::find(built.begin(), built.end(), "narrowphase"), built.end());
     EXPECT_EQ(std::find(built.begin(), built.end(), "narrowphase_sat"), built.end());
+}
+
+namespace {
+// Largest signed distance of world point p to the planes of hull h (0 on its surface).
+float hullPlaneDistance(const Scene& s, int body, BtgFloat4 p)
+{
+    BtgMat3 r = btgQuatToMat3(s.rot[body]);
+    BtgFloat4 local = btgMat3TMulVec(r, p - s.pos[body]);
+    const BtgShape& sh = s.t.shapes[s.props[body].shape];
+    float best = -1e30f;
+    for (int f = 0; f < sh.numFaces; ++f) {
+        BtgFloat4 pl = s.t.faces[sh.firstFace + f].plane;
+        best = std::fmax(best, btgDot3(pl, local) + pl.w);
+    }
+    return best;
+}
+// Distance of p from body's surface (margin-free shapes): 0 when p lies on it.
+float surfaceOffset(const Scene& s, int body, BtgFloat4 p)
+{
+    const BtgShape& sh = s.t.shapes[s.props[body].shape];
+    if (sh.type == BTG_SHAPE_SPHERE) return btgLength3(p - s.pos[body]) - sh.param.x;
+    return hullPlaneDistance(s, body, p);
+}
+}  // namespace
+
+// Random poses of boxes, prisms, tetrahedra and spheres near touching: the device agrees with
+// the reference, and every contact's two points lie on the two surfaces, `distance` apart.
+TEST(Narrowphase, RandomPosesAgreeAndLieOnSurfaces)
+{
+    Scene s;
+    std::vector<int> kinds = {s.t.addBox(btgMake4(0.5f, 0.3f, 0.4f, 0)), s.t.addPrism(9, 0.4f, 0.2f),
+                              s.t.addTetrahedron(0.35f), s.t.addSphere(0.4f), s.t.addBox(btgMake4(1.5f, 0.2f, 1.0f, 0))};
+    uint32_t seed = 12345u;
+    auto rnd = [&seed] {
+        seed = seed * 1664525u + 1013904223u;
+        return float(seed >> 8) / float(1u << 24);
+    };
+    auto randomRot = [&] {
+        return btgQuatNormalize(btgMake4(rnd() - 0.5f, rnd() - 0.5f, rnd() - 0.5f, rnd() - 0.5f));
+    };
+    for (int i = 0; i < 60; ++i) {
+        int sa = kinds[i % kinds.size()], sb = kinds[(i / kinds.size() + i) % kinds.size()];
+        BtgFloat4 centre = btgMake4(10.0f * float(i), 0, 0, 0);
+        BtgFloat4 dir = btgNormalize3(btgMake4(rnd() - 0.5f, rnd() - 0.5f, rnd() - 0.5f, 0));
+        float gap = 0.45f + 0.6f * rnd();
+        int a = s.body(sa, centre + dir * gap, randomRot());
+        int b = s.body(sb, centre, randomRot());
+        s.pair(a, b);
+    }
+    std::vector<BtgManifold> m = collide(s);
+    int touching = 0;
+    for (size_t i = 0; i < m.size(); ++i) {
+        SCOPED_TRACE("pair " + std::to_string(i));
+        ASSERT_LE(m[i].numPoints, BTG_MAX_POINTS);
+        if (m[i].numPoints == 0) continue;
+        ++touching;
+        EXPECT_NEAR(btgLength3(m[i].normal), 1.0f, 1e-5f);
+        for (int k = 0; k < m[i].numPoints; ++k) {
+            BtgFloat4 pb = m[i].pointB[k];
+            EXPECT_LT(pb.w, kThreshold);
+            BtgFloat4 pa = btgXyz(pb) + m[i].normal * pb.w;
+            EXPECT_NEAR(surfaceOffset(s, m[i].bodyB, pb), 0.0f, tol::kContactPoint) << "point " << k << " not on B";
+            EXPECT_NEAR(surfaceOffset(s, m[i].bodyA, pa), 0.0f, tol::kContactPoint) << "point " << k << " not on A";
+        }
+    }
+    EXPECT_GT(touching, 20);
 }
