@@ -164,12 +164,19 @@ TEST(Narrowphase, CrossedBoxesEdgeEdge)
     const float r = 0.5f * std::sqrt(2.0f);  // centre to edge of a cube turned 45 degrees
     s.body(cube, btgMake4(0, 2 * r - 0.01f, 0, 0), axisAngle(btgMake4(1, 0, 0, 0), 0.78539816f));  // bottom edge along x
     s.body(cube, btgMake4(0, 0, 0, 0), axisAngle(btgMake4(0, 0, 1, 0), 0.78539816f));              // top edge along z
+    s.body(cube, btgMake4(5, 0, 0, 0), axisAngle(btgMake4(0, 0, 1, 0), 0.78539816f));  // same, lower box is A
+    s.body(cube, btgMake4(5, 2 * r - 0.01f, 0, 0), axisAngle(btgMake4(1, 0, 0, 0), 0.78539816f));
     s.pair(0, 1);
+    s.pair(2, 3);
     std::vector<BtgManifold> m = collide(s);
     ASSERT_EQ(m[0].numPoints, 1);
     expectNormal(m[0], btgMake4(0, 1, 0, 0));
     EXPECT_NEAR(m[0].pointB[0].w, -0.01f, tol::kContactDepth);
     EXPECT_TRUE(hasPoint(m[0], btgMake4(0, r, 0, 0)));
+    ASSERT_EQ(m[1].numPoints, 1);
+    expectNormal(m[1], btgMake4(0, -1, 0, 0));
+    EXPECT_NEAR(m[1].pointB[0].w, -0.01f, tol::kContactDepth);
+    EXPECT_TRUE(hasPoint(m[1], btgMake4(5, r - 0.01f, 0, 0)));  // on the upper box's edge
 }
 
 TEST(Narrowphase, VertexOnFace)
@@ -201,7 +208,15 @@ TEST(Narrowphase, SphereOnBox)
     s.pair(0, 1);
     s.pair(2, 3);
     s.pair(4, 5);
+    int rounded = s.t.addPrism(9, 0.5f, 0.2f, 0.04f);  // top face at 0.2, grown by 4 cm
+    s.body(ball, btgMake4(30.1f, 0.2f + 0.04f + 0.5f - 0.01f, 0, 0));
+    s.body(rounded, btgMake4(30, 0, 0, 0));
+    s.pair(6, 7);
     std::vector<BtgManifold> m = collide(s);
+    ASSERT_EQ(m[3].numPoints, 1);
+    expectNormal(m[3], btgMake4(0, 1, 0, 0));
+    EXPECT_NEAR(m[3].pointB[0].w, -0.01f, tol::kContactDepth);
+    EXPECT_TRUE(hasPoint(m[3], btgMake4(30.1f, 0.24f, 0, 0)));  // on the grown surface
     ASSERT_EQ(m[0].numPoints, 1);
     expectNormal(m[0], btgMake4(0, 1, 0, 0));
     EXPECT_NEAR(m[0].pointB[0].w, -0.02f, tol::kContactDepth);
