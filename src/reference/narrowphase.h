@@ -1,0 +1,31 @@
+// narrowphase.h (reference) — the narrowphase on the CPU, calling the same shared contact
+// routines as kernels/narrowphase.cl and narrowphase_sat.cl, for tests to compare against.
+#pragma once
+#include "shared/types.h"
+
+#include <vector>
+
+namespace btgpu::ref {
+
+// Host copies of the shape tables (DeviceWorld's shapes and hull columns).
+struct ShapeTablesView {
+    const BtgShape* shapes = nullptr;
+    const BtgFloat4* hullVertices = nullptr;
+    const BtgFace* hullFaces = nullptr;
+    const int* hullIndices = nullptr;
+    const BtgFloat4* hullEdges = nullptr;
+};
+
+// BTG_PAIR_* kind of a pair (shared/narrowphase_common.h).
+int pairKind(const BtgPair& pair, const BtgBodyProps* props, const ShapeTablesView& t);
+
+// The manifold the device writes for one pair (bodyA = pair.a, bodyB = pair.b).
+BtgManifold referenceContact(const BtgPair& pair, const BtgFloat4* pos, const BtgFloat4* rot,
+                             const BtgBodyProps* props, const ShapeTablesView& t, float threshold);
+
+// Every pair in order; plane–plane pairs (owned by no kernel) come back empty.
+std::vector<BtgManifold> referenceNarrowphase(const std::vector<BtgPair>& pairs, const BtgFloat4* pos,
+                                              const BtgFloat4* rot, const BtgBodyProps* props,
+                                              const ShapeTablesView& t, float threshold);
+
+}  // namespace btgpu::ref

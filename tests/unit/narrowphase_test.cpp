@@ -1,0 +1,433 @@
+// narrowphase_test.cpp — the narrowphase stage against its CPU reference (same shared
+// routines; points matched as sets within tests/tolerances.h), and the physics directly:
+// face–face, edge–edge and vertex–face boxes, spheres, planes, a tetrahedron, an 18-vertex hull.
+#include "reference/narrowphase.h"
+#include "shape_tables.h"
+#include "shared/math.h"
+#include "shared/narrowphase_common.h"
+#include "stages/narrowphase.h"
+#include "test_device.h"
+#include "tolerances.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <gtest/gtest.h>
+
+using namespace btgpu;
+
+namespace {
+
+constexpr float kThreshold = 0.02f;  // m, Bullet's default contact breaking threshold
+const BtgFloat4 kIdentity = btgMake4(0, 0, 0, 1);
+
+BtgFloat4 axisAngle(BtgFloat4 axis, float angle)
+{
+    BtgFloat4 a = btgNormalize3(axis) * std::sin(0.5f * angle);
+    return btgMake4(a.x, a.y, a.z, std::cos(0.5f * angle));
+}
+// Rotation taking unit vector u onto unit vector v.
+BtgFloat4 rotationBetween(BtgFloat4 u, BtgFloat4 v)
+{
+    u = btgNormalize3(u);
+    v = btgNormalize3(v);
+    return axisAngle(btgCross3(u, v), std::acos(btgDot3(u, v)));
+}
+
+struct Scene {
+    test::ShapeTables t;
+    std::vector<BtgFloat4> pos, rot;
+    std::vector<BtgBodyProps> props;
+    std::vector<BtgPair> pairs;
+    int body(int shape, BtgFloat4 p, BtgFloat4 q = kIdentity)
+    {
+        BtgBodyProps bp{};
+        bp.shape = shape;
+        bp.flags = BTG_BODY_DYNAMIC;
+        pos.push_back(p);
+        rot.push_back(q);
+        props.push_back(bp);
+        return int(pos.size()) - 1;
+    }
+    void pair(int a, int b) { pairs.push_back(BtgPair{a, b}); }
+    PairKinds kinds() const
+    {
+        PairKinds k;
+        for (const BtgPair& p : pairs) switch (ref::pairKind(p, props.data(), t.view())) {
+            case BTG_PAIR_SPHERE_SPHERE: k.sphereSphere = true; break;
+            case BTG_PAIR_SPHERE_HULL: k.sphereHull = true; break;
+            case BTG_PAIR_SPHERE_PLANE: k.spherePlane = true; break;
+            case BTG_PAIR_HULL_PLANE: k.hullPlane = true; break;
+            case BTG_PAIR_HULL_HULL: k.hullHull = true; break;
+            default: break;
+            }
+        return k;
+    }
+};
+
+constexpr int kSpareSlots = 3;  // slots past the pair count: must stay untouched
+
+std::vector<BtgManifold> runDevice(cl::Context& ctx, const Scene& s, float threshold)
+{
+    DeviceWorld w(ctx);
+    w.numBodies = int(s.pos.size());
+    w.pos.upload(ctx, s.pos);
+    w.rot.upload(ctx, s.rot);
+    w.props.upload(ctx, s.props);
+    s.t.upload(w);
+    w.pairCapacity = s.pairs.size() + kSpareSlots;
+    std::vector<BtgPair> pairs = s.pairs;
+    pairs.resize(w.pairCapacity, BtgPair{0, 0});
+    w.pairs.upload(ctx, pairs);
+    std::vector<uint> counters(kNumCounters, 0);
+    counters[kPairCount] = uint(s.pairs.size());
+    w.counters.upload(ctx, counters);
+    BtgManifold sentinel{};
+    sentinel.numPoints = -1;
+    w.manifolds.upload(ctx, std::vector<BtgManifold>(w.pairCapacity, sentinel));
+    narrowphase(w, s.kinds(), threshold);
+    std::vector<BtgManifold> out = w.manifolds.download(ctx, w.pairCapacity);
+    for (size_t i = s.pairs.size(); i < out.size(); ++i) EXPECT_EQ(out[i].numPoints, -1) << "slot past the count written";
+    out.resize(s.pairs.size());
+    return out;
+}
+
+void expectSame(const BtgManifold& dev, const BtgManifold& ref, size_t i)
+{
+    SCOPED_TRACE("pair " + std::to_string(i));
+    EXPECT_EQ(dev.bodyA, ref.bodyA);
+    EXPECT_EQ(dev.bodyB, ref.bodyB);
+    ASSERT_EQ(dev.numPoints, ref.numPoints);
+    if (ref.numPoints == 0) return;
+    EXPECT_GE(btgDot3(dev.normal, ref.normal), tol::kNormalDot);
+    for (int k = 0; k < ref.numPoints; ++k) {
+        bool found = false;
+        for (int j = 0; j < dev.numPoints && !found; ++j) {
+            BtgFloat4 d = dev.pointB[j] - ref.pointB[k];
+            found = btgLength3(d) <= tol::kContactPoint && std::fabs(d.w) <= tol::kContactDepth;
+        }
+        EXPECT_TRUE(found) << "reference point " << k << " (" << ref.pointB[k].x << ", " << ref.pointB[k].y << ", "
+                           << ref.pointB[k].z << "; " << ref.pointB[k].w << ") has no device match";
+    }
+}
+
+// Device result, checked against the reference.
+std::vector<BtgManifold> collide(const Scene& s, float threshold = kThreshold)
+{
+    std::vector<BtgManifold> dev = runDevice(test::context(), s, threshold);
+    std::vector<BtgManifold> ref = ref::referenceNarrowphase(s.pairs, s.pos.data(), s.rot.data(), s.props.data(), s.t.view(), threshold);
+    for (size_t i = 0; i < s.pairs.size(); ++i) expectSame(dev[i], ref[i], i);
+    return dev;
+}
+
+void expectNormal(const BtgManifold& m, BtgFloat4 n) { EXPECT_GE(btgDot3(m.normal, btgNormalize3(n)), tol::kNormalDot); }
+void expectAllDepths(const BtgManifold& m, float distance)
+{
+    for (int k = 0; k < m.numPoints; ++k) EXPECT_NEAR(m.pointB[k].w, distance, tol::kContactDepth) << "point " << k;
+}
+bool hasPoint(const BtgManifold& m, BtgFloat4 p, float tolerance = tol::kContactPoint)
+{
+    for (int k = 0; k < m.numPoints; ++k)
+        if (btgLength3(btgXyz(m.pointB[k]) - btgXyz(p)) <= tolerance) return true;
+    return false;
+}
+
+}  // namespace
+
+TEST(Narrowphase, BoxOnBoxFaceFace)
+{
+    Scene s;
+    int ground = s.t.addBox(btgMake4(2, 0.5f, 2, 0)), cube = s.t.addBox(btgMake4(0.5f, 0.5f, 0.5f, 0));
+    s.body(cube, btgMake4(0, 0.99f, 0, 0));   // 1 cm into the ground's top face (y = 0.5)
+    s.body(ground, btgMake4(0, 0, 0, 0));
+    s.body(ground, btgMake4(10, 0, 0, 0));
+    s.body(cube, btgMake4(10, 1.01f, 0, 0));  // 1 cm above: within the threshold
+    s.pair(0, 1);
+    s.pair(2, 3);  // reversed roles: the ground is A
+    std::vector<BtgManifold> m = collide(s);
+    ASSERT_EQ(m[0].numPoints, 4);
+    expectNormal(m[0], btgMake4(0, 1, 0, 0));
+    expectAllDepths(m[0], -0.01f);
+    for (float x : {-0.5f, 0.5f})
+        for (float z : {-0.5f, 0.5f}) EXPECT_TRUE(hasPoint(m[0], btgMake4(x, 0.5f, z, 0)));
+    ASSERT_EQ(m[1].numPoints, 4);
+    expectNormal(m[1], btgMake4(0, -1, 0, 0));
+    expectAllDepths(m[1], 0.01f);
+    for (float x : {9.5f, 10.5f})
+        for (float z : {-0.5f, 0.5f}) EXPECT_TRUE(hasPoint(m[1], btgMake4(x, 0.51f, z, 0)));  // on the cube
+}
+
+TEST(Narrowphase, CrossedBoxesEdgeEdge)
+{
+    Scene s;
+    int cube = s.t.addBox(btgMake4(0.5f, 0.5f, 0.5f, 0));
+    const float r = 0.5f * std::sqrt(2.0f);  // centre to edge of a cube turned 45 degrees
+    s.body(cube, btgMake4(0, 2 * r - 0.01f, 0, 0), axisAngle(btgMake4(1, 0, 0, 0), 0.78539816f));  // bottom edge along x
+    s.body(cube, btgMake4(0, 0, 0, 0), axisAngle(btgMake4(0, 0, 1, 0), 0.78539816f));              // top edge along z
+    s.body(cube, btgMake4(5, 0, 0, 0), axisAngle(btgMake4(0, 0, 1, 0), 0.78539816f));  // same, lower box is A
+    s.body(cube, btgMake4(5, 2 * r - 0.01f, 0, 0), axisAngle(btgMake4(1, 0, 0, 0), 0.78539816f));
+    s.pair(0, 1);
+    s.pair(2, 3);
+    std::vector<BtgManifold> m = collide(s);
+    ASSERT_EQ(m[0].numPoints, 1);
+    expectNormal(m[0], btgMake4(0, 1, 0, 0));
+    EXPECT_NEAR(m[0].pointB[0].w, -0.01f, tol::kContactDepth);
+    EXPECT_TRUE(hasPoint(m[0], btgMake4(0, r, 0, 0)));
+    ASSERT_EQ(m[1].numPoints, 1);
+    expectNormal(m[1], btgMake4(0, -1, 0, 0));
+    EXPECT_NEAR(m[1].pointB[0].w, -0.01f, tol::kContactDepth);
+    EXPECT_TRUE(hasPoint(m[1], btgMake4(5, r - 0.01f, 0, 0)));  // on the upper box's edge
+}
+
+TEST(Narrowphase, VertexOnFace)
+{
+    Scene s;
+    int ground = s.t.addBox(btgMake4(2, 0.5f, 2, 0)), cube = s.t.addBox(btgMake4(0.5f, 0.5f, 0.5f, 0));
+    BtgFloat4 q = rotationBetween(btgMake4(1, 1, 1, 0), btgMake4(0, -1, 0, 0));  // a corner points down
+    const float corner = 0.5f * std::sqrt(3.0f);
+    s.body(cube, btgMake4(0.3f, 0.5f + corner - 0.01f, -0.2f, 0), q);
+    s.body(ground, btgMake4(0, 0, 0, 0));
+    s.pair(0, 1);
+    std::vector<BtgManifold> m = collide(s);
+    ASSERT_EQ(m[0].numPoints, 1);
+    expectNormal(m[0], btgMake4(0, 1, 0, 0));
+    EXPECT_NEAR(m[0].pointB[0].w, -0.01f, tol::kContactDepth);
+    EXPECT_TRUE(hasPoint(m[0], btgMake4(0.3f, 0.5f, -0.2f, 0)));
+}
+
+TEST(Narrowphase, SphereOnBox)
+{
+    Scene s;
+    int ground = s.t.addBox(btgMake4(2, 0.5f, 2, 0)), ball = s.t.addSphere(0.5f);
+    s.body(ball, btgMake4(0.2f, 0.98f, 0.1f, 0));  // on the top face, 2 cm deep
+    s.body(ground, btgMake4(0, 0, 0, 0));
+    s.body(ground, btgMake4(10, 0, 0, 0));
+    s.body(ball, btgMake4(12.3f, 0.8f, 0, 0));     // beyond the +x top edge: closest point on the edge
+    s.body(ball, btgMake4(20, 0.3f, 0, 0));        // centre inside, below the top face
+    s.body(ground, btgMake4(20, 0, 0, 0));
+    s.pair(0, 1);
+    s.pair(2, 3);
+    s.pair(4, 5);
+    int rounded = s.t.addPrism(9, 0.5f, 0.2f, 0.04f);  // top face at 0.2, grown by 4 cm
+    s.body(ball, btgMake4(30.1f, 0.2f + 0.04f + 0.5f - 0.01f, 0, 0));
+    s.body(rounded, btgMake4(30, 0, 0, 0));
+    s.pair(6, 7);
+    std::vector<BtgManifold> m = collide(s);
+    ASSERT_EQ(m[3].numPoints, 1);
+    expectNormal(m[3], btgMake4(0, 1, 0, 0));
+    EXPECT_NEAR(m[3].pointB[0].w, -0.01f, tol::kContactDepth);
+    EXPECT_TRUE(hasPoint(m[3], btgMake4(30.1f, 0.24f, 0, 0)));  // on the grown surface
+    ASSERT_EQ(m[0].numPoints, 1);
+    expectNormal(m[0], btgMake4(0, 1, 0, 0));
+    EXPECT_NEAR(m[0].pointB[0].w, -0.02f, tol::kContactDepth);
+    EXPECT_TRUE(hasPoint(m[0], btgMake4(0.2f, 0.5f, 0.1f, 0)));
+    // ground is A here: the normal points from the ball to the box
+    ASSERT_EQ(m[1].numPoints, 1);
+    expectNormal(m[1], btgMake4(-1, -1, 0, 0));
+    EXPECT_NEAR(m[1].pointB[0].w, std::sqrt(0.18f) - 0.5f, tol::kContactDepth);
+    EXPECT_TRUE(hasPoint(m[1], btgMake4(12.3f, 0.8f, 0, 0) + btgMake4(-1, -1, 0, 0) * (0.5f / std::sqrt(2.0f))));
+    ASSERT_EQ(m[2].numPoints, 1);
+    expectNormal(m[2], btgMake4(0, 1, 0, 0));
+    EXPECT_NEAR(m[2].pointB[0].w, -0.2f - 0.5f, tol::kContactDepth);
+    EXPECT_TRUE(hasPoint(m[2], btgMake4(20, 0.5f, 0, 0)));
+}
+
+TEST(Narrowphase, SphereSphereAndPlane)
+{
+    Scene s;
+    int big = s.t.addSphere(0.5f), small = s.t.addSphere(0.3f);
+    int floor = s.t.addPlane(btgMake4(0, 1, 0, 0), 0.25f);  // y = 0.25 locally
+    s.body(big, btgMake4(0, 0, 0, 0));
+    s.body(small, btgMake4(0.7f, 0, 0, 0));
+    s.body(floor, btgMake4(0, -0.5f, 0, 0));        // world plane y = -0.25
+    s.body(small, btgMake4(3, -0.25f + 0.29f, 0, 0));  // 1 cm into the plane
+    s.pair(0, 1);
+    s.pair(2, 3);
+    s.pair(0, 2);  // big sphere: 0.25 - 0.5 = -0.25 deep
+    std::vector<BtgManifold> m = collide(s);
+    ASSERT_EQ(m[0].numPoints, 1);
+    expectNormal(m[0], btgMake4(-1, 0, 0, 0));
+    EXPECT_NEAR(m[0].pointB[0].w, -0.1f, tol::kContactDepth);
+    EXPECT_TRUE(hasPoint(m[0], btgMake4(0.4f, 0, 0, 0)));
+    ASSERT_EQ(m[1].numPoints, 1);
+    expectNormal(m[1], btgMake4(0, -1, 0, 0));  // plane is A: from the sphere down to the plane
+    EXPECT_NEAR(m[1].pointB[0].w, -0.01f, tol::kContactDepth);
+    EXPECT_TRUE(hasPoint(m[1], btgMake4(3, -0.26f, 0, 0)));  // on the sphere
+    ASSERT_EQ(m[2].numPoints, 1);
+    expectNormal(m[2], btgMake4(0, 1, 0, 0));
+    EXPECT_NEAR(m[2].pointB[0].w, -0.25f, tol::kContactDepth);
+    EXPECT_TRUE(hasPoint(m[2], btgMake4(0, -0.25f, 0, 0)));
+}
+
+TEST(Narrowphase, BoxOnPlane)
+{
+    Scene s;
+    int floor = s.t.addPlane(btgMake4(0, 1, 0, 0), 0);
+    int cube = s.t.addBox(btgMake4(0.5f, 0.5f, 0.5f, 0));
+    int prism = s.t.addPrism(9, 0.5f, 0.25f, 0.04f);  // 18 vertices, a margin
+    s.body(floor, btgMake4(0, 0, 0, 0));
+    s.body(cube, btgMake4(1, 0.49f, 2, 0));
+    s.body(prism, btgMake4(5, 0.25f + 0.03f, 0, 0));  // polyhedron 3 cm up, margin 4 cm: 1 cm deep
+    s.body(cube, btgMake4(-4, 0.5f + 0.05f, 0, 0));   // 5 cm up: beyond the threshold
+    s.pair(0, 1);
+    s.pair(0, 2);
+    s.pair(0, 3);
+    std::vector<BtgManifold> m = collide(s);
+    ASSERT_EQ(m[0].numPoints, 4);
+    expectNormal(m[0], btgMake4(0, -1, 0, 0));  // plane is A
+    expectAllDepths(m[0], -0.01f);
+    for (float x : {0.5f, 1.5f})
+        for (float z : {1.5f, 2.5f}) EXPECT_TRUE(hasPoint(m[0], btgMake4(x, -0.01f, z, 0)));
+    ASSERT_EQ(m[1].numPoints, 4);
+    expectAllDepths(m[1], -0.01f);
+    for (int k = 0; k < 4; ++k) EXPECT_NEAR(m[1].pointB[k].y, -0.01f, tol::kContactPoint);  // on the grown hull
+    EXPECT_EQ(m[2].numPoints, 0);
+}
+
+TEST(Narrowphase, TetrahedronAndPrismOnBox)
+{
+    Scene s;
+    int ground = s.t.addBox(btgMake4(2, 0.5f, 2, 0));
+    const float size = 0.3f;
+    int tet = s.t.addTetrahedron(size), roundTet = s.t.addTetrahedron(size, 0.04f);
+    int prism = s.t.addPrism(9, 0.5f, 0.25f);
+    BtgFloat4 faceDown = rotationBetween(btgMake4(-1, -1, -1, 0), btgMake4(0, -1, 0, 0));
+    const float faceDist = size / std::sqrt(3.0f);  // centre to the face opposite (s, s, s)
+    s.body(ground, btgMake4(0, 0, 0, 0));
+    s.body(tet, btgMake4(0.5f, 0.5f + faceDist - 0.01f, 0, 0), faceDown);
+    s.body(roundTet, btgMake4(-1, 0.5f + faceDist + 0.03f, 0, 0), faceDown);  // margin 4 cm: 1 cm deep
+    s.body(prism, btgMake4(0, 0.75f - 0.01f, 1, 0), axisAngle(btgMake4(0, 1, 0, 0), 0.3f));
+    s.body(tet, btgMake4(0, 2, 0, 0));  // well apart
+    s.pair(0, 1);
+    s.pair(0, 2);
+    s.pair(0, 3);
+    s.pair(0, 4);
+    std::vector<BtgManifold> m = collide(s);
+    ASSERT_EQ(m[0].numPoints, 3);
+    expectNormal(m[0], btgMake4(0, -1, 0, 0));  // ground is A
+    expectAllDepths(m[0], -0.01f);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(m[0].pointB[k].y, 0.49f, tol::kContactPoint);  // on the tetrahedron
+    ASSERT_EQ(m[1].numPoints, 3);
+    expectAllDepths(m[1], -0.01f);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(m[1].pointB[k].y, 0.49f, tol::kContactPoint);  // on the grown hull
+    ASSERT_EQ(m[2].numPoints, 4);
+    expectNormal(m[2], btgMake4(0, -1, 0, 0));
+    expectAllDepths(m[2], -0.01f);
+    EXPECT_EQ(m[3].numPoints, 0);
+}
+
+TEST(Narrowphase, SeparatedPairsHaveNoPoints)
+{
+    Scene s;
+    int cube = s.t.addBox(btgMake4(0.5f, 0.5f, 0.5f, 0)), ball = s.t.addSphere(0.5f);
+    s.body(cube, btgMake4(0, 0, 0, 0));
+    s.body(cube, btgMake4(0.3f, 1.05f, 0, 0), axisAngle(btgMake4(0, 1, 0, 0), 0.3f));  // 5 cm gap
+    s.body(ball, btgMake4(0, 0, 1.1f, 0));
+    s.body(ball, btgMake4(1.04f, 0, 1.1f, 0));
+    s.pair(0, 1);
+    s.pair(0, 2);  // 10 cm gap
+    s.pair(2, 3);  // 4 cm gap
+    std::vector<BtgManifold> m = collide(s);
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_EQ(m[i].numPoints, 0) << "pair " << i;
+        EXPECT_EQ(m[i].bodyA, s.pairs[i].a);
+        EXPECT_EQ(m[i].bodyB, s.pairs[i].b);
+    }
+}
+
+TEST(Narrowphase, DeterministicAcrossRuns)
+{
+    Scene s;
+    int cube = s.t.addBox(btgMake4(0.5f, 0.5f, 0.5f, 0)), prism = s.t.addPrism(9, 0.5f, 0.25f, 0.01f);
+    s.body(cube, btgMake4(0, 0, 0, 0));
+    s.body(prism, btgMake4(0.2f, 0.7f, 0.1f, 0), axisAngle(btgMake4(1, 0, 1, 0), 0.2f));
+    s.body(cube, btgMake4(0.9f, 0.1f, 0.3f, 0), axisAngle(btgMake4(0, 1, 1, 0), 0.7f));
+    s.pair(0, 1);
+    s.pair(0, 2);
+    s.pair(1, 2);
+    std::vector<BtgManifold> a = collide(s), b = collide(s);
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(BtgManifold)), 0);
+    EXPECT_GT(a[0].numPoints, 0);
+    EXPECT_GT(a[1].numPoints, 0);
+}
+
+TEST(Narrowphase, SpheresOnlyBuildsNoSatProgram)
+{
+    cl::Context ctx(cl::selectDevice(""));
+    Scene s;
+    int ball = s.t.addSphere(0.5f);
+    s.body(ball, btgMake4(0, 0, 0, 0));
+    s.body(ball, btgMake4(0.9f, 0, 0, 0));
+    s.pair(0, 1);
+    std::vector<BtgManifold> m = runDevice(ctx, s, kThreshold);
+    EXPECT_EQ(m[0].numPoints, 1);
+    const std::vector<std::string>& built = ctx.builtPrograms();
+    EXPECT_NE(std::find(built.begin(), built.end(), "narrowphase"), built.end());
+    EXPECT_EQ(std::find(built.begin(), built.end(), "narrowphase_sat"), built.end());
+}
+
+namespace {
+// Largest signed distance of world point p to the planes of hull h (0 on its surface).
+float hullPlaneDistance(const Scene& s, int body, BtgFloat4 p)
+{
+    BtgMat3 r = btgQuatToMat3(s.rot[body]);
+    BtgFloat4 local = btgMat3TMulVec(r, p - s.pos[body]);
+    const BtgShape& sh = s.t.shapes[s.props[body].shape];
+    float best = -1e30f;
+    for (int f = 0; f < sh.numFaces; ++f) {
+        BtgFloat4 pl = s.t.faces[sh.firstFace + f].plane;
+        best = std::fmax(best, btgDot3(pl, local) + pl.w);
+    }
+    return best;
+}
+// Distance of p from body's surface (margin-free shapes): 0 when p lies on it.
+float surfaceOffset(const Scene& s, int body, BtgFloat4 p)
+{
+    const BtgShape& sh = s.t.shapes[s.props[body].shape];
+    if (sh.type == BTG_SHAPE_SPHERE) return btgLength3(p - s.pos[body]) - sh.param.x;
+    return hullPlaneDistance(s, body, p);
+}
+}  // namespace
+
+// Random poses of boxes, prisms, tetrahedra and spheres near touching: the device agrees with
+// the reference, and every contact's two points lie on the two surfaces, `distance` apart.
+TEST(Narrowphase, RandomPosesAgreeAndLieOnSurfaces)
+{
+    Scene s;
+    std::vector<int> kinds = {s.t.addBox(btgMake4(0.5f, 0.3f, 0.4f, 0)), s.t.addPrism(9, 0.4f, 0.2f),
+                              s.t.addTetrahedron(0.35f), s.t.addSphere(0.4f), s.t.addBox(btgMake4(1.5f, 0.2f, 1.0f, 0))};
+    uint32_t seed = 12345u;
+    auto rnd = [&seed] {
+        seed = seed * 1664525u + 1013904223u;
+        return float(seed >> 8) / float(1u << 24);
+    };
+    auto randomRot = [&] {
+        return btgQuatNormalize(btgMake4(rnd() - 0.5f, rnd() - 0.5f, rnd() - 0.5f, rnd() - 0.5f));
+    };
+    for (int i = 0; i < 60; ++i) {
+        int sa = kinds[i % kinds.size()], sb = kinds[(i / kinds.size() + i) % kinds.size()];
+        BtgFloat4 centre = btgMake4(10.0f * float(i), 0, 0, 0);
+        BtgFloat4 dir = btgNormalize3(btgMake4(rnd() - 0.5f, rnd() - 0.5f, rnd() - 0.5f, 0));
+        float gap = 0.45f + 0.6f * rnd();
+        int a = s.body(sa, centre + dir * gap, randomRot());
+        int b = s.body(sb, centre, randomRot());
+        s.pair(a, b);
+    }
+    std::vector<BtgManifold> m = collide(s);
+    int touching = 0;
+    for (size_t i = 0; i < m.size(); ++i) {
+        SCOPED_TRACE("pair " + std::to_string(i));
+        ASSERT_LE(m[i].numPoints, BTG_MAX_POINTS);
+        if (m[i].numPoints == 0) continue;
+        ++touching;
+        EXPECT_NEAR(btgLength3(m[i].normal), 1.0f, 1e-5f);
+        for (int k = 0; k < m[i].numPoints; ++k) {
+            BtgFloat4 pb = m[i].pointB[k];
+            EXPECT_LT(pb.w, kThreshold);
+            BtgFloat4 pa = btgXyz(pb) + m[i].normal * pb.w;
+            EXPECT_NEAR(surfaceOffset(s, m[i].bodyB, pb), 0.0f, tol::kContactPoint) << "point " << k << " not on B";
+            EXPECT_NEAR(surfaceOffset(s, m[i].bodyA, pa), 0.0f, tol::kContactPoint) << "point " << k << " not on A";
+        }
+    }
+    EXPECT_GT(touching, 20);
+}
