@@ -6,6 +6,7 @@
 #include "cl/buffer.h"
 #include "cl/launch.h"
 #include "shared/types.h"
+#include "world/solver_scratch.h"
 
 namespace btgpu {
 
@@ -64,6 +65,7 @@ struct DeviceWorld {
     cl::DeviceArray<BtgContact> prevContacts;
     size_t contactCapacity = 0;
     int numColors = 0;                       // batches the solver launches (host estimate)
+    SolverScratch solverScratch;             // contact stages' scratch (block sums, claims)
 
     // --- counts and status ---
     cl::DeviceArray<uint> counters;  // Counter slots
