@@ -4,6 +4,7 @@
 #include "reference/contact_solver_reference.h"
 #include "world/device_world.h"
 
+#include <random>
 #include <vector>
 
 namespace btgpu::test {
@@ -59,6 +60,43 @@ inline BtgManifold boxOnPlane(int box, int ground, BtgFloat4 boxPos, float h, fl
     for (int k = 0; k < 4; ++k)
         m.pointB[k] = btgMake4(boxPos.x + sx[k] * h, boxPos.y - h - distance, boxPos.z + sz[k] * h, distance);
     return m;
+}
+
+// Columns of unit boxes on a static ground (row 0), with random small penetrations and
+// velocities (linVel = linVel0 + gravity dt, as after integration). The bottom box of the last
+// column is kinematic and moves sideways, so infinite-mass moving bodies are covered too.
+struct StackScene {
+    ref::ContactBodies bodies;
+    std::vector<BtgManifold> manifolds;
+};
+inline StackScene stackScene(int columns, int height, unsigned seed)
+{
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    StackScene s;
+    const float gdt = 9.81f / 60.0f;
+    addBody(s.bodies, btgZero4(), 0.0f, btgZero4(), BTG_BODY_STATIC, 0.8f, 0.5f);
+    for (int c = 0; c < columns; ++c) {
+        int below = 0;
+        float top = 0.0f;
+        for (int h = 0; h < height; ++h) {
+            float d = 0.03f * u(rng) - 0.02f;  // -5 cm .. +1 cm: split, combined and speculative rows
+            BtgFloat4 pos = btgMake4(2.0f * c + 0.05f * u(rng), top + 0.5f + d, 0.05f * u(rng), 0);
+            bool kinematic = c == columns - 1 && h == 0;
+            int b = addBody(s.bodies, pos, kinematic ? 0.0f : 1.0f + 0.5f * u(rng),
+                            kinematic ? btgZero4() : btgMake4(6 + u(rng), 6 + u(rng), 6 + u(rng), 0),
+                            kinematic ? BTG_BODY_KINEMATIC : BTG_BODY_DYNAMIC, 0.6f + 0.3f * u(rng), 0.5f + 0.5f * u(rng));
+            BtgFloat4 v0 = kinematic ? btgMake4(0.3f, 0, 0, 0) : btgMake4(0.1f * u(rng), -0.5f * (1 + u(rng)), 0.1f * u(rng), 0);
+            s.bodies.linVel0[b] = v0;
+            s.bodies.linVel[b] = kinematic ? v0 : v0 + btgMake4(0, -gdt, 0, 0);
+            s.bodies.angVel0[b] = kinematic ? btgZero4() : btgMake4(0.2f * u(rng), 0.2f * u(rng), 0.2f * u(rng), 0);
+            s.bodies.angVel[b] = s.bodies.angVel0[b];
+            s.manifolds.push_back(boxOnPlane(b, below, pos, 0.5f, d));  // points on the face at y = top
+            below = b;
+            top = pos.y + 0.5f;
+        }
+    }
+    return s;
 }
 
 // Uploads the body columns, manifolds (as pair slots) and previous contacts; counters as given.
