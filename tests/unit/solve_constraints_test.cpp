@@ -12,6 +12,10 @@
 #include "tolerances.h"
 
 #include <cmath>
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <string>
 #include <gtest/gtest.h>
 
 using namespace btgpu;
@@ -105,6 +109,11 @@ TEST(SolveConstraints, MatchesReferenceWithWarmStart)
     Result d = runDevice(s.bodies, s.manifolds, d1.contacts, p, maxColors);
     Result r = runReference(s.bodies, s.manifolds, r1.contacts, p, maxColors);
 
+    // Same device, same input: bitwise the same velocities.
+    Result again = runDevice(s.bodies, s.manifolds, d1.contacts, p, maxColors);
+    EXPECT_EQ(0, std::memcmp(again.bodies.linVel.data(), d.bodies.linVel.data(), d.bodies.linVel.size() * sizeof(BtgFloat4)));
+    EXPECT_EQ(0, std::memcmp(again.bodies.angVel.data(), d.bodies.angVel.data(), d.bodies.angVel.size() * sizeof(BtgFloat4)));
+
     int serial = 0;
     for (const BtgContact& c : r.contacts) serial += c.color == maxColors - 1;
     EXPECT_GT(serial, 0);
@@ -115,6 +124,12 @@ TEST(SolveConstraints, MatchesReferenceWithWarmStart)
         expectNear4(d.bodies.pushLin[i], r.bodies.pushLin[i], tv, "pushLin", i);
         expectNear4(d.bodies.pushAng[i], r.bodies.pushAng[i], tv, "pushAng", i);
     }
+    float worst = 0.0f;
+    for (size_t i = 0; i < s.bodies.props.size(); ++i)
+        for (int e = 0; e < 3; ++e)
+            worst = std::max({worst, std::fabs(btgLane(d.bodies.linVel[i], e) - btgLane(r.bodies.linVel[i], e)),
+                              std::fabs(btgLane(d.bodies.angVel[i], e) - btgLane(r.bodies.angVel[i], e))});
+    RecordProperty("max_velocity_deviation", std::to_string(worst));
     ASSERT_EQ(d.contacts.size(), r.contacts.size());
     bool warm = false;
     for (size_t i = 0; i < r.contacts.size(); ++i) {
