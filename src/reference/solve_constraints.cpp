@@ -25,7 +25,8 @@ void solveConstraints(std::vector<BtgContact>& contacts, ContactBodies& bodies, 
         std::vector<BtgFloat4>& ang = mode == 2 ? bodies.pushAng : bodies.angVel;
         for (int color = 0; color < numColors; ++color)
             for (BtgContact& c : contacts) {
-                if (c.color != color) continue;
+                bool last = color == numColors - 1;  // the serial launch takes higher colors too
+                if (last ? c.color < color : c.color != color) continue;
                 BtgSolverBody a = body(c.bodyA), b = body(c.bodyB);
                 int movingA = mode == 2 ? a.dynamic : a.moving, movingB = mode == 2 ? b.dynamic : b.moving;
                 BtgBodyVel va = btgMakeBodyVel(movingA, lin[c.bodyA], ang[c.bodyA]);
@@ -34,12 +35,12 @@ void solveConstraints(std::vector<BtgContact>& contacts, ContactBodies& bodies, 
                 else if (mode == 1) btgContactSolveVelocity(&c, a, b, &va, &vb);
                 else btgContactSolvePush(&c, a, b, &va, &vb);
                 if (a.dynamic) {
-                    lin[c.bodyA] = va.lin;
-                    ang[c.bodyA] = va.ang;
+                    lin[c.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, lin[c.bodyA].w);
+                    ang[c.bodyA] = btgMake4(va.ang.x, va.ang.y, va.ang.z, ang[c.bodyA].w);
                 }
                 if (b.dynamic) {
-                    lin[c.bodyB] = vb.lin;
-                    ang[c.bodyB] = vb.ang;
+                    lin[c.bodyB] = btgMake4(vb.lin.x, vb.lin.y, vb.lin.z, lin[c.bodyB].w);
+                    ang[c.bodyB] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, ang[c.bodyB].w);
                 }
             }
     };
