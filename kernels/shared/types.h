@@ -91,7 +91,7 @@ typedef struct {
     BtgFloat4 t2;                      /* friction direction 2 */
     BtgFloat4 rA[BTG_MAX_POINTS];      /* contact point on A minus A's centre, m;
                                           w: target normal velocity m/s (restitution, bias) */
-    BtgFloat4 rB[BTG_MAX_POINTS];      /* contact point on A minus B's centre, m;
+    BtgFloat4 rB[BTG_MAX_POINTS];      /* contact point on B minus B's centre, m;
                                           w: split-impulse target push velocity m/s */
     BtgFloat4 localA[BTG_MAX_POINTS];  /* contact point in A's body frame, m (cache key);
                                           w: signed distance m */

@@ -4,7 +4,7 @@
 // rounds on the device; contacts still uncolored after them get color maxColors - 1, which
 // the solver runs serially (one work-item), so no host round trip is needed.
 // Reads contacts (bodyA, bodyB), props (flags), counters[kContactCount].
-// Writes contacts.color.
+// Writes contacts.color, solverScratch.bodyClaim, w.numColors (= maxColors).
 #pragma once
 #include "world/device_world.h"
 

@@ -5,8 +5,9 @@
 // previous step's contact of the same body pair (prevContacts, sorted by (bodyA, bodyB),
 // counters[kPrevContactCount]) and the old point nearest in A's frame within
 // params.contactThreshold, and starts from its impulses times params.warmstartFactor.
-// Reads manifolds, pairs, counters, pos, rot, props, prevContacts. Writes contacts
-// (bodyA, bodyB, numPoints, normal, rA/rB/localA geometry, impulses), counters.
+// rA = point on A - posA, rB = point on B - posB (Bullet's rel_pos1/rel_pos2); localA.w = distance.
+// Reads manifolds, counters, pos, rot, prevContacts. Writes contacts (bodyA, bodyB, numPoints,
+// normal, rA/rB/localA geometry, impulses; color -1), counters, solverScratch.blockSums.
 // After the step the pipeline swaps contacts and prevContacts.
 #pragma once
 #include "world/device_world.h"

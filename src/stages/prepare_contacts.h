@@ -2,7 +2,10 @@
 // Solver's rules: friction directions (btPlaneSpace of the normal), effective masses, the
 // normal target velocity (restitution from linVel0/angVel0 with the restitution threshold,
 // erp bias or speculative approach for separated points) and the split-impulse target.
-// Reads contacts, pos, props, invInertiaWorld, linVel, angVel, linVel0, angVel0.
+// Targets are velocities the solver reaches against the live velocity ((target - J v) * mass),
+// so this stage does not read linVel/angVel. Contacts with no dynamic body, or a no-response
+// body, get zero masses and impulses (never solved).
+// Reads contacts, counters, props, invInertiaWorld, linVel0, angVel0.
 // Writes contacts (t1, t2, masses, targets in rA.w / rB.w, combined friction/restitution).
 #pragma once
 #include "world/device_world.h"

@@ -3,8 +3,10 @@
 // warm-start impulses, then `iterations` passes over normal and friction rows (friction
 // clamped by friction * normal impulse), then, when params.splitImpulse, the same number of
 // passes on the push velocities for the split rows.
-// Reads contacts, props, invInertiaWorld, counters. Writes linVel, angVel, pushLin, pushAng,
-// contacts (accumulated impulses, kept for next step's warm start).
+// pushLin/pushAng are zeroed here (first numBodies rows) when params.splitImpulse. The last
+// color's launch also takes any higher color, so numColors may be below what was assigned.
+// Reads contacts, props, invInertiaWorld, counters. Writes linVel, angVel, pushLin, pushAng
+// (xyz of dynamic rows only), contacts (accumulated impulses, kept for next step's warm start).
 #pragma once
 #include "world/device_world.h"
 

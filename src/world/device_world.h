@@ -8,6 +8,7 @@
 #include "shared/counters.h"
 #include "shared/types.h"
 #include "world/broadphase_scratch.h"
+#include "world/solver_scratch.h"
 
 namespace btgpu {
 
@@ -75,6 +76,7 @@ struct DeviceWorld {
     cl::DeviceArray<BtgContact> prevContacts;
     size_t contactCapacity = 0;
     int numColors = 0;                       // batches the solver launches (host estimate)
+    SolverScratch solverScratch;             // contact stages' scratch (block sums, claims)
 
     // --- sync_in staging (kept across calls: a quiet step allocates nothing) ---
     cl::DeviceArray<int> stagingRows;

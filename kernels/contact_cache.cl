@@ -1,0 +1,81 @@
+/* contact_cache.cl — Stage: contacts (compaction of the manifolds and warm start).
+ * Launch: one work-item per pair slot (pairCapacity), in work-groups whose size the host passes
+ * as the local-memory scan size; scan_blocks runs as one work-item.
+ * Reads manifolds, counters[kPairCount, kPrevContactCount], pos, rot, prevContacts.
+ * Writes blockSums (scratch), contacts, counters[kContactCount], counters[kStatus]. */
+#include "shared/types.h"
+#include "shared/math.h"
+#include "shared/contact_rows.h"
+
+/* Mirror btgpu::Counter in src/world/device_world.h. */
+#define COUNTER_PAIRS 0
+#define COUNTER_CONTACTS 1
+#define COUNTER_PREV_CONTACTS 2
+#define COUNTER_STATUS 3
+
+static uint has_points(__global const BtgManifold* restrict manifolds, __global const uint* restrict counters,
+                       int pairCapacity)
+{
+    uint gid = (uint)get_global_id(0);
+    uint n = min(counters[COUNTER_PAIRS], (uint)pairCapacity);
+    return (gid < n && manifolds[gid].numPoints > 0) ? 1u : 0u;
+}
+
+/* Hillis-Steele inclusive scan of one value per work-item; integers, so any order is exact.
+ * Returns the exclusive prefix; *total receives the group's sum. */
+static uint group_exclusive_scan(uint v, __local uint* tmp, uint* total)
+{
+    uint lid = (uint)get_local_id(0), lsz = (uint)get_local_size(0);
+    tmp[lid] = v;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    for (uint off = 1; off < lsz; off <<= 1) {
+        uint add = lid >= off ? tmp[lid - off] : 0u;
+        barrier(CLK_LOCAL_MEM_FENCE);
+        tmp[lid] += add;
+        barrier(CLK_LOCAL_MEM_FENCE);
+    }
+    *total = tmp[lsz - 1];
+    return tmp[lid] - v;
+}
+
+__kernel void count_contacts(__global const BtgManifold* restrict manifolds, __global const uint* restrict counters,
+                             int pairCapacity, __global uint* blockSums, __local uint* tmp)
+{
+    uint total;
+    group_exclusive_scan(has_points(manifolds, counters, pairCapacity), tmp, &total);
+    if (get_local_id(0) == 0) blockSums[get_group_id(0)] = total;
+}
+
+/* Few blocks (pairCapacity / group size): one work-item scans them in order. */
+__kernel void scan_blocks(__global uint* blockSums, int numBlocks, __global uint* counters, int contactCapacity)
+{
+    if (get_global_id(0) != 0) return;
+    uint sum = 0;
+    for (int i = 0; i < numBlocks; ++i) {
+        uint v = blockSums[i];
+        blockSums[i] = sum;
+        sum += v;
+    }
+    counters[COUNTER_CONTACTS] = sum;
+    if (sum > (uint)contactCapacity) counters[COUNTER_STATUS] |= BTG_STATUS_CONTACT_OVERFLOW;
+}
+
+__kernel void write_contacts(__global const BtgManifold* restrict manifolds, __global const uint* restrict counters,
+                             int pairCapacity, __global const uint* restrict blockSums,
+                             __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,
+                             __global const BtgContact* restrict prevContacts, int prevCapacity, __global BtgContact* contacts,
+                             int contactCapacity, BtgStepParams params, __local uint* tmp)
+{
+    uint flag = has_points(manifolds, counters, pairCapacity);
+    uint total;
+    uint local_index = group_exclusive_scan(flag, tmp, &total);
+    if (!flag) return;
+    uint dst = blockSums[get_group_id(0)] + local_index;
+    if (dst >= (uint)contactCapacity) return;
+    BtgManifold m = manifolds[get_global_id(0)];
+    BtgContact c = btgContactFromManifold(m, pos[m.bodyA], rot[m.bodyA], pos[m.bodyB]);
+    int prevCount = (int)min(counters[COUNTER_PREV_CONTACTS], (uint)prevCapacity);
+    int j = btgFindPrevContact(prevContacts, prevCount, m.bodyA, m.bodyB);
+    if (j >= 0) btgWarmStartFrom(&c, prevContacts[j], params.contactThreshold, params.warmstartFactor);
+    contacts[dst] = c;
+}

@@ -1,0 +1,31 @@
+/* prepare_contacts.cl — Stage: prepare (solver rows of each contact, setupContactConstraint).
+ * Launch: one work-item per contact slot (contactCapacity); early-out past the contact count.
+ * Reads counters[kContactCount], props, invInertiaWorld, linVel0, angVel0, contacts.
+ * Writes contacts (t1, t2, masses, targets in rA.w / rB.w, friction in normal.w, restitution
+ * in t1.w; impulses of non-solvable contacts zeroed). */
+#include "shared/types.h"
+#include "shared/math.h"
+#include "shared/contact_rows.h"
+
+#define COUNTER_CONTACTS 1 /* mirrors btgpu::Counter */
+
+__kernel void prepare_contacts(__global BtgContact* contacts, __global const uint* restrict counters,
+                               int contactCapacity, __global const BtgBodyProps* restrict props,
+                               __global const BtgFloat4* restrict invInertiaWorld,
+                               __global const BtgFloat4* restrict linVel0, __global const BtgFloat4* restrict angVel0,
+                               BtgStepParams params)
+{
+    uint i = (uint)get_global_id(0);
+    if (i >= min(counters[COUNTER_CONTACTS], (uint)contactCapacity)) return;
+    BtgContact c = contacts[i];
+    BtgBodyProps pa = props[c.bodyA], pb = props[c.bodyB];
+    BtgSolverBody a = btgMakeSolverBody(pa, invInertiaWorld[3 * c.bodyA], invInertiaWorld[3 * c.bodyA + 1],
+                                        invInertiaWorld[3 * c.bodyA + 2]);
+    BtgSolverBody b = btgMakeSolverBody(pb, invInertiaWorld[3 * c.bodyB], invInertiaWorld[3 * c.bodyB + 1],
+                                        invInertiaWorld[3 * c.bodyB + 2]);
+    BtgBodyVel a0 = btgMakeBodyVel(a.moving, linVel0[c.bodyA], angVel0[c.bodyA]);
+    BtgBodyVel b0 = btgMakeBodyVel(b.moving, linVel0[c.bodyB], angVel0[c.bodyB]);
+    btgPrepareContact(&c, a, b, a0, b0, btgCombinedFriction(pa.gravity.w, pb.gravity.w),
+                      pa.restitution * pb.restitution, btgContactSolvable(pa.flags, pb.flags), params);
+    contacts[i] = c;
+}

@@ -1,0 +1,64 @@
+/* solve_constraints.cl — Stage: solve (batched projected Gauss-Seidel, one color per launch).
+ * Launch: solve_color: one work-item per contact slot (contactCapacity), early-out unless the
+ * contact has the launch's color (no dynamic body twice in a color, so no races);
+ * solve_color_serial: one work-item that walks, in index order, the contacts whose color is the
+ * last one or higher (so a caller launching fewer colors than were assigned still solves all).
+ * mode 0: apply warm-start impulses; 1: velocity iteration; 2: split-impulse iteration.
+ * Reads counters[kContactCount], props, invInertiaWorld. Writes contacts (accumulated
+ * impulses), linVel, angVel (modes 0, 1) or pushLin, pushAng (mode 2), dynamic bodies only. */
+#include "shared/types.h"
+#include "shared/math.h"
+#include "shared/contact_rows.h"
+
+#define COUNTER_CONTACTS 1 /* mirrors btgpu::Counter */
+
+static BtgSolverBody load_body(__global const BtgBodyProps* restrict props,
+                               __global const BtgFloat4* restrict invInertiaWorld, int i)
+{
+    return btgMakeSolverBody(props[i], invInertiaWorld[3 * i], invInertiaWorld[3 * i + 1], invInertiaWorld[3 * i + 2]);
+}
+
+static void solve_one(int i, int mode, __global BtgContact* contacts, __global const BtgBodyProps* restrict props,
+                      __global const BtgFloat4* restrict invInertiaWorld, __global BtgFloat4* lin, __global BtgFloat4* ang)
+{
+    BtgContact c = contacts[i];
+    BtgSolverBody a = load_body(props, invInertiaWorld, c.bodyA);
+    BtgSolverBody b = load_body(props, invInertiaWorld, c.bodyB);
+    /* Push velocities of infinite-mass bodies are zero, as Bullet's solver bodies start them. */
+    int movingA = mode == 2 ? a.dynamic : a.moving, movingB = mode == 2 ? b.dynamic : b.moving;
+    BtgBodyVel va = btgMakeBodyVel(movingA, lin[c.bodyA], ang[c.bodyA]);
+    BtgBodyVel vb = btgMakeBodyVel(movingB, lin[c.bodyB], ang[c.bodyB]);
+    if (mode == 0) btgContactWarmStart(&c, a, b, &va, &vb);
+    else if (mode == 1) btgContactSolveVelocity(&c, a, b, &va, &vb);
+    else btgContactSolvePush(&c, a, b, &va, &vb);
+    /* w of the velocity columns is not the solver's: keep it. */
+    if (a.dynamic) {
+        lin[c.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, lin[c.bodyA].w);
+        ang[c.bodyA] = btgMake4(va.ang.x, va.ang.y, va.ang.z, ang[c.bodyA].w);
+    }
+    if (b.dynamic) {
+        lin[c.bodyB] = btgMake4(vb.lin.x, vb.lin.y, vb.lin.z, lin[c.bodyB].w);
+        ang[c.bodyB] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, ang[c.bodyB].w);
+    }
+    if (mode != 0) contacts[i] = c;
+}
+
+__kernel void solve_color(__global BtgContact* contacts, __global const uint* restrict counters, int contactCapacity,
+                          __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
+                          __global BtgFloat4* lin, __global BtgFloat4* ang, int color, int mode)
+{
+    int i = (int)get_global_id(0);
+    if (i >= (int)min(counters[COUNTER_CONTACTS], (uint)contactCapacity) || contacts[i].color != color) return;
+    solve_one(i, mode, contacts, props, invInertiaWorld, lin, ang);
+}
+
+__kernel void solve_color_serial(__global BtgContact* contacts, __global const uint* restrict counters,
+                                 int contactCapacity, __global const BtgBodyProps* restrict props,
+                                 __global const BtgFloat4* restrict invInertiaWorld, __global BtgFloat4* lin,
+                                 __global BtgFloat4* ang, int color, int mode)
+{
+    if (get_global_id(0) != 0) return;
+    int n = (int)min(counters[COUNTER_CONTACTS], (uint)contactCapacity);
+    for (int i = 0; i < n; ++i)
+        if (contacts[i].color >= color) solve_one(i, mode, contacts, props, invInertiaWorld, lin, ang);
+}

@@ -1,0 +1,26 @@
+// prepare_contacts.cpp — CPU reference of the prepare stage (btgPrepareContact per contact).
+#include "reference/contact_solver_reference.h"
+
+namespace btgpu::ref {
+
+namespace {
+BtgSolverBody solverBody(const ContactBodies& b, int i)
+{
+    return btgMakeSolverBody(b.props[i], b.invInertiaWorld[3 * i], b.invInertiaWorld[3 * i + 1], b.invInertiaWorld[3 * i + 2]);
+}
+}  // namespace
+
+void prepareContacts(std::vector<BtgContact>& contacts, const ContactBodies& bodies, const BtgStepParams& params)
+{
+    for (BtgContact& c : contacts) {
+        const BtgBodyProps& pa = bodies.props[c.bodyA];
+        const BtgBodyProps& pb = bodies.props[c.bodyB];
+        BtgSolverBody a = solverBody(bodies, c.bodyA), b = solverBody(bodies, c.bodyB);
+        BtgBodyVel a0 = btgMakeBodyVel(a.moving, bodies.linVel0[c.bodyA], bodies.angVel0[c.bodyA]);
+        BtgBodyVel b0 = btgMakeBodyVel(b.moving, bodies.linVel0[c.bodyB], bodies.angVel0[c.bodyB]);
+        btgPrepareContact(&c, a, b, a0, b0, btgCombinedFriction(pa.gravity.w, pb.gravity.w),
+                          pa.restitution * pb.restitution, btgContactSolvable(pa.flags, pb.flags), params);
+    }
+}
+
+}  // namespace btgpu::ref

@@ -1,0 +1,53 @@
+// solve_constraints.cpp — CPU reference of the solve stage: the same passes as the device
+// (warm start, velocity iterations, split-impulse iterations), colors in order and the
+// contacts of a color in index order, which is what the batched launches compute.
+#include "reference/contact_solver_reference.h"
+
+#include <algorithm>
+
+namespace btgpu::ref {
+
+void solveConstraints(std::vector<BtgContact>& contacts, ContactBodies& bodies, const BtgStepParams& params,
+                      int iterations, int numColors)
+{
+    if (numColors < 1) numColors = 1;
+    size_t n = bodies.props.size();
+    if (params.splitImpulse) {
+        bodies.pushLin.assign(n, btgZero4());
+        bodies.pushAng.assign(n, btgZero4());
+    }
+    auto body = [&](int i) {
+        return btgMakeSolverBody(bodies.props[i], bodies.invInertiaWorld[3 * i], bodies.invInertiaWorld[3 * i + 1],
+                                 bodies.invInertiaWorld[3 * i + 2]);
+    };
+    auto pass = [&](int mode) {
+        std::vector<BtgFloat4>& lin = mode == 2 ? bodies.pushLin : bodies.linVel;
+        std::vector<BtgFloat4>& ang = mode == 2 ? bodies.pushAng : bodies.angVel;
+        for (int color = 0; color < numColors; ++color)
+            for (BtgContact& c : contacts) {
+                bool last = color == numColors - 1;  // the serial launch takes higher colors too
+                if (last ? c.color < color : c.color != color) continue;
+                BtgSolverBody a = body(c.bodyA), b = body(c.bodyB);
+                int movingA = mode == 2 ? a.dynamic : a.moving, movingB = mode == 2 ? b.dynamic : b.moving;
+                BtgBodyVel va = btgMakeBodyVel(movingA, lin[c.bodyA], ang[c.bodyA]);
+                BtgBodyVel vb = btgMakeBodyVel(movingB, lin[c.bodyB], ang[c.bodyB]);
+                if (mode == 0) btgContactWarmStart(&c, a, b, &va, &vb);
+                else if (mode == 1) btgContactSolveVelocity(&c, a, b, &va, &vb);
+                else btgContactSolvePush(&c, a, b, &va, &vb);
+                if (a.dynamic) {
+                    lin[c.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, lin[c.bodyA].w);
+                    ang[c.bodyA] = btgMake4(va.ang.x, va.ang.y, va.ang.z, ang[c.bodyA].w);
+                }
+                if (b.dynamic) {
+                    lin[c.bodyB] = btgMake4(vb.lin.x, vb.lin.y, vb.lin.z, lin[c.bodyB].w);
+                    ang[c.bodyB] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, ang[c.bodyB].w);
+                }
+            }
+    };
+    pass(0);
+    for (int it = 0; it < iterations; ++it) pass(1);
+    if (params.splitImpulse)
+        for (int it = 0; it < iterations; ++it) pass(2);
+}
+
+}  // namespace btgpu::ref

@@ -1,0 +1,52 @@
+// contact_cache.cpp — host launcher of the contacts stage: a two-level scan compacts the
+// manifolds with points into `contacts` (pair order), then each contact warm-starts from the
+// previous step's contact of its pair. Three launches, no readback.
+#include "stages/contact_cache.h"
+
+#include "cl/program.h"
+
+#include <algorithm>
+
+namespace btgpu {
+
+namespace {
+// Both scan kernels must run with the same group size (block sums are per group).
+size_t scanGroupSize(cl::Context& ctx, cl_kernel a, cl_kernel b)
+{
+    size_t ga = 0, gb = 0;
+    BTGPU_CL_CHECK(clGetKernelWorkGroupInfo(a, ctx.device().device, CL_KERNEL_WORK_GROUP_SIZE, sizeof(ga), &ga, nullptr));
+    BTGPU_CL_CHECK(clGetKernelWorkGroupInfo(b, ctx.device().device, CL_KERNEL_WORK_GROUP_SIZE, sizeof(gb), &gb, nullptr));
+    return std::max<size_t>(1, std::min({ga, gb, ctx.device().maxWorkGroupSize, size_t(256)}));
+}
+}  // namespace
+
+void buildContacts(DeviceWorld& w, const BtgStepParams& params)
+{
+    cl::Context& ctx = w.ctx;
+    w.profiler.stage = "contacts";
+    cl::Program& prog = ctx.program("contact_cache");
+    cl_kernel count = prog.kernel("count_contacts");
+    cl_kernel scan = prog.kernel("scan_blocks");
+    cl_kernel write = prog.kernel("write_contacts");
+    size_t group = scanGroupSize(ctx, count, write);
+    int pairCapacity = int(std::min(w.pairCapacity, w.manifolds.capacity()));
+    size_t numBlocks = (size_t(pairCapacity) + group - 1) / group;
+    w.solverScratch.blockSums.reserve(ctx, std::max<size_t>(numBlocks, 1));
+    w.contacts.reserve(ctx, std::max<size_t>(w.contactCapacity, 1), true);
+    w.prevContacts.reserve(ctx, 1, true);
+    int contactCapacity = int(std::min(w.contactCapacity, w.contacts.capacity()));
+    int prevCapacity = int(w.prevContacts.capacity());
+
+    if (numBlocks > 0)
+        cl::Launch(ctx, count, &w.profiler).arg(w.manifolds).arg(w.counters).arg(pairCapacity)
+            .arg(w.solverScratch.blockSums).local(group * sizeof(cl_uint)).run(numBlocks * group, group);
+    cl::Launch(ctx, scan, &w.profiler).arg(w.solverScratch.blockSums).arg(int(numBlocks)).arg(w.counters)
+        .arg(contactCapacity).run(1, 1);
+    if (numBlocks > 0)
+        cl::Launch(ctx, write, &w.profiler).arg(w.manifolds).arg(w.counters).arg(pairCapacity)
+            .arg(w.solverScratch.blockSums).arg(w.pos).arg(w.rot).arg(w.prevContacts).arg(prevCapacity)
+            .arg(w.contacts).arg(contactCapacity).arg(params).local(group * sizeof(cl_uint))
+            .run(numBlocks * group, group);
+}
+
+}  // namespace btgpu

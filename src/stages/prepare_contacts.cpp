@@ -1,0 +1,20 @@
+// prepare_contacts.cpp — host launcher of the prepare stage: one work-item per contact slot;
+// the kernel stops at the device-side contact count.
+#include "stages/prepare_contacts.h"
+
+#include "cl/program.h"
+
+#include <algorithm>
+
+namespace btgpu {
+
+void prepareContacts(DeviceWorld& w, const BtgStepParams& params)
+{
+    w.profiler.stage = "prepare";
+    int contactCapacity = int(std::min(w.contactCapacity, w.contacts.capacity()));
+    cl::Launch(w.ctx, w.ctx.program("prepare_contacts").kernel("prepare_contacts"), &w.profiler)
+        .arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props).arg(w.invInertiaWorld)
+        .arg(w.linVel0).arg(w.angVel0).arg(params).run(size_t(contactCapacity));
+}
+
+}  // namespace btgpu

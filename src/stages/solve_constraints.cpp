@@ -1,0 +1,45 @@
+// solve_constraints.cpp — host launcher of the solve stage: warm start, `iterations` velocity
+// passes and (split impulse) `iterations` push passes, each one launch per color, the last
+// color on a single work-item. Zeroes pushLin/pushAng itself before the push passes.
+#include "stages/solve_constraints.h"
+
+#include "cl/program.h"
+
+#include <algorithm>
+
+namespace btgpu {
+
+namespace {
+enum Mode : int { kWarmStart = 0, kVelocity = 1, kPush = 2 };
+}
+
+void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iterations, int numColors)
+{
+    cl::Context& ctx = w.ctx;
+    w.profiler.stage = "solve";
+    size_t slots = std::min(w.contactCapacity, w.contacts.capacity());
+    int contactCapacity = int(slots);
+    if (numColors < 1) numColors = 1;
+    size_t bodies = size_t(std::max(w.numBodies, 0));
+    if (params.splitImpulse && bodies > 0) {
+        w.pushLin.zero(ctx, bodies);
+        w.pushAng.zero(ctx, bodies);
+    }
+    if (slots == 0) return;
+    cl::Program& prog = ctx.program("solve_constraints");
+    cl_kernel parallel = prog.kernel("solve_color");
+    cl_kernel serial = prog.kernel("solve_color_serial");
+    auto pass = [&](int mode, cl::DeviceArray<BtgFloat4>& lin, cl::DeviceArray<BtgFloat4>& ang) {
+        for (int color = 0; color < numColors; ++color) {
+            bool last = color == numColors - 1;
+            cl::Launch(ctx, last ? serial : parallel, &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
+                .arg(w.props).arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).run(last ? 1 : slots, last ? 1 : 64);
+        }
+    };
+    pass(kWarmStart, w.linVel, w.angVel);
+    for (int it = 0; it < iterations; ++it) pass(kVelocity, w.linVel, w.angVel);
+    if (params.splitImpulse)
+        for (int it = 0; it < iterations; ++it) pass(kPush, w.pushLin, w.pushAng);
+}
+
+}  // namespace btgpu

@@ -1,0 +1,273 @@
+// solve_constraints_test.cpp — the solve stage: velocities, push velocities and impulses
+// within tolerance of the reference over the whole contact chain (with warm start), and
+// physics: a resting box stops with impulses summing to m g dt, friction holds a slow slide
+// and saturates on a fast one, a 2:1 collision leaves with Bullet's restitution target, and
+// deep penetration is resolved by push velocities only.
+#include "contact_fixture.h"
+#include "stages/color_constraints.h"
+#include "stages/contact_cache.h"
+#include "stages/prepare_contacts.h"
+#include "stages/solve_constraints.h"
+#include "test_device.h"
+#include "tolerances.h"
+
+#include <cmath>
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <gtest/gtest.h>
+
+using namespace btgpu;
+
+namespace {
+
+const float kG = 9.81f;
+const int kIterations = 10;
+
+struct Result {
+    ref::ContactBodies bodies;
+    std::vector<BtgContact> contacts;
+};
+
+// contacts -> prepare -> batching -> solve on the device; prev is last step's contact list.
+Result runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms, const std::vector<BtgContact>& prev,
+                 const BtgStepParams& p, int maxColors)
+{
+    DeviceWorld w(test::context());
+    test::uploadWorld(w, b, ms, uint(ms.size()), prev, ms.size() + 4);
+    buildContacts(w, p);
+    prepareContacts(w, p);
+    colorConstraints(w, maxColors);
+    solveConstraints(w, p, kIterations, w.numColors);
+    Result r;
+    r.bodies = b;
+    size_t n = b.props.size();
+    r.bodies.linVel = w.linVel.download(w.ctx, n);
+    r.bodies.angVel = w.angVel.download(w.ctx, n);
+    r.bodies.pushLin = w.pushLin.download(w.ctx, n);
+    r.bodies.pushAng = w.pushAng.download(w.ctx, n);
+    r.contacts = test::downloadContacts(w);
+    return r;
+}
+
+Result runReference(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms, const std::vector<BtgContact>& prev,
+                    const BtgStepParams& p, int maxColors)
+{
+    Result r;
+    r.bodies = b;
+    r.contacts = ref::buildContacts(ms, int(ms.size()), b, prev, p);
+    ref::prepareContacts(r.contacts, r.bodies, p);
+    ref::colorConstraints(r.contacts, r.bodies, maxColors);
+    ref::solveConstraints(r.contacts, r.bodies, p, kIterations, maxColors);
+    return r;
+}
+
+void expectNear4(BtgFloat4 got, BtgFloat4 want, float tol, const char* what, size_t i)
+{
+    EXPECT_NEAR(got.x, want.x, tol) << what << " " << i;
+    EXPECT_NEAR(got.y, want.y, tol) << what << " " << i;
+    EXPECT_NEAR(got.z, want.z, tol) << what << " " << i;
+}
+
+// Relative velocity along dir at point k of contact c (A minus B), from solved body velocities.
+float pointVelocity(const ref::ContactBodies& b, const BtgContact& c, int k, BtgFloat4 dir)
+{
+    BtgFloat4 va = b.linVel[c.bodyA] + btgCross3(b.angVel[c.bodyA], btgXyz(c.rA[k]));
+    BtgFloat4 vb = btgZero4();
+    if (btgIsSolverMoving(b.props[c.bodyB].flags))
+        vb = b.linVel[c.bodyB] + btgCross3(b.angVel[c.bodyB], btgXyz(c.rB[k]));
+    return btgDot3(dir, va - vb);
+}
+
+struct Resting {
+    ref::ContactBodies bodies;
+    std::vector<BtgManifold> manifolds;
+    int box;
+};
+Resting restingBox(BtgFloat4 slide, float distance)
+{
+    Resting s;
+    int ground = test::addBody(s.bodies, btgZero4(), 0.0f, btgZero4(), BTG_BODY_STATIC, 0.5f);
+    s.box = test::addBody(s.bodies, btgMake4(0, 0.5f + distance, 0, 0), 1.0f, btgMake4(6, 6, 6, 0), BTG_BODY_DYNAMIC, 0.5f);
+    s.bodies.linVel0[s.box] = slide;
+    s.bodies.linVel[s.box] = slide + btgMake4(0, -kG / 60.0f, 0, 0);
+    s.manifolds.push_back(test::boxOnPlane(s.box, ground, s.bodies.pos[s.box], 0.5f, distance));
+    return s;
+}
+
+}  // namespace
+
+TEST(SolveConstraints, MatchesReferenceWithWarmStart)
+{
+    test::StackScene s = test::stackScene(6, 4, 9);
+    BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
+    const int maxColors = 3;  // few colors, so the serial last color has work too
+    Result d1 = runDevice(s.bodies, s.manifolds, {}, p, maxColors);
+    Result r1 = runReference(s.bodies, s.manifolds, {}, p, maxColors);
+    // The second step warm-starts from each side's own first-step contacts.
+    Result d = runDevice(s.bodies, s.manifolds, d1.contacts, p, maxColors);
+    Result r = runReference(s.bodies, s.manifolds, r1.contacts, p, maxColors);
+
+    // Same device, same input: bitwise the same velocities.
+    Result again = runDevice(s.bodies, s.manifolds, d1.contacts, p, maxColors);
+    EXPECT_EQ(0, std::memcmp(again.bodies.linVel.data(), d.bodies.linVel.data(), d.bodies.linVel.size() * sizeof(BtgFloat4)));
+    EXPECT_EQ(0, std::memcmp(again.bodies.angVel.data(), d.bodies.angVel.data(), d.bodies.angVel.size() * sizeof(BtgFloat4)));
+
+    int serial = 0;
+    for (const BtgContact& c : r.contacts) serial += c.color == maxColors - 1;
+    EXPECT_GT(serial, 0);
+    const float tv = 10 * tol::kStageAbs;  // ten iterations of accumulated rounding
+    for (size_t i = 0; i < s.bodies.props.size(); ++i) {
+        expectNear4(d.bodies.linVel[i], r.bodies.linVel[i], tv, "linVel", i);
+        expectNear4(d.bodies.angVel[i], r.bodies.angVel[i], tv, "angVel", i);
+        expectNear4(d.bodies.pushLin[i], r.bodies.pushLin[i], tv, "pushLin", i);
+        expectNear4(d.bodies.pushAng[i], r.bodies.pushAng[i], tv, "pushAng", i);
+    }
+    float worst = 0.0f;
+    for (size_t i = 0; i < s.bodies.props.size(); ++i)
+        for (int e = 0; e < 3; ++e)
+            worst = std::max({worst, std::fabs(btgLane(d.bodies.linVel[i], e) - btgLane(r.bodies.linVel[i], e)),
+                              std::fabs(btgLane(d.bodies.angVel[i], e) - btgLane(r.bodies.angVel[i], e))});
+    RecordProperty("max_velocity_deviation", std::to_string(worst));
+    ASSERT_EQ(d.contacts.size(), r.contacts.size());
+    bool warm = false;
+    for (size_t i = 0; i < r.contacts.size(); ++i) {
+        EXPECT_EQ(d.contacts[i].color, r.contacts[i].color);
+        expectNear4(d.contacts[i].normalImpulse, r.contacts[i].normalImpulse, tv, "normalImpulse", i);
+        expectNear4(d.contacts[i].pushImpulse, r.contacts[i].pushImpulse, tv, "pushImpulse", i);
+        expectNear4(d.contacts[i].friction1Impulse, r.contacts[i].friction1Impulse, tv, "friction1Impulse", i);
+        expectNear4(d.contacts[i].friction2Impulse, r.contacts[i].friction2Impulse, tv, "friction2Impulse", i);
+        warm = warm || btgLane(d1.contacts[i].normalImpulse, 0) > 0.0f;
+    }
+    EXPECT_TRUE(warm);
+    // The kinematic body is never written.
+    int kin = 0;
+    for (size_t i = 0; i < s.bodies.props.size(); ++i)
+        if (s.bodies.props[i].flags & BTG_BODY_KINEMATIC) kin = int(i);
+    EXPECT_EQ(d.bodies.linVel[kin].x, s.bodies.linVel[kin].x);
+}
+
+TEST(SolveConstraints, RestingBoxStops)
+{
+    Resting s = restingBox(btgZero4(), 0.0f);
+    BtgStepParams p = test::defaultParams(2);
+    Result d = runDevice(s.bodies, s.manifolds, {}, p, 4);
+    ASSERT_EQ(d.contacts.size(), 1u);
+    const BtgContact& c = d.contacts[0];
+    float sum = 0.0f;
+    for (int k = 0; k < 4; ++k) {
+        EXPECT_NEAR(pointVelocity(d.bodies, c, k, c.normal), 0.0f, 1e-4f) << "point " << k;
+        EXPECT_GE(btgLane(c.normalImpulse, k), 0.0f);
+        sum += btgLane(c.normalImpulse, k);
+    }
+    EXPECT_NEAR(sum, 1.0f * kG / 60.0f, 1e-4f);  // m g dt
+    expectNear4(d.bodies.linVel[s.box], btgZero4(), 1e-4f, "linVel", 0);
+    expectNear4(d.bodies.angVel[s.box], btgZero4(), 1e-4f, "angVel", 0);
+}
+
+TEST(SolveConstraints, FrictionHoldsSlowSlideAndSaturatesOnFastOne)
+{
+    BtgStepParams p = test::defaultParams(2);
+    const float mu = 0.25f;  // 0.5 * 0.5
+    {
+        // 2 cm/s needs 0.02 N s; the cone allows mu m g dt = 0.041 N s: the box sticks.
+        Resting s = restingBox(btgMake4(0.02f, 0, 0, 0), 0.0f);
+        Result d = runDevice(s.bodies, s.manifolds, {}, p, 4);
+        const BtgContact& c = d.contacts[0];
+        BtgFloat4 total = btgZero4();
+        for (int k = 0; k < 4; ++k) {
+            EXPECT_NEAR(pointVelocity(d.bodies, c, k, c.t1), 0.0f, 1e-3f) << "point " << k;
+            EXPECT_NEAR(pointVelocity(d.bodies, c, k, c.t2), 0.0f, 1e-3f) << "point " << k;
+            float n = btgLane(c.normalImpulse, k);
+            EXPECT_LE(std::fabs(btgLane(c.friction1Impulse, k)), mu * n + 1e-6f);
+            EXPECT_LE(std::fabs(btgLane(c.friction2Impulse, k)), mu * n + 1e-6f);
+            total = total + c.t1 * btgLane(c.friction1Impulse, k) + c.t2 * btgLane(c.friction2Impulse, k);
+        }
+        EXPECT_NEAR(total.x, -0.02f, 1e-3f);
+        EXPECT_NEAR(d.bodies.linVel[s.box].x, 0.0f, 1e-3f);
+    }
+    {
+        // 1 m/s: friction saturates; the box slows by about mu g dt.
+        Resting s = restingBox(btgMake4(1.0f, 0, 0, 0), 0.0f);
+        Result d = runDevice(s.bodies, s.manifolds, {}, p, 4);
+        const BtgContact& c = d.contacts[0];
+        float normal = 0.0f, friction = 0.0f;
+        for (int k = 0; k < 4; ++k) {
+            normal += btgLane(c.normalImpulse, k);
+            float f1 = btgLane(c.friction1Impulse, k), f2 = btgLane(c.friction2Impulse, k);
+            float f = std::sqrt(f1 * f1 + f2 * f2);
+            EXPECT_LE(std::fabs(f1), mu * btgLane(c.normalImpulse, k) + 1e-6f);
+            friction += f;
+        }
+        EXPECT_GT(d.bodies.linVel[s.box].x, 0.9f);
+        EXPECT_NEAR(1.0f - d.bodies.linVel[s.box].x, mu * kG / 60.0f, 0.25f * mu * kG / 60.0f);
+        EXPECT_GT(friction, 0.9f * mu * normal);
+    }
+}
+
+TEST(SolveConstraints, RestitutionTwoToOne)
+{
+    ref::ContactBodies b;
+    int lower = test::addBody(b, btgZero4(), 1.0f, btgMake4(2.5f, 2.5f, 2.5f, 0), BTG_BODY_DYNAMIC, 0.5f, 0.5f);
+    int upper = test::addBody(b, btgMake4(0, 1, 0, 0), 0.5f, btgMake4(1.25f, 1.25f, 1.25f, 0), BTG_BODY_DYNAMIC, 0.5f, 1.0f);
+    b.linVel0[upper] = b.linVel[upper] = btgMake4(0, -2, 0, 0);
+    b.linVel0[lower] = b.linVel[lower] = btgMake4(0, 1, 0, 0);
+    BtgManifold m{};
+    m.normal = btgMake4(0, 1, 0, 0);
+    m.bodyA = upper;
+    m.bodyB = lower;
+    m.numPoints = 1;
+    m.pointB[0] = btgMake4(0, 0.5f, 0, 0.0f);
+    Result d = runDevice(b, {m}, {}, test::defaultParams(2), 4);
+    // Separating at e * 3 m/s = 1.5 m/s, momentum (2 * -2 + 1 * 1) kept: J = 3 N s.
+    EXPECT_NEAR(d.bodies.linVel[upper].y - d.bodies.linVel[lower].y, 1.5f, 1e-5f);
+    EXPECT_NEAR(d.bodies.linVel[upper].y, -0.5f, 1e-5f);
+    EXPECT_NEAR(d.bodies.linVel[lower].y, -2.0f, 1e-5f);
+    EXPECT_NEAR(d.contacts[0].normalImpulse.x, 3.0f, 1e-5f);
+}
+
+TEST(SolveConstraints, SplitImpulsePushesWithoutAddingVelocity)
+{
+    Resting s = restingBox(btgZero4(), -0.05f);  // deeper than the -0.04 m split threshold
+    BtgStepParams p = test::defaultParams(2);
+    Result d = runDevice(s.bodies, s.manifolds, {}, p, 4);
+    const BtgContact& c = d.contacts[0];
+    for (int k = 0; k < 4; ++k) EXPECT_NEAR(pointVelocity(d.bodies, c, k, c.normal), 0.0f, 1e-4f);
+    EXPECT_NEAR(d.bodies.pushLin[s.box].y, 0.05f * p.erp2 * 60.0f, 1e-4f);
+    expectNear4(d.bodies.pushAng[s.box], btgZero4(), 1e-4f, "pushAng", 0);
+    EXPECT_EQ(d.bodies.pushLin[0].y, 0.0f);  // the ground has no push velocity
+    p.splitImpulse = 0;                      // without split impulse the bias is velocity
+    d = runDevice(s.bodies, s.manifolds, {}, p, 4);
+    EXPECT_NEAR(d.bodies.linVel[s.box].y, 0.05f * p.erp2 * 60.0f, 1e-4f);
+}
+
+TEST(SolveConstraints, FewerColorsThanAssignedStillSolvesEveryContact)
+{
+    test::StackScene s = test::stackScene(4, 3, 13);
+    BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
+    DeviceWorld w(test::context());
+    test::uploadWorld(w, s.bodies, s.manifolds, uint(s.manifolds.size()), {}, s.manifolds.size());
+    buildContacts(w, p);
+    prepareContacts(w, p);
+    colorConstraints(w, 8);
+    solveConstraints(w, p, kIterations, 1);  // one serial launch takes colors 0..7 in index order
+    Result r;
+    r.bodies = s.bodies;
+    r.contacts = ref::buildContacts(s.manifolds, int(s.manifolds.size()), s.bodies, {}, p);
+    ref::prepareContacts(r.contacts, r.bodies, p);
+    ref::colorConstraints(r.contacts, r.bodies, 8);
+    ref::solveConstraints(r.contacts, r.bodies, p, kIterations, 1);
+    std::vector<BtgContact> got = test::downloadContacts(w);
+    ASSERT_EQ(got.size(), r.contacts.size());
+    size_t active = 0;  // contacts that pushed at all (the rest separate or approach from afar)
+    for (size_t i = 0; i < got.size(); ++i) {
+        float sum = 0.0f;
+        for (int k = 0; k < 4; ++k) sum += btgLane(got[i].normalImpulse, k) + btgLane(got[i].pushImpulse, k);
+        active += sum > 0.0f;
+        expectNear4(got[i].normalImpulse, r.contacts[i].normalImpulse, 10 * tol::kStageAbs, "normalImpulse", i);
+    }
+    EXPECT_GT(active, got.size() / 2);
+    std::vector<BtgFloat4> lin = w.linVel.download(w.ctx, s.bodies.props.size());
+    for (size_t i = 0; i < lin.size(); ++i) expectNear4(lin[i], r.bodies.linVel[i], 10 * tol::kStageAbs, "linVel", i);
+}
