@@ -70,8 +70,8 @@ int main(int argc, char** argv)
         return 2;
     }
 
-    // The first GPU step compiles the OpenCL programs (slow under PoCL): timed apart, and the
-    // medians below leave no doubt that it is not counted.
+    // The first GPU step compiles the OpenCL programs (slow under PoCL): it is printed apart and
+    // left out of btgpu's median.
     std::vector<double> stockMs, gpuMs;
     stockMs.reserve(steps);
     gpuMs.reserve(steps);

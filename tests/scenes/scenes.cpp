@@ -70,7 +70,8 @@ btSphereShape* Scene::sphereShape(btScalar radius)
 
 btConvexHullShape* Scene::hullShape(const std::vector<btVector3>& points)
 {
-    auto* shape = new btConvexHullShape(&points[0].x(), static_cast<int>(points.size()), sizeof(btVector3));
+    auto* shape = new btConvexHullShape(points.empty() ? nullptr : &points[0].x(), static_cast<int>(points.size()),
+                                        sizeof(btVector3));
     m_shapes.emplace_back(shape);
     return shape;
 }
