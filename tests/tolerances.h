@@ -10,4 +10,27 @@ constexpr float kStageRel = 1e-4f;
 constexpr float kContactPoint = 1e-3f;   // m
 constexpr float kContactDepth = 1e-4f;   // m
 constexpr float kNormalDot = 0.9999f;    // cosine between normals
+
+// --- regression: btGpuDynamicsWorld against stock btDiscreteDynamicsWorld, same scene --------
+// Free fall has no contacts: both integrate v += g dt, x += v dt in float; only summation order
+// and rounding differ, which stays far below 0.1 mm over 120 steps from heights of ~30 m.
+constexpr double kFreeFallPosition = 1e-4;   // m
+// Bodies at rest on the ground or landed flat: the GPU solver (batched, not Bullet's serial
+// order) may settle a contact at a slightly different penetration; 1 mm is well inside the
+// contact slop Bullet itself keeps (ERP pushes out only part of the penetration per step).
+constexpr double kRestHeight = 1e-3;         // m
+// A bounce's apex depends on the impact speed at the step the contact appears and on the
+// restitution threshold: 5 % of stock's apex.
+constexpr double kBounceApexRel = 0.05;
+// A stack of 8 unit boxes must not creep: the top box moves less than this in 5 s (on both).
+constexpr double kStackDrift = 0.05;         // m
+// BasicDemo's 125 boxes after ~3 s: the pile's mean height within 5 % of stock's, and no box
+// centre more than 2 cm below its resting height (half extent 0.1) — i.e. sunk into the ground.
+constexpr double kPileMeanHeightRel = 0.05;
+constexpr double kSinkDepth = 0.02;          // m
+// Boxes pushed by a kinematic box slide with friction; small differences in when contacts
+// appear grow into centimetres: 10 cm of stock's positions.
+constexpr double kPushedPosition = 0.1;      // m
+// Motion-state transforms with substeps and interpolation (no contacts): as free fall.
+constexpr double kInterpolatedTransform = 1e-4;  // m, and per matrix element of the basis
 }  // namespace btgpu::tol
