@@ -1,1 +1,0 @@
-// empty.cpp — keeps the scene library non-empty while scenes are added.
