@@ -431,3 +431,21 @@ TEST(Narrowphase, RandomPosesAgreeAndLieOnSurfaces)
     }
     EXPECT_GT(touching, 20);
 }
+
+// Equal boxes stacked exactly: every incident corner lies on a side plane of the reference
+// face, the case where clipping makes duplicates. The four corners must all be kept, so the
+// support is symmetric and a stack gets no torque.
+TEST(Narrowphase, EqualBoxesStackedKeepAllFourCorners)
+{
+    Scene s;
+    int cube = s.t.addBox(btgMake4(0.5f, 0.5f, 0.5f, 0));
+    s.body(cube, btgMake4(0, 0.5f, 0, 0));
+    s.body(cube, btgMake4(0, 1.495f, 0, 0));
+    s.pair(0, 1);
+    std::vector<BtgManifold> m = collide(s);
+    ASSERT_EQ(m[0].numPoints, 4);
+    for (int k = 0; k < 4; ++k) std::printf("p %f %f %f %f\n", m[0].pointB[k].x, m[0].pointB[k].y, m[0].pointB[k].z, m[0].pointB[k].w);
+    expectAllDepths(m[0], -0.005f);
+    for (float x : {-0.5f, 0.5f})
+        for (float z : {-0.5f, 0.5f}) EXPECT_TRUE(hasPoint(m[0], btgMake4(x, 0.995f, z, 0)));
+}
