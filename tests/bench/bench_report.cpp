@@ -47,13 +47,13 @@ void writeMarkdown(std::ostream& out, const Scene& scene, int frames, const std:
         << scene.bodies.size() - scene.dynamicCount() << " static), frames 1.." << frames << ", dt 1/"
         << int(1 / scene.dt + 0.5f) << ", " << scene.iterations << " iterations\n\n";
     out << "| backend | device | frames | step ms med / p90 / max | write-back ms med / p90 / max | total ms med | "
-           "vs bullet | first frame s | pairs | manifolds | points | device MB | lowest y (frame) | NaN | below ground |\n";
-    out << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+           "vs bullet | first frame s | pairs | manifolds | points | device MB | lowest y (frame) | final lowest y | NaN | below ground |\n";
+    out << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     const RunResult* base = bullet(results);
     for (const RunResult& r : results) {
         if (!r.ran) {
             out << "| " << r.backend << " | " << (r.device.empty() ? "-" : r.device) << " | skipped: " << r.skipped
-                << " |||||||||||||\n";
+                << " ||||||||||||||\n";
             continue;
         }
         std::string speed = base && r.totalMs.median > 0 ? num(base->totalMs.median / r.totalMs.median, "%.2fx") : "-";
@@ -63,10 +63,11 @@ void writeMarkdown(std::ostream& out, const Scene& scene, int frames, const std:
             << " | " << num(r.totalMs.median) << " | " << speed << " | " << num(r.firstFrameS, "%.2f") << " | "
             << count(r.last.pairs) << " | " << count(r.last.manifolds) << " | " << count(r.last.points) << " | "
             << mb(r.last.deviceBytes) << " | " << signedNum(r.minLowestY, "%.3f") << " (" << r.minLowestFrame << ") | "
+            << signedNum(r.finalLowestY, "%.3f") << " | "
             << r.nanBodies << " | " << r.belowGround << " |\n";
     }
     out << "\nLowest y: the lowest point of any dynamic body over the run (ground top y = 0; below 0 = "
-           "penetration). Counts are after the last frame.\n";
+           "penetration), over the run and after the last frame. Counts are after the last frame.\n";
     for (const RunResult& r : results) {
         out << "\n**" << r.backend << "**: " << (r.notes.empty() ? std::string("-") : r.notes);
         if (!r.last.overflow.empty()) out << "; OVERFLOW: " << r.last.overflow;
@@ -85,7 +86,7 @@ void writeCsv(std::ostream& out, const Scene& scene, const std::vector<RunResult
 {
     out << "scene,dynamic,backend,device,ran,skipped,frames,cut_short,step_med_ms,step_p90_ms,step_max_ms,"
            "writeback_med_ms,writeback_p90_ms,writeback_max_ms,total_med_ms,total_p90_ms,total_max_ms,first_frame_s,"
-           "pairs,manifolds,points,device_bytes,lowest_y,lowest_y_frame,nan_bodies,below_ground,overflow,stages,notes\n";
+           "pairs,manifolds,points,device_bytes,lowest_y,lowest_y_frame,final_lowest_y,nan_bodies,below_ground,overflow,stages,notes\n";
     for (const RunResult& r : results) {
         std::string stages;
         for (auto& [name, ms] : r.stageMedianMs) stages += (stages.empty() ? "" : ";") + name + "=" + num(ms, "%.4f");
@@ -96,7 +97,8 @@ void writeCsv(std::ostream& out, const Scene& scene, const std::vector<RunResult
             << num(r.writebackMs.max, "%.4f") << ',' << num(r.totalMs.median, "%.4f") << ','
             << num(r.totalMs.p90, "%.4f") << ',' << num(r.totalMs.max, "%.4f") << ',' << num(r.firstFrameS, "%.3f")
             << ',' << r.last.pairs << ',' << r.last.manifolds << ',' << r.last.points << ',' << r.last.deviceBytes
-            << ',' << (r.ran ? signedNum(r.minLowestY, "%.4f") : "") << ',' << r.minLowestFrame << ',' << r.nanBodies << ','
+            << ',' << (r.ran ? signedNum(r.minLowestY, "%.4f") : "") << ',' << r.minLowestFrame << ','
+            << (r.ran ? signedNum(r.finalLowestY, "%.4f") : "") << ',' << r.nanBodies << ','
             << r.belowGround << ',' << csvQuote(r.last.overflow) << ',' << csvQuote(stages) << ','
             << csvQuote(r.notes) << '\n';
     }

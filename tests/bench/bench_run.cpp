@@ -88,9 +88,15 @@ RunResult runBackend(Backend& backend, const Scene& scene, const Options& option
         r.framesRun = frame;
         if (lastFrame) {
             r.last = info;
+            r.finalLowestY = 1e30f;
             for (size_t i = 0; i < poses.size() && i < scene.bodies.size(); ++i) {
-                if (!finite(poses[i])) ++r.nanBodies;
-                else if (scene.bodies[i].mass > 0 && poses[i].p[1] < 0) ++r.belowGround;
+                if (!finite(poses[i])) {
+                    ++r.nanBodies;
+                    continue;
+                }
+                if (scene.bodies[i].mass <= 0) continue;
+                r.finalLowestY = std::min(r.finalLowestY, lowestY(scene.bodies[i], poses[i]));
+                if (poses[i].p[1] < 0) ++r.belowGround;
             }
             r.cutShort = frame < frames;
             break;

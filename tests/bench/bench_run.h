@@ -26,6 +26,7 @@ struct RunResult {
     FrameInfo last;                  // counts after the last frame
     float minLowestY = 0;            // lowest point of any dynamic body over the run (ground top is 0)
     int minLowestFrame = -1;
+    float finalLowestY = 0;          // the same after the last frame only (resting penetration)
     int nanBodies = 0;               // non-finite poses after the last frame
     int belowGround = 0;             // dynamic bodies with centre y < 0 after the last frame
 };
