@@ -1,0 +1,107 @@
+// bench_scene.cpp — builds the benchmark scenes described in bench_scene.h.
+#include "bench_scene.h"
+
+namespace btgpu::bench {
+
+namespace {
+
+// The ground: a static box of half extent 400 whose top face is y = 0.
+BodySpec ground()
+{
+    BodySpec g;
+    g.half[0] = g.half[1] = g.half[2] = 400;
+    g.pos[1] = -400;
+    return g;
+}
+
+// xorshift32: std::uniform_real_distribution differs between standard libraries, and the
+// mixed scene must be the same everywhere.
+struct Rng {
+    std::uint32_t s;
+    float uniform(float lo, float hi)
+    {
+        s ^= s << 13;
+        s ^= s >> 17;
+        s ^= s << 5;
+        return lo + (hi - lo) * float(s >> 8) * (1.0f / 16777216.0f);
+    }
+};
+
+}  // namespace
+
+int Scene::dynamicCount() const
+{
+    int n = 0;
+    for (const BodySpec& b : bodies) n += b.mass > 0;
+    return n;
+}
+
+Scene makeStack(int nx, int ny, int nz, ShapeKind shape)
+{
+    Scene s;
+    s.name = std::string(shape == ShapeKind::Box ? "cubes " : "spheres ") + std::to_string(nx) + "x" +
+             std::to_string(ny) + "x" + std::to_string(nz);
+    s.bodies.reserve(size_t(nx) * ny * nz + 1);
+    s.bodies.push_back(ground());
+    const float pitch = 2.2f;
+    for (int y = 0; y < ny; ++y) {
+        float shift = (y & 1) ? 1.0f : 0.0f;  // every other layer shifted by +1 in x and z
+        for (int z = 0; z < nz; ++z)
+            for (int x = 0; x < nx; ++x) {
+                BodySpec b;
+                b.shape = shape;
+                b.mass = 1;
+                b.pos[0] = (x - 0.5f * (nx - 1)) * pitch + shift;
+                b.pos[1] = 1.2f + y * pitch;  // bottom layer 0.2 above the ground
+                b.pos[2] = (z - 0.5f * (nz - 1)) * pitch + shift;
+                s.bodies.push_back(b);
+            }
+    }
+    return s;
+}
+
+Scene makeMixed(std::uint32_t seed)
+{
+    Scene s;
+    s.name = "mixed 32x32x32";
+    s.bodies.push_back(ground());
+    for (int i = 0; i < 4; ++i)
+        for (int k = 0; k < 4; ++k) {
+            BodySpec p;
+            p.half[0] = p.half[1] = p.half[2] = 25;
+            p.pos[0] = (i - 1.5f) * 60;
+            p.pos[1] = 25;  // standing on the ground
+            p.pos[2] = (k - 1.5f) * 60;
+            s.bodies.push_back(p);
+        }
+    Rng rng{seed ? seed : 1u};
+    const int n = 32;
+    const float pitch = 6;
+    for (int y = 0; y < n; ++y)
+        for (int z = 0; z < n; ++z)
+            for (int x = 0; x < n; ++x) {
+                BodySpec b;
+                for (float& h : b.half) h = rng.uniform(0.1f, 2.5f);
+                b.mass = 8 * b.half[0] * b.half[1] * b.half[2];  // density 1
+                b.pos[0] = (x - 0.5f * (n - 1)) * pitch;
+                b.pos[1] = 60 + y * pitch;
+                b.pos[2] = (z - 0.5f * (n - 1)) * pitch;
+                s.bodies.push_back(b);
+            }
+    return s;
+}
+
+bool dimsForCount(long n, int dims[3])
+{
+    struct Size { long n; int x, y, z; };
+    static const Size kSizes[] = {{1000, 10, 10, 10}, {8000, 20, 20, 20}, {32768, 32, 32, 32},
+                                  {112500, 50, 45, 50}, {1000000, 100, 100, 100}};
+    for (const Size& s : kSizes)
+        if (s.n == n) {
+            dims[0] = s.x, dims[1] = s.y, dims[2] = s.z;
+            return true;
+        }
+    return false;
+}
+
+}  // namespace btgpu::bench

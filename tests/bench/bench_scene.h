@@ -1,0 +1,40 @@
+// bench_scene.h — the benchmark scenes as plain data (a list of bodies), so the btgpu, stock
+// Bullet and Bullet3 backends all instantiate exactly the same bodies. Ground first (index 0,
+// which Bullet3's solver treats as its static body), then other statics, then the dynamics.
+// TODO: move to tests/scenes/ once the shared scene library lands there.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace btgpu::bench {
+
+enum class ShapeKind { Box, Sphere };
+
+struct BodySpec {
+    ShapeKind shape = ShapeKind::Box;
+    float half[3] = {1, 1, 1};  // m, box half extents (Box)
+    float radius = 1;           // m (Sphere)
+    float mass = 0;             // kg; 0 = static
+    float pos[3] = {0, 0, 0};   // m, centre of mass; every body starts unrotated and at rest
+    float friction = 1;
+    float restitution = 0;
+};
+
+struct Scene {
+    std::string name;                // e.g. "cubes 10x10x10"
+    std::vector<BodySpec> bodies;
+    float gravity[3] = {0, -10, 0};  // m/s^2
+    float dt = 1.0f / 60.0f;         // s, one substep per frame
+    int iterations = 10;             // solver iterations
+    int dynamicCount() const;
+};
+
+// NX×NY×NZ unit-half-extent cubes (or radius-1 spheres) stacked over a ground box.
+Scene makeStack(int nx, int ny, int nz, ShapeKind shape);
+// 32³ boxes of random half extents in [0.1, 2.5] over 16 static pillars (fixed seed).
+Scene makeMixed(std::uint32_t seed = 12345u);
+// Sizes named by --n: 1000, 8000, 32768, 112500, 1000000; false if n is not one of them.
+bool dimsForCount(long n, int dims[3]);
+
+}  // namespace btgpu::bench

@@ -1,0 +1,80 @@
+// bt_bodies.cpp — Bullet bodies for a bench Scene (see bt_bodies.h).
+#include "bt_bodies.h"
+
+#include <map>
+#include <tuple>
+
+namespace btgpu::bench {
+
+BtBodies::~BtBodies()
+{
+    if (!m_world) return;
+    for (auto it = m_bodies.rbegin(); it != m_bodies.rend(); ++it) m_world->removeRigidBody(it->get());
+}
+
+void BtBodies::build(const Scene& scene, const Options& options, btDiscreteDynamicsWorld* world)
+{
+    m_world = world;
+    world->setGravity(btVector3(scene.gravity[0], scene.gravity[1], scene.gravity[2]));
+    world->getSolverInfo().m_numIterations = scene.iterations;
+    // One shape per distinct size, as an app would share them (and as btgpu's shape tables
+    // and Bullet3's collidables expect).
+    std::map<std::tuple<int, float, float, float>, btCollisionShape*> shared;
+    m_bodies.reserve(scene.bodies.size());
+    for (const BodySpec& b : scene.bodies) {
+        auto key = b.shape == ShapeKind::Box ? std::make_tuple(0, b.half[0], b.half[1], b.half[2])
+                                             : std::make_tuple(1, b.radius, 0.f, 0.f);
+        btCollisionShape*& shape = shared[key];
+        if (!shape) {
+            if (b.shape == ShapeKind::Box)
+                m_shapes.emplace_back(new btBoxShape(btVector3(b.half[0], b.half[1], b.half[2])));
+            else
+                m_shapes.emplace_back(new btSphereShape(b.radius));
+            shape = m_shapes.back().get();
+        }
+        btVector3 inertia(0, 0, 0);
+        if (b.mass > 0) shape->calculateLocalInertia(b.mass, inertia);
+        btTransform xf(btQuaternion::getIdentity(), btVector3(b.pos[0], b.pos[1], b.pos[2]));
+        btMotionState* ms = nullptr;
+        if (b.mass > 0) {
+            m_motionStates.emplace_back(new btDefaultMotionState(xf));
+            ms = m_motionStates.back().get();
+        }
+        btRigidBody::btRigidBodyConstructionInfo ci(b.mass, ms, shape, inertia);
+        ci.m_startWorldTransform = xf;
+        ci.m_friction = b.friction;
+        ci.m_restitution = b.restitution;
+        m_bodies.emplace_back(new btRigidBody(ci));
+        if (options.noSleep && b.mass > 0) m_bodies.back()->setActivationState(DISABLE_DEACTIVATION);
+        world->addRigidBody(m_bodies.back().get());
+    }
+}
+
+void BtBodies::poses(std::vector<Pose>& out) const
+{
+    out.resize(m_bodies.size());
+    for (size_t i = 0; i < m_bodies.size(); ++i) {
+        // The body's own transform: what the simulation computed, not the interpolated
+        // motion state.
+        const btTransform& t = m_bodies[i]->getWorldTransform();
+        btQuaternion q = t.getRotation();
+        out[i] = {{t.getOrigin().x(), t.getOrigin().y(), t.getOrigin().z()}, {q.x(), q.y(), q.z(), q.w()}};
+    }
+}
+
+void BtBodies::contacts(btDiscreteDynamicsWorld* world, FrameInfo& out, bool points)
+{
+    out.pairs = world->getBroadphase()->getOverlappingPairCache()->getNumOverlappingPairs();
+    if (!points) return;
+    btDispatcher* d = world->getDispatcher();
+    long manifolds = 0, pts = 0;
+    for (int i = 0; i < d->getNumManifolds(); ++i) {
+        int n = d->getManifoldByIndexInternal(i)->getNumContacts();
+        manifolds += n > 0;
+        pts += n;
+    }
+    out.manifolds = manifolds;
+    out.points = pts;
+}
+
+}  // namespace btgpu::bench

@@ -1,0 +1,37 @@
+// bt_bodies.h — instantiates a bench Scene as Bullet rigid bodies (shapes shared per size,
+// a btDefaultMotionState per dynamic body) in any btDiscreteDynamicsWorld, and reads poses,
+// pairs and contacts back; shared by the stock Bullet and btgpu backends.
+#pragma once
+#include <btBulletDynamicsCommon.h>
+
+#include <memory>
+#include <vector>
+
+#include "bench_backend.h"
+
+namespace btgpu::bench {
+
+// The objects every Bullet world needs besides the world itself.
+struct BtInfrastructure {
+    btDefaultCollisionConfiguration config;
+    btCollisionDispatcher dispatcher{&config};
+    btDbvtBroadphase broadphase;
+    btSequentialImpulseConstraintSolver solver;
+};
+
+class BtBodies {
+public:
+    ~BtBodies();
+    void build(const Scene& scene, const Options& options, btDiscreteDynamicsWorld* world);
+    void poses(std::vector<Pose>& out) const;
+    // Broadphase pairs, manifolds with points and their points, as the dispatcher holds them.
+    static void contacts(btDiscreteDynamicsWorld* world, FrameInfo& out, bool points);
+
+private:
+    btDiscreteDynamicsWorld* m_world = nullptr;
+    std::vector<std::unique_ptr<btCollisionShape>> m_shapes;
+    std::vector<std::unique_ptr<btMotionState>> m_motionStates;
+    std::vector<std::unique_ptr<btRigidBody>> m_bodies;
+};
+
+}  // namespace btgpu::bench

@@ -1,0 +1,115 @@
+// main.cpp — btgpu_bench: one scene, up to three simulators (btgpu, stock Bullet, Bullet3's
+// GPU pipeline) in the same run; a Markdown table on stdout, a CSV with --csv, progress on
+// stderr. --smoke is the short ctest run (label bench).
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "bench_report.h"
+#include "bench_run.h"
+
+using namespace btgpu::bench;
+
+namespace {
+
+const char* kUsage =
+    "usage: btgpu_bench [--scene cubes|spheres|mixed] [--n 1000|8000|32768|112500|1000000 | --dims NX NY NZ]\n"
+    "                   [--frames F] [--backends btgpu,bullet,b3gpu] [--csv PATH] [--budget-s S]\n"
+    "                   [--no-sleep] [--b3-native-inertia] [--smoke]\n"
+    "  BTGPU_DEVICE=gpu|cpu|<name substring> picks the OpenCL device (btgpu and b3gpu alike).\n";
+
+[[noreturn]] void usage(const char* why)
+{
+    std::fprintf(stderr, "btgpu_bench: %s\n%s", why, kUsage);
+    std::exit(2);
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    std::string sceneName = "cubes", backends = "btgpu,bullet,b3gpu", csvPath;
+    int dims[3] = {20, 20, 20};
+    int frames = 300;
+    double budgetS = 600;  // per backend: a slow backend stops early and says so
+    bool smoke = false;
+    Options options;
+    for (int i = 1; i < argc; ++i) {
+        std::string a = argv[i];
+        auto next = [&]() -> const char* {
+            if (i + 1 >= argc) usage(("missing value after " + a).c_str());
+            return argv[++i];
+        };
+        if (a == "--scene") sceneName = next();
+        else if (a == "--n") {
+            long n = std::atol(next());
+            if (!dimsForCount(n, dims)) usage("--n must be 1000, 8000, 32768, 112500 or 1000000 (or use --dims)");
+        } else if (a == "--dims") {
+            for (int& d : dims) d = std::atoi(next());
+            if (dims[0] <= 0 || dims[1] <= 0 || dims[2] <= 0) usage("--dims needs three positive counts");
+        } else if (a == "--frames") frames = std::atoi(next());
+        else if (a == "--backends") backends = next();
+        else if (a == "--csv") csvPath = next();
+        else if (a == "--budget-s") budgetS = std::atof(next());
+        else if (a == "--no-sleep") options.noSleep = true;
+        else if (a == "--b3-native-inertia") options.b3NativeInertia = true;
+        else if (a == "--smoke") smoke = true;
+        else if (a == "--help" || a == "-h") {
+            std::fputs(kUsage, stdout);
+            return 0;
+        } else usage(("unknown argument " + a).c_str());
+    }
+    if (smoke) {
+        sceneName = "cubes";
+        dims[0] = dims[1] = dims[2] = 10;
+        frames = 20;
+        backends = "bullet,b3gpu,btgpu";
+        options.requireGpuPath = true;
+    }
+    if (frames < 1) usage("--frames must be at least 1");
+
+    Scene scene;
+    if (sceneName == "cubes") scene = makeStack(dims[0], dims[1], dims[2], ShapeKind::Box);
+    else if (sceneName == "spheres") scene = makeStack(dims[0], dims[1], dims[2], ShapeKind::Sphere);
+    else if (sceneName == "mixed") scene = makeMixed();
+    else usage("--scene must be cubes, spheres or mixed");
+
+    std::vector<RunResult> results;
+    std::stringstream list(backends);
+    for (std::string name; std::getline(list, name, ',');) {
+        std::unique_ptr<Backend> b = name == "btgpu" ? makeBtgpuBackend()
+                                     : name == "bullet" ? makeBulletBackend()
+                                     : name == "b3gpu"  ? makeB3gpuBackend()
+                                                        : nullptr;
+        if (!b) usage(("unknown backend " + name).c_str());
+        std::fprintf(stderr, "btgpu_bench: %s on %s, %d frames...\n", name.c_str(), scene.name.c_str(), frames);
+        results.push_back(runBackend(*b, scene, options, frames, budgetS));
+        const RunResult& r = results.back();
+        if (r.ran)
+            std::fprintf(stderr, "  %s: %d frames, median %.3f ms, first frame %.2f s\n", name.c_str(), r.framesRun,
+                         r.totalMs.median, r.firstFrameS);
+        else
+            std::fprintf(stderr, "  %s: skipped: %s\n", name.c_str(), r.skipped.c_str());
+    }
+
+    writeMarkdown(std::cout, scene, frames, results);
+    if (!csvPath.empty()) {
+        std::ofstream csv(csvPath);
+        writeCsv(csv, scene, results);
+        if (!csv) {
+            std::fprintf(stderr, "btgpu_bench: cannot write %s\n", csvPath.c_str());
+            return 1;
+        }
+    }
+    // A backend that cannot run here (no device, btgpu off its GPU path) is skipped, not a
+    // failure; one that ran must not have produced NaNs, and stock Bullet must always run.
+    int failures = 0;
+    for (const RunResult& r : results) {
+        if (r.ran && r.nanBodies > 0) ++failures;
+        if (r.backend == "bullet" && !r.ran) ++failures;
+    }
+    return failures ? 1 : 0;
+}
