@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <cstdio>
+#include <cstdlib>
 #include <iostream>
 
 namespace btgpu {
@@ -103,6 +105,7 @@ void GpuWorld::makePlan()
     std::vector<float> sizes;
     std::vector<int> large, planeRows;
     const std::vector<BtgShape>& shapes = m_shapes.shapes;
+    m_large.assign(m_rows.size(), false);
     for (size_t r = 0; r < m_rows.size(); ++r) {
         const btCollisionObject* o = m_rows[r];
         const BtgShape& s = shapes[m_shapes.rowOf.at(o->getCollisionShape())];
@@ -134,7 +137,10 @@ void GpuWorld::makePlan()
         const BtgShape& s = shapes[m_shapes.rowOf.at(m_rows[r]->getCollisionShape())];
         if (s.type == BTG_SHAPE_PLANE) continue;
         float size = sizes[k++];
-        if (size > m_config.largeBodyFactor * median) large.push_back(int(r));
+        if (size > m_config.largeBodyFactor * median) {
+            large.push_back(int(r));
+            m_large[r] = true;
+        }
         else cell = std::max(cell, size);
     }
     // 1% slack: an AABB exactly one cell wide must not be missed by rounding of centre / cell.
@@ -212,6 +218,7 @@ std::vector<BodyRowUpdate> GpuWorld::changedRows(bool all)
         }
         int shapeRow = m_shapes.rowOf.at(o->getCollisionShape());
         BtgBodyProps props = bodyProps(o, shapeRow, m_shapes.shapes[shapeRow], excluded);
+        if (m_large[r]) props.flags |= BTG_BODY_LARGE;  // paired by the large pass, not the grid
         const btRigidBody* rb = btRigidBody::upcast(o);
         btVector3 lin = rb ? rb->getLinearVelocity() : btVector3(0, 0, 0);
         btVector3 ang = rb ? rb->getAngularVelocity() : btVector3(0, 0, 0);
@@ -293,6 +300,14 @@ void GpuWorld::runOnDevice(int substeps, btScalar dt)
                                            std::to_string(w.contactCapacity) + "; step redone"});
         restoreSnapshot(w, m_snapshot);
         resetStatus(w);
+    }
+    if (std::getenv("BTGPU_DEBUG_CONTACTS")) {
+        auto cs = w.prevContacts.download(w.ctx, m_readback.counters[kContactCount]);
+        for (auto& c : cs) {
+            std::fprintf(stderr, "c %d-%d n=%d N=(%.3f %.3f %.3f) col=%d", c.bodyA, c.bodyB, c.numPoints, c.normal.x, c.normal.y, c.normal.z, c.color);
+            for (int k = 0; k < c.numPoints; ++k) std::fprintf(stderr, " [d=%.4f tgt=%.3f imp=%.4f]", c.localA[k].w, c.rA[k].w, (&c.normalImpulse.x)[k]);
+            std::fprintf(stderr, "\n");
+        }
     }
     m_report.pairs = int(std::min<size_t>(m_readback.counters[kPairCount], w.pairCapacity));
     m_report.contacts = int(m_readback.counters[kContactCount]);

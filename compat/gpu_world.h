@@ -61,6 +61,7 @@ private:
     ShapeTables m_shapes;
     std::vector<btCollisionObject*> m_rows;
     std::vector<Mirror> m_mirror;
+    std::vector<bool> m_large;  // rows paired by brute force instead of the grid
     Snapshot m_snapshot;
     BodyReadback m_readback;
 };
