@@ -267,6 +267,7 @@ StepSettings GpuWorld::settings(int substeps, btScalar dt) const
     p.deactivationTime = gDisableDeactivation ? 0.0f : gDeactivationTime;
     p.splitImpulse = info.m_splitImpulse ? 1 : 0;
     p.numBodies = m_dev->numBodies;
+    p.twoFrictionDirections = (info.m_solverMode & SOLVER_USE_2_FRICTION_DIRECTIONS) ? 1 : 0;
     s.substeps = substeps;
     s.iterations = std::max(info.m_numIterations, 1);
     s.maxColors = std::max(m_config.maxColors, 2);

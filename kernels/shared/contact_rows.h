@@ -13,7 +13,7 @@
  * them, scaled by the warm-start factor, because its friction directions are a pure function of
  * a stable normal (btgPlaneSpace) and so mean the same thing next step. 0 restores Bullet's rule. */
 #ifndef BTG_WARMSTART_FRICTION
-#define BTG_WARMSTART_FRICTION 1
+#define BTG_WARMSTART_FRICTION 0
 #endif
 #define BTG_MAX_FRICTION 10.0f       /* btManifoldResult::calculateCombinedFriction's clamp */
 #define BTG_NORMAL_UPPER_LIMIT 1e10f /* setupContactConstraint's m_upperLimit */
@@ -267,6 +267,20 @@ static inline void btgPrepareContact(BtgContact* c, BtgSolverBody a, BtgSolverBo
     BtgFloat4 n = btgXyz(c->normal);
     BtgFloat4 t1, t2;
     btgPlaneSpace(n, &t1, &t2);
+    /* Bullet's default friction: one row along the slip velocity (btPlaneSpace when there is
+     * none); a second, perpendicular row only with SOLVER_USE_2_FRICTION_DIRECTIONS. Bullet
+     * takes the slip per point; here one direction serves the manifold (its mean slip). */
+    BtgFloat4 slip = btgZero4();
+    for (int k = 0; k < c->numPoints; ++k) {
+        BtgFloat4 rA = btgXyz(c->rA[k]), rB = btgXyz(c->rB[k]);
+        BtgFloat4 v = (a0.lin + btgCross3(a0.ang, rA)) - (b0.lin + btgCross3(b0.ang, rB));
+        slip += v - n * btgDot3(v, n);
+    }
+    float slip2 = btgDot3(slip, slip);
+    if (slip2 > 1.1920929e-07f * (float)(c->numPoints * c->numPoints)) {
+        t1 = slip * (1.0f / btgSqrt(slip2));
+        t2 = btgNormalize3(btgCross3(t1, n));
+    }
     c->normal = n;
     c->normal.w = friction;
     c->t1 = t1;
@@ -284,7 +298,8 @@ static inline void btgPrepareContact(BtgContact* c, BtgSolverBody a, BtgSolverBo
         if (k < c->numPoints && solvable) {
             btgSetLane(&c->normalMass, k, btgRowMass(btgMakeRow(n, rA, rB, a, b), rA, rB, a, b));
             btgSetLane(&c->friction1Mass, k, btgRowMass(btgMakeRow(t1, rA, rB, a, b), rA, rB, a, b));
-            btgSetLane(&c->friction2Mass, k, btgRowMass(btgMakeRow(t2, rA, rB, a, b), rA, rB, a, b));
+            if (p.twoFrictionDirections)
+                btgSetLane(&c->friction2Mass, k, btgRowMass(btgMakeRow(t2, rA, rB, a, b), rA, rB, a, b));
             BtgFloat4 velA = a0.lin + btgCross3(a0.ang, rA);
             BtgFloat4 velB = b0.lin + btgCross3(b0.ang, rB);
             float penetration = c->localA[k].w;

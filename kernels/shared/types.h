@@ -121,7 +121,7 @@ typedef struct {
     float deactivationTime;      /* s: gDeactivationTime; 0 disables sleeping */
     int splitImpulse;            /* m_splitImpulse != 0 */
     int numBodies;
-    int pad0;
+    int twoFrictionDirections;   /* SOLVER_USE_2_FRICTION_DIRECTIONS; else one, along the slip */
 } BtgStepParams;
 
 /* Device status flags (one uint, read back with the transforms). */
