@@ -17,8 +17,10 @@ BtgBodyProps bodyProps(const btCollisionObject* obj, int shapeRow, const BtgShap
     BtgBodyProps p{};
     const btRigidBody* rb = btRigidBody::upcast(obj);
     uint flags = 0;
-    if (obj->isStaticObject() || !rb) flags |= BTG_BODY_STATIC;
-    else if (obj->isKinematicObject()) flags |= BTG_BODY_KINEMATIC;
+    // Kinematic first: a body made with mass 0 keeps CF_STATIC_OBJECT when the app adds
+    // CF_KINEMATIC_OBJECT, and Bullet still drives it as kinematic.
+    if (rb && obj->isKinematicObject()) flags |= BTG_BODY_KINEMATIC;
+    else if (obj->isStaticObject() || !rb) flags |= BTG_BODY_STATIC;
     else flags |= BTG_BODY_DYNAMIC;
     if (!obj->hasContactResponse()) flags |= BTG_BODY_NO_RESPONSE;
     int state = obj->getActivationState();
