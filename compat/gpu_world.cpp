@@ -9,8 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <cstdio>
-#include <cstdlib>
 #include <iostream>
 
 namespace btgpu {
@@ -301,14 +299,6 @@ void GpuWorld::runOnDevice(int substeps, btScalar dt)
                                            std::to_string(w.contactCapacity) + "; step redone"});
         restoreSnapshot(w, m_snapshot);
         resetStatus(w);
-    }
-    if (std::getenv("BTGPU_DEBUG_CONTACTS")) {
-        auto cs = w.prevContacts.download(w.ctx, m_readback.counters[kContactCount]);
-        for (auto& c : cs) {
-            std::fprintf(stderr, "c %d-%d n=%d N=(%.3f %.3f %.3f) col=%d", c.bodyA, c.bodyB, c.numPoints, c.normal.x, c.normal.y, c.normal.z, c.color);
-            for (int k = 0; k < c.numPoints; ++k) std::fprintf(stderr, " [d=%.4f tgt=%.3f imp=%.4f]", c.localA[k].w, c.rA[k].w, (&c.normalImpulse.x)[k]);
-            std::fprintf(stderr, "\n");
-        }
     }
     m_report.pairs = int(std::min<size_t>(m_readback.counters[kPairCount], w.pairCapacity));
     m_report.contacts = int(m_readback.counters[kContactCount]);

@@ -19,14 +19,21 @@ constexpr double kFreeFallPosition = 1e-4;   // m
 // order) may settle a contact at a slightly different penetration; 1 mm is well inside the
 // contact slop Bullet itself keeps (ERP pushes out only part of the penetration per step).
 constexpr double kRestHeight = 1e-3;         // m
+// A box landing flat after a vertical impulse: stock's box-box manifold tips it (0.05 rad)
+// and it slides ~1.3 cm sideways; a landing that stays put is no worse. The GPU box's
+// sideways drift may not exceed stock's by more than this.
+constexpr double kExtraDrift = 1e-3;         // m
 // A bounce's apex depends on the impact speed at the step the contact appears and on the
 // restitution threshold: 5 % of stock's apex.
 constexpr double kBounceApexRel = 0.05;
 // A stack of 8 unit boxes must not creep: the top box moves less than this in 5 s (on both).
 constexpr double kStackDrift = 0.05;         // m
-// BasicDemo's 125 boxes after ~3 s: the pile's mean height within 5 % of stock's, and no box
-// centre more than 2 cm below its resting height (half extent 0.1) — i.e. sunk into the ground.
-constexpr double kPileMeanHeightRel = 0.05;
+// BasicDemo's 125 boxes at rest (8 s, all asleep): the pile's mean height within 10 % of
+// stock's, and no box centre more than 2 cm below its resting height (half extent 0.1) — i.e.
+// sunk into the ground. The collapse of the block is chaotic: stock Bullet's own final mean
+// height moves from 0.196 (9 iterations) to 0.205 (10) to 0.356 (20) to 0.406 (two friction
+// directions), so a bound tighter than the spread of stock against itself would test chance.
+constexpr double kPileMeanHeightRel = 0.10;
 constexpr double kSinkDepth = 0.02;          // m
 // Boxes pushed by a kinematic box slide with friction; small differences in when contacts
 // appear grow into centimetres: 10 cm of stock's positions.
