@@ -300,6 +300,12 @@ void GpuWorld::runOnDevice(int substeps, btScalar dt)
         restoreSnapshot(w, m_snapshot);
         resetStatus(w);
     }
+    // Next step colors as many rounds as this one needed plus slack; leftovers (solved
+    // serially, slow on a GPU) double the rounds.
+    int used = int(m_readback.counters[kColorsUsed]);
+    int rounds = std::max(used + 2, 4);
+    if (m_readback.counters[kLeftovers] > 0) rounds = std::max(rounds, 2 * w.colorRounds);
+    w.colorRounds = std::min(rounds, std::max(m_config.maxColors - 1, 1));
     m_report.pairs = int(std::min<size_t>(m_readback.counters[kPairCount], w.pairCapacity));
     m_report.contacts = int(m_readback.counters[kContactCount]);
 }

@@ -1,16 +1,23 @@
 /* color_constraints.cl — Stage: batching (greedy graph coloring of the contacts).
  * Launch: one work-item per contact slot (contactCapacity) for color_init / color_claim /
- * color_assign / color_finish, one per body for claim_reset. Each round, every uncolored contact
- * claims its dynamic bodies with atomic_min of its index; those that own all of them take the
- * round's color. Integer atomics only, so the coloring is a pure function of the contact list.
- * Reads counters[kContactCount], props (flags), contacts (bodyA, bodyB). Writes contacts.color,
- * claim (per-body scratch). */
+ * color_assign / color_finish, one per body for claim_reset / body_color_reset. Each color is
+ * filled in a few sub-rounds: every uncolored contact whose dynamic bodies are still free in
+ * this color claims them with atomic_min of a hashed priority (a fixed bijection of its index,
+ * so neighbouring contacts do not form long chains of losers); those that own all their bodies
+ * take the color and mark the bodies used. Integer atomics only: the coloring is a pure
+ * function of the contact list. Reads counters[kContactCount], props (flags), contacts.
+ * Writes contacts.color, claim and bodyColor (per-body scratch), counters[kColorsUsed],
+ * counters[kLeftovers]. */
 #include "shared/types.h"
 #include "shared/math.h"
 #include "shared/contact_rows.h"
 
-#define COUNTER_CONTACTS 1 /* mirrors btgpu::Counter */
+#include "shared/coloring.h"
+#include "shared/counters.h"
+
+#define COUNTER_CONTACTS BTG_COUNTER_CONTACTS
 #define NO_CLAIM 0x7fffffff
+
 
 static int contact_count(__global const uint* restrict counters, int contactCapacity)
 {
@@ -29,31 +36,56 @@ __kernel void claim_reset(__global int* claim, int numBodies)
     if (b < numBodies) claim[b] = NO_CLAIM;
 }
 
-__kernel void color_claim(__global const BtgContact* restrict contacts, __global const uint* restrict counters,
-                          int contactCapacity, __global const BtgBodyProps* restrict props, __global int* claim)
+__kernel void body_color_reset(__global int* bodyColor, int numBodies)
 {
-    int i = (int)get_global_id(0);
-    if (i >= contact_count(counters, contactCapacity) || contacts[i].color >= 0) return;
-    int a = contacts[i].bodyA, b = contacts[i].bodyB;
-    if (btgIsSolverDynamic(props[a].flags)) atomic_min(&claim[a], i);
-    if (btgIsSolverDynamic(props[b].flags)) atomic_min(&claim[b], i);
+    int b = (int)get_global_id(0);
+    if (b < numBodies) bodyColor[b] = -1;
 }
 
-__kernel void color_assign(__global BtgContact* contacts, __global const uint* restrict counters, int contactCapacity,
-                           __global const BtgBodyProps* restrict props, __global const int* restrict claim, int color)
+static int body_free(__global const BtgBodyProps* restrict props, __global const int* restrict bodyColor, int body,
+                     int color)
+{
+    return !btgIsSolverDynamic(props[body].flags) || bodyColor[body] != color;
+}
+
+__kernel void color_claim(__global const BtgContact* restrict contacts, __global const uint* restrict counters,
+                          int contactCapacity, __global const BtgBodyProps* restrict props, __global int* claim,
+                          __global const int* restrict bodyColor, int color)
 {
     int i = (int)get_global_id(0);
     if (i >= contact_count(counters, contactCapacity) || contacts[i].color >= 0) return;
     int a = contacts[i].bodyA, b = contacts[i].bodyB;
-    int ownA = !btgIsSolverDynamic(props[a].flags) || claim[a] == i;
-    int ownB = !btgIsSolverDynamic(props[b].flags) || claim[b] == i;
-    if (ownA && ownB) contacts[i].color = color;
+    if (!body_free(props, bodyColor, a, color) || !body_free(props, bodyColor, b, color)) return;
+    int p = btgColorPriority(i);
+    if (btgIsSolverDynamic(props[a].flags)) atomic_min(&claim[a], p);
+    if (btgIsSolverDynamic(props[b].flags)) atomic_min(&claim[b], p);
+}
+
+__kernel void color_assign(__global BtgContact* contacts, __global uint* counters, int contactCapacity,
+                           __global const BtgBodyProps* restrict props, __global const int* restrict claim,
+                           __global int* bodyColor, int color)
+{
+    int i = (int)get_global_id(0);
+    if (i >= contact_count(counters, contactCapacity) || contacts[i].color >= 0) return;
+    int a = contacts[i].bodyA, b = contacts[i].bodyB;
+    if (!body_free(props, bodyColor, a, color) || !body_free(props, bodyColor, b, color)) return;
+    int p = btgColorPriority(i);
+    int dynA = btgIsSolverDynamic(props[a].flags), dynB = btgIsSolverDynamic(props[b].flags);
+    if ((dynA && claim[a] != p) || (dynB && claim[b] != p)) return;
+    contacts[i].color = color;
+    /* Only this contact owns these bodies now: plain stores are race-free. */
+    if (dynA) bodyColor[a] = color;
+    if (dynB) bodyColor[b] = color;
+    atomic_max(&counters[BTG_COUNTER_COLORS_USED], (uint)(color + 1));
 }
 
 /* Contacts left after the rounds share the last color, which the solver runs serially. */
-__kernel void color_finish(__global BtgContact* contacts, __global const uint* restrict counters, int contactCapacity,
+__kernel void color_finish(__global BtgContact* contacts, __global uint* counters, int contactCapacity,
                            int lastColor)
 {
     int i = (int)get_global_id(0);
-    if (i < contact_count(counters, contactCapacity) && contacts[i].color < 0) contacts[i].color = lastColor;
+    if (i < contact_count(counters, contactCapacity) && contacts[i].color < 0) {
+        contacts[i].color = lastColor;
+        atomic_inc(&counters[BTG_COUNTER_LEFTOVERS]);
+    }
 }

@@ -9,6 +9,7 @@
 #include "shared/types.h"
 #include "shared/math.h"
 #include "shared/contact_rows.h"
+#include "shared/counters.h"
 
 #define COUNTER_CONTACTS 1 /* mirrors btgpu::Counter */
 
@@ -58,6 +59,9 @@ __kernel void solve_color_serial(__global BtgContact* contacts, __global const u
                                  __global BtgFloat4* ang, int color, int mode)
 {
     if (get_global_id(0) != 0) return;
+    /* No leftovers from the batching and no color at or past this one (the usual case):
+     * nothing to walk, and a GPU thread walking every contact is slow. */
+    if (counters[BTG_COUNTER_LEFTOVERS] == 0u && counters[BTG_COUNTER_COLORS_USED] <= (uint)color) return;
     int n = (int)min(counters[COUNTER_CONTACTS], (uint)contactCapacity);
     for (int i = 0; i < n; ++i)
         if (contacts[i].color >= color) solve_one(i, mode, contacts, props, invInertiaWorld, lin, ang);

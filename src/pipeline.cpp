@@ -49,7 +49,7 @@ void runSubstep(DeviceWorld& w, const Plan& plan, const StepSettings& s)
         buildContacts(w, p);
         prepareContacts(w, p);
         colorConstraints(w, s.maxColors);
-        solveConstraints(w, p, s.iterations, s.maxColors);
+        solveConstraints(w, p, s.iterations, w.numColors);
     }
     integrateTransforms(w, p.dt, p.splitTurnErp);
     updateActivation(w, p.dt, p.deactivationTime);

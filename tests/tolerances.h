@@ -28,12 +28,12 @@ constexpr double kExtraDrift = 1e-3;         // m
 constexpr double kBounceApexRel = 0.05;
 // A stack of 8 unit boxes must not creep: the top box moves less than this in 5 s (on both).
 constexpr double kStackDrift = 0.05;         // m
-// BasicDemo's 125 boxes at rest (8 s, all asleep): the pile's mean height within 10 % of
-// stock's, and no box centre more than 2 cm below its resting height (half extent 0.1) — i.e.
-// sunk into the ground. The collapse of the block is chaotic: stock Bullet's own final mean
-// height moves from 0.196 (9 iterations) to 0.205 (10) to 0.356 (20) to 0.406 (two friction
-// directions), so a bound tighter than the spread of stock against itself would test chance.
-constexpr double kPileMeanHeightRel = 0.10;
+// BasicDemo's 125 boxes at rest (8 s, all asleep): the pile's mean height within 5 % of the
+// range stock Bullet itself gives at 8, 10 and 12 iterations, and no box centre more than 2 cm
+// below its resting height (half extent 0.1) — i.e. sunk into the ground. The block's collapse
+// is chaotic: stock's resting mean height is 0.175 (8 iterations), 0.205 (10), 0.182 (12),
+// 0.356 (20), 0.406 (two friction directions); one stock run is one chance outcome.
+constexpr double kPileMeanHeightRel = 0.05;
 constexpr double kSinkDepth = 0.02;          // m
 // Boxes pushed by a kinematic box slide with friction; small differences in when contacts
 // appear grow into centimetres: 10 cm of stock's positions.

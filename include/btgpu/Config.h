@@ -23,8 +23,9 @@ struct Config {
     bool profile = false;
     // m: points closer than this become contacts (Bullet's gContactBreakingThreshold).
     float contactThreshold = 0.02f;
-    // Upper bound on the solver's batches per iteration; contacts beyond it run serially.
-    int maxColors = 24;
+    // Upper bound on the solver's batches (graph colors) per iteration; contacts the coloring
+    // cannot place within it run serially. The number actually launched follows the scene.
+    int maxColors = 64;
     // A body whose bounding size exceeds this multiple of the median body size is paired by
     // brute force against all bodies instead of through the uniform grid.
     float largeBodyFactor = 4.0f;

@@ -7,4 +7,6 @@
 #define BTG_COUNTER_PREV_CONTACTS 2
 #define BTG_COUNTER_STATUS 3
 #define BTG_COUNTER_NAN_BODY 4
+#define BTG_COUNTER_COLORS_USED 5 /* colors the batching assigned, leftovers excluded */
+#define BTG_COUNTER_LEFTOVERS 6   /* contacts left for the serial pass */
 #endif

@@ -1,40 +1,56 @@
-// color_constraints.cpp — host launcher of the batching stage: maxColors - 1 claim/assign
-// rounds on the device (3 launches each), then the leftovers take the last color. The host
-// never reads the count: every launch covers the contact capacity and early-outs.
+// color_constraints.cpp — host launcher of the batching stage: w.colorRounds colors (set from
+// the last readback: the colors the scene needed plus slack), each filled in kSubRounds
+// claim/assign passes on the device, then the leftovers take the last color (solved serially;
+// counted so the next step runs more rounds). The host reads no count inside the step.
 #include "stages/color_constraints.h"
 
 #include "cl/program.h"
+#include "shared/coloring.h"
 
 #include <algorithm>
 
 namespace btgpu {
+
+namespace {
+// Claim/assign passes per color: the first takes the local minima, the next fill the color up
+// to nearly a maximal matching, which keeps the number of colors near the bodies' degree.
+constexpr int kSubRounds = BTG_COLOR_SUB_ROUNDS;
+}  // namespace
 
 void colorConstraints(DeviceWorld& w, int maxColors)
 {
     cl::Context& ctx = w.ctx;
     w.profiler.stage = "batching";
     if (maxColors < 1) maxColors = 1;
-    w.numColors = maxColors;
+    const int rounds = std::clamp(w.colorRounds, 0, maxColors - 1);
+    w.numColors = rounds + 1;  // the last one is the serial pass for leftovers
     cl::Program& prog = ctx.program("color_constraints");
     size_t slots = std::min(w.contactCapacity, w.contacts.capacity());
     int contactCapacity = int(slots);
     if (slots == 0) return;
     size_t bodies = size_t(std::max(w.numBodies, 1));
     w.solverScratch.bodyClaim.reserve(ctx, bodies);
+    w.solverScratch.bodyColor.reserve(ctx, bodies);
+    const uint zero = 0u;  // a fill copies its pattern at enqueue time
+    BTGPU_CL_CHECK(clEnqueueFillBuffer(ctx.queue(), w.counters.mem(), &zero, sizeof(uint), kColorsUsed * sizeof(uint),
+                                       2 * sizeof(uint), 0, nullptr, nullptr));
     cl_kernel reset = prog.kernel("claim_reset");
     cl_kernel claim = prog.kernel("color_claim");
     cl_kernel assign = prog.kernel("color_assign");
 
     cl::Launch(ctx, prog.kernel("color_init"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity).run(slots);
-    for (int round = 0; round < maxColors - 1; ++round) {
-        cl::Launch(ctx, reset, &w.profiler).arg(w.solverScratch.bodyClaim).arg(w.numBodies).run(bodies);
-        cl::Launch(ctx, claim, &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props)
-            .arg(w.solverScratch.bodyClaim).run(slots);
-        cl::Launch(ctx, assign, &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props)
-            .arg(w.solverScratch.bodyClaim).arg(round).run(slots);
+    cl::Launch(ctx, prog.kernel("body_color_reset"), &w.profiler).arg(w.solverScratch.bodyColor).arg(w.numBodies).run(bodies);
+    for (int color = 0; color < rounds; ++color) {
+        for (int sub = 0; sub < kSubRounds; ++sub) {
+            cl::Launch(ctx, reset, &w.profiler).arg(w.solverScratch.bodyClaim).arg(w.numBodies).run(bodies);
+            cl::Launch(ctx, claim, &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props)
+                .arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(color).run(slots);
+            cl::Launch(ctx, assign, &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props)
+                .arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(color).run(slots);
+        }
     }
     cl::Launch(ctx, prog.kernel("color_finish"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
-        .arg(maxColors - 1).run(slots);
+        .arg(rounds).run(slots);
 }
 
 }  // namespace btgpu

@@ -31,6 +31,8 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     cl_kernel serial = prog.kernel("solve_color_serial");
     auto pass = [&](int mode, cl::DeviceArray<BtgFloat4>& lin, cl::DeviceArray<BtgFloat4>& ang) {
         for (int color = 0; color < numColors; ++color) {
+            // The last color holds the coloring's leftovers (usually none: the serial kernel
+            // then returns at once).
             bool last = color == numColors - 1;
             cl::Launch(ctx, last ? serial : parallel, &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
                 .arg(w.props).arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).run(last ? 1 : slots, last ? 1 : 64);

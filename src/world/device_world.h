@@ -19,11 +19,14 @@ enum Counter : int {
     kPrevContactCount = 2,  // contacts of the previous step (warm-start cache)
     kStatus = 3,            // BTG_STATUS_* bits
     kNanBody = 4,           // lowest body row found non-finite (0xffffffff: none)
+    kColorsUsed = 5,        // colors the batching assigned in the last substep
+    kLeftovers = 6,         // contacts it left to the solver's serial pass
     kNumCounters = 8
 };
 static_assert(kPairCount == BTG_COUNTER_PAIRS && kContactCount == BTG_COUNTER_CONTACTS &&
                   kPrevContactCount == BTG_COUNTER_PREV_CONTACTS && kStatus == BTG_COUNTER_STATUS &&
-                  kNanBody == BTG_COUNTER_NAN_BODY,
+                  kNanBody == BTG_COUNTER_NAN_BODY && kColorsUsed == BTG_COUNTER_COLORS_USED &&
+                  kLeftovers == BTG_COUNTER_LEFTOVERS,
               "counter slots agree with kernels/shared/counters.h");
 
 struct DeviceWorld {
@@ -76,6 +79,7 @@ struct DeviceWorld {
     cl::DeviceArray<BtgContact> prevContacts;
     size_t contactCapacity = 0;
     int numColors = 0;                       // batches the solver launches (host estimate)
+    int colorRounds = 8;                     // coloring rounds to run: set from the last readback
     SolverScratch solverScratch;             // contact stages' scratch (block sums, claims)
 
     // --- sync_in staging (kept across calls: a quiet step allocates nothing) ---

@@ -8,7 +8,8 @@ namespace btgpu {
 
 struct SolverScratch {
     cl::DeviceArray<uint> blockSums;  // contact_cache: per-work-group counts, then offsets
-    cl::DeviceArray<int> bodyClaim;   // color_constraints: lowest contact index claiming a body
+    cl::DeviceArray<int> bodyClaim;   // color_constraints: lowest contact priority claiming a body
+    cl::DeviceArray<int> bodyColor;   // color_constraints: the color that last took the body
 };
 
 }  // namespace btgpu

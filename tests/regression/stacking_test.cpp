@@ -23,9 +23,20 @@ TEST(Stacking, BasicDemoSettlesLikeStock)
 {
     SideBySide s(scenes::basicDemo);
     s.step(480);  // 8 s: the pile has landed, settled and fallen asleep on both
-    const double stockMean = scenes::meanHeight(*s.stock);
+    // The block's collapse is chaotic: stock Bullet's own resting mean height moves by 15 %
+    // between 8, 10 and 12 iterations. The GPU pile must rest within that spread of stock
+    // (widened by kPileMeanHeightRel), not on one chance outcome of it.
+    double lo = scenes::meanHeight(*s.stock), hi = lo;
+    for (int iterations : {8, 12}) {
+        scenes::ScenePtr other = scenes::basicDemo(WorldKind::Stock);
+        other->world().getSolverInfo().m_numIterations = iterations;
+        for (int i = 0; i < 480; ++i) other->step();
+        lo = std::min(lo, scenes::meanHeight(*other));
+        hi = std::max(hi, scenes::meanHeight(*other));
+    }
     const double gpuMean = scenes::meanHeight(*s.gpu);
-    EXPECT_NEAR(gpuMean, stockMean, tol::kPileMeanHeightRel * stockMean);
+    EXPECT_GE(gpuMean, lo * (1.0 - tol::kPileMeanHeightRel)) << "stock spread " << lo << ".." << hi;
+    EXPECT_LE(gpuMean, hi * (1.0 + tol::kPileMeanHeightRel)) << "stock spread " << lo << ".." << hi;
     // Box half extent 0.1: a centre lower than 0.1 - kSinkDepth has sunk into the ground.
     EXPECT_GE(scenes::lowestHeight(*s.gpu), 0.1 - tol::kSinkDepth);
     EXPECT_GE(scenes::lowestHeight(*s.stock), 0.1 - tol::kSinkDepth);

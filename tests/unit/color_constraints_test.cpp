@@ -48,6 +48,7 @@ std::vector<int> runDevice(const Graph& g, int maxColors)
     std::vector<uint> counters = w.counters.download(w.ctx, kNumCounters);
     counters[kContactCount] = uint(g.contacts.size());
     w.counters.upload(w.ctx, counters);
+    w.colorRounds = maxColors - 1;
     colorConstraints(w, maxColors);
     EXPECT_EQ(w.numColors, maxColors);
     std::vector<BtgContact> out = test::downloadContacts(w);

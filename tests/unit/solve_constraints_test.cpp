@@ -38,6 +38,7 @@ Result runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms
     test::uploadWorld(w, b, ms, uint(ms.size()), prev, ms.size() + 4);
     buildContacts(w, p);
     prepareContacts(w, p);
+    w.colorRounds = maxColors - 1;
     colorConstraints(w, maxColors);
     solveConstraints(w, p, kIterations, w.numColors);
     Result r;
@@ -250,6 +251,7 @@ TEST(SolveConstraints, FewerColorsThanAssignedStillSolvesEveryContact)
     test::uploadWorld(w, s.bodies, s.manifolds, uint(s.manifolds.size()), {}, s.manifolds.size());
     buildContacts(w, p);
     prepareContacts(w, p);
+    w.colorRounds = 7;
     colorConstraints(w, 8);
     solveConstraints(w, p, kIterations, 1);  // one serial launch takes colors 0..7 in index order
     Result r;
