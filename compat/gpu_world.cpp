@@ -99,6 +99,7 @@ std::string GpuWorld::unsupportedReason()
 void GpuWorld::makePlan()
 {
     Plan plan;
+    plan.solver = m_config.solver;
     int spheres = 0, hulls = 0, planes = 0, movSpheres = 0, movHulls = 0;
     std::vector<float> sizes;
     std::vector<int> large, planeRows;
@@ -269,6 +270,7 @@ StepSettings GpuWorld::settings(int substeps, btScalar dt) const
     s.substeps = substeps;
     s.iterations = std::max(info.m_numIterations, 1);
     s.maxColors = std::max(m_config.maxColors, 2);
+    s.solver = m_config.solver;
     return s;
 }
 

@@ -1,6 +1,7 @@
 // pipeline.cpp — one substep, top to bottom, as the talk lays it out: integrate/predict →
 // AABBs → pairs → contacts → forces → contact cache → constraint setup → batching → PGS →
-// integrate transforms → deactivation. Stages absent from the plan are neither built nor launched.
+// integrate transforms → deactivation. Config::solver = JacobiMassSplitting puts one Jacobi
+// mass-splitting stage in place of batching + PGS. Stages absent from the plan are neither built nor launched.
 #include "pipeline.h"
 
 #include "stages/color_constraints.h"
@@ -10,6 +11,7 @@
 #include "stages/narrowphase.h"
 #include "stages/prepare_contacts.h"
 #include "stages/solve_constraints.h"
+#include "stages/solve_jacobi.h"
 #include "stages/update_aabbs.h"
 #include "stages/update_activation.h"
 
@@ -48,8 +50,12 @@ void runSubstep(DeviceWorld& w, const Plan& plan, const StepSettings& s)
     if (collide) {
         buildContacts(w, p);
         prepareContacts(w, p);
-        colorConstraints(w, s.maxColors);
-        solveConstraints(w, p, s.iterations, w.numColors);
+        if (s.solver == SolverKind::JacobiMassSplitting) {
+            solveJacobi(w, p, s.iterations);
+        } else {
+            colorConstraints(w, s.maxColors);
+            solveConstraints(w, p, s.iterations, w.numColors);
+        }
     }
     integrateTransforms(w, p.dt, p.splitTurnErp);
     updateActivation(w, p.dt, p.deactivationTime);

@@ -5,13 +5,16 @@
 #include "world/device_world.h"
 #include "world/plan.h"
 
+#include <btgpu/Config.h>
+
 namespace btgpu {
 
 struct StepSettings {
     BtgStepParams params;  // dt is the fixed substep
     int substeps = 1;
     int iterations = 10;   // btContactSolverInfo::m_numIterations
-    int maxColors = 24;
+    int maxColors = 24;    // BatchedPgs only
+    SolverKind solver = SolverKind::BatchedPgs;  // must match the plan's
 };
 
 // Enqueues `s.substeps` substeps of the plan (the caller reads back once afterwards).

@@ -10,6 +10,13 @@ namespace btgpu {
 
 struct Issue;
 
+// How the contacts are solved. BatchedPgs: projected Gauss-Seidel as btSequentialImpulse-
+// ConstraintSolver, batched by graph coloring (contacts of one color in parallel).
+// JacobiMassSplitting: every contact in parallel against copies of its bodies holding 1/n of
+// their mass, averaged after each iteration (Tonge et al. 2012): no coloring, two launches per
+// iteration whatever the scene, but slower to converge per iteration.
+enum class SolverKind { BatchedPgs, JacobiMassSplitting };
+
 struct Config {
     // "" (first GPU, else a CPU device), "gpu", "cpu", or a substring of the platform or device
     // name. The environment variable BTGPU_DEVICE overrides it.
@@ -23,8 +30,10 @@ struct Config {
     bool profile = false;
     // m: points closer than this become contacts (Bullet's gContactBreakingThreshold).
     float contactThreshold = 0.02f;
+    SolverKind solver = SolverKind::BatchedPgs;
     // Upper bound on the solver's batches (graph colors) per iteration; contacts the coloring
-    // cannot place within it run serially. The number actually launched follows the scene.
+    // cannot place within it run serially. The number actually launched follows the scene
+    // (BatchedPgs only).
     int maxColors = 64;
     // A body whose bounding size exceeds this multiple of the median body size is paired by
     // brute force against all bodies instead of through the uniform grid.

@@ -11,7 +11,9 @@ std::vector<std::string> Plan::stages() const
         s.push_back("find_pairs");
         if (kinds.simple()) s.push_back("narrowphase");
         if (kinds.hullHull) s.push_back("narrowphase_sat");
-        s.insert(s.end(), {"contact_cache", "prepare_contacts", "color_constraints", "solve_constraints"});
+        s.insert(s.end(), {"contact_cache", "prepare_contacts"});
+        if (solver == SolverKind::JacobiMassSplitting) s.push_back("solve_jacobi");
+        else s.insert(s.end(), {"color_constraints", "solve_constraints"});
     }
     s.insert(s.end(), {"integrate_transforms", "update_activation", "sync_out"});
     return s;

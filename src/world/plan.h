@@ -2,6 +2,8 @@
 // scene by compat/ (recomputed when bodies or shapes come and go); the pipeline builds,
 // allocates and launches only what the plan names.
 #pragma once
+#include <btgpu/Config.h>
+
 #include <string>
 #include <vector>
 
@@ -23,6 +25,7 @@ struct Plan {
     bool hasLarge = false;     // bodies outside the uniform grid
     bool hasPlanes = false;
     bool gyroscopic = false;   // some body asks for the implicit gyroscopic term
+    SolverKind solver = SolverKind::BatchedPgs;  // Config::solver: which solve stages run
     float cellSize = 1.0f;     // m: uniform grid cell, >= the largest small body's AABB extent
     // Names of the stages the step launches, in order (visible through Report).
     std::vector<std::string> stages() const;

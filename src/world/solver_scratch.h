@@ -1,8 +1,9 @@
 // solver_scratch.h — device scratch owned by the contact stages (contact compaction block sums,
-// per-body coloring claims). One member of DeviceWorld, so those stages add no columns of their
+// per-body coloring claims, the Jacobi solver's per-body contact lists and velocity changes). One member of DeviceWorld, so those stages add no columns of their
 // own to the shared world layout.
 #pragma once
-#include "cl/buffer.h"
+#include "shared/types.h"
+#include "stages/prims/scan.h"
 
 namespace btgpu {
 
@@ -10,6 +11,14 @@ struct SolverScratch {
     cl::DeviceArray<uint> blockSums;  // contact_cache: per-work-group counts, then offsets
     cl::DeviceArray<int> bodyClaim;   // color_constraints: lowest contact priority claiming a body
     cl::DeviceArray<int> bodyColor;   // color_constraints: the color that last took the body
+    // solve_jacobi: body b's contacts are jacobiEntries[jacobiStart[b], jacobiStart[b + 1]),
+    // each 2 * contact + side, in increasing order; jacobiDeltas holds 4 per contact slot
+    // (A lin, A ang, B lin, B ang: m/s, rad/s), the change each contact made to its copies.
+    cl::DeviceArray<uint> jacobiStart;    // N + 1
+    cl::DeviceArray<uint> jacobiCursor;   // N: counts, then fill cursors
+    cl::DeviceArray<uint> jacobiEntries;  // 2 per contact slot
+    cl::DeviceArray<BtgFloat4> jacobiDeltas;
+    ScanScratch jacobiScan;
 };
 
 }  // namespace btgpu
