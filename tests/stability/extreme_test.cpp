@@ -17,14 +17,25 @@ constexpr double kUnjudged = std::numeric_limits<double>::infinity();
 // Beyond reason: measured (penetration and speed recorded) but judged only on finiteness, and
 // for btgpu on a clear status: the GPU path ran, or the world said why not, or an issue names
 // the problem (a NaN with an issue reported is a clear status).
-void beyondReason(const std::string& caseName, const Builder& make, double seconds, const Config& config = Config())
+// `measure`: penetration at the end (contactPairTest on every overlapping pair: too slow for
+// millions of pairs). `withStock`: stock Bullet can hold the scene in memory at all.
+void beyondReason(const std::string& caseName, const Builder& make, double seconds, bool measure = true,
+                  bool withStock = true)
 {
+    const Config config;
     Criteria c;
     c.seconds = seconds;
     c.speed = kUnjudged;
-    c.penetration = kUnjudged;
+    c.penetration = measure ? kUnjudged : -1;
     c.measureFrom = seconds;
-    Outcome stock = run(make, WorldKind::Stock, c, config);
+    Outcome stock;
+    if (withStock) {
+        stock = run(make, WorldKind::Stock, c, config);
+        record(caseName, stock, figure(stock));
+    } else {
+        // Not a result: stock Bullet's pair cache would need n (n - 1) / 2 manifolds.
+        appendRowNotRun(caseName, "stock", "not run: stock's pair cache cannot hold n(n-1)/2 pairs");
+    }
     ScenePtr gpuScene = make(WorldKind::Gpu, config);
     Outcome gpu = run(*gpuScene, c);
     const Report* r = gpuScene->report();
@@ -38,7 +49,6 @@ void beyondReason(const std::string& caseName, const Builder& make, double secon
     }
     std::string gpuFigure = figure(gpu);
     if (!r->gpuPath && !r->cpuPathReason.empty()) gpuFigure += " (cpu path: " + r->cpuPathReason + ")";
-    record(caseName, stock, figure(stock));
     record(caseName, gpu, gpuFigure);
     // Beyond reason btgpu is judged on its own: no NaN without an issue, no crash, a status.
     EXPECT_TRUE(gpu.pass) << caseName << ": " << gpu.why;
@@ -94,6 +104,7 @@ TEST(Scale, CentimetreBoxes)
     c.penetration = tol::kPenetrationFraction * 0.01;
     c.driftBody = 3;
     c.drift = tol::kTopDriftFraction * 0.01;
+    c.drop = 3 * c.penetration;
     runBoth("3 boxes of 0.01 m resting", [](WorldKind k, const Config& cf) { return st::scaledStack(k, cf, btScalar(.01)); },
             c);
 }
@@ -106,6 +117,7 @@ TEST(Scale, HundredMetreBoxes)
     c.penetration = tol::kPenetrationFraction * 100;
     c.driftBody = 3;
     c.drift = tol::kTopDriftFraction * 100;
+    c.drop = 3 * c.penetration;
     runBoth("3 boxes of 100 m resting", [](WorldKind k, const Config& cf) { return st::scaledStack(k, cf, 100); }, c);
 }
 
@@ -167,9 +179,10 @@ TEST(BeyondReason, Velocity1e4)
 TEST(BeyondReason, ManyBodiesInOneSpot)
 {
     // Every pair overlaps completely: n (n - 1) / 2 pairs. Short mode: 2,000 bodies (2e6 pairs),
-    // a few steps; full mode: 1e5 bodies (5e9 pairs), one step.
+    // one step (stock needs ~30 s for it on 2 PoCL cores); full mode: 1e5 bodies (5e9 pairs) on btgpu
+    // only — stock Bullet cannot hold that many manifolds (~1 kB each) in memory.
     const int count = fullMode() ? 100000 : 2000;
-    const double seconds = fullMode() ? 1.0 / 60 : 3.0 / 60;
     beyondReason(std::to_string(count) + " bodies in one spot",
-                 [count](WorldKind k, const Config& c) { return st::onePlace(k, c, count); }, seconds);
+                 [count](WorldKind k, const Config& c) { return st::onePlace(k, c, count); }, 1.0 / 60, false,
+                 !fullMode());
 }

@@ -29,8 +29,11 @@ struct Criteria {
     double settleBy = -1;                       // s: from then on KE/M stays under the bound; < 0: not asked
     double penetration = -1;                    // m: most allowed penetration at rest; < 0: not asked
     double measureFrom = -1;                    // s: penetration measured from then on (default settleBy, else the end)
-    int driftBody = -1;                         // scene index of the body whose drift is bounded
+    int driftBody = -1;                         // scene index of the body whose sideways drift is bounded
     double drift = 0;                           // m
+    // m: how far driftBody may end below where it started (each contact under it may sink by
+    // the penetration bound); < 0: not asked. Catches a stack that collapsed in place.
+    double drop = -1;
     double speed = -1;                          // m/s: bound on every body's speed; < 0: from the scene's heights
     bool energyNeverGrows = false;
     bool noSleep = false;                       // DISABLE_DEACTIVATION on every body (tests the solver, not sleep)
@@ -44,7 +47,8 @@ struct Outcome {
     double finalKePerMass = 0;  // J/kg at the end
     double settleTime = 0;      // s: end of the last step with KE/M above the bound
     double penetration = 0;     // m, deepest over the measured window (ground or body pair)
-    double drift = 0;           // m, of Criteria::driftBody
+    double drift = 0;           // m, sideways (x-z) motion of Criteria::driftBody
+    double drop = 0;            // m, how far Criteria::driftBody ended below its start
     double energyRise = 0;      // J, max over steps of E(t) - E(0) (kinetic + potential)
     double wallSeconds = 0;
     bool gpuPath = false;       // btgpu only: the last step ran on the OpenCL pipeline
@@ -73,6 +77,9 @@ std::string figure(const Outcome& o);
 void judge(const std::string& caseName, const Outcome& stock, const Outcome& gpu, bool requireGpuPath = true);
 // One table row for one engine, with a free-form figure.
 void record(const std::string& caseName, const Outcome& o, const std::string& figureText);
+
+// A row for a case an engine does not run (and why).
+void appendRowNotRun(const std::string& caseName, const std::string& engine, const std::string& why);
 
 // The usual case: build on both engines, run, judge.
 void runBoth(const std::string& caseName, const Builder& make, const Criteria& criteria);
