@@ -41,3 +41,24 @@ constexpr double kPushedPosition = 0.1;      // m
 // Motion-state transforms with substeps and interpolation (no contacts): as free fall.
 constexpr double kInterpolatedTransform = 1e-4;  // m, and per matrix element of the basis
 }  // namespace btgpu::tol
+
+// --- stability suite (tests/stability/): both engines judged by the same bounds -------------
+namespace btgpu::tol {
+// At rest: kinetic energy per kilogram of dynamic mass (J/kg); 1e-4 is an rms speed of ~1.4 cm/s,
+// well above the jitter of a settled Bullet stack and far below anything a viewer sees move.
+constexpr double kSettledKePerMass = 1e-4;
+// Penetration at rest, as a fraction of the smallest body dimension (the 1 %).
+constexpr double kPenetrationFraction = 0.01;
+// Stack tops may drift this fraction of the box size (the 5 %).
+constexpr double kTopDriftFraction = 0.05;
+// The long resting 8-box stack: the top moves less than 1 cm (the bound), and the total
+// energy (kinetic + potential, g = 10) never exceeds its start by more than 1e-3 of m g L of the
+// stack (8 boxes x 1 kg x 10 x 1 m): every box lifted by 1 mm at once, far above float rounding.
+constexpr double kLongRestDrift = 0.01;  // m
+constexpr double kEnergyRise = 0.08;     // J
+// Boxes released overlapping by 25 % must separate without being shot out: no body above 5 m/s.
+constexpr double kSeparationSpeed = 5;   // m/s
+// The same small pile at the origin and at (1e4, 0, 1e4): positions relative to the pile's origin
+// agree within 5 % of the box size (float spacing there is ~1 mm, so this is no rounding bound).
+constexpr double kFarPileAlike = 0.05;   // m
+}  // namespace btgpu::tol
