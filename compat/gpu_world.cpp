@@ -308,6 +308,7 @@ void GpuWorld::runOnDevice(int substeps, btScalar dt)
     int rounds = std::max(used + 2, 4);
     if (m_readback.counters[kLeftovers] > 0) rounds = std::max(rounds, 2 * w.colorRounds);
     w.colorRounds = std::min(rounds, std::max(m_config.maxColors - 1, 1));
+    w.lastContactCount = int(m_readback.counters[kContactCount]);
     m_report.pairs = int(std::min<size_t>(m_readback.counters[kPairCount], w.pairCapacity));
     m_report.contacts = int(m_readback.counters[kContactCount]);
 }

@@ -89,3 +89,50 @@ __kernel void color_finish(__global BtgContact* contacts, __global uint* counter
         atomic_inc(&counters[BTG_COUNTER_LEFTOVERS]);
     }
 }
+
+/* color_fused: the whole batching in ONE launch on ONE work-group, for small scenes: the same
+ * init, claim/assign sub-rounds and finish as the kernels above, separated by barriers instead
+ * of launches, so the coloring is identical. */
+__kernel void color_fused(__global BtgContact* contacts, __global uint* counters, int contactCapacity,
+                          __global const BtgBodyProps* restrict props, __global int* claim, __global int* bodyColor,
+                          int numBodies, int rounds)
+{
+    const int lid = (int)get_local_id(0), size = (int)get_local_size(0);
+    const int n = contact_count(counters, contactCapacity);
+    for (int i = lid; i < n; i += size) contacts[i].color = -1;
+    for (int b = lid; b < numBodies; b += size) bodyColor[b] = -1;
+    barrier(CLK_GLOBAL_MEM_FENCE);
+    for (int color = 0; color < rounds; ++color) {
+        for (int sub = 0; sub < BTG_COLOR_SUB_ROUNDS; ++sub) {
+            for (int b = lid; b < numBodies; b += size) claim[b] = NO_CLAIM;
+            barrier(CLK_GLOBAL_MEM_FENCE);
+            for (int i = lid; i < n; i += size) {
+                if (contacts[i].color >= 0) continue;
+                int a = contacts[i].bodyA, b = contacts[i].bodyB;
+                if (!body_free(props, bodyColor, a, color) || !body_free(props, bodyColor, b, color)) continue;
+                int p = btgColorPriority(i);
+                if (btgIsSolverDynamic(props[a].flags)) atomic_min(&claim[a], p);
+                if (btgIsSolverDynamic(props[b].flags)) atomic_min(&claim[b], p);
+            }
+            barrier(CLK_GLOBAL_MEM_FENCE);
+            for (int i = lid; i < n; i += size) {
+                if (contacts[i].color >= 0) continue;
+                int a = contacts[i].bodyA, b = contacts[i].bodyB;
+                if (!body_free(props, bodyColor, a, color) || !body_free(props, bodyColor, b, color)) continue;
+                int p = btgColorPriority(i);
+                int dynA = btgIsSolverDynamic(props[a].flags), dynB = btgIsSolverDynamic(props[b].flags);
+                if ((dynA && claim[a] != p) || (dynB && claim[b] != p)) continue;
+                contacts[i].color = color;
+                if (dynA) bodyColor[a] = color;
+                if (dynB) bodyColor[b] = color;
+                atomic_max(&counters[BTG_COUNTER_COLORS_USED], (uint)(color + 1));
+            }
+            barrier(CLK_GLOBAL_MEM_FENCE);
+        }
+    }
+    for (int i = lid; i < n; i += size)
+        if (contacts[i].color < 0) {
+            contacts[i].color = rounds;
+            atomic_inc(&counters[BTG_COUNTER_LEFTOVERS]);
+        }
+}

@@ -15,6 +15,9 @@ namespace {
 // Claim/assign passes per color: the first takes the local minima, the next fill the color up
 // to nearly a maximal matching, which keeps the number of colors near the bodies' degree.
 constexpr int kSubRounds = BTG_COLOR_SUB_ROUNDS;
+// Small scenes (as of the last readback) color in one launch on one work-group.
+constexpr int kFusedMaxContacts = 4096;
+constexpr int kFusedMaxBodies = 16384;
 }  // namespace
 
 void colorConstraints(DeviceWorld& w, int maxColors)
@@ -34,6 +37,14 @@ void colorConstraints(DeviceWorld& w, int maxColors)
     const uint zero = 0u;  // a fill copies its pattern at enqueue time
     BTGPU_CL_CHECK(clEnqueueFillBuffer(ctx.queue(), w.counters.mem(), &zero, sizeof(uint), kColorsUsed * sizeof(uint),
                                        2 * sizeof(uint), 0, nullptr, nullptr));
+    if (w.lastContactCount <= kFusedMaxContacts && w.numBodies <= kFusedMaxBodies) {
+        // Small scene: the whole coloring in one launch on one work-group (same result).
+        size_t group = std::min<size_t>(256, ctx.device().maxWorkGroupSize);
+        cl::Launch(ctx, prog.kernel("color_fused"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
+            .arg(w.props).arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(w.numBodies).arg(rounds)
+            .run(group, group);
+        return;
+    }
     cl_kernel reset = prog.kernel("claim_reset");
     cl_kernel claim = prog.kernel("color_claim");
     cl_kernel assign = prog.kernel("color_assign");

@@ -11,6 +11,9 @@ namespace btgpu {
 
 namespace {
 enum Mode : int { kWarmStart = 0, kVelocity = 1, kPush = 2 };
+// Up to this many contacts (as of the last readback) one work-group solves everything in one
+// launch: below it launch overhead outweighs the parallelism of one launch per color.
+constexpr int kFusedMaxContacts = 4096;
 }
 
 void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iterations, int numColors)
@@ -27,6 +30,14 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     }
     if (slots == 0) return;
     cl::Program& prog = ctx.program("solve_constraints");
+    if (w.lastContactCount <= kFusedMaxContacts) {
+        // Small scene: every pass in one launch on one work-group (same order, same result).
+        size_t group = std::min<size_t>(256, ctx.device().maxWorkGroupSize);
+        cl::Launch(ctx, prog.kernel("solve_fused"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
+            .arg(w.props).arg(w.invInertiaWorld).arg(w.linVel).arg(w.angVel).arg(w.pushLin).arg(w.pushAng)
+            .arg(numColors).arg(iterations).arg(params.splitImpulse ? 1 : 0).run(group, group);
+        return;
+    }
     cl_kernel parallel = prog.kernel("solve_color");
     cl_kernel serial = prog.kernel("solve_color_serial");
     auto pass = [&](int mode, cl::DeviceArray<BtgFloat4>& lin, cl::DeviceArray<BtgFloat4>& ang) {

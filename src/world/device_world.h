@@ -80,6 +80,7 @@ struct DeviceWorld {
     size_t contactCapacity = 0;
     int numColors = 0;                       // batches the solver launches (host estimate)
     int colorRounds = 8;                     // coloring rounds to run: set from the last readback
+    int lastContactCount = 1 << 30;          // contacts at the last readback (chooses launch shapes)
     SolverScratch solverScratch;             // contact stages' scratch (block sums, claims)
 
     // --- sync_in staging (kept across calls: a quiet step allocates nothing) ---

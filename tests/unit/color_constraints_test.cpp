@@ -40,9 +40,11 @@ Graph randomGraph(int numBodies, int numContacts, unsigned seed)
     return g;
 }
 
-std::vector<int> runDevice(const Graph& g, int maxColors)
+// fused: the one-work-group launch small scenes take (chosen by the last contact count).
+std::vector<int> runDevice(const Graph& g, int maxColors, bool fused = false)
 {
     DeviceWorld w(test::context());
+    w.lastContactCount = fused ? 0 : (1 << 30);
     test::uploadWorld(w, g.bodies, {}, 0, {}, g.contacts.size() + 8);
     w.contacts.upload(w.ctx, g.contacts);
     std::vector<uint> counters = w.counters.download(w.ctx, kNumCounters);
@@ -51,7 +53,15 @@ std::vector<int> runDevice(const Graph& g, int maxColors)
     w.colorRounds = maxColors - 1;
     colorConstraints(w, maxColors);
     EXPECT_EQ(w.numColors, maxColors);
+    std::vector<uint> after = w.counters.download(w.ctx, kNumCounters);
     std::vector<BtgContact> out = test::downloadContacts(w);
+    int leftovers = 0, used = 0;
+    for (const BtgContact& c : out) {
+        leftovers += c.color == maxColors - 1;
+        used = std::max(used, c.color < maxColors - 1 ? c.color + 1 : 0);
+    }
+    EXPECT_EQ(after[kLeftovers], uint(leftovers));
+    EXPECT_EQ(after[kColorsUsed], uint(used));
     std::vector<int> colors;
     for (const BtgContact& c : out) colors.push_back(c.color);
     return colors;
@@ -88,4 +98,21 @@ TEST(ColorConstraints, SparseSceneNeedsFewSerialContacts)
     std::vector<int> got = runDevice(g, 16);
     size_t serial = size_t(std::count(got.begin(), got.end(), 15));
     EXPECT_LT(serial, got.size() / 10);
+}
+
+TEST(ColorConstraints, OneWorkGroupLaunchColorsTheSame)
+{
+    for (int maxColors : {1, 4, 12, 32}) {
+        Graph g = randomGraph(80, 600, 9);
+        EXPECT_EQ(runDevice(g, maxColors, true), runDevice(g, maxColors, false)) << "maxColors " << maxColors;
+    }
+}
+
+TEST(ColorConstraints, EnoughColorsLeaveNoLeftovers)
+{
+    // 80 bodies, 600 contacts: ~15 contacts per body. Filled colors need about the largest
+    // degree (plus a few), far below 64, so nothing is left for the slow serial pass.
+    Graph g = randomGraph(80, 600, 3);
+    std::vector<int> got = runDevice(g, 64);
+    EXPECT_EQ(std::count(got.begin(), got.end(), 63), 0);
 }

@@ -31,10 +31,12 @@ struct Result {
 };
 
 // contacts -> prepare -> batching -> solve on the device; prev is last step's contact list.
+// fused: the one-work-group batching and solve small scenes take (by the last contact count).
 Result runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms, const std::vector<BtgContact>& prev,
-                 const BtgStepParams& p, int maxColors)
+                 const BtgStepParams& p, int maxColors, bool fused = false)
 {
     DeviceWorld w(test::context());
+    w.lastContactCount = fused ? 0 : (1 << 30);
     test::uploadWorld(w, b, ms, uint(ms.size()), prev, ms.size() + 4);
     buildContacts(w, p);
     prepareContacts(w, p);
@@ -147,6 +149,26 @@ TEST(SolveConstraints, MatchesReferenceWithWarmStart)
     for (size_t i = 0; i < s.bodies.props.size(); ++i)
         if (s.bodies.props[i].flags & BTG_BODY_KINEMATIC) kin = int(i);
     EXPECT_EQ(d.bodies.linVel[kin].x, s.bodies.linVel[kin].x);
+}
+
+// One launch on one work-group walks the colors in the same order as one launch per color:
+// bitwise the same velocities and impulses, leftovers included.
+TEST(SolveConstraints, OneWorkGroupLaunchSolvesTheSame)
+{
+    test::StackScene s = test::stackScene(6, 4, 9);
+    BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
+    for (int maxColors : {3, 16}) {
+        Result a = runDevice(s.bodies, s.manifolds, {}, p, maxColors, false);
+        Result b = runDevice(s.bodies, s.manifolds, {}, p, maxColors, true);
+        Result a2 = runDevice(s.bodies, s.manifolds, a.contacts, p, maxColors, false);
+        Result b2 = runDevice(s.bodies, s.manifolds, b.contacts, p, maxColors, true);
+        size_t n = a2.bodies.linVel.size() * sizeof(BtgFloat4);
+        EXPECT_EQ(0, std::memcmp(a2.bodies.linVel.data(), b2.bodies.linVel.data(), n)) << maxColors;
+        EXPECT_EQ(0, std::memcmp(a2.bodies.angVel.data(), b2.bodies.angVel.data(), n)) << maxColors;
+        EXPECT_EQ(0, std::memcmp(a2.bodies.pushLin.data(), b2.bodies.pushLin.data(), n)) << maxColors;
+        ASSERT_EQ(a2.contacts.size(), b2.contacts.size());
+        EXPECT_EQ(0, std::memcmp(a2.contacts.data(), b2.contacts.data(), a2.contacts.size() * sizeof(BtgContact)));
+    }
 }
 
 TEST(SolveConstraints, RestingBoxStops)
