@@ -66,7 +66,6 @@ bool GpuWorld::ensureDevice()
         cl::DeviceInfo d = cl::selectDevice(m_config.device);
         m_ctx = std::make_unique<cl::Context>(d);
         m_dev = std::make_unique<DeviceWorld>(*m_ctx);
-        m_dev->profiler.enabled = m_config.profile;
         m_report.device = d.describe();
         std::cerr << "btgpu: OpenCL device " << m_report.device << "\n";
         return true;
@@ -406,6 +405,8 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
     }
 
     m_dev->profiler.resetLaunchCount();
+    const bool profiled = m_config.profile && (m_calls++ % std::max(m_config.profileEvery, 1)) == 0;
+    m_dev->profiler.enabled = profiled;
     if (numSubSteps) {
         int clamped = numSubSteps > maxSubSteps ? maxSubSteps : numSubSteps;
         m_world.saveKinematicState(fixedTimeStep * clamped);
@@ -425,10 +426,8 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
     m_world.synchronizeMotionStates();
     m_world.clearForces();
     if (m_config.syncBroadphaseAabbs) m_world.updateAabbs();
-    if (m_config.profile) {
-        m_report.stageMs.clear();
-        m_dev->profiler.collect(m_report.stageMs);
-    }
+    m_report.stageMs.clear();  // empty on calls that were not profiled
+    if (profiled) m_dev->profiler.collect(m_report.stageMs);
     m_report.launches = m_dev->profiler.launches();
     m_report.builtPrograms = m_ctx->builtPrograms();
     m_report.buildSeconds = m_ctx->buildSeconds();

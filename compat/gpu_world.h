@@ -57,6 +57,7 @@ private:
     bool m_deviceFailed = false;
     bool m_structureDirty = true;
     bool m_onCpuPath = false;
+    long m_calls = 0;  // stepSimulation calls on the GPU path (profiling cadence)
     Plan m_plan;
     ShapeTables m_shapes;
     std::vector<btCollisionObject*> m_rows;

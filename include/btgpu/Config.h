@@ -26,8 +26,10 @@ struct Config {
     // Keep the CPU broadphase's AABBs current after each step so rayTest, convexSweepTest and
     // contactTest see the bodies where they are. Apps that never query may turn it off.
     bool syncBroadphaseAabbs = true;
-    // Per-stage device times from OpenCL profiling events (Report::stageMs).
+    // Per-stage device times from OpenCL profiling events (Report::stageMs), taken on one
+    // stepSimulation call in profileEvery (events cost host time on every launch).
     bool profile = false;
+    int profileEvery = 1;
     // m: points closer than this become contacts (Bullet's gContactBreakingThreshold).
     float contactThreshold = 0.02f;
     SolverKind solver = SolverKind::BatchedPgs;

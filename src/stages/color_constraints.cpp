@@ -17,6 +17,7 @@ namespace {
 constexpr int kSubRounds = BTG_COLOR_SUB_ROUNDS;
 // Small scenes (as of the last readback) color in one launch on one work-group.
 constexpr int kFusedMaxContacts = 4096;
+constexpr int kFusedMaxContactsGpu = 512;
 constexpr int kFusedMaxBodies = 16384;
 }  // namespace
 
@@ -37,7 +38,9 @@ void colorConstraints(DeviceWorld& w, int maxColors)
     const uint zero = 0u;  // a fill copies its pattern at enqueue time
     BTGPU_CL_CHECK(clEnqueueFillBuffer(ctx.queue(), w.counters.mem(), &zero, sizeof(uint), kColorsUsed * sizeof(uint),
                                        2 * sizeof(uint), 0, nullptr, nullptr));
-    if (w.lastContactCount <= kFusedMaxContacts && w.numBodies <= kFusedMaxBodies) {
+    // One work-group is one compute unit: on a GPU that only pays for a few hundred contacts.
+    const int fusedMax = ctx.device().isGpu ? kFusedMaxContactsGpu : kFusedMaxContacts;
+    if (w.lastContactCount <= fusedMax && w.numBodies <= kFusedMaxBodies) {
         // Small scene: the whole coloring in one launch on one work-group (same result).
         size_t group = std::min<size_t>(256, ctx.device().maxWorkGroupSize);
         cl::Launch(ctx, prog.kernel("color_fused"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)

@@ -14,6 +14,7 @@ enum Mode : int { kWarmStart = 0, kVelocity = 1, kPush = 2 };
 // Up to this many contacts (as of the last readback) one work-group solves everything in one
 // launch: below it launch overhead outweighs the parallelism of one launch per color.
 constexpr int kFusedMaxContacts = 4096;
+constexpr int kFusedMaxContactsGpu = 512;
 }
 
 void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iterations, int numColors)
@@ -30,7 +31,9 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     }
     if (slots == 0) return;
     cl::Program& prog = ctx.program("solve_constraints");
-    if (w.lastContactCount <= kFusedMaxContacts) {
+    // One work-group is one compute unit: on a GPU that only pays for a few hundred contacts.
+    const int fusedMax = ctx.device().isGpu ? kFusedMaxContactsGpu : kFusedMaxContacts;
+    if (w.lastContactCount <= fusedMax) {
         // Small scene: every pass in one launch on one work-group (same order, same result).
         size_t group = std::min<size_t>(256, ctx.device().maxWorkGroupSize);
         cl::Launch(ctx, prog.kernel("solve_fused"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
