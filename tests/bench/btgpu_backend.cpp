@@ -47,6 +47,7 @@ public:
         std::string n = "btGpuDynamicsWorld, " + std::to_string(m_iterations) + " iterations, Config::profile on every 10th frame";
         if (m_world && !m_world->isGpuPath()) n += "; CPU PATH: " + m_world->report().cpuPathReason;
         if (m_world) n += "; redone steps " + std::to_string(m_world->report().redoneSteps);
+        if (m_noAabbSync) n += "; Config::syncBroadphaseAabbs off";
         n += "; write-back column = synchronizeMotionStates+updateAabbs only "
              "(TODO: body write-back is inside the step, not separable via the public API)";
         return n;
@@ -60,6 +61,8 @@ public:
         btgpu::Config config;
         config.profile = true;
         config.profileEvery = 10;  // stage times from every 10th frame; the others run unprofiled
+        config.syncBroadphaseAabbs = !options.noAabbSync;
+        m_noAabbSync = options.noAabbSync;
         m_world.reset(new TimedGpuWorld(&m_infra.dispatcher, &m_infra.broadphase, &m_infra.solver, &m_infra.config,
                                         config));
         m_bodies.reset(new BtBodies);
@@ -103,6 +106,7 @@ private:
     float m_dt = 1.0f / 60;
     int m_iterations = 10;
     bool m_requireGpu = false;
+    bool m_noAabbSync = false;
 };
 
 }  // namespace
