@@ -4,6 +4,10 @@
 #include "btgpu/btGpuDynamicsWorld.h"
 
 #include "gpu_world.h"
+#include "parallel_rows.h"
+
+#include <typeinfo>
+#include <vector>
 
 #include <iostream>
 
@@ -92,6 +96,30 @@ void btGpuDynamicsWorld::setGravity(const btVector3& gravity)
 {
     // The base class sets each body's gravity; the next step sees the changed rows.
     btDiscreteDynamicsWorld::setGravity(gravity);
+}
+
+void btGpuDynamicsWorld::synchronizeMotionStates()
+{
+    std::vector<btRigidBody*> bodies;
+    if (m_synchronizeAllMotionStates) {
+        for (int i = 0; i < m_collisionObjects.size(); ++i)
+            if (btRigidBody* body = btRigidBody::upcast(m_collisionObjects[i])) bodies.push_back(body);
+    } else {
+        for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i)
+            if (m_nonStaticRigidBodies[i]->isActive()) bodies.push_back(m_nonStaticRigidBodies[i]);
+    }
+    // Only Bullet's own motion state is known to be safe to set from several threads.
+    std::vector<btRigidBody*> serial;
+    std::vector<btRigidBody*> parallel;
+    for (btRigidBody* body : bodies) {
+        btMotionState* ms = body->getMotionState();
+        if (ms && typeid(*ms) == typeid(btDefaultMotionState)) parallel.push_back(body);
+        else serial.push_back(body);
+    }
+    btgpu::forEachChunk(parallel.size(), 4096, [&](size_t begin, size_t end, int) {
+        for (size_t i = begin; i < end; ++i) synchronizeSingleMotionState(parallel[i]);
+    });
+    for (btRigidBody* body : serial) synchronizeSingleMotionState(body);
 }
 
 const btgpu::Report& btGpuDynamicsWorld::report() const { return m_gpu->m_report; }

@@ -4,6 +4,7 @@
 #include "gpu_world.h"
 
 #include "body_rows.h"
+#include "parallel_rows.h"
 #include "shared/integrate.h"
 
 #include <algorithm>
@@ -314,45 +315,61 @@ void GpuWorld::runOnDevice(int substeps, btScalar dt)
 
 void GpuWorld::writeBack(const BodyReadback& rb)
 {
-    for (size_t r = 0; r < m_rows.size(); ++r) {
-        Mirror& m = m_mirror[r];
-        uint f = m.props.flags;
-        if (!(f & BTG_BODY_DYNAMIC) || (f & BTG_BODY_EXCLUDED)) continue;
-        bool wasAsleep = (f & BTG_BODY_SLEEPING) != 0;
-        bool asleep = rb.sleepState[r] != 0;
-        if (wasAsleep && asleep) continue;  // nothing moved
-        btRigidBody* body = btRigidBody::upcast(m_rows[r]);
-        if (!body) continue;
-        BtgFloat4 p = rb.pos[r], q = rb.rot[r], v = rb.linVel[r], a = rb.angVel[r];
-        if (!btgIsFinite4(p) || !btgIsFinite4(q) || !btgIsFinite4(v) || !btgIsFinite4(a)) {
+    // Rows are independent Bullet objects: written in parallel; what needs the world (issues,
+    // motion states of bodies that fell asleep) is collected per chunk and done after, in order.
+    const size_t n = m_rows.size();
+    const size_t minPerThread = 4096;
+    const int chunks = chunkCount(n, minPerThread);
+    std::vector<std::vector<size_t>> bad(chunks), fellAsleep(chunks);
+    forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
+        for (size_t r = begin; r < end; ++r) {
+            Mirror& m = m_mirror[r];
+            uint f = m.props.flags;
+            if (!(f & BTG_BODY_DYNAMIC) || (f & BTG_BODY_EXCLUDED)) continue;
+            bool wasAsleep = (f & BTG_BODY_SLEEPING) != 0;
+            bool asleep = rb.sleepState[r] != 0;
+            if (wasAsleep && asleep) continue;  // nothing moved
+            btRigidBody* body = btRigidBody::upcast(m_rows[r]);
+            if (!body) continue;
+            BtgFloat4 p = rb.pos[r], q = rb.rot[r], v = rb.linVel[r], a = rb.angVel[r];
+            if (!btgIsFinite4(p) || !btgIsFinite4(q) || !btgIsFinite4(v) || !btgIsFinite4(a)) {
+                bad[chunk].push_back(r);
+                m.props.flags = 0xffffffffu;  // forces the good state back up next call
+                continue;
+            }
+            body->setLinearVelocity(btVector3(v.x, v.y, v.z));
+            body->setAngularVelocity(btVector3(a.x, a.y, a.z));
+            // As Bullet's integrateTransforms → proceedToTransform: also sets the interpolation
+            // transform and velocities that synchronizeMotionStates extrapolates from.
+            body->setCenterOfMassTransform(btTransform(btQuaternion(q.x, q.y, q.z, q.w), btVector3(p.x, p.y, p.z)));
+            if (asleep) {
+                body->setActivationState(ISLAND_SLEEPING);
+                fellAsleep[chunk].push_back(r);
+                m.props.flags |= BTG_BODY_SLEEPING;
+            } else if (wasAsleep) {
+                body->setActivationState(ACTIVE_TAG);
+                body->setDeactivationTime(0);
+                m.props.flags &= ~BTG_BODY_SLEEPING;
+            }
+            m.xf = body->getWorldTransform();
+            m.linVel = body->getLinearVelocity();
+            m.angVel = body->getAngularVelocity();
+        }
+    });
+    for (const std::vector<size_t>& rows : bad)
+        for (size_t r : rows) {
+            btCollisionObject* body = m_rows[r];
             int index = m_world.getCollisionObjectArray().findLinearSearch(body);
             report({Issue::Kind::BadBody,
                     "body " + std::to_string(index) + " (user index " + std::to_string(body->getUserIndex()) +
                         ") became non-finite on the device; its last good state is kept",
                     index, body->getUserIndex(), body->getCollisionShape()->getShapeType()});
-            m.props.flags = 0xffffffffu;  // forces the good state back up next call
-            continue;
         }
-        body->setLinearVelocity(btVector3(v.x, v.y, v.z));
-        body->setAngularVelocity(btVector3(a.x, a.y, a.z));
-        // As Bullet's integrateTransforms → proceedToTransform: also sets the interpolation
-        // transform and velocities that synchronizeMotionStates extrapolates from.
-        body->setCenterOfMassTransform(btTransform(btQuaternion(q.x, q.y, q.z, q.w), btVector3(p.x, p.y, p.z)));
-        if (asleep) {
-            // Stock Bullet stops a body before its island sleeps; this one moved in the step
-            // it fell asleep, so its motion state gets that last move now.
-            body->setActivationState(ISLAND_SLEEPING);
-            m_world.synchronizeSingleMotionState(body);
-            m.props.flags |= BTG_BODY_SLEEPING;
-        } else if (wasAsleep) {
-            body->setActivationState(ACTIVE_TAG);
-            body->setDeactivationTime(0);
-            m.props.flags &= ~BTG_BODY_SLEEPING;
-        }
-        m.xf = body->getWorldTransform();
-        m.linVel = body->getLinearVelocity();
-        m.angVel = body->getAngularVelocity();
-    }
+    // Stock Bullet stops a body before its island sleeps; these moved in the step they fell
+    // asleep, and synchronizeMotionStates skips sleeping bodies: their motion states get that
+    // last move here.
+    for (const std::vector<size_t>& rows : fellAsleep)
+        for (size_t r : rows) m_world.synchronizeSingleMotionState(btRigidBody::upcast(m_rows[r]));
 }
 
 bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, int* substepsDone)

@@ -39,6 +39,9 @@ public:
     void addAction(btActionInterface* action) override;
     void removeAction(btActionInterface* action) override;
     void setGravity(const btVector3& gravity) override;
+    // Bullet's synchronizeMotionStates, with the bodies whose motion state is Bullet's own
+    // btDefaultMotionState updated in parallel (an app's own motion states serially, in order).
+    void synchronizeMotionStates() override;
 
     const btgpu::Report& report() const;
     const btgpu::Config& config() const;

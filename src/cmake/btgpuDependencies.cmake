@@ -2,6 +2,7 @@
 # find_package(btgpu). Debian's BulletConfig.cmake has relative paths and no targets, so
 # Bullet comes through pkg-config ("bullet", the float build; "bullet-float64" is the double).
 find_package(OpenCL REQUIRED)
+find_package(Threads REQUIRED)
 find_package(PkgConfig REQUIRED)
 if(NOT TARGET btgpu_bullet)
   pkg_check_modules(BTGPU_BULLET REQUIRED IMPORTED_TARGET GLOBAL bullet)
