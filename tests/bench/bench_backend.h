@@ -14,6 +14,7 @@ namespace btgpu::bench {
 struct Options {
     bool noSleep = false;           // disable Bullet's deactivation on every dynamic body
     bool noAabbSync = false;        // btgpu: Config::syncBroadphaseAabbs off (apps that never query)
+    bool jacobi = false;            // btgpu: Config::solver = JacobiMassSplitting
     bool requireGpuPath = false;    // btgpu: skip (not fail) when the world is not on the GPU path
     bool b3NativeInertia = false;   // b3gpu: keep Bullet3's own (inflated) box inertia
 };

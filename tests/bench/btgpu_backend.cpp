@@ -48,6 +48,7 @@ public:
         if (m_world && !m_world->isGpuPath()) n += "; CPU PATH: " + m_world->report().cpuPathReason;
         if (m_world) n += "; redone steps " + std::to_string(m_world->report().redoneSteps);
         if (m_noAabbSync) n += "; Config::syncBroadphaseAabbs off";
+        if (m_jacobi) n += "; Jacobi with mass splitting";
         n += "; write-back column = synchronizeMotionStates+updateAabbs only "
              "(TODO: body write-back is inside the step, not separable via the public API)";
         return n;
@@ -63,6 +64,8 @@ public:
         config.profileEvery = 10;  // stage times from every 10th frame; the others run unprofiled
         config.syncBroadphaseAabbs = !options.noAabbSync;
         m_noAabbSync = options.noAabbSync;
+        if (options.jacobi) config.solver = btgpu::SolverKind::JacobiMassSplitting;
+        m_jacobi = options.jacobi;
         m_world.reset(new TimedGpuWorld(&m_infra.dispatcher, &m_infra.broadphase, &m_infra.solver, &m_infra.config,
                                         config));
         m_bodies.reset(new BtBodies);
@@ -107,6 +110,7 @@ private:
     int m_iterations = 10;
     bool m_requireGpu = false;
     bool m_noAabbSync = false;
+    bool m_jacobi = false;
 };
 
 }  // namespace
