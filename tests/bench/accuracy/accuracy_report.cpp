@@ -101,8 +101,9 @@ void writeSvg(std::ostream& out, const Case& c, const std::vector<RunResult>& ru
     std::string device;
     for (const RunResult& r : runs)
         if (r.engine == "btgpu" && !r.device.empty()) device = r.device;
-    out << "<text x=\"" << L << "\" y=\"38\" fill=\"#555\">btgpu device: " << xmlEscape(device)
-        << "; stock: float Bullet on the CPU; labels: solver, iterations (i), substeps (s)</text>\n";
+    if (device.size() > 48) device = device.substr(0, 45) + "...";
+    out << "<text x=\"" << L << "\" y=\"38\" font-size=\"10\" fill=\"#555\">btgpu on " << xmlEscape(device)
+        << "; stock: float Bullet, CPU; labels: iterations (i), substeps (s)</text>\n";
     // Grid and ticks: decades labelled, 2..9 as minor ticks.
     for (int d = int(lx0); d <= int(lx1); ++d)
         for (int m = 1; m <= (d < int(lx1) ? 9 : 1); ++m) {
