@@ -15,19 +15,20 @@ int gridSide(int copies)
     return std::max(1, int(std::ceil(std::sqrt(double(copies)))));
 }
 
-// Centre of copy i (y = 0), the grid centred on the origin.
-btVector3 cell(int i, int copies)
+// Centre of copy i (y = 0), the grid centred on the origin; spacing wider than kCopySpacing
+// for copies that are wider themselves.
+btVector3 cell(int i, int copies, double spacing = kCopySpacing)
 {
     const int side = gridSide(copies);
-    const double x = (i % side - 0.5 * (side - 1)) * kCopySpacing;
-    const double z = (i / side - 0.5 * (side - 1)) * kCopySpacing;
+    const double x = (i % side - 0.5 * (side - 1)) * spacing;
+    const double z = (i / side - 0.5 * (side - 1)) * spacing;
     return btVector3(btScalar(x), 0, btScalar(z));
 }
 
 // One ground box under every copy, top face at y = 0.
-void addSharedGround(Scene& scene, int copies, const Material& material)
+void addSharedGround(Scene& scene, int copies, const Material& material, double spacing = kCopySpacing)
 {
-    const btScalar half = btScalar(0.5 * gridSide(copies) * kCopySpacing + 20);
+    const btScalar half = btScalar(0.5 * gridSide(copies) * spacing + 20);
     scene.addBody(scene.boxShape(btVector3(half, half, half)), 0, btVector3(0, -half, 0), material);
 }
 
@@ -133,7 +134,9 @@ AccuracyScene accuracyPyramid(WorldKind kind, const Config& config, int copies, 
 {
     const int perCopy = base * (base + 1) / 2;
     AccuracyScene a = start(kind, config, "pyramid", copies, perCopy, true);
-    addSharedGround(*a.scene, copies, Material());
+    // A pyramid is 1.05 * base wide: copies kCopySpacing apart would overlap and explode.
+    const double spacing = std::max(kCopySpacing, 1.05 * base + 10);
+    addSharedGround(*a.scene, copies, Material(), spacing);
     btBoxShape* box = a.scene->boxShape(btVector3(.5, .5, .5));
     const double pitch = 1.05;  // 5 cm between neighbours in a row
     for (int i = 0; i < copies; ++i) {
@@ -142,7 +145,7 @@ AccuracyScene accuracyPyramid(WorldKind kind, const Config& config, int copies, 
             const int n = base - row;
             for (int k = 0; k < n; ++k) {
                 const double x = pitch * (k - 0.5 * (n - 1));
-                addAwake(*a.scene, box, 1, cell(i, copies) + btVector3(btScalar(x), btScalar(.5 + row), 0));
+                addAwake(*a.scene, box, 1, cell(i, copies, spacing) + btVector3(btScalar(x), btScalar(.5 + row), 0));
                 const int self = rowStart + k;
                 if (row == 0) a.supports.push_back({self, -1});
                 else {
