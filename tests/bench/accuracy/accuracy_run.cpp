@@ -12,7 +12,8 @@ namespace btgpu::accuracy {
 
 bool solverKindSupported(const std::string& engine, const std::string& kind)
 {
-    return (engine == "stock" || engine == "btgpu") && kind == "pgs";
+    if (kind == "pgs") return engine == "stock" || engine == "btgpu";
+    return kind == "jacobi" && engine == "btgpu";  // Jacobi with mass splitting: btgpu only
 }
 
 RunResult runCase(const Case& c, const std::string& engine, const Setting& s, int copies, const Config& config)
@@ -26,7 +27,9 @@ RunResult runCase(const Case& c, const std::string& engine, const Setting& s, in
         return r;
     }
     const scenes::WorldKind kind = engine == "btgpu" ? scenes::WorldKind::Gpu : scenes::WorldKind::Stock;
-    scenes::AccuracyScene a = c.make(kind, config, copies);
+    Config chosen = config;
+    if (s.solver == "jacobi") chosen.solver = SolverKind::JacobiMassSplitting;
+    scenes::AccuracyScene a = c.make(kind, chosen, copies);
     r.copies = a.copies;
     r.bodies = a.copies * a.bodiesPerCopy;
     a.scene->world().getSolverInfo().m_numIterations = s.iterations;

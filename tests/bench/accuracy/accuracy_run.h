@@ -26,7 +26,7 @@ struct RunResult {
 };
 
 // Solver kinds each engine has: "pgs" (Bullet's sequential impulse; btgpu's batched PGS).
-// A Jacobi kind can be added here once btgpu's Config offers it.
+// Kinds: "pgs" (both engines), "jacobi" (btgpu's Jacobi with mass splitting).
 bool solverKindSupported(const std::string& engine, const std::string& kind);
 
 RunResult runCase(const Case& c, const std::string& engine, const Setting& s, int copies, const Config& config);
