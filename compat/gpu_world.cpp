@@ -279,7 +279,7 @@ void GpuWorld::runOnDevice(int substeps, btScalar dt)
     DeviceWorld& w = *m_dev;
     StepSettings s = settings(substeps, dt);
     resetStatus(w);
-    takeSnapshot(w, m_snapshot);
+    takeSnapshot(w, m_snapshot, m_plan, substeps);
     // A buffer that overflowed grows and the call is redone from the snapshot: no contact is
     // ever dropped. Growth is geometric, so this settles after a few tries.
     for (int attempt = 0;; ++attempt) {
@@ -289,6 +289,9 @@ void GpuWorld::runOnDevice(int substeps, btScalar dt)
         bool pairOverflow = status & BTG_STATUS_PAIR_OVERFLOW;
         bool contactOverflow = status & BTG_STATUS_CONTACT_OVERFLOW;
         if ((!pairOverflow && !contactOverflow) || attempt >= 8) break;
+        // Back to the state before the call first (the cache returns to prevContacts), then
+        // grow, keeping the cache's contents.
+        restoreSnapshot(w, m_snapshot);
         size_t pairs = m_readback.counters[kPairCount];
         if (pairOverflow) w.pairCapacity = std::max(w.pairCapacity * 2, pairs + pairs / 4 + 64);
         if (contactOverflow || pairOverflow) w.contactCapacity = std::max(w.contactCapacity * 2, std::min(w.pairCapacity, pairs + 64));
@@ -299,7 +302,7 @@ void GpuWorld::runOnDevice(int substeps, btScalar dt)
         ++m_report.redoneSteps;
         report({Issue::Kind::Overflow, "pair/contact buffers grew to " + std::to_string(w.pairCapacity) + "/" +
                                            std::to_string(w.contactCapacity) + "; step redone"});
-        restoreSnapshot(w, m_snapshot);
+        takeSnapshot(w, m_snapshot, m_plan, substeps);  // the restored state, for a further redo
         resetStatus(w);
     }
     // Next step colors as many rounds as this one needed plus slack; leftovers (solved

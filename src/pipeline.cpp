@@ -15,6 +15,7 @@
 #include "stages/update_aabbs.h"
 #include "stages/update_activation.h"
 
+#include <algorithm>
 #include <utility>
 
 namespace btgpu {
@@ -76,28 +77,36 @@ void resetStatus(DeviceWorld& w)
     fillCounters(w, kNanBody, 1, 0xffffffffu);
 }
 
-void takeSnapshot(DeviceWorld& w, Snapshot& s)
+void takeSnapshot(DeviceWorld& w, Snapshot& s, const Plan& plan, int substeps)
 {
     size_t n = size_t(w.numBodies);
     s.pos.copyFrom(w.ctx, w.pos, n);
     s.rot.copyFrom(w.ctx, w.rot, n);
     s.linVel.copyFrom(w.ctx, w.linVel, n);
     s.angVel.copyFrom(w.ctx, w.angVel, n);
-    s.prevContacts.copyFrom(w.ctx, w.prevContacts, w.prevContacts.capacity());
     s.counters.copyFrom(w.ctx, w.counters, kNumCounters);
+    const bool collide = plan.kinds.any() && n > 0;
+    s.cacheCopied = collide && substeps > 1;
+    s.cacheSwapped = collide && substeps == 1;
+    if (s.cacheCopied) s.prevContacts.copyFrom(w.ctx, w.prevContacts, w.prevContacts.capacity());
+    else s.prevContacts.release();
 }
 
-void restoreSnapshot(DeviceWorld& w, const Snapshot& s)
+void restoreSnapshot(DeviceWorld& w, Snapshot& s)
 {
     size_t n = size_t(w.numBodies);
     w.pos.copyFrom(w.ctx, s.pos, n);
     w.rot.copyFrom(w.ctx, s.rot, n);
     w.linVel.copyFrom(w.ctx, s.linVel, n);
     w.angVel.copyFrom(w.ctx, s.angVel, n);
-    // The cache keeps the capacity it has grown to; only the old entries come back.
-    size_t m = s.prevContacts.capacity() < w.prevContacts.capacity() ? s.prevContacts.capacity() : w.prevContacts.capacity();
-    BTGPU_CL_CHECK(clEnqueueCopyBuffer(w.ctx.queue(), s.prevContacts.mem(), w.prevContacts.mem(), 0, 0,
-                                       m * sizeof(BtgContact), 0, nullptr, nullptr));
+    if (s.cacheSwapped) {
+        std::swap(w.contacts, w.prevContacts);
+        s.cacheSwapped = false;  // a second restore of the same snapshot must not swap again
+    } else if (s.cacheCopied) {
+        size_t m = std::min(s.prevContacts.capacity(), w.prevContacts.capacity());
+        BTGPU_CL_CHECK(clEnqueueCopyBuffer(w.ctx.queue(), s.prevContacts.mem(), w.prevContacts.mem(), 0, 0,
+                                           m * sizeof(BtgContact), 0, nullptr, nullptr));
+    }
     w.counters.copyFrom(w.ctx, s.counters, kNumCounters);
 }
 
