@@ -277,7 +277,8 @@ StepSettings GpuWorld::settings(int substeps, btScalar dt) const
 void GpuWorld::runOnDevice(int substeps, btScalar dt)
 {
     DeviceWorld& w = *m_dev;
-    StepSettings s = settings(substeps, dt);
+    const int k = std::max(m_config.internalSubsteps, 1);
+    StepSettings s = settings(substeps * k, dt / btScalar(k));
     resetStatus(w);
     takeSnapshot(w, m_snapshot, m_plan, substeps);
     // A buffer that overflowed grows and the call is redone from the snapshot: no contact is

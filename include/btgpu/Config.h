@@ -33,6 +33,11 @@ struct Config {
     // m: points closer than this become contacts (Bullet's gContactBreakingThreshold).
     float contactThreshold = 0.02f;
     SolverKind solver = SolverKind::BatchedPgs;
+    // Device substeps per fixed step (stepSimulation's own substeps are not touched: the app
+    // sees the same steps, motion states and interpolation). Stiff scenes (mass ratios, tall
+    // stacks) converge much better from more, shorter steps than from more iterations; each
+    // costs a full pipeline pass on the device and nothing on the host.
+    int internalSubsteps = 1;
     // Upper bound on the solver's batches (graph colors) per iteration; contacts the coloring
     // cannot place within it run serially. The number actually launched follows the scene
     // (BatchedPgs only).

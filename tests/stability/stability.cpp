@@ -229,7 +229,11 @@ std::string figure(const Outcome& o)
 
 void record(const std::string& caseName, const Outcome& o, const std::string& figureText)
 {
-    const std::string engine = scenes::toString(o.kind);
+    recordAs(caseName, scenes::toString(o.kind), o, figureText);
+}
+
+void recordAs(const std::string& caseName, const std::string& engine, const Outcome& o, const std::string& figureText)
+{
     std::string result = o.pass ? "pass" : "FAIL";
     if (!o.pass) result += " (" + o.why.substr(0, o.why.size() >= 2 ? o.why.size() - 2 : 0) + ")";
     ::testing::Test::RecordProperty(engine + "_result", result);
@@ -264,6 +268,15 @@ void runBoth(const std::string& caseName, const Builder& make, const Criteria& c
     const Outcome stock = run(make, WorldKind::Stock, criteria);
     const Outcome gpu = run(make, WorldKind::Gpu, criteria);
     judge(caseName, stock, gpu);
+}
+
+void runEarned(const std::string& caseName, const Builder& make, const Criteria& criteria, int internalSubsteps)
+{
+    Config config;
+    config.internalSubsteps = internalSubsteps;
+    const Outcome gpu = run(make, WorldKind::Gpu, criteria, config);
+    recordAs(caseName, "btgpu, " + std::to_string(internalSubsteps) + " internal substeps", gpu, figure(gpu));
+    EXPECT_TRUE(gpu.pass) << caseName << " with " << internalSubsteps << " internal substeps: " << gpu.why;
 }
 
 }  // namespace btgpu::stability

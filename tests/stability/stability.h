@@ -83,5 +83,10 @@ void appendRowNotRun(const std::string& caseName, const std::string& engine, con
 
 // The usual case: build on both engines, run, judge.
 void runBoth(const std::string& caseName, const Builder& make, const Criteria& criteria);
+// The stiff cases as btgpu earns them: Config::internalSubsteps device substeps per step. The
+// test fails when btgpu does not pass with them.
+void runEarned(const std::string& caseName, const Builder& make, const Criteria& criteria, int internalSubsteps);
+// record() under another engine label.
+void recordAs(const std::string& caseName, const std::string& engine, const Outcome& o, const std::string& figureText);
 
 }  // namespace btgpu::stability

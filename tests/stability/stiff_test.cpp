@@ -43,6 +43,15 @@ TEST(MassRatio, Ten) { massRatioCase(10); }
 TEST(MassRatio, Hundred) { massRatioCase(100); }
 TEST(MassRatio, Thousand) { massRatioCase(1000); }
 
+// Stock fails this at 10 iterations; btgpu passes it with shorter device steps (the app's
+// steps, motion states and interpolation unchanged). 1000:1 is not earned yet: with 32 internal
+// substeps it holds (penetration 6e-5 mm, drift 5 mm) but jitters until it sleeps at 2 s.
+TEST(MassRatio, HundredWithInternalSubsteps)
+{
+    runEarned("mass ratio 100:1", [](WorldKind k, const Config& c) { return st::massRatio(k, c, 100); },
+              resting(3, 2, 2), 4);
+}
+
 TEST(MassRatio, HeavyPlankOnTwoBoxes)
 {
     // The plank (body 3) is 1 thick: the smallest dimension of every body is 1.
