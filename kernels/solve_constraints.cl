@@ -1,6 +1,7 @@
 /* solve_constraints.cl — Stage: solve (batched projected Gauss-Seidel, one color per launch).
- * Launch: solve_color: one work-item per contact slot (contactCapacity), early-out unless the
- * contact has the launch's color (no dynamic body twice in a color, so no races);
+ * Launch: color_count / color_fill: one work-item per contact slot, sorting contact indices
+ * into per-color ranges; solve_color_range: one work-item per slot of one color's range (no
+ * dynamic body twice in a color, so no races); solve_fused: one work-group for small scenes;
  * solve_color_serial: one work-item that walks, in index order, the contacts whose color is the
  * last one or higher (so a caller launching fewer colors than were assigned still solves all).
  * mode 0: apply warm-start impulses; 1: velocity iteration; 2: split-impulse iteration.
@@ -42,15 +43,6 @@ static void solve_one(int i, int mode, __global BtgContact* contacts, __global c
         ang[c.bodyB] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, ang[c.bodyB].w);
     }
     if (mode != 0) contacts[i] = c;
-}
-
-__kernel void solve_color(__global BtgContact* contacts, __global const uint* restrict counters, int contactCapacity,
-                          __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
-                          __global BtgFloat4* lin, __global BtgFloat4* ang, int color, int mode)
-{
-    int i = (int)get_global_id(0);
-    if (i >= (int)min(counters[COUNTER_CONTACTS], (uint)contactCapacity) || contacts[i].color != color) return;
-    solve_one(i, mode, contacts, props, invInertiaWorld, lin, ang);
 }
 
 __kernel void solve_color_serial(__global BtgContact* contacts, __global const uint* restrict counters,
@@ -96,4 +88,53 @@ __kernel void solve_fused(__global BtgContact* contacts, __global const uint* re
                 if (contacts[i].color >= last) solve_one(i, mode, contacts, props, invInertiaWorld, lin, ang);
         barrier(CLK_GLOBAL_MEM_FENCE);
     }
+}
+
+/* Color ranges, so a color's launch touches only its own contacts instead of reading every
+ * contact's color: count per color, exclusive offsets (one work-item: there are few colors),
+ * then each contact writes its index into its color's range. The order inside a range is the
+ * atomics' order, which does not matter: contacts of one color share no dynamic body, so
+ * solving them in any order gives the same result. */
+__kernel void color_count(__global const BtgContact* restrict contacts, __global const uint* restrict counters,
+                          int contactCapacity, __global uint* colorCount, int numColors)
+{
+    int i = (int)get_global_id(0);
+    if (i >= (int)min(counters[COUNTER_CONTACTS], (uint)contactCapacity)) return;
+    int c = contacts[i].color;
+    if (c >= 0 && c < numColors - 1) atomic_inc(&colorCount[c]);
+}
+
+__kernel void color_offsets(__global uint* colorCount, __global uint* colorStart, int numColors)
+{
+    if (get_global_id(0) != 0) return;
+    uint sum = 0u;
+    for (int c = 0; c < numColors; ++c) {
+        colorStart[c] = sum;
+        sum += c < numColors - 1 ? colorCount[c] : 0u;
+        colorCount[c] = 0u; /* reused as the fill cursor */
+    }
+    colorStart[numColors] = sum;
+}
+
+__kernel void color_fill(__global const BtgContact* restrict contacts, __global const uint* restrict counters,
+                         int contactCapacity, __global const uint* restrict colorStart, __global uint* colorCursor,
+                         __global int* colorOrder, int numColors)
+{
+    int i = (int)get_global_id(0);
+    if (i >= (int)min(counters[COUNTER_CONTACTS], (uint)contactCapacity)) return;
+    int c = contacts[i].color;
+    if (c >= 0 && c < numColors - 1) colorOrder[colorStart[c] + atomic_inc(&colorCursor[c])] = i;
+}
+
+/* solve_color_range: one work-item per slot of the color's range (launched over the contact
+ * capacity; items past the range return after two reads). */
+__kernel void solve_color_range(__global BtgContact* contacts, __global const uint* restrict colorStart,
+                                __global const int* restrict colorOrder, __global const BtgBodyProps* restrict props,
+                                __global const BtgFloat4* restrict invInertiaWorld, __global BtgFloat4* lin,
+                                __global BtgFloat4* ang, int color, int mode)
+{
+    int k = (int)get_global_id(0);
+    int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
+    if (k >= end - begin) return;
+    solve_one(colorOrder[begin + k], mode, contacts, props, invInertiaWorld, lin, ang);
 }

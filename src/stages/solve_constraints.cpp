@@ -41,15 +41,31 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             .arg(numColors).arg(iterations).arg(params.splitImpulse ? 1 : 0).run(group, group);
         return;
     }
-    cl_kernel parallel = prog.kernel("solve_color");
+    // Contacts sorted into per-color ranges once, so each color's launch reads only its own.
+    SolverScratch& sc = w.solverScratch;
+    sc.colorCount.reserve(ctx, size_t(numColors) + 1);
+    sc.colorStart.reserve(ctx, size_t(numColors) + 1);
+    sc.colorOrder.reserve(ctx, slots);
+    sc.colorCount.zero(ctx, size_t(numColors) + 1);
+    cl::Launch(ctx, prog.kernel("color_count"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
+        .arg(sc.colorCount).arg(numColors).run(slots);
+    cl::Launch(ctx, prog.kernel("color_offsets"), &w.profiler).arg(sc.colorCount).arg(sc.colorStart).arg(numColors)
+        .run(1, 1);
+    cl::Launch(ctx, prog.kernel("color_fill"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
+        .arg(sc.colorStart).arg(sc.colorCount).arg(sc.colorOrder).arg(numColors).run(slots);
+    cl_kernel parallel = prog.kernel("solve_color_range");
     cl_kernel serial = prog.kernel("solve_color_serial");
     auto pass = [&](int mode, cl::DeviceArray<BtgFloat4>& lin, cl::DeviceArray<BtgFloat4>& ang) {
         for (int color = 0; color < numColors; ++color) {
             // The last color holds the coloring's leftovers (usually none: the serial kernel
             // then returns at once).
-            bool last = color == numColors - 1;
-            cl::Launch(ctx, last ? serial : parallel, &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
-                .arg(w.props).arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).run(last ? 1 : slots, last ? 1 : 64);
+            if (color == numColors - 1) {
+                cl::Launch(ctx, serial, &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props)
+                    .arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).run(1, 1);
+            } else {
+                cl::Launch(ctx, parallel, &w.profiler).arg(w.contacts).arg(sc.colorStart).arg(sc.colorOrder)
+                    .arg(w.props).arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).run(slots, 64);
+            }
         }
     };
     pass(kWarmStart, w.linVel, w.angVel);
