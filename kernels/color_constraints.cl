@@ -48,12 +48,12 @@ static int body_free(__global const BtgBodyProps* restrict props, __global const
     return !btgIsSolverDynamic(props[body].flags) || bodyColor[body] != color;
 }
 
-__kernel void color_claim(__global const BtgContact* restrict contacts, __global const uint* restrict counters,
-                          int contactCapacity, __global const BtgBodyProps* restrict props, __global int* claim,
-                          __global const int* restrict bodyColor, int color)
+/* One contact's claim in a sub-round: an uncolored contact whose dynamic bodies are still free
+ * in this color bids for them with its priority. */
+static void claim_contact(__global const BtgContact* restrict contacts, int i, __global const BtgBodyProps* restrict props,
+                          __global int* claim, __global const int* restrict bodyColor, int color)
 {
-    int i = (int)get_global_id(0);
-    if (i >= contact_count(counters, contactCapacity) || contacts[i].color >= 0) return;
+    if (contacts[i].color >= 0) return;
     int a = contacts[i].bodyA, b = contacts[i].bodyB;
     if (!body_free(props, bodyColor, a, color) || !body_free(props, bodyColor, b, color)) return;
     int p = btgColorPriority(i);
@@ -61,12 +61,12 @@ __kernel void color_claim(__global const BtgContact* restrict contacts, __global
     if (btgIsSolverDynamic(props[b].flags)) atomic_min(&claim[b], p);
 }
 
-__kernel void color_assign(__global BtgContact* contacts, __global uint* counters, int contactCapacity,
+/* One contact's assignment: it takes the color when it won every dynamic body it bid for. */
+static void assign_contact(__global BtgContact* contacts, int i, __global uint* counters,
                            __global const BtgBodyProps* restrict props, __global const int* restrict claim,
                            __global int* bodyColor, int color)
 {
-    int i = (int)get_global_id(0);
-    if (i >= contact_count(counters, contactCapacity) || contacts[i].color >= 0) return;
+    if (contacts[i].color >= 0) return;
     int a = contacts[i].bodyA, b = contacts[i].bodyB;
     if (!body_free(props, bodyColor, a, color) || !body_free(props, bodyColor, b, color)) return;
     int p = btgColorPriority(i);
@@ -77,6 +77,22 @@ __kernel void color_assign(__global BtgContact* contacts, __global uint* counter
     if (dynA) bodyColor[a] = color;
     if (dynB) bodyColor[b] = color;
     atomic_max(&counters[BTG_COUNTER_COLORS_USED], (uint)(color + 1));
+}
+
+__kernel void color_claim(__global const BtgContact* restrict contacts, __global const uint* restrict counters,
+                          int contactCapacity, __global const BtgBodyProps* restrict props, __global int* claim,
+                          __global const int* restrict bodyColor, int color)
+{
+    int i = (int)get_global_id(0);
+    if (i < contact_count(counters, contactCapacity)) claim_contact(contacts, i, props, claim, bodyColor, color);
+}
+
+__kernel void color_assign(__global BtgContact* contacts, __global uint* counters, int contactCapacity,
+                           __global const BtgBodyProps* restrict props, __global const int* restrict claim,
+                           __global int* bodyColor, int color)
+{
+    int i = (int)get_global_id(0);
+    if (i < contact_count(counters, contactCapacity)) assign_contact(contacts, i, counters, props, claim, bodyColor, color);
 }
 
 /* Contacts left after the rounds share the last color, which the solver runs serially. */
@@ -106,27 +122,9 @@ __kernel void color_fused(__global BtgContact* contacts, __global uint* counters
         for (int sub = 0; sub < BTG_COLOR_SUB_ROUNDS; ++sub) {
             for (int b = lid; b < numBodies; b += size) claim[b] = NO_CLAIM;
             barrier(CLK_GLOBAL_MEM_FENCE);
-            for (int i = lid; i < n; i += size) {
-                if (contacts[i].color >= 0) continue;
-                int a = contacts[i].bodyA, b = contacts[i].bodyB;
-                if (!body_free(props, bodyColor, a, color) || !body_free(props, bodyColor, b, color)) continue;
-                int p = btgColorPriority(i);
-                if (btgIsSolverDynamic(props[a].flags)) atomic_min(&claim[a], p);
-                if (btgIsSolverDynamic(props[b].flags)) atomic_min(&claim[b], p);
-            }
+            for (int i = lid; i < n; i += size) claim_contact(contacts, i, props, claim, bodyColor, color);
             barrier(CLK_GLOBAL_MEM_FENCE);
-            for (int i = lid; i < n; i += size) {
-                if (contacts[i].color >= 0) continue;
-                int a = contacts[i].bodyA, b = contacts[i].bodyB;
-                if (!body_free(props, bodyColor, a, color) || !body_free(props, bodyColor, b, color)) continue;
-                int p = btgColorPriority(i);
-                int dynA = btgIsSolverDynamic(props[a].flags), dynB = btgIsSolverDynamic(props[b].flags);
-                if ((dynA && claim[a] != p) || (dynB && claim[b] != p)) continue;
-                contacts[i].color = color;
-                if (dynA) bodyColor[a] = color;
-                if (dynB) bodyColor[b] = color;
-                atomic_max(&counters[BTG_COUNTER_COLORS_USED], (uint)(color + 1));
-            }
+            for (int i = lid; i < n; i += size) assign_contact(contacts, i, counters, props, claim, bodyColor, color);
             barrier(CLK_GLOBAL_MEM_FENCE);
         }
     }
