@@ -7,9 +7,17 @@
 #include <string>
 #include <vector>
 
-#include "bench_scene.h"
+#include "scenes/scene_specs.h"
 
 namespace btgpu::bench {
+
+// The scene data is the shared scene library's (tests/scenes/scene_specs.h).
+using scenes::spec::BodySpec;
+using scenes::spec::Scene;
+using scenes::spec::ShapeKind;
+using scenes::spec::dimsForCount;
+using scenes::spec::makeMixed;
+using scenes::spec::makeStack;
 
 struct Options {
     bool noSleep = false;           // disable Bullet's deactivation on every dynamic body

@@ -1,6 +1,10 @@
 // scenes.cpp — Scene (owning every Bullet object, building stock or GPU worlds alike), the
 // scene builders, the catalog by name, and the measures the tests and demos compare.
 #include "scenes/scenes.h"
+#include "scenes/scene_specs.h"
+
+#include <map>
+#include <tuple>
 
 #include <algorithm>
 #include <cmath>
@@ -156,25 +160,21 @@ btRigidBody* addGround(Scene& scene, btScalar halfExtent = 50, const Material& m
                          btVector3(0, -halfExtent, 0), material);
 }
 
+// The lattice from the shared plain-data spec (scene_specs.h), so tests, demos and the
+// benchmark's three backends simulate the very same bodies.
 ScenePtr makeLattice(WorldKind kind, int nx, int ny, int nz, const Config& config, bool boxes)
 {
     auto scene = std::make_unique<Scene>(kind, config, boxes ? "cubes" : "spheres");
-    const Material material{1, 0};
-    addGround(*scene, 400, material);
-    btCollisionShape* shape = boxes ? static_cast<btCollisionShape*>(scene->boxShape(btVector3(1, 1, 1)))
-                                    : static_cast<btCollisionShape*>(scene->sphereShape(1));
-    const btScalar pitch = btScalar(2.2);
-    // Centred on the origin so the lattice sits in the middle of the ground whatever its size.
-    const btScalar x0 = -pitch * btScalar(nx - 1) / 2, z0 = -pitch * btScalar(nz - 1) / 2;
-    for (int y = 0; y < ny; ++y) {
-        // Odd layers shifted by half a box so each box rests on four below (not a tower of columns).
-        const btScalar shift = (y % 2) ? btScalar(1) : btScalar(0);
-        for (int x = 0; x < nx; ++x)
-            for (int z = 0; z < nz; ++z)
-                scene->addBody(shape, 1,
-                               btVector3(x0 + pitch * btScalar(x) + shift, btScalar(1.2) + pitch * btScalar(y),
-                                         z0 + pitch * btScalar(z) + shift),
-                               material);
+    const spec::Scene data = spec::makeStack(nx, ny, nz, boxes ? spec::ShapeKind::Box : spec::ShapeKind::Sphere);
+    std::map<std::tuple<int, float, float, float>, btCollisionShape*> shapes;  // shared by equal bodies
+    for (const spec::BodySpec& b : data.bodies) {
+        const bool box = b.shape == spec::ShapeKind::Box;
+        auto key = std::make_tuple(box ? 0 : 1, box ? b.half[0] : b.radius, box ? b.half[1] : 0.0f, box ? b.half[2] : 0.0f);
+        btCollisionShape*& shape = shapes[key];
+        if (!shape)
+            shape = box ? static_cast<btCollisionShape*>(scene->boxShape(btVector3(b.half[0], b.half[1], b.half[2])))
+                        : static_cast<btCollisionShape*>(scene->sphereShape(b.radius));
+        scene->addBody(shape, b.mass, btVector3(b.pos[0], b.pos[1], b.pos[2]), Material{b.friction, b.restitution});
     }
     return scene;
 }

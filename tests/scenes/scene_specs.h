@@ -1,13 +1,13 @@
-// bench_scene.h — the benchmark scenes as plain data (a list of bodies), so the btgpu, stock
-// Bullet and Bullet3 backends all instantiate exactly the same bodies. Ground first (index 0,
-// which Bullet3's solver treats as its static body), then other statics, then the dynamics.
-// TODO: move to tests/scenes/ once the shared scene library lands there.
+// scene_specs.h — the large scenes (cubes, spheres, mixed) as plain data (a list of bodies), so
+// the scene library, the benchmark's btgpu, stock Bullet and Bullet3 backends all instantiate
+// exactly the same bodies. Ground first (index 0, which Bullet3's solver treats as its static
+// body), then other statics, then the dynamics.
 #pragma once
 #include <cstdint>
 #include <string>
 #include <vector>
 
-namespace btgpu::bench {
+namespace btgpu::scenes::spec {
 
 enum class ShapeKind { Box, Sphere };
 
@@ -37,4 +37,4 @@ Scene makeMixed(std::uint32_t seed = 12345u);
 // Sizes named by --n: 1000, 8000, 32768, 112500, 1000000; false if n is not one of them.
 bool dimsForCount(long n, int dims[3]);
 
-}  // namespace btgpu::bench
+}  // namespace btgpu::scenes::spec

@@ -1,7 +1,7 @@
-// bench_scene.cpp — builds the benchmark scenes described in bench_scene.h.
-#include "bench_scene.h"
+// scene_specs.cpp — builds the large scenes described in scene_specs.h.
+#include "scene_specs.h"
 
-namespace btgpu::bench {
+namespace btgpu::scenes::spec {
 
 namespace {
 
@@ -104,4 +104,4 @@ bool dimsForCount(long n, int dims[3])
     return false;
 }
 
-}  // namespace btgpu::bench
+}  // namespace btgpu::scenes::spec
