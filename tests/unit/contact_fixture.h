@@ -4,6 +4,9 @@
 #include "reference/contact_solver_reference.h"
 #include "world/device_world.h"
 
+#include <algorithm>
+#include <cmath>
+#include <gtest/gtest.h>
 #include <random>
 #include <vector>
 
@@ -133,6 +136,40 @@ inline std::vector<BtgContact> downloadContacts(DeviceWorld& w)
     std::vector<uint> counters = w.counters.download(w.ctx, kNumCounters);
     size_t n = std::min<size_t>(counters[kContactCount], w.contactCapacity);
     return w.contacts.download(w.ctx, n);
+}
+
+// Device against reference: the three velocity components within tol.
+inline void expectNear4(BtgFloat4 got, BtgFloat4 want, float tol, const char* what, size_t i)
+{
+    EXPECT_NEAR(got.x, want.x, tol) << what << " " << i;
+    EXPECT_NEAR(got.y, want.y, tol) << what << " " << i;
+    EXPECT_NEAR(got.z, want.z, tol) << what << " " << i;
+}
+
+// A solver stage's device result against its reference: every body's velocities and push
+// velocities, then every contact's accumulated impulses, within tol. Returns the largest
+// velocity deviation (for the test's record).
+inline float expectSolvedAlike(const ref::ContactBodies& got, const std::vector<BtgContact>& gotContacts,
+                               const ref::ContactBodies& want, const std::vector<BtgContact>& wantContacts, float tol)
+{
+    float worst = 0.0f;
+    for (size_t i = 0; i < want.props.size(); ++i) {
+        expectNear4(got.linVel[i], want.linVel[i], tol, "linVel", i);
+        expectNear4(got.angVel[i], want.angVel[i], tol, "angVel", i);
+        expectNear4(got.pushLin[i], want.pushLin[i], tol, "pushLin", i);
+        expectNear4(got.pushAng[i], want.pushAng[i], tol, "pushAng", i);
+        for (int e = 0; e < 3; ++e)
+            worst = std::max({worst, std::fabs(btgLane(got.linVel[i], e) - btgLane(want.linVel[i], e)),
+                              std::fabs(btgLane(got.angVel[i], e) - btgLane(want.angVel[i], e))});
+    }
+    EXPECT_EQ(gotContacts.size(), wantContacts.size());
+    for (size_t i = 0; i < std::min(gotContacts.size(), wantContacts.size()); ++i) {
+        expectNear4(gotContacts[i].normalImpulse, wantContacts[i].normalImpulse, tol, "normalImpulse", i);
+        expectNear4(gotContacts[i].pushImpulse, wantContacts[i].pushImpulse, tol, "pushImpulse", i);
+        expectNear4(gotContacts[i].friction1Impulse, wantContacts[i].friction1Impulse, tol, "friction1Impulse", i);
+        expectNear4(gotContacts[i].friction2Impulse, wantContacts[i].friction2Impulse, tol, "friction2Impulse", i);
+    }
+    return worst;
 }
 
 }  // namespace btgpu::test

@@ -65,13 +65,6 @@ Result runReference(const ref::ContactBodies& b, const std::vector<BtgManifold>&
     return r;
 }
 
-void expectNear4(BtgFloat4 got, BtgFloat4 want, float tol, const char* what, size_t i)
-{
-    EXPECT_NEAR(got.x, want.x, tol) << what << " " << i;
-    EXPECT_NEAR(got.y, want.y, tol) << what << " " << i;
-    EXPECT_NEAR(got.z, want.z, tol) << what << " " << i;
-}
-
 float normalSum(const BtgContact& c)
 {
     float s = 0.0f;
@@ -123,25 +116,10 @@ TEST(SolveJacobi, MatchesReferenceWithWarmStart)
     EXPECT_EQ(0, std::memcmp(again.bodies.pushLin.data(), d.bodies.pushLin.data(), d.bodies.pushLin.size() * sizeof(BtgFloat4)));
 
     const float tv = 10 * tol::kStageAbs;  // ten iterations of accumulated rounding
-    for (size_t i = 0; i < s.bodies.props.size(); ++i) {
-        expectNear4(d.bodies.linVel[i], r.bodies.linVel[i], tv, "linVel", i);
-        expectNear4(d.bodies.angVel[i], r.bodies.angVel[i], tv, "angVel", i);
-        expectNear4(d.bodies.pushLin[i], r.bodies.pushLin[i], tv, "pushLin", i);
-        expectNear4(d.bodies.pushAng[i], r.bodies.pushAng[i], tv, "pushAng", i);
-    }
-    float worst = 0.0f;
-    for (size_t i = 0; i < s.bodies.props.size(); ++i)
-        for (int e = 0; e < 3; ++e)
-            worst = std::max({worst, std::fabs(btgLane(d.bodies.linVel[i], e) - btgLane(r.bodies.linVel[i], e)),
-                              std::fabs(btgLane(d.bodies.angVel[i], e) - btgLane(r.bodies.angVel[i], e))});
-    RecordProperty("max_velocity_deviation", std::to_string(worst));
-    ASSERT_EQ(d.contacts.size(), r.contacts.size());
+    RecordProperty("max_velocity_deviation",
+                   std::to_string(test::expectSolvedAlike(d.bodies, d.contacts, r.bodies, r.contacts, tv)));
     bool warm = false;
-    for (size_t i = 0; i < r.contacts.size(); ++i) {
-        expectNear4(d.contacts[i].normalImpulse, r.contacts[i].normalImpulse, tv, "normalImpulse", i);
-        expectNear4(d.contacts[i].pushImpulse, r.contacts[i].pushImpulse, tv, "pushImpulse", i);
-        expectNear4(d.contacts[i].friction1Impulse, r.contacts[i].friction1Impulse, tv, "friction1Impulse", i);
-        expectNear4(d.contacts[i].friction2Impulse, r.contacts[i].friction2Impulse, tv, "friction2Impulse", i);
+    for (size_t i = 0; i < std::min(d.contacts.size(), r.contacts.size()); ++i) {
         warm = warm || btgLane(d1.contacts[i].normalImpulse, 0) > 0.0f;
     }
     EXPECT_TRUE(warm);
@@ -161,8 +139,8 @@ TEST(SolveJacobi, RestingBoxStops)
     ASSERT_EQ(d.contacts.size(), 1u);
     EXPECT_NEAR(normalSum(d.contacts[0]), 1.0f * kG * kDt, 1e-4f);  // m g dt
     for (int k = 0; k < 4; ++k) EXPECT_GE(btgLane(d.contacts[0].normalImpulse, k), 0.0f);
-    expectNear4(d.bodies.linVel[1], btgZero4(), 1e-4f, "linVel", 1);
-    expectNear4(d.bodies.angVel[1], btgZero4(), 1e-4f, "angVel", 1);
+    test::expectNear4(d.bodies.linVel[1], btgZero4(), 1e-4f, "linVel", 1);
+    test::expectNear4(d.bodies.angVel[1], btgZero4(), 1e-4f, "angVel", 1);
 }
 
 TEST(SolveJacobi, TwoBoxStackComesToRest)
