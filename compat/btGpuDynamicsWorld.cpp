@@ -100,26 +100,29 @@ void btGpuDynamicsWorld::setGravity(const btVector3& gravity)
 
 void btGpuDynamicsWorld::synchronizeMotionStates()
 {
-    std::vector<btRigidBody*> bodies;
-    if (m_synchronizeAllMotionStates) {
-        for (int i = 0; i < m_collisionObjects.size(); ++i)
-            if (btRigidBody* body = btRigidBody::upcast(m_collisionObjects[i])) bodies.push_back(body);
-    } else {
-        for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i)
-            if (m_nonStaticRigidBodies[i]->isActive()) bodies.push_back(m_nonStaticRigidBodies[i]);
-    }
-    // Only Bullet's own motion state is known to be safe to set from several threads.
-    std::vector<btRigidBody*> serial;
-    std::vector<btRigidBody*> parallel;
-    for (btRigidBody* body : bodies) {
-        btMotionState* ms = body->getMotionState();
-        if (ms && typeid(*ms) == typeid(btDefaultMotionState)) parallel.push_back(body);
-        else serial.push_back(body);
-    }
-    btgpu::forEachChunk(parallel.size(), 4096, [&](size_t begin, size_t end, int) {
-        for (size_t i = begin; i < end; ++i) synchronizeSingleMotionState(parallel[i]);
+    // The bodies the base class visits: every rigid body, or the active non-static ones.
+    const bool all = m_synchronizeAllMotionStates;
+    const size_t n = size_t(all ? m_collisionObjects.size() : m_nonStaticRigidBodies.size());
+    auto bodyAt = [&](size_t i) -> btRigidBody* {
+        if (all) return btRigidBody::upcast(m_collisionObjects[int(i)]);
+        btRigidBody* body = m_nonStaticRigidBodies[int(i)];
+        return body->isActive() ? body : nullptr;
+    };
+    // Only Bullet's own motion state is known to be safe to set from several threads: those are
+    // set in parallel chunks; the app's own motion states are called after, serially, in order.
+    const size_t minPerThread = 4096;
+    std::vector<std::vector<btRigidBody*>> serial(btgpu::chunkCount(n, minPerThread));
+    btgpu::forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
+        for (size_t i = begin; i < end; ++i) {
+            btRigidBody* body = bodyAt(i);
+            if (!body) continue;
+            btMotionState* ms = body->getMotionState();
+            if (ms && typeid(*ms) == typeid(btDefaultMotionState)) synchronizeSingleMotionState(body);
+            else if (ms) serial[chunk].push_back(body);
+        }
     });
-    for (btRigidBody* body : serial) synchronizeSingleMotionState(body);
+    for (const std::vector<btRigidBody*>& bodies : serial)
+        for (btRigidBody* body : bodies) synchronizeSingleMotionState(body);
 }
 
 const btgpu::Report& btGpuDynamicsWorld::report() const { return m_gpu->m_report; }

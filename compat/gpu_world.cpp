@@ -8,6 +8,7 @@
 #include "shared/integrate.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <iostream>
@@ -29,6 +30,12 @@ bool sameTransform(const btTransform& a, const btTransform& b)
 bool sameVec(const btVector3& a, const btVector3& b) { return a.x() == b.x() && a.y() == b.y() && a.z() == b.z(); }
 
 BtgFloat4 finiteOrZero(BtgFloat4 v) { return btgIsFinite4(v) ? v : btgZero4(); }
+
+using Clock = std::chrono::steady_clock;
+double msBetween(Clock::time_point a, Clock::time_point b)
+{
+    return std::chrono::duration<double, std::milli>(b - a).count();
+}
 
 }  // namespace
 
@@ -201,52 +208,76 @@ void GpuWorld::rebuild()
 
 std::vector<BodyRowUpdate> GpuWorld::changedRows(bool all)
 {
-    std::vector<BodyRowUpdate> out;
-    for (size_t r = 0; r < m_rows.size(); ++r) {
-        btCollisionObject* o = m_rows[r];
-        Mirror& m = m_mirror[r];
-        std::string bad = badInput(o);
-        bool excluded = !bad.empty();
-        if (excluded && !m.excluded) {
-            const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
-            int index = objs.findLinearSearch(o);
+    // Every row is compared with what the device holds (impulses and forces set between steps
+    // leave no other trace). Rows are independent: compared in parallel chunks, each with its
+    // own update list, merged in row order so the upload does not depend on thread timing.
+    const size_t n = m_rows.size();
+    const size_t minPerThread = 4096;
+    const int chunks = chunkCount(n, minPerThread);
+    std::vector<std::vector<BodyRowUpdate>> found(chunks);
+    std::vector<std::vector<std::pair<size_t, std::string>>> newlyBad(chunks);
+    forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
+        for (size_t r = begin; r < end; ++r) {
+            BodyRowUpdate u;
+            std::string bad;
+            if (!compareRow(r, all, &u, &bad)) continue;
+            if (!bad.empty()) newlyBad[chunk].emplace_back(r, std::move(bad));
+            found[chunk].push_back(u);
+        }
+    });
+    for (const auto& list : newlyBad)
+        for (const auto& [r, bad] : list) {
+            btCollisionObject* o = m_rows[r];
+            int index = m_world.getCollisionObjectArray().findLinearSearch(o);
             report({Issue::Kind::BadBody,
                     "body " + std::to_string(index) + " (user index " + std::to_string(o->getUserIndex()) + ", shape " +
                         o->getCollisionShape()->getName() + "): " + bad + "; kept out of the simulation until fixed",
                     index, o->getUserIndex(), o->getCollisionShape()->getShapeType()});
         }
-        int shapeRow = m_shapes.rowOf.at(o->getCollisionShape());
-        BtgBodyProps props = bodyProps(o, shapeRow, m_shapes.shapes[shapeRow], excluded);
-        if (m_large[r]) props.flags |= BTG_BODY_LARGE;  // paired by the large pass, not the grid
-        const btRigidBody* rb = btRigidBody::upcast(o);
-        btVector3 lin = rb ? rb->getLinearVelocity() : btVector3(0, 0, 0);
-        btVector3 ang = rb ? rb->getAngularVelocity() : btVector3(0, 0, 0);
-        btVector3 force = rb ? rb->getTotalForce() : btVector3(0, 0, 0);
-        btVector3 torque = rb ? rb->getTotalTorque() : btVector3(0, 0, 0);
-        bool changed = all || excluded != m.excluded || std::memcmp(&props, &m.props, sizeof(props)) != 0 ||
-                       !sameTransform(o->getWorldTransform(), m.xf) || !sameVec(lin, m.linVel) ||
-                       !sameVec(ang, m.angVel) || !sameVec(force, m.force) || !sameVec(torque, m.torque);
-        if (!changed) continue;
-        BodyState s = bodyState(o);
-        BodyRowUpdate u;
-        u.row = int(r);
-        u.pos = finiteOrZero(s.pos);
-        u.rot = btgIsFinite4(s.rot) ? s.rot : btgMake4(0, 0, 0, 1);
-        u.linVel = finiteOrZero(s.linVel);
-        u.angVel = finiteOrZero(s.angVel);
-        u.force = finiteOrZero(s.force);
-        u.torque = finiteOrZero(s.torque);
-        u.props = props;
-        out.push_back(u);
-        m.xf = o->getWorldTransform();
-        m.linVel = lin;
-        m.angVel = ang;
-        m.force = force;
-        m.torque = torque;
-        m.props = props;
-        m.excluded = excluded;
-    }
+    std::vector<BodyRowUpdate> out;
+    size_t total = 0;
+    for (const auto& list : found) total += list.size();
+    out.reserve(total);
+    for (const auto& list : found) out.insert(out.end(), list.begin(), list.end());
     return out;
+}
+
+bool GpuWorld::compareRow(size_t r, bool all, BodyRowUpdate* u, std::string* newlyBad)
+{
+    btCollisionObject* o = m_rows[r];
+    Mirror& m = m_mirror[r];
+    std::string bad = badInput(o);
+    bool excluded = !bad.empty();
+    int shapeRow = m_shapes.rowOf.at(o->getCollisionShape());
+    BtgBodyProps props = bodyProps(o, shapeRow, m_shapes.shapes[shapeRow], excluded);
+    if (m_large[r]) props.flags |= BTG_BODY_LARGE;  // paired by the large pass, not the grid
+    const btRigidBody* rb = btRigidBody::upcast(o);
+    btVector3 lin = rb ? rb->getLinearVelocity() : btVector3(0, 0, 0);
+    btVector3 ang = rb ? rb->getAngularVelocity() : btVector3(0, 0, 0);
+    btVector3 force = rb ? rb->getTotalForce() : btVector3(0, 0, 0);
+    btVector3 torque = rb ? rb->getTotalTorque() : btVector3(0, 0, 0);
+    bool changed = all || excluded != m.excluded || std::memcmp(&props, &m.props, sizeof(props)) != 0 ||
+                   !sameTransform(o->getWorldTransform(), m.xf) || !sameVec(lin, m.linVel) || !sameVec(ang, m.angVel) ||
+                   !sameVec(force, m.force) || !sameVec(torque, m.torque);
+    if (!changed) return false;
+    if (excluded && !m.excluded) *newlyBad = bad;
+    BodyState s = bodyState(o);
+    u->row = int(r);
+    u->pos = finiteOrZero(s.pos);
+    u->rot = btgIsFinite4(s.rot) ? s.rot : btgMake4(0, 0, 0, 1);
+    u->linVel = finiteOrZero(s.linVel);
+    u->angVel = finiteOrZero(s.angVel);
+    u->force = finiteOrZero(s.force);
+    u->torque = finiteOrZero(s.torque);
+    u->props = props;
+    m.xf = o->getWorldTransform();
+    m.linVel = lin;
+    m.angVel = ang;
+    m.force = force;
+    m.torque = torque;
+    m.props = props;
+    m.excluded = excluded;
+    return true;
 }
 
 StepSettings GpuWorld::settings(int substeps, btScalar dt) const
@@ -426,6 +457,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
     }
 
     m_dev->profiler.resetLaunchCount();
+    m_report.syncInMs = m_report.deviceMs = m_report.writeBackMs = 0.0;
     const bool profiled = m_config.profile && (m_calls++ % std::max(m_config.profileEvery, 1)) == 0;
     m_dev->profiler.enabled = profiled;
     if (numSubSteps) {
@@ -436,17 +468,27 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         int perBatch = perSubstep ? 1 : clamped;
         for (int b = 0; b < batches; ++b) {
             if (m_world.m_internalPreTickCallback) m_world.m_internalPreTickCallback(&m_world, fixedTimeStep);
+            Clock::time_point t0 = Clock::now();
             syncIn(*m_dev, changedRows(false));
+            Clock::time_point t1 = Clock::now();
             runOnDevice(perBatch, fixedTimeStep);
+            Clock::time_point t2 = Clock::now();
             writeBack(m_readback);
+            m_report.syncInMs += msBetween(t0, t1);
+            m_report.deviceMs += msBetween(t1, t2);
+            m_report.writeBackMs += msBetween(t2, Clock::now());
             if (m_world.m_internalTickCallback) m_world.m_internalTickCallback(&m_world, fixedTimeStep);
         }
     }
     m_world.m_localTime = localTime;
     m_world.m_fixedTimeStep = maxSubSteps ? fixedTimeStep : 0;
+    Clock::time_point t3 = Clock::now();
     m_world.synchronizeMotionStates();
     m_world.clearForces();
+    Clock::time_point t4 = Clock::now();
     if (m_config.syncBroadphaseAabbs) m_world.updateAabbs();
+    m_report.writeBackMs += msBetween(t3, t4);
+    m_report.aabbSyncMs = msBetween(t4, Clock::now());
     m_report.stageMs.clear();  // empty on calls that were not profiled
     if (profiled) m_dev->profiler.collect(m_report.stageMs);
     m_report.launches = m_dev->profiler.launches();

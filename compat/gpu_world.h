@@ -47,6 +47,9 @@ private:
     void rebuild();
     void makePlan();
     std::vector<BodyRowUpdate> changedRows(bool all);
+    // One row against its mirror: true (and the update, and a reason when the row has just
+    // turned bad) when the device must be told. Touches only row r: safe in parallel.
+    bool compareRow(size_t r, bool all, BodyRowUpdate* u, std::string* newlyBad);
     void runOnDevice(int substeps, btScalar dt);
     void writeBack(const BodyReadback& rb);
     StepSettings settings(int substeps, btScalar dt) const;

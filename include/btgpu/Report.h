@@ -28,6 +28,14 @@ struct Report {
     double buildSeconds = 0.0;        // time spent compiling them
     std::map<std::string, double> stageMs;   // device ms per stage, last step (Config::profile)
     int launches = 0;                 // kernel launches in the last stepSimulation call
+    // Host wall times of the last stepSimulation call on the GPU path, ms: finding what the app
+    // changed and uploading it; the device substeps with their one readback (enqueue, wait,
+    // copy); writing the results into the btRigidBody objects and their motion states (and
+    // clearing forces); keeping Bullet's own broadphase AABBs current (Config::syncBroadphaseAabbs).
+    double syncInMs = 0.0;
+    double deviceMs = 0.0;
+    double writeBackMs = 0.0;
+    double aabbSyncMs = 0.0;
     std::size_t deviceBytes = 0;      // device memory held by this world
     int pairs = 0;                    // broadphase pairs, last substep
     int contacts = 0;                 // manifolds with points, last substep
