@@ -42,7 +42,15 @@ static void solve_one(int i, int mode, __global BtgContact* contacts, __global c
         lin[c.bodyB] = btgMake4(vb.lin.x, vb.lin.y, vb.lin.z, lin[c.bodyB].w);
         ang[c.bodyB] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, ang[c.bodyB].w);
     }
-    if (mode != 0) contacts[i] = c;
+    /* Only the accumulated impulses change: storing just them saves most of the contact's
+     * bytes of write traffic per pass. */
+    if (mode == 1) {
+        contacts[i].normalImpulse = c.normalImpulse;
+        contacts[i].friction1Impulse = c.friction1Impulse;
+        contacts[i].friction2Impulse = c.friction2Impulse;
+    } else if (mode == 2) {
+        contacts[i].pushImpulse = c.pushImpulse;
+    }
 }
 
 __kernel void solve_color_serial(__global BtgContact* contacts, __global const uint* restrict counters,

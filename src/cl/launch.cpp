@@ -1,6 +1,8 @@
 // launch.cpp — enqueueing and profiling-event bookkeeping.
 #include "cl/launch.h"
 
+#include <algorithm>
+
 namespace btgpu::cl {
 
 void Profiler::add(cl_event e) { m_events.emplace_back(stage, e); }
@@ -29,6 +31,14 @@ void Launch::run(size_t global, size_t localSize)
     BTGPU_CL_CHECK(clEnqueueNDRangeKernel(m_ctx.queue(), m_kernel, 1, nullptr, &g, &localSize, 0, nullptr, keep ? &ev : nullptr));
     if (m_prof) m_prof->countLaunch();
     if (keep) m_prof->add(ev);
+}
+
+size_t kernelGroupLimit(Context& ctx, cl_kernel kernel)
+{
+    size_t limit = 0;
+    cl_device_id device = ctx.device().device;
+    BTGPU_CL_CHECK(clGetKernelWorkGroupInfo(kernel, device, CL_KERNEL_WORK_GROUP_SIZE, sizeof(limit), &limit, nullptr));
+    return std::max<size_t>(1, std::min(limit, ctx.device().maxWorkGroupSize));
 }
 
 }  // namespace btgpu::cl

@@ -59,4 +59,8 @@ private:
     cl_uint m_index = 0;
 };
 
+// The largest work-group this kernel can run with on the context's device (its registers and
+// local memory may allow less than the device maximum).
+size_t kernelGroupLimit(Context& ctx, cl_kernel kernel);
+
 }  // namespace btgpu::cl

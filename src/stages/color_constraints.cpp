@@ -43,6 +43,8 @@ void colorConstraints(DeviceWorld& w, int maxColors)
     if (w.lastContactCount <= fusedMax && w.numBodies <= kFusedMaxBodies) {
         // Small scene: the whole coloring in one launch on one work-group (same result).
         size_t group = std::min<size_t>(256, ctx.device().maxWorkGroupSize);
+        // One group must hold the whole launch: never more than this kernel can run with.
+        group = std::min(group, cl::kernelGroupLimit(ctx, prog.kernel("color_fused")));
         cl::Launch(ctx, prog.kernel("color_fused"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
             .arg(w.props).arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(w.numBodies).arg(rounds)
             .run(group, group);
