@@ -151,6 +151,7 @@ void GpuWorld::makePlan()
     }
     // 1% slack: an AABB exactly one cell wide must not be missed by rounding of centre / cell.
     plan.cellSize = std::max(1.01f * (cell + 2.0f * m_config.contactThreshold), 1e-3f);
+    plan.broadphase = chooseBroadphase(sizes, m_config.largeBodyFactor * median);
     plan.hasLarge = !large.empty();
     plan.hasPlanes = !planeRows.empty();
     m_plan = plan;

@@ -9,26 +9,6 @@
 
 #define BTG_NO_KEY 0xffffffffu
 
-static inline int btgGridded(BtgBodyProps p, __global const BtgShape* restrict shapes)
-{
-    /* Rows that can never pair stay out of the grid, as do large bodies and planes (own passes). */
-    uint skip = BTG_BODY_LARGE | BTG_BODY_EXCLUDED | BTG_BODY_NO_RESPONSE;
-    return !(p.flags & skip) && shapes[p.shape].type != BTG_SHAPE_PLANE;
-}
-
-/* Every pair found is counted; only those that fit are stored (the caller grows and redoes). */
-static inline void btgAppendPair(__global BtgPair* restrict raw, volatile __global uint* counters, int pairSlot,
-                                 uint capacity, int a, int b)
-{
-    uint slot = atomic_inc(&counters[pairSlot]);
-    if (slot < capacity) {
-        BtgPair p;
-        p.a = a < b ? a : b;
-        p.b = a < b ? b : a;
-        raw[slot] = p;
-    }
-}
-
 /* Launch: one work-item. Runs before every appending kernel. */
 __kernel void pairs_reset(__global uint* counters, int pairSlot)
 {

@@ -44,7 +44,7 @@ void runSubstep(DeviceWorld& w, const Plan& plan, const StepSettings& s)
     predictMotion(w, p.dt);
     if (collide) {
         updateAabbs(w, p.contactThreshold);
-        findPairs(w, plan.cellSize);
+        findPairs(w, plan.broadphase, plan.cellSize);
         narrowphase(w, plan.kinds, p.contactThreshold);
     }
     applyForces(w, p.dt);

@@ -1,7 +1,8 @@
 /* broadphase.h — the pair rules and geometric tests of find_pairs, shared by
- * kernels/find_pairs.cl and the brute-force CPU reference so both keep exactly the same pairs:
- * the filter, AABB overlap (touching counts, as Bullet's TestAabbAgainstAabb2), the plane
- * test, and the grid cell and hash of an AABB centre. */
+ * kernels/find_pairs.cl, kernels/sort_sweep.cl and the CPU references so all keep exactly the
+ * same pairs: the rows of the small-body pass, the filter, AABB overlap (touching counts, as
+ * Bullet's TestAabbAgainstAabb2), the plane test, the grid cell and hash of an AABB centre,
+ * and (device only) the append of a found pair. */
 #ifndef BTG_BROADPHASE_H
 #define BTG_BROADPHASE_H
 #include "math.h"
@@ -16,6 +17,15 @@ static inline float btgFloor(float x) { return std::floor(x); }
 /* Cells further than this from the origin are clamped: keeps the float-to-int conversion
  * defined; bodies out there share cells (still correct, only slower). */
 #define BTG_GRID_LIMIT 1.0e9f
+
+/* Rows paired by the small-body pass (uniform grid or sort-and-sweep): not large, not a
+ * plane (both have their own passes) and able to pair at all. The flags are tested first:
+ * an excluded row may have no shape (shape -1). */
+static inline int btgGridded(BtgBodyProps p, BTG_CONST_GLOBAL BtgShape* shapes)
+{
+    uint skip = BTG_BODY_LARGE | BTG_BODY_EXCLUDED | BTG_BODY_NO_RESPONSE;
+    return !(p.flags & skip) && shapes[p.shape].type != BTG_SHAPE_PLANE;
+}
 
 static inline int btgPairAllowed(BtgBodyProps a, BtgBodyProps b)
 {
@@ -75,5 +85,21 @@ static inline uint btgGridHash(int x, int y, int z, uint tableMask)
 {
     return (((uint)x * 73856093u) ^ ((uint)y * 19349663u) ^ ((uint)z * 83492791u)) & tableMask;
 }
+
+#ifdef __OPENCL_C_VERSION__
+/* The appending protocol of every pair pass (device only): every pair found is counted, only
+ * those that fit are stored (the caller grows the buffer and redoes the step). */
+static inline void btgAppendPair(__global BtgPair* restrict raw, volatile __global uint* counters, int pairSlot,
+                                 uint capacity, int a, int b)
+{
+    uint slot = atomic_inc(&counters[pairSlot]);
+    if (slot < capacity) {
+        BtgPair p;
+        p.a = a < b ? a : b;
+        p.b = a < b ? b : a;
+        raw[slot] = p;
+    }
+}
+#endif
 
 #endif

@@ -1,11 +1,12 @@
-// find_pairs.cpp — host launcher of kernels/find_pairs.cl: grid hash, radix sort of (hash,
-// row), cell ranges, the three appending passes (grid, large, planes), then a radix sort of the
-// appended pairs by (a, b) and the gather into w.pairs. The pair count stays on the device:
+// find_pairs.cpp — host launcher of kernels/find_pairs.cl: the small bodies' pass (grid hash,
+// radix sort of (hash, row), cell ranges, grid pairs; or stages/sort_sweep), the large and
+// plane passes, then a radix sort of the appended pairs by (a, b) and the gather into w.pairs. The pair count stays on the device:
 // the pair sort runs over pairCapacity slots and its kernels read the count (no readback).
 #include "stages/find_pairs.h"
 
 #include "cl/program.h"
 #include "stages/prims/radix_sort.h"
+#include "stages/sort_sweep.h"
 
 #include <algorithm>
 
@@ -27,9 +28,35 @@ int log2Exact(cl_uint pow2)
     return b;
 }
 
+void appendGridPairs(DeviceWorld& w, cl::Program& prog, cl_uint capacity, float cellSize)
+{
+    cl::Context& ctx = w.ctx;
+    BroadphaseScratch& s = w.broadphase;
+    const size_t n = size_t(w.numBodies);
+    const cl_int numBodies = cl_int(n);
+    const cl_int pairSlot = kPairCount;
+    const float invCellSize = 1.0f / cellSize;
+    const cl_uint table = gridTableSize(n);
+    const cl_uint tableMask = table - 1;
+    s.cellKeys.reserve(ctx, n);
+    s.cellRows.reserve(ctx, n);
+    cl::Launch(ctx, prog.kernel("grid_hash"), &w.profiler)
+        .arg(w.aabbMin).arg(w.aabbMax).arg(w.props).arg(w.shapes).arg(s.cellKeys).arg(s.cellRows)
+        .arg(numBodies).arg(invCellSize).arg(tableMask)
+        .run(n);
+    // One bit above the hash so the 0xffffffff of ungridded rows sorts after every bucket.
+    radixSort(ctx, &w.profiler, s.cellKeys, s.cellRows, n, log2Exact(table) + 1, s.sort);
+    s.cellRange.zero(ctx, 2 * size_t(table));
+    cl::Launch(ctx, prog.kernel("grid_cell_ranges"), &w.profiler).arg(s.cellKeys).arg(s.cellRange).arg(numBodies).run(n);
+    cl::Launch(ctx, prog.kernel("grid_pairs"), &w.profiler)
+        .arg(w.aabbMin).arg(w.aabbMax).arg(w.props).arg(s.cellKeys).arg(s.cellRows).arg(s.cellRange)
+        .arg(s.rawPairs).arg(w.counters).arg(pairSlot).arg(capacity).arg(numBodies).arg(invCellSize).arg(tableMask)
+        .run(n);
+}
+
 }  // namespace
 
-void findPairs(DeviceWorld& w, float cellSize)
+void findPairs(DeviceWorld& w, Broadphase broadphase, float cellSize)
 {
     cl::Context& ctx = w.ctx;
     BroadphaseScratch& s = w.broadphase;
@@ -40,28 +67,13 @@ void findPairs(DeviceWorld& w, float cellSize)
     const cl_int pairSlot = kPairCount, statusSlot = kStatus;
     // Never write past the pair buffer, whatever pairCapacity claims.
     const cl_uint capacity = cl_uint(std::min(w.pairCapacity, w.pairs.capacity()));
-    const float invCellSize = 1.0f / cellSize;
     s.rawPairs.reserve(ctx, std::max<size_t>(capacity, 1));
 
     cl::Launch(ctx, prog.kernel("pairs_reset"), &w.profiler).arg(w.counters).arg(pairSlot).run(1, 1);
 
     if (n > 0) {
-        const cl_uint table = gridTableSize(n);
-        const cl_uint tableMask = table - 1;
-        s.cellKeys.reserve(ctx, n);
-        s.cellRows.reserve(ctx, n);
-        cl::Launch(ctx, prog.kernel("grid_hash"), &w.profiler)
-            .arg(w.aabbMin).arg(w.aabbMax).arg(w.props).arg(w.shapes).arg(s.cellKeys).arg(s.cellRows)
-            .arg(numBodies).arg(invCellSize).arg(tableMask)
-            .run(n);
-        // One bit above the hash so the 0xffffffff of ungridded rows sorts after every bucket.
-        radixSort(ctx, &w.profiler, s.cellKeys, s.cellRows, n, log2Exact(table) + 1, s.sort);
-        s.cellRange.zero(ctx, 2 * size_t(table));
-        cl::Launch(ctx, prog.kernel("grid_cell_ranges"), &w.profiler).arg(s.cellKeys).arg(s.cellRange).arg(numBodies).run(n);
-        cl::Launch(ctx, prog.kernel("grid_pairs"), &w.profiler)
-            .arg(w.aabbMin).arg(w.aabbMax).arg(w.props).arg(s.cellKeys).arg(s.cellRows).arg(s.cellRange)
-            .arg(s.rawPairs).arg(w.counters).arg(pairSlot).arg(capacity).arg(numBodies).arg(invCellSize).arg(tableMask)
-            .run(n);
+        if (broadphase == Broadphase::SortAndSweep) sortSweepPairs(w, capacity);
+        else appendGridPairs(w, prog, capacity, cellSize);
         if (w.numLarge > 0)
             cl::Launch(ctx, prog.kernel("large_pairs"), &w.profiler)
                 .arg(w.aabbMin).arg(w.aabbMax).arg(w.props).arg(w.shapes).arg(w.largeBodies).arg(cl_int(w.numLarge))

@@ -1,6 +1,8 @@
-// find_pairs.h — Stage: broadphase. Uniform grid (radix sort of cell hashes, cell ranges by
-// scan) for bodies of similar size, a pass of the `largeBodies` against every body, and the
-// `planeBodies` against every body by a plane/AABB test.
+// find_pairs.h — Stage: broadphase. The small bodies by uniform grid (radix sort of cell
+// hashes, cell ranges by scan) or by sort-and-sweep (stages/sort_sweep.h), as the plan chose;
+// a pass of the `largeBodies` against every body, and the `planeBodies` against every body by
+// a plane/AABB test. Both small-body passes find the same pairs, so the result does not depend
+// on the choice.
 // Reads aabbMin, aabbMax, props (flags, group, mask), largeBodies, planeBodies, pos, rot, shapes.
 // Writes pairs (a < b, sorted by (a, b), no duplicates) and counters[kPairCount]. When more
 // pairs are found than pairCapacity, the count still says how many, BTG_STATUS_PAIR_OVERFLOW
@@ -9,7 +11,9 @@
 // not SLEEPING; (groupA & maskB) && (groupB & maskA); the AABBs overlap.
 #pragma once
 #include "world/device_world.h"
+#include "world/plan.h"
 
 namespace btgpu {
-void findPairs(DeviceWorld& w, float cellSize);
+// cellSize (m) is used by the grid only.
+void findPairs(DeviceWorld& w, Broadphase broadphase, float cellSize);
 }

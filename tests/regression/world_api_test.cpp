@@ -1,5 +1,6 @@
 // world_api_test.cpp — what an app sees of btGpuDynamicsWorld besides the motion: the plan
-// builds only what the scene needs and grows when a new shape kind arrives, queries on the
+// builds only what the scene needs and grows when a new shape kind arrives, picks sort-and-sweep
+// for bodies of widely different sizes and the grid for alike ones, queries on the
 // base class see bodies where the GPU put them, and an unusable device means the CPU path,
 // said in the report, not an exception.
 #include <gtest/gtest.h>
@@ -67,4 +68,39 @@ TEST(WorldApi, NoSuchDeviceRunsTheCpuPathAndSaysSo)
     EXPECT_EQ(r->issues.front().kind, Issue::Kind::Device);
     for (int i = 0; i < 60; ++i) scene->step();
     EXPECT_NEAR(scene->body(1)->getWorldTransform().getOrigin().y(), 0.5, 0.01) << "the CPU path simulates";
+}
+
+TEST(WorldApi, PlanSweepsMixedSizesAndGridsAlikeOnes)
+{
+    // Boxes of half extents from 0.1 to 2.5 m (the bench's mixed scene, small): sort-and-sweep.
+    Scene mixed(WorldKind::Gpu);
+    mixed.addBody(mixed.boxShape(btVector3(50, 50, 50)), 0, btVector3(0, -50, 0));
+    unsigned seed = 7;
+    auto uniform = [&](float lo, float hi) {
+        seed = seed * 1664525u + 1013904223u;
+        return lo + (hi - lo) * float(seed >> 8) * (1.0f / 16777216.0f);
+    };
+    for (int i = 0; i < 64; ++i) {
+        btVector3 half(uniform(0.1f, 2.5f), uniform(0.1f, 2.5f), uniform(0.1f, 2.5f));
+        if (i == 0) half = btVector3(2.5, 2.5, 2.5);  // the largest, as among the bench's 32768
+        btVector3 at(btScalar((i % 4) * 6 - 9), btScalar(4 + (i / 16) * 6), btScalar(((i / 4) % 4) * 6 - 9));
+        mixed.addBody(mixed.boxShape(half), half.x() * half.y() * half.z(), at);
+    }
+    for (int i = 0; i < 150; ++i) mixed.step();
+    const Report* r = mixed.report();
+    ASSERT_TRUE(r->gpuPath) << r->cpuPathReason;
+    EXPECT_TRUE(has(r->stages, "sort_sweep"));
+    EXPECT_FALSE(has(r->stages, "uniform_grid"));
+    EXPECT_TRUE(has(r->builtPrograms, "sort_sweep"));
+    EXPECT_GT(r->pairs, 30) << "the boxes landed and touch each other";
+    EXPECT_TRUE(scenes::allFinite(mixed));
+    EXPECT_GT(scenes::lowestHeight(mixed), 0.05) << "a box fell into the ground";
+
+    // Cubes of one size: the uniform grid, and no sort-and-sweep program.
+    ScenePtr cubes = scenes::cubes(WorldKind::Gpu, 3, 3, 3);
+    for (int i = 0; i < 5; ++i) cubes->step();
+    const Report* c = cubes->report();
+    ASSERT_TRUE(c->gpuPath) << c->cpuPathReason;
+    EXPECT_TRUE(has(c->stages, "uniform_grid"));
+    EXPECT_FALSE(has(c->stages, "sort_sweep"));
 }

@@ -1,6 +1,7 @@
-// broadphase_scene.h — random body sets for the update_aabbs and find_pairs unit tests: spheres
-// and boxes of similar size in a cube, a few large boxes, a ground plane, and rows that are
-// static, sleeping, excluded, no-response or filtered by group/mask. Host columns plus an upload.
+// broadphase_scene.h — random body sets for the update_aabbs, find_pairs and sort_sweep unit
+// tests: spheres and boxes of similar (or, mixed, widely different) size in a cube, a few large
+// boxes, a ground plane, and rows that are static, sleeping, excluded, no-response or filtered
+// by group/mask. Host columns plus an upload.
 #pragma once
 #include "shared/math.h"
 #include "world/device_world.h"
@@ -96,6 +97,36 @@ inline BroadphaseScene makeBroadphaseScene(int n, float side, unsigned seed, boo
         s.rot.push_back(q);
         s.props.push_back(p);
     }
+    return s;
+}
+
+// The scene above with the small bodies' sizes spread widely: each takes one of `kinds` shapes,
+// boxes and spheres of half extent / radius drawn from [0.05, 1.2] m.
+inline BroadphaseScene makeMixedSizeScene(int n, float side, unsigned seed, bool withPlane = true, int largeEvery = 97)
+{
+    BroadphaseScene s = makeBroadphaseScene(n, side, seed, withPlane, largeEvery);
+    std::mt19937 rng(seed + 1000u);
+    std::uniform_real_distribution<float> size(0.05f, 1.2f);
+    const int first = int(s.shapes.size()), kinds = 24;
+    s.maxSmallExtent = 0.0f;
+    for (int k = 0; k < kinds; ++k) {
+        if (k % 2) {
+            float hx = size(rng), hy = size(rng), hz = size(rng);
+            s.shapes.push_back(makeBoxShape(hx, hy, hz));
+            s.maxSmallExtent = std::fmax(s.maxSmallExtent, 2.0f * std::sqrt(hx * hx + hy * hy + hz * hz));
+        } else {
+            float r = size(rng);
+            BtgShape sphere{};
+            sphere.type = BTG_SHAPE_SPHERE;
+            sphere.param = btgMake4(r, 0, 0, 0);
+            sphere.localAabbMin = btgMake4(-r, -r, -r, 0);
+            sphere.localAabbMax = btgMake4(r, r, r, 0);
+            s.shapes.push_back(sphere);
+            s.maxSmallExtent = std::fmax(s.maxSmallExtent, 2.0f * r);
+        }
+    }
+    for (BtgBodyProps& p : s.props)
+        if (p.shape == 0 || p.shape == 1) p.shape = first + int(rng() % unsigned(kinds));
     return s;
 }
 

@@ -29,7 +29,7 @@ Result runDevice(DeviceWorld& w, const test::BroadphaseScene& s, size_t capacity
     w.pairs.reserve(w.ctx, capacity);
     w.pairCapacity = capacity;
     w.counters.zero(w.ctx, kNumCounters);
-    findPairs(w, s.maxSmallExtent + 2 * kThreshold);
+    findPairs(w, Broadphase::UniformGrid, s.maxSmallExtent + 2 * kThreshold);
     std::vector<uint> counters = w.counters.download(w.ctx, kNumCounters);
     Result r;
     r.count = counters[kPairCount];
