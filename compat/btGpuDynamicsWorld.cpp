@@ -110,6 +110,8 @@ void btGpuDynamicsWorld::synchronizeMotionStates()
     };
     // Only Bullet's own motion state is known to be safe to set from several threads: those are
     // set in parallel chunks; the app's own motion states are called after, serially, in order.
+    // Right after a GPU step's write-back, Bullet's own ones are already set (same pass).
+    const bool ownDone = m_gpu->fusedWriteBackPending();
     const size_t minPerThread = 4096;
     std::vector<std::vector<btRigidBody*>> serial(btgpu::chunkCount(n, minPerThread));
     btgpu::forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
@@ -117,12 +119,21 @@ void btGpuDynamicsWorld::synchronizeMotionStates()
             btRigidBody* body = bodyAt(i);
             if (!body) continue;
             btMotionState* ms = body->getMotionState();
-            if (ms && typeid(*ms) == typeid(btDefaultMotionState)) synchronizeSingleMotionState(body);
-            else if (ms) serial[chunk].push_back(body);
+            if (ms && typeid(*ms) == typeid(btDefaultMotionState)) {
+                if (!ownDone) synchronizeSingleMotionState(body);
+            } else if (ms) {
+                serial[chunk].push_back(body);
+            }
         }
     });
     for (const std::vector<btRigidBody*>& bodies : serial)
         for (btRigidBody* body : bodies) synchronizeSingleMotionState(body);
+}
+
+void btGpuDynamicsWorld::clearForces()
+{
+    if (m_gpu->takeFusedWriteBack()) return;
+    btDiscreteDynamicsWorld::clearForces();
 }
 
 const btgpu::Report& btGpuDynamicsWorld::report() const { return m_gpu->m_report; }

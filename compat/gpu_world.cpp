@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstring>
 #include <iostream>
+#include <typeinfo>
 
 namespace btgpu {
 
@@ -349,49 +350,39 @@ void GpuWorld::runOnDevice(int substeps, btScalar dt)
     m_report.contacts = int(m_readback.counters[kContactCount]);
 }
 
-void GpuWorld::writeBack(const BodyReadback& rb)
+void GpuWorld::writeBack(const BodyReadback& rb, bool last)
 {
     // Rows are independent Bullet objects: written in parallel; what needs the world (issues,
     // motion states of bodies that fell asleep) is collected per chunk and done after, in order.
+    // On the last write-back of a call, when the world is exactly btGpuDynamicsWorld (so its
+    // synchronizeMotionStates and clearForces are ours), the same pass also does their work for
+    // each body: Bullet's own motion states and the force clear, touching each body once.
+    const bool fuse = last && typeid(m_world) == typeid(btGpuDynamicsWorld) && !m_world.m_synchronizeAllMotionStates;
     const size_t n = m_rows.size();
     const size_t minPerThread = 4096;
     const int chunks = chunkCount(n, minPerThread);
     std::vector<std::vector<size_t>> bad(chunks), fellAsleep(chunks);
     forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
         for (size_t r = begin; r < end; ++r) {
-            Mirror& m = m_mirror[r];
-            uint f = m.props.flags;
-            if (!(f & BTG_BODY_DYNAMIC) || (f & BTG_BODY_EXCLUDED)) continue;
-            bool wasAsleep = (f & BTG_BODY_SLEEPING) != 0;
-            bool asleep = rb.sleepState[r] != 0;
-            if (wasAsleep && asleep) continue;  // nothing moved
             btRigidBody* body = btRigidBody::upcast(m_rows[r]);
             if (!body) continue;
-            BtgFloat4 p = rb.pos[r], q = rb.rot[r], v = rb.linVel[r], a = rb.angVel[r];
-            if (!btgIsFinite4(p) || !btgIsFinite4(q) || !btgIsFinite4(v) || !btgIsFinite4(a)) {
-                bad[chunk].push_back(r);
-                m.props.flags = 0xffffffffu;  // forces the good state back up next call
+            bool asleepNow = writeRow(r, body, rb, &bad[chunk]);
+            if (!fuse) {
+                if (asleepNow) fellAsleep[chunk].push_back(r);
                 continue;
             }
-            body->setLinearVelocity(btVector3(v.x, v.y, v.z));
-            body->setAngularVelocity(btVector3(a.x, a.y, a.z));
-            // As Bullet's integrateTransforms → proceedToTransform: also sets the interpolation
-            // transform and velocities that synchronizeMotionStates extrapolates from.
-            body->setCenterOfMassTransform(btTransform(btQuaternion(q.x, q.y, q.z, q.w), btVector3(p.x, p.y, p.z)));
-            if (asleep) {
-                body->setActivationState(ISLAND_SLEEPING);
-                fellAsleep[chunk].push_back(r);
-                m.props.flags |= BTG_BODY_SLEEPING;
-            } else if (wasAsleep) {
-                body->setActivationState(ACTIVE_TAG);
-                body->setDeactivationTime(0);
-                m.props.flags &= ~BTG_BODY_SLEEPING;
+            if (!body->isStaticObject()) body->clearForces();
+            // Bullet's synchronizeMotionStates visits the active non-static bodies; a body that
+            // fell asleep in this step gets its last move too (see below).
+            btMotionState* ms = body->getMotionState();
+            bool visit = body->isActive() || asleepNow;
+            if (ms && visit && !body->isStaticOrKinematicObject()) {
+                if (typeid(*ms) == typeid(btDefaultMotionState)) m_world.synchronizeSingleMotionState(body);
+                else if (asleepNow) fellAsleep[chunk].push_back(r);  // the app's own: serially, below
             }
-            m.xf = body->getWorldTransform();
-            m.linVel = body->getLinearVelocity();
-            m.angVel = body->getAngularVelocity();
         }
     });
+    m_fusedWriteBack = fuse;
     for (const std::vector<size_t>& rows : bad)
         for (size_t r : rows) {
             btCollisionObject* body = m_rows[r];
@@ -406,6 +397,46 @@ void GpuWorld::writeBack(const BodyReadback& rb)
     // last move here.
     for (const std::vector<size_t>& rows : fellAsleep)
         for (size_t r : rows) m_world.synchronizeSingleMotionState(btRigidBody::upcast(m_rows[r]));
+}
+
+bool GpuWorld::writeRow(size_t r, btRigidBody* body, const BodyReadback& rb, std::vector<size_t>* bad)
+{
+    Mirror& m = m_mirror[r];
+    uint f = m.props.flags;
+    if (!(f & BTG_BODY_DYNAMIC) || (f & BTG_BODY_EXCLUDED)) return false;
+    bool wasAsleep = (f & BTG_BODY_SLEEPING) != 0;
+    bool asleep = rb.sleepState[r] != 0;
+    if (wasAsleep && asleep) return false;  // nothing moved
+    BtgFloat4 p = rb.pos[r], q = rb.rot[r], v = rb.linVel[r], a = rb.angVel[r];
+    if (!btgIsFinite4(p) || !btgIsFinite4(q) || !btgIsFinite4(v) || !btgIsFinite4(a)) {
+        bad->push_back(r);
+        m.props.flags = 0xffffffffu;  // forces the good state back up next call
+        return false;
+    }
+    body->setLinearVelocity(btVector3(v.x, v.y, v.z));
+    body->setAngularVelocity(btVector3(a.x, a.y, a.z));
+    // As Bullet's integrateTransforms → proceedToTransform: also sets the interpolation
+    // transform and velocities that synchronizeMotionStates extrapolates from.
+    body->setCenterOfMassTransform(btTransform(btQuaternion(q.x, q.y, q.z, q.w), btVector3(p.x, p.y, p.z)));
+    if (asleep) {
+        body->setActivationState(ISLAND_SLEEPING);
+        m.props.flags |= BTG_BODY_SLEEPING;
+    } else if (wasAsleep) {
+        body->setActivationState(ACTIVE_TAG);
+        body->setDeactivationTime(0);
+        m.props.flags &= ~BTG_BODY_SLEEPING;
+    }
+    m.xf = body->getWorldTransform();
+    m.linVel = body->getLinearVelocity();
+    m.angVel = body->getAngularVelocity();
+    return asleep;
+}
+
+bool GpuWorld::takeFusedWriteBack()
+{
+    bool fused = m_fusedWriteBack;
+    m_fusedWriteBack = false;
+    return fused;
 }
 
 bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, int* substepsDone)
@@ -461,6 +492,10 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
     m_report.syncInMs = m_report.deviceMs = m_report.writeBackMs = 0.0;
     const bool profiled = m_config.profile && (m_calls++ % std::max(m_config.profileEvery, 1)) == 0;
     m_dev->profiler.enabled = profiled;
+    // Set before the substeps, as stock Bullet does: motion-state interpolation reads them.
+    m_world.m_localTime = localTime;
+    m_world.m_fixedTimeStep = maxSubSteps ? fixedTimeStep : 0;
+    m_fusedWriteBack = false;
     if (numSubSteps) {
         int clamped = numSubSteps > maxSubSteps ? maxSubSteps : numSubSteps;
         m_world.saveKinematicState(fixedTimeStep * clamped);
@@ -474,15 +509,13 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             Clock::time_point t1 = Clock::now();
             runOnDevice(perBatch, fixedTimeStep);
             Clock::time_point t2 = Clock::now();
-            writeBack(m_readback);
+            writeBack(m_readback, b == batches - 1);
             m_report.syncInMs += msBetween(t0, t1);
             m_report.deviceMs += msBetween(t1, t2);
             m_report.writeBackMs += msBetween(t2, Clock::now());
             if (m_world.m_internalTickCallback) m_world.m_internalTickCallback(&m_world, fixedTimeStep);
         }
     }
-    m_world.m_localTime = localTime;
-    m_world.m_fixedTimeStep = maxSubSteps ? fixedTimeStep : 0;
     Clock::time_point t3 = Clock::now();
     m_world.synchronizeMotionStates();
     m_world.clearForces();

@@ -30,6 +30,10 @@ public:
     void failDevice(const std::string& what);
     void report(Issue issue);
     std::uint64_t stateHash() const;
+    // True once after a write-back that also synchronized Bullet's own motion states and
+    // cleared forces: the world's synchronizeMotionStates and clearForces then skip that work.
+    bool takeFusedWriteBack();
+    bool fusedWriteBackPending() const { return m_fusedWriteBack; }
 
     Report m_report;
     Config m_config;
@@ -51,7 +55,11 @@ private:
     // turned bad) when the device must be told. Touches only row r: safe in parallel.
     bool compareRow(size_t r, bool all, BodyRowUpdate* u, std::string* newlyBad);
     void runOnDevice(int substeps, btScalar dt);
-    void writeBack(const BodyReadback& rb);
+    // Results into the btRigidBody objects; `last`: the call's final write-back, which may also
+    // do synchronizeMotionStates' and clearForces' work in the same pass (see takeFusedWriteBack).
+    void writeBack(const BodyReadback& rb, bool last);
+    // One row; true when the body fell asleep in this step. Touches only row r.
+    bool writeRow(size_t r, btRigidBody* body, const BodyReadback& rb, std::vector<size_t>* bad);
     StepSettings settings(int substeps, btScalar dt) const;
 
     btGpuDynamicsWorld& m_world;
@@ -68,6 +76,7 @@ private:
     std::vector<bool> m_large;  // rows paired by brute force instead of the grid
     Snapshot m_snapshot;
     BodyReadback m_readback;
+    bool m_fusedWriteBack = false;
 };
 
 }  // namespace btgpu

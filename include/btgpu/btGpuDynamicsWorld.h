@@ -42,6 +42,8 @@ public:
     // Bullet's synchronizeMotionStates, with the bodies whose motion state is Bullet's own
     // btDefaultMotionState updated in parallel (an app's own motion states serially, in order).
     void synchronizeMotionStates() override;
+    // Bullet's clearForces (after a GPU step the write-back pass has already done it).
+    void clearForces() override;
 
     const btgpu::Report& report() const;
     const btgpu::Config& config() const;

@@ -104,3 +104,56 @@ TEST(WorldApi, PlanSweepsMixedSizesAndGridsAlikeOnes)
     EXPECT_TRUE(has(c->stages, "uniform_grid"));
     EXPECT_FALSE(has(c->stages, "sort_sweep"));
 }
+
+namespace {
+// An app's own motion state: records what the world hands it.
+struct RecordingMotionState : btMotionState {
+    btTransform start, last;
+    int calls = 0;
+    explicit RecordingMotionState(const btTransform& t) : start(t), last(t) {}
+    void getWorldTransform(btTransform& t) const override { t = start; }
+    void setWorldTransform(const btTransform& t) override
+    {
+        last = t;
+        ++calls;
+    }
+};
+}  // namespace
+
+TEST(WorldApi, MotionStatesAndForcesAsStock)
+{
+    // Two falling boxes per world, one with Bullet's motion state and one with the app's own;
+    // a force is applied before every call. After each call both motion states hold what stock
+    // gives them, the app's own is called as often, and the forces are cleared.
+    auto run = [](WorldKind kind, RecordingMotionState* own, int steps) {
+        Scene scene(kind);
+        btBoxShape* box = scene.boxShape(btVector3(.5, .5, .5));
+        btRigidBody* a = scene.addBody(box, 1, btVector3(0, 5, 0));
+        btRigidBody* b = scene.addBody(box, 1, btVector3(3, 5, 0));
+        btMotionState* scenes = b->getMotionState();
+        b->setMotionState(own);
+        std::vector<btTransform> out;
+        for (int i = 0; i < steps; ++i) {
+            a->applyCentralForce(btVector3(1, 0, 0));
+            b->applyCentralForce(btVector3(0, 0, 1));
+            scene.step();
+            EXPECT_EQ(a->getTotalForce(), btVector3(0, 0, 0)) << toString(kind) << " step " << i;
+            EXPECT_EQ(b->getTotalForce(), btVector3(0, 0, 0)) << toString(kind) << " step " << i;
+            btTransform t;
+            a->getMotionState()->getWorldTransform(t);
+            out.push_back(t);
+            out.push_back(own->last);
+        }
+        b->setMotionState(scenes);  // the recording state belongs to the test, the other to the scene
+        return out;
+    };
+    const int steps = 20;
+    btTransform start(btQuaternion::getIdentity(), btVector3(3, 5, 0));
+    RecordingMotionState stockOwn(start), gpuOwn(start);
+    std::vector<btTransform> stock = run(WorldKind::Stock, &stockOwn, steps);
+    std::vector<btTransform> gpu = run(WorldKind::Gpu, &gpuOwn, steps);
+    EXPECT_EQ(gpuOwn.calls, stockOwn.calls);
+    ASSERT_EQ(stock.size(), gpu.size());
+    for (size_t i = 0; i < stock.size(); ++i)
+        EXPECT_LT((stock[i].getOrigin() - gpu[i].getOrigin()).length(), tol::kFreeFallPosition) << "transform " << i;
+}
