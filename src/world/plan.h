@@ -39,14 +39,14 @@ struct Plan {
 
 // The broadphase for bodies of these bounding sizes (m; planes left out): those above
 // `largeSize` are paired by the large pass and do not count. Sort-and-sweep when the small
-// ones are not alike: the mean of (size / largest size)^3, the share of a grid cell a body's
-// bounding cube fills, is below kSweepFill (the bench's mixed scene: 0.24; cubes: 1).
-// Measured on PoCL (2-core CPU) the sweep was slower than the grid on every scene tried
-// (mixed 32768, median broadphase ms over frames 1-40: 49 vs 34; 1-130: 80 vs 35, with the
-// same pairs and contacts): the large pass already keeps the cell within
-// largeBodyFactor x the median size, and a 1D sweep through a dense 3D pile meets about
-// N^(2/3) rows per body. The threshold is the rule; GPU timings should settle it.
+// ones leave most of a grid cell empty: the mean of (size / largest size)^3, the share of a
+// cell a body's bounding cube fills, below kSweepFill — debris among a few crates, where the
+// crates set the cell and each cell holds dozens of pieces. Measured, the sweep loses to the
+// grid on the bench's mixed scene (fill 0.24, half extents 0.1-2.5 m): H200 broadphase 1.49
+// against 0.78 ms/frame, PoCL 80 against 35 (frames 1-130), same pairs and contacts. The large
+// pass keeps the cell within largeBodyFactor x the median size, and a 1D sweep through a dense
+// 3D pile meets about N^(2/3) rows per body, so the sweep is kept for far emptier cells.
 Broadphase chooseBroadphase(const std::vector<float>& sizes, float largeSize);
-constexpr float kSweepFill = 0.3f;
+constexpr float kSweepFill = 0.05f;
 
 }  // namespace btgpu

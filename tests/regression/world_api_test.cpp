@@ -72,7 +72,8 @@ TEST(WorldApi, NoSuchDeviceRunsTheCpuPathAndSaysSo)
 
 TEST(WorldApi, PlanSweepsMixedSizesAndGridsAlikeOnes)
 {
-    // Boxes of half extents from 0.1 to 2.5 m (the bench's mixed scene, small): sort-and-sweep.
+    // Debris boxes of half extents 0.1-0.2 m with a crate of 0.6 m (within the large limit, so
+    // it sets the grid's cell): mostly empty cells, sort-and-sweep.
     Scene mixed(WorldKind::Gpu);
     mixed.addBody(mixed.boxShape(btVector3(50, 50, 50)), 0, btVector3(0, -50, 0));
     unsigned seed = 7;
@@ -81,8 +82,8 @@ TEST(WorldApi, PlanSweepsMixedSizesAndGridsAlikeOnes)
         return lo + (hi - lo) * float(seed >> 8) * (1.0f / 16777216.0f);
     };
     for (int i = 0; i < 64; ++i) {
-        btVector3 half(uniform(0.1f, 2.5f), uniform(0.1f, 2.5f), uniform(0.1f, 2.5f));
-        if (i == 0) half = btVector3(2.5, 2.5, 2.5);  // the largest, as among the bench's 32768
+        btVector3 half(uniform(0.1f, 0.2f), uniform(0.1f, 0.2f), uniform(0.1f, 0.2f));
+        if (i == 0) half = btVector3(0.6, 0.6, 0.6);  // the crate
         btVector3 at(btScalar((i % 4) * 6 - 9), btScalar(4 + (i / 16) * 6), btScalar(((i / 4) % 4) * 6 - 9));
         mixed.addBody(mixed.boxShape(half), half.x() * half.y() * half.z(), at);
     }
