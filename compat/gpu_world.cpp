@@ -322,6 +322,19 @@ void GpuWorld::runOnDevice(int substeps, btScalar dt)
         uint status = m_readback.counters[kStatus];
         bool pairOverflow = status & BTG_STATUS_PAIR_OVERFLOW;
         bool contactOverflow = status & BTG_STATUS_CONTACT_OVERFLOW;
+        bool barrierTimeout = status & BTG_STATUS_GRID_BARRIER_TIMEOUT;
+        if (barrierTimeout && attempt < 8) {
+            // This device does not keep all work-groups of a launch resident: the one-launch
+            // solve is off for good, and the call is redone with per-color launches.
+            restoreSnapshot(w, m_snapshot);
+            w.residentSolve = DeviceWorld::Resident::Off;
+            ++m_report.redoneSteps;
+            report({Issue::Kind::Device, "one-launch solve timed out at its grid barrier on this device; "
+                                         "per-color launches from now on; step redone"});
+            takeSnapshot(w, m_snapshot, m_plan, substeps);
+            resetStatus(w);
+            continue;
+        }
         if ((!pairOverflow && !contactOverflow) || attempt >= 8) break;
         // Back to the state before the call first (the cache returns to prevContacts), then
         // grow, keeping the cache's contents.

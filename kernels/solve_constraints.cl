@@ -20,27 +20,32 @@ static BtgSolverBody load_body(__global const BtgBodyProps* restrict props,
     return btgMakeSolverBody(props[i], invInertiaWorld[3 * i], invInertiaWorld[3 * i + 1], invInertiaWorld[3 * i + 2]);
 }
 
+/* Body velocities go through volatile pointers: solve_resident shares them between work-groups
+ * across its grid barriers, where a non-coherent cache must not serve a stale copy. The
+ * arithmetic is the same for every caller. */
 static void solve_one(int i, int mode, __global BtgContact* contacts, __global const BtgBodyProps* restrict props,
-                      __global const BtgFloat4* restrict invInertiaWorld, __global BtgFloat4* lin, __global BtgFloat4* ang)
+                      __global const BtgFloat4* restrict invInertiaWorld, volatile __global BtgFloat4* lin,
+                      volatile __global BtgFloat4* ang)
 {
     BtgContact c = contacts[i];
     BtgSolverBody a = load_body(props, invInertiaWorld, c.bodyA);
     BtgSolverBody b = load_body(props, invInertiaWorld, c.bodyB);
     /* Push velocities of infinite-mass bodies are zero, as Bullet's solver bodies start them. */
     int movingA = mode == 2 ? a.dynamic : a.moving, movingB = mode == 2 ? b.dynamic : b.moving;
-    BtgBodyVel va = btgMakeBodyVel(movingA, lin[c.bodyA], ang[c.bodyA]);
-    BtgBodyVel vb = btgMakeBodyVel(movingB, lin[c.bodyB], ang[c.bodyB]);
+    BtgFloat4 linA = lin[c.bodyA], angA = ang[c.bodyA], linB = lin[c.bodyB], angB = ang[c.bodyB];
+    BtgBodyVel va = btgMakeBodyVel(movingA, linA, angA);
+    BtgBodyVel vb = btgMakeBodyVel(movingB, linB, angB);
     if (mode == 0) btgContactWarmStart(&c, a, b, &va, &vb);
     else if (mode == 1) btgContactSolveVelocity(&c, a, b, &va, &vb);
     else btgContactSolvePush(&c, a, b, &va, &vb);
     /* w of the velocity columns is not the solver's: keep it. */
     if (a.dynamic) {
-        lin[c.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, lin[c.bodyA].w);
-        ang[c.bodyA] = btgMake4(va.ang.x, va.ang.y, va.ang.z, ang[c.bodyA].w);
+        lin[c.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, linA.w);
+        ang[c.bodyA] = btgMake4(va.ang.x, va.ang.y, va.ang.z, angA.w);
     }
     if (b.dynamic) {
-        lin[c.bodyB] = btgMake4(vb.lin.x, vb.lin.y, vb.lin.z, lin[c.bodyB].w);
-        ang[c.bodyB] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, ang[c.bodyB].w);
+        lin[c.bodyB] = btgMake4(vb.lin.x, vb.lin.y, vb.lin.z, linB.w);
+        ang[c.bodyB] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, angB.w);
     }
     /* Only the accumulated impulses change: storing just them saves most of the contact's
      * bytes of write traffic per pass. */
@@ -145,4 +150,90 @@ __kernel void solve_color_range(__global BtgContact* contacts, __global const ui
     int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
     if (k >= end - begin) return;
     solve_one(colorOrder[begin + k], mode, contacts, props, invInertiaWorld, lin, ang);
+}
+
+/* ---- solve_resident: every pass and color in ONE launch over many work-groups (GPUs) ----
+ * Launched with no more work-groups than the device has compute units, one group of at most
+ * 256 items each, so every group is resident at once and groups can wait for each other: a
+ * grid-wide barrier (an arrival counter and a generation word in global memory) stands where
+ * the per-color path has a kernel boundary. Per-color launches cost a few microseconds each
+ * on a GPU, and a step has (colors + 1) x (1 + 2 x iterations) of them; the barrier costs about
+ * one atomic round trip. Body velocities are read and written through volatile pointers so no
+ * work-group keeps a stale copy in a non-coherent cache across a barrier; a contact's impulses
+ * are touched only by the same work-item in every pass (the assignment is fixed), so plain
+ * accesses suffice there. Should a group never arrive (a device that does not keep all groups
+ * resident), the waiters give up after a bounded spin, set BTG_STATUS_GRID_BARRIER_TIMEOUT and
+ * return; the host then redoes the step with per-color launches. The arithmetic is solve_one's,
+ * in the same color order: the results equal the per-color path's bit for bit. */
+
+typedef struct {
+    uint arrived;    /* groups at the barrier in this generation */
+    uint generation; /* bumped by the last arrival */
+    uint timedOut;   /* set by a waiter that gave up */
+    uint pad;
+} BtgGridBarrier;
+
+static int grid_barrier(volatile __global BtgGridBarrier* bar, uint groups, int spinLimit, __local int* quit)
+{
+    barrier(CLK_GLOBAL_MEM_FENCE | CLK_LOCAL_MEM_FENCE);
+    if (get_local_id(0) == 0) {
+        mem_fence(CLK_GLOBAL_MEM_FENCE);
+        uint gen = bar->generation;
+        int stop = 0;
+        if (atomic_inc(&bar->arrived) == groups - 1u) {
+            bar->arrived = 0u;
+            mem_fence(CLK_GLOBAL_MEM_FENCE);
+            atomic_inc(&bar->generation);
+        } else {
+            int spins = 0;
+            while (bar->generation == gen) {
+                if (bar->timedOut != 0u) { stop = 1; break; }
+                if (++spins > spinLimit) { atomic_xchg(&bar->timedOut, 1u); stop = 1; break; }
+            }
+        }
+        mem_fence(CLK_GLOBAL_MEM_FENCE);
+        *quit = stop;
+    }
+    barrier(CLK_GLOBAL_MEM_FENCE | CLK_LOCAL_MEM_FENCE);
+    return *quit;
+}
+
+__kernel void solve_resident(__global BtgContact* contacts, __global uint* counters, int contactCapacity,
+                             __global const uint* restrict colorStart, __global const int* restrict colorOrder,
+                             __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
+                             volatile __global BtgFloat4* linVel, volatile __global BtgFloat4* angVel,
+                             volatile __global BtgFloat4* pushLin, volatile __global BtgFloat4* pushAng,
+                             volatile __global BtgGridBarrier* bar, int numColors, int iterations, int splitImpulse,
+                             int spinLimit)
+{
+    __local int quit;
+    const uint groups = (uint)get_num_groups(0);
+    const int gid = (int)get_global_id(0), gsize = (int)get_global_size(0);
+    const int n = (int)min(counters[COUNTER_CONTACTS], (uint)contactCapacity);
+    const int last = numColors - 1;
+    const int walkLast = counters[BTG_COUNTER_LEFTOVERS] != 0u || counters[BTG_COUNTER_COLORS_USED] > (uint)last;
+    const int passes = 1 + iterations + (splitImpulse ? iterations : 0);
+    for (int pass = 0; pass < passes; ++pass) {
+        const int mode = pass == 0 ? 0 : (pass <= iterations ? 1 : 2);
+        volatile __global BtgFloat4* lin = mode == 2 ? pushLin : linVel;
+        volatile __global BtgFloat4* ang = mode == 2 ? pushAng : angVel;
+        for (int color = 0; color < last; ++color) {
+            const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
+            for (int k = begin + gid; k < end; k += gsize)
+                solve_one(colorOrder[k], mode, contacts, props, invInertiaWorld, lin, ang);
+            if (grid_barrier(bar, groups, spinLimit, &quit)) {
+                if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
+                return;
+            }
+        }
+        if (walkLast) {
+            if (gid == 0)
+                for (int i = 0; i < n; ++i)
+                    if (contacts[i].color >= last) solve_one(i, mode, contacts, props, invInertiaWorld, lin, ang);
+            if (grid_barrier(bar, groups, spinLimit, &quit)) {
+                if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
+                return;
+            }
+        }
+    }
 }

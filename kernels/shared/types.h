@@ -128,6 +128,7 @@ typedef struct {
 #define BTG_STATUS_PAIR_OVERFLOW 1u
 #define BTG_STATUS_CONTACT_OVERFLOW 2u
 #define BTG_STATUS_NAN 4u
+#define BTG_STATUS_GRID_BARRIER_TIMEOUT 8u /* a one-launch solve gave up waiting: redo per color */
 
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(BtgBodyProps) == 96, "BtgBodyProps layout");

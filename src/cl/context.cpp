@@ -59,6 +59,7 @@ std::vector<DeviceInfo> listDevices()
             info.correctlyRoundedSqrt = (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
             BTGPU_CL_CHECK(clGetDeviceInfo(d, CL_DEVICE_MAX_WORK_GROUP_SIZE, sizeof(size_t), &info.maxWorkGroupSize, nullptr));
             BTGPU_CL_CHECK(clGetDeviceInfo(d, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof(cl_ulong), &info.globalMemBytes, nullptr));
+            BTGPU_CL_CHECK(clGetDeviceInfo(d, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof(cl_uint), &info.computeUnits, nullptr));
             out.push_back(info);
         }
     }

@@ -20,6 +20,7 @@ struct DeviceInfo {
     bool correctlyRoundedSqrt = false;  // CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT is supported
     size_t maxWorkGroupSize = 1;
     cl_ulong globalMemBytes = 0;
+    cl_uint computeUnits = 1;
     std::string describe() const;
 };
 

@@ -17,6 +17,9 @@ enum Mode : int { kWarmStart = 0, kVelocity = 1, kPush = 2 };
 // against 2.5 ms in per-color launches, with groups of 256 or 1,024.
 constexpr int kFusedMaxContacts = 4096;
 constexpr int kFusedMaxContactsGpu = 512;
+// solve_resident's waiters give up after this many polls of the barrier (well past any real
+// wait: a poll is an L2 round trip, a color's work at most a few hundred microseconds).
+constexpr int kGridBarrierSpins = 1 << 20;
 }
 
 void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iterations, int numColors)
@@ -57,6 +60,18 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
         .run(1, 1);
     cl::Launch(ctx, prog.kernel("color_fill"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
         .arg(sc.colorStart).arg(sc.colorCount).arg(sc.colorOrder).arg(numColors).run(slots);
+    using Resident = DeviceWorld::Resident;
+    if (w.residentSolve == Resident::On || (w.residentSolve == Resident::Auto && ctx.device().isGpu)) {
+        // Every pass and color in one launch; one group per compute unit keeps all resident.
+        size_t group = std::min<size_t>(256, cl::kernelGroupLimit(ctx, prog.kernel("solve_resident")));
+        size_t groups = std::max<cl_uint>(ctx.device().computeUnits, 1);
+        sc.gridBarrier.zero(ctx, 4);
+        cl::Launch(ctx, prog.kernel("solve_resident"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
+            .arg(sc.colorStart).arg(sc.colorOrder).arg(w.props).arg(w.invInertiaWorld).arg(w.linVel).arg(w.angVel)
+            .arg(w.pushLin).arg(w.pushAng).arg(sc.gridBarrier).arg(numColors).arg(iterations)
+            .arg(params.splitImpulse ? 1 : 0).arg(kGridBarrierSpins).run(groups * group, group);
+        return;
+    }
     cl_kernel parallel = prog.kernel("solve_color_range");
     cl_kernel serial = prog.kernel("solve_color_serial");
     auto pass = [&](int mode, cl::DeviceArray<BtgFloat4>& lin, cl::DeviceArray<BtgFloat4>& ang) {

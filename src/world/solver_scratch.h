@@ -15,6 +15,7 @@ struct SolverScratch {
     cl::DeviceArray<uint> colorCount;  // per color, then the fill cursor
     cl::DeviceArray<uint> colorStart;  // numColors + 1
     cl::DeviceArray<int> colorOrder;   // one per contact slot
+    cl::DeviceArray<uint> gridBarrier; // solve_resident's arrival count, generation, timeout flag
     // solve_jacobi: body b's contacts are jacobiEntries[jacobiStart[b], jacobiStart[b + 1]),
     // each 2 * contact + side, in increasing order; jacobiDeltas holds 4 per contact slot
     // (A lin, A ang, B lin, B ang: m/s, rad/s), the change each contact made to its copies.

@@ -28,14 +28,17 @@ const int kIterations = 10;
 struct Result {
     ref::ContactBodies bodies;
     std::vector<BtgContact> contacts;
+    uint status = 0;  // counters[kStatus] after the solve
 };
 
 // contacts -> prepare -> batching -> solve on the device; prev is last step's contact list.
 // fused: the one-work-group batching and solve small scenes take (by the last contact count).
 Result runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms, const std::vector<BtgContact>& prev,
-                 const BtgStepParams& p, int maxColors, bool fused = false)
+                 const BtgStepParams& p, int maxColors, bool fused = false,
+                 DeviceWorld::Resident resident = DeviceWorld::Resident::Auto)
 {
     DeviceWorld w(test::context());
+    w.residentSolve = resident;
     w.lastContactCount = fused ? 0 : (1 << 30);
     test::uploadWorld(w, b, ms, uint(ms.size()), prev, ms.size() + 4);
     buildContacts(w, p);
@@ -51,6 +54,7 @@ Result runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms
     r.bodies.pushLin = w.pushLin.download(w.ctx, n);
     r.bodies.pushAng = w.pushAng.download(w.ctx, n);
     r.contacts = test::downloadContacts(w);
+    r.status = w.counters.download(w.ctx, kNumCounters)[kStatus];
     return r;
 }
 
@@ -146,6 +150,34 @@ TEST(SolveConstraints, OneWorkGroupLaunchSolvesTheSame)
         EXPECT_EQ(0, std::memcmp(a2.bodies.pushLin.data(), b2.bodies.pushLin.data(), n)) << maxColors;
         ASSERT_EQ(a2.contacts.size(), b2.contacts.size());
         EXPECT_EQ(0, std::memcmp(a2.contacts.data(), b2.contacts.data(), a2.contacts.size() * sizeof(BtgContact)));
+    }
+}
+
+// All passes and colors in one launch over resident work-groups, with grid barriers between
+// colors: bitwise what one launch per color gives. A device that does not keep the groups
+// resident may time out instead (the world then redoes the step per color); a GPU must not.
+TEST(SolveConstraints, OneResidentLaunchSolvesTheSame)
+{
+    test::StackScene s = test::stackScene(6, 4, 9);
+    BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
+    using Resident = DeviceWorld::Resident;
+    for (int maxColors : {3, 16}) {
+        Result a = runDevice(s.bodies, s.manifolds, {}, p, maxColors, false, Resident::Off);
+        Result b = runDevice(s.bodies, s.manifolds, {}, p, maxColors, false, Resident::On);
+        EXPECT_EQ(a.status & BTG_STATUS_GRID_BARRIER_TIMEOUT, 0u);
+        if (b.status & BTG_STATUS_GRID_BARRIER_TIMEOUT) {
+            EXPECT_FALSE(test::context().device().isGpu) << "a GPU must keep one group per compute unit resident";
+            continue;
+        }
+        size_t n = a.bodies.linVel.size();
+        EXPECT_EQ(0, std::memcmp(a.bodies.linVel.data(), b.bodies.linVel.data(), n * sizeof(BtgFloat4))) << maxColors;
+        EXPECT_EQ(0, std::memcmp(a.bodies.angVel.data(), b.bodies.angVel.data(), n * sizeof(BtgFloat4))) << maxColors;
+        EXPECT_EQ(0, std::memcmp(a.bodies.pushLin.data(), b.bodies.pushLin.data(), n * sizeof(BtgFloat4))) << maxColors;
+        ASSERT_EQ(a.contacts.size(), b.contacts.size());
+        for (size_t i = 0; i < a.contacts.size(); ++i) {
+            EXPECT_EQ(0, std::memcmp(&a.contacts[i].normalImpulse, &b.contacts[i].normalImpulse, sizeof(BtgFloat4)));
+            EXPECT_EQ(0, std::memcmp(&a.contacts[i].pushImpulse, &b.contacts[i].pushImpulse, sizeof(BtgFloat4)));
+        }
     }
 }
 
