@@ -187,7 +187,7 @@ void GpuWorld::rebuild()
     w.pairs.reserve(w.ctx, w.pairCapacity);
     w.manifolds.reserve(w.ctx, w.pairCapacity);
     w.contacts.reserve(w.ctx, w.contactCapacity);
-    w.prevContacts.reserve(w.ctx, w.contactCapacity);
+    w.contactCache.reserveExact(w.ctx, w.contactCapacity);
     std::vector<uint> counters(kNumCounters, 0u);
     counters[kNanBody] = 0xffffffffu;
     w.counters.upload(w.ctx, counters);
@@ -290,7 +290,7 @@ void GpuWorld::runOnDevice(int substeps, btScalar dt)
         bool pairOverflow = status & BTG_STATUS_PAIR_OVERFLOW;
         bool contactOverflow = status & BTG_STATUS_CONTACT_OVERFLOW;
         if ((!pairOverflow && !contactOverflow) || attempt >= 8) break;
-        // Back to the state before the call first (the cache returns to prevContacts), then
+        // Back to the state before the call first (the warm-start cache as it was), then
         // grow, keeping the cache's contents.
         restoreSnapshot(w, m_snapshot);
         size_t pairs = m_readback.counters[kPairCount];
@@ -299,7 +299,7 @@ void GpuWorld::runOnDevice(int substeps, btScalar dt)
         w.pairs.reserve(w.ctx, w.pairCapacity);
         w.manifolds.reserve(w.ctx, w.pairCapacity);
         w.contacts.reserve(w.ctx, w.contactCapacity);
-        w.prevContacts.reserve(w.ctx, w.contactCapacity, true);
+        w.contactCache.reserveExact(w.ctx, w.contactCapacity, true);
         ++m_report.redoneSteps;
         report({Issue::Kind::Overflow, "pair/contact buffers grew to " + std::to_string(w.pairCapacity) + "/" +
                                            std::to_string(w.contactCapacity) + "; step redone"});

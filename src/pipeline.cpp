@@ -1,6 +1,6 @@
 // pipeline.cpp — one substep, top to bottom, as the talk lays it out: integrate/predict →
 // AABBs → pairs → contacts → forces → contact cache → constraint setup → batching → PGS →
-// integrate transforms → deactivation. Config::solver = JacobiMassSplitting puts one Jacobi
+// store the cache for the next substep → integrate transforms → deactivation. Config::solver = JacobiMassSplitting puts one Jacobi
 // mass-splitting stage in place of batching + PGS. Stages absent from the plan are neither built nor launched.
 #include "pipeline.h"
 
@@ -16,7 +16,6 @@
 #include "stages/update_activation.h"
 
 #include <algorithm>
-#include <utility>
 
 namespace btgpu {
 
@@ -26,14 +25,6 @@ void fillCounters(DeviceWorld& w, int first, int count, uint value)
 {
     BTGPU_CL_CHECK(clEnqueueFillBuffer(w.ctx.queue(), w.counters.mem(), &value, sizeof(uint), first * sizeof(uint),
                                        count * sizeof(uint), 0, nullptr, nullptr));
-}
-
-// This substep's contacts become the next one's warm-start cache.
-void rotateContactCache(DeviceWorld& w)
-{
-    std::swap(w.contacts, w.prevContacts);
-    BTGPU_CL_CHECK(clEnqueueCopyBuffer(w.ctx.queue(), w.counters.mem(), w.counters.mem(), kContactCount * sizeof(uint),
-                                       kPrevContactCount * sizeof(uint), sizeof(uint), 0, nullptr, nullptr));
 }
 
 void runSubstep(DeviceWorld& w, const Plan& plan, const StepSettings& s)
@@ -57,10 +48,10 @@ void runSubstep(DeviceWorld& w, const Plan& plan, const StepSettings& s)
             colorConstraints(w, s.maxColors);
             solveConstraints(w, p, s.iterations, w.numColors);
         }
+        storeContactCache(w);  // before the bodies move: the cache keys use A's rotation now
     }
     integrateTransforms(w, p.dt, p.splitTurnErp);
     updateActivation(w, p.dt, p.deactivationTime);
-    if (collide) rotateContactCache(w);
 }
 
 }  // namespace
@@ -86,10 +77,13 @@ void takeSnapshot(DeviceWorld& w, Snapshot& s, const Plan& plan, int substeps)
     s.angVel.copyFrom(w.ctx, w.angVel, n);
     s.counters.copyFrom(w.ctx, w.counters, kNumCounters);
     const bool collide = plan.kinds.any() && n > 0;
-    s.cacheCopied = collide && substeps > 1;
-    s.cacheSwapped = collide && substeps == 1;
-    if (s.cacheCopied) s.prevContacts.copyFrom(w.ctx, w.prevContacts, w.prevContacts.capacity());
-    else s.prevContacts.release();
+    s.cacheCopied = collide && substeps > 1 && w.contactCache.capacity() > 0;
+    if (s.cacheCopied) {
+        s.contactCache.reserveExact(w.ctx, w.contactCache.capacity());
+        s.contactCache.copyFrom(w.ctx, w.contactCache, w.contactCache.capacity());
+    } else {
+        s.contactCache.release();
+    }
 }
 
 void restoreSnapshot(DeviceWorld& w, Snapshot& s)
@@ -99,13 +93,10 @@ void restoreSnapshot(DeviceWorld& w, Snapshot& s)
     w.rot.copyFrom(w.ctx, s.rot, n);
     w.linVel.copyFrom(w.ctx, s.linVel, n);
     w.angVel.copyFrom(w.ctx, s.angVel, n);
-    if (s.cacheSwapped) {
-        std::swap(w.contacts, w.prevContacts);
-        s.cacheSwapped = false;  // a second restore of the same snapshot must not swap again
-    } else if (s.cacheCopied) {
-        size_t m = std::min(s.prevContacts.capacity(), w.prevContacts.capacity());
-        BTGPU_CL_CHECK(clEnqueueCopyBuffer(w.ctx.queue(), s.prevContacts.mem(), w.prevContacts.mem(), 0, 0,
-                                           m * sizeof(BtgContact), 0, nullptr, nullptr));
+    if (s.cacheCopied) {
+        size_t m = std::min(s.contactCache.capacity(), w.contactCache.capacity());
+        BTGPU_CL_CHECK(clEnqueueCopyBuffer(w.ctx.queue(), s.contactCache.mem(), w.contactCache.mem(), 0, 0,
+                                           m * sizeof(BtgCachedContact), 0, nullptr, nullptr));
     }
     w.counters.copyFrom(w.ctx, s.counters, kNumCounters);
 }

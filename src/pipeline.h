@@ -21,14 +21,14 @@ struct StepSettings {
 void runSubsteps(DeviceWorld& w, const Plan& plan, const StepSettings& s);
 
 // What a redo needs: the body state and the warm-start cache as they were before the call.
-// With one substep the cache needs no copy: the substep only swaps it into `contacts`
-// unchanged, and the restore swaps it back (the copy would be a third contact buffer).
+// With one substep the cache needs no copy: a substep that overflows leaves the cache
+// untouched (store_contact_cache checks the status), and only an overflowing call is redone.
+// `substeps` must count every substep the call runs.
 struct Snapshot {
     cl::DeviceArray<BtgFloat4> pos, rot, linVel, angVel;
-    cl::DeviceArray<BtgContact> prevContacts;  // only when the call runs several substeps
+    cl::DeviceArray<BtgCachedContact> contactCache;  // only when the call runs several substeps
     cl::DeviceArray<uint> counters;
     bool cacheCopied = false;
-    bool cacheSwapped = false;  // one collide substep ran: the cache now sits in `contacts`
 };
 void takeSnapshot(DeviceWorld& w, Snapshot& s, const Plan& plan, int substeps);
 void restoreSnapshot(DeviceWorld& w, Snapshot& s);
