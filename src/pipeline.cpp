@@ -59,6 +59,17 @@ void runSubstep(DeviceWorld& w, const Plan& plan, const StepSettings& s)
 void runSubsteps(DeviceWorld& w, const Plan& plan, const StepSettings& s)
 {
     if (w.numBodies == 0) return;
+    // A redo starts from the cache as the call found it. One substep leaves the cache alone
+    // when it overflows; of several, an early one may store it before a later one overflows,
+    // so the call keeps a copy. Counted here, where every substep is known (Config::
+    // internalSubsteps included).
+    w.contactCacheKept = plan.kinds.any() && s.substeps > 1 && w.contactCache.capacity() > 0;
+    if (w.contactCacheKept) {
+        w.contactCacheAtCall.reserveExact(w.ctx, w.contactCache.capacity());
+        w.contactCacheAtCall.copyFrom(w.ctx, w.contactCache, w.contactCache.capacity());
+    } else {
+        w.contactCacheAtCall.release();
+    }
     for (int i = 0; i < s.substeps; ++i) runSubstep(w, plan, s);
 }
 
@@ -68,7 +79,7 @@ void resetStatus(DeviceWorld& w)
     fillCounters(w, kNanBody, 1, 0xffffffffu);
 }
 
-void takeSnapshot(DeviceWorld& w, Snapshot& s, const Plan& plan, int substeps)
+void takeSnapshot(DeviceWorld& w, Snapshot& s, const Plan&, int)
 {
     size_t n = size_t(w.numBodies);
     s.pos.copyFrom(w.ctx, w.pos, n);
@@ -76,14 +87,6 @@ void takeSnapshot(DeviceWorld& w, Snapshot& s, const Plan& plan, int substeps)
     s.linVel.copyFrom(w.ctx, w.linVel, n);
     s.angVel.copyFrom(w.ctx, w.angVel, n);
     s.counters.copyFrom(w.ctx, w.counters, kNumCounters);
-    const bool collide = plan.kinds.any() && n > 0;
-    s.cacheCopied = collide && substeps > 1 && w.contactCache.capacity() > 0;
-    if (s.cacheCopied) {
-        s.contactCache.reserveExact(w.ctx, w.contactCache.capacity());
-        s.contactCache.copyFrom(w.ctx, w.contactCache, w.contactCache.capacity());
-    } else {
-        s.contactCache.release();
-    }
 }
 
 void restoreSnapshot(DeviceWorld& w, Snapshot& s)
@@ -93,9 +96,9 @@ void restoreSnapshot(DeviceWorld& w, Snapshot& s)
     w.rot.copyFrom(w.ctx, s.rot, n);
     w.linVel.copyFrom(w.ctx, s.linVel, n);
     w.angVel.copyFrom(w.ctx, s.angVel, n);
-    if (s.cacheCopied) {
-        size_t m = std::min(s.contactCache.capacity(), w.contactCache.capacity());
-        BTGPU_CL_CHECK(clEnqueueCopyBuffer(w.ctx.queue(), s.contactCache.mem(), w.contactCache.mem(), 0, 0,
+    if (w.contactCacheKept) {
+        size_t m = std::min(w.contactCacheAtCall.capacity(), w.contactCache.capacity());
+        BTGPU_CL_CHECK(clEnqueueCopyBuffer(w.ctx.queue(), w.contactCacheAtCall.mem(), w.contactCache.mem(), 0, 0,
                                            m * sizeof(BtgCachedContact), 0, nullptr, nullptr));
     }
     w.counters.copyFrom(w.ctx, s.counters, kNumCounters);

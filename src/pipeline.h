@@ -20,15 +20,15 @@ struct StepSettings {
 // Enqueues `s.substeps` substeps of the plan (the caller reads back once afterwards).
 void runSubsteps(DeviceWorld& w, const Plan& plan, const StepSettings& s);
 
-// What a redo needs: the body state and the warm-start cache as they were before the call.
-// With one substep the cache needs no copy: a substep that overflows leaves the cache
-// untouched (store_contact_cache checks the status), and only an overflowing call is redone.
-// `substeps` must count every substep the call runs.
+// What a redo needs: the body state and the counters as they were before the call. The
+// warm-start cache needs nothing here: a substep that overflows leaves it untouched
+// (store_contact_cache checks the status), and when a call runs several substeps runSubsteps
+// keeps a copy of it (DeviceWorld::contactCacheAtCall) that restoreSnapshot puts back.
+// takeSnapshot's plan and substep count are no longer read (runSubsteps knows every substep,
+// Config::internalSubsteps included).
 struct Snapshot {
     cl::DeviceArray<BtgFloat4> pos, rot, linVel, angVel;
-    cl::DeviceArray<BtgCachedContact> contactCache;  // only when the call runs several substeps
     cl::DeviceArray<uint> counters;
-    bool cacheCopied = false;
 };
 void takeSnapshot(DeviceWorld& w, Snapshot& s, const Plan& plan, int substeps);
 void restoreSnapshot(DeviceWorld& w, Snapshot& s);

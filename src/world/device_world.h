@@ -80,6 +80,9 @@ struct DeviceWorld {
     // warm start read (80 bytes against a contact's 304), in the same pair order.
     cl::DeviceArray<BtgCachedContact> contactCache;
     size_t contactCapacity = 0;              // contacts and contactCache hold this many
+    // The cache as this call found it, for a redo; only while a call runs several substeps.
+    cl::DeviceArray<BtgCachedContact> contactCacheAtCall;
+    bool contactCacheKept = false;
     int numColors = 0;                       // batches the solver launches (host estimate)
     int colorRounds = 8;                     // coloring rounds to run: set from the last readback
     int lastContactCount = 1 << 30;          // contacts at the last readback (chooses launch shapes)
