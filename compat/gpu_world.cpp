@@ -193,10 +193,10 @@ void GpuWorld::rebuild()
     size_t n = m_rows.size();
     w.pairCapacity = std::max(w.pairCapacity, std::max<size_t>(256, 4 * n));
     w.contactCapacity = std::max(w.contactCapacity, std::max<size_t>(256, 2 * n));
-    w.pairs.reserve(w.ctx, w.pairCapacity);
-    w.manifolds.reserve(w.ctx, w.pairCapacity);
-    w.contacts.reserve(w.ctx, w.contactCapacity);
-    w.prevContacts.reserve(w.ctx, w.contactCapacity);
+    w.pairs.reserveExact(w.ctx, w.pairCapacity);
+    w.manifolds.reserveExact(w.ctx, w.pairCapacity);
+    w.contacts.reserveExact(w.ctx, w.contactCapacity);
+    w.contactCache.reserveExact(w.ctx, w.contactCapacity);
     std::vector<uint> counters(kNumCounters, 0u);
     counters[kNanBody] = 0xffffffffu;
     w.counters.upload(w.ctx, counters);
@@ -336,16 +336,22 @@ void GpuWorld::runOnDevice(int substeps, btScalar dt)
             continue;
         }
         if ((!pairOverflow && !contactOverflow) || attempt >= 8) break;
-        // Back to the state before the call first (the cache returns to prevContacts), then
+        // Back to the state before the call first (the warm-start cache as it was), then
         // grow, keeping the cache's contents.
         restoreSnapshot(w, m_snapshot);
+        // The counts are the full ones (the kernels count past capacity). Contacts take what
+        // they need plus an eighth, pairs a quarter: the contact list is the largest buffer
+        // (304 + 80 bytes a slot), and every growth is at least 1.25x, so redos stay few.
         size_t pairs = m_readback.counters[kPairCount];
-        if (pairOverflow) w.pairCapacity = std::max(w.pairCapacity * 2, pairs + pairs / 4 + 64);
-        if (contactOverflow || pairOverflow) w.contactCapacity = std::max(w.contactCapacity * 2, std::min(w.pairCapacity, pairs + 64));
-        w.pairs.reserve(w.ctx, w.pairCapacity);
-        w.manifolds.reserve(w.ctx, w.pairCapacity);
-        w.contacts.reserve(w.ctx, w.contactCapacity);
-        w.prevContacts.reserve(w.ctx, w.contactCapacity, true);
+        size_t contacts = m_readback.counters[kContactCount];
+        if (pairOverflow) contacts = contacts * pairs / std::max<size_t>(w.pairCapacity, 1);  // of the pairs found
+        if (pairOverflow) w.pairCapacity = std::max(w.pairCapacity + w.pairCapacity / 4, pairs + pairs / 4 + 64);
+        if (contactOverflow || contacts > w.contactCapacity)
+            w.contactCapacity = std::max(w.contactCapacity + w.contactCapacity / 4, contacts + contacts / 8 + 64);
+        w.pairs.reserveExact(w.ctx, w.pairCapacity);
+        w.manifolds.reserveExact(w.ctx, w.pairCapacity);
+        w.contacts.reserveExact(w.ctx, w.contactCapacity);
+        w.contactCache.reserveExact(w.ctx, w.contactCapacity, true);
         ++m_report.redoneSteps;
         report({Issue::Kind::Overflow, "pair/contact buffers grew to " + std::to_string(w.pairCapacity) + "/" +
                                            std::to_string(w.contactCapacity) + "; step redone"});

@@ -1,8 +1,11 @@
-/* contact_cache.cl — Stage: contacts (compaction of the manifolds and warm start).
- * Launch: one work-item per pair slot (pairCapacity), in work-groups whose size the host passes
- * as the local-memory scan size; scan_blocks runs as one work-item.
- * Reads manifolds, counters[kPairCount, kPrevContactCount], pos, rot, prevContacts.
- * Writes blockSums (scratch), contacts, counters[kContactCount], counters[kStatus]. */
+/* contact_cache.cl — Stage: contacts (compaction of the manifolds and warm start) and, after the
+ * solve, the warm-start cache for the next substep.
+ * Launch: count_contacts / write_contacts one work-item per pair slot (pairCapacity), in
+ * work-groups whose size the host passes as the local-memory scan size; scan_blocks as one
+ * work-item; store_contact_cache one work-item per contact slot.
+ * Reads manifolds, counters[kPairCount, kPrevContactCount, kStatus], pos, rot, contactCache.
+ * Writes blockSums (scratch), contacts, counters[kContactCount], counters[kStatus]; then
+ * contactCache and counters[kPrevContactCount]. */
 #include "shared/types.h"
 #include "shared/math.h"
 #include "shared/contact_rows.h"
@@ -63,8 +66,9 @@ __kernel void scan_blocks(__global uint* blockSums, int numBlocks, __global uint
 __kernel void write_contacts(__global const BtgManifold* restrict manifolds, __global const uint* restrict counters,
                              int pairCapacity, __global const uint* restrict blockSums,
                              __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,
-                             __global const BtgContact* restrict prevContacts, int prevCapacity, __global BtgContact* contacts,
-                             int contactCapacity, BtgStepParams params, __local uint* tmp)
+                             __global const BtgCachedContact* restrict cache, int cacheCapacity,
+                             __global BtgContact* contacts, int contactCapacity, BtgStepParams params,
+                             __local uint* tmp)
 {
     uint flag = has_points(manifolds, counters, pairCapacity);
     uint total;
@@ -73,9 +77,25 @@ __kernel void write_contacts(__global const BtgManifold* restrict manifolds, __g
     uint dst = blockSums[get_group_id(0)] + local_index;
     if (dst >= (uint)contactCapacity) return;
     BtgManifold m = manifolds[get_global_id(0)];
-    BtgContact c = btgContactFromManifold(m, pos[m.bodyA], rot[m.bodyA], pos[m.bodyB]);
-    int prevCount = (int)min(counters[COUNTER_PREV_CONTACTS], (uint)prevCapacity);
-    int j = btgFindPrevContact(prevContacts, prevCount, m.bodyA, m.bodyB);
-    if (j >= 0) btgWarmStartFrom(&c, prevContacts[j], params.contactThreshold, params.warmstartFactor);
+    BtgContact c = btgContactFromManifold(m, pos[m.bodyA], pos[m.bodyB]);
+    int prevCount = (int)min(counters[COUNTER_PREV_CONTACTS], (uint)cacheCapacity);
+    int j = btgFindPrevContact(cache, prevCount, m.bodyA, m.bodyB);
+    if (j >= 0) btgWarmStartFrom(&c, rot[m.bodyA], cache[j], params.contactThreshold, params.warmstartFactor);
     contacts[dst] = c;
+}
+
+/* After the solve, before the bodies move: the solved contacts become the next substep's cache.
+ * A substep that overflowed leaves the cache as it was, so the redo of a one-substep call finds
+ * it unchanged (its results are thrown away anyway). */
+__kernel void store_contact_cache(__global const BtgContact* restrict contacts, __global uint* counters,
+                                  int contactCapacity, __global const BtgFloat4* restrict rot,
+                                  __global BtgCachedContact* cache, int cacheCapacity)
+{
+    if ((counters[COUNTER_STATUS] & (BTG_STATUS_PAIR_OVERFLOW | BTG_STATUS_CONTACT_OVERFLOW)) != 0u) return;
+    uint n = min(counters[COUNTER_CONTACTS], (uint)min(contactCapacity, cacheCapacity));
+    uint i = (uint)get_global_id(0);
+    if (i == 0) counters[COUNTER_PREV_CONTACTS] = n;
+    if (i >= n) return;
+    BtgContact c = contacts[i];
+    cache[i] = btgCachedContactFrom(c, rot[c.bodyA]);
 }

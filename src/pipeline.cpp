@@ -1,6 +1,6 @@
 // pipeline.cpp — one substep, top to bottom, as the talk lays it out: integrate/predict →
 // AABBs → pairs → contacts → forces → contact cache → constraint setup → batching → PGS →
-// integrate transforms → deactivation. Config::solver = JacobiMassSplitting puts one Jacobi
+// store the cache for the next substep → integrate transforms → deactivation. Config::solver = JacobiMassSplitting puts one Jacobi
 // mass-splitting stage in place of batching + PGS. Stages absent from the plan are neither built nor launched.
 #include "pipeline.h"
 
@@ -16,7 +16,6 @@
 #include "stages/update_activation.h"
 
 #include <algorithm>
-#include <utility>
 
 namespace btgpu {
 
@@ -26,14 +25,6 @@ void fillCounters(DeviceWorld& w, int first, int count, uint value)
 {
     BTGPU_CL_CHECK(clEnqueueFillBuffer(w.ctx.queue(), w.counters.mem(), &value, sizeof(uint), first * sizeof(uint),
                                        count * sizeof(uint), 0, nullptr, nullptr));
-}
-
-// This substep's contacts become the next one's warm-start cache.
-void rotateContactCache(DeviceWorld& w)
-{
-    std::swap(w.contacts, w.prevContacts);
-    BTGPU_CL_CHECK(clEnqueueCopyBuffer(w.ctx.queue(), w.counters.mem(), w.counters.mem(), kContactCount * sizeof(uint),
-                                       kPrevContactCount * sizeof(uint), sizeof(uint), 0, nullptr, nullptr));
 }
 
 void runSubstep(DeviceWorld& w, const Plan& plan, const StepSettings& s)
@@ -57,10 +48,10 @@ void runSubstep(DeviceWorld& w, const Plan& plan, const StepSettings& s)
             colorConstraints(w, s.maxColors);
             solveConstraints(w, p, s.iterations, w.numColors);
         }
+        storeContactCache(w);  // before the bodies move: the cache keys use A's rotation now
     }
     integrateTransforms(w, p.dt, p.splitTurnErp);
     updateActivation(w, p.dt, p.deactivationTime);
-    if (collide) rotateContactCache(w);
 }
 
 }  // namespace
@@ -68,6 +59,17 @@ void runSubstep(DeviceWorld& w, const Plan& plan, const StepSettings& s)
 void runSubsteps(DeviceWorld& w, const Plan& plan, const StepSettings& s)
 {
     if (w.numBodies == 0) return;
+    // A redo starts from the cache as the call found it. One substep leaves the cache alone
+    // when it overflows; of several, an early one may store it before a later one overflows,
+    // so the call keeps a copy. Counted here, where every substep is known (Config::
+    // internalSubsteps included).
+    w.contactCacheKept = plan.kinds.any() && s.substeps > 1 && w.contactCache.capacity() > 0;
+    if (w.contactCacheKept) {
+        w.contactCacheAtCall.reserveExact(w.ctx, w.contactCache.capacity());
+        w.contactCacheAtCall.copyFrom(w.ctx, w.contactCache, w.contactCache.capacity());
+    } else {
+        w.contactCacheAtCall.release();
+    }
     for (int i = 0; i < s.substeps; ++i) runSubstep(w, plan, s);
 }
 
@@ -77,7 +79,7 @@ void resetStatus(DeviceWorld& w)
     fillCounters(w, kNanBody, 1, 0xffffffffu);
 }
 
-void takeSnapshot(DeviceWorld& w, Snapshot& s, const Plan& plan, int substeps)
+void takeSnapshot(DeviceWorld& w, Snapshot& s, const Plan&, int)
 {
     size_t n = size_t(w.numBodies);
     s.pos.copyFrom(w.ctx, w.pos, n);
@@ -85,11 +87,6 @@ void takeSnapshot(DeviceWorld& w, Snapshot& s, const Plan& plan, int substeps)
     s.linVel.copyFrom(w.ctx, w.linVel, n);
     s.angVel.copyFrom(w.ctx, w.angVel, n);
     s.counters.copyFrom(w.ctx, w.counters, kNumCounters);
-    const bool collide = plan.kinds.any() && n > 0;
-    s.cacheCopied = collide && substeps > 1;
-    s.cacheSwapped = collide && substeps == 1;
-    if (s.cacheCopied) s.prevContacts.copyFrom(w.ctx, w.prevContacts, w.prevContacts.capacity());
-    else s.prevContacts.release();
 }
 
 void restoreSnapshot(DeviceWorld& w, Snapshot& s)
@@ -99,13 +96,10 @@ void restoreSnapshot(DeviceWorld& w, Snapshot& s)
     w.rot.copyFrom(w.ctx, s.rot, n);
     w.linVel.copyFrom(w.ctx, s.linVel, n);
     w.angVel.copyFrom(w.ctx, s.angVel, n);
-    if (s.cacheSwapped) {
-        std::swap(w.contacts, w.prevContacts);
-        s.cacheSwapped = false;  // a second restore of the same snapshot must not swap again
-    } else if (s.cacheCopied) {
-        size_t m = std::min(s.prevContacts.capacity(), w.prevContacts.capacity());
-        BTGPU_CL_CHECK(clEnqueueCopyBuffer(w.ctx.queue(), s.prevContacts.mem(), w.prevContacts.mem(), 0, 0,
-                                           m * sizeof(BtgContact), 0, nullptr, nullptr));
+    if (w.contactCacheKept) {
+        size_t m = std::min(w.contactCacheAtCall.capacity(), w.contactCache.capacity());
+        BTGPU_CL_CHECK(clEnqueueCopyBuffer(w.ctx.queue(), w.contactCacheAtCall.mem(), w.contactCache.mem(), 0, 0,
+                                           m * sizeof(BtgCachedContact), 0, nullptr, nullptr));
     }
     w.counters.copyFrom(w.ctx, s.counters, kNumCounters);
 }

@@ -20,15 +20,15 @@ struct StepSettings {
 // Enqueues `s.substeps` substeps of the plan (the caller reads back once afterwards).
 void runSubsteps(DeviceWorld& w, const Plan& plan, const StepSettings& s);
 
-// What a redo needs: the body state and the warm-start cache as they were before the call.
-// With one substep the cache needs no copy: the substep only swaps it into `contacts`
-// unchanged, and the restore swaps it back (the copy would be a third contact buffer).
+// What a redo needs: the body state and the counters as they were before the call. The
+// warm-start cache needs nothing here: a substep that overflows leaves it untouched
+// (store_contact_cache checks the status), and when a call runs several substeps runSubsteps
+// keeps a copy of it (DeviceWorld::contactCacheAtCall) that restoreSnapshot puts back.
+// takeSnapshot's plan and substep count are no longer read (runSubsteps knows every substep,
+// Config::internalSubsteps included).
 struct Snapshot {
     cl::DeviceArray<BtgFloat4> pos, rot, linVel, angVel;
-    cl::DeviceArray<BtgContact> prevContacts;  // only when the call runs several substeps
     cl::DeviceArray<uint> counters;
-    bool cacheCopied = false;
-    bool cacheSwapped = false;  // one collide substep ran: the cache now sits in `contacts`
 };
 void takeSnapshot(DeviceWorld& w, Snapshot& s, const Plan& plan, int substeps);
 void restoreSnapshot(DeviceWorld& w, Snapshot& s);

@@ -9,12 +9,7 @@
 #include "types.h"
 #include "math.h"
 
-/* Bullet 3.24 zeroes friction impulses at setup (setFrictionConstraintImpulse); btgpu keeps
- * them, scaled by the warm-start factor, because its friction directions are a pure function of
- * a stable normal (btgPlaneSpace) and so mean the same thing next step. 0 restores Bullet's rule. */
-#ifndef BTG_WARMSTART_FRICTION
-#define BTG_WARMSTART_FRICTION 0
-#endif
+/* BTG_WARMSTART_FRICTION (friction impulses kept across steps) is in types.h. */
 #define BTG_MAX_FRICTION 10.0f       /* btManifoldResult::calculateCombinedFriction's clamp */
 #define BTG_NORMAL_UPPER_LIMIT 1e10f /* setupContactConstraint's m_upperLimit */
 
@@ -112,27 +107,24 @@ static inline BtgBodyVel btgMakeBodyVel(int moving, BtgFloat4 lin, BtgFloat4 ang
 /* ---- contact cache: geometry and warm start ---- */
 
 /* A contact's geometry from its manifold: rA from the point on A, rB from the point on B (as
- * Bullet's rel_pos1/rel_pos2), localA = point on A in A's frame (the cache key, w = distance).
- * Impulses start at zero; the caller warm-starts them. */
-static inline BtgContact btgContactFromManifold(BtgManifold m, BtgFloat4 posA, BtgFloat4 rotA, BtgFloat4 posB)
+ * Bullet's rel_pos1/rel_pos2), rA.w = signed distance (prepare reads it, then writes the target
+ * there). Impulses start at zero; the caller warm-starts them. */
+static inline BtgContact btgContactFromManifold(BtgManifold m, BtgFloat4 posA, BtgFloat4 posB)
 {
     BtgContact c;
-    BtgMat3 ra = btgQuatToMat3(rotA);
     c.normal = btgXyz(m.normal);
     c.t1 = btgZero4();
     c.t2 = btgZero4();
     for (int k = 0; k < BTG_MAX_POINTS; ++k) {
         c.rA[k] = btgZero4();
         c.rB[k] = btgZero4();
-        c.localA[k] = btgZero4();
         if (k < m.numPoints) {
             BtgFloat4 pb = btgXyz(m.pointB[k]);
             float dist = m.pointB[k].w;
             BtgFloat4 pa = pb + c.normal * dist;
             c.rA[k] = pa - btgXyz(posA);
+            c.rA[k].w = dist;
             c.rB[k] = pb - btgXyz(posB);
-            c.localA[k] = btgMat3TMulVec(ra, c.rA[k]);
-            c.localA[k].w = dist;
         }
     }
     c.normalImpulse = btgZero4();
@@ -149,13 +141,44 @@ static inline BtgContact btgContactFromManifold(BtgManifold m, BtgFloat4 posA, B
     return c;
 }
 
+/* The cache key of a point: the point on A in A's body frame (rA rotated back), w = 0. The
+ * same value whether taken when the contact is built or after the solve, as long as A has not
+ * been integrated in between (rA's xyz and A's rotation are unchanged until then). */
+static inline BtgFloat4 btgContactKey(BtgMat3 rotA, BtgFloat4 rA)
+{
+    return btgMat3TMulVec(rotA, btgXyz(rA));
+}
+
+/* A solved contact as the cache keeps it; rotA is A's rotation when the contact was built. */
+static inline BtgCachedContact btgCachedContactFrom(BtgContact c, BtgFloat4 rotA)
+{
+    BtgCachedContact e;
+    BtgMat3 ra = btgQuatToMat3(rotA);
+    for (int k = 0; k < BTG_MAX_POINTS; ++k) {
+        e.point[k] = btgZero4();
+        if (k < c.numPoints) {
+            e.point[k] = btgContactKey(ra, c.rA[k]);
+            e.point[k].w = btgLane(c.normalImpulse, k);
+        }
+    }
+#if BTG_WARMSTART_FRICTION
+    e.friction1Impulse = c.friction1Impulse;
+    e.friction2Impulse = c.friction2Impulse;
+#endif
+    e.bodyA = c.bodyA;
+    e.bodyB = c.bodyB;
+    e.numPoints = c.numPoints;
+    e.pad0 = 0;
+    return e;
+}
+
 /* Contacts are in pair order, i.e. sorted by (min body, max body): the search key. */
 static inline int btgPairKeyLess(int a0, int b0, int a1, int b1)
 {
     return a0 < a1 || (a0 == a1 && b0 < b1);
 }
-/* Index of the previous contact of the same body pair (same orientation), or -1. */
-static inline int btgFindPrevContact(BTG_CONST_GLOBAL BtgContact* prev, int count, int bodyA, int bodyB)
+/* Index of the cached contact of the same body pair (same orientation), or -1. */
+static inline int btgFindPrevContact(BTG_CONST_GLOBAL BtgCachedContact* prev, int count, int bodyA, int bodyB)
 {
     int ka = bodyA < bodyB ? bodyA : bodyB, kb = bodyA < bodyB ? bodyB : bodyA;
     int lo = 0, hi = count;
@@ -170,14 +193,17 @@ static inline int btgFindPrevContact(BTG_CONST_GLOBAL BtgContact* prev, int coun
     return -1;
 }
 /* btPersistentManifold::getCacheEntry: each new point takes the old point nearest in A's frame,
- * strictly within the breaking threshold; its impulses start scaled by the warm-start factor. */
-static inline void btgWarmStartFrom(BtgContact* c, BtgContact old, float threshold, float factor)
+ * strictly within the breaking threshold; its impulses start scaled by the warm-start factor.
+ * rotA: A's rotation now (the new points' keys). */
+static inline void btgWarmStartFrom(BtgContact* c, BtgFloat4 rotA, BtgCachedContact old, float threshold, float factor)
 {
+    BtgMat3 ra = btgQuatToMat3(rotA);
     for (int k = 0; k < c->numPoints; ++k) {
+        BtgFloat4 key = btgContactKey(ra, c->rA[k]);
         float best = threshold * threshold;
         int found = -1;
         for (int j = 0; j < old.numPoints; ++j) {
-            BtgFloat4 d = btgXyz(c->localA[k]) - btgXyz(old.localA[j]);
+            BtgFloat4 d = key - btgXyz(old.point[j]);
             float d2 = btgDot3(d, d);
             if (d2 < best) {
                 best = d2;
@@ -185,7 +211,7 @@ static inline void btgWarmStartFrom(BtgContact* c, BtgContact old, float thresho
             }
         }
         if (found < 0) continue;
-        btgSetLane(&c->normalImpulse, k, btgLane(old.normalImpulse, found) * factor);
+        btgSetLane(&c->normalImpulse, k, old.point[found].w * factor);
 #if BTG_WARMSTART_FRICTION
         btgSetLane(&c->friction1Impulse, k, btgLane(old.friction1Impulse, found) * factor);
         btgSetLane(&c->friction2Impulse, k, btgLane(old.friction2Impulse, found) * factor);
@@ -302,7 +328,7 @@ static inline void btgPrepareContact(BtgContact* c, BtgSolverBody a, BtgSolverBo
                 btgSetLane(&c->friction2Mass, k, btgRowMass(btgMakeRow(t2, rA, rB, a, b), rA, rB, a, b));
             BtgFloat4 velA = a0.lin + btgCross3(a0.ang, rA);
             BtgFloat4 velB = b0.lin + btgCross3(b0.ang, rB);
-            float penetration = c->localA[k].w;
+            float penetration = c->rA[k].w; /* the distance, until the target replaces it below */
             target = btgRestitution(btgDot3(n, velA - velB), restitution, p.restitutionThreshold);
             float positional = 0.0f;
             if (penetration > 0.0f) target -= penetration * invDt; /* speculative: reach, not pass */

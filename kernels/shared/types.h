@@ -24,6 +24,15 @@
 
 #define BTG_MAX_POINTS 4 /* contact points per manifold, as Bullet's btPersistentManifold */
 
+/* Bullet 3.24 zeroes friction impulses at setup (setFrictionConstraintImpulse); btgpu keeps
+ * them, scaled by the warm-start factor, because its friction directions are a pure function of
+ * a stable normal (btgPlaneSpace) and so mean the same thing next step. 0 restores Bullet's rule.
+ * Here, not in contact_rows.h, because the warm-start cache carries the friction impulses only
+ * when they are used. */
+#ifndef BTG_WARMSTART_FRICTION
+#define BTG_WARMSTART_FRICTION 0
+#endif
+
 /* Static per-body properties; rewritten only when the app changes them. */
 typedef struct {
     BtgFloat4 invInertiaLocal; /* 1/(kg m^2) on the principal axes; w: inverse mass 1/kg */
@@ -84,17 +93,18 @@ typedef struct {
     int pad0;
 } BtgManifold;
 
-/* One solver row set per manifold: normal, two friction directions, split impulse. */
+/* One solver row set per manifold: normal, two friction directions, split impulse. The
+ * warm-start key (the point in A's frame) is not kept here: it is R_A^T rA, and the cache
+ * stage recomputes it from rA and A's unchanged rotation when it stores the cache. */
 typedef struct {
     BtgFloat4 normal;                  /* B towards A; w: combined friction */
     BtgFloat4 t1;                      /* friction direction 1; w: combined restitution */
     BtgFloat4 t2;                      /* friction direction 2 */
-    BtgFloat4 rA[BTG_MAX_POINTS];      /* contact point on A minus A's centre, m;
-                                          w: target normal velocity m/s (restitution, bias) */
+    BtgFloat4 rA[BTG_MAX_POINTS];      /* contact point on A minus A's centre, m; w: signed
+                                          distance m (negative: penetrating) until prepare,
+                                          then target normal velocity m/s (restitution, bias) */
     BtgFloat4 rB[BTG_MAX_POINTS];      /* contact point on B minus B's centre, m;
                                           w: split-impulse target push velocity m/s */
-    BtgFloat4 localA[BTG_MAX_POINTS];  /* contact point in A's body frame, m (cache key);
-                                          w: signed distance m */
     BtgFloat4 normalImpulse;           /* accumulated per point, N s */
     BtgFloat4 pushImpulse;             /* accumulated split (position) impulse per point */
     BtgFloat4 friction1Impulse;        /* accumulated along t1 per point */
@@ -107,6 +117,21 @@ typedef struct {
     int numPoints;
     int color;                         /* batch: no dynamic body twice in one color */
 } BtgContact;
+
+/* The warm-start cache: what the next substep's matching and warm start read of one solved
+ * contact (btPersistentManifold's cached points), in the contacts' pair order. */
+typedef struct {
+    BtgFloat4 point[BTG_MAX_POINTS]; /* xyz: contact point on A in A's body frame, m (the match
+                                        key); w: accumulated normal impulse, N s */
+#if BTG_WARMSTART_FRICTION
+    BtgFloat4 friction1Impulse;      /* accumulated along t1 per point, N s */
+    BtgFloat4 friction2Impulse;      /* accumulated along t2 per point, N s */
+#endif
+    int bodyA;
+    int bodyB;
+    int numPoints;
+    int pad0;
+} BtgCachedContact;
 
 /* Per-step scalars, passed by value to the kernels that need them. */
 typedef struct {
@@ -136,7 +161,9 @@ static_assert(sizeof(BtgShape) == 80, "BtgShape layout");
 static_assert(sizeof(BtgFace) == 32, "BtgFace layout");
 static_assert(sizeof(BtgPair) == 8, "BtgPair layout");
 static_assert(sizeof(BtgManifold) == 96, "BtgManifold layout");
-static_assert(sizeof(BtgContact) == 16 * 22 + 16, "BtgContact layout");
+static_assert(sizeof(BtgContact) == 16 * 18 + 16, "BtgContact layout");
+static_assert(sizeof(BtgCachedContact) == 16 * (BTG_MAX_POINTS + 2 * BTG_WARMSTART_FRICTION) + 16,
+              "BtgCachedContact layout");
 static_assert(sizeof(BtgStepParams) == 48, "BtgStepParams layout");
 #endif
 

@@ -4,6 +4,7 @@
 #pragma once
 #include "cl/context.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -33,19 +34,21 @@ private:
 template <typename T>
 class DeviceArray {
 public:
-    // Makes room for at least n elements; grows by 1.5x so repeated growth stays cheap.
-    // When preserve is set the old contents are copied on the device.
+    // Makes room for at least n elements. A first allocation takes exactly n (a column sized
+    // once for N bodies wastes nothing); a later growth takes at least 1.5x, so repeated growth
+    // stays cheap. When preserve is set the old contents are copied on the device.
     void reserve(Context& ctx, size_t n, bool preserve = false)
     {
         if (n <= m_capacity && m_buf.mem()) return;
-        size_t cap = m_capacity ? m_capacity : 16;
-        while (cap < n) cap += cap / 2 + 16;
-        Buffer fresh;
-        fresh.allocate(ctx, cap * sizeof(T));
-        if (preserve && m_buf.mem() && m_capacity)
-            BTGPU_CL_CHECK(clEnqueueCopyBuffer(ctx.queue(), m_buf.mem(), fresh.mem(), 0, 0, m_capacity * sizeof(T), 0, nullptr, nullptr));
-        m_buf = std::move(fresh);
-        m_capacity = cap;
+        size_t grown = m_capacity ? m_capacity + m_capacity / 2 + 16 : 0;
+        grow(ctx, std::max(n, grown), preserve);
+    }
+    // Exactly n elements when it must grow: for the columns whose capacity the caller already
+    // grows geometrically (pairCapacity, contactCapacity), which 1.5x on top would waste.
+    void reserveExact(Context& ctx, size_t n, bool preserve = false)
+    {
+        if (n <= m_capacity && m_buf.mem()) return;
+        grow(ctx, n, preserve);
     }
     void upload(Context& ctx, const T* data, size_t n, size_t offset = 0)
     {
@@ -89,6 +92,17 @@ public:
     size_t bytes() const { return m_buf.bytes(); }
 
 private:
+    void grow(Context& ctx, size_t cap, bool preserve)
+    {
+        cap = std::max<size_t>(cap, 1);
+        Buffer fresh;
+        fresh.allocate(ctx, cap * sizeof(T));
+        if (preserve && m_buf.mem() && m_capacity)
+            BTGPU_CL_CHECK(clEnqueueCopyBuffer(ctx.queue(), m_buf.mem(), fresh.mem(), 0, 0, m_capacity * sizeof(T), 0, nullptr, nullptr));
+        m_buf = std::move(fresh);
+        m_capacity = cap;
+    }
+
     Buffer m_buf;
     size_t m_capacity = 0;
 };

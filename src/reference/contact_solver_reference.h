@@ -17,11 +17,19 @@ struct ContactBodies {
     std::vector<BtgBodyProps> props;
 };
 
-// buildContacts: manifolds[0, min(pairCount, size)) with points, in order, warm-started from
-// prev (sorted by pair). Returns every contact (the caller compares the count with capacity).
+// buildContactsFromCache: manifolds[0, min(pairCount, size)) with points, in order,
+// warm-started from the cache (sorted by pair). Returns every contact (the caller compares the
+// count with capacity).
+std::vector<BtgContact> buildContactsFromCache(const std::vector<BtgManifold>& manifolds, int pairCount,
+                                               const ContactBodies& bodies, const std::vector<BtgCachedContact>& cache,
+                                               const BtgStepParams& params);
+// The same, warm-started from the previous step's solved contacts `prev` (sorted by pair), as
+// the cache stage would store them with the bodies' rotations as they are in `bodies`.
 std::vector<BtgContact> buildContacts(const std::vector<BtgManifold>& manifolds, int pairCount,
                                       const ContactBodies& bodies, const std::vector<BtgContact>& prev,
                                       const BtgStepParams& params);
+// storeContactCache: each contact as the cache keeps it (keys from bodies.rot of body A).
+std::vector<BtgCachedContact> storeContactCache(const std::vector<BtgContact>& contacts, const ContactBodies& bodies);
 
 // prepareContacts on every contact of the list.
 void prepareContacts(std::vector<BtgContact>& contacts, const ContactBodies& bodies, const BtgStepParams& params);

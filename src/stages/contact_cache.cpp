@@ -1,6 +1,7 @@
-// contact_cache.cpp — host launcher of the contacts stage: a two-level scan compacts the
+// contact_cache.cpp — host launchers of the contacts stage: a two-level scan compacts the
 // manifolds with points into `contacts` (pair order), then each contact warm-starts from the
-// previous step's contact of its pair. Three launches, no readback.
+// cached contact of its pair (three launches, no readback); after the solve one launch stores
+// the solved contacts as the next substep's cache.
 #include "stages/contact_cache.h"
 
 #include "cl/program.h"
@@ -32,10 +33,10 @@ void buildContacts(DeviceWorld& w, const BtgStepParams& params)
     int pairCapacity = int(std::min(w.pairCapacity, w.manifolds.capacity()));
     size_t numBlocks = (size_t(pairCapacity) + group - 1) / group;
     w.solverScratch.blockSums.reserve(ctx, std::max<size_t>(numBlocks, 1));
-    w.contacts.reserve(ctx, std::max<size_t>(w.contactCapacity, 1), true);
-    w.prevContacts.reserve(ctx, 1, true);
+    w.contacts.reserveExact(ctx, std::max<size_t>(w.contactCapacity, 1));
+    w.contactCache.reserveExact(ctx, 1, true);
     int contactCapacity = int(std::min(w.contactCapacity, w.contacts.capacity()));
-    int prevCapacity = int(w.prevContacts.capacity());
+    int cacheCapacity = int(w.contactCache.capacity());
 
     if (numBlocks > 0)
         cl::Launch(ctx, count, &w.profiler).arg(w.manifolds).arg(w.counters).arg(pairCapacity)
@@ -44,9 +45,21 @@ void buildContacts(DeviceWorld& w, const BtgStepParams& params)
         .arg(contactCapacity).run(1, 1);
     if (numBlocks > 0)
         cl::Launch(ctx, write, &w.profiler).arg(w.manifolds).arg(w.counters).arg(pairCapacity)
-            .arg(w.solverScratch.blockSums).arg(w.pos).arg(w.rot).arg(w.prevContacts).arg(prevCapacity)
+            .arg(w.solverScratch.blockSums).arg(w.pos).arg(w.rot).arg(w.contactCache).arg(cacheCapacity)
             .arg(w.contacts).arg(contactCapacity).arg(params).local(group * sizeof(cl_uint))
             .run(numBlocks * group, group);
+}
+
+void storeContactCache(DeviceWorld& w)
+{
+    cl::Context& ctx = w.ctx;
+    w.profiler.stage = "contacts";
+    w.contactCache.reserveExact(ctx, std::max<size_t>(w.contactCapacity, 1), true);
+    int contactCapacity = int(std::min(w.contactCapacity, w.contacts.capacity()));
+    int cacheCapacity = int(w.contactCache.capacity());
+    cl::Launch(ctx, ctx.program("contact_cache").kernel("store_contact_cache"), &w.profiler)
+        .arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.rot).arg(w.contactCache).arg(cacheCapacity)
+        .run(size_t(std::max(contactCapacity, 1)));
 }
 
 }  // namespace btgpu

@@ -13,7 +13,7 @@ void narrowphase(DeviceWorld& w, const PairKinds& kinds, float threshold)
 {
     if (!kinds.any() || w.pairCapacity == 0) return;
     w.profiler.stage = "narrowphase";
-    w.manifolds.reserve(w.ctx, w.pairCapacity);
+    w.manifolds.reserveExact(w.ctx, w.pairCapacity);
     const cl_uint capacity = static_cast<cl_uint>(w.pairCapacity);
     const size_t n = w.pairCapacity;
     if (kinds.simple()) {

@@ -16,7 +16,7 @@ namespace btgpu {
 enum Counter : int {
     kPairCount = 0,         // pairs written by find_pairs (may exceed capacity: overflow)
     kContactCount = 1,      // manifolds with points, compacted into `contacts`
-    kPrevContactCount = 2,  // contacts of the previous step (warm-start cache)
+    kPrevContactCount = 2,  // entries of contactCache (the previous substep's contacts)
     kStatus = 3,            // BTG_STATUS_* bits
     kNanBody = 4,           // lowest body row found non-finite (0xffffffff: none)
     kColorsUsed = 5,        // colors the batching assigned in the last substep
@@ -76,8 +76,13 @@ struct DeviceWorld {
     // --- narrowphase and contacts ---
     cl::DeviceArray<BtgManifold> manifolds;  // one per pair slot
     cl::DeviceArray<BtgContact> contacts;    // this step's, in pair order
-    cl::DeviceArray<BtgContact> prevContacts;
-    size_t contactCapacity = 0;
+    // The warm-start cache: the last substep's solved contacts, reduced to what matching and
+    // warm start read (80 bytes against a contact's 304), in the same pair order.
+    cl::DeviceArray<BtgCachedContact> contactCache;
+    size_t contactCapacity = 0;              // contacts and contactCache hold this many
+    // The cache as this call found it, for a redo; only while a call runs several substeps.
+    cl::DeviceArray<BtgCachedContact> contactCacheAtCall;
+    bool contactCacheKept = false;
     int numColors = 0;                       // batches the solver launches (host estimate)
     int colorRounds = 8;                     // coloring rounds to run: set from the last readback
     int lastContactCount = 1 << 30;          // contacts at the last readback (chooses launch shapes)

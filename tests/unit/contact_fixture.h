@@ -102,7 +102,8 @@ inline StackScene stackScene(int columns, int height, unsigned seed)
     return s;
 }
 
-// Uploads the body columns, manifolds (as pair slots) and previous contacts; counters as given.
+// Uploads the body columns, manifolds (as pair slots) and the previous step's contacts (as the
+// cache stage stores them, keyed with the bodies' rotations); counters as given.
 inline void uploadWorld(DeviceWorld& w, const ref::ContactBodies& b, const std::vector<BtgManifold>& manifolds,
                         uint pairCount, const std::vector<BtgContact>& prev, size_t contactCapacity)
 {
@@ -120,8 +121,8 @@ inline void uploadWorld(DeviceWorld& w, const ref::ContactBodies& b, const std::
     w.pushAng.upload(ctx, b.pushAng);
     w.pairCapacity = manifolds.size();
     w.manifolds.upload(ctx, manifolds);
-    w.prevContacts.reserve(ctx, prev.size() + 1);
-    w.prevContacts.upload(ctx, prev);
+    w.contactCache.reserve(ctx, prev.size() + 1);
+    w.contactCache.upload(ctx, ref::storeContactCache(prev, b));
     w.contactCapacity = contactCapacity;
     w.contacts.reserve(ctx, contactCapacity);
     std::vector<uint> counters(kNumCounters, 0u);
