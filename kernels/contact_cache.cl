@@ -85,13 +85,15 @@ __kernel void write_contacts(__global const BtgManifold* restrict manifolds, __g
 }
 
 /* After the solve, before the bodies move: the solved contacts become the next substep's cache.
- * A substep that overflowed leaves the cache as it was, so the redo of a one-substep call finds
- * it unchanged (its results are thrown away anyway). */
+ * A substep that overflowed, or whose one-launch solve gave up at its grid barrier, leaves the
+ * cache as it was, so the redo of a one-substep call finds it unchanged (its results are
+ * thrown away anyway). */
 __kernel void store_contact_cache(__global const BtgContact* restrict contacts, __global uint* counters,
                                   int contactCapacity, __global const BtgFloat4* restrict rot,
                                   __global BtgCachedContact* cache, int cacheCapacity)
 {
-    if ((counters[COUNTER_STATUS] & (BTG_STATUS_PAIR_OVERFLOW | BTG_STATUS_CONTACT_OVERFLOW)) != 0u) return;
+    const uint redo = BTG_STATUS_PAIR_OVERFLOW | BTG_STATUS_CONTACT_OVERFLOW | BTG_STATUS_GRID_BARRIER_TIMEOUT;
+    if ((counters[COUNTER_STATUS] & redo) != 0u) return;
     uint n = min(counters[COUNTER_CONTACTS], (uint)min(contactCapacity, cacheCapacity));
     uint i = (uint)get_global_id(0);
     if (i == 0) counters[COUNTER_PREV_CONTACTS] = n;
