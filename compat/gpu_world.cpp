@@ -325,12 +325,12 @@ void GpuWorld::runOnDevice(int substeps, btScalar dt)
         bool barrierTimeout = status & BTG_STATUS_GRID_BARRIER_TIMEOUT;
         if (barrierTimeout && attempt < 8) {
             // This device does not keep all work-groups of a launch resident: the one-launch
-            // solve is off for good, and the call is redone with per-color launches.
+            // batching and solve are off for good, and the call is redone with per-round launches.
             restoreSnapshot(w, m_snapshot);
-            w.residentSolve = DeviceWorld::Resident::Off;
+            w.resident = DeviceWorld::Resident::Off;
             ++m_report.redoneSteps;
-            report({Issue::Kind::Device, "one-launch solve timed out at its grid barrier on this device; "
-                                         "per-color launches from now on; step redone"});
+            report({Issue::Kind::Device, "one-launch batching/solve timed out at a grid barrier on this device; "
+                                         "per-round launches from now on; step redone"});
             takeSnapshot(w, m_snapshot, m_plan, substeps);
             resetStatus(w);
             continue;

@@ -14,6 +14,7 @@
 
 #include "shared/coloring.h"
 #include "shared/counters.h"
+#include "shared/grid_barrier.h"
 
 #define COUNTER_CONTACTS BTG_COUNTER_CONTACTS
 #define NO_CLAIM 0x7fffffff
@@ -42,7 +43,10 @@ __kernel void body_color_reset(__global int* bodyColor, int numBodies)
     if (b < numBodies) bodyColor[b] = -1;
 }
 
-static int body_free(__global const BtgBodyProps* restrict props, __global const int* restrict bodyColor, int body,
+/* claim and bodyColor go through volatile pointers: color_resident shares them between
+ * work-groups across its grid barriers, where a non-coherent cache must not serve a stale
+ * copy. Same arithmetic for every caller. */
+static int body_free(__global const BtgBodyProps* restrict props, volatile __global const int* bodyColor, int body,
                      int color)
 {
     return !btgIsSolverDynamic(props[body].flags) || bodyColor[body] != color;
@@ -51,7 +55,7 @@ static int body_free(__global const BtgBodyProps* restrict props, __global const
 /* One contact's claim in a sub-round: an uncolored contact whose dynamic bodies are still free
  * in this color bids for them with its priority. */
 static void claim_contact(__global const BtgContact* restrict contacts, int i, __global const BtgBodyProps* restrict props,
-                          __global int* claim, __global const int* restrict bodyColor, int color)
+                          volatile __global int* claim, volatile __global const int* bodyColor, int color)
 {
     if (contacts[i].color >= 0) return;
     int a = contacts[i].bodyA, b = contacts[i].bodyB;
@@ -63,8 +67,8 @@ static void claim_contact(__global const BtgContact* restrict contacts, int i, _
 
 /* One contact's assignment: it takes the color when it won every dynamic body it bid for. */
 static void assign_contact(__global BtgContact* contacts, int i, __global uint* counters,
-                           __global const BtgBodyProps* restrict props, __global const int* restrict claim,
-                           __global int* bodyColor, int color)
+                           __global const BtgBodyProps* restrict props, volatile __global const int* claim,
+                           volatile __global int* bodyColor, int color)
 {
     if (contacts[i].color >= 0) return;
     int a = contacts[i].bodyA, b = contacts[i].bodyB;
@@ -129,6 +133,45 @@ __kernel void color_fused(__global BtgContact* contacts, __global uint* counters
         }
     }
     for (int i = lid; i < n; i += size)
+        if (contacts[i].color < 0) {
+            contacts[i].color = rounds;
+            atomic_inc(&counters[BTG_COUNTER_LEFTOVERS]);
+        }
+}
+
+/* color_resident: the whole batching in ONE launch over resident work-groups (GPUs): the same
+ * init, claim/assign sub-rounds and finish as the per-launch kernels, with a grid barrier
+ * (shared/grid_barrier.h) where those have a kernel boundary, so the coloring is identical.
+ * Contact i is handled by the same work-item in every round (its color is read and written by
+ * no other); claims and body colors are shared, through volatile pointers and atomics. */
+__kernel void color_resident(__global BtgContact* contacts, __global uint* counters, int contactCapacity,
+                             __global const BtgBodyProps* restrict props, volatile __global int* claim,
+                             volatile __global int* bodyColor, int numBodies, int rounds,
+                             volatile __global BtgGridBarrier* bar, int spinLimit)
+{
+    __local int quit;
+    const int gid = (int)get_global_id(0), gsize = (int)get_global_size(0);
+    const int n = contact_count(counters, contactCapacity);
+    for (int i = gid; i < n; i += gsize) contacts[i].color = -1;
+    for (int b = gid; b < numBodies; b += gsize) bodyColor[b] = -1;
+    int stop = btgGridBarrier(bar, spinLimit, &quit);
+    for (int color = 0; color < rounds && !stop; ++color) {
+        for (int sub = 0; sub < BTG_COLOR_SUB_ROUNDS && !stop; ++sub) {
+            for (int b = gid; b < numBodies; b += gsize) claim[b] = NO_CLAIM;
+            stop = btgGridBarrier(bar, spinLimit, &quit);
+            if (stop) break;
+            for (int i = gid; i < n; i += gsize) claim_contact(contacts, i, props, claim, bodyColor, color);
+            stop = btgGridBarrier(bar, spinLimit, &quit);
+            if (stop) break;
+            for (int i = gid; i < n; i += gsize) assign_contact(contacts, i, counters, props, claim, bodyColor, color);
+            stop = btgGridBarrier(bar, spinLimit, &quit);
+        }
+    }
+    if (stop) {
+        if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
+        return;
+    }
+    for (int i = gid; i < n; i += gsize)
         if (contacts[i].color < 0) {
             contacts[i].color = rounds;
             atomic_inc(&counters[BTG_COUNTER_LEFTOVERS]);

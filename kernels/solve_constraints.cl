@@ -11,6 +11,7 @@
 #include "shared/math.h"
 #include "shared/contact_rows.h"
 #include "shared/counters.h"
+#include "shared/grid_barrier.h"
 
 #define COUNTER_CONTACTS 1 /* mirrors btgpu::Counter */
 
@@ -152,51 +153,13 @@ __kernel void solve_color_range(__global BtgContact* contacts, __global const ui
     solve_one(colorOrder[begin + k], mode, contacts, props, invInertiaWorld, lin, ang);
 }
 
-/* ---- solve_resident: every pass and color in ONE launch over many work-groups (GPUs) ----
- * Launched with no more work-groups than the device has compute units, one group of at most
- * 256 items each, so every group is resident at once and groups can wait for each other: a
- * grid-wide barrier (an arrival counter and a generation word in global memory) stands where
- * the per-color path has a kernel boundary. Per-color launches cost a few microseconds each
- * on a GPU, and a step has (colors + 1) x (1 + 2 x iterations) of them; the barrier costs about
- * one atomic round trip. Body velocities are read and written through volatile pointers so no
- * work-group keeps a stale copy in a non-coherent cache across a barrier; a contact's impulses
- * are touched only by the same work-item in every pass (the assignment is fixed), so plain
- * accesses suffice there. Should a group never arrive (a device that does not keep all groups
- * resident), the waiters give up after a bounded spin, set BTG_STATUS_GRID_BARRIER_TIMEOUT and
- * return; the host then redoes the step with per-color launches. The arithmetic is solve_one's,
- * in the same color order: the results equal the per-color path's bit for bit. */
-
-typedef struct {
-    uint arrived;    /* groups at the barrier in this generation */
-    uint generation; /* bumped by the last arrival */
-    uint timedOut;   /* set by a waiter that gave up */
-    uint pad;
-} BtgGridBarrier;
-
-static int grid_barrier(volatile __global BtgGridBarrier* bar, uint groups, int spinLimit, __local int* quit)
-{
-    barrier(CLK_GLOBAL_MEM_FENCE | CLK_LOCAL_MEM_FENCE);
-    if (get_local_id(0) == 0) {
-        mem_fence(CLK_GLOBAL_MEM_FENCE);
-        uint gen = bar->generation;
-        int stop = 0;
-        if (atomic_inc(&bar->arrived) == groups - 1u) {
-            bar->arrived = 0u;
-            mem_fence(CLK_GLOBAL_MEM_FENCE);
-            atomic_inc(&bar->generation);
-        } else {
-            int spins = 0;
-            while (bar->generation == gen) {
-                if (bar->timedOut != 0u) { stop = 1; break; }
-                if (++spins > spinLimit) { atomic_xchg(&bar->timedOut, 1u); stop = 1; break; }
-            }
-        }
-        mem_fence(CLK_GLOBAL_MEM_FENCE);
-        *quit = stop;
-    }
-    barrier(CLK_GLOBAL_MEM_FENCE | CLK_LOCAL_MEM_FENCE);
-    return *quit;
-}
+/* solve_resident: every pass and color in ONE launch over resident work-groups (GPUs), with a
+ * grid barrier (shared/grid_barrier.h) where the per-color path has a kernel boundary: a step
+ * has (colors + 1) x (1 + 2 x iterations) of those. Body velocities go through volatile
+ * pointers (see solve_one); a contact's impulses are touched by the same work-item in every
+ * pass (the assignment is fixed for the launch), so plain accesses suffice there. The
+ * arithmetic and color order are solve_one's per-color ones: the results are the same bit for
+ * bit. A batching that timed out at its own barrier leaves nothing to solve: the step is redone. */
 
 __kernel void solve_resident(__global BtgContact* contacts, __global uint* counters, int contactCapacity,
                              __global const uint* restrict colorStart, __global const int* restrict colorOrder,
@@ -207,7 +170,7 @@ __kernel void solve_resident(__global BtgContact* contacts, __global uint* count
                              int spinLimit)
 {
     __local int quit;
-    const uint groups = (uint)get_num_groups(0);
+    if (counters[BTG_COUNTER_STATUS] & BTG_STATUS_GRID_BARRIER_TIMEOUT) return;
     const int gid = (int)get_global_id(0), gsize = (int)get_global_size(0);
     const int n = (int)min(counters[COUNTER_CONTACTS], (uint)contactCapacity);
     const int last = numColors - 1;
@@ -221,7 +184,7 @@ __kernel void solve_resident(__global BtgContact* contacts, __global uint* count
             const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
             for (int k = begin + gid; k < end; k += gsize)
                 solve_one(colorOrder[k], mode, contacts, props, invInertiaWorld, lin, ang);
-            if (grid_barrier(bar, groups, spinLimit, &quit)) {
+            if (btgGridBarrier(bar, spinLimit, &quit)) {
                 if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
                 return;
             }
@@ -230,7 +193,7 @@ __kernel void solve_resident(__global BtgContact* contacts, __global uint* count
             if (gid == 0)
                 for (int i = 0; i < n; ++i)
                     if (contacts[i].color >= last) solve_one(i, mode, contacts, props, invInertiaWorld, lin, ang);
-            if (grid_barrier(bar, groups, spinLimit, &quit)) {
+            if (btgGridBarrier(bar, spinLimit, &quit)) {
                 if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
                 return;
             }

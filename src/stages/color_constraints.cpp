@@ -5,6 +5,7 @@
 #include "stages/color_constraints.h"
 
 #include "cl/program.h"
+#include "stages/resident.h"
 #include "shared/coloring.h"
 
 #include <algorithm>
@@ -38,6 +39,17 @@ void colorConstraints(DeviceWorld& w, int maxColors)
     const uint zero = 0u;  // a fill copies its pattern at enqueue time
     BTGPU_CL_CHECK(clEnqueueFillBuffer(ctx.queue(), w.counters.mem(), &zero, sizeof(uint), kColorsUsed * sizeof(uint),
                                        2 * sizeof(uint), 0, nullptr, nullptr));
+    if (useResident(w)) {
+        // The whole batching in one launch over resident groups (GPUs).
+        cl_kernel k = prog.kernel("color_resident");
+        size_t group = std::min<size_t>(256, cl::kernelGroupLimit(ctx, k));
+        size_t items = std::min(slots, size_t(std::max(w.lastContactCount, 1)));
+        size_t groups = residentGroups(w, std::max(items, size_t(w.numBodies)), group);
+        cl::Launch(ctx, k, &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props)
+            .arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(w.numBodies).arg(rounds)
+            .arg(gridBarrier(w)).arg(kGridBarrierSpins).run(groups * group, group);
+        return;
+    }
     // One work-group is one compute unit: on a GPU that only pays for a few hundred contacts.
     const int fusedMax = ctx.device().isGpu ? kFusedMaxContactsGpu : kFusedMaxContacts;
     if (w.lastContactCount <= fusedMax && w.numBodies <= kFusedMaxBodies) {

@@ -4,6 +4,7 @@
 #include "stages/solve_constraints.h"
 
 #include "cl/program.h"
+#include "stages/resident.h"
 
 #include <algorithm>
 
@@ -17,9 +18,6 @@ enum Mode : int { kWarmStart = 0, kVelocity = 1, kPush = 2 };
 // against 2.5 ms in per-color launches, with groups of 256 or 1,024.
 constexpr int kFusedMaxContacts = 4096;
 constexpr int kFusedMaxContactsGpu = 512;
-// solve_resident's waiters give up after this many polls of the barrier (well past any real
-// wait: a poll is an L2 round trip, a color's work at most a few hundred microseconds).
-constexpr int kGridBarrierSpins = 1 << 20;
 }
 
 void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iterations, int numColors)
@@ -60,16 +58,16 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
         .run(1, 1);
     cl::Launch(ctx, prog.kernel("color_fill"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
         .arg(sc.colorStart).arg(sc.colorCount).arg(sc.colorOrder).arg(numColors).run(slots);
-    using Resident = DeviceWorld::Resident;
-    if (w.residentSolve == Resident::On || (w.residentSolve == Resident::Auto && ctx.device().isGpu)) {
-        // Every pass and color in one launch; one group per compute unit keeps all resident.
-        size_t group = std::min<size_t>(256, cl::kernelGroupLimit(ctx, prog.kernel("solve_resident")));
-        size_t groups = std::max<cl_uint>(ctx.device().computeUnits, 1);
-        sc.gridBarrier.zero(ctx, 4);
-        cl::Launch(ctx, prog.kernel("solve_resident"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
-            .arg(sc.colorStart).arg(sc.colorOrder).arg(w.props).arg(w.invInertiaWorld).arg(w.linVel).arg(w.angVel)
-            .arg(w.pushLin).arg(w.pushAng).arg(sc.gridBarrier).arg(numColors).arg(iterations)
-            .arg(params.splitImpulse ? 1 : 0).arg(kGridBarrierSpins).run(groups * group, group);
+    if (useResident(w)) {
+        // Every pass and color in one launch; groups sized for a color's share of the contacts.
+        cl_kernel k = prog.kernel("solve_resident");
+        size_t group = std::min<size_t>(256, cl::kernelGroupLimit(ctx, k));
+        size_t perColor = size_t(std::max(w.lastContactCount, 1)) * 2 / size_t(std::max(numColors - 1, 1));
+        size_t groups = residentGroups(w, std::min(perColor, slots), group);
+        cl::Launch(ctx, k, &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(sc.colorStart)
+            .arg(sc.colorOrder).arg(w.props).arg(w.invInertiaWorld).arg(w.linVel).arg(w.angVel).arg(w.pushLin)
+            .arg(w.pushAng).arg(gridBarrier(w)).arg(numColors).arg(iterations).arg(params.splitImpulse ? 1 : 0)
+            .arg(kGridBarrierSpins).run(groups * group, group);
         return;
     }
     cl_kernel parallel = prog.kernel("solve_color_range");

@@ -87,11 +87,11 @@ struct DeviceWorld {
     int colorRounds = 8;                     // coloring rounds to run: set from the last readback
     int lastContactCount = 1 << 30;          // contacts at the last readback (chooses launch shapes)
     SolverScratch solverScratch;             // contact stages' scratch (block sums, claims)
-    // The whole solve in one launch over resident work-groups: Auto takes it on GPUs; set Off
-    // for good when that launch's grid barrier timed out on this device (the step is then
-    // redone per color). On forces it (tests).
+    // Batching and solve in one launch each over resident work-groups (stages/resident.h):
+    // Auto takes it on GPUs; set Off for good when a grid barrier timed out on this device (the
+    // step is then redone with per-round launches). On forces it (tests).
     enum class Resident { Auto, Off, On };
-    Resident residentSolve = Resident::Auto;
+    Resident resident = Resident::Auto;
 
     // --- sync_in staging (kept across calls: a quiet step allocates nothing) ---
     cl::DeviceArray<int> stagingRows;

@@ -38,7 +38,7 @@ Result runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms
                  DeviceWorld::Resident resident = DeviceWorld::Resident::Auto)
 {
     DeviceWorld w(test::context());
-    w.residentSolve = resident;
+    w.resident = resident;
     w.lastContactCount = fused ? 0 : (1 << 30);
     test::uploadWorld(w, b, ms, uint(ms.size()), prev, ms.size() + 4);
     buildContacts(w, p);

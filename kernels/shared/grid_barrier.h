@@ -1,0 +1,54 @@
+/* grid_barrier.h — a barrier across all work-groups of one launch, for the "resident" kernels
+ * (batching, solve) that run every round of a stage in one launch on GPUs instead of one
+ * launch per round: a launch costs a few microseconds on a GPU, and these stages have hundreds
+ * of rounds a step. Valid only when every group of the launch is resident at once: the host
+ * launches at most one group per compute unit. Should a group never arrive (a device that does
+ * not keep them all resident), the waiters give up after spinLimit polls, set timedOut and
+ * every group returns; the kernel reports BTG_STATUS_GRID_BARRIER_TIMEOUT and the host redoes
+ * the step with per-round launches. The barrier word is left ready for the next launch after a
+ * normal exit (the arrival count returns to zero; waiters compare generations for change
+ * only), so the host zeroes it once, when it is allocated. Device code only. */
+#ifndef BTG_GRID_BARRIER_H
+#define BTG_GRID_BARRIER_H
+#include "prelude.h"
+
+typedef struct {
+    uint arrived;    /* groups at the barrier in this generation */
+    uint generation; /* bumped by the last arrival */
+    uint timedOut;   /* set by a waiter that gave up */
+    uint pad;
+} BtgGridBarrier;
+
+#ifdef __OPENCL_C_VERSION__
+/* Returns nonzero when the launch must stop (a timeout). Call from every work-item. Global
+ * writes before it are visible to every group after it for data read through volatile
+ * pointers or written by atomics (other groups' caches are not coherent). */
+static int btgGridBarrier(volatile __global BtgGridBarrier* bar, int spinLimit, __local int* quit)
+{
+    const uint groups = (uint)get_num_groups(0);
+    barrier(CLK_GLOBAL_MEM_FENCE | CLK_LOCAL_MEM_FENCE);
+    if (groups == 1u) return 0; /* one group: the local barrier is the whole barrier */
+    if (get_local_id(0) == 0) {
+        mem_fence(CLK_GLOBAL_MEM_FENCE);
+        uint gen = bar->generation;
+        int stop = 0;
+        if (atomic_inc(&bar->arrived) == groups - 1u) {
+            bar->arrived = 0u;
+            mem_fence(CLK_GLOBAL_MEM_FENCE);
+            atomic_inc(&bar->generation);
+        } else {
+            int spins = 0;
+            while (bar->generation == gen) {
+                if (bar->timedOut != 0u) { stop = 1; break; }
+                if (++spins > spinLimit) { atomic_xchg(&bar->timedOut, 1u); stop = 1; break; }
+            }
+        }
+        mem_fence(CLK_GLOBAL_MEM_FENCE);
+        *quit = stop;
+    }
+    barrier(CLK_GLOBAL_MEM_FENCE | CLK_LOCAL_MEM_FENCE);
+    return *quit;
+}
+#endif
+
+#endif
