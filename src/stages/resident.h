@@ -1,8 +1,9 @@
 // resident.h — launch shape of the resident kernels (kernels/shared/grid_barrier.h): the
 // batching and the solve run all their rounds in one launch over work-groups that wait for
 // each other, on GPUs, where a launch costs a few microseconds and those stages have hundreds
-// of rounds a step. Groups: enough for the work of one round, never more than the compute
-// units (so all are resident at once); fewer groups make each barrier cheaper.
+// of rounds a step. Never more groups than compute units, so all are resident at once; the
+// batching takes only enough for one round's work (fewer groups, cheaper barriers), the solve
+// one per compute unit (see solve_constraints.cpp).
 #pragma once
 #include "world/device_world.h"
 
