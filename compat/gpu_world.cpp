@@ -44,6 +44,7 @@ GpuWorld::GpuWorld(btGpuDynamicsWorld& world, const Config& config) : m_config(c
 
 GpuWorld::~GpuWorld()
 {
+    m_readback.release();
     m_dev.reset();
     m_snapshot = Snapshot();
     m_ctx.reset();
@@ -62,6 +63,10 @@ void GpuWorld::failDevice(const std::string& what)
     m_report.cpuPathReason = "OpenCL failure: " + what;
     std::cerr << "btgpu: " << m_report.cpuPathReason << "\n         continuing on the CPU path\n";
     report({Issue::Kind::OpenCL, what});
+    try {
+        m_readback.release();
+    } catch (...) {
+    }
     m_dev.reset();
     m_snapshot = Snapshot();
     m_ctx.reset();

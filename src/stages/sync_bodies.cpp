@@ -58,12 +58,12 @@ void syncIn(DeviceWorld& w, const std::vector<BodyRowUpdate>& updates)
 void syncOut(DeviceWorld& w, BodyReadback& out)
 {
     size_t n = size_t(w.numBodies);
-    out.pos.resize(n);
-    out.rot.resize(n);
-    out.linVel.resize(n);
-    out.angVel.resize(n);
-    out.sleepState.resize(n);
-    out.counters.resize(kNumCounters);
+    out.pos.resize(w.ctx, n);
+    out.rot.resize(w.ctx, n);
+    out.linVel.resize(w.ctx, n);
+    out.angVel.resize(w.ctx, n);
+    out.sleepState.resize(w.ctx, n);
+    out.counters.resize(w.ctx, kNumCounters);
     // Non-blocking reads queued together, one wait: a single round trip per call.
     cl_command_queue q = w.ctx.queue();
     if (n) {

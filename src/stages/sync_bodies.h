@@ -2,6 +2,7 @@
 // body columns, writing only the rows the app changed (one scatter launch), and the one
 // readback per stepSimulation call (transforms, velocities, counters together).
 #pragma once
+#include "cl/pinned.h"
 #include "world/device_world.h"
 
 #include <vector>
@@ -20,10 +21,21 @@ void resizeBodies(DeviceWorld& w, int n);
 // Writes the given rows through staging buffers and one scatter launch.
 void syncIn(DeviceWorld& w, const std::vector<BodyRowUpdate>& rows);
 
+// In page-locked host memory (cl/pinned.h): the readback is the step's one large transfer.
+// Release before the context goes.
 struct BodyReadback {
-    std::vector<BtgFloat4> pos, rot, linVel, angVel;
-    std::vector<uint> sleepState;  // 1: asleep
-    std::vector<uint> counters;
+    cl::PinnedArray<BtgFloat4> pos, rot, linVel, angVel;
+    cl::PinnedArray<uint> sleepState;  // 1: asleep
+    cl::PinnedArray<uint> counters;
+    void release()
+    {
+        pos.release();
+        rot.release();
+        linVel.release();
+        angVel.release();
+        sleepState.release();
+        counters.release();
+    }
 };
 // Blocking readback of every row's state and the counters.
 void syncOut(DeviceWorld& w, BodyReadback& out);
