@@ -43,10 +43,10 @@ __kernel void body_color_reset(__global int* bodyColor, int numBodies)
     if (b < numBodies) bodyColor[b] = -1;
 }
 
-/* claim and bodyColor go through volatile pointers: color_resident shares them between
+/* claim and bodyColor go through BTG_SHARED (volatile on GPUs) pointers: color_resident shares them between
  * work-groups across its grid barriers, where a non-coherent cache must not serve a stale
  * copy. Same arithmetic for every caller. */
-static int body_free(__global const BtgBodyProps* restrict props, volatile __global const int* bodyColor, int body,
+static int body_free(__global const BtgBodyProps* restrict props, BTG_SHARED __global const int* bodyColor, int body,
                      int color)
 {
     return !btgIsSolverDynamic(props[body].flags) || bodyColor[body] != color;
@@ -55,7 +55,7 @@ static int body_free(__global const BtgBodyProps* restrict props, volatile __glo
 /* One contact's claim in a sub-round: an uncolored contact whose dynamic bodies are still free
  * in this color bids for them with its priority. */
 static void claim_contact(__global const BtgContact* restrict contacts, int i, __global const BtgBodyProps* restrict props,
-                          volatile __global int* claim, volatile __global const int* bodyColor, int color)
+                          BTG_SHARED __global int* claim, BTG_SHARED __global const int* bodyColor, int color)
 {
     if (contacts[i].color >= 0) return;
     int a = contacts[i].bodyA, b = contacts[i].bodyB;
@@ -67,8 +67,8 @@ static void claim_contact(__global const BtgContact* restrict contacts, int i, _
 
 /* One contact's assignment: it takes the color when it won every dynamic body it bid for. */
 static void assign_contact(__global BtgContact* contacts, int i, __global uint* counters,
-                           __global const BtgBodyProps* restrict props, volatile __global const int* claim,
-                           volatile __global int* bodyColor, int color)
+                           __global const BtgBodyProps* restrict props, BTG_SHARED __global const int* claim,
+                           BTG_SHARED __global int* bodyColor, int color)
 {
     if (contacts[i].color >= 0) return;
     int a = contacts[i].bodyA, b = contacts[i].bodyB;
@@ -143,10 +143,10 @@ __kernel void color_fused(__global BtgContact* contacts, __global uint* counters
  * init, claim/assign sub-rounds and finish as the per-launch kernels, with a grid barrier
  * (shared/grid_barrier.h) where those have a kernel boundary, so the coloring is identical.
  * Contact i is handled by the same work-item in every round (its color is read and written by
- * no other); claims and body colors are shared, through volatile pointers and atomics. */
+ * no other); claims and body colors are shared, through BTG_SHARED pointers and atomics. */
 __kernel void color_resident(__global BtgContact* contacts, __global uint* counters, int contactCapacity,
-                             __global const BtgBodyProps* restrict props, volatile __global int* claim,
-                             volatile __global int* bodyColor, int numBodies, int rounds,
+                             __global const BtgBodyProps* restrict props, BTG_SHARED __global int* claim,
+                             BTG_SHARED __global int* bodyColor, int numBodies, int rounds,
                              volatile __global BtgGridBarrier* bar, int spinLimit)
 {
     __local int quit;

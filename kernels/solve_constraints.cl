@@ -21,12 +21,12 @@ static BtgSolverBody load_body(__global const BtgBodyProps* restrict props,
     return btgMakeSolverBody(props[i], invInertiaWorld[3 * i], invInertiaWorld[3 * i + 1], invInertiaWorld[3 * i + 2]);
 }
 
-/* Body velocities go through volatile pointers: solve_resident shares them between work-groups
+/* Body velocities go through BTG_SHARED (volatile on GPUs) pointers: solve_resident shares them between work-groups
  * across its grid barriers, where a non-coherent cache must not serve a stale copy. The
  * arithmetic is the same for every caller. */
 static void solve_one(int i, int mode, __global BtgContact* contacts, __global const BtgBodyProps* restrict props,
-                      __global const BtgFloat4* restrict invInertiaWorld, volatile __global BtgFloat4* lin,
-                      volatile __global BtgFloat4* ang)
+                      __global const BtgFloat4* restrict invInertiaWorld, BTG_SHARED __global BtgFloat4* lin,
+                      BTG_SHARED __global BtgFloat4* ang)
 {
     BtgContact c = contacts[i];
     BtgSolverBody a = load_body(props, invInertiaWorld, c.bodyA);
@@ -155,7 +155,7 @@ __kernel void solve_color_range(__global BtgContact* contacts, __global const ui
 
 /* solve_resident: every pass and color in ONE launch over resident work-groups (GPUs), with a
  * grid barrier (shared/grid_barrier.h) where the per-color path has a kernel boundary: a step
- * has (colors + 1) x (1 + 2 x iterations) of those. Body velocities go through volatile
+ * has (colors + 1) x (1 + 2 x iterations) of those. Body velocities go through BTG_SHARED
  * pointers (see solve_one); a contact's impulses are touched by the same work-item in every
  * pass (the assignment is fixed for the launch), so plain accesses suffice there. The
  * arithmetic and color order are solve_one's per-color ones: the results are the same bit for
@@ -164,8 +164,8 @@ __kernel void solve_color_range(__global BtgContact* contacts, __global const ui
 __kernel void solve_resident(__global BtgContact* contacts, __global uint* counters, int contactCapacity,
                              __global const uint* restrict colorStart, __global const int* restrict colorOrder,
                              __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
-                             volatile __global BtgFloat4* linVel, volatile __global BtgFloat4* angVel,
-                             volatile __global BtgFloat4* pushLin, volatile __global BtgFloat4* pushAng,
+                             BTG_SHARED __global BtgFloat4* linVel, BTG_SHARED __global BtgFloat4* angVel,
+                             BTG_SHARED __global BtgFloat4* pushLin, BTG_SHARED __global BtgFloat4* pushAng,
                              volatile __global BtgGridBarrier* bar, int numColors, int iterations, int splitImpulse,
                              int spinLimit)
 {
@@ -178,8 +178,8 @@ __kernel void solve_resident(__global BtgContact* contacts, __global uint* count
     const int passes = 1 + iterations + (splitImpulse ? iterations : 0);
     for (int pass = 0; pass < passes; ++pass) {
         const int mode = pass == 0 ? 0 : (pass <= iterations ? 1 : 2);
-        volatile __global BtgFloat4* lin = mode == 2 ? pushLin : linVel;
-        volatile __global BtgFloat4* ang = mode == 2 ? pushAng : angVel;
+        BTG_SHARED __global BtgFloat4* lin = mode == 2 ? pushLin : linVel;
+        BTG_SHARED __global BtgFloat4* ang = mode == 2 ? pushAng : angVel;
         for (int color = 0; color < last; ++color) {
             const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
             for (int k = begin + gid; k < end; k += gsize)

@@ -20,9 +20,16 @@ typedef struct {
 } BtgGridBarrier;
 
 #ifdef __OPENCL_C_VERSION__
+/* Qualifier of data the resident kernels share between work-groups: the host builds with
+ * -DBTG_SHARED=volatile on GPUs (per-compute-unit caches are not coherent) and empty on CPUs
+ * (coherent caches; volatile there only stops vectorization). */
+#ifndef BTG_SHARED
+#define BTG_SHARED volatile
+#endif
+
 /* Returns nonzero when the launch must stop (a timeout). Call from every work-item. Global
- * writes before it are visible to every group after it for data read through volatile
- * pointers or written by atomics (other groups' caches are not coherent). */
+ * writes before it are visible to every group after it for data read through BTG_SHARED
+ * pointers or written by atomics. */
 static int btgGridBarrier(volatile __global BtgGridBarrier* bar, int spinLimit, __local int* quit)
 {
     const uint groups = (uint)get_num_groups(0);
