@@ -110,36 +110,8 @@ __kernel void color_finish(__global BtgContact* contacts, __global uint* counter
     }
 }
 
-/* color_fused: the whole batching in ONE launch on ONE work-group, for small scenes: the same
- * init, claim/assign sub-rounds and finish as the kernels above, separated by barriers instead
- * of launches, so the coloring is identical. */
-__kernel void color_fused(__global BtgContact* contacts, __global uint* counters, int contactCapacity,
-                          __global const BtgBodyProps* restrict props, __global int* claim, __global int* bodyColor,
-                          int numBodies, int rounds)
-{
-    const int lid = (int)get_local_id(0), size = (int)get_local_size(0);
-    const int n = contact_count(counters, contactCapacity);
-    for (int i = lid; i < n; i += size) contacts[i].color = -1;
-    for (int b = lid; b < numBodies; b += size) bodyColor[b] = -1;
-    barrier(CLK_GLOBAL_MEM_FENCE);
-    for (int color = 0; color < rounds; ++color) {
-        for (int sub = 0; sub < BTG_COLOR_SUB_ROUNDS; ++sub) {
-            for (int b = lid; b < numBodies; b += size) claim[b] = NO_CLAIM;
-            barrier(CLK_GLOBAL_MEM_FENCE);
-            for (int i = lid; i < n; i += size) claim_contact(contacts, i, props, claim, bodyColor, color);
-            barrier(CLK_GLOBAL_MEM_FENCE);
-            for (int i = lid; i < n; i += size) assign_contact(contacts, i, counters, props, claim, bodyColor, color);
-            barrier(CLK_GLOBAL_MEM_FENCE);
-        }
-    }
-    for (int i = lid; i < n; i += size)
-        if (contacts[i].color < 0) {
-            contacts[i].color = rounds;
-            atomic_inc(&counters[BTG_COUNTER_LEFTOVERS]);
-        }
-}
-
-/* color_resident: the whole batching in ONE launch over resident work-groups (GPUs): the same
+/* color_resident: the whole batching in ONE launch (resident groups on GPUs, one group for
+ * small scenes on CPUs): the same
  * init, claim/assign sub-rounds and finish as the per-launch kernels, with a grid barrier
  * (shared/grid_barrier.h) where those have a kernel boundary, so the coloring is identical.
  * Contact i is handled by the same work-item in every round (its color is read and written by

@@ -1,7 +1,8 @@
-/* solve_constraints.cl — Stage: solve (batched projected Gauss-Seidel, one color per launch).
+/* solve_constraints.cl — Stage: solve (batched projected Gauss-Seidel, color by color).
  * Launch: color_count / color_fill: one work-item per contact slot, sorting contact indices
  * into per-color ranges; solve_color_range: one work-item per slot of one color's range (no
- * dynamic body twice in a color, so no races); solve_fused: one work-group for small scenes;
+ * dynamic body twice in a color, so no races); solve_resident: every pass and color in one
+ * launch (resident groups on GPUs, one group for small scenes on CPUs);
  * solve_color_serial: one work-item that walks, in index order, the contacts whose color is the
  * last one or higher (so a caller launching fewer colors than were assigned still solves all).
  * mode 0: apply warm-start impulses; 1: velocity iteration; 2: split-impulse iteration.
@@ -71,37 +72,6 @@ __kernel void solve_color_serial(__global BtgContact* contacts, __global const u
     int n = (int)min(counters[COUNTER_CONTACTS], (uint)contactCapacity);
     for (int i = 0; i < n; ++i)
         if (contacts[i].color >= color) solve_one(i, mode, contacts, props, invInertiaWorld, lin, ang);
-}
-
-/* solve_fused: the whole solve in ONE launch on ONE work-group, for small scenes where launch
- * overhead (colors x passes launches) would dominate: the group walks the colors in order with
- * a barrier between them — the same Gauss–Seidel order as the per-color launches, so results
- * are identical — then the leftovers on work-item 0. Passes: warm start, `iterations` velocity
- * passes, and `iterations` push passes when splitImpulse. */
-__kernel void solve_fused(__global BtgContact* contacts, __global const uint* restrict counters, int contactCapacity,
-                          __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
-                          __global BtgFloat4* linVel, __global BtgFloat4* angVel, __global BtgFloat4* pushLin,
-                          __global BtgFloat4* pushAng, int numColors, int iterations, int splitImpulse)
-{
-    const int lid = (int)get_local_id(0), size = (int)get_local_size(0);
-    const int n = (int)min(counters[COUNTER_CONTACTS], (uint)contactCapacity);
-    const int last = numColors - 1;
-    const int walkLast = counters[BTG_COUNTER_LEFTOVERS] != 0u || counters[BTG_COUNTER_COLORS_USED] > (uint)last;
-    const int passes = 1 + iterations + (splitImpulse ? iterations : 0);
-    for (int pass = 0; pass < passes; ++pass) {
-        const int mode = pass == 0 ? 0 : (pass <= iterations ? 1 : 2);
-        __global BtgFloat4* lin = mode == 2 ? pushLin : linVel;
-        __global BtgFloat4* ang = mode == 2 ? pushAng : angVel;
-        for (int color = 0; color < last; ++color) {
-            for (int i = lid; i < n; i += size)
-                if (contacts[i].color == color) solve_one(i, mode, contacts, props, invInertiaWorld, lin, ang);
-            barrier(CLK_GLOBAL_MEM_FENCE);
-        }
-        if (walkLast && lid == 0)
-            for (int i = 0; i < n; ++i)
-                if (contacts[i].color >= last) solve_one(i, mode, contacts, props, invInertiaWorld, lin, ang);
-        barrier(CLK_GLOBAL_MEM_FENCE);
-    }
 }
 
 /* Color ranges, so a color's launch touches only its own contacts instead of reading every

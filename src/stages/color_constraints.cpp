@@ -16,10 +16,9 @@ namespace {
 // Claim/assign passes per color: the first takes the local minima, the next fill the color up
 // to nearly a maximal matching, which keeps the number of colors near the bodies' degree.
 constexpr int kSubRounds = BTG_COLOR_SUB_ROUNDS;
-// Small scenes (as of the last readback) color in one launch on one work-group.
-constexpr int kFusedMaxContacts = 4096;
-constexpr int kFusedMaxContactsGpu = 512;
-constexpr int kFusedMaxBodies = 16384;
+// Small scenes (as of the last readback) color in one launch on one work-group on CPUs.
+constexpr int kOneGroupMaxContacts = 4096;
+constexpr int kOneGroupMaxBodies = 16384;
 }  // namespace
 
 void colorConstraints(DeviceWorld& w, int maxColors)
@@ -39,27 +38,17 @@ void colorConstraints(DeviceWorld& w, int maxColors)
     const uint zero = 0u;  // a fill copies its pattern at enqueue time
     BTGPU_CL_CHECK(clEnqueueFillBuffer(ctx.queue(), w.counters.mem(), &zero, sizeof(uint), kColorsUsed * sizeof(uint),
                                        2 * sizeof(uint), 0, nullptr, nullptr));
-    if (useResident(w)) {
-        // The whole batching in one launch over resident groups (GPUs).
+    // The whole batching in one launch: on a GPU over resident groups sized for one round's
+    // work; on a CPU over one group for small scenes, where launch overhead would dominate.
+    const bool resident = useResident(w);
+    if (resident || (w.lastContactCount <= kOneGroupMaxContacts && w.numBodies <= kOneGroupMaxBodies)) {
         cl_kernel k = prog.kernel("color_resident");
         size_t group = std::min<size_t>(256, cl::kernelGroupLimit(ctx, k));
         size_t items = std::min(slots, size_t(std::max(w.lastContactCount, 1)));
-        size_t groups = residentGroups(w, std::max(items, size_t(w.numBodies)), group);
+        size_t groups = resident ? residentGroups(w, std::max(items, size_t(w.numBodies)), group) : 1;
         cl::Launch(ctx, k, &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props)
             .arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(w.numBodies).arg(rounds)
             .arg(gridBarrier(w)).arg(kGridBarrierSpins).run(groups * group, group);
-        return;
-    }
-    // One work-group is one compute unit: on a GPU that only pays for a few hundred contacts.
-    const int fusedMax = ctx.device().isGpu ? kFusedMaxContactsGpu : kFusedMaxContacts;
-    if (w.lastContactCount <= fusedMax && w.numBodies <= kFusedMaxBodies) {
-        // Small scene: the whole coloring in one launch on one work-group (same result).
-        size_t group = std::min<size_t>(256, ctx.device().maxWorkGroupSize);
-        // One group must hold the whole launch: never more than this kernel can run with.
-        group = std::min(group, cl::kernelGroupLimit(ctx, prog.kernel("color_fused")));
-        cl::Launch(ctx, prog.kernel("color_fused"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
-            .arg(w.props).arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(w.numBodies).arg(rounds)
-            .run(group, group);
         return;
     }
     cl_kernel reset = prog.kernel("claim_reset");

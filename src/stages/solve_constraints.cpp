@@ -12,12 +12,10 @@ namespace btgpu {
 
 namespace {
 enum Mode : int { kWarmStart = 0, kVelocity = 1, kPush = 2 };
-// Up to this many contacts (as of the last readback) one work-group solves everything in one
-// launch: below it launch overhead outweighs the parallelism of one launch per color. On an
-// H200 one group is far slower past this: 1,000 cubes (3,322 contacts) took 8.5 ms fused
-// against 2.5 ms in per-color launches, with groups of 256 or 1,024.
-constexpr int kFusedMaxContacts = 4096;
-constexpr int kFusedMaxContactsGpu = 512;
+// Up to this many contacts (as of the last readback) a CPU device solves everything in one
+// launch on one work-group: below it launch overhead outweighs the parallelism of one launch
+// per color. (On a GPU one lone group is slow: 1,000 cubes took 8.5 ms that way on an H200.)
+constexpr int kOneGroupMaxContacts = 4096;
 }
 
 void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iterations, int numColors)
@@ -34,18 +32,6 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     }
     if (slots == 0) return;
     cl::Program& prog = ctx.program("solve_constraints");
-    // One work-group is one compute unit: on a GPU that only pays for a few hundred contacts.
-    const int fusedMax = ctx.device().isGpu ? kFusedMaxContactsGpu : kFusedMaxContacts;
-    if (w.lastContactCount <= fusedMax) {
-        // Small scene: every pass in one launch on one work-group (same order, same result).
-        size_t group = std::min<size_t>(256, ctx.device().maxWorkGroupSize);
-        // One group must hold the whole launch: never more than this kernel can run with.
-        group = std::min(group, cl::kernelGroupLimit(ctx, prog.kernel("solve_fused")));
-        cl::Launch(ctx, prog.kernel("solve_fused"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
-            .arg(w.props).arg(w.invInertiaWorld).arg(w.linVel).arg(w.angVel).arg(w.pushLin).arg(w.pushAng)
-            .arg(numColors).arg(iterations).arg(params.splitImpulse ? 1 : 0).run(group, group);
-        return;
-    }
     // Contacts sorted into per-color ranges once, so each color's launch reads only its own.
     SolverScratch& sc = w.solverScratch;
     sc.colorCount.reserve(ctx, size_t(numColors) + 1);
@@ -58,14 +44,16 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
         .run(1, 1);
     cl::Launch(ctx, prog.kernel("color_fill"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
         .arg(sc.colorStart).arg(sc.colorCount).arg(sc.colorOrder).arg(numColors).run(slots);
-    if (useResident(w)) {
-        // Every pass and color in one launch, one group per compute unit: each contact is a
-        // chain of dependent loads, so more work-items in flight beat cheaper barriers here
-        // (H200, 1,000 cubes: 1.7 ms with 132 groups, 2.2 with 2; 112,500: 3.1 against 7.1
-        // with groups sized for four contacts a work-item).
+    // Every pass and color in one launch: on a GPU over one group per compute unit (each
+    // contact is a chain of dependent loads, so more work-items in flight beat cheaper
+    // barriers: H200, 1,000 cubes: 1.7 ms with 132 groups, 2.2 with 2; 112,500: 3.1 against
+    // 7.1 with groups sized for four contacts a work-item); on a CPU over one group for small
+    // scenes, where launch overhead would dominate (a lone group needs no grid barrier).
+    const bool resident = useResident(w);
+    if (resident || w.lastContactCount <= kOneGroupMaxContacts) {
         cl_kernel k = prog.kernel("solve_resident");
         size_t group = std::min<size_t>(256, cl::kernelGroupLimit(ctx, k));
-        size_t groups = std::max<cl_uint>(ctx.device().computeUnits, 1);
+        size_t groups = resident ? std::max<cl_uint>(ctx.device().computeUnits, 1) : 1;
         cl::Launch(ctx, k, &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(sc.colorStart)
             .arg(sc.colorOrder).arg(w.props).arg(w.invInertiaWorld).arg(w.linVel).arg(w.angVel).arg(w.pushLin)
             .arg(w.pushAng).arg(gridBarrier(w)).arg(numColors).arg(iterations).arg(params.splitImpulse ? 1 : 0)

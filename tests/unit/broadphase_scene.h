@@ -4,8 +4,10 @@
 // by group/mask. Host columns plus an upload.
 #pragma once
 #include "shared/math.h"
+#include "stages/find_pairs.h"
 #include "world/device_world.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -128,6 +130,35 @@ inline BroadphaseScene makeMixedSizeScene(int n, float side, unsigned seed, bool
     for (BtgBodyProps& p : s.props)
         if (p.shape == 0 || p.shape == 1) p.shape = first + int(rng() % unsigned(kinds));
     return s;
+}
+
+}  // namespace btgpu::test
+
+// Global so that std::vector's == finds it for the global BtgPair.
+inline bool operator==(const BtgPair& x, const BtgPair& y) { return x.a == y.a && x.b == y.b; }
+
+namespace btgpu::test {
+
+// One find_pairs run on an uploaded world with AABBs: the pairs (up to capacity), the full
+// count the kernels found and the status word.
+struct PairsRun {
+    std::vector<BtgPair> pairs;
+    uint count = 0;
+    uint status = 0;
+};
+
+inline PairsRun runFindPairs(DeviceWorld& w, Broadphase kind, float cellSize, size_t capacity)
+{
+    w.pairs.reserve(w.ctx, capacity);
+    w.pairCapacity = capacity;
+    w.counters.zero(w.ctx, kNumCounters);
+    findPairs(w, kind, cellSize);
+    std::vector<uint> counters = w.counters.download(w.ctx, kNumCounters);
+    PairsRun r;
+    r.count = counters[kPairCount];
+    r.status = counters[kStatus];
+    r.pairs = w.pairs.download(w.ctx, std::min<size_t>(r.count, capacity));
+    return r;
 }
 
 }  // namespace btgpu::test

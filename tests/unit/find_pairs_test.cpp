@@ -12,30 +12,14 @@
 
 using namespace btgpu;
 
-// Global so that std::vector's == finds it for the global BtgPair.
-static bool operator==(const BtgPair& x, const BtgPair& y) { return x.a == y.a && x.b == y.b; }
-
 namespace {
 constexpr float kThreshold = 0.02f;
 
-struct Result {
-    std::vector<BtgPair> pairs;
-    uint count = 0;
-    uint status = 0;
-};
+using Result = test::PairsRun;
 
 Result runDevice(DeviceWorld& w, const test::BroadphaseScene& s, size_t capacity)
 {
-    w.pairs.reserve(w.ctx, capacity);
-    w.pairCapacity = capacity;
-    w.counters.zero(w.ctx, kNumCounters);
-    findPairs(w, Broadphase::UniformGrid, s.maxSmallExtent + 2 * kThreshold);
-    std::vector<uint> counters = w.counters.download(w.ctx, kNumCounters);
-    Result r;
-    r.count = counters[kPairCount];
-    r.status = counters[kStatus];
-    r.pairs = w.pairs.download(w.ctx, std::min<size_t>(r.count, capacity));
-    return r;
+    return test::runFindPairs(w, Broadphase::UniformGrid, s.maxSmallExtent + 2 * kThreshold, capacity);
 }
 
 std::vector<BtgPair> reference(DeviceWorld& w, const test::BroadphaseScene& s)
