@@ -78,49 +78,70 @@ __kernel void solve_color_serial(__global BtgContact* contacts, __global const u
  * contact's color: count per color, exclusive offsets (one work-item: there are few colors),
  * then each contact writes its index into its color's range. The order inside a range is the
  * atomics' order, which does not matter: contacts of one color share no dynamic body, so
- * solving them in any order gives the same result. */
+ * solving them in any order gives the same result. Two lists: list 0 holds every contact,
+ * list 1 only those with a split-impulse (push) target on some point — the push passes skip
+ * the rest, which they would leave unchanged (as Bullet skips rows without m_rhsPenetration).
+ * List l's counts and starts are at l * (numColors + 1), its indices at l * orderStride. */
+static int has_push(__global const BtgContact* c)
+{
+    for (int k = 0; k < c->numPoints; ++k)
+        if (c->rB[k].w != 0.0f && btgLane(c->normalMass, k) != 0.0f) return 1;
+    return 0;
+}
+
 __kernel void color_count(__global const BtgContact* restrict contacts, __global const uint* restrict counters,
                           int contactCapacity, __global uint* colorCount, int numColors)
 {
     int i = (int)get_global_id(0);
     if (i >= (int)min(counters[COUNTER_CONTACTS], (uint)contactCapacity)) return;
     int c = contacts[i].color;
-    if (c >= 0 && c < numColors - 1) atomic_inc(&colorCount[c]);
+    if (c < 0 || c >= numColors - 1) return;
+    atomic_inc(&colorCount[c]);
+    if (has_push(&contacts[i])) atomic_inc(&colorCount[numColors + 1 + c]);
 }
 
 __kernel void color_offsets(__global uint* colorCount, __global uint* colorStart, int numColors)
 {
     if (get_global_id(0) != 0) return;
-    uint sum = 0u;
-    for (int c = 0; c < numColors; ++c) {
-        colorStart[c] = sum;
-        sum += c < numColors - 1 ? colorCount[c] : 0u;
-        colorCount[c] = 0u; /* reused as the fill cursor */
+    for (int list = 0; list < 2; ++list) {
+        const int base = list * (numColors + 1);
+        uint sum = 0u;
+        for (int c = 0; c < numColors; ++c) {
+            colorStart[base + c] = sum;
+            sum += c < numColors - 1 ? colorCount[base + c] : 0u;
+            colorCount[base + c] = 0u; /* reused as the fill cursor */
+        }
+        colorStart[base + numColors] = sum;
     }
-    colorStart[numColors] = sum;
 }
 
 __kernel void color_fill(__global const BtgContact* restrict contacts, __global const uint* restrict counters,
                          int contactCapacity, __global const uint* restrict colorStart, __global uint* colorCursor,
-                         __global int* colorOrder, int numColors)
+                         __global int* colorOrder, int numColors, int orderStride)
 {
     int i = (int)get_global_id(0);
     if (i >= (int)min(counters[COUNTER_CONTACTS], (uint)contactCapacity)) return;
     int c = contacts[i].color;
-    if (c >= 0 && c < numColors - 1) colorOrder[colorStart[c] + atomic_inc(&colorCursor[c])] = i;
+    if (c < 0 || c >= numColors - 1) return;
+    colorOrder[colorStart[c] + atomic_inc(&colorCursor[c])] = i;
+    if (has_push(&contacts[i])) {
+        const int p = numColors + 1 + c;
+        colorOrder[orderStride + colorStart[p] + atomic_inc(&colorCursor[p])] = i;
+    }
 }
 
-/* solve_color_range: one work-item per slot of the color's range (launched over the contact
- * capacity; items past the range return after two reads). */
+/* solve_color_range: one work-item per slot of the color's range in list (mode == 2 ? 1 : 0)
+ * (launched over the contact capacity; items past the range return after two reads). */
 __kernel void solve_color_range(__global BtgContact* contacts, __global const uint* restrict colorStart,
                                 __global const int* restrict colorOrder, __global const BtgBodyProps* restrict props,
                                 __global const BtgFloat4* restrict invInertiaWorld, __global BtgFloat4* lin,
-                                __global BtgFloat4* ang, int color, int mode)
+                                __global BtgFloat4* ang, int color, int mode, int numColors, int orderStride)
 {
+    const int list = mode == 2 ? 1 : 0;
     int k = (int)get_global_id(0);
-    int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
+    int begin = (int)colorStart[list * (numColors + 1) + color], end = (int)colorStart[list * (numColors + 1) + color + 1];
     if (k >= end - begin) return;
-    solve_one(colorOrder[begin + k], mode, contacts, props, invInertiaWorld, lin, ang);
+    solve_one(colorOrder[list * orderStride + begin + k], mode, contacts, props, invInertiaWorld, lin, ang);
 }
 
 /* solve_resident: every pass and color in ONE launch over resident work-groups (GPUs), with a
@@ -136,8 +157,8 @@ __kernel void solve_resident(__global BtgContact* contacts, __global uint* count
                              __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
                              BTG_SHARED __global BtgFloat4* linVel, BTG_SHARED __global BtgFloat4* angVel,
                              BTG_SHARED __global BtgFloat4* pushLin, BTG_SHARED __global BtgFloat4* pushAng,
-                             volatile __global BtgGridBarrier* bar, int numColors, int iterations, int splitImpulse,
-                             int spinLimit)
+                             volatile __global BtgGridBarrier* bar, int numColors, int orderStride, int iterations,
+                             int splitImpulse, int spinLimit)
 {
     __local int quit;
     if (counters[BTG_COUNTER_STATUS] & BTG_STATUS_GRID_BARRIER_TIMEOUT) return;
@@ -150,10 +171,12 @@ __kernel void solve_resident(__global BtgContact* contacts, __global uint* count
         const int mode = pass == 0 ? 0 : (pass <= iterations ? 1 : 2);
         BTG_SHARED __global BtgFloat4* lin = mode == 2 ? pushLin : linVel;
         BTG_SHARED __global BtgFloat4* ang = mode == 2 ? pushAng : angVel;
+        const int list = mode == 2 ? 1 : 0; /* push passes: only contacts with a push target */
         for (int color = 0; color < last; ++color) {
-            const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
+            const int begin = (int)colorStart[list * (numColors + 1) + color];
+            const int end = (int)colorStart[list * (numColors + 1) + color + 1];
             for (int k = begin + gid; k < end; k += gsize)
-                solve_one(colorOrder[k], mode, contacts, props, invInertiaWorld, lin, ang);
+                solve_one(colorOrder[list * orderStride + k], mode, contacts, props, invInertiaWorld, lin, ang);
             if (btgGridBarrier(bar, spinLimit, &quit)) {
                 if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
                 return;

@@ -34,16 +34,19 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     cl::Program& prog = ctx.program("solve_constraints");
     // Contacts sorted into per-color ranges once, so each color's launch reads only its own.
     SolverScratch& sc = w.solverScratch;
-    sc.colorCount.reserve(ctx, size_t(numColors) + 1);
-    sc.colorStart.reserve(ctx, size_t(numColors) + 1);
-    sc.colorOrder.reserve(ctx, slots);
-    sc.colorCount.zero(ctx, size_t(numColors) + 1);
+    // Two lists (see color_count): every contact, and those with a push target.
+    const size_t ranges = 2 * (size_t(numColors) + 1);
+    const int orderStride = contactCapacity;
+    sc.colorCount.reserve(ctx, ranges);
+    sc.colorStart.reserve(ctx, ranges);
+    sc.colorOrder.reserve(ctx, 2 * slots);
+    sc.colorCount.zero(ctx, ranges);
     cl::Launch(ctx, prog.kernel("color_count"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
         .arg(sc.colorCount).arg(numColors).run(slots);
     cl::Launch(ctx, prog.kernel("color_offsets"), &w.profiler).arg(sc.colorCount).arg(sc.colorStart).arg(numColors)
         .run(1, 1);
     cl::Launch(ctx, prog.kernel("color_fill"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
-        .arg(sc.colorStart).arg(sc.colorCount).arg(sc.colorOrder).arg(numColors).run(slots);
+        .arg(sc.colorStart).arg(sc.colorCount).arg(sc.colorOrder).arg(numColors).arg(orderStride).run(slots);
     // Every pass and color in one launch: on a GPU over one group per compute unit (each
     // contact is a chain of dependent loads, so more work-items in flight beat cheaper
     // barriers: H200, 1,000 cubes: 1.7 ms with 132 groups, 2.2 with 2; 112,500: 3.1 against
@@ -56,8 +59,8 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
         size_t groups = resident ? std::max<cl_uint>(ctx.device().computeUnits, 1) : 1;
         cl::Launch(ctx, k, &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(sc.colorStart)
             .arg(sc.colorOrder).arg(w.props).arg(w.invInertiaWorld).arg(w.linVel).arg(w.angVel).arg(w.pushLin)
-            .arg(w.pushAng).arg(gridBarrier(w)).arg(numColors).arg(iterations).arg(params.splitImpulse ? 1 : 0)
-            .arg(kGridBarrierSpins).run(groups * group, group);
+            .arg(w.pushAng).arg(gridBarrier(w)).arg(numColors).arg(orderStride).arg(iterations)
+            .arg(params.splitImpulse ? 1 : 0).arg(kGridBarrierSpins).run(groups * group, group);
         return;
     }
     cl_kernel parallel = prog.kernel("solve_color_range");
@@ -71,7 +74,8 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
                     .arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).run(1, 1);
             } else {
                 cl::Launch(ctx, parallel, &w.profiler).arg(w.contacts).arg(sc.colorStart).arg(sc.colorOrder)
-                    .arg(w.props).arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).run(slots, 64);
+                    .arg(w.props).arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(numColors)
+                    .arg(orderStride).run(slots, 64);
             }
         }
     };

@@ -11,10 +11,12 @@ struct SolverScratch {
     cl::DeviceArray<uint> blockSums;  // contact_cache: per-work-group counts, then offsets
     cl::DeviceArray<int> bodyClaim;   // color_constraints: lowest contact priority claiming a body
     cl::DeviceArray<int> bodyColor;   // color_constraints: the color that last took the body
-    // solve_constraints: contacts of color c are colorOrder[colorStart[c], colorStart[c + 1])
-    cl::DeviceArray<uint> colorCount;  // per color, then the fill cursor
-    cl::DeviceArray<uint> colorStart;  // numColors + 1
-    cl::DeviceArray<int> colorOrder;   // one per contact slot
+    // solve_constraints: contacts of color c are colorOrder[colorStart[c], colorStart[c + 1]);
+    // a second list (counts and starts after numColors + 1, indices after one per contact
+    // slot) holds only the contacts with a split-impulse target, for the push passes
+    cl::DeviceArray<uint> colorCount;  // 2 x (numColors + 1): per color, then the fill cursor
+    cl::DeviceArray<uint> colorStart;  // 2 x (numColors + 1)
+    cl::DeviceArray<int> colorOrder;   // two per contact slot
     cl::DeviceArray<uint> gridBarrier; // solve_resident's arrival count, generation, timeout flag
     // solve_jacobi: body b's contacts are jacobiEntries[jacobiStart[b], jacobiStart[b + 1]),
     // each 2 * contact + side, in increasing order; jacobiDeltas holds 4 per contact slot
