@@ -130,18 +130,19 @@ __kernel void color_fill(__global const BtgContact* restrict contacts, __global 
     }
 }
 
-/* solve_color_range: one work-item per slot of the color's range in list (mode == 2 ? 1 : 0)
- * (launched over the contact capacity; items past the range return after two reads). */
+/* solve_color_range: the color's range in list (mode == 2 ? 1 : 0), strided over however many
+ * work-items the host launched (it does not know the range's length; a launch over every
+ * contact slot cost a CPU device hundreds of empty work-groups per color). */
 __kernel void solve_color_range(__global BtgContact* contacts, __global const uint* restrict colorStart,
                                 __global const int* restrict colorOrder, __global const BtgBodyProps* restrict props,
                                 __global const BtgFloat4* restrict invInertiaWorld, __global BtgFloat4* lin,
                                 __global BtgFloat4* ang, int color, int mode, int numColors, int orderStride)
 {
     const int list = mode == 2 ? 1 : 0;
-    int k = (int)get_global_id(0);
-    int begin = (int)colorStart[list * (numColors + 1) + color], end = (int)colorStart[list * (numColors + 1) + color + 1];
-    if (k >= end - begin) return;
-    solve_one(colorOrder[list * orderStride + begin + k], mode, contacts, props, invInertiaWorld, lin, ang);
+    const int begin = (int)colorStart[list * (numColors + 1) + color];
+    const int end = (int)colorStart[list * (numColors + 1) + color + 1];
+    for (int k = begin + (int)get_global_id(0); k < end; k += (int)get_global_size(0))
+        solve_one(colorOrder[list * orderStride + k], mode, contacts, props, invInertiaWorld, lin, ang);
 }
 
 /* solve_resident: every pass and color in ONE launch over resident work-groups (GPUs), with a

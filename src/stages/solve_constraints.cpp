@@ -63,6 +63,8 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             .arg(params.splitImpulse ? 1 : 0).arg(kGridBarrierSpins).run(groups * group, group);
         return;
     }
+    // Per-color launches stride over their range: a few work-groups per compute unit.
+    const size_t rangeItems = std::min(slots, size_t(std::max<cl_uint>(ctx.device().computeUnits, 1)) * 256);
     cl_kernel parallel = prog.kernel("solve_color_range");
     cl_kernel serial = prog.kernel("solve_color_serial");
     auto pass = [&](int mode, cl::DeviceArray<BtgFloat4>& lin, cl::DeviceArray<BtgFloat4>& ang) {
@@ -75,7 +77,7 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             } else {
                 cl::Launch(ctx, parallel, &w.profiler).arg(w.contacts).arg(sc.colorStart).arg(sc.colorOrder)
                     .arg(w.props).arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(numColors)
-                    .arg(orderStride).run(slots, 64);
+                    .arg(orderStride).run(rangeItems, 64);
             }
         }
     };
