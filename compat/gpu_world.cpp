@@ -318,7 +318,7 @@ void GpuWorld::runOnDevice(int substeps, btScalar dt)
     const int k = std::max(m_config.internalSubsteps, 1);
     StepSettings s = settings(substeps * k, dt / btScalar(k));
     resetStatus(w);
-    takeSnapshot(w, m_snapshot, m_plan, substeps);
+    takeSnapshot(w, m_snapshot);
     // A buffer that overflowed grows and the call is redone from the snapshot: no contact is
     // ever dropped. Growth is geometric, so this settles after a few tries.
     for (int attempt = 0;; ++attempt) {
@@ -336,7 +336,7 @@ void GpuWorld::runOnDevice(int substeps, btScalar dt)
             ++m_report.redoneSteps;
             report({Issue::Kind::Device, "one-launch batching/solve timed out at a grid barrier on this device; "
                                          "per-round launches from now on; step redone"});
-            takeSnapshot(w, m_snapshot, m_plan, substeps);
+            takeSnapshot(w, m_snapshot);
             resetStatus(w);
             continue;
         }
@@ -360,7 +360,7 @@ void GpuWorld::runOnDevice(int substeps, btScalar dt)
         ++m_report.redoneSteps;
         report({Issue::Kind::Overflow, "pair/contact buffers grew to " + std::to_string(w.pairCapacity) + "/" +
                                            std::to_string(w.contactCapacity) + "; step redone"});
-        takeSnapshot(w, m_snapshot, m_plan, substeps);  // the restored state, for a further redo
+        takeSnapshot(w, m_snapshot);  // the restored state, for a further redo
         resetStatus(w);
     }
     // Next step colors as many rounds as this one needed plus slack; leftovers (solved

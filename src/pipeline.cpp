@@ -1,7 +1,8 @@
 // pipeline.cpp — one substep, top to bottom, as the talk lays it out: integrate/predict →
 // AABBs → pairs → contacts → forces → contact cache → constraint setup → batching → PGS →
-// store the cache for the next substep → integrate transforms → deactivation. Config::solver = JacobiMassSplitting puts one Jacobi
-// mass-splitting stage in place of batching + PGS. Stages absent from the plan are neither built nor launched.
+// store the cache for the next substep → integrate transforms → deactivation.
+// Config::solver = JacobiMassSplitting puts one Jacobi mass-splitting stage in place of
+// batching + PGS. Stages absent from the plan are neither built nor launched.
 #include "pipeline.h"
 
 #include "stages/color_constraints.h"
@@ -79,7 +80,7 @@ void resetStatus(DeviceWorld& w)
     fillCounters(w, kNanBody, 1, 0xffffffffu);
 }
 
-void takeSnapshot(DeviceWorld& w, Snapshot& s, const Plan&, int)
+void takeSnapshot(DeviceWorld& w, Snapshot& s)
 {
     size_t n = size_t(w.numBodies);
     s.pos.copyFrom(w.ctx, w.pos, n);

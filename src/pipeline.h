@@ -24,13 +24,11 @@ void runSubsteps(DeviceWorld& w, const Plan& plan, const StepSettings& s);
 // warm-start cache needs nothing here: a substep that overflows leaves it untouched
 // (store_contact_cache checks the status), and when a call runs several substeps runSubsteps
 // keeps a copy of it (DeviceWorld::contactCacheAtCall) that restoreSnapshot puts back.
-// takeSnapshot's plan and substep count are no longer read (runSubsteps knows every substep,
-// Config::internalSubsteps included).
 struct Snapshot {
     cl::DeviceArray<BtgFloat4> pos, rot, linVel, angVel;
     cl::DeviceArray<uint> counters;
 };
-void takeSnapshot(DeviceWorld& w, Snapshot& s, const Plan& plan, int substeps);
+void takeSnapshot(DeviceWorld& w, Snapshot& s);
 void restoreSnapshot(DeviceWorld& w, Snapshot& s);
 
 // Clears the status word and the NaN marker at the start of a call.
