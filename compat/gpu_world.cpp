@@ -380,8 +380,10 @@ void GpuWorld::writeBack(const BodyReadback& rb, bool last)
     // motion states of bodies that fell asleep) is collected per chunk and done after, in order.
     // On the last write-back of a call, when the world is exactly btGpuDynamicsWorld (so its
     // synchronizeMotionStates and clearForces are ours), the same pass also does their work for
-    // each body: Bullet's own motion states and the force clear, touching each body once.
-    const bool fuse = last && typeid(m_world) == typeid(btGpuDynamicsWorld) && !m_world.m_synchronizeAllMotionStates;
+    // each body: Bullet's own motion states and the force clear, touching each body once. Not
+    // with an internal tick callback, which Bullet runs before both and which may read them.
+    const bool fuse = last && typeid(m_world) == typeid(btGpuDynamicsWorld) &&
+                      !m_world.m_synchronizeAllMotionStates && !m_world.m_internalTickCallback;
     const size_t n = m_rows.size();
     const size_t minPerThread = 4096;
     const int chunks = chunkCount(n, minPerThread);
