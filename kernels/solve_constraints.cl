@@ -22,9 +22,9 @@ static BtgSolverBody load_body(__global const BtgBodyProps* restrict props,
     return btgMakeSolverBody(props[i], invInertiaWorld[3 * i], invInertiaWorld[3 * i + 1], invInertiaWorld[3 * i + 2]);
 }
 
-/* Body velocities go through BTG_SHARED (volatile on GPUs) pointers: solve_resident shares them between work-groups
- * across its grid barriers, where a non-coherent cache must not serve a stale copy. The
- * arithmetic is the same for every caller. */
+/* Body velocities go through BTG_SHARED (volatile on GPUs) pointers: solve_resident shares
+ * them between work-groups across its grid barriers, where a non-coherent cache must not
+ * serve a stale copy. The arithmetic is the same for every caller. */
 static void solve_one(int i, int mode, __global BtgContact* contacts, __global const BtgBodyProps* restrict props,
                       __global const BtgFloat4* restrict invInertiaWorld, BTG_SHARED __global BtgFloat4* lin,
                       BTG_SHARED __global BtgFloat4* ang)

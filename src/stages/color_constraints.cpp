@@ -1,7 +1,8 @@
 // color_constraints.cpp — host launcher of the batching stage: w.colorRounds colors (set from
 // the last readback: the colors the scene needed plus slack), each filled in kSubRounds
 // claim/assign passes on the device, then the leftovers take the last color (solved serially;
-// counted so the next step runs more rounds). The host reads no count inside the step.
+// counted so the next step runs more rounds). The host reads no count inside the step. On GPUs,
+// and for small scenes on CPUs, all of it is one launch (color_resident, stages/resident.h).
 #include "stages/color_constraints.h"
 
 #include "cl/program.h"

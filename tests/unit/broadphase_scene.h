@@ -7,6 +7,8 @@
 #include "stages/find_pairs.h"
 #include "world/device_world.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -159,6 +161,18 @@ inline PairsRun runFindPairs(DeviceWorld& w, Broadphase kind, float cellSize, si
     r.status = counters[kStatus];
     r.pairs = w.pairs.download(w.ctx, std::min<size_t>(r.count, capacity));
     return r;
+}
+
+// A pair buffer of 16 overflows: the status says so and the count is the full one; grown to
+// that count, the redo fits and gives exactly `expected`.
+inline void expectOverflowThenRedo(DeviceWorld& w, Broadphase kind, float cellSize, const std::vector<BtgPair>& expected)
+{
+    PairsRun r = runFindPairs(w, kind, cellSize, 16);
+    EXPECT_NE(r.status & BTG_STATUS_PAIR_OVERFLOW, 0u);
+    EXPECT_EQ(r.count, expected.size());
+    PairsRun redo = runFindPairs(w, kind, cellSize, r.count);
+    EXPECT_EQ(redo.status & BTG_STATUS_PAIR_OVERFLOW, 0u);
+    EXPECT_TRUE(redo.pairs == expected);
 }
 
 }  // namespace btgpu::test

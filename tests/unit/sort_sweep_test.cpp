@@ -171,12 +171,7 @@ TEST(SortSweep, OverflowIsFlaggedAndCounted)
     Aabbs a = download(w);
     std::vector<BtgPair> expected = ref::findPairs(a.min, a.max, s.props, s.shapes, s.pos, s.rot);
     ASSERT_GT(expected.size(), 100u);
-    Result r = runDevice(w, Broadphase::SortAndSweep, 1.0f, 16);
-    EXPECT_NE(r.status & BTG_STATUS_PAIR_OVERFLOW, 0u);
-    EXPECT_EQ(r.count, expected.size());
-    Result redo = runDevice(w, Broadphase::SortAndSweep, 1.0f, r.count);
-    EXPECT_EQ(redo.status & BTG_STATUS_PAIR_OVERFLOW, 0u);
-    EXPECT_TRUE(redo.pairs == expected);
+    test::expectOverflowThenRedo(w, Broadphase::SortAndSweep, 1.0f, expected);
 }
 
 TEST(SortSweep, NothingToSweep)
