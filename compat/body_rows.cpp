@@ -72,6 +72,8 @@ std::string badInput(const btCollisionObject* obj)
     const btTransform& t = obj->getWorldTransform();
     const btMatrix3x3& b = t.getBasis();
     if (!finite(t.getOrigin()) || !finite(b[0]) || !finite(b[1]) || !finite(b[2])) return "non-finite transform";
+    if (!std::isfinite(obj->getFriction())) return "non-finite friction";
+    if (!std::isfinite(obj->getRestitution())) return "non-finite restitution";
     const btRigidBody* rb = btRigidBody::upcast(obj);
     if (!rb) return "";
     if (!finite(rb->getLinearVelocity()) || !finite(rb->getAngularVelocity())) return "non-finite velocity";
@@ -81,7 +83,33 @@ std::string badInput(const btCollisionObject* obj)
     if (!finite(ii) || ii.x() < 0.0f || ii.y() < 0.0f || ii.z() < 0.0f) return "negative or non-finite inertia";
     if (!obj->isStaticOrKinematicObject() && rb->getInvMass() == 0.0f)
         return "zero inverse mass on a body that is neither static nor kinematic";
+    if (!finite(rb->getGravity())) return "non-finite gravity";
+    if (!std::isfinite(rb->getLinearDamping()) || !std::isfinite(rb->getAngularDamping())) return "non-finite damping";
+    if (!finite(rb->getLinearFactor()) || !finite(rb->getAngularFactor())) return "non-finite linear or angular factor";
+    if (!std::isfinite(rb->getLinearSleepingThreshold()) || !std::isfinite(rb->getAngularSleepingThreshold()))
+        return "non-finite sleeping threshold";
     return "";
+}
+
+bool aabbOverflows(const btCollisionObject* obj, const BtgShape& shape, float dt, bool continuous)
+{
+    if (obj->isStaticObject() || shape.type == BTG_SHAPE_PLANE || obj->getActivationState() == DISABLE_SIMULATION)
+        return false;
+    const btMatrix3x3& b = obj->getWorldTransform().getBasis();
+    btVector3 h(0.5f * (shape.localAabbMax.x - shape.localAabbMin.x), 0.5f * (shape.localAabbMax.y - shape.localAabbMin.y),
+                0.5f * (shape.localAabbMax.z - shape.localAabbMin.z));
+    btVector3 size;
+    for (int i = 0; i < 3; ++i)
+        size[i] = 2.0f * (std::fabs(b[i][0]) * h.x() + std::fabs(b[i][1]) * h.y() + std::fabs(b[i][2]) * h.z()) +
+                  2.0f * gContactBreakingThreshold;
+    const btRigidBody* rb = btRigidBody::upcast(obj);
+    if (continuous && rb && !obj->isStaticOrKinematicObject()) {
+        // The predicted transform moved by the velocity over the step (its turn changes the
+        // extents too little to matter against a 1e6 m bound).
+        const btVector3& v = rb->getLinearVelocity();
+        size += btVector3(std::fabs(v.x()), std::fabs(v.y()), std::fabs(v.z())) * dt;
+    }
+    return !(size.length2() < 1e12f);
 }
 
 }  // namespace btgpu

@@ -18,5 +18,9 @@ BtgBodyProps bodyProps(const btCollisionObject* obj, int shapeRow, const BtgShap
 BodyState bodyState(const btCollisionObject* obj);
 // "" when the body can be simulated, else what is wrong with it.
 std::string badInput(const btCollisionObject* obj);
+// Stock Bullet's updateSingleAabb rule: a non-static body whose AABB, over its transform and
+// (m_useContinuous) its transform predicted dt ahead, measures 1e6 m or more across is taken
+// out of the simulation. True when `obj` is such a body now.
+bool aabbOverflows(const btCollisionObject* obj, const BtgShape& shape, float dt, bool continuous);
 
 }  // namespace btgpu

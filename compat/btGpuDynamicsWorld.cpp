@@ -24,18 +24,32 @@ btGpuDynamicsWorld::~btGpuDynamicsWorld() = default;
 int btGpuDynamicsWorld::stepSimulation(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep)
 {
     try {
-        int done = 0;
-        if (m_gpu->step(timeStep, maxSubSteps, fixedTimeStep, &done)) return done;
-    } catch (const std::exception& e) {
-        m_gpu->failDevice(e.what());
-    } catch (...) {
-        m_gpu->failDevice("unknown exception");
-    }
-    try {
-        return btDiscreteDynamicsWorld::stepSimulation(timeStep, maxSubSteps, fixedTimeStep);
+        // Refused arguments simulate nothing on either path: every body and motion state stays.
+        if (!m_gpu->acceptStep(timeStep, maxSubSteps, fixedTimeStep)) return 0;
+        // The GPU path sets the local time before its device work; after a failure the base
+        // class counts this call's time itself, from where it was.
+        const btScalar localTime = m_localTime, fixedStep = m_fixedTimeStep;
+        try {
+            int done = 0;
+            if (m_gpu->step(timeStep, maxSubSteps, fixedTimeStep, &done)) return done;
+        } catch (const std::exception& e) {
+            m_localTime = localTime;
+            m_fixedTimeStep = fixedStep;
+            m_gpu->failDevice(e.what());
+        } catch (...) {
+            m_localTime = localTime;
+            m_fixedTimeStep = fixedStep;
+            m_gpu->failDevice("unknown exception");
+        }
+        return m_gpu->stepOnCpuPath(timeStep, maxSubSteps, fixedTimeStep);
     } catch (...) {
         return 0;
     }
+}
+
+int btGpuDynamicsWorld::baseStepSimulation(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep)
+{
+    return btDiscreteDynamicsWorld::stepSimulation(timeStep, maxSubSteps, fixedTimeStep);
 }
 
 void btGpuDynamicsWorld::addRigidBody(btRigidBody* body)

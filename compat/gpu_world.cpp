@@ -5,6 +5,7 @@
 
 #include "body_rows.h"
 #include "parallel_rows.h"
+#include "step_arguments.h"
 #include "shared/integrate.h"
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <cstring>
 #include <iostream>
+#include <limits>
 #include <typeinfo>
 
 namespace btgpu {
@@ -63,6 +65,7 @@ void GpuWorld::failDevice(const std::string& what)
     m_report.cpuPathReason = "OpenCL failure: " + what;
     std::cerr << "btgpu: " << m_report.cpuPathReason << "\n         continuing on the CPU path\n";
     report({Issue::Kind::OpenCL, what});
+    m_report.deviceBytes = 0;  // everything below is released
     try {
         m_readback.release();
     } catch (...) {
@@ -79,6 +82,7 @@ bool GpuWorld::ensureDevice()
     try {
         cl::DeviceInfo d = cl::selectDevice(m_config.device);
         m_ctx = std::make_unique<cl::Context>(d);
+        m_ctx->setMemoryLimit(m_config.deviceMemoryLimit);
         m_dev = std::make_unique<DeviceWorld>(*m_ctx);
         m_report.device = d.describe();
         std::cerr << "btgpu: OpenCL device " << m_report.device << "\n";
@@ -97,14 +101,16 @@ std::string GpuWorld::unsupportedReason()
     if (m_world.getNumConstraints() > 0) return "constraints (addConstraint) are not on the GPU path yet";
     if (m_world.m_actions.size() > 0) return "actions (addAction, vehicles, characters) are not on the GPU path yet";
     const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
-    ShapeTables probe;
+    // The shape tables are built here, once per structure change: a shape the GPU path cannot
+    // take is the answer, and rebuild() uploads the tables as they are.
+    m_shapes.clear();
     for (int i = 0; i < objs.size(); ++i) {
         const btCollisionObject* o = objs[i];
         int type = o->getInternalType();
         if (type != btCollisionObject::CO_RIGID_BODY && type != btCollisionObject::CO_COLLISION_OBJECT)
             return "collision object " + std::to_string(i) + " is not a rigid body (ghost, soft or other object)";
         std::string why;
-        if (probe.add(o->getCollisionShape(), &why) < 0) return "body " + std::to_string(i) + ": " + why;
+        if (m_shapes.add(o->getCollisionShape(), &why) < 0) return "body " + std::to_string(i) + ": " + why;
     }
     return "";
 }
@@ -176,12 +182,7 @@ void GpuWorld::rebuild()
     DeviceWorld& w = *m_dev;
     const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
     m_rows.clear();
-    for (int i = 0; i < objs.size(); ++i) m_rows.push_back(objs[i]);
-    m_shapes.clear();
-    for (btCollisionObject* o : m_rows) {
-        std::string why;
-        m_shapes.add(o->getCollisionShape(), &why);  // checked by unsupportedReason()
-    }
+    for (int i = 0; i < objs.size(); ++i) m_rows.push_back(objs[i]);  // shapes: in unsupportedReason()
     resizeBodies(w, int(m_rows.size()));
     auto uploadTable = [&](auto& arr, auto v) {
         if (v.empty()) v.resize(1);  // a bound buffer even when the table is empty
@@ -253,9 +254,15 @@ bool GpuWorld::compareRow(size_t r, bool all, BodyRowUpdate* u, std::string* new
 {
     btCollisionObject* o = m_rows[r];
     Mirror& m = m_mirror[r];
-    std::string bad = badInput(o);
-    bool excluded = !bad.empty();
     int shapeRow = m_shapes.rowOf.at(o->getCollisionShape());
+    std::string bad = badInput(o);
+    if (bad.empty() && !m_shapes.badReason[size_t(shapeRow)].empty()) bad = "shape: " + m_shapes.badReason[size_t(shapeRow)];
+    if (bad.empty() && aabbOverflows(o, m_shapes.shapes[size_t(shapeRow)], m_stepDt, m_world.getDispatchInfo().m_useContinuous)) {
+        // What stock Bullet does to such a body (and all it does to the app's object).
+        o->setActivationState(DISABLE_SIMULATION);
+        bad = "AABB 1e6 m or more across: removed from the simulation (DISABLE_SIMULATION), as stock Bullet does";
+    }
+    bool excluded = !bad.empty();
     BtgBodyProps props = bodyProps(o, shapeRow, m_shapes.shapes[shapeRow], excluded);
     if (m_large[r]) props.flags |= BTG_BODY_LARGE;  // paired by the large pass, not the grid
     const btRigidBody* rb = btRigidBody::upcast(o);
@@ -315,7 +322,8 @@ StepSettings GpuWorld::settings(int substeps, btScalar dt) const
 void GpuWorld::runOnDevice(int substeps, btScalar dt)
 {
     DeviceWorld& w = *m_dev;
-    const int k = std::max(m_config.internalSubsteps, 1);
+    // substeps * k stays an int: k is capped where the product would overflow.
+    const int k = std::max(std::min(m_config.internalSubsteps, std::numeric_limits<int>::max() / std::max(substeps, 1)), 1);
     StepSettings s = settings(substeps * k, dt / btScalar(k));
     resetStatus(w);
     takeSnapshot(w, m_snapshot);
@@ -465,6 +473,36 @@ bool GpuWorld::takeFusedWriteBack()
     return fused;
 }
 
+bool GpuWorld::acceptStep(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep)
+{
+    const btVector3 g = m_world.getGravity();
+    const bool badGravity = !std::isfinite(g.x()) || !std::isfinite(g.y()) || !std::isfinite(g.z());
+    if (badGravity && !m_badGravityNamed)
+        report({Issue::Kind::BadArgument, "world gravity is not finite (setGravity): the bodies it was given to are "
+                                          "kept out of the simulation"});
+    m_badGravityNamed = badGravity;
+    std::string bad = badStepArguments(timeStep, maxSubSteps, fixedTimeStep, m_world.m_localTime);
+    if (bad.empty()) {
+        m_lastBadArgument.clear();
+        return true;
+    }
+    if (bad != m_lastBadArgument) report({Issue::Kind::BadArgument, bad + "; nothing simulated"});
+    m_lastBadArgument = bad;
+    return false;
+}
+
+int GpuWorld::stepOnCpuPath(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep)
+{
+    m_cpuGuard.hold(m_world, [this](Issue issue) { report(std::move(issue)); });
+    struct Release {
+        CpuPathGuard& guard;
+        ~Release() { guard.release(); }
+    } release{m_cpuGuard};
+    // The GPU rows no longer hold what the bodies hold: resynced from scratch when it returns.
+    m_structureDirty = true;
+    return m_world.baseStepSimulation(timeStep, maxSubSteps, fixedTimeStep);
+}
+
 bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, int* substepsDone)
 {
     if (m_config.forceCpu) {
@@ -476,6 +514,10 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         m_report.gpuPath = false;
         return false;
     }
+    m_stepDt = maxSubSteps ? fixedTimeStep : timeStep;
+    // A shape the app changed in place (setLocalScaling, setMargin, its points) since the
+    // tables were built: they are built again, as for an added body.
+    if (!m_structureDirty && m_shapes.changedSinceBuilt()) m_structureDirty = true;
     if (m_structureDirty) {
         std::string why = unsupportedReason();
         if (!why.empty()) {

@@ -4,6 +4,7 @@
 // with Bullet's time, kinematic, motion-state and force semantics around them.
 #pragma once
 #include "btgpu/btGpuDynamicsWorld.h"
+#include "cpu_path_guard.h"
 #include "pipeline.h"
 #include "shape_tables.h"
 #include "stages/sync_bodies.h"
@@ -21,9 +22,14 @@ public:
     GpuWorld(btGpuDynamicsWorld& world, const Config& config);
     ~GpuWorld();
 
+    // False (reported as a BadArgument issue) when the call's arguments are refused: nothing
+    // is simulated. Also names a non-finite world gravity.
+    bool acceptStep(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep);
     // The whole stepSimulation on the GPU path. Returns false (having changed nothing) when
     // the CPU path must run this call instead.
     bool step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, int* substepsDone);
+    // The base class's stepSimulation, with bad bodies named and held out of it.
+    int stepOnCpuPath(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep);
 
     void structureChanged() { m_structureDirty = true; }
     // An OpenCL failure during a step: reported once, and the world stays on the CPU path.
@@ -68,6 +74,7 @@ private:
     bool m_deviceFailed = false;
     bool m_structureDirty = true;
     bool m_onCpuPath = false;
+    float m_stepDt = 0.0f;  // the fixed step of the call being synced (the AABB overflow rule)
     long m_calls = 0;  // stepSimulation calls on the GPU path (profiling cadence)
     Plan m_plan;
     ShapeTables m_shapes;
@@ -77,6 +84,9 @@ private:
     Snapshot m_snapshot;
     BodyReadback m_readback;
     bool m_fusedWriteBack = false;
+    CpuPathGuard m_cpuGuard;
+    std::string m_lastBadArgument;  // reported once while it repeats
+    bool m_badGravityNamed = false;
 };
 
 }  // namespace btgpu

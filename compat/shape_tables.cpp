@@ -1,12 +1,15 @@
-// shape_tables.cpp — conversion of btBoxShape, btConvexHullShape (and other polyhedral
-// convex shapes), btSphereShape and btStaticPlaneShape.
+// shape_tables.cpp — conversion of btBoxShape, btConvexHullShape and btConvexPointCloudShape,
+// btSphereShape and btStaticPlaneShape into the GPU tables, reading the app's shapes only.
 #include "shape_tables.h"
+
+#include "shape_checks.h"
 
 #include <btBulletDynamicsCommon.h>
 #include <BulletCollision/CollisionShapes/btConvexPolyhedron.h>
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 namespace btgpu {
 
@@ -24,36 +27,66 @@ void setLocalAabb(BtgShape& s, const btCollisionShape* shape)
     s.localAabbMax = f4(mx);
 }
 
-// The hull's faces, vertices and unique edges, appended to the tables.
-bool appendPolyhedron(ShapeTables& t, BtgShape& s, const btConvexPolyhedron& poly, std::string* whyNot)
+// Bullet's face extraction (btConvexHullComputer, coplanar triangles merged) as the app's
+// shape would get it from initializePolyhedralFeatures, run on a private copy: the app's
+// shape is never changed (a shape left with polyhedral features takes other code paths in
+// Bullet, so a world falling back would no longer equal stock). Features the app computed
+// itself are read as they are.
+bool computePolyhedron(const btCollisionShape* shape, Polyhedron* out, std::string* whyNot)
 {
-    if (poly.m_vertices.size() < 4 || poly.m_faces.size() < 4) {
-        *whyNot = "degenerate convex hull (" + std::to_string(poly.m_vertices.size()) + " vertices, " +
-                  std::to_string(poly.m_faces.size()) + " faces)";
+    const btConvexPolyhedron* poly = static_cast<const btPolyhedralConvexShape*>(shape)->getConvexPolyhedron();
+    std::unique_ptr<btConvexHullShape> copy;
+    if (!poly) {
+        int n = 0;
+        const btVector3* points = hullPoints(shape, &n);
+        copy = std::make_unique<btConvexHullShape>(&points[0].x(), n, int(sizeof(btVector3)));
+        copy->setLocalScaling(shape->getLocalScaling());
+        copy->setMargin(shape->getMargin());
+        if (!copy->initializePolyhedralFeatures() || !copy->getConvexPolyhedron()) {
+            *whyNot = "convex hull without polyhedral features";
+            return false;
+        }
+        poly = copy->getConvexPolyhedron();
+    }
+    if (poly->m_vertices.size() < 4 || poly->m_faces.size() < 4) {
+        *whyNot = "degenerate convex hull (" + std::to_string(poly->m_vertices.size()) + " vertices, " +
+                  std::to_string(poly->m_faces.size()) + " faces)";
         return false;
     }
-    s.firstVertex = int(t.vertices.size());
-    s.numVertices = poly.m_vertices.size();
-    for (int i = 0; i < poly.m_vertices.size(); ++i) t.vertices.push_back(f4(poly.m_vertices[i]));
-    s.firstFace = int(t.faces.size());
-    s.numFaces = poly.m_faces.size();
-    for (int i = 0; i < poly.m_faces.size(); ++i) {
-        const btFace& f = poly.m_faces[i];
+    for (int i = 0; i < poly->m_vertices.size(); ++i) out->vertices.push_back(f4(poly->m_vertices[i]));
+    for (int i = 0; i < poly->m_faces.size(); ++i) {
+        const btFace& f = poly->m_faces[i];
         if (f.m_indices.size() < 3) {
             *whyNot = "convex hull face with fewer than 3 vertices";
             return false;
         }
+        out->planes.push_back(btgMake4(f.m_plane[0], f.m_plane[1], f.m_plane[2], f.m_plane[3]));
+        std::vector<int> loop(size_t(f.m_indices.size()));
+        for (int k = 0; k < f.m_indices.size(); ++k) loop[size_t(k)] = f.m_indices[k];
+        out->faces.push_back(std::move(loop));
+    }
+    for (int i = 0; i < poly->m_uniqueEdges.size(); ++i) out->edges.push_back(f4(poly->m_uniqueEdges[i].normalized()));
+    return true;
+}
+
+void appendPolyhedron(ShapeTables& t, BtgShape& s, const Polyhedron& poly)
+{
+    s.firstVertex = int(t.vertices.size());
+    s.numVertices = int(poly.vertices.size());
+    t.vertices.insert(t.vertices.end(), poly.vertices.begin(), poly.vertices.end());
+    s.firstFace = int(t.faces.size());
+    s.numFaces = int(poly.faces.size());
+    for (size_t i = 0; i < poly.faces.size(); ++i) {
         BtgFace face{};
-        face.plane = btgMake4(f.m_plane[0], f.m_plane[1], f.m_plane[2], f.m_plane[3]);
+        face.plane = poly.planes[i];
         face.firstIndex = int(t.indices.size());
-        face.numIndices = f.m_indices.size();
-        for (int k = 0; k < f.m_indices.size(); ++k) t.indices.push_back(f.m_indices[k]);
+        face.numIndices = int(poly.faces[i].size());
+        t.indices.insert(t.indices.end(), poly.faces[i].begin(), poly.faces[i].end());
         t.faces.push_back(face);
     }
     s.firstEdge = int(t.edges.size());
-    s.numEdges = poly.m_uniqueEdges.size();
-    for (int i = 0; i < poly.m_uniqueEdges.size(); ++i) t.edges.push_back(f4(poly.m_uniqueEdges[i].normalized()));
-    return true;
+    s.numEdges = int(poly.edges.size());
+    t.edges.insert(t.edges.end(), poly.edges.begin(), poly.edges.end());
 }
 
 void appendBox(ShapeTables& t, BtgShape& s, const btVector3& h)
@@ -93,56 +126,75 @@ int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
     if (it != rowOf.end()) return it->second;
     BtgShape s{};
     s.firstVertex = s.firstFace = s.firstEdge = 0;
-    switch (shape->getShapeType()) {
-        case BOX_SHAPE_PROXYTYPE: {
-            auto* box = static_cast<const btBoxShape*>(shape);
-            s.type = BTG_SHAPE_HULL;
-            s.margin = 0.0f;  // Bullet keeps a box's margin inside its extents
-            appendBox(*this, s, box->getHalfExtentsWithMargin());
-            s.param = f4(box->getHalfExtentsWithMargin());
-            setLocalAabb(s, shape);
-            break;
+    const int type = shape->getShapeType();
+    const bool known = type == BOX_SHAPE_PROXYTYPE || type == SPHERE_SHAPE_PROXYTYPE || type == STATIC_PLANE_PROXYTYPE ||
+                       type == CONVEX_HULL_SHAPE_PROXYTYPE || type == CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE;
+    if (!known) {
+        *whyNot = std::string("unsupported shape '") + shape->getName() + "'";
+        return -1;
+    }
+    const std::uint64_t print = shapeFingerprint(shape);
+    std::string bad = badShapeInput(shape);
+    if (!bad.empty()) {
+        // A placeholder that takes part in nothing: its bodies are excluded.
+        s.type = BTG_SHAPE_SPHERE;
+    } else if (type == BOX_SHAPE_PROXYTYPE) {
+        auto* box = static_cast<const btBoxShape*>(shape);
+        s.type = BTG_SHAPE_HULL;
+        s.margin = 0.0f;  // Bullet keeps a box's margin inside its extents
+        appendBox(*this, s, box->getHalfExtentsWithMargin());
+        s.param = f4(box->getHalfExtentsWithMargin());
+        setLocalAabb(s, shape);
+    } else if (type == SPHERE_SHAPE_PROXYTYPE) {
+        auto* sphere = static_cast<const btSphereShape*>(shape);
+        s.type = BTG_SHAPE_SPHERE;
+        s.param = btgMake4(sphere->getRadius(), 0, 0, 0);
+        s.margin = 0.0f;
+        setLocalAabb(s, shape);
+    } else if (type == STATIC_PLANE_PROXYTYPE) {
+        auto* plane = static_cast<const btStaticPlaneShape*>(shape);
+        s.type = BTG_SHAPE_PLANE;
+        s.param = f4(plane->getPlaneNormal().normalized(), plane->getPlaneConstant());
+        s.localAabbMin = btgMake4(-1e30f, -1e30f, -1e30f, 0);
+        s.localAabbMax = btgMake4(1e30f, 1e30f, 1e30f, 0);
+    } else {
+        auto cached = m_hullCache.find(shape);
+        if (cached == m_hullCache.end()) {
+            auto previous = m_previousHulls.find(shape);
+            if (previous != m_previousHulls.end())
+                cached = m_hullCache.insert_or_assign(shape, std::move(previous->second)).first;
         }
-        case SPHERE_SHAPE_PROXYTYPE: {
-            auto* sphere = static_cast<const btSphereShape*>(shape);
-            s.type = BTG_SHAPE_SPHERE;
-            s.param = btgMake4(sphere->getRadius(), 0, 0, 0);
-            s.margin = 0.0f;
-            setLocalAabb(s, shape);
-            break;
+        if (cached == m_hullCache.end() || cached->second.fingerprint != print) {
+            CachedHull entry{print, Polyhedron()};
+            if (!computePolyhedron(shape, &entry.poly, whyNot)) return -1;
+            cached = m_hullCache.insert_or_assign(shape, std::move(entry)).first;
         }
-        case STATIC_PLANE_PROXYTYPE: {
-            auto* plane = static_cast<const btStaticPlaneShape*>(shape);
-            s.type = BTG_SHAPE_PLANE;
-            s.param = f4(plane->getPlaneNormal().normalized(), plane->getPlaneConstant());
-            s.localAabbMin = btgMake4(-1e30f, -1e30f, -1e30f, 0);
-            s.localAabbMax = btgMake4(1e30f, 1e30f, 1e30f, 0);
-            break;
-        }
-        case CONVEX_HULL_SHAPE_PROXYTYPE:
-        case CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE: {
-            // Bullet's own face extraction (btConvexHullComputer); it stores the result on the
-            // shape, as Bullet itself does when SAT collision is enabled.
-            auto* hull = const_cast<btPolyhedralConvexShape*>(static_cast<const btPolyhedralConvexShape*>(shape));
-            if (!hull->getConvexPolyhedron()) hull->initializePolyhedralFeatures();
-            if (!hull->getConvexPolyhedron()) {
-                *whyNot = "convex hull without polyhedral features";
-                return -1;
-            }
-            s.type = BTG_SHAPE_HULL;
-            s.margin = hull->getMargin();
-            if (!appendPolyhedron(*this, s, *hull->getConvexPolyhedron(), whyNot)) return -1;
-            setLocalAabb(s, shape);
-            break;
-        }
-        default:
-            *whyNot = std::string("unsupported shape '") + shape->getName() + "'";
-            return -1;
+        s.type = BTG_SHAPE_HULL;
+        s.margin = shape->getMargin();
+        appendPolyhedron(*this, s, cached->second.poly);
+        setLocalAabb(s, shape);
     }
     int row = int(shapes.size());
     shapes.push_back(s);
     rowOf.emplace(shape, row);
+    badReason.push_back(bad);
+    shapeOf.push_back(shape);
+    fingerprint.push_back(print);
     return row;
+}
+
+bool ShapeTables::changedSinceBuilt() const
+{
+    for (size_t r = 0; r < shapeOf.size(); ++r)
+        if (shapeFingerprint(shapeOf[r]) != fingerprint[r]) return true;
+    return false;
+}
+
+void ShapeTables::clear()
+{
+    std::unordered_map<const btCollisionShape*, CachedHull> keep = std::move(m_hullCache);
+    *this = ShapeTables();
+    m_previousHulls = std::move(keep);
 }
 
 float boundingRadius(const BtgShape& s)

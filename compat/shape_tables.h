@@ -1,11 +1,13 @@
 // shape_tables.h — Bullet collision shapes turned into the GPU shape table and hull tables.
 // Boxes become 8-vertex hulls (margin inside the extents, as btBoxShape), convex hulls use
-// Bullet's own polyhedral features (margin kept as an outward rounding), spheres and static
-// planes are parameters. Anything else is refused with a reason (the world then runs on the
-// CPU path).
+// Bullet's own face extraction run on a private copy (margin kept as an outward rounding; the
+// app's shape is never changed), spheres and static planes are parameters. Anything else is
+// refused with a reason (the world then runs on the CPU path). A shape of a known kind with
+// unusable parameters gets a placeholder row and a reason: the bodies using it are kept out.
 #pragma once
 #include "shared/types.h"
 
+#include <cstdint>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -14,6 +16,13 @@ class btCollisionShape;
 
 namespace btgpu {
 
+// A hull's faces, vertices and unique edges as Bullet's btConvexPolyhedron has them.
+struct Polyhedron {
+    std::vector<BtgFloat4> vertices, edges;
+    std::vector<BtgFloat4> planes;
+    std::vector<std::vector<int>> faces;
+};
+
 struct ShapeTables {
     std::vector<BtgShape> shapes;
     std::vector<BtgFloat4> vertices;
@@ -21,10 +30,25 @@ struct ShapeTables {
     std::vector<int> indices;
     std::vector<BtgFloat4> edges;
     std::unordered_map<const btCollisionShape*, int> rowOf;
+    std::vector<std::string> badReason;             // per row: "" or why its bodies are kept out
+    std::vector<const btCollisionShape*> shapeOf;   // per row
+    std::vector<std::uint64_t> fingerprint;         // per row: shapeFingerprint when added
 
-    // The shape's row (adding it the first time), or -1 with *whyNot set.
+    // The shape's row (adding it the first time), or -1 with *whyNot set when the GPU path
+    // cannot take it.
     int add(const btCollisionShape* shape, std::string* whyNot);
-    void clear() { *this = ShapeTables(); }
+    // True when the app changed a shape of the tables in place since it was added.
+    bool changedSinceBuilt() const;
+    // Empties the tables; the hull faces of this build are kept for the next one only (so
+    // hulls the app deleted meanwhile are forgotten after one build).
+    void clear();
+
+private:
+    struct CachedHull {
+        std::uint64_t fingerprint;
+        Polyhedron poly;
+    };
+    std::unordered_map<const btCollisionShape*, CachedHull> m_hullCache, m_previousHulls;
 };
 
 // Radius of a sphere about the body origin that holds the shape (m); planes: 0.

@@ -3,6 +3,7 @@
 // No global variable changes behaviour: everything lives here (BTGPU_DEVICE, the one
 // environment override, picks the device).
 #pragma once
+#include <cstddef>
 #include <functional>
 #include <string>
 
@@ -45,6 +46,10 @@ struct Config {
     // A body whose bounding size exceeds this multiple of the median body size is paired by
     // brute force against all bodies instead of through the uniform grid.
     float largeBodyFactor = 4.0f;
+    // Device memory this world may hold in buffers, bytes (0: as much as the device gives).
+    // Running out, at this limit or the device's own, is an OpenCL failure: reported, and the
+    // world continues on the CPU path from where it was.
+    std::size_t deviceMemoryLimit = 0;
     // Called for each problem the world reports (bad body input, OpenCL failure, fallback).
     std::function<void(const Issue&)> onIssue;
 };

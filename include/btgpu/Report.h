@@ -11,7 +11,9 @@
 namespace btgpu {
 
 struct Issue {
-    enum class Kind { BadBody, OpenCL, Fallback, Overflow, Device };
+    // BadArgument: a stepSimulation argument (the call simulated nothing) or a world setting
+    // such as a non-finite gravity.
+    enum class Kind { BadBody, OpenCL, Fallback, Overflow, Device, BadArgument };
     Kind kind;
     std::string message;
     int bodyIndex = -1;  // index in getCollisionObjectArray(), for BadBody

@@ -55,5 +55,7 @@ public:
 
 private:
     friend class btgpu::GpuWorld;
+    // The base class's stepSimulation (the CPU path).
+    int baseStepSimulation(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep);
     std::unique_ptr<btgpu::GpuWorld> m_gpu;
 };

@@ -279,9 +279,15 @@ static inline float btgRestitution(float relVel, float restitution, float thresh
     float r = restitution * -relVel;
     return r > 0.0f ? r : 0.0f;
 }
+/* Compared as Bullet compares (no fmin/fmax, which turn a NaN into a bound): a NaN stays NaN,
+ * so it can never pose as a legal friction. Bodies with a non-finite friction are kept out on
+ * the host before they get here. */
 static inline float btgCombinedFriction(float fa, float fb)
 {
-    return btgClamp(fa * fb, -BTG_MAX_FRICTION, BTG_MAX_FRICTION);
+    float f = fa * fb;
+    if (f < -BTG_MAX_FRICTION) f = -BTG_MAX_FRICTION;
+    if (f > BTG_MAX_FRICTION) f = BTG_MAX_FRICTION;
+    return f;
 }
 
 /* Solver rows of one contact. a0/b0: velocities before this substep's forces (restitution).

@@ -107,7 +107,14 @@ static inline BtgFloat4 btgIntegrateRotation(BtgFloat4 rot, BtgFloat4 angVel, fl
     else
         axis = btgXyz(angVel) * (btgSin(0.5f * angle * dt) / angle);
     BtgFloat4 dorn = btgMake4(axis.x, axis.y, axis.z, btgCos(angle * dt * 0.5f));
-    return btgQuatNormalize(btgQuatMul(dorn, rot));
+    /* As Bullet: safeNormalize, then keep the current orientation when nothing usable is left.
+     * At huge angular speeds (1e22 rad/s) the product's length overflows to inf and the
+     * normalized quaternion is zero: Bullet keeps the old basis, and so do we. */
+    BtgFloat4 q = btgQuatMul(dorn, rot);
+    float l2 = q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w;
+    if (l2 >= 1.1920929e-07f) q = q * (1.0f / btgSqrt(l2));
+    float n2 = q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w;
+    return n2 > 1.1920929e-07f ? q : rot;
 }
 
 /* Cramer's rule solve of m x = b (btMatrix3x3::solve33); zero when m is singular. */

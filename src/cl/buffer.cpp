@@ -42,6 +42,11 @@ void Buffer::allocate(Context& ctx, size_t bytes)
     cl_int err = CL_SUCCESS;
     // Never a zero-size buffer: OpenCL rejects it, and an empty column is still bound.
     size_t n = bytes ? bytes : 16;
+    if (ctx.memoryLimit() && bytesInUse(ctx) + n > ctx.memoryLimit())
+        fail(("clCreateBuffer(" + std::to_string(n) + " bytes, over the device memory limit of " +
+              std::to_string(ctx.memoryLimit()) + " bytes)")
+                 .c_str(),
+             CL_MEM_OBJECT_ALLOCATION_FAILURE, __FILE__, __LINE__);
     m_mem = clCreateBuffer(ctx.context(), CL_MEM_READ_WRITE, n, nullptr, &err);
     if (err != CL_SUCCESS) fail(("clCreateBuffer(" + std::to_string(n) + " bytes)").c_str(), err, __FILE__, __LINE__);
     m_bytes = n;

@@ -52,8 +52,14 @@ public:
 
     void finish();
 
+    // Device bytes this context may hold in buffers (0: no limit). A buffer past it fails as
+    // an out-of-memory clCreateBuffer would (CL_MEM_OBJECT_ALLOCATION_FAILURE).
+    void setMemoryLimit(size_t bytes) { m_memoryLimit = bytes; }
+    size_t memoryLimit() const { return m_memoryLimit; }
+
 private:
     DeviceInfo m_device;
+    size_t m_memoryLimit = 0;
     cl_context m_context = nullptr;
     cl_command_queue m_queue = nullptr;
     std::map<std::string, std::unique_ptr<Program>> m_programs;

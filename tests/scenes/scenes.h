@@ -45,6 +45,13 @@ public:
     btBoxShape* boxShape(const btVector3& halfExtents);
     btSphereShape* sphereShape(btScalar radius);
     btConvexHullShape* hullShape(const std::vector<btVector3>& points);
+    // Any other shape, which the scene then owns.
+    template <class S>
+    S* ownShape(S* shape)
+    {
+        m_shapes.emplace_back(shape);
+        return shape;
+    }
 
     // Adds a body to the world; the scene owns it and its btDefaultMotionState. Mass 0 makes
     // it static (as in Bullet).

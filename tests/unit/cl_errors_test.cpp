@@ -50,3 +50,16 @@ TEST(ClErrors, BrokenProgramCarriesItsBuildLog)
         EXPECT_NE(std::string(e.what()).find("probe::no_such_kernel"), std::string::npos) << e.what();
     }
 }
+
+// Error messages name sources relative to the project (no build machine's absolute path).
+TEST(ClErrors, MessagesNameSourcesRelativeToTheProject)
+{
+    try {
+        test::context().program("probe").kernel("no_such_kernel");
+        ADD_FAILURE() << "found a kernel that does not exist";
+    } catch (const std::exception& e) {
+        std::string what = e.what();
+        EXPECT_NE(what.find(" at src/cl/"), std::string::npos) << what;
+        EXPECT_EQ(what.find(BTGPU_SOURCE_DIR), std::string::npos) << what;
+    }
+}

@@ -130,3 +130,21 @@ TEST(Integrate, FreeFallDampingAndSpin)
     EXPECT_NEAR(lin[1].x, std::pow(0.5f, 1.0f), 1e-4f);  // (1 - 0.5)^(60 dt) after one second
     EXPECT_NEAR(ang[2].z, 2.0f, 1e-6f);
 }
+
+// Bullet's integrateTransform: when the rotated quaternion's length overflows (a spin of
+// 1e22 rad/s), the orientation is kept, never replaced by a zero quaternion.
+TEST(Integrate, OverflowingSpinKeepsTheOrientation)
+{
+    const BtgFloat4 rot = btgQuatNormalize(btgMake4(0.1f, 0.2f, 0.3f, 0.9f));
+    for (float w : {1e22f, 3e38f}) {
+        BtgFloat4 q = btgIntegrateRotation(rot, btgMake4(w, 0, 0, 0), 1.0f / 60.0f);
+        EXPECT_EQ(q.x, rot.x);
+        EXPECT_EQ(q.y, rot.y);
+        EXPECT_EQ(q.z, rot.z);
+        EXPECT_EQ(q.w, rot.w);
+    }
+    // An ordinary spin still turns, and stays a unit quaternion.
+    BtgFloat4 q = btgIntegrateRotation(rot, btgMake4(0, 3, 0, 0), 1.0f / 60.0f);
+    EXPECT_NEAR(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w, 1.0f, 1e-6f);
+    EXPECT_GT(std::fabs(q.y - rot.y), 1e-3f);
+}

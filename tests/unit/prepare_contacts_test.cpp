@@ -121,3 +121,13 @@ TEST(PrepareContacts, RestitutionTwoToOne)
     c = runDevice(b, {slow}, p);
     EXPECT_EQ(c[0].rA[0].w, 0.0f);
 }
+
+// A NaN friction must never pose as a legal one (fmin/fmax would turn it into -10).
+TEST(PrepareContacts, NanFrictionStaysNan)
+{
+    EXPECT_TRUE(std::isnan(btgCombinedFriction(std::nanf(""), 0.5f)));
+    EXPECT_EQ(btgCombinedFriction(20.0f, 1.0f), 10.0f);
+    EXPECT_EQ(btgCombinedFriction(-20.0f, 1.0f), -10.0f);
+    EXPECT_EQ(btgCombinedFriction(0.5f, 0.5f), 0.25f);
+}
+

@@ -1,0 +1,146 @@
+// shape_checks.cpp — shape parameter checks and fingerprints for the shape kinds the GPU path
+// takes (box, sphere, static plane, convex hull, convex point cloud). Other kinds never reach
+// the tables (the world runs on the CPU path), so they check as "" and hash by type.
+#include "shape_checks.h"
+
+#include <btBulletDynamicsCommon.h>
+#include <BulletCollision/CollisionShapes/btConvexPointCloudShape.h>
+
+#include <cmath>
+#include <cstring>
+
+namespace btgpu {
+
+namespace {
+
+bool finite(const btVector3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+bool sized(const btVector3& v)
+{
+    return std::fabs(v.x()) <= kMaxShapeSize && std::fabs(v.y()) <= kMaxShapeSize && std::fabs(v.z()) <= kMaxShapeSize;
+}
+
+}  // namespace
+
+const btVector3* hullPoints(const btCollisionShape* shape, int* count)
+{
+    switch (shape->getShapeType()) {
+        case CONVEX_HULL_SHAPE_PROXYTYPE: {
+            auto* hull = static_cast<const btConvexHullShape*>(shape);
+            *count = hull->getNumPoints();
+            return hull->getUnscaledPoints();
+        }
+        case CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE: {
+            auto* cloud = static_cast<const btConvexPointCloudShape*>(shape);
+            *count = cloud->getNumPoints();
+            return cloud->getUnscaledPoints();
+        }
+        default:
+            *count = 0;
+            return nullptr;
+    }
+}
+
+namespace {
+
+std::string checkScalingAndMargin(const btCollisionShape* shape)
+{
+    const btVector3& s = shape->getLocalScaling();
+    if (!finite(s) || !sized(s)) return "non-finite or huge local scaling";
+    float m = shape->getMargin();
+    if (!std::isfinite(m) || m < 0.0f || m > kMaxShapeSize) return "negative or non-finite collision margin";
+    return "";
+}
+
+}  // namespace
+
+std::string badShapeInput(const btCollisionShape* shape)
+{
+    switch (shape->getShapeType()) {
+        case BOX_SHAPE_PROXYTYPE: {
+            std::string why = checkScalingAndMargin(shape);
+            if (!why.empty()) return why;
+            btVector3 h = static_cast<const btBoxShape*>(shape)->getHalfExtentsWithMargin();
+            if (!finite(h) || !sized(h)) return "non-finite or huge box half extents";
+            if (h.x() < 0.0f || h.y() < 0.0f || h.z() < 0.0f) return "negative box half extents";
+            return "";
+        }
+        case SPHERE_SHAPE_PROXYTYPE: {
+            float r = static_cast<const btSphereShape*>(shape)->getRadius();
+            if (!std::isfinite(r) || r < 0.0f || r > kMaxShapeSize) return "negative, non-finite or huge sphere radius";
+            return checkScalingAndMargin(shape);
+        }
+        case STATIC_PLANE_PROXYTYPE: {
+            auto* plane = static_cast<const btStaticPlaneShape*>(shape);
+            const btVector3& n = plane->getPlaneNormal();
+            if (!finite(n) || n.length2() < 1e-12f) return "zero or non-finite plane normal";
+            if (!std::isfinite(plane->getPlaneConstant()) || std::fabs(plane->getPlaneConstant()) > kMaxShapeSize)
+                return "non-finite or huge plane constant";
+            if (!finite(plane->getLocalScaling())) return "non-finite local scaling";
+            return "";
+        }
+        case CONVEX_HULL_SHAPE_PROXYTYPE:
+        case CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE: {
+            std::string why = checkScalingAndMargin(shape);
+            if (!why.empty()) return why;
+            int n = 0;
+            const btVector3* points = hullPoints(shape, &n);
+            if (n <= 0 || !points) return "convex hull without points";
+            const btVector3& s = shape->getLocalScaling();
+            for (int i = 0; i < n; ++i) {
+                btVector3 p = points[i] * s;
+                if (!finite(p) || !sized(p)) return "non-finite or huge convex hull point " + std::to_string(i);
+            }
+            return "";
+        }
+        default:
+            return "";
+    }
+}
+
+std::uint64_t shapeFingerprint(const btCollisionShape* shape)
+{
+    std::uint64_t h = 1469598103934665603ull;
+    auto mix = [&](const void* p, size_t n) {
+        const unsigned char* c = static_cast<const unsigned char*>(p);
+        for (size_t i = 0; i < n; ++i) h = (h ^ c[i]) * 1099511628211ull;
+    };
+    auto mixVec = [&](const btVector3& v) {
+        float f[3] = {v.x(), v.y(), v.z()};
+        mix(f, sizeof(f));
+    };
+    int type = shape->getShapeType();
+    mix(&type, sizeof(type));
+    switch (type) {
+        case BOX_SHAPE_PROXYTYPE:
+            mixVec(static_cast<const btBoxShape*>(shape)->getHalfExtentsWithMargin());
+            break;
+        case SPHERE_SHAPE_PROXYTYPE: {
+            float r = static_cast<const btSphereShape*>(shape)->getRadius();
+            mix(&r, sizeof(r));
+            break;
+        }
+        case STATIC_PLANE_PROXYTYPE: {
+            auto* plane = static_cast<const btStaticPlaneShape*>(shape);
+            mixVec(plane->getPlaneNormal());
+            float c = plane->getPlaneConstant();
+            mix(&c, sizeof(c));
+            break;
+        }
+        case CONVEX_HULL_SHAPE_PROXYTYPE:
+        case CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE: {
+            int n = 0;
+            const btVector3* points = hullPoints(shape, &n);
+            mix(&n, sizeof(n));
+            for (int i = 0; i < n; ++i) mixVec(points[i]);
+            break;
+        }
+        default:
+            return h;
+    }
+    mixVec(shape->getLocalScaling());
+    float m = shape->getMargin();
+    mix(&m, sizeof(m));
+    return h;
+}
+
+}  // namespace btgpu
