@@ -4,6 +4,7 @@
 #include "gpu_world.h"
 
 #include "body_rows.h"
+#include "cpu_path_rules.h"
 #include "parallel_rows.h"
 #include "shared/integrate.h"
 
@@ -92,21 +93,20 @@ bool GpuWorld::ensureDevice()
     }
 }
 
-std::string GpuWorld::unsupportedReason()
+std::string GpuWorld::cpuPathReason(int* bodyIndex)
 {
-    if (m_world.getNumConstraints() > 0) return "constraints (addConstraint) are not on the GPU path yet";
-    if (m_world.m_actions.size() > 0) return "actions (addAction, vehicles, characters) are not on the GPU path yet";
-    const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
-    ShapeTables probe;
-    for (int i = 0; i < objs.size(); ++i) {
-        const btCollisionObject* o = objs[i];
-        int type = o->getInternalType();
-        if (type != btCollisionObject::CO_RIGID_BODY && type != btCollisionObject::CO_COLLISION_OBJECT)
-            return "collision object " + std::to_string(i) + " is not a rigid body (ghost, soft or other object)";
-        std::string why;
-        if (probe.add(o->getCollisionShape(), &why) < 0) return "body " + std::to_string(i) + ": " + why;
+    *bodyIndex = -1;
+    // The scene's make-up changes only when something is added or removed: checked then, and
+    // the verdict kept. World and body settings can change between any two steps.
+    if (m_structureDirty) {
+        m_structureReason = structureReason(m_world, m_world.m_actions.size());
+        m_structureDirty = false;
+        m_needsRebuild = true;
     }
-    return "";
+    if (!m_structureReason.empty()) return m_structureReason;
+    std::string why = worldReason(m_world, m_config);
+    if (why.empty()) why = bodiesReason(m_world, bodyIndex);
+    return why;
 }
 
 void GpuWorld::makePlan()
@@ -180,7 +180,7 @@ void GpuWorld::rebuild()
     m_shapes.clear();
     for (btCollisionObject* o : m_rows) {
         std::string why;
-        m_shapes.add(o->getCollisionShape(), &why);  // checked by unsupportedReason()
+        m_shapes.add(o->getCollisionShape(), &why);  // checked by structureReason()
     }
     resizeBodies(w, int(m_rows.size()));
     auto uploadTable = [&](auto& arr, auto v) {
@@ -210,7 +210,6 @@ void GpuWorld::rebuild()
     w.islandTime.upload(w.ctx, never);
     m_mirror.assign(n, Mirror());
     syncIn(w, changedRows(true));
-    m_structureDirty = false;
 }
 
 std::vector<BodyRowUpdate> GpuWorld::changedRows(bool all)
@@ -476,22 +475,34 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         m_report.gpuPath = false;
         return false;
     }
-    if (m_structureDirty) {
-        std::string why = unsupportedReason();
-        if (!why.empty()) {
-            if (!m_onCpuPath || why != m_report.cpuPathReason) {
-                std::cerr << "btgpu: running on the CPU path: " << why << "\n";
-                report({Issue::Kind::Fallback, why});
+    int bodyIndex = -1;
+    std::string why = cpuPathReason(&bodyIndex);
+    if (!why.empty()) {
+        if (!m_onCpuPath || why != m_report.cpuPathReason) {
+            std::cerr << "btgpu: running on the CPU path: " << why << "\n";
+            Issue issue{Issue::Kind::Fallback, why};
+            if (bodyIndex >= 0) {
+                const btCollisionObject* o = m_world.getCollisionObjectArray()[bodyIndex];
+                issue.bodyIndex = bodyIndex;
+                issue.userIndex = o->getUserIndex();
+                issue.shapeType = o->getCollisionShape()->getShapeType();
             }
-            m_onCpuPath = true;
-            m_report.cpuPathReason = why;
-            m_report.gpuPath = false;
-            return false;  // structure stays dirty: re-checked when something is added or removed
+            report(issue);
         }
-        rebuild();
-        m_onCpuPath = false;
-        m_report.cpuPathReason.clear();
+        m_onCpuPath = true;
+        m_report.cpuPathReason = why;
+        m_report.gpuPath = false;
+        // The CPU path moves the bodies (and may add, remove or change anything): the step
+        // that comes back uploads every row again.
+        m_needsRebuild = true;
+        return false;
     }
+    if (m_needsRebuild) {
+        rebuild();
+        m_needsRebuild = false;
+    }
+    m_onCpuPath = false;
+    m_report.cpuPathReason.clear();
 
     // Time bookkeeping exactly as btDiscreteDynamicsWorld::stepSimulation.
     btScalar localTime = m_world.m_localTime;
@@ -514,6 +525,10 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         }
     }
 
+    // As stepSimulation: a debug drawer's DBG_NoDeactivation decides gDisableDeactivation.
+    if (btIDebugDraw* drawer = m_world.getDebugDrawer())
+        gDisableDeactivation = (drawer->getDebugMode() & btIDebugDraw::DBG_NoDeactivation) != 0;
+
     m_dev->profiler.resetLaunchCount();
     m_report.syncInMs = m_report.deviceMs = m_report.writeBackMs = 0.0;
     const bool profiled = m_config.profile && (m_calls++ % std::max(m_config.profileEvery, 1)) == 0;
@@ -530,6 +545,12 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         int perBatch = perSubstep ? 1 : clamped;
         for (int b = 0; b < batches; ++b) {
             if (m_world.m_internalPreTickCallback) m_world.m_internalPreTickCallback(&m_world, fixedTimeStep);
+            // What internalSingleStepSimulation sets for the app's callbacks and queries.
+            btDispatcherInfo& dispatchInfo = m_world.getDispatchInfo();
+            dispatchInfo.m_timeStep = fixedTimeStep;
+            dispatchInfo.m_stepCount = 0;
+            dispatchInfo.m_debugDraw = m_world.getDebugDrawer();
+            m_world.getSolverInfo().m_timeStep = fixedTimeStep;
             Clock::time_point t0 = Clock::now();
             syncIn(*m_dev, changedRows(false));
             Clock::time_point t1 = Clock::now();

@@ -47,7 +47,9 @@ private:
     };
 
     bool ensureDevice();
-    std::string unsupportedReason();
+    // Why this step must run on the CPU path (cpu_path_rules.h), "" for the GPU path; a
+    // per-body reason sets *bodyIndex.
+    std::string cpuPathReason(int* bodyIndex);
     void rebuild();
     void makePlan();
     std::vector<BodyRowUpdate> changedRows(bool all);
@@ -66,7 +68,9 @@ private:
     std::unique_ptr<cl::Context> m_ctx;
     std::unique_ptr<DeviceWorld> m_dev;
     bool m_deviceFailed = false;
-    bool m_structureDirty = true;
+    bool m_structureDirty = true;  // added or removed since the structure was last checked
+    std::string m_structureReason;  // that check's verdict, kept until the next add or remove
+    bool m_needsRebuild = true;     // rows must be rebuilt (structure changed, or the CPU path ran)
     bool m_onCpuPath = false;
     long m_calls = 0;  // stepSimulation calls on the GPU path (profiling cadence)
     Plan m_plan;
