@@ -33,7 +33,8 @@ namespace {
 struct CollisionObjectPeek : btCollisionObject {
     static constexpr int btCollisionObject::*kCheckCollideWith = &CollisionObjectPeek::m_checkCollideWith;
 };
-using CreateFuncTable = btCollisionAlgorithmCreateFunc* [MAX_BROADPHASE_COLLISION_TYPES][MAX_BROADPHASE_COLLISION_TYPES];
+constexpr int kTypes = MAX_BROADPHASE_COLLISION_TYPES;
+using CreateFuncTable = btCollisionAlgorithmCreateFunc* [kTypes][kTypes];
 struct DispatcherPeek : btCollisionDispatcher {
     static constexpr CreateFuncTable btCollisionDispatcher::*kContactPoints =
         &DispatcherPeek::m_doubleDispatchContactPoints;
@@ -61,7 +62,8 @@ struct NullSerializer : btSerializer {
 
 bool additionalDamping(const btRigidBody* body)
 {
-    std::vector<unsigned char> buffer(std::max<size_t>(size_t(body->calculateSerializeBufferSize()), sizeof(btRigidBodyData)));
+    size_t size = std::max<size_t>(size_t(body->calculateSerializeBufferSize()), sizeof(btRigidBodyData));
+    std::vector<unsigned char> buffer(size);
     NullSerializer serializer;
     body->serialize(buffer.data(), &serializer);
     return reinterpret_cast<const btRigidBodyData*>(buffer.data())->m_additionalDamping != 0;
@@ -149,11 +151,13 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, int numActions
             return "collision object " + std::to_string(i) + " is not a rigid body (ghost, soft or other object)";
         std::string why;
         if (probe.add(o->getCollisionShape(), &why) < 0) return "body " + std::to_string(i) + ": " + why;
-        // Set only through btRigidBodyConstructionInfo, so it cannot change after the add.
-        // btRigidBody::applyDamping then scales slow bodies' velocities; the GPU path does not.
+        // Set only through btRigidBodyConstructionInfo, so it cannot change after the add (any
+        // body: a static one may be made dynamic later). btRigidBody::applyDamping then scales
+        // slow bodies' velocities down; the GPU path does not.
         const btRigidBody* rb = btRigidBody::upcast(o);
-        if (rb && !rb->isStaticOrKinematicObject() && additionalDamping(rb))
-            return "body " + std::to_string(i) + ": additional damping (btRigidBodyConstructionInfo::m_additionalDamping)";
+        if (rb && additionalDamping(rb))
+            return "body " + std::to_string(i) +
+                   ": additional damping (btRigidBodyConstructionInfo::m_additionalDamping)";
     }
     return "";
 }

@@ -129,13 +129,18 @@ std::vector<Rule> rules()
         solverInfo("m_leastSquaresResidualThreshold", "m_leastSquaresResidualThreshold",
                    [](btContactSolverInfo& i) { i.m_leastSquaresResidualThreshold = btScalar(1e-6); }),
         solverInfo("no iterations", "m_numIterations", [](btContactSolverInfo& i) { i.m_numIterations = 0; }),
-        solverInfo("randomised order", "m_solverMode", [](btContactSolverInfo& i) { i.m_solverMode |= SOLVER_RANDMIZE_ORDER; }),
+        solverInfo("randomised order", "m_solverMode",
+                   [](btContactSolverInfo& i) { i.m_solverMode |= SOLVER_RANDMIZE_ORDER; }),
         solverInfo("friction direction caching", "m_solverMode",
                    [](btContactSolverInfo& i) { i.m_solverMode |= SOLVER_ENABLE_FRICTION_DIRECTION_CACHING; }),
         solverInfo("velocity-independent friction", "m_solverMode",
-                   [](btContactSolverInfo& i) { i.m_solverMode |= SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION; }),
+                   [](btContactSolverInfo& i) {
+                       i.m_solverMode |= SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION;
+                   }),
         solverInfo("interleaving", "m_solverMode",
-                   [](btContactSolverInfo& i) { i.m_solverMode |= SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS; }),
+                   [](btContactSolverInfo& i) {
+                       i.m_solverMode |= SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS;
+                   }),
         {"continuous dispatch", "m_dispatchFunc",
          [](Scene& s) { s.world().getDispatchInfo().m_dispatchFunc = btDispatcherInfo::DISPATCH_CONTINUOUS; },
          [](Scene& s) { s.world().getDispatchInfo().m_dispatchFunc = btDispatcherInfo::DISPATCH_DISCRETE; }},
@@ -156,15 +161,18 @@ std::vector<Rule> rules()
         {"custom material callback", "gContactAddedCallback",
          [](Scene& s) {
              gContactAddedCallback = added;
-             s.body(1)->setCollisionFlags(s.body(1)->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+             btRigidBody* b = s.body(1);
+             b->setCollisionFlags(b->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
          },
          [](Scene& s) {
              gContactAddedCallback = nullptr;
-             s.body(1)->setCollisionFlags(s.body(1)->getCollisionFlags() & ~btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+             btRigidBody* b = s.body(1);
+             b->setCollisionFlags(b->getCollisionFlags() & ~btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
          }},
         {"rolling friction", "rolling friction", [](Scene& s) { s.body(2)->setRollingFriction(btScalar(0.1)); },
          [](Scene& s) { s.body(2)->setRollingFriction(0); }},
-        {"rolling friction on the static ground", "body 0", [](Scene& s) { s.body(0)->setRollingFriction(btScalar(0.1)); },
+        {"rolling friction on the static ground", "body 0",
+         [](Scene& s) { s.body(0)->setRollingFriction(btScalar(0.1)); },
          [](Scene& s) { s.body(0)->setRollingFriction(0); }},
         {"spinning friction", "spinning friction", [](Scene& s) { s.body(1)->setSpinningFriction(btScalar(0.1)); },
          [](Scene& s) { s.body(1)->setSpinningFriction(0); }},
@@ -387,8 +395,9 @@ TEST(CpuPathRules, SettingsThatChangeNothingHereStayOnGpu)
     w.setLatencyMotionStateInterpolation(false);
     gContactAddedCallback = added;  // no body asks for it (CF_CUSTOM_MATERIAL_CALLBACK)
     btRigidBody* b = scene->body(1);
-    scene->body(2)->setCollisionFlags(scene->body(2)->getCollisionFlags() | btCollisionObject::CF_DISABLE_SPU_COLLISION_PROCESSING |
-                                      btCollisionObject::CF_DISABLE_VISUALIZE_OBJECT);
+    btRigidBody* c = scene->body(2);
+    c->setCollisionFlags(c->getCollisionFlags() | btCollisionObject::CF_DISABLE_SPU_COLLISION_PROCESSING |
+                         btCollisionObject::CF_DISABLE_VISUALIZE_OBJECT);
     b->setContactProcessingThreshold(BT_LARGE_FLOAT);
     b->setAnisotropicFriction(btVector3(1, 2, 1), btCollisionObject::CF_ANISOTROPIC_ROLLING_FRICTION);
     b->setCcdMotionThreshold(0.1f);  // with m_useContinuous off below
