@@ -179,10 +179,10 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
     auto* collisionDispatcher = static_cast<btCollisionDispatcher*>(dispatcher);
     if (collisionDispatcher->getNearCallback() != &btCollisionDispatcher::defaultNearCallback)
         return "custom near callback (btCollisionDispatcher::setNearCallback)";
-    // Dispatcher flags stay on the GPU path: CD_USE_RELATIVE_CONTACT_BREAKING_THRESHOLD is on by
-    // default and the GPU path always uses one absolute threshold (Config::contactThreshold),
-    // which is what Bullet does with the flag off; CD_STATIC_STATIC_REPORTED only adds
-    // manifolds between static bodies, which the solver skips; the pool flag is memory only.
+    // Dispatcher flags stay on the GPU path: CD_USE_RELATIVE_CONTACT_BREAKING_THRESHOLD (on by
+    // default) is served, each shape carrying its own breaking threshold into the pair's
+    // (ShapeTables::relativeThreshold); CD_STATIC_STATIC_REPORTED only adds manifolds between
+    // static bodies, which the solver skips; the pool flag is memory only.
     btBroadphaseInterface* broadphase = world.getBroadphase();
     const std::type_info& bp = typeid(*broadphase);
     if (bp != typeid(btDbvtBroadphase) && bp != typeid(btAxisSweep3) && bp != typeid(bt32BitAxisSweep3) &&

@@ -102,6 +102,16 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
     *bodyIndex = -1;
     // The scene's make-up changes only when something is added or removed: checked then, and
     // the verdict kept. World and body settings can change between any two steps.
+    // Contact breaking thresholds, per shape as Bullet's dispatcher sets them up (its flags can
+    // change between steps: the tables follow).
+    const auto* dispatcher = dynamic_cast<const btCollisionDispatcher*>(m_world.getDispatcher());
+    const bool relative = dispatcher && (dispatcher->getDispatcherFlags() &
+                                         btCollisionDispatcher::CD_USE_RELATIVE_CONTACT_BREAKING_THRESHOLD);
+    if (relative != m_shapes.relativeThreshold || m_config.contactThreshold != m_shapes.absoluteThreshold) {
+        m_shapes.relativeThreshold = relative;
+        m_shapes.absoluteThreshold = m_config.contactThreshold;
+        m_structureDirty = true;
+    }
     if (m_structureDirty) {
         m_structureReason = structureReason(m_world, m_world.m_actions.size(), &m_shapes);
         const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
