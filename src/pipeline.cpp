@@ -22,11 +22,7 @@ namespace btgpu {
 
 namespace {
 
-void fillCounters(DeviceWorld& w, int first, int count, uint value)
-{
-    BTGPU_CL_CHECK(clEnqueueFillBuffer(w.ctx.queue(), w.counters.mem(), &value, sizeof(uint), first * sizeof(uint),
-                                       count * sizeof(uint), 0, nullptr, nullptr));
-}
+void fillCounters(DeviceWorld& w, int first, int count, uint value) { w.counters.fill(w.ctx, value, size_t(first), size_t(count)); }
 
 void runSubstep(DeviceWorld& w, const Plan& plan, const StepSettings& s)
 {
@@ -99,8 +95,7 @@ void restoreSnapshot(DeviceWorld& w, Snapshot& s)
     w.angVel.copyFrom(w.ctx, s.angVel, n);
     if (w.contactCacheKept) {
         size_t m = std::min(w.contactCacheAtCall.capacity(), w.contactCache.capacity());
-        BTGPU_CL_CHECK(clEnqueueCopyBuffer(w.ctx.queue(), w.contactCacheAtCall.mem(), w.contactCache.mem(), 0, 0,
-                                           m * sizeof(BtgCachedContact), 0, nullptr, nullptr));
+        w.contactCache.copyRangeFrom(w.ctx, w.contactCacheAtCall, m);
     }
     w.counters.copyFrom(w.ctx, s.counters, kNumCounters);
 }

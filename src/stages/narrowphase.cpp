@@ -7,7 +7,6 @@
 
 namespace btgpu {
 
-static_assert(kPairCount == 0, "kernels/narrowphase*.cl read the pair count from slot 0");
 
 void narrowphase(DeviceWorld& w, const PairKinds& kinds, float threshold)
 {
