@@ -4,6 +4,7 @@
 #include "gpu_world.h"
 
 #include "body_rows.h"
+#include "cpu_path_rules.h"
 #include "parallel_rows.h"
 #include "step_arguments.h"
 #include "shared/integrate.h"
@@ -96,23 +97,33 @@ bool GpuWorld::ensureDevice()
     }
 }
 
-std::string GpuWorld::unsupportedReason()
+std::string GpuWorld::cpuPathReason(int* bodyIndex)
 {
-    if (m_world.getNumConstraints() > 0) return "constraints (addConstraint) are not on the GPU path yet";
-    if (m_world.m_actions.size() > 0) return "actions (addAction, vehicles, characters) are not on the GPU path yet";
-    const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
-    // The shape tables are built here, once per structure change: a shape the GPU path cannot
-    // take is the answer, and rebuild() uploads the tables as they are.
-    m_shapes.clear();
-    for (int i = 0; i < objs.size(); ++i) {
-        const btCollisionObject* o = objs[i];
-        int type = o->getInternalType();
-        if (type != btCollisionObject::CO_RIGID_BODY && type != btCollisionObject::CO_COLLISION_OBJECT)
-            return "collision object " + std::to_string(i) + " is not a rigid body (ghost, soft or other object)";
-        std::string why;
-        if (m_shapes.add(o->getCollisionShape(), &why) < 0) return "body " + std::to_string(i) + ": " + why;
+    *bodyIndex = -1;
+    // The scene's make-up changes only when something is added or removed: checked then, and
+    // the verdict kept. World and body settings can change between any two steps.
+    // Contact breaking thresholds, per shape as Bullet's dispatcher sets them up (its flags can
+    // change between steps: the tables follow).
+    const auto* dispatcher = dynamic_cast<const btCollisionDispatcher*>(m_world.getDispatcher());
+    const bool relative = dispatcher && (dispatcher->getDispatcherFlags() &
+                                         btCollisionDispatcher::CD_USE_RELATIVE_CONTACT_BREAKING_THRESHOLD);
+    if (relative != m_shapes.relativeThreshold || m_config.contactThreshold != m_shapes.absoluteThreshold) {
+        m_shapes.relativeThreshold = relative;
+        m_shapes.absoluteThreshold = m_config.contactThreshold;
+        m_structureDirty = true;
     }
-    return "";
+    if (m_structureDirty) {
+        m_structureReason = structureReason(m_world, m_world.m_actions.size(), &m_shapes);
+        const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
+        m_shapeOfObject.resize(size_t(objs.size()));
+        for (int i = 0; i < objs.size(); ++i) m_shapeOfObject[size_t(i)] = objs[i]->getCollisionShape();
+        m_structureDirty = false;
+        m_needsRebuild = true;
+    }
+    if (!m_structureReason.empty()) return m_structureReason;
+    std::string why = worldReason(m_world, m_config);
+    if (why.empty()) why = bodiesReason(m_world, bodyIndex);
+    return why;
 }
 
 void GpuWorld::makePlan()
@@ -182,7 +193,7 @@ void GpuWorld::rebuild()
     DeviceWorld& w = *m_dev;
     const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
     m_rows.clear();
-    for (int i = 0; i < objs.size(); ++i) m_rows.push_back(objs[i]);  // shapes: in unsupportedReason()
+    for (int i = 0; i < objs.size(); ++i) m_rows.push_back(objs[i]);  // shapes: by structureReason()
     resizeBodies(w, int(m_rows.size()));
     auto uploadTable = [&](auto& arr, auto v) {
         if (v.empty()) v.resize(1);  // a bound buffer even when the table is empty
@@ -211,7 +222,23 @@ void GpuWorld::rebuild()
     w.islandTime.upload(w.ctx, never);
     m_mirror.assign(n, Mirror());
     syncIn(w, changedRows(true));
-    m_structureDirty = false;
+}
+
+bool GpuWorld::shapesSwapped() const
+{
+    const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
+    const size_t n = size_t(objs.size());
+    if (n != m_shapeOfObject.size()) return true;
+    const size_t minPerThread = 8192;
+    std::vector<char> swapped(size_t(chunkCount(n, minPerThread)), 0);
+    forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
+        for (size_t i = begin; i < end; ++i)
+            if (objs[int(i)]->getCollisionShape() != m_shapeOfObject[i]) {
+                swapped[size_t(chunk)] = 1;
+                return;
+            }
+    });
+    return std::find(swapped.begin(), swapped.end(), 1) != swapped.end();
 }
 
 std::vector<BodyRowUpdate> GpuWorld::changedRows(bool all)
@@ -499,7 +526,7 @@ int GpuWorld::stepOnCpuPath(btScalar timeStep, int maxSubSteps, btScalar fixedTi
         ~Release() { guard.release(); }
     } release{m_cpuGuard};
     // The GPU rows no longer hold what the bodies hold: resynced from scratch when it returns.
-    m_structureDirty = true;
+    m_needsRebuild = true;
     return m_world.baseStepSimulation(timeStep, maxSubSteps, fixedTimeStep);
 }
 
@@ -515,25 +542,39 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         return false;
     }
     m_stepDt = maxSubSteps ? fixedTimeStep : timeStep;
-    // A shape the app changed in place (setLocalScaling, setMargin, its points) since the
-    // tables were built: they are built again, as for an added body.
-    if (!m_structureDirty && m_shapes.changedSinceBuilt()) m_structureDirty = true;
-    if (m_structureDirty) {
-        std::string why = unsupportedReason();
-        if (!why.empty()) {
-            if (!m_onCpuPath || why != m_report.cpuPathReason) {
-                std::cerr << "btgpu: running on the CPU path: " << why << "\n";
-                report({Issue::Kind::Fallback, why});
+    // A body given another shape (setCollisionShape), or a shape the app changed in place
+    // (setLocalScaling, setMargin, its points) since the tables were built: they are built
+    // again, as for an added body. Swaps first: the app may have deleted a shape it swapped out,
+    // and only shapes still in use are read.
+    if (!m_structureDirty && (shapesSwapped() || m_shapes.changedSinceBuilt())) m_structureDirty = true;
+    int bodyIndex = -1;
+    std::string why = cpuPathReason(&bodyIndex);
+    if (!why.empty()) {
+        if (!m_onCpuPath || why != m_report.cpuPathReason) {
+            std::cerr << "btgpu: running on the CPU path: " << why << "\n";
+            Issue issue{Issue::Kind::Fallback, why};
+            if (bodyIndex >= 0) {
+                const btCollisionObject* o = m_world.getCollisionObjectArray()[bodyIndex];
+                issue.bodyIndex = bodyIndex;
+                issue.userIndex = o->getUserIndex();
+                issue.shapeType = o->getCollisionShape()->getShapeType();
             }
-            m_onCpuPath = true;
-            m_report.cpuPathReason = why;
-            m_report.gpuPath = false;
-            return false;  // structure stays dirty: re-checked when something is added or removed
+            report(issue);
         }
-        rebuild();
-        m_onCpuPath = false;
-        m_report.cpuPathReason.clear();
+        m_onCpuPath = true;
+        m_report.cpuPathReason = why;
+        m_report.gpuPath = false;
+        // The CPU path moves the bodies (and may add, remove or change anything): the step
+        // that comes back uploads every row again.
+        m_needsRebuild = true;
+        return false;
     }
+    if (m_needsRebuild) {
+        rebuild();
+        m_needsRebuild = false;
+    }
+    m_onCpuPath = false;
+    m_report.cpuPathReason.clear();
 
     // Time bookkeeping exactly as btDiscreteDynamicsWorld::stepSimulation.
     btScalar localTime = m_world.m_localTime;
@@ -556,6 +597,10 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         }
     }
 
+    // As stepSimulation: a debug drawer's DBG_NoDeactivation decides gDisableDeactivation.
+    if (btIDebugDraw* drawer = m_world.getDebugDrawer())
+        gDisableDeactivation = (drawer->getDebugMode() & btIDebugDraw::DBG_NoDeactivation) != 0;
+
     m_dev->profiler.resetLaunchCount();
     m_report.syncInMs = m_report.deviceMs = m_report.writeBackMs = 0.0;
     const bool profiled = m_config.profile && (m_calls++ % std::max(m_config.profileEvery, 1)) == 0;
@@ -572,6 +617,12 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         int perBatch = perSubstep ? 1 : clamped;
         for (int b = 0; b < batches; ++b) {
             if (m_world.m_internalPreTickCallback) m_world.m_internalPreTickCallback(&m_world, fixedTimeStep);
+            // What internalSingleStepSimulation sets for the app's callbacks and queries.
+            btDispatcherInfo& dispatchInfo = m_world.getDispatchInfo();
+            dispatchInfo.m_timeStep = fixedTimeStep;
+            dispatchInfo.m_stepCount = 0;
+            dispatchInfo.m_debugDraw = m_world.getDebugDrawer();
+            m_world.getSolverInfo().m_timeStep = fixedTimeStep;
             Clock::time_point t0 = Clock::now();
             syncIn(*m_dev, changedRows(false));
             Clock::time_point t1 = Clock::now();

@@ -53,9 +53,13 @@ private:
     };
 
     bool ensureDevice();
-    std::string unsupportedReason();
+    // Why this step must run on the CPU path (cpu_path_rules.h), "" for the GPU path; a
+    // per-body reason sets *bodyIndex.
+    std::string cpuPathReason(int* bodyIndex);
     void rebuild();
     void makePlan();
+    // True when a collision object's shape is no longer the one the tables were built for.
+    bool shapesSwapped() const;
     std::vector<BodyRowUpdate> changedRows(bool all);
     // One row against its mirror: true (and the update, and a reason when the row has just
     // turned bad) when the device must be told. Touches only row r: safe in parallel.
@@ -72,7 +76,10 @@ private:
     std::unique_ptr<cl::Context> m_ctx;
     std::unique_ptr<DeviceWorld> m_dev;
     bool m_deviceFailed = false;
-    bool m_structureDirty = true;
+    bool m_structureDirty = true;  // added or removed since the structure was last checked
+    std::vector<const btCollisionShape*> m_shapeOfObject;  // per collision object, at that check
+    std::string m_structureReason;  // that check's verdict, kept until the next add or remove
+    bool m_needsRebuild = true;     // rows must be rebuilt (structure changed, or the CPU path ran)
     bool m_onCpuPath = false;
     float m_stepDt = 0.0f;  // the fixed step of the call being synced (the AABB overflow rule)
     long m_calls = 0;  // stepSimulation calls on the GPU path (profiling cadence)

@@ -174,6 +174,8 @@ int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
         appendPolyhedron(*this, s, cached->second.poly);
         setLocalAabb(s, shape);
     }
+    s.breakingThreshold = relativeThreshold && bad.empty() ? shape->getContactBreakingThreshold(absoluteThreshold)
+                                                           : absoluteThreshold;
     int row = int(shapes.size());
     shapes.push_back(s);
     rowOf.emplace(shape, row);
@@ -193,8 +195,12 @@ bool ShapeTables::changedSinceBuilt() const
 void ShapeTables::clear()
 {
     std::unordered_map<const btCollisionShape*, CachedHull> keep = std::move(m_hullCache);
+    const bool relative = relativeThreshold;
+    const float absolute = absoluteThreshold;
     *this = ShapeTables();
     m_previousHulls = std::move(keep);
+    relativeThreshold = relative;
+    absoluteThreshold = absolute;
 }
 
 float boundingRadius(const BtgShape& s)

@@ -34,6 +34,12 @@ struct ShapeTables {
     std::vector<const btCollisionShape*> shapeOf;   // per row
     std::vector<std::uint64_t> fingerprint;         // per row: shapeFingerprint when added
 
+    // How each shape's contact breaking threshold is set (BtgShape::breakingThreshold), from
+    // the dispatcher: with CD_USE_RELATIVE_CONTACT_BREAKING_THRESHOLD (Bullet's default) the
+    // shape's getContactBreakingThreshold(absolute), else `absolute` (gContactBreakingThreshold).
+    bool relativeThreshold = true;
+    float absoluteThreshold = 0.02f;
+
     // The shape's row (adding it the first time), or -1 with *whyNot set when the GPU path
     // cannot take it.
     int add(const btCollisionShape* shape, std::string* whyNot);

@@ -77,7 +77,7 @@ __kernel void write_contacts(__global const BtgManifold* restrict manifolds, __g
     BtgContact c = btgContactFromManifold(m, pos[m.bodyA], pos[m.bodyB]);
     int prevCount = (int)min(counters[BTG_COUNTER_PREV_CONTACTS], (uint)cacheCapacity);
     int j = btgFindPrevContact(cache, prevCount, m.bodyA, m.bodyB);
-    if (j >= 0) btgWarmStartFrom(&c, rot[m.bodyA], cache[j], params.contactThreshold, params.warmstartFactor);
+    if (j >= 0) btgWarmStartFrom(&c, rot[m.bodyA], cache[j], m.breakingThreshold, params.warmstartFactor);
     contacts[dst] = c;
 }
 

@@ -27,23 +27,25 @@ static inline int btgLoadPairOfKind(int kind, __global const BtgPair* restrict p
 __kernel void collide_sphere_sphere(__global const BtgPair* restrict pairs, __global const uint* restrict counters,
                                     uint capacity, __global const BtgFloat4* restrict pos,
                                     __global const BtgFloat4* restrict rot, __global const BtgBodyProps* restrict props,
-                                    __global const BtgShape* restrict shapes, float threshold,
+                                    __global const BtgShape* restrict shapes,
                                     __global BtgManifold* restrict manifolds)
 {
     BtgCollider a, b;
     if (!btgLoadPairOfKind(BTG_PAIR_SPHERE_SPHERE, pairs, counters, capacity, pos, rot, props, shapes, &a, &b)) return;
-    manifolds[get_global_id(0)] = btgCollideSphereSphere(a, b, threshold);
+    const float t = btgPairThreshold(a.shape, b.shape);
+    manifolds[get_global_id(0)] = btgWithThreshold(btgCollideSphereSphere(a, b, t), t);
 }
 
 __kernel void collide_sphere_plane(__global const BtgPair* restrict pairs, __global const uint* restrict counters,
                                    uint capacity, __global const BtgFloat4* restrict pos,
                                    __global const BtgFloat4* restrict rot, __global const BtgBodyProps* restrict props,
-                                   __global const BtgShape* restrict shapes, float threshold,
+                                   __global const BtgShape* restrict shapes,
                                    __global BtgManifold* restrict manifolds)
 {
     BtgCollider a, b;
     if (!btgLoadPairOfKind(BTG_PAIR_SPHERE_PLANE, pairs, counters, capacity, pos, rot, props, shapes, &a, &b)) return;
-    manifolds[get_global_id(0)] = btgCollideSpherePlane(a, b, threshold);
+    const float t = btgPairThreshold(a.shape, b.shape);
+    manifolds[get_global_id(0)] = btgWithThreshold(btgCollideSpherePlane(a, b, t), t);
 }
 
 __kernel void collide_sphere_hull(__global const BtgPair* restrict pairs, __global const uint* restrict counters,
@@ -51,20 +53,22 @@ __kernel void collide_sphere_hull(__global const BtgPair* restrict pairs, __glob
                                   __global const BtgFloat4* restrict rot, __global const BtgBodyProps* restrict props,
                                   __global const BtgShape* restrict shapes, __global const BtgFloat4* restrict hullVertices,
                                   __global const BtgFace* restrict hullFaces, __global const int* restrict hullIndices,
-                                  float threshold, __global BtgManifold* restrict manifolds)
+                                  __global BtgManifold* restrict manifolds)
 {
     BtgCollider a, b;
     if (!btgLoadPairOfKind(BTG_PAIR_SPHERE_HULL, pairs, counters, capacity, pos, rot, props, shapes, &a, &b)) return;
-    manifolds[get_global_id(0)] = btgCollideSphereHull(a, b, hullVertices, hullFaces, hullIndices, threshold);
+    const float t = btgPairThreshold(a.shape, b.shape);
+    manifolds[get_global_id(0)] = btgWithThreshold(btgCollideSphereHull(a, b, hullVertices, hullFaces, hullIndices, t), t);
 }
 
 __kernel void collide_hull_plane(__global const BtgPair* restrict pairs, __global const uint* restrict counters,
                                  uint capacity, __global const BtgFloat4* restrict pos,
                                  __global const BtgFloat4* restrict rot, __global const BtgBodyProps* restrict props,
                                  __global const BtgShape* restrict shapes, __global const BtgFloat4* restrict hullVertices,
-                                 float threshold, __global BtgManifold* restrict manifolds)
+                                 __global BtgManifold* restrict manifolds)
 {
     BtgCollider a, b;
     if (!btgLoadPairOfKind(BTG_PAIR_HULL_PLANE, pairs, counters, capacity, pos, rot, props, shapes, &a, &b)) return;
-    manifolds[get_global_id(0)] = btgCollideHullPlane(a, b, hullVertices, threshold);
+    const float t = btgPairThreshold(a.shape, b.shape);
+    manifolds[get_global_id(0)] = btgWithThreshold(btgCollideHullPlane(a, b, hullVertices, t), t);
 }

@@ -13,7 +13,7 @@ __kernel void collide_hull_hull(__global const BtgPair* restrict pairs, __global
                                 __global const BtgFloat4* restrict rot, __global const BtgBodyProps* restrict props,
                                 __global const BtgShape* restrict shapes, __global const BtgFloat4* restrict hullVertices,
                                 __global const BtgFace* restrict hullFaces, __global const int* restrict hullIndices,
-                                __global const BtgFloat4* restrict hullEdges, float threshold,
+                                __global const BtgFloat4* restrict hullEdges,
                                 __global BtgManifold* restrict manifolds)
 {
     uint i = (uint)get_global_id(0);
@@ -22,5 +22,6 @@ __kernel void collide_hull_hull(__global const BtgPair* restrict pairs, __global
     if (btgPairKind(shapes[props[p.a].shape].type, shapes[props[p.b].shape].type) != BTG_PAIR_HULL_HULL) return;
     BtgCollider a = btgLoadCollider(p.a, pos, rot, props, shapes);
     BtgCollider b = btgLoadCollider(p.b, pos, rot, props, shapes);
-    manifolds[i] = btgCollideHullHull(a, b, hullVertices, hullFaces, hullIndices, hullEdges, threshold);
+    const float t = btgPairThreshold(a.shape, b.shape);
+    manifolds[i] = btgWithThreshold(btgCollideHullHull(a, b, hullVertices, hullFaces, hullIndices, hullEdges, t), t);
 }

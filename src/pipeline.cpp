@@ -33,7 +33,7 @@ void runSubstep(DeviceWorld& w, const Plan& plan, const StepSettings& s)
     if (collide) {
         updateAabbs(w, p.contactThreshold);
         findPairs(w, plan.broadphase, plan.cellSize);
-        narrowphase(w, plan.kinds, p.contactThreshold);
+        narrowphase(w, plan.kinds);
     }
     applyForces(w, p.dt);
     if (collide) {

@@ -1,8 +1,9 @@
 // btGpuDynamicsWorld.h — the drop-in: a btDiscreteDynamicsWorld whose rigid bodies are
 // simulated by OpenCL kernels. Replace `new btDiscreteDynamicsWorld(d, b, s, c)` with
 // `new btGpuDynamicsWorld(d, b, s, c)`; everything else in the app keeps working. Scenes the
-// GPU path cannot handle yet (other shapes, constraints, actions) run on the base class's CPU
-// path, said once on stderr and in report().
+// GPU path cannot handle yet (other shapes, constraints, actions, Bullet settings it does not
+// follow: compat/cpu_path_rules.cpp) run on the base class's CPU path, said once on stderr and
+// in report().
 #pragma once
 #include <btBulletDynamicsCommon.h>
 

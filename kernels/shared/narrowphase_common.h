@@ -39,6 +39,13 @@ typedef struct {
     int pad0, pad1, pad2;
 } BtgCollider;
 
+/* The pair's contact breaking threshold, m: the smaller of the two shapes' (Bullet's
+ * btCollisionDispatcher::getNewManifold with CD_USE_RELATIVE_CONTACT_BREAKING_THRESHOLD). */
+static inline float btgPairThreshold(BtgShape a, BtgShape b)
+{
+    return a.breakingThreshold < b.breakingThreshold ? a.breakingThreshold : b.breakingThreshold;
+}
+
 static inline BtgFloat4 btgPoseApply(BtgPose p, BtgFloat4 v) { return btgXyz(p.pos) + btgMat3MulVec(p.rot, v); }
 static inline BtgFloat4 btgPoseApplyInv(BtgPose p, BtgFloat4 world) { return btgMat3TMulVec(p.rot, btgXyz(world - p.pos)); }
 
@@ -64,7 +71,14 @@ static inline BtgManifold btgEmptyManifold(int bodyA, int bodyB)
     m.bodyA = bodyA;
     m.bodyB = bodyB;
     m.numPoints = 0;
-    m.pad0 = 0;
+    m.breakingThreshold = 0.0f;
+    return m;
+}
+
+/* A pair's manifold carries the threshold it was found with. */
+static inline BtgManifold btgWithThreshold(BtgManifold m, float threshold)
+{
+    m.breakingThreshold = threshold;
     return m;
 }
 

@@ -64,6 +64,12 @@ typedef struct {
     int numEdges;
     float margin;           /* m: distance added around the hull (0 for boxes, whose margin
                                lies inside the extents as in Bullet) */
+    float breakingThreshold; /* m: Bullet's contact breaking threshold of this shape
+                                (getContactBreakingThreshold, or the absolute one); a pair
+                                keeps points closer than the smaller of its two shapes' */
+    float pad0;
+    float pad1;
+    float pad2;
 } BtgShape;
 
 /* A hull face: its outward plane and its vertex loop (counter-clockwise seen from outside). */
@@ -90,7 +96,8 @@ typedef struct {
     int bodyA;
     int bodyB;
     int numPoints;
-    int pad0;
+    float breakingThreshold;          /* m: the pair's (btgPairThreshold), as Bullet's manifold
+                                         keeps its own; the warm-start matching uses it */
 } BtgManifold;
 
 /* One solver row set per manifold: normal, two friction directions, split impulse. The
@@ -157,7 +164,7 @@ typedef struct {
 
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(BtgBodyProps) == 96, "BtgBodyProps layout");
-static_assert(sizeof(BtgShape) == 80, "BtgShape layout");
+static_assert(sizeof(BtgShape) == 96, "BtgShape layout");
 static_assert(sizeof(BtgFace) == 32, "BtgFace layout");
 static_assert(sizeof(BtgPair) == 8, "BtgPair layout");
 static_assert(sizeof(BtgManifold) == 96, "BtgManifold layout");

@@ -19,7 +19,7 @@ std::vector<BtgContact> buildContactsFromCache(const std::vector<BtgManifold>& m
         BtgContact c = btgContactFromManifold(m, bodies.pos[m.bodyA], bodies.pos[m.bodyB]);
         int j = btgFindPrevContact(cache.data(), int(cache.size()), m.bodyA, m.bodyB);
         if (j >= 0)
-            btgWarmStartFrom(&c, bodies.rot[m.bodyA], cache[j], params.contactThreshold, params.warmstartFactor);
+            btgWarmStartFrom(&c, bodies.rot[m.bodyA], cache[j], m.breakingThreshold, params.warmstartFactor);
         out.push_back(c);
     }
     return out;

@@ -13,28 +13,32 @@ int pairKind(const BtgPair& pair, const BtgBodyProps* props, const ShapeTablesVi
 }
 
 BtgManifold referenceContact(const BtgPair& pair, const BtgFloat4* pos, const BtgFloat4* rot,
-                             const BtgBodyProps* props, const ShapeTablesView& t, float threshold)
+                             const BtgBodyProps* props, const ShapeTablesView& t)
 {
     BtgCollider a = btgLoadCollider(pair.a, pos, rot, props, t.shapes);
     BtgCollider b = btgLoadCollider(pair.b, pos, rot, props, t.shapes);
+    const float threshold = btgPairThreshold(a.shape, b.shape);
     switch (pairKind(pair, props, t)) {
-    case BTG_PAIR_SPHERE_SPHERE: return btgCollideSphereSphere(a, b, threshold);
-    case BTG_PAIR_SPHERE_PLANE: return btgCollideSpherePlane(a, b, threshold);
-    case BTG_PAIR_SPHERE_HULL: return btgCollideSphereHull(a, b, t.hullVertices, t.hullFaces, t.hullIndices, threshold);
-    case BTG_PAIR_HULL_PLANE: return btgCollideHullPlane(a, b, t.hullVertices, threshold);
+    case BTG_PAIR_SPHERE_SPHERE: return btgWithThreshold(btgCollideSphereSphere(a, b, threshold), threshold);
+    case BTG_PAIR_SPHERE_PLANE: return btgWithThreshold(btgCollideSpherePlane(a, b, threshold), threshold);
+    case BTG_PAIR_SPHERE_HULL:
+        return btgWithThreshold(btgCollideSphereHull(a, b, t.hullVertices, t.hullFaces, t.hullIndices, threshold),
+                                threshold);
+    case BTG_PAIR_HULL_PLANE: return btgWithThreshold(btgCollideHullPlane(a, b, t.hullVertices, threshold), threshold);
     case BTG_PAIR_HULL_HULL:
-        return btgCollideHullHull(a, b, t.hullVertices, t.hullFaces, t.hullIndices, t.hullEdges, threshold);
+        return btgWithThreshold(
+            btgCollideHullHull(a, b, t.hullVertices, t.hullFaces, t.hullIndices, t.hullEdges, threshold), threshold);
     default: return btgEmptyManifold(pair.a, pair.b);
     }
 }
 
 std::vector<BtgManifold> referenceNarrowphase(const std::vector<BtgPair>& pairs, const BtgFloat4* pos,
                                               const BtgFloat4* rot, const BtgBodyProps* props,
-                                              const ShapeTablesView& t, float threshold)
+                                              const ShapeTablesView& t)
 {
     std::vector<BtgManifold> out;
     out.reserve(pairs.size());
-    for (const BtgPair& p : pairs) out.push_back(referenceContact(p, pos, rot, props, t, threshold));
+    for (const BtgPair& p : pairs) out.push_back(referenceContact(p, pos, rot, props, t));
     return out;
 }
 

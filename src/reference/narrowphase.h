@@ -21,11 +21,11 @@ int pairKind(const BtgPair& pair, const BtgBodyProps* props, const ShapeTablesVi
 
 // The manifold the device writes for one pair (bodyA = pair.a, bodyB = pair.b).
 BtgManifold referenceContact(const BtgPair& pair, const BtgFloat4* pos, const BtgFloat4* rot,
-                             const BtgBodyProps* props, const ShapeTablesView& t, float threshold);
+                             const BtgBodyProps* props, const ShapeTablesView& t);
 
 // Every pair in order; plane–plane pairs (owned by no kernel) come back empty.
 std::vector<BtgManifold> referenceNarrowphase(const std::vector<BtgPair>& pairs, const BtgFloat4* pos,
                                               const BtgFloat4* rot, const BtgBodyProps* props,
-                                              const ShapeTablesView& t, float threshold);
+                                              const ShapeTablesView& t);
 
 }  // namespace btgpu::ref

@@ -4,7 +4,8 @@
 // BTG_STATUS_CONTACT_OVERFLOW when they exceed contactCapacity. For each new point, finds the
 // cached contact of the same body pair (contactCache, sorted by (bodyA, bodyB),
 // counters[kPrevContactCount]) and the old point nearest in A's frame within
-// params.contactThreshold, and starts from its impulses times params.warmstartFactor.
+// the pair's breakingThreshold (carried by its manifold), and starts from its impulses times
+// params.warmstartFactor.
 // rA = point on A - posA (w: signed distance, until prepare), rB = point on B - posB (Bullet's
 // rel_pos1/rel_pos2). Reads manifolds, counters, pos, rot, contactCache. Writes contacts
 // (bodyA, bodyB, numPoints, normal, rA/rB, impulses; color -1), counters, solverScratch.blockSums.

@@ -8,7 +8,7 @@
 namespace btgpu {
 
 
-void narrowphase(DeviceWorld& w, const PairKinds& kinds, float threshold)
+void narrowphase(DeviceWorld& w, const PairKinds& kinds)
 {
     if (!kinds.any() || w.pairCapacity == 0) return;
     w.profiler.stage = "narrowphase";
@@ -20,24 +20,24 @@ void narrowphase(DeviceWorld& w, const PairKinds& kinds, float threshold)
         if (kinds.sphereSphere)
             cl::Launch(w.ctx, prog.kernel("collide_sphere_sphere"), &w.profiler)
                 .arg(w.pairs).arg(w.counters).arg(capacity).arg(w.pos).arg(w.rot).arg(w.props).arg(w.shapes)
-                .arg(threshold).arg(w.manifolds).run(n);
+                .arg(w.manifolds).run(n);
         if (kinds.spherePlane)
             cl::Launch(w.ctx, prog.kernel("collide_sphere_plane"), &w.profiler)
                 .arg(w.pairs).arg(w.counters).arg(capacity).arg(w.pos).arg(w.rot).arg(w.props).arg(w.shapes)
-                .arg(threshold).arg(w.manifolds).run(n);
+                .arg(w.manifolds).run(n);
         if (kinds.sphereHull)
             cl::Launch(w.ctx, prog.kernel("collide_sphere_hull"), &w.profiler)
                 .arg(w.pairs).arg(w.counters).arg(capacity).arg(w.pos).arg(w.rot).arg(w.props).arg(w.shapes)
-                .arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(threshold).arg(w.manifolds).run(n);
+                .arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.manifolds).run(n);
         if (kinds.hullPlane)
             cl::Launch(w.ctx, prog.kernel("collide_hull_plane"), &w.profiler)
                 .arg(w.pairs).arg(w.counters).arg(capacity).arg(w.pos).arg(w.rot).arg(w.props).arg(w.shapes)
-                .arg(w.hullVertices).arg(threshold).arg(w.manifolds).run(n);
+                .arg(w.hullVertices).arg(w.manifolds).run(n);
     }
     if (kinds.hullHull)
         cl::Launch(w.ctx, w.ctx.program("narrowphase_sat").kernel("collide_hull_hull"), &w.profiler)
             .arg(w.pairs).arg(w.counters).arg(capacity).arg(w.pos).arg(w.rot).arg(w.props).arg(w.shapes)
-            .arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges).arg(threshold)
+            .arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges)
             .arg(w.manifolds).run(n);
 }
 

@@ -4,11 +4,12 @@
 // clipping, reduction to <= 4 points). A program whose kinds are absent is never built.
 // Reads pairs, counters[kPairCount], pos, rot, props (shape), shapes and hull tables.
 // Writes manifolds[i] for each pair i < min(count, pairCapacity): bodyA/bodyB = the pair's
-// rows, normal from B to A, points on B with signed distance (< threshold m kept).
+// rows, normal from B to A, points on B with signed distance (kept below the pair's threshold:
+// the smaller of its two shapes' breakingThreshold, m).
 #pragma once
 #include "world/device_world.h"
 #include "world/plan.h"
 
 namespace btgpu {
-void narrowphase(DeviceWorld& w, const PairKinds& kinds, float threshold);
+void narrowphase(DeviceWorld& w, const PairKinds& kinds);
 }

@@ -84,3 +84,47 @@ TEST(ShapeChanges, ScalingAndMarginChangedBetweenStepsAreFollowed)
     EXPECT_GT(h.stockY(1), 0.65);
     EXPECT_LT(std::fabs(h.gpuY(1) - h.stockY(1)), 0.01) << "btgpu " << h.gpuY(1) << ", stock " << h.stockY(1);
 }
+
+// A body given another shape between steps (setCollisionShape), the old one deleted by the
+// app: the tables follow, as stock does, and nothing reads the deleted shape.
+TEST(ShapeChanges, SwappedShapeIsFollowed)
+{
+    for (int bodies : {3, 9000}) {  // 9,000: the row passes run on several threads
+        SCOPED_TRACE(bodies);
+        SideBySide s([&](WorldKind kind, const Config& config) {
+            auto scene = std::make_unique<Scene>(kind, config);
+            scene->addBody(scene->boxShape(btVector3(500, 50, 500)), 0, btVector3(0, -50, 0));
+            btBoxShape* small = scene->boxShape(btVector3(0.5f, 0.5f, 0.5f));
+            for (int i = 1; i < bodies; ++i)
+                scene->addBody(small, 1, btVector3(float(i % 95) * 3 - 140, 0.5f, float(i / 95) * 3 - 140));
+            return scene;
+        });
+        s.step(5);
+        std::unique_ptr<btBoxShape> stockBig(new btBoxShape(btVector3(1, 1, 1)));
+        std::unique_ptr<btBoxShape> gpuBig(new btBoxShape(btVector3(1, 1, 1)));
+        s.stock->body(1)->setCollisionShape(stockBig.get());
+        s.gpu->body(1)->setCollisionShape(gpuBig.get());
+        s.both([](Scene& scene) { scene.body(1)->activate(); });
+        s.step(60);
+        EXPECT_TRUE(s.onGpu()) << s.gpu->report()->cpuPathReason;
+        EXPECT_GT(s.stockY(1), 0.9);
+        EXPECT_LT(std::fabs(s.gpuY(1) - s.stockY(1)), 0.01) << "btgpu " << s.gpuY(1) << ", stock " << s.stockY(1);
+        // Swapped again, and the big one deleted at once, as an app may; its stale contact
+        // points dropped as Bullet asks after setCollisionShape (else stock keeps the body
+        // standing on them).
+        btBoxShape* small = static_cast<btBoxShape*>(s.gpu->body(2)->getCollisionShape());
+        s.stock->body(1)->setCollisionShape(static_cast<btBoxShape*>(s.stock->body(2)->getCollisionShape()));
+        s.gpu->body(1)->setCollisionShape(small);
+        s.both([](Scene& scene) {
+            btBroadphaseProxy* proxy = scene.body(1)->getBroadphaseHandle();
+            scene.world().getPairCache()->cleanProxyFromPairs(proxy, scene.world().getDispatcher());
+            scene.body(1)->activate();
+        });
+        stockBig.reset();
+        gpuBig.reset();
+        s.step(60);
+        EXPECT_TRUE(s.onGpu()) << s.gpu->report()->cpuPathReason;
+        EXPECT_LT(std::fabs(s.gpuY(1) - s.stockY(1)), 0.01) << "btgpu " << s.gpuY(1) << ", stock " << s.stockY(1);
+        for (const Issue& issue : s.gpu->report()->issues) EXPECT_NE(issue.kind, Issue::Kind::OpenCL) << issue.message;
+    }
+}

@@ -12,6 +12,7 @@ BtgShape blankShape(int type)
 {
     BtgShape s{};
     s.type = type;
+    s.breakingThreshold = kTestBreakingThreshold;
     return s;
 }
 }  // namespace

@@ -10,6 +10,9 @@
 
 namespace btgpu::test {
 
+// Every test shape's contact breaking threshold, m (Bullet's absolute default).
+constexpr float kTestBreakingThreshold = 0.02f;
+
 struct ShapeTables {
     std::vector<BtgShape> shapes;
     std::vector<BtgFloat4> vertices;

@@ -56,6 +56,7 @@ inline BtgManifold boxOnPlane(int box, int ground, BtgFloat4 boxPos, float h, fl
 {
     BtgManifold m{};
     m.normal = btgMake4(0, 1, 0, 0);
+    m.breakingThreshold = 0.02f;
     m.bodyA = box;
     m.bodyB = ground;
     m.numPoints = 4;

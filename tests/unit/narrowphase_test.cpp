@@ -18,7 +18,7 @@ using namespace btgpu;
 
 namespace {
 
-constexpr float kThreshold = 0.02f;  // m, Bullet's default contact breaking threshold
+constexpr float kThreshold = test::kTestBreakingThreshold;  // m, every test shape's
 const BtgFloat4 kIdentity = btgMake4(0, 0, 0, 1);
 
 BtgFloat4 axisAngle(BtgFloat4 axis, float angle)
@@ -67,7 +67,7 @@ struct Scene {
 
 constexpr int kSpareSlots = 3;  // slots past the pair count: must stay untouched
 
-std::vector<BtgManifold> runDevice(cl::Context& ctx, const Scene& s, float threshold)
+std::vector<BtgManifold> runDevice(cl::Context& ctx, const Scene& s)
 {
     DeviceWorld w(ctx);
     w.numBodies = int(s.pos.size());
@@ -85,7 +85,7 @@ std::vector<BtgManifold> runDevice(cl::Context& ctx, const Scene& s, float thres
     BtgManifold sentinel{};
     sentinel.numPoints = -1;
     w.manifolds.upload(ctx, std::vector<BtgManifold>(w.pairCapacity, sentinel));
-    narrowphase(w, s.kinds(), threshold);
+    narrowphase(w, s.kinds());
     std::vector<BtgManifold> out = w.manifolds.download(ctx, w.pairCapacity);
     for (size_t i = s.pairs.size(); i < out.size(); ++i) EXPECT_EQ(out[i].numPoints, -1) << "slot past the count written";
     out.resize(s.pairs.size());
@@ -112,10 +112,10 @@ void expectSame(const BtgManifold& dev, const BtgManifold& ref, size_t i)
 }
 
 // Device result, checked against the reference.
-std::vector<BtgManifold> collide(const Scene& s, float threshold = kThreshold)
+std::vector<BtgManifold> collide(const Scene& s)
 {
-    std::vector<BtgManifold> dev = runDevice(test::context(), s, threshold);
-    std::vector<BtgManifold> ref = ref::referenceNarrowphase(s.pairs, s.pos.data(), s.rot.data(), s.props.data(), s.t.view(), threshold);
+    std::vector<BtgManifold> dev = runDevice(test::context(), s);
+    std::vector<BtgManifold> ref = ref::referenceNarrowphase(s.pairs, s.pos.data(), s.rot.data(), s.props.data(), s.t.view());
     for (size_t i = 0; i < s.pairs.size(); ++i) expectSame(dev[i], ref[i], i);
     return dev;
 }
@@ -359,7 +359,7 @@ TEST(Narrowphase, SpheresOnlyBuildsNoSatProgram)
     s.body(ball, btgMake4(0, 0, 0, 0));
     s.body(ball, btgMake4(0.9f, 0, 0, 0));
     s.pair(0, 1);
-    std::vector<BtgManifold> m = runDevice(ctx, s, kThreshold);
+    std::vector<BtgManifold> m = runDevice(ctx, s);
     EXPECT_EQ(m[0].numPoints, 1);
     const std::vector<std::string>& built = ctx.builtPrograms();
     EXPECT_NE(std::find(built.begin(), built.end(), "narrowphase"), built.end());

@@ -105,6 +105,7 @@ TEST(PrepareContacts, RestitutionTwoToOne)
     b.linVel0[lower] = b.linVel[lower] = btgMake4(0, 1, 0, 0);
     BtgManifold m{};
     m.normal = btgMake4(0, 1, 0, 0);
+    m.breakingThreshold = 0.02f;
     m.bodyA = upper;
     m.bodyB = lower;
     m.numPoints = 1;

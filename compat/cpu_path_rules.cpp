@@ -1,0 +1,360 @@
+// cpu_path_rules.cpp — the rules of cpu_path_rules.h, read against Bullet 3.24's sources: a
+// setting falls back when btDiscreteDynamicsWorld or btSequentialImpulseConstraintSolver would
+// compute something else with it and the GPU path does not follow it. Settings that change
+// nothing for a world of rigid bodies without joints stay on the GPU path; each says why below.
+#include "cpu_path_rules.h"
+
+#include "btgpu/Config.h"
+#include "parallel_rows.h"
+#include "shape_tables.h"
+
+#include <btBulletDynamicsCommon.h>
+#include <BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h>
+#include <BulletCollision/CollisionDispatch/btConvexPlaneCollisionAlgorithm.h>
+#include <BulletCollision/CollisionDispatch/btManifoldResult.h>
+#include <BulletCollision/NarrowPhaseCollision/btConvexPenetrationDepthSolver.h>
+#include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <memory>
+#include <typeinfo>
+#include <vector>
+#if defined(__GNUG__)
+#include <cxxabi.h>
+#endif
+
+namespace btgpu {
+
+namespace {
+
+// Protected members Bullet reads but offers no getter for, read through a pointer to member
+// taken inside a derived class (legal C++; nothing is ever constructed).
+struct CollisionObjectPeek : btCollisionObject {
+    static constexpr int btCollisionObject::*kCheckCollideWith = &CollisionObjectPeek::m_checkCollideWith;
+};
+constexpr int kTypes = MAX_BROADPHASE_COLLISION_TYPES;
+using CreateFuncTable = btCollisionAlgorithmCreateFunc* [kTypes][kTypes];
+struct DispatcherPeek : btCollisionDispatcher {
+    static constexpr CreateFuncTable btCollisionDispatcher::*kContactPoints =
+        &DispatcherPeek::m_doubleDispatchContactPoints;
+};
+
+// btRigidBody keeps m_additionalDamping private, with no getter; its serialize() writes it out.
+// This serializer only lets serialize() run (no names, no pointers to remap).
+struct NullSerializer : btSerializer {
+    const unsigned char* getBufferPointer() const override { return nullptr; }
+    int getCurrentBufferSize() const override { return 0; }
+    btChunk* allocate(size_t, int) override { return nullptr; }
+    void finalizeChunk(btChunk*, const char*, int, void*) override {}
+    void* findPointer(void*) override { return nullptr; }
+    void* getUniquePointer(void*) override { return nullptr; }
+    void startSerialization() override {}
+    void finishSerialization() override {}
+    const char* findNameForPointer(const void*) const override { return nullptr; }
+    void registerNameForPointer(const void*, const char*) override {}
+    void serializeName(const char*) override {}
+    int getSerializationFlags() const override { return 0; }
+    void setSerializationFlags(int) override {}
+    int getNumChunks() const override { return 0; }
+    const btChunk* getChunk(int) const override { return nullptr; }
+};
+
+bool additionalDamping(const btRigidBody* body)
+{
+    size_t size = std::max<size_t>(size_t(body->calculateSerializeBufferSize()), sizeof(btRigidBodyData));
+    std::vector<unsigned char> buffer(size);
+    NullSerializer serializer;
+    body->serialize(buffer.data(), &serializer);
+    return reinterpret_cast<const btRigidBodyData*>(buffer.data())->m_additionalDamping != 0;
+}
+
+std::string typeName(const std::type_info& type)
+{
+#if defined(__GNUG__)
+    int status = 0;
+    std::unique_ptr<char, void (*)(void*)> name(abi::__cxa_demangle(type.name(), nullptr, nullptr, &status), std::free);
+    if (status == 0 && name) return name.get();
+#endif
+    return type.name();
+}
+
+// The shape types the GPU path simulates (ShapeTables::add); bit t of a mask is proxy type t.
+bool servedShapeType(int type)
+{
+    return type == BOX_SHAPE_PROXYTYPE || type == CONVEX_HULL_SHAPE_PROXYTYPE ||
+           type == CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE || type == SPHERE_SHAPE_PROXYTYPE ||
+           type == STATIC_PLANE_PROXYTYPE;
+}
+
+// What a world built the stock way would use: a btDefaultCollisionConfiguration with the
+// default construction info (EPA penetration depth), pools of one element (only its create
+// functions are read).
+btDefaultCollisionConstructionInfo referenceInfo()
+{
+    btDefaultCollisionConstructionInfo info;
+    info.m_defaultMaxPersistentManifoldPoolSize = 1;
+    info.m_defaultMaxCollisionAlgorithmPoolSize = 1;
+    return info;
+}
+
+btDefaultCollisionConfiguration& referenceConfiguration()
+{
+    static btDefaultCollisionConfiguration reference(referenceInfo());
+    return reference;
+}
+
+bool sameCreateFunc(const btCollisionAlgorithmCreateFunc* a, const btCollisionAlgorithmCreateFunc* b)
+{
+    if (!a || !b) return a == b;
+    if (typeid(*a) != typeid(*b) || a->m_swapped != b->m_swapped) return false;
+    if (auto* ca = dynamic_cast<const btConvexConvexAlgorithm::CreateFunc*>(a)) {
+        auto* cb = static_cast<const btConvexConvexAlgorithm::CreateFunc*>(b);
+        if (ca->m_numPerturbationIterations != cb->m_numPerturbationIterations ||
+            ca->m_minimumPointsPerturbationThreshold != cb->m_minimumPointsPerturbationThreshold)
+            return false;
+        if (!ca->m_pdSolver || !cb->m_pdSolver) return ca->m_pdSolver == cb->m_pdSolver;
+        return typeid(*ca->m_pdSolver) == typeid(*cb->m_pdSolver);
+    }
+    if (auto* pa = dynamic_cast<const btConvexPlaneCollisionAlgorithm::CreateFunc*>(a)) {
+        auto* pb = static_cast<const btConvexPlaneCollisionAlgorithm::CreateFunc*>(b);
+        return pa->m_numPerturbationIterations == pb->m_numPerturbationIterations &&
+               pa->m_minimumPointsPerturbationThreshold == pb->m_minimumPointsPerturbationThreshold;
+    }
+    return true;
+}
+
+const char* shapeTypeName(int type)
+{
+    switch (type) {
+        case BOX_SHAPE_PROXYTYPE: return "box";
+        case CONVEX_HULL_SHAPE_PROXYTYPE: return "convex hull";
+        case CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE: return "convex point cloud";
+        case SPHERE_SHAPE_PROXYTYPE: return "sphere";
+        case STATIC_PLANE_PROXYTYPE: return "static plane";
+        default: return "shape";
+    }
+}
+
+}  // namespace
+
+std::string structureReason(const btDiscreteDynamicsWorld& world, int numActions, ShapeTables* shapes)
+{
+    if (world.getNumConstraints() > 0) return "constraints (addConstraint) are not on the GPU path yet";
+    if (numActions > 0) return "actions (addAction, vehicles, characters) are not on the GPU path yet";
+    const btCollisionObjectArray& objs = world.getCollisionObjectArray();
+    shapes->clear();
+    for (int i = 0; i < objs.size(); ++i) {
+        const btCollisionObject* o = objs[i];
+        int type = o->getInternalType();
+        if (type != btCollisionObject::CO_RIGID_BODY && type != btCollisionObject::CO_COLLISION_OBJECT)
+            return "collision object " + std::to_string(i) + " is not a rigid body (ghost, soft or other object)";
+        std::string why;
+        if (shapes->add(o->getCollisionShape(), &why) < 0) return "body " + std::to_string(i) + ": " + why;
+        // Set only through btRigidBodyConstructionInfo, so it cannot change after the add (any
+        // body: a static one may be made dynamic later). btRigidBody::applyDamping then scales
+        // slow bodies' velocities down; the GPU path does not.
+        const btRigidBody* rb = btRigidBody::upcast(o);
+        if (rb && additionalDamping(rb))
+            return "body " + std::to_string(i) +
+                   ": additional damping (btRigidBodyConstructionInfo::m_additionalDamping)";
+    }
+    return "";
+}
+
+std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
+{
+    // The GPU path is btSequentialImpulseConstraintSolver's projected Gauss-Seidel; any other
+    // solver (MLCP, NNCG, the multithreaded one, a subclass) computes something else.
+    btConstraintSolver* solver = world.getConstraintSolver();
+    if (!solver || typeid(*solver) != typeid(btSequentialImpulseConstraintSolver))
+        return "constraint solver " + (solver ? typeName(typeid(*solver)) : std::string("(none)")) +
+               " is not exactly btSequentialImpulseConstraintSolver";
+    // Pair filtering (needsCollision/needsResponse), the near callback and the algorithms are
+    // the dispatcher's; a subclass (btCollisionDispatcherMt among them) may change any of them.
+    btDispatcher* dispatcher = world.getDispatcher();
+    if (!dispatcher || typeid(*dispatcher) != typeid(btCollisionDispatcher))
+        return "collision dispatcher " + (dispatcher ? typeName(typeid(*dispatcher)) : std::string("(none)")) +
+               " is not exactly btCollisionDispatcher";
+    auto* collisionDispatcher = static_cast<btCollisionDispatcher*>(dispatcher);
+    if (collisionDispatcher->getNearCallback() != &btCollisionDispatcher::defaultNearCallback)
+        return "custom near callback (btCollisionDispatcher::setNearCallback)";
+    // Dispatcher flags stay on the GPU path: CD_USE_RELATIVE_CONTACT_BREAKING_THRESHOLD (on by
+    // default) is served, each shape carrying its own breaking threshold into the pair's
+    // (ShapeTables::relativeThreshold); CD_STATIC_STATIC_REPORTED only adds manifolds between
+    // static bodies, which the solver skips; the pool flag is memory only.
+    btBroadphaseInterface* broadphase = world.getBroadphase();
+    const std::type_info& bp = typeid(*broadphase);
+    if (bp != typeid(btDbvtBroadphase) && bp != typeid(btAxisSweep3) && bp != typeid(bt32BitAxisSweep3) &&
+        bp != typeid(btSimpleBroadphase))
+        return "broadphase " + typeName(bp) + " is not one of Bullet's (btDbvtBroadphase, btAxisSweep3, "
+                                              "bt32BitAxisSweep3, btSimpleBroadphase)";
+    btOverlappingPairCache* pairs = broadphase->getOverlappingPairCache();
+    if (!pairs || (typeid(*pairs) != typeid(btHashedOverlappingPairCache) &&
+                   typeid(*pairs) != typeid(btSortedOverlappingPairCache)))
+        return "overlapping pair cache " + (pairs ? typeName(typeid(*pairs)) : std::string("(none)")) +
+               " is not btHashedOverlappingPairCache or btSortedOverlappingPairCache";
+    if (pairs->getOverlapFilterCallback()) return "overlap filter callback (setOverlapFilterCallback)";
+
+    // Contact events come from persistent manifolds, which the GPU path does not fill.
+    if (gContactStartedCallback) return "gContactStartedCallback is set";
+    if (gContactEndedCallback) return "gContactEndedCallback is set";
+    if (gContactProcessedCallback) return "gContactProcessedCallback is set";
+    if (gContactDestroyedCallback) return "gContactDestroyedCallback is set";
+    // gContactAddedCallback only runs for bodies with CF_CUSTOM_MATERIAL_CALLBACK: a body rule.
+    // The combiners run for every contact point; the GPU path multiplies friction (clamped to
+    // ±10) and restitution, and has no rolling or spinning friction. The contact stiffness and
+    // damping combiners only run for CF_HAS_CONTACT_STIFFNESS_DAMPING bodies, a body rule.
+    if (gCalculateCombinedFrictionCallback != &btManifoldResult::calculateCombinedFriction)
+        return "gCalculateCombinedFrictionCallback is not Bullet's default";
+    if (gCalculateCombinedRestitutionCallback != &btManifoldResult::calculateCombinedRestitution)
+        return "gCalculateCombinedRestitutionCallback is not Bullet's default";
+    if (gCalculateCombinedRollingFrictionCallback != &btManifoldResult::calculateCombinedRollingFriction)
+        return "gCalculateCombinedRollingFrictionCallback is not Bullet's default";
+    if (gCalculateCombinedSpinningFrictionCallback != &btManifoldResult::calculateCombinedSpinningFriction)
+        return "gCalculateCombinedSpinningFrictionCallback is not Bullet's default";
+    // Bullet's breaking threshold is the GPU path's contact threshold; an app that changes both
+    // alike keeps the GPU path, one that changes only Bullet's does not.
+    if (gContactBreakingThreshold != btScalar(0.02) && gContactBreakingThreshold != config.contactThreshold)
+        return "gContactBreakingThreshold changed from 0.02 (set Config::contactThreshold to the same value)";
+
+    // btContactSolverInfo, against Bullet 3.24's defaults, exactly. Left alone, because
+    // btSequentialImpulseConstraintSolver and btDiscreteDynamicsWorld never read them for rigid
+    // bodies without joints: m_tau, m_damping (joints), m_friction, m_restitution,
+    // m_maxErrorReduction, m_frictionCFM (manifold points carry their own), m_erp (joints),
+    // m_restingContactRestitutionThreshold ("unused as of 2.81"),
+    // m_singleAxisRollingFrictionThreshold, the m_deformable_* fields, m_articulatedWarmstartingFactor,
+    // m_jointFeedback*, m_reportSolverAnalytics, m_numNonContactInnerIterations (multibody and
+    // soft only). m_frictionERP only acts on friction anchors and m_maxGyroscopicForce only on
+    // BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT bodies, both body rules. m_minimumSolverBatchSize only
+    // groups independent islands into one solve, which changes no island's result.
+    const btContactSolverInfo& info = world.getSolverInfo();
+    static const btContactSolverInfo stock;
+    if (info.m_sor != stock.m_sor) return "btContactSolverInfo::m_sor changed from 1 (contact relaxation)";
+    if (info.m_globalCfm != stock.m_globalCfm) return "btContactSolverInfo::m_globalCfm changed from 0";
+    if (info.m_linearSlop != stock.m_linearSlop) return "btContactSolverInfo::m_linearSlop changed from 0";
+    if (info.m_leastSquaresResidualThreshold != stock.m_leastSquaresResidualThreshold)
+        return "btContactSolverInfo::m_leastSquaresResidualThreshold changed from 0 (early solver exit)";
+    if (info.m_numIterations < 1)
+        return "btContactSolverInfo::m_numIterations below 1 (Bullet then leaves contacts unsolved)";
+    // Mode bits: warm starting and two friction directions are followed; SOLVER_SIMD picks SSE
+    // versions of the same row solve; the rest are unread by 3.24's rigid-body solver.
+    const int notFollowed = SOLVER_RANDMIZE_ORDER | SOLVER_ENABLE_FRICTION_DIRECTION_CACHING |
+                            SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION |
+                            SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS;
+    if ((info.m_solverMode ^ stock.m_solverMode) & notFollowed)
+        return "btContactSolverInfo::m_solverMode " + std::to_string(info.m_solverMode) +
+               " sets bits the GPU path does not follow (randomised order, friction direction caching or "
+               "velocity-independent friction directions, interleaving)";
+
+    // Dispatch info. m_useContinuous only matters for CCD bodies (a body rule); the CCD fields
+    // (m_allowedCcdPenetration) likewise. The GPU path always clips hull pairs after SAT, what
+    // m_enableSatConvex asks of Bullet. m_useConvexConservativeDistanceUtil and its threshold
+    // are compiled out of 3.24 (USE_SEPDISTANCE_UTIL2), m_useEpa and m_enableSPU are unread,
+    // and m_deterministicOverlappingPairs orders stock's pairs (the GPU path is deterministic).
+    if (world.getDispatchInfo().m_dispatchFunc != btDispatcherInfo::DISPATCH_DISCRETE)
+        return "btDispatcherInfo::m_dispatchFunc is not DISPATCH_DISCRETE (time of impact instead of contacts)";
+    return "";
+}
+
+BodyRuleContext bodyRuleContext(btDiscreteDynamicsWorld& world)
+{
+    BodyRuleContext c;
+    c.continuous = world.getDispatchInfo().m_useContinuous;
+    c.contactAddedCallback = gContactAddedCallback != nullptr;
+    return c;
+}
+
+std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& context)
+{
+    // Flags left on the GPU path: CF_CHARACTER_OBJECT, CF_DISABLE_VISUALIZE_OBJECT,
+    // CF_DISABLE_SPU_COLLISION_PROCESSING, CF_HAS_CUSTOM_DEBUG_RENDERING_COLOR and
+    // CF_HAS_COLLISION_SOUND_TRIGGER are unread by 3.24's rigid-body pipeline;
+    // CF_CUSTOM_MATERIAL_CALLBACK does nothing without gContactAddedCallback.
+    const int flags = o->getCollisionFlags();
+    if (!servedShapeType(o->getCollisionShape()->getShapeType()))
+        return std::string("unsupported shape '") + o->getCollisionShape()->getName() + "'";
+    if (flags & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING)
+        return "contact stiffness and damping (CF_HAS_CONTACT_STIFFNESS_DAMPING)";
+    if (flags & btCollisionObject::CF_HAS_FRICTION_ANCHOR) return "friction anchors (CF_HAS_FRICTION_ANCHOR)";
+    if ((flags & btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK) && context.contactAddedCallback)
+        return "gContactAddedCallback with CF_CUSTOM_MATERIAL_CALLBACK";
+    // Bullet combines these with the other body's friction: one body with them is enough.
+    if (o->getRollingFriction() != btScalar(0)) return "rolling friction (setRollingFriction)";
+    if (o->getSpinningFriction() != btScalar(0)) return "spinning friction (setSpinningFriction)";
+    // Anisotropic rolling friction only acts with rolling friction, which falls back above.
+    if (o->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION))
+        return "anisotropic friction (setAnisotropicFriction)";
+    if (o->getContactProcessingThreshold() < btScalar(BT_LARGE_FLOAT))
+        return "contact processing threshold (setContactProcessingThreshold)";
+    if (o->*CollisionObjectPeek::kCheckCollideWith) return "collision check exceptions (setIgnoreCollisionCheck)";
+    const btRigidBody* rb = btRigidBody::upcast(o);
+    if (!rb || rb->isStaticOrKinematicObject()) return "";
+    // integrateTransforms sweeps a sphere of the swept radius (even radius 0) for a body moving
+    // more than its motion threshold and stops it at the hit; createPredictiveContacts adds a
+    // contact there. The GPU path has only its speculative contacts.
+    if (context.continuous && rb->getCcdSquareMotionThreshold() != btScalar(0))
+        return "continuous collision detection (setCcdMotionThreshold)";
+    if (rb->getFlags() & (BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT | BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD))
+        return "explicit or world-frame gyroscopic term (BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT, _IMPLICIT_WORLD)";
+    return "";
+}
+
+std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex)
+{
+    *bodyIndex = -1;
+    const btCollisionObjectArray& objs = world.getCollisionObjectArray();
+    const BodyRuleContext context = bodyRuleContext(world);
+    const size_t n = size_t(objs.size());
+    const size_t minPerThread = 4096;
+    struct Found {
+        int index = -1;
+        std::string why;
+        std::uint64_t shapeTypes = 0;
+    };
+    std::vector<Found> found(chunkCount(n, minPerThread));
+    forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
+        Found& f = found[chunk];
+        for (size_t i = begin; i < end; ++i) {
+            const btCollisionObject* o = objs[int(i)];
+            std::string why = bodyReason(o, context);
+            if (!why.empty()) {
+                f.index = int(i);
+                f.why = std::move(why);
+                return;
+            }
+            f.shapeTypes |= std::uint64_t(1) << (o->getCollisionShape()->getShapeType() & 63);
+        }
+    });
+    std::uint64_t shapeTypes = 0;
+    for (const Found& f : found) {
+        if (f.index >= 0) {
+            *bodyIndex = f.index;
+            return "body " + std::to_string(f.index) + " (user index " + std::to_string(objs[f.index]->getUserIndex()) +
+                   "): " + f.why;
+        }
+        shapeTypes |= f.shapeTypes;
+    }
+    return collisionAlgorithmReason(world, shapeTypes);
+}
+
+std::string collisionAlgorithmReason(btDiscreteDynamicsWorld& world, std::uint64_t shapeTypes)
+{
+    auto* dispatcher = dynamic_cast<btCollisionDispatcher*>(world.getDispatcher());
+    if (!dispatcher) return "";  // worldReason has already refused it
+    const CreateFuncTable& table = dispatcher->*DispatcherPeek::kContactPoints;
+    btDefaultCollisionConfiguration& reference = referenceConfiguration();
+    for (int a = 0; a < 64; ++a) {
+        if (!(shapeTypes >> a & 1) || !servedShapeType(a)) continue;
+        for (int b = 0; b < 64; ++b) {
+            if (!(shapeTypes >> b & 1) || !servedShapeType(b)) continue;
+            if (!sameCreateFunc(table[a][b], reference.getCollisionAlgorithmCreateFunc(a, b)))
+                return std::string("collision algorithm for ") + shapeTypeName(a) + "-" + shapeTypeName(b) +
+                       " pairs is not Bullet's default (registerCollisionCreateFunc, "
+                       "set{Convex,Plane}ConvexMultipointIterations, or a penetration solver other than EPA)";
+        }
+    }
+    return "";
+}
+
+}  // namespace btgpu

@@ -1,0 +1,466 @@
+// cpu_path_rules_test.cpp — every Bullet setting the GPU path does not follow sends the world to
+// the CPU path with a reason naming it and a Fallback issue, and set back the next step runs on
+// the GPU again from where the CPU path left the bodies (agreeing with stock); settings left on
+// the GPU path on purpose (they change nothing Bullet computes here) keep it.
+#include <gtest/gtest.h>
+
+#include <BulletDynamics/ConstraintSolver/btNNCGConstraintSolver.h>
+#include <BulletDynamics/MLCPSolvers/btDantzigSolver.h>
+#include <BulletDynamics/MLCPSolvers/btMLCPSolver.h>
+
+#include <algorithm>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "side_by_side.h"
+
+using namespace btgpu;
+using namespace btgpu::test;
+
+namespace {
+
+struct Rule {
+    std::string name;
+    std::string expect;  // a piece of cpuPathReason
+    std::function<void(Scene&)> set, reset;
+};
+
+void nearCallback(btBroadphasePair& pair, btCollisionDispatcher& dispatcher, const btDispatcherInfo& info)
+{
+    btCollisionDispatcher::defaultNearCallback(pair, dispatcher, info);
+}
+void started(btPersistentManifold* const&) {}
+void ended(btPersistentManifold* const&) {}
+bool processed(btManifoldPoint&, void*, void*) { return true; }
+bool destroyed(void*) { return true; }
+bool added(btManifoldPoint&, const btCollisionObjectWrapper*, int, int, const btCollisionObjectWrapper*, int, int)
+{
+    return true;
+}
+btScalar combined(const btCollisionObject* a, const btCollisionObject* b)
+{
+    return a->getFriction() * b->getFriction();
+}
+struct AcceptAll : btOverlapFilterCallback {
+    bool needBroadphaseCollision(btBroadphaseProxy*, btBroadphaseProxy*) const override { return true; }
+};
+struct SubclassSolver : btSequentialImpulseConstraintSolver {};
+
+btCollisionDispatcher& dispatcher(Scene& s) { return *static_cast<btCollisionDispatcher*>(s.world().getDispatcher()); }
+btDefaultCollisionConfiguration& configuration(Scene& s)
+{
+    return *static_cast<btDefaultCollisionConfiguration*>(dispatcher(s).getCollisionConfiguration());
+}
+
+// A setting of the world's btContactSolverInfo, set and put back (per scene: SideBySide sets it
+// on both worlds).
+Rule solverInfo(const std::string& name, const std::string& expect, std::function<void(btContactSolverInfo&)> change)
+{
+    auto saved = std::make_shared<std::map<const Scene*, btContactSolverInfo>>();
+    return {name, expect,
+            [=](Scene& s) {
+                (*saved)[&s] = s.world().getSolverInfo();
+                change(s.world().getSolverInfo());
+            },
+            [=](Scene& s) { static_cast<btContactSolverInfoData&>(s.world().getSolverInfo()) = saved->at(&s); }};
+}
+
+// A global of Bullet's, set to `value` and put back to what it was when the rule was made.
+template <typename T>
+Rule global(const std::string& name, const std::string& expect, T& variable, T value)
+{
+    const T original = variable;
+    return {name, expect, [=, &variable](Scene&) { variable = value; },
+            [=, &variable](Scene&) { variable = original; }};
+}
+
+// A collision flag on body 1.
+Rule flag(const std::string& name, const std::string& expect, int f)
+{
+    return {name, expect, [=](Scene& s) { s.body(1)->setCollisionFlags(s.body(1)->getCollisionFlags() | f); },
+            [=](Scene& s) { s.body(1)->setCollisionFlags(s.body(1)->getCollisionFlags() & ~f); }};
+}
+
+std::vector<Rule> rules()
+{
+    static SubclassSolver subclassSolver;
+    static btNNCGConstraintSolver nncg;
+    static btDantzigSolver dantzig;
+    static btMLCPSolver mlcp(&dantzig);
+    static AcceptAll acceptAll;
+    static btCapsuleShape capsule(.5, 1);
+    auto solver = [](const std::string& name, btConstraintSolver* other) {
+        auto saved = std::make_shared<std::map<const Scene*, btConstraintSolver*>>();
+        return Rule{name, "constraint solver",
+                    [=](Scene& s) {
+                        (*saved)[&s] = s.world().getConstraintSolver();
+                        s.world().setConstraintSolver(other);
+                    },
+                    [=](Scene& s) { s.world().setConstraintSolver(saved->at(&s)); }};
+    };
+    return {
+        solver("solver subclass", &subclassSolver),
+        solver("NNCG solver", &nncg),
+        solver("MLCP solver", &mlcp),
+        {"near callback", "near callback", [](Scene& s) { dispatcher(s).setNearCallback(nearCallback); },
+         [](Scene& s) { dispatcher(s).setNearCallback(btCollisionDispatcher::defaultNearCallback); }},
+        {"overlap filter callback", "overlap filter callback",
+         [](Scene& s) { s.world().getPairCache()->setOverlapFilterCallback(&acceptAll); },
+         [](Scene& s) { s.world().getPairCache()->setOverlapFilterCallback(nullptr); }},
+        global("gContactStartedCallback", "gContactStartedCallback", gContactStartedCallback, &started),
+        global("gContactEndedCallback", "gContactEndedCallback", gContactEndedCallback, &ended),
+        global("gContactProcessedCallback", "gContactProcessedCallback", gContactProcessedCallback, &processed),
+        global("gContactDestroyedCallback", "gContactDestroyedCallback", gContactDestroyedCallback, &destroyed),
+        global("friction combiner", "gCalculateCombinedFrictionCallback", gCalculateCombinedFrictionCallback,
+               &combined),
+        global("restitution combiner", "gCalculateCombinedRestitutionCallback",
+               gCalculateCombinedRestitutionCallback, &combined),
+        global("rolling friction combiner", "gCalculateCombinedRollingFrictionCallback",
+               gCalculateCombinedRollingFrictionCallback, &combined),
+        global("spinning friction combiner", "gCalculateCombinedSpinningFrictionCallback",
+               gCalculateCombinedSpinningFrictionCallback, &combined),
+        global("contact breaking threshold", "gContactBreakingThreshold", gContactBreakingThreshold, btScalar(0.05)),
+        solverInfo("m_sor", "m_sor", [](btContactSolverInfo& i) { i.m_sor = btScalar(0.9); }),
+        solverInfo("m_globalCfm", "m_globalCfm", [](btContactSolverInfo& i) { i.m_globalCfm = btScalar(1e-4); }),
+        solverInfo("m_linearSlop", "m_linearSlop", [](btContactSolverInfo& i) { i.m_linearSlop = btScalar(0.01); }),
+        solverInfo("m_leastSquaresResidualThreshold", "m_leastSquaresResidualThreshold",
+                   [](btContactSolverInfo& i) { i.m_leastSquaresResidualThreshold = btScalar(1e-6); }),
+        solverInfo("no iterations", "m_numIterations", [](btContactSolverInfo& i) { i.m_numIterations = 0; }),
+        solverInfo("randomised order", "m_solverMode",
+                   [](btContactSolverInfo& i) { i.m_solverMode |= SOLVER_RANDMIZE_ORDER; }),
+        solverInfo("friction direction caching", "m_solverMode",
+                   [](btContactSolverInfo& i) { i.m_solverMode |= SOLVER_ENABLE_FRICTION_DIRECTION_CACHING; }),
+        solverInfo("velocity-independent friction", "m_solverMode",
+                   [](btContactSolverInfo& i) {
+                       i.m_solverMode |= SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION;
+                   }),
+        solverInfo("interleaving", "m_solverMode",
+                   [](btContactSolverInfo& i) {
+                       i.m_solverMode |= SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS;
+                   }),
+        {"continuous dispatch", "m_dispatchFunc",
+         [](Scene& s) { s.world().getDispatchInfo().m_dispatchFunc = btDispatcherInfo::DISPATCH_CONTINUOUS; },
+         [](Scene& s) { s.world().getDispatchInfo().m_dispatchFunc = btDispatcherInfo::DISPATCH_DISCRETE; }},
+        {"box-box algorithm replaced", "collision algorithm for box-box",
+         [](Scene& s) {
+             dispatcher(s).registerCollisionCreateFunc(
+                 BOX_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE,
+                 configuration(s).getCollisionAlgorithmCreateFunc(BOX_SHAPE_PROXYTYPE, CONVEX_HULL_SHAPE_PROXYTYPE));
+         },
+         [](Scene& s) {
+             dispatcher(s).registerCollisionCreateFunc(
+                 BOX_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE,
+                 configuration(s).getCollisionAlgorithmCreateFunc(BOX_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE));
+         }},
+        flag("contact stiffness and damping", "CF_HAS_CONTACT_STIFFNESS_DAMPING",
+             btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING),
+        flag("friction anchor", "CF_HAS_FRICTION_ANCHOR", btCollisionObject::CF_HAS_FRICTION_ANCHOR),
+        {"custom material callback", "gContactAddedCallback",
+         [](Scene& s) {
+             gContactAddedCallback = added;
+             btRigidBody* b = s.body(1);
+             b->setCollisionFlags(b->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+         },
+         [](Scene& s) {
+             gContactAddedCallback = nullptr;
+             btRigidBody* b = s.body(1);
+             b->setCollisionFlags(b->getCollisionFlags() & ~btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+         }},
+        {"rolling friction", "rolling friction", [](Scene& s) { s.body(2)->setRollingFriction(btScalar(0.1)); },
+         [](Scene& s) { s.body(2)->setRollingFriction(0); }},
+        {"rolling friction on the static ground", "body 0",
+         [](Scene& s) { s.body(0)->setRollingFriction(btScalar(0.1)); },
+         [](Scene& s) { s.body(0)->setRollingFriction(0); }},
+        {"spinning friction", "spinning friction", [](Scene& s) { s.body(1)->setSpinningFriction(btScalar(0.1)); },
+         [](Scene& s) { s.body(1)->setSpinningFriction(0); }},
+        {"anisotropic friction", "anisotropic friction",
+         [](Scene& s) { s.body(1)->setAnisotropicFriction(btVector3(1, btScalar(0.5), 1)); },
+         [](Scene& s) { s.body(1)->setAnisotropicFriction(btVector3(1, 1, 1)); }},
+        {"contact processing threshold", "contact processing threshold",
+         [](Scene& s) { s.body(1)->setContactProcessingThreshold(0); },
+         [](Scene& s) { s.body(1)->setContactProcessingThreshold(BT_LARGE_FLOAT); }},
+        {"ignore collision check", "setIgnoreCollisionCheck",
+         [](Scene& s) { s.body(1)->setIgnoreCollisionCheck(s.body(0), true); },
+         [](Scene& s) { s.body(1)->setIgnoreCollisionCheck(s.body(0), false); }},
+        {"CCD", "continuous collision detection",
+         [](Scene& s) {
+             s.body(3)->setCcdMotionThreshold(btScalar(0.01));
+             s.body(3)->setCcdSweptSphereRadius(btScalar(0.2));
+         },
+         [](Scene& s) {
+             s.body(3)->setCcdMotionThreshold(0);
+             s.body(3)->setCcdSweptSphereRadius(0);
+         }},
+        {"explicit gyroscopic term", "gyroscopic",
+         [](Scene& s) { s.body(1)->setFlags(s.body(1)->getFlags() | BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT); },
+         [](Scene& s) { s.body(1)->setFlags(s.body(1)->getFlags() & ~BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT); }},
+        {"world-frame gyroscopic term", "gyroscopic",
+         [](Scene& s) { s.body(1)->setFlags(s.body(1)->getFlags() | BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD); },
+         [](Scene& s) { s.body(1)->setFlags(s.body(1)->getFlags() & ~BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD); }},
+        {"shape swapped for a capsule", "unsupported shape",
+         [](Scene& s) { s.body(2)->setCollisionShape(&capsule); },
+         [](Scene& s) { s.body(2)->setCollisionShape(s.body(1)->getCollisionShape()); }},
+    };
+}
+
+bool hasFallbackIssue(const Report& r, const std::string& reason)
+{
+    for (const Issue& issue : r.issues)
+        if (issue.kind == Issue::Kind::Fallback && issue.message == reason) return true;
+    return false;
+}
+
+}  // namespace
+
+TEST(CpuPathRules, EachRuleFallsBackAndComesBack)
+{
+    ScenePtr scene = scenes::dropRow(WorldKind::Gpu);
+    scene->step();
+    const Report& r = *scene->report();
+    ASSERT_TRUE(r.gpuPath) << r.cpuPathReason;
+    for (const Rule& rule : rules()) {
+        SCOPED_TRACE(rule.name);
+        // EXPECT only between set and reset: a global must be put back whatever happens.
+        rule.set(*scene);
+        scene->step();
+        EXPECT_FALSE(r.gpuPath);
+        EXPECT_NE(r.cpuPathReason.find(rule.expect), std::string::npos) << r.cpuPathReason;
+        EXPECT_TRUE(hasFallbackIssue(r, r.cpuPathReason)) << r.cpuPathReason;
+        rule.reset(*scene);
+        scene->step();
+        EXPECT_TRUE(r.gpuPath) << r.cpuPathReason;
+        EXPECT_TRUE(r.cpuPathReason.empty()) << r.cpuPathReason;
+    }
+    EXPECT_TRUE(scenes::allFinite(*scene));
+}
+
+TEST(CpuPathRules, ComingBackAgreesWithStock)
+{
+    // Set while the boxes fall: they land on the CPU path; set back, the GPU path must go on from
+    // where the CPU path left every row (not from its own last upload) and stay with stock.
+    std::vector<Rule> all = rules();
+    for (const char* name : {"rolling friction", "randomised order", "near callback", "gContactProcessedCallback"}) {
+        SCOPED_TRACE(name);
+        const Rule& rule = *std::find_if(all.begin(), all.end(), [&](const Rule& r) { return r.name == name; });
+        SideBySide s(scenes::dropRow);
+        s.step(5);
+        ASSERT_TRUE(s.onGpu());
+        s.both(rule.set);
+        s.step(60);
+        EXPECT_FALSE(s.onGpu());
+        s.both(rule.reset);
+        s.step(60);
+        EXPECT_TRUE(s.onGpu()) << s.gpu->report()->cpuPathReason;
+        for (int b = 1; b <= 3; ++b) {
+            EXPECT_NEAR(s.gpuY(b), 0.5, tol::kRestHeight + 0.01) << "box " << b << " is not resting on the ground";
+            EXPECT_LT(s.distance(b), tol::kRestHeight) << "box " << b;
+        }
+    }
+}
+
+TEST(CpuPathRules, StructureRulesFallBackAndComeBack)
+{
+    // Additional damping is set only through the construction info; removing the body clears it.
+    ScenePtr scene = scenes::dropRow(WorldKind::Gpu);
+    scene->step();
+    btBoxShape* box = scene->boxShape(btVector3(.5, .5, .5));
+    btVector3 inertia;
+    box->calculateLocalInertia(1, inertia);
+    btRigidBody::btRigidBodyConstructionInfo info(1, nullptr, box, inertia);
+    info.m_additionalDamping = true;
+    info.m_startWorldTransform.setOrigin(btVector3(6, 3, 0));
+    btRigidBody damped(info);
+    scene->world().addRigidBody(&damped);
+    scene->step();
+    const Report& r = *scene->report();
+    EXPECT_FALSE(r.gpuPath);
+    EXPECT_NE(r.cpuPathReason.find("additional damping"), std::string::npos) << r.cpuPathReason;
+    scene->world().removeRigidBody(&damped);
+    scene->step();
+    EXPECT_TRUE(r.gpuPath) << r.cpuPathReason;
+}
+
+TEST(CpuPathRules, ForeignDispatcherBroadphaseOrPairCacheFallBack)
+{
+    // Set at construction, so only the fallback is checked. (btCollisionDispatcherMt is such a
+    // subclass; Debian's build crashes constructing one outside a BT_THREADSAFE build.)
+    struct SubclassDispatcher : btCollisionDispatcher {
+        using btCollisionDispatcher::btCollisionDispatcher;
+    };
+    struct SubclassBroadphase : btDbvtBroadphase {};
+    struct SubclassPairCache : btHashedOverlappingPairCache {};
+    btDefaultCollisionConfiguration configuration;
+    btSequentialImpulseConstraintSolver solver;
+    btBoxShape box(btVector3(.5, .5, .5));
+    auto run = [&](btDispatcher* d, btBroadphaseInterface* bp, const std::string& expect) {
+        SCOPED_TRACE(expect);
+        btGpuDynamicsWorld world(d, bp, &solver, &configuration);
+        btRigidBody body(1, nullptr, &box, btVector3(1, 1, 1));
+        world.addRigidBody(&body);
+        world.stepSimulation(kStep);
+        EXPECT_FALSE(world.report().gpuPath);
+        EXPECT_NE(world.report().cpuPathReason.find(expect), std::string::npos) << world.report().cpuPathReason;
+        world.removeRigidBody(&body);
+    };
+    btCollisionDispatcher plain(&configuration);
+    btDbvtBroadphase dbvt;
+    SubclassDispatcher subclass(&configuration);
+    run(&subclass, &dbvt, "collision dispatcher");
+    SubclassBroadphase broadphase;
+    run(&plain, &broadphase, "broadphase");
+    SubclassPairCache cache;  // outlives the broadphase, which does not own it
+    btDbvtBroadphase withCache(&cache);
+    run(&plain, &withCache, "overlapping pair cache");
+}
+
+TEST(CpuPathRules, MultipointIterationsOnlyWhereTheyAct)
+{
+    // The convex-convex algorithm serves hull-box pairs; box-box pairs have their own, so a
+    // boxes-only world keeps the GPU path with the same change.
+    ScenePtr hull = scenes::hullLanding(WorldKind::Gpu);
+    ScenePtr boxes = scenes::dropRow(WorldKind::Gpu);
+    hull->step();
+    boxes->step();
+    configuration(*hull).setConvexConvexMultipointIterations(3, 3);
+    configuration(*boxes).setConvexConvexMultipointIterations(3, 3);
+    hull->step();
+    boxes->step();
+    EXPECT_FALSE(hull->report()->gpuPath);
+    EXPECT_NE(hull->report()->cpuPathReason.find("collision algorithm"), std::string::npos)
+        << hull->report()->cpuPathReason;
+    EXPECT_TRUE(boxes->report()->gpuPath) << boxes->report()->cpuPathReason;
+    configuration(*hull).setConvexConvexMultipointIterations(0, 3);  // Bullet's defaults
+    hull->step();
+    EXPECT_TRUE(hull->report()->gpuPath) << hull->report()->cpuPathReason;
+
+    // Plane-convex pairs: a box over a static plane.
+    btStaticPlaneShape plane(btVector3(0, 1, 0), 0);
+    Scene onPlane(WorldKind::Gpu);
+    onPlane.addBody(&plane, 0, btVector3(0, 0, 0));
+    onPlane.addBody(onPlane.boxShape(btVector3(.5, .5, .5)), 1, btVector3(0, 2, 0));
+    onPlane.step();
+    ASSERT_TRUE(onPlane.report()->gpuPath) << onPlane.report()->cpuPathReason;
+    configuration(onPlane).setPlaneConvexMultipointIterations(3, 3);
+    onPlane.step();
+    EXPECT_FALSE(onPlane.report()->gpuPath);
+    configuration(onPlane).setPlaneConvexMultipointIterations(1, 0);  // Bullet's defaults
+    onPlane.step();
+    EXPECT_TRUE(onPlane.report()->gpuPath) << onPlane.report()->cpuPathReason;
+}
+
+TEST(CpuPathRules, BreakingThresholdKeptAlikeInConfigStaysOnGpu)
+{
+    const btScalar saved = gContactBreakingThreshold;
+    gContactBreakingThreshold = btScalar(0.03);
+    Config config;
+    config.contactThreshold = 0.03f;
+    ScenePtr scene = scenes::restingBox(WorldKind::Gpu, config);
+    scene->step();
+    EXPECT_TRUE(scene->report()->gpuPath) << scene->report()->cpuPathReason;
+    gContactBreakingThreshold = saved;
+}
+
+TEST(CpuPathRules, SettingsThatChangeNothingHereStayOnGpu)
+{
+    // Each is unread by Bullet 3.24 for rigid bodies without joints, acts only together with a
+    // setting that falls back by itself, or is followed by the GPU path (cpu_path_rules.cpp).
+    ScenePtr scene = scenes::dropRow(WorldKind::Gpu);
+    btDiscreteDynamicsWorld& w = scene->world();
+    btContactSolverInfo& info = w.getSolverInfo();
+    const btContactSolverInfo saved = info;
+    info.m_tau = 0.3f;
+    info.m_damping = 0.5f;
+    info.m_friction = 0.7f;
+    info.m_restitution = 0.4f;
+    info.m_maxErrorReduction = 5;
+    info.m_frictionERP = 0.5f;
+    info.m_frictionCFM = 0.1f;
+    info.m_restingContactRestitutionThreshold = 7;
+    info.m_minimumSolverBatchSize = 1;
+    info.m_maxGyroscopicForce = 5;
+    info.m_singleAxisRollingFrictionThreshold = 1;
+    info.m_deformable_erp = 0.5f;
+    info.m_articulatedWarmstartingFactor = 0.5f;
+    info.m_numNonContactInnerIterations = 3;
+    info.m_solverMode = (info.m_solverMode & ~SOLVER_SIMD) | SOLVER_CACHE_FRIENDLY | SOLVER_FRICTION_SEPARATE;
+    w.getDispatchInfo().m_enableSatConvex = true;
+    w.getDispatchInfo().m_deterministicOverlappingPairs = true;
+    w.getDispatchInfo().m_allowedCcdPenetration = 0.1f;
+    dispatcher(*scene).setDispatcherFlags(btCollisionDispatcher::CD_STATIC_STATIC_REPORTED);
+    w.setApplySpeculativeContactRestitution(true);
+    w.setSynchronizeAllMotionStates(true);
+    w.setLatencyMotionStateInterpolation(false);
+    gContactAddedCallback = added;  // no body asks for it (CF_CUSTOM_MATERIAL_CALLBACK)
+    btRigidBody* b = scene->body(1);
+    btRigidBody* c = scene->body(2);
+    c->setCollisionFlags(c->getCollisionFlags() | btCollisionObject::CF_DISABLE_SPU_COLLISION_PROCESSING |
+                         btCollisionObject::CF_DISABLE_VISUALIZE_OBJECT);
+    b->setContactProcessingThreshold(BT_LARGE_FLOAT);
+    b->setAnisotropicFriction(btVector3(1, 2, 1), btCollisionObject::CF_ANISOTROPIC_ROLLING_FRICTION);
+    b->setCcdMotionThreshold(0.1f);  // with m_useContinuous off below
+    w.getDispatchInfo().m_useContinuous = false;
+    b->setFlags(b->getFlags() | BT_DISABLE_WORLD_GRAVITY);
+    scene->step();
+    EXPECT_TRUE(scene->report()->gpuPath) << scene->report()->cpuPathReason;
+    gContactAddedCallback = nullptr;
+    static_cast<btContactSolverInfoData&>(info) = saved;
+}
+
+namespace {
+struct NoDeactivationDrawer : btIDebugDraw {
+    void drawLine(const btVector3&, const btVector3&, const btVector3&) override {}
+    void drawContactPoint(const btVector3&, const btVector3&, btScalar, int, const btVector3&) override {}
+    void reportErrorWarning(const char*) override {}
+    void draw3dText(const btVector3&, const char*) override {}
+    void setDebugMode(int) override {}
+    int getDebugMode() const override { return DBG_NoDeactivation; }
+};
+}  // namespace
+
+TEST(CpuPathRules, GpuPathTakesWhatStepSimulationSets)
+{
+    // stepSimulation takes gDisableDeactivation from a debug drawer's DBG_NoDeactivation (only
+    // the GPU world steps here, so the global is its own doing); internalSingleStepSimulation
+    // sets the solver info's and dispatch info's time step.
+    NoDeactivationDrawer drawer;
+    gDisableDeactivation = false;
+    ScenePtr awake = scenes::restingBox(WorldKind::Gpu);
+    ScenePtr asleep = scenes::restingBox(WorldKind::Gpu);
+    awake->world().setDebugDrawer(&drawer);
+    awake->world().getSolverInfo().m_timeStep = 1;
+    awake->world().getDispatchInfo().m_timeStep = 1;
+    for (int i = 0; i < 200; ++i) {  // past gDeactivationTime (2 s)
+        gDisableDeactivation = false;
+        asleep->step();
+        awake->step();
+    }
+    EXPECT_TRUE(awake->report()->gpuPath) << awake->report()->cpuPathReason;
+    EXPECT_TRUE(gDisableDeactivation);
+    EXPECT_TRUE(awake->body(1)->isActive()) << "the GPU path put the box to sleep under DBG_NoDeactivation";
+    EXPECT_FALSE(asleep->body(1)->isActive()) << "the box never sleeps: the scene is wrong";
+    EXPECT_EQ(awake->world().getSolverInfo().m_timeStep, kStep);
+    EXPECT_EQ(awake->world().getDispatchInfo().m_timeStep, kStep);
+    awake->world().setDebugDrawer(nullptr);
+    gDisableDeactivation = false;
+}
+
+TEST(CpuPathRules, LatencyInterpolationOffAsStock)
+{
+    SideBySide s(scenes::freeFall);
+    s.both([](Scene& scene) {
+        scene.world().setLatencyMotionStateInterpolation(false);
+        scene.body(1)->setAngularVelocity(btVector3(0, 2, 1));
+    });
+    for (int i = 0; i < 60; ++i) {
+        s.stock->step(btScalar(1) / 100, 10, kStep);
+        s.gpu->step(btScalar(1) / 100, 10, kStep);
+        ASSERT_TRUE(s.onGpu());
+        btTransform a, b;
+        s.stock->body(1)->getMotionState()->getWorldTransform(a);
+        s.gpu->body(1)->getMotionState()->getWorldTransform(b);
+        ASSERT_LT((a.getOrigin() - b.getOrigin()).length(), tol::kInterpolatedTransform) << "call " << i;
+    }
+}
