@@ -97,6 +97,8 @@ int main(int argc, char** argv)
     std::printf("difference   max %.4f m, mean %.4f m over %d dynamic bodies\n", diff.maxPosition,
                 diff.meanPosition, diff.bodies);
     std::printf("mean height  stock %.4f m, btgpu %.4f m\n", scenes::meanHeight(*stock), scenes::meanHeight(*gpu));
+    // Bitwise fingerprint of btgpu's final state: same scene, device and binary give the same.
+    std::printf("state hash   %016llx\n", static_cast<unsigned long long>(gpu->gpuWorld()->stateHash()));
     for (const Issue& issue : report.issues) std::printf("issue        %s\n", issue.message.c_str());
     return 0;
 }

@@ -25,7 +25,6 @@ constexpr int kOneGroupMaxBodies = 16384;
 void colorConstraints(DeviceWorld& w, int maxColors)
 {
     cl::Context& ctx = w.ctx;
-    w.profiler.stage = "batching";
     if (maxColors < 1) maxColors = 1;
     const int rounds = std::clamp(w.colorRounds, 0, maxColors - 1);
     w.numColors = rounds + 1;  // the last one is the serial pass for leftovers

@@ -22,7 +22,6 @@ size_t scanGroupSize(cl::Context& ctx, cl_kernel a, cl_kernel b)
 void buildContacts(DeviceWorld& w, const BtgStepParams& params)
 {
     cl::Context& ctx = w.ctx;
-    w.profiler.stage = "contacts";
     cl::Program& prog = ctx.program("contact_cache");
     cl_kernel count = prog.kernel("count_contacts");
     cl_kernel scan = prog.kernel("scan_blocks");
@@ -51,7 +50,6 @@ void buildContacts(DeviceWorld& w, const BtgStepParams& params)
 void storeContactCache(DeviceWorld& w)
 {
     cl::Context& ctx = w.ctx;
-    w.profiler.stage = "contacts";
     w.contactCache.reserveExact(ctx, std::max<size_t>(w.contactCapacity, 1), true);
     int contactCapacity = int(std::min(w.contactCapacity, w.contacts.capacity()));
     int cacheCapacity = int(w.contactCache.capacity());

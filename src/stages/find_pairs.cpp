@@ -53,25 +53,37 @@ void appendGridPairs(DeviceWorld& w, cl::Program& prog, cl_uint capacity, float 
         .run(n);
 }
 
+// Never write past the pair buffer, whatever pairCapacity claims.
+cl_uint pairSlots(DeviceWorld& w)
+{
+    const cl_uint capacity = cl_uint(std::min(w.pairCapacity, w.pairs.capacity()));
+    w.broadphase.rawPairs.reserve(w.ctx, std::max<size_t>(capacity, 1));
+    return capacity;
+}
+
 }  // namespace
 
-void findPairs(DeviceWorld& w, Broadphase broadphase, float cellSize)
+void smallBodyPairs(DeviceWorld& w, Broadphase broadphase, float cellSize)
+{
+    cl::Context& ctx = w.ctx;
+    cl::Program& prog = ctx.program("find_pairs");
+    const cl_uint capacity = pairSlots(w);
+    cl::Launch(ctx, prog.kernel("pairs_reset"), &w.profiler).arg(w.counters).run(1, 1);
+    if (w.numBodies <= 0) return;
+    if (broadphase == Broadphase::SortAndSweep) sortSweepPairs(w, capacity);
+    else appendGridPairs(w, prog, capacity, cellSize);
+}
+
+void finishPairs(DeviceWorld& w)
 {
     cl::Context& ctx = w.ctx;
     BroadphaseScratch& s = w.broadphase;
     cl::Program& prog = ctx.program("find_pairs");
-    w.profiler.stage = "broadphase";
     const size_t n = w.numBodies > 0 ? size_t(w.numBodies) : 0;
     const cl_int numBodies = cl_int(n);
-    // Never write past the pair buffer, whatever pairCapacity claims.
-    const cl_uint capacity = cl_uint(std::min(w.pairCapacity, w.pairs.capacity()));
-    s.rawPairs.reserve(ctx, std::max<size_t>(capacity, 1));
-
-    cl::Launch(ctx, prog.kernel("pairs_reset"), &w.profiler).arg(w.counters).run(1, 1);
+    const cl_uint capacity = pairSlots(w);
 
     if (n > 0) {
-        if (broadphase == Broadphase::SortAndSweep) sortSweepPairs(w, capacity);
-        else appendGridPairs(w, prog, capacity, cellSize);
         if (w.numLarge > 0)
             cl::Launch(ctx, prog.kernel("large_pairs"), &w.profiler)
                 .arg(w.aabbMin).arg(w.aabbMax).arg(w.props).arg(w.shapes).arg(w.largeBodies).arg(cl_int(w.numLarge))
@@ -112,6 +124,12 @@ void findPairs(DeviceWorld& w, Broadphase broadphase, float cellSize)
         .arg(s.rawPairs).arg(s.pairOrder).arg(w.pairs.mem() ? w.pairs : s.rawPairs).arg(w.counters)
         .arg(capacity)
         .run(std::max<size_t>(capacity, 1));
+}
+
+void findPairs(DeviceWorld& w, Broadphase broadphase, float cellSize)
+{
+    smallBodyPairs(w, broadphase, cellSize);
+    finishPairs(w);
 }
 
 }  // namespace btgpu

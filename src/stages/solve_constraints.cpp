@@ -20,7 +20,6 @@ constexpr int kOneGroupMaxContacts = 4096;
 void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iterations, int numColors)
 {
     cl::Context& ctx = w.ctx;
-    w.profiler.stage = "solve";
     size_t slots = std::min(w.contactCapacity, w.contacts.capacity());
     int contactCapacity = int(slots);
     if (numColors < 1) numColors = 1;

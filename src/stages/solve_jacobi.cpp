@@ -15,7 +15,6 @@ namespace {
 void solveJacobi(DeviceWorld& w, const BtgStepParams& params, int iterations)
 {
     cl::Context& ctx = w.ctx;
-    w.profiler.stage = "solve";
     size_t slots = std::min(w.contactCapacity, w.contacts.capacity());
     int contactCapacity = int(slots);
     int numBodies = std::max(w.numBodies, 0);

@@ -47,7 +47,6 @@ void syncIn(DeviceWorld& w, const std::vector<BodyRowUpdate>& updates)
     w.stagingRows.upload(w.ctx, rows);
     w.stagingStates.upload(w.ctx, states);
     w.stagingProps.upload(w.ctx, props);
-    w.profiler.stage = "sync";
     int n = int(updates.size());
     cl::Launch(w.ctx, w.ctx.program("sync_bodies").kernel("scatter_bodies"), &w.profiler)
         .arg(n).arg(w.stagingRows).arg(w.stagingStates).arg(w.stagingProps).arg(w.pos).arg(w.rot).arg(w.linVel).arg(w.angVel)
