@@ -128,64 +128,35 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
 
 void GpuWorld::makePlan()
 {
-    Plan plan;
-    plan.solver = m_config.solver;
-    int spheres = 0, hulls = 0, planes = 0, movSpheres = 0, movHulls = 0;
-    std::vector<float> sizes;
-    std::vector<int> large, planeRows;
-    const std::vector<BtgShape>& shapes = m_shapes.shapes;
+    // The plan is derived from Bullet-free facts about each row (src/world/plan.h).
+    PlanInput in;
+    in.solver = m_config.solver;
+    in.largeBodyFactor = m_config.largeBodyFactor;
+    in.contactThreshold = m_config.contactThreshold;
+    in.bodies.reserve(m_rows.size());
+    for (const btCollisionObject* o : m_rows) {
+        const BtgShape& s = m_shapes.shapes[size_t(m_shapes.rowOf.at(o->getCollisionShape()))];
+        PlanBody b;
+        b.shapeType = s.type;
+        b.size = s.type == BTG_SHAPE_PLANE ? 0.0f : 2.0f * boundingRadius(s);
+        b.movable = !o->isStaticObject();
+        b.dynamic = !o->isStaticOrKinematicObject();
+        const btRigidBody* rb = btRigidBody::upcast(o);
+        b.gyroscopic = rb && (rb->getFlags() & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);
+        in.bodies.push_back(b);
+    }
+    DerivedPlan d = derivePlan(in);
+    m_plan = d.plan;
     m_large.assign(m_rows.size(), false);
-    for (size_t r = 0; r < m_rows.size(); ++r) {
-        const btCollisionObject* o = m_rows[r];
-        const BtgShape& s = shapes[m_shapes.rowOf.at(o->getCollisionShape())];
-        bool movable = !o->isStaticObject();
-        if (!o->isStaticOrKinematicObject()) plan.hasDynamic = true;
-        if (s.type == BTG_SHAPE_SPHERE) { ++spheres; movSpheres += movable; }
-        if (s.type == BTG_SHAPE_HULL) { ++hulls; movHulls += movable; }
-        if (s.type == BTG_SHAPE_PLANE) { ++planes; planeRows.push_back(int(r)); }
-        if (s.type != BTG_SHAPE_PLANE) sizes.push_back(2.0f * boundingRadius(s));
-        if (const btRigidBody* rb = btRigidBody::upcast(o))
-            if (rb->getFlags() & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY) plan.gyroscopic = true;
-    }
-    int movable = movSpheres + movHulls;
-    plan.kinds.sphereSphere = spheres >= 2 && movSpheres >= 1;
-    plan.kinds.sphereHull = spheres >= 1 && hulls >= 1 && movable >= 1;
-    plan.kinds.hullHull = hulls >= 2 && movHulls >= 1;
-    plan.kinds.spherePlane = planes >= 1 && movSpheres >= 1;
-    plan.kinds.hullPlane = planes >= 1 && movHulls >= 1;
-    // Sizes alike go in the uniform grid; the few much larger than the median (a ground box)
-    // are paired against everything instead, so they do not inflate the cell size.
-    float median = 0.0f;
-    if (!sizes.empty()) {
-        std::vector<float> sorted = sizes;
-        std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-        median = sorted[sorted.size() / 2];
-    }
-    float cell = 0.0f;
-    for (size_t r = 0, k = 0; r < m_rows.size(); ++r) {
-        const BtgShape& s = shapes[m_shapes.rowOf.at(m_rows[r]->getCollisionShape())];
-        if (s.type == BTG_SHAPE_PLANE) continue;
-        float size = sizes[k++];
-        if (size > m_config.largeBodyFactor * median) {
-            large.push_back(int(r));
-            m_large[r] = true;
-        }
-        else cell = std::max(cell, size);
-    }
-    // 1% slack: an AABB exactly one cell wide must not be missed by rounding of centre / cell.
-    plan.cellSize = std::max(1.01f * (cell + 2.0f * m_config.contactThreshold), 1e-3f);
-    plan.broadphase = chooseBroadphase(sizes, m_config.largeBodyFactor * median);
-    plan.hasLarge = !large.empty();
-    plan.hasPlanes = !planeRows.empty();
-    m_plan = plan;
+    for (int r : d.largeRows) m_large[size_t(r)] = true;
     DeviceWorld& w = *m_dev;
-    w.numLarge = int(large.size());
-    w.numPlanes = int(planeRows.size());
-    large.push_back(-1);  // never an empty buffer
-    planeRows.push_back(-1);
-    w.largeBodies.upload(w.ctx, large);
-    w.planeBodies.upload(w.ctx, planeRows);
-    m_report.stages = plan.stages();
+    w.numLarge = int(d.largeRows.size());
+    w.numPlanes = int(d.planeRows.size());
+    d.largeRows.push_back(-1);  // never an empty buffer
+    d.planeRows.push_back(-1);
+    w.largeBodies.upload(w.ctx, d.largeRows);
+    w.planeBodies.upload(w.ctx, d.planeRows);
+    m_report.stages = m_plan.stages();
 }
 
 void GpuWorld::rebuild()
@@ -351,60 +322,10 @@ void GpuWorld::runOnDevice(int substeps, btScalar dt)
     DeviceWorld& w = *m_dev;
     // substeps * k stays an int: k is capped where the product would overflow.
     const int k = std::max(std::min(m_config.internalSubsteps, std::numeric_limits<int>::max() / std::max(substeps, 1)), 1);
-    StepSettings s = settings(substeps * k, dt / btScalar(k));
-    resetStatus(w);
-    takeSnapshot(w, m_snapshot);
-    // A buffer that overflowed grows and the call is redone from the snapshot: no contact is
-    // ever dropped. Growth is geometric, so this settles after a few tries.
-    for (int attempt = 0;; ++attempt) {
-        runSubsteps(w, m_plan, s);
-        syncOut(w, m_readback);
-        uint status = m_readback.counters[kStatus];
-        bool pairOverflow = status & BTG_STATUS_PAIR_OVERFLOW;
-        bool contactOverflow = status & BTG_STATUS_CONTACT_OVERFLOW;
-        bool barrierTimeout = status & BTG_STATUS_GRID_BARRIER_TIMEOUT;
-        if (barrierTimeout && attempt < 8) {
-            // This device does not keep all work-groups of a launch resident: the one-launch
-            // batching and solve are off for good, and the call is redone with per-round launches.
-            restoreSnapshot(w, m_snapshot);
-            w.resident = DeviceWorld::Resident::Off;
-            ++m_report.redoneSteps;
-            report({Issue::Kind::Device, "one-launch batching/solve timed out at a grid barrier on this device; "
-                                         "per-round launches from now on; step redone"});
-            takeSnapshot(w, m_snapshot);
-            resetStatus(w);
-            continue;
-        }
-        if ((!pairOverflow && !contactOverflow) || attempt >= 8) break;
-        // Back to the state before the call first (the warm-start cache as it was), then
-        // grow, keeping the cache's contents.
-        restoreSnapshot(w, m_snapshot);
-        // The counts are the full ones (the kernels count past capacity). Contacts take what
-        // they need plus an eighth, pairs a quarter: the contact list is the largest buffer
-        // (304 + 80 bytes a slot), and every growth is at least 1.25x, so redos stay few.
-        size_t pairs = m_readback.counters[kPairCount];
-        size_t contacts = m_readback.counters[kContactCount];
-        if (pairOverflow) contacts = contacts * pairs / std::max<size_t>(w.pairCapacity, 1);  // of the pairs found
-        if (pairOverflow) w.pairCapacity = std::max(w.pairCapacity + w.pairCapacity / 4, pairs + pairs / 4 + 64);
-        if (contactOverflow || contacts > w.contactCapacity)
-            w.contactCapacity = std::max(w.contactCapacity + w.contactCapacity / 4, contacts + contacts / 8 + 64);
-        w.pairs.reserveExact(w.ctx, w.pairCapacity);
-        w.manifolds.reserveExact(w.ctx, w.pairCapacity);
-        w.contacts.reserveExact(w.ctx, w.contactCapacity);
-        w.contactCache.reserveExact(w.ctx, w.contactCapacity, true);
-        ++m_report.redoneSteps;
-        report({Issue::Kind::Overflow, "pair/contact buffers grew to " + std::to_string(w.pairCapacity) + "/" +
-                                           std::to_string(w.contactCapacity) + "; step redone"});
-        takeSnapshot(w, m_snapshot);  // the restored state, for a further redo
-        resetStatus(w);
-    }
-    // Next step colors as many rounds as this one needed plus slack; leftovers (solved
-    // serially, slow on a GPU) double the rounds.
-    int used = int(m_readback.counters[kColorsUsed]);
-    int rounds = std::max(used + 2, 4);
-    if (m_readback.counters[kLeftovers] > 0) rounds = std::max(rounds, 2 * w.colorRounds);
-    w.colorRounds = std::min(rounds, std::max(m_config.maxColors - 1, 1));
-    w.lastContactCount = int(m_readback.counters[kContactCount]);
+    const CallOutcome outcome = runCall(w, m_plan, settings(substeps * k, dt / btScalar(k)), m_snapshot, m_readback);
+    for (const CallEvent& e : outcome.events)
+        report({e.kind == CallEvent::Kind::Grew ? Issue::Kind::Overflow : Issue::Kind::Device, e.message});
+    m_report.redoneSteps += outcome.redone;
     m_report.pairs = int(std::min<size_t>(m_readback.counters[kPairCount], w.pairCapacity));
     m_report.contacts = int(m_readback.counters[kContactCount]);
 }

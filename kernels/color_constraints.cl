@@ -16,13 +16,12 @@
 #include "shared/counters.h"
 #include "shared/grid_barrier.h"
 
-#define COUNTER_CONTACTS BTG_COUNTER_CONTACTS
 #define NO_CLAIM 0x7fffffff
 
 
 static int contact_count(__global const uint* restrict counters, int contactCapacity)
 {
-    return (int)min(counters[COUNTER_CONTACTS], (uint)contactCapacity);
+    return (int)min(counters[BTG_COUNTER_CONTACTS], (uint)contactCapacity);
 }
 
 __kernel void color_init(__global BtgContact* contacts, __global const uint* restrict counters, int contactCapacity)

@@ -6,21 +6,18 @@
  * Reads manifolds, counters[kPairCount, kPrevContactCount, kStatus], pos, rot, contactCache.
  * Writes blockSums (scratch), contacts, counters[kContactCount], counters[kStatus]; then
  * contactCache and counters[kPrevContactCount]. */
+#include "shared/counters.h"
 #include "shared/types.h"
 #include "shared/math.h"
 #include "shared/contact_rows.h"
 
 /* Mirror btgpu::Counter in src/world/device_world.h. */
-#define COUNTER_PAIRS 0
-#define COUNTER_CONTACTS 1
-#define COUNTER_PREV_CONTACTS 2
-#define COUNTER_STATUS 3
 
 static uint has_points(__global const BtgManifold* restrict manifolds, __global const uint* restrict counters,
                        int pairCapacity)
 {
     uint gid = (uint)get_global_id(0);
-    uint n = min(counters[COUNTER_PAIRS], (uint)pairCapacity);
+    uint n = min(counters[BTG_COUNTER_PAIRS], (uint)pairCapacity);
     return (gid < n && manifolds[gid].numPoints > 0) ? 1u : 0u;
 }
 
@@ -59,8 +56,8 @@ __kernel void scan_blocks(__global uint* blockSums, int numBlocks, __global uint
         blockSums[i] = sum;
         sum += v;
     }
-    counters[COUNTER_CONTACTS] = sum;
-    if (sum > (uint)contactCapacity) counters[COUNTER_STATUS] |= BTG_STATUS_CONTACT_OVERFLOW;
+    counters[BTG_COUNTER_CONTACTS] = sum;
+    if (sum > (uint)contactCapacity) counters[BTG_COUNTER_STATUS] |= BTG_STATUS_CONTACT_OVERFLOW;
 }
 
 __kernel void write_contacts(__global const BtgManifold* restrict manifolds, __global const uint* restrict counters,
@@ -78,7 +75,7 @@ __kernel void write_contacts(__global const BtgManifold* restrict manifolds, __g
     if (dst >= (uint)contactCapacity) return;
     BtgManifold m = manifolds[get_global_id(0)];
     BtgContact c = btgContactFromManifold(m, pos[m.bodyA], pos[m.bodyB]);
-    int prevCount = (int)min(counters[COUNTER_PREV_CONTACTS], (uint)cacheCapacity);
+    int prevCount = (int)min(counters[BTG_COUNTER_PREV_CONTACTS], (uint)cacheCapacity);
     int j = btgFindPrevContact(cache, prevCount, m.bodyA, m.bodyB);
     if (j >= 0) btgWarmStartFrom(&c, rot[m.bodyA], cache[j], m.breakingThreshold, params.warmstartFactor);
     contacts[dst] = c;
@@ -93,10 +90,10 @@ __kernel void store_contact_cache(__global const BtgContact* restrict contacts, 
                                   __global BtgCachedContact* cache, int cacheCapacity)
 {
     const uint redo = BTG_STATUS_PAIR_OVERFLOW | BTG_STATUS_CONTACT_OVERFLOW | BTG_STATUS_GRID_BARRIER_TIMEOUT;
-    if ((counters[COUNTER_STATUS] & redo) != 0u) return;
-    uint n = min(counters[COUNTER_CONTACTS], (uint)min(contactCapacity, cacheCapacity));
+    if ((counters[BTG_COUNTER_STATUS] & redo) != 0u) return;
+    uint n = min(counters[BTG_COUNTER_CONTACTS], (uint)min(contactCapacity, cacheCapacity));
     uint i = (uint)get_global_id(0);
-    if (i == 0) counters[COUNTER_PREV_CONTACTS] = n;
+    if (i == 0) counters[BTG_COUNTER_PREV_CONTACTS] = n;
     if (i >= n) return;
     BtgContact c = contacts[i];
     cache[i] = btgCachedContactFrom(c, rot[c.bodyA]);

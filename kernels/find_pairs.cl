@@ -3,16 +3,16 @@
  * by (a, b) with prims/radix_sort (launched from the host between these kernels).
  * Stage: broadphase. Launch: per kernel below (bodies, sorted grid entries or pair slots).
  * Reads: aabbMin, aabbMax, props, shapes, pos, rot, largeBodies, planeBodies.
- * Writes: pairs, counters[pairSlot] (all pairs found, even past capacity), counters[statusSlot]
+ * Writes: pairs, counters[BTG_COUNTER_PAIRS] (all pairs found, even past capacity), counters[BTG_COUNTER_STATUS]
  * (BTG_STATUS_PAIR_OVERFLOW), and the scratch of BroadphaseScratch. */
 #include "shared/broadphase.h"
 
 #define BTG_NO_KEY 0xffffffffu
 
 /* Launch: one work-item. Runs before every appending kernel. */
-__kernel void pairs_reset(__global uint* counters, int pairSlot)
+__kernel void pairs_reset(__global uint* counters)
 {
-    if (get_global_id(0) == 0) counters[pairSlot] = 0u;
+    if (get_global_id(0) == 0) counters[BTG_COUNTER_PAIRS] = 0u;
 }
 
 /* Launch: one work-item per body row. Key: the cell hash, or BTG_NO_KEY (sorts last). */
@@ -50,7 +50,7 @@ __kernel void grid_cell_ranges(__global const uint* restrict keys, __global uint
 __kernel void grid_pairs(__global const BtgFloat4* restrict aabbMin, __global const BtgFloat4* restrict aabbMax,
                          __global const BtgBodyProps* restrict props, __global const uint* restrict keys,
                          __global const uint* restrict rows, __global const uint* restrict cellRange,
-                         __global BtgPair* restrict raw, volatile __global uint* counters, int pairSlot,
+                         __global BtgPair* restrict raw, volatile __global uint* counters,
                          uint capacity, int numBodies, float invCellSize, uint tableMask)
 {
     int k = (int)get_global_id(0);
@@ -75,7 +75,7 @@ __kernel void grid_pairs(__global const BtgFloat4* restrict aabbMin, __global co
                     if (j <= i) continue;
                     if (!btgAabbOverlap(iMin, iMax, aabbMin[j], aabbMax[j])) continue;
                     if (!btgPairAllowed(pi, props[j])) continue;
-                    btgAppendPair(raw, counters, pairSlot, capacity, i, j);
+                    btgAppendPair(raw, counters, capacity, i, j);
                 }
             }
 }
@@ -85,7 +85,7 @@ __kernel void grid_pairs(__global const BtgFloat4* restrict aabbMin, __global co
 __kernel void large_pairs(__global const BtgFloat4* restrict aabbMin, __global const BtgFloat4* restrict aabbMax,
                           __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes,
                           __global const int* restrict largeBodies, int numLarge, __global BtgPair* restrict raw,
-                          volatile __global uint* counters, int pairSlot, uint capacity, int numBodies)
+                          volatile __global uint* counters, uint capacity, int numBodies)
 {
     int i = (int)get_global_id(0);
     if (i >= numBodies) return;
@@ -98,7 +98,7 @@ __kernel void large_pairs(__global const BtgFloat4* restrict aabbMin, __global c
         if (j == i || (iLarge && j < i)) continue;
         if (!btgAabbOverlap(iMin, iMax, aabbMin[j], aabbMax[j])) continue;
         if (!btgPairAllowed(pi, props[j])) continue;
-        btgAppendPair(raw, counters, pairSlot, capacity, i, j);
+        btgAppendPair(raw, counters, capacity, i, j);
     }
 }
 
@@ -107,7 +107,7 @@ __kernel void plane_pairs(__global const BtgFloat4* restrict aabbMin, __global c
                           __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes,
                           __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,
                           __global const int* restrict planeBodies, int numPlanes, __global BtgPair* restrict raw,
-                          volatile __global uint* counters, int pairSlot, uint capacity, int numBodies)
+                          volatile __global uint* counters, uint capacity, int numBodies)
 {
     int i = (int)get_global_id(0);
     if (i >= numBodies) return;
@@ -120,7 +120,7 @@ __kernel void plane_pairs(__global const BtgFloat4* restrict aabbMin, __global c
         if (!btgPairAllowed(pi, pj)) continue;
         BtgFloat4 plane = btgPlaneWorld(pos[j], rot[j], shapes[pj.shape].param);
         if (!btgAabbReachesPlane(iMin, iMax, plane)) continue;
-        btgAppendPair(raw, counters, pairSlot, capacity, i, j);
+        btgAppendPair(raw, counters, capacity, i, j);
     }
 }
 
@@ -129,13 +129,13 @@ __kernel void plane_pairs(__global const BtgFloat4* restrict aabbMin, __global c
  * = identity; mode 1: b, order = identity (first of two stable passes); mode 2: a of the
  * pair that the first pass put at this slot (order kept). */
 __kernel void pair_sort_keys(__global const BtgPair* restrict raw, __global uint* restrict order,
-                             __global uint* restrict keys, __global const uint* restrict counters, int pairSlot,
+                             __global uint* restrict keys, __global const uint* restrict counters,
                              uint capacity, int mode, uint bits)
 {
     uint k = get_global_id(0);
     if (k >= capacity) return;
-    uint count = min(counters[pairSlot], capacity);
-    if (mode == 2) {
+    uint count = min(counters[BTG_COUNTER_PAIRS], capacity);
+    if (mode == BTG_PAIR_KEY_MAJOR) {
         keys[k] = k < count ? (uint)raw[order[k]].a : BTG_NO_KEY;
         return;
     }
@@ -145,17 +145,17 @@ __kernel void pair_sort_keys(__global const BtgPair* restrict raw, __global uint
         return;
     }
     BtgPair p = raw[k];
-    keys[k] = mode == 0 ? (((uint)p.a << bits) | (uint)p.b) : (uint)p.b;
+    keys[k] = mode == BTG_PAIR_KEY_PACKED ? (((uint)p.a << bits) | (uint)p.b) : (uint)p.b;
 }
 
 /* Launch: one work-item per pair slot (capacity). Gathers the sorted pairs into the world's
  * list and flags an overflow. */
 __kernel void pairs_write(__global const BtgPair* restrict raw, __global const uint* restrict order,
-                          __global BtgPair* restrict pairs, __global uint* counters, int pairSlot, int statusSlot,
+                          __global BtgPair* restrict pairs, __global uint* counters,
                           uint capacity)
 {
     uint k = get_global_id(0);
-    uint total = counters[pairSlot];
-    if (k == 0 && total > capacity) atomic_or(&counters[statusSlot], BTG_STATUS_PAIR_OVERFLOW);
+    uint total = counters[BTG_COUNTER_PAIRS];
+    if (k == 0 && total > capacity) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_PAIR_OVERFLOW);
     if (k < min(total, capacity)) pairs[k] = raw[order[k]];
 }

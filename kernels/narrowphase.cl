@@ -5,7 +5,7 @@
  * Writes manifolds[i] for the pairs of the kernel's kind (numPoints 0 when apart). */
 #include "shared/simple_contacts.h"
 
-#define BTG_COUNTER_PAIRS 0 /* btgpu::kPairCount (static_assert in src/stages/narrowphase.cpp) */
+#include "shared/counters.h"
 
 /* Loads pair i's colliders; 0 when i is past the count or the pair is of another kind. */
 static inline int btgLoadPairOfKind(int kind, __global const BtgPair* restrict pairs, __global const uint* restrict counters,

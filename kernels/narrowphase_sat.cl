@@ -6,7 +6,7 @@
  * Writes manifolds[i] for every hull–hull pair i (numPoints 0 when apart). */
 #include "shared/clip.h"
 
-#define BTG_COUNTER_PAIRS 0 /* btgpu::kPairCount (static_assert in src/stages/narrowphase.cpp) */
+#include "shared/counters.h"
 
 __kernel void collide_hull_hull(__global const BtgPair* restrict pairs, __global const uint* restrict counters,
                                 uint capacity, __global const BtgFloat4* restrict pos,

@@ -3,11 +3,11 @@
  * Reads counters[kContactCount], props, invInertiaWorld, linVel0, angVel0, contacts.
  * Writes contacts (t1, t2, masses, targets in rA.w / rB.w, friction in normal.w, restitution
  * in t1.w; impulses of non-solvable contacts zeroed). */
+#include "shared/counters.h"
 #include "shared/types.h"
 #include "shared/math.h"
 #include "shared/contact_rows.h"
 
-#define COUNTER_CONTACTS 1 /* mirrors btgpu::Counter */
 
 __kernel void prepare_contacts(__global BtgContact* contacts, __global const uint* restrict counters,
                                int contactCapacity, __global const BtgBodyProps* restrict props,
@@ -16,7 +16,7 @@ __kernel void prepare_contacts(__global BtgContact* contacts, __global const uin
                                BtgStepParams params)
 {
     uint i = (uint)get_global_id(0);
-    if (i >= min(counters[COUNTER_CONTACTS], (uint)contactCapacity)) return;
+    if (i >= min(counters[BTG_COUNTER_CONTACTS], (uint)contactCapacity)) return;
     BtgContact c = contacts[i];
     BtgBodyProps pa = props[c.bodyA], pb = props[c.bodyB];
     BtgSolverBody a = btgMakeSolverBody(pa, invInertiaWorld[3 * c.bodyA], invInertiaWorld[3 * c.bodyA + 1],

@@ -14,7 +14,6 @@
 #include "shared/counters.h"
 #include "shared/grid_barrier.h"
 
-#define COUNTER_CONTACTS 1 /* mirrors btgpu::Counter */
 
 static BtgSolverBody load_body(__global const BtgBodyProps* restrict props,
                                __global const BtgFloat4* restrict invInertiaWorld, int i)
@@ -33,12 +32,12 @@ static void solve_one(int i, int mode, __global BtgContact* contacts, __global c
     BtgSolverBody a = load_body(props, invInertiaWorld, c.bodyA);
     BtgSolverBody b = load_body(props, invInertiaWorld, c.bodyB);
     /* Push velocities of infinite-mass bodies are zero, as Bullet's solver bodies start them. */
-    int movingA = mode == 2 ? a.dynamic : a.moving, movingB = mode == 2 ? b.dynamic : b.moving;
+    int movingA = mode == BTG_PASS_PUSH ? a.dynamic : a.moving, movingB = mode == BTG_PASS_PUSH ? b.dynamic : b.moving;
     BtgFloat4 linA = lin[c.bodyA], angA = ang[c.bodyA], linB = lin[c.bodyB], angB = ang[c.bodyB];
     BtgBodyVel va = btgMakeBodyVel(movingA, linA, angA);
     BtgBodyVel vb = btgMakeBodyVel(movingB, linB, angB);
-    if (mode == 0) btgContactWarmStart(&c, a, b, &va, &vb);
-    else if (mode == 1) btgContactSolveVelocity(&c, a, b, &va, &vb);
+    if (mode == BTG_PASS_WARM_START) btgContactWarmStart(&c, a, b, &va, &vb);
+    else if (mode == BTG_PASS_VELOCITY) btgContactSolveVelocity(&c, a, b, &va, &vb);
     else btgContactSolvePush(&c, a, b, &va, &vb);
     /* w of the velocity columns is not the solver's: keep it. */
     if (a.dynamic) {
@@ -69,7 +68,7 @@ __kernel void solve_color_serial(__global BtgContact* contacts, __global const u
     /* No leftovers from the batching and no color at or past this one (the usual case):
      * nothing to walk, and a GPU thread walking every contact is slow. */
     if (counters[BTG_COUNTER_LEFTOVERS] == 0u && counters[BTG_COUNTER_COLORS_USED] <= (uint)color) return;
-    int n = (int)min(counters[COUNTER_CONTACTS], (uint)contactCapacity);
+    int n = (int)min(counters[BTG_COUNTER_CONTACTS], (uint)contactCapacity);
     for (int i = 0; i < n; ++i)
         if (contacts[i].color >= color) solve_one(i, mode, contacts, props, invInertiaWorld, lin, ang);
 }
@@ -93,7 +92,7 @@ __kernel void color_count(__global const BtgContact* restrict contacts, __global
                           int contactCapacity, __global uint* colorCount, int numColors)
 {
     int i = (int)get_global_id(0);
-    if (i >= (int)min(counters[COUNTER_CONTACTS], (uint)contactCapacity)) return;
+    if (i >= (int)min(counters[BTG_COUNTER_CONTACTS], (uint)contactCapacity)) return;
     int c = contacts[i].color;
     if (c < 0 || c >= numColors - 1) return;
     atomic_inc(&colorCount[c]);
@@ -120,7 +119,7 @@ __kernel void color_fill(__global const BtgContact* restrict contacts, __global 
                          __global int* colorOrder, int numColors, int orderStride)
 {
     int i = (int)get_global_id(0);
-    if (i >= (int)min(counters[COUNTER_CONTACTS], (uint)contactCapacity)) return;
+    if (i >= (int)min(counters[BTG_COUNTER_CONTACTS], (uint)contactCapacity)) return;
     int c = contacts[i].color;
     if (c < 0 || c >= numColors - 1) return;
     colorOrder[colorStart[c] + atomic_inc(&colorCursor[c])] = i;
@@ -164,12 +163,12 @@ __kernel void solve_resident(__global BtgContact* contacts, __global uint* count
     __local int quit;
     if (counters[BTG_COUNTER_STATUS] & BTG_STATUS_GRID_BARRIER_TIMEOUT) return;
     const int gid = (int)get_global_id(0), gsize = (int)get_global_size(0);
-    const int n = (int)min(counters[COUNTER_CONTACTS], (uint)contactCapacity);
+    const int n = (int)min(counters[BTG_COUNTER_CONTACTS], (uint)contactCapacity);
     const int last = numColors - 1;
     const int walkLast = counters[BTG_COUNTER_LEFTOVERS] != 0u || counters[BTG_COUNTER_COLORS_USED] > (uint)last;
     const int passes = 1 + iterations + (splitImpulse ? iterations : 0);
     for (int pass = 0; pass < passes; ++pass) {
-        const int mode = pass == 0 ? 0 : (pass <= iterations ? 1 : 2);
+        const int mode = pass == 0 ? BTG_PASS_WARM_START : (pass <= iterations ? BTG_PASS_VELOCITY : BTG_PASS_PUSH);
         BTG_SHARED __global BtgFloat4* lin = mode == 2 ? pushLin : linVel;
         BTG_SHARED __global BtgFloat4* ang = mode == 2 ? pushAng : angVel;
         const int list = mode == 2 ? 1 : 0; /* push passes: only contacts with a push target */

@@ -10,15 +10,15 @@
  * Reads counters, props, invInertiaWorld, contacts. Writes contacts (accumulated impulses),
  * cursor, entries, deltas, and linVel/angVel (modes 0, 1) or pushLin/pushAng (mode 2) of
  * dynamic rows with contacts (w kept). */
+#include "shared/counters.h"
 #include "shared/types.h"
 #include "shared/math.h"
 #include "shared/jacobi_rows.h"
 
-#define COUNTER_CONTACTS 1 /* mirrors btgpu::Counter */
 
 static int num_contacts(__global const uint* restrict counters, int contactCapacity)
 {
-    return (int)min(counters[COUNTER_CONTACTS], (uint)contactCapacity);
+    return (int)min(counters[BTG_COUNTER_CONTACTS], (uint)contactCapacity);
 }
 
 /* A side enters the lists when its body is dynamic and the contact is solved at all. */
@@ -85,7 +85,7 @@ __kernel void jacobi_solve(__global BtgContact* contacts, __global const uint* r
     if (a.dynamic) a = btgSplitBody(a, body_count(start, ia));
     if (b.dynamic) b = btgSplitBody(b, body_count(start, ib));
     /* Push velocities of infinite-mass bodies are zero, as Bullet's solver bodies start them. */
-    int movingA = mode == 2 ? a.dynamic : a.moving, movingB = mode == 2 ? b.dynamic : b.moving;
+    int movingA = mode == BTG_PASS_PUSH ? a.dynamic : a.moving, movingB = mode == BTG_PASS_PUSH ? b.dynamic : b.moving;
     BtgBodyVel dA, dB;
     btgJacobiContact(&c, a, b, btgMakeBodyVel(movingA, lin[ia], ang[ia]), btgMakeBodyVel(movingB, lin[ib], ang[ib]), mode,
                      &dA, &dB);
@@ -93,7 +93,7 @@ __kernel void jacobi_solve(__global BtgContact* contacts, __global const uint* r
     deltas[4 * i + 1] = dA.ang;
     deltas[4 * i + 2] = dB.lin;
     deltas[4 * i + 3] = dB.ang;
-    if (mode != 0) contacts[i] = c;
+    if (mode != BTG_PASS_WARM_START) contacts[i] = c;
 }
 
 __kernel void jacobi_gather(int numBodies, __global const uint* restrict start, __global const uint* restrict entries,

@@ -5,7 +5,7 @@
  * whose min lies within its extent. Pairs go to the same unsorted list as find_pairs' passes.
  * Stage: broadphase. Launch: per kernel below (one work-group, body rows or sorted entries).
  * Reads: aabbMin, aabbMax, props, shapes.
- * Writes: raw pairs and counters[pairSlot] (all pairs found, even past capacity), and the
+ * Writes: raw pairs and counters[BTG_COUNTER_PAIRS] (all pairs found, even past capacity), and the
  * sort-and-sweep scratch of BroadphaseScratch (axis, keys, rows, sorted AABBs). */
 #include "shared/broadphase.h"
 #include "shared/sort_sweep.h"
@@ -71,7 +71,7 @@ __kernel void sap_gather(__global const BtgFloat4* restrict aabbMin, __global co
 __kernel void sap_pairs(__global const BtgBodyProps* restrict props, __global const uint* restrict axisIn,
                         __global const uint* restrict keys, __global const uint* restrict rows,
                         __global const BtgFloat4* restrict sortedMin, __global const BtgFloat4* restrict sortedMax,
-                        __global BtgPair* restrict raw, volatile __global uint* counters, int pairSlot,
+                        __global BtgPair* restrict raw, volatile __global uint* counters,
                         uint capacity, int numBodies)
 {
     int k = (int)get_global_id(0);
@@ -87,6 +87,6 @@ __kernel void sap_pairs(__global const BtgBodyProps* restrict props, __global co
         if (!btgAabbOverlap(iMin, iMax, jMin, sortedMax[m])) continue;
         int j = (int)rows[m];
         if (!btgPairAllowed(pi, props[j])) continue;
-        btgAppendPair(raw, counters, pairSlot, capacity, i, j);
+        btgAppendPair(raw, counters, capacity, i, j);
     }
 }

@@ -1,8 +1,8 @@
-// pipeline.cpp — one substep, top to bottom, as the talk lays it out: integrate/predict →
-// AABBs → pairs → contacts → forces → contact cache → constraint setup → batching → PGS →
-// store the cache for the next substep → integrate transforms → deactivation.
-// Config::solver = JacobiMassSplitting puts one Jacobi mass-splitting stage in place of
-// batching + PGS. Stages absent from the plan are neither built nor launched.
+// pipeline.cpp — the step: each substep runs the plan's stage list (Plan::substep, in the
+// talk's order: integrate/predict → AABBs → pairs → contacts → forces → contact cache →
+// constraint setup → batching → PGS → store the cache → integrate transforms → deactivation),
+// and a call runs its substeps with one readback, redone after a buffer overflowed. Stages
+// absent from the plan are neither built nor launched.
 #include "pipeline.h"
 
 #include "stages/color_constraints.h"
@@ -22,37 +22,39 @@ namespace btgpu {
 
 namespace {
 
-void fillCounters(DeviceWorld& w, int first, int count, uint value)
-{
-    BTGPU_CL_CHECK(clEnqueueFillBuffer(w.ctx.queue(), w.counters.mem(), &value, sizeof(uint), first * sizeof(uint),
-                                       count * sizeof(uint), 0, nullptr, nullptr));
-}
+void fillCounters(DeviceWorld& w, int first, int count, uint value) { w.counters.fill(w.ctx, value, size_t(first), size_t(count)); }
 
-void runSubstep(DeviceWorld& w, const Plan& plan, const StepSettings& s)
+void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings& s)
 {
     const BtgStepParams& p = s.params;
-    const bool collide = plan.kinds.any();
+    switch (stage) {
+        case Stage::Integrate: predictMotion(w, p.dt); break;
+        case Stage::UpdateAabbs: updateAabbs(w, p.contactThreshold); break;
+        case Stage::UniformGrid:
+        case Stage::SortSweep: smallBodyPairs(w, plan.broadphase, plan.cellSize); break;
+        case Stage::FindPairs: finishPairs(w); break;
+        case Stage::Narrowphase: narrowphaseSimple(w, plan.kinds); break;
+        case Stage::NarrowphaseSat: narrowphaseSat(w); break;
+        case Stage::ApplyForces: applyForces(w, p.dt); break;
+        case Stage::ContactCache: buildContacts(w, p); break;
+        case Stage::PrepareContacts: prepareContacts(w, p); break;
+        case Stage::ColorConstraints: colorConstraints(w, s.maxColors); break;
+        case Stage::SolveConstraints: solveConstraints(w, p, s.iterations, w.numColors); break;
+        case Stage::SolveJacobi: solveJacobi(w, p, s.iterations); break;
+        case Stage::StoreContactCache: storeContactCache(w); break;
+        case Stage::IntegrateTransforms: integrateTransforms(w, p.dt, p.splitTurnErp); break;
+        case Stage::UpdateActivation: updateActivation(w, p.dt, p.deactivationTime); break;
+    }
+}
+
+// The plan's stages in order; each names its launches in the profile.
+void runSubstep(DeviceWorld& w, const Plan& plan, const std::vector<Stage>& stages, const StepSettings& s)
+{
     fillCounters(w, kPairCount, 2, 0u);  // pair and contact counts
-    predictMotion(w, p.dt);
-    if (collide) {
-        updateAabbs(w, p.contactThreshold);
-        findPairs(w, plan.broadphase, plan.cellSize);
-        narrowphase(w, plan.kinds);
+    for (Stage stage : stages) {
+        w.profiler.stage = stageName(stage);
+        runStage(stage, w, plan, s);
     }
-    applyForces(w, p.dt);
-    if (collide) {
-        buildContacts(w, p);
-        prepareContacts(w, p);
-        if (s.solver == SolverKind::JacobiMassSplitting) {
-            solveJacobi(w, p, s.iterations);
-        } else {
-            colorConstraints(w, s.maxColors);
-            solveConstraints(w, p, s.iterations, w.numColors);
-        }
-        storeContactCache(w);  // before the bodies move: the cache keys use A's rotation now
-    }
-    integrateTransforms(w, p.dt, p.splitTurnErp);
-    updateActivation(w, p.dt, p.deactivationTime);
 }
 
 }  // namespace
@@ -71,7 +73,8 @@ void runSubsteps(DeviceWorld& w, const Plan& plan, const StepSettings& s)
     } else {
         w.contactCacheAtCall.release();
     }
-    for (int i = 0; i < s.substeps; ++i) runSubstep(w, plan, s);
+    const std::vector<Stage> stages = plan.substep();
+    for (int i = 0; i < s.substeps; ++i) runSubstep(w, plan, stages, s);
 }
 
 void resetStatus(DeviceWorld& w)
@@ -99,10 +102,77 @@ void restoreSnapshot(DeviceWorld& w, Snapshot& s)
     w.angVel.copyFrom(w.ctx, s.angVel, n);
     if (w.contactCacheKept) {
         size_t m = std::min(w.contactCacheAtCall.capacity(), w.contactCache.capacity());
-        BTGPU_CL_CHECK(clEnqueueCopyBuffer(w.ctx.queue(), w.contactCacheAtCall.mem(), w.contactCache.mem(), 0, 0,
-                                           m * sizeof(BtgCachedContact), 0, nullptr, nullptr));
+        w.contactCache.copyRangeFrom(w.ctx, w.contactCacheAtCall, m);
     }
     w.counters.copyFrom(w.ctx, s.counters, kNumCounters);
+}
+
+namespace {
+
+// Grows the pair and contact buffers from an overflowed call's full counts (the kernels count
+// past capacity). Contacts take what they need plus an eighth, pairs a quarter: the contact
+// list is the largest buffer (304 + 80 bytes a slot), and every growth is at least 1.25x, so
+// redos stay few.
+void grow(DeviceWorld& w, const BodyReadback& rb, bool pairOverflow, bool contactOverflow)
+{
+    size_t pairs = rb.counters[kPairCount];
+    size_t contacts = rb.counters[kContactCount];
+    if (pairOverflow) contacts = contacts * pairs / std::max<size_t>(w.pairCapacity, 1);  // of the pairs found
+    if (pairOverflow) w.pairCapacity = std::max(w.pairCapacity + w.pairCapacity / 4, pairs + pairs / 4 + 64);
+    if (contactOverflow || contacts > w.contactCapacity)
+        w.contactCapacity = std::max(w.contactCapacity + w.contactCapacity / 4, contacts + contacts / 8 + 64);
+    w.pairs.reserveExact(w.ctx, w.pairCapacity);
+    w.manifolds.reserveExact(w.ctx, w.pairCapacity);
+    w.contacts.reserveExact(w.ctx, w.contactCapacity);
+    w.contactCache.reserveExact(w.ctx, w.contactCapacity, true);
+}
+
+}  // namespace
+
+CallOutcome runCall(DeviceWorld& w, const Plan& plan, const StepSettings& s, Snapshot& snapshot, BodyReadback& rb)
+{
+    CallOutcome out;
+    resetStatus(w);
+    takeSnapshot(w, snapshot);
+    // Growth is geometric, so this settles after a few tries.
+    for (int attempt = 0;; ++attempt) {
+        runSubsteps(w, plan, s);
+        syncOut(w, rb);
+        const uint status = rb.counters[kStatus];
+        const bool pairOverflow = status & BTG_STATUS_PAIR_OVERFLOW;
+        const bool contactOverflow = status & BTG_STATUS_CONTACT_OVERFLOW;
+        const bool barrierTimeout = status & BTG_STATUS_GRID_BARRIER_TIMEOUT;
+        if (barrierTimeout && attempt < 8) {
+            // This device does not keep all work-groups of a launch resident: the one-launch
+            // batching and solve are off for good, and the call is redone with per-round launches.
+            restoreSnapshot(w, snapshot);
+            w.resident = DeviceWorld::Resident::Off;
+            ++out.redone;
+            out.events.push_back({CallEvent::Kind::ResidentOff,
+                                  "one-launch batching/solve timed out at a grid barrier on this device; per-round "
+                                  "launches from now on; step redone"});
+        } else if ((pairOverflow || contactOverflow) && attempt < 8) {
+            // Back to the state before the call first (the warm-start cache as it was), then
+            // grow, keeping the cache's contents.
+            restoreSnapshot(w, snapshot);
+            grow(w, rb, pairOverflow, contactOverflow);
+            ++out.redone;
+            out.events.push_back({CallEvent::Kind::Grew, "pair/contact buffers grew to " + std::to_string(w.pairCapacity) +
+                                                             "/" + std::to_string(w.contactCapacity) + "; step redone"});
+        } else {
+            break;
+        }
+        takeSnapshot(w, snapshot);  // the restored state, for a further redo
+        resetStatus(w);
+    }
+    // The next call colors as many rounds as this one needed plus slack; leftovers (solved
+    // serially, slow on a GPU) double the rounds.
+    const int used = int(rb.counters[kColorsUsed]);
+    int rounds = std::max(used + 2, 4);
+    if (rb.counters[kLeftovers] > 0) rounds = std::max(rounds, 2 * w.colorRounds);
+    w.colorRounds = std::min(rounds, std::max(s.maxColors - 1, 1));
+    w.lastContactCount = int(rb.counters[kContactCount]);
+    return out;
 }
 
 }  // namespace btgpu

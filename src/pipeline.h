@@ -2,10 +2,14 @@
 // enqueued back to back with no host round trip, plus the snapshot that lets the caller redo
 // the call after a buffer overflowed.
 #pragma once
+#include "stages/sync_bodies.h"
 #include "world/device_world.h"
 #include "world/plan.h"
 
 #include <btgpu/Config.h>
+
+#include <string>
+#include <vector>
 
 namespace btgpu {
 
@@ -33,5 +37,23 @@ void restoreSnapshot(DeviceWorld& w, Snapshot& s);
 
 // Clears the status word and the NaN marker at the start of a call.
 void resetStatus(DeviceWorld& w);
+
+// What happened on the way through a call that its caller reports: a buffer grew, or this
+// device turned out not to keep a launch's work-groups resident (one-launch stages off).
+struct CallEvent {
+    enum class Kind { Grew, ResidentOff };
+    Kind kind;
+    std::string message;
+};
+struct CallOutcome {
+    std::vector<CallEvent> events;
+    int redone = 0;  // times the call was redone
+};
+
+// One stepSimulation call's device work: s.substeps substeps of the plan and one readback
+// into rb. A buffer that overflowed grows and the call is redone from the snapshot, so no pair
+// or contact is ever dropped; a grid-barrier timeout turns the one-launch stages off for good
+// and redoes the call. Sets the next call's coloring rounds from this one's.
+CallOutcome runCall(DeviceWorld& w, const Plan& plan, const StepSettings& s, Snapshot& snapshot, BodyReadback& rb);
 
 }  // namespace btgpu

@@ -6,6 +6,7 @@
 #ifndef BTG_BROADPHASE_H
 #define BTG_BROADPHASE_H
 #include "math.h"
+#include "counters.h"
 #include "types.h"
 
 #ifdef __OPENCL_C_VERSION__
@@ -89,10 +90,10 @@ static inline uint btgGridHash(int x, int y, int z, uint tableMask)
 #ifdef __OPENCL_C_VERSION__
 /* The appending protocol of every pair pass (device only): every pair found is counted, only
  * those that fit are stored (the caller grows the buffer and redoes the step). */
-static inline void btgAppendPair(__global BtgPair* restrict raw, volatile __global uint* counters, int pairSlot,
+static inline void btgAppendPair(__global BtgPair* restrict raw, volatile __global uint* counters,
                                  uint capacity, int a, int b)
 {
-    uint slot = atomic_inc(&counters[pairSlot]);
+    uint slot = atomic_inc(&counters[BTG_COUNTER_PAIRS]);
     if (slot < capacity) {
         BtgPair p;
         p.a = a < b ? a : b;

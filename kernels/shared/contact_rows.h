@@ -5,6 +5,7 @@
  * (resolveSingleConstraintRow*, resolveSplitPenetrationImpulse), all on private copies. */
 #ifndef BTG_CONTACT_ROWS_H
 #define BTG_CONTACT_ROWS_H
+#include "counters.h"
 #include "prelude.h"
 #include "types.h"
 #include "math.h"

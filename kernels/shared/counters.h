@@ -1,5 +1,6 @@
-/* counters.h — slots of the device counters buffer, as kernels name them; the host's
- * btgpu::Counter enum (src/world/device_world.h) must agree (checked there). */
+/* counters.h — slots of the device counters buffer and the mode values launchers pass to
+ * kernels, defined once: kernels and CPU references use these names, the host's
+ * btgpu::Counter enum (src/world/device_world.h) takes its values from them. */
 #ifndef BTG_COUNTERS_H
 #define BTG_COUNTERS_H
 #define BTG_COUNTER_PAIRS 0
@@ -9,4 +10,17 @@
 #define BTG_COUNTER_NAN_BODY 4
 #define BTG_COUNTER_COLORS_USED 5 /* colors the batching assigned, leftovers excluded */
 #define BTG_COUNTER_LEFTOVERS 6   /* contacts left for the serial pass */
+#define BTG_NUM_COUNTERS 8
+
+/* Solver passes (solve_constraints, solve_jacobi): warm start, a velocity iteration, a
+ * split-impulse push iteration. */
+#define BTG_PASS_WARM_START 0
+#define BTG_PASS_VELOCITY 1
+#define BTG_PASS_PUSH 2
+
+/* Pair sort keys (find_pairs' pair_sort_keys): (a, b) packed in one key, or two stable
+ * passes: b (minor) first, then a. */
+#define BTG_PAIR_KEY_PACKED 0
+#define BTG_PAIR_KEY_MINOR 1
+#define BTG_PAIR_KEY_MAJOR 2
 #endif

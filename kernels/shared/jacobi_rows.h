@@ -44,8 +44,8 @@ static inline void btgJacobiContact(BtgContact* c, BtgSolverBody a, BtgSolverBod
     BtgContact s = *c;
     btgContactSplitMasses(&s, a, b);
     BtgBodyVel ca = va, cb = vb;
-    if (mode == 0) btgContactWarmStart(&s, a, b, &ca, &cb);
-    else if (mode == 1) btgContactSolveVelocity(&s, a, b, &ca, &cb);
+    if (mode == BTG_PASS_WARM_START) btgContactWarmStart(&s, a, b, &ca, &cb);
+    else if (mode == BTG_PASS_VELOCITY) btgContactSolveVelocity(&s, a, b, &ca, &cb);
     else btgContactSolvePush(&s, a, b, &ca, &cb);
     c->normalImpulse = s.normalImpulse;
     c->friction1Impulse = s.friction1Impulse;

@@ -76,6 +76,28 @@ public:
         T z{};
         BTGPU_CL_CHECK(clEnqueueFillBuffer(ctx.queue(), m_buf.mem(), &z, sizeof(T) <= 128 && (sizeof(T) & (sizeof(T) - 1)) == 0 ? sizeof(T) : 4, 0, n * sizeof(T), 0, nullptr, nullptr));
     }
+    // Sets elements [first, first + count) to `value` (T of 4 bytes or a power of two up to 128).
+    void fill(Context& ctx, const T& value, size_t first, size_t count)
+    {
+        if (count == 0) return;
+        static_assert(sizeof(T) <= 128 && (sizeof(T) & (sizeof(T) - 1)) == 0, "fill needs a power-of-two size");
+        BTGPU_CL_CHECK(clEnqueueFillBuffer(ctx.queue(), m_buf.mem(), &value, sizeof(T), first * sizeof(T),
+                                           count * sizeof(T), 0, nullptr, nullptr));
+    }
+    // Copies src's first n elements over this array's first n, which must both hold them
+    // (never reallocates: a column that must keep its size and contents).
+    void copyRangeFrom(Context& ctx, const DeviceArray<T>& src, size_t n)
+    {
+        if (n == 0) return;
+        BTGPU_CL_CHECK(clEnqueueCopyBuffer(ctx.queue(), src.mem(), m_buf.mem(), 0, 0, n * sizeof(T), 0, nullptr, nullptr));
+    }
+    // Queues a read of the first n elements into host memory, without waiting (Context::finish
+    // waits for all).
+    void readAsync(Context& ctx, T* data, size_t n) const
+    {
+        if (n == 0) return;
+        BTGPU_CL_CHECK(clEnqueueReadBuffer(ctx.queue(), m_buf.mem(), CL_FALSE, 0, n * sizeof(T), data, 0, nullptr, nullptr));
+    }
     void copyFrom(Context& ctx, const DeviceArray<T>& src, size_t n)
     {
         if (n == 0) return;

@@ -56,4 +56,12 @@ cl_kernel Program::kernel(const std::string& name)
     return k;
 }
 
+size_t kernelWorkGroupSize(const Context& context, cl_kernel kernel)
+{
+    size_t size = 0;
+    BTGPU_CL_CHECK(clGetKernelWorkGroupInfo(kernel, context.device().device, CL_KERNEL_WORK_GROUP_SIZE, sizeof(size),
+                                            &size, nullptr));
+    return size;
+}
+
 }  // namespace btgpu::cl

@@ -27,6 +27,9 @@ private:
     std::map<std::string, cl_kernel> m_kernels;
 };
 
+// The largest work-group this kernel runs with on the context's device.
+size_t kernelWorkGroupSize(const Context& context, cl_kernel kernel);
+
 // Options every program is built with: OpenCL C 1.2, no fast-relaxed math, correctly
 // rounded sqrt/divide where the device offers it (so kernels track the CPU references).
 std::string baseBuildOptions(const Context& context);

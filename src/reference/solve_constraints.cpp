@@ -21,18 +21,18 @@ void solveConstraints(std::vector<BtgContact>& contacts, ContactBodies& bodies, 
                                  bodies.invInertiaWorld[3 * i + 2]);
     };
     auto pass = [&](int mode) {
-        std::vector<BtgFloat4>& lin = mode == 2 ? bodies.pushLin : bodies.linVel;
-        std::vector<BtgFloat4>& ang = mode == 2 ? bodies.pushAng : bodies.angVel;
+        std::vector<BtgFloat4>& lin = mode == BTG_PASS_PUSH ? bodies.pushLin : bodies.linVel;
+        std::vector<BtgFloat4>& ang = mode == BTG_PASS_PUSH ? bodies.pushAng : bodies.angVel;
         for (int color = 0; color < numColors; ++color)
             for (BtgContact& c : contacts) {
                 bool last = color == numColors - 1;  // the serial launch takes higher colors too
                 if (last ? c.color < color : c.color != color) continue;
                 BtgSolverBody a = body(c.bodyA), b = body(c.bodyB);
-                int movingA = mode == 2 ? a.dynamic : a.moving, movingB = mode == 2 ? b.dynamic : b.moving;
+                int movingA = mode == BTG_PASS_PUSH ? a.dynamic : a.moving, movingB = mode == BTG_PASS_PUSH ? b.dynamic : b.moving;
                 BtgBodyVel va = btgMakeBodyVel(movingA, lin[c.bodyA], ang[c.bodyA]);
                 BtgBodyVel vb = btgMakeBodyVel(movingB, lin[c.bodyB], ang[c.bodyB]);
-                if (mode == 0) btgContactWarmStart(&c, a, b, &va, &vb);
-                else if (mode == 1) btgContactSolveVelocity(&c, a, b, &va, &vb);
+                if (mode == BTG_PASS_WARM_START) btgContactWarmStart(&c, a, b, &va, &vb);
+                else if (mode == BTG_PASS_VELOCITY) btgContactSolveVelocity(&c, a, b, &va, &vb);
                 else btgContactSolvePush(&c, a, b, &va, &vb);
                 if (a.dynamic) {
                     lin[c.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, lin[c.bodyA].w);
@@ -44,10 +44,10 @@ void solveConstraints(std::vector<BtgContact>& contacts, ContactBodies& bodies, 
                 }
             }
     };
-    pass(0);
-    for (int it = 0; it < iterations; ++it) pass(1);
+    pass(BTG_PASS_WARM_START);
+    for (int it = 0; it < iterations; ++it) pass(BTG_PASS_VELOCITY);
     if (params.splitImpulse)
-        for (int it = 0; it < iterations; ++it) pass(2);
+        for (int it = 0; it < iterations; ++it) pass(BTG_PASS_PUSH);
 }
 
 }  // namespace btgpu::ref

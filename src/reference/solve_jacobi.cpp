@@ -49,12 +49,12 @@ void solveJacobi(std::vector<BtgContact>& contacts, ContactBodies& bodies, const
     };
     std::vector<BtgFloat4> deltas(4 * contacts.size(), btgZero4());
     auto pass = [&](int mode) {
-        std::vector<BtgFloat4>& lin = mode == 2 ? bodies.pushLin : bodies.linVel;
-        std::vector<BtgFloat4>& ang = mode == 2 ? bodies.pushAng : bodies.angVel;
+        std::vector<BtgFloat4>& lin = mode == BTG_PASS_PUSH ? bodies.pushLin : bodies.linVel;
+        std::vector<BtgFloat4>& ang = mode == BTG_PASS_PUSH ? bodies.pushAng : bodies.angVel;
         for (size_t i = 0; i < contacts.size(); ++i) {
             BtgContact& c = contacts[i];
             BtgSolverBody a = body(c.bodyA), b = body(c.bodyB);
-            int movingA = mode == 2 ? a.dynamic : a.moving, movingB = mode == 2 ? b.dynamic : b.moving;
+            int movingA = mode == BTG_PASS_PUSH ? a.dynamic : a.moving, movingB = mode == BTG_PASS_PUSH ? b.dynamic : b.moving;
             BtgBodyVel dA, dB;
             btgJacobiContact(&c, a, b, btgMakeBodyVel(movingA, lin[c.bodyA], ang[c.bodyA]),
                              btgMakeBodyVel(movingB, lin[c.bodyB], ang[c.bodyB]), mode, &dA, &dB);
@@ -75,10 +75,10 @@ void solveJacobi(std::vector<BtgContact>& contacts, ContactBodies& bodies, const
             ang[b] = btgJacobiAverage(ang[b], sa, hi - lo);
         }
     };
-    pass(0);
-    for (int it = 0; it < iterations; ++it) pass(1);
+    pass(BTG_PASS_WARM_START);
+    for (int it = 0; it < iterations; ++it) pass(BTG_PASS_VELOCITY);
     if (params.splitImpulse)
-        for (int it = 0; it < iterations; ++it) pass(2);
+        for (int it = 0; it < iterations; ++it) pass(BTG_PASS_PUSH);
 }
 
 }  // namespace btgpu::ref

@@ -25,7 +25,6 @@ constexpr int kOneGroupMaxBodies = 16384;
 void colorConstraints(DeviceWorld& w, int maxColors)
 {
     cl::Context& ctx = w.ctx;
-    w.profiler.stage = "batching";
     if (maxColors < 1) maxColors = 1;
     const int rounds = std::clamp(w.colorRounds, 0, maxColors - 1);
     w.numColors = rounds + 1;  // the last one is the serial pass for leftovers
@@ -36,9 +35,7 @@ void colorConstraints(DeviceWorld& w, int maxColors)
     size_t bodies = size_t(std::max(w.numBodies, 1));
     w.solverScratch.bodyClaim.reserve(ctx, bodies);
     w.solverScratch.bodyColor.reserve(ctx, bodies);
-    const uint zero = 0u;  // a fill copies its pattern at enqueue time
-    BTGPU_CL_CHECK(clEnqueueFillBuffer(ctx.queue(), w.counters.mem(), &zero, sizeof(uint), kColorsUsed * sizeof(uint),
-                                       2 * sizeof(uint), 0, nullptr, nullptr));
+    w.counters.fill(ctx, 0u, BTG_COUNTER_COLORS_USED, 2);  // colors used and leftovers
     // The whole batching in one launch: on a GPU over resident groups sized for one round's
     // work; on a CPU over one group for small scenes, where launch overhead would dominate.
     const bool resident = useResident(w);

@@ -14,9 +14,7 @@ namespace {
 // Both scan kernels must run with the same group size (block sums are per group).
 size_t scanGroupSize(cl::Context& ctx, cl_kernel a, cl_kernel b)
 {
-    size_t ga = 0, gb = 0;
-    BTGPU_CL_CHECK(clGetKernelWorkGroupInfo(a, ctx.device().device, CL_KERNEL_WORK_GROUP_SIZE, sizeof(ga), &ga, nullptr));
-    BTGPU_CL_CHECK(clGetKernelWorkGroupInfo(b, ctx.device().device, CL_KERNEL_WORK_GROUP_SIZE, sizeof(gb), &gb, nullptr));
+    size_t ga = cl::kernelWorkGroupSize(ctx, a), gb = cl::kernelWorkGroupSize(ctx, b);
     return std::max<size_t>(1, std::min({ga, gb, ctx.device().maxWorkGroupSize, size_t(256)}));
 }
 }  // namespace
@@ -24,7 +22,6 @@ size_t scanGroupSize(cl::Context& ctx, cl_kernel a, cl_kernel b)
 void buildContacts(DeviceWorld& w, const BtgStepParams& params)
 {
     cl::Context& ctx = w.ctx;
-    w.profiler.stage = "contacts";
     cl::Program& prog = ctx.program("contact_cache");
     cl_kernel count = prog.kernel("count_contacts");
     cl_kernel scan = prog.kernel("scan_blocks");
@@ -53,7 +50,6 @@ void buildContacts(DeviceWorld& w, const BtgStepParams& params)
 void storeContactCache(DeviceWorld& w)
 {
     cl::Context& ctx = w.ctx;
-    w.profiler.stage = "contacts";
     w.contactCache.reserveExact(ctx, std::max<size_t>(w.contactCapacity, 1), true);
     int contactCapacity = int(std::min(w.contactCapacity, w.contacts.capacity()));
     int cacheCapacity = int(w.contactCache.capacity());

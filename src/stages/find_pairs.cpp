@@ -34,7 +34,6 @@ void appendGridPairs(DeviceWorld& w, cl::Program& prog, cl_uint capacity, float 
     BroadphaseScratch& s = w.broadphase;
     const size_t n = size_t(w.numBodies);
     const cl_int numBodies = cl_int(n);
-    const cl_int pairSlot = kPairCount;
     const float invCellSize = 1.0f / cellSize;
     const cl_uint table = gridTableSize(n);
     const cl_uint tableMask = table - 1;
@@ -50,39 +49,50 @@ void appendGridPairs(DeviceWorld& w, cl::Program& prog, cl_uint capacity, float 
     cl::Launch(ctx, prog.kernel("grid_cell_ranges"), &w.profiler).arg(s.cellKeys).arg(s.cellRange).arg(numBodies).run(n);
     cl::Launch(ctx, prog.kernel("grid_pairs"), &w.profiler)
         .arg(w.aabbMin).arg(w.aabbMax).arg(w.props).arg(s.cellKeys).arg(s.cellRows).arg(s.cellRange)
-        .arg(s.rawPairs).arg(w.counters).arg(pairSlot).arg(capacity).arg(numBodies).arg(invCellSize).arg(tableMask)
+        .arg(s.rawPairs).arg(w.counters).arg(capacity).arg(numBodies).arg(invCellSize).arg(tableMask)
         .run(n);
+}
+
+// Never write past the pair buffer, whatever pairCapacity claims.
+cl_uint pairSlots(DeviceWorld& w)
+{
+    const cl_uint capacity = cl_uint(std::min(w.pairCapacity, w.pairs.capacity()));
+    w.broadphase.rawPairs.reserve(w.ctx, std::max<size_t>(capacity, 1));
+    return capacity;
 }
 
 }  // namespace
 
-void findPairs(DeviceWorld& w, Broadphase broadphase, float cellSize)
+void smallBodyPairs(DeviceWorld& w, Broadphase broadphase, float cellSize)
+{
+    cl::Context& ctx = w.ctx;
+    cl::Program& prog = ctx.program("find_pairs");
+    const cl_uint capacity = pairSlots(w);
+    cl::Launch(ctx, prog.kernel("pairs_reset"), &w.profiler).arg(w.counters).run(1, 1);
+    if (w.numBodies <= 0) return;
+    if (broadphase == Broadphase::SortAndSweep) sortSweepPairs(w, capacity);
+    else appendGridPairs(w, prog, capacity, cellSize);
+}
+
+void finishPairs(DeviceWorld& w)
 {
     cl::Context& ctx = w.ctx;
     BroadphaseScratch& s = w.broadphase;
     cl::Program& prog = ctx.program("find_pairs");
-    w.profiler.stage = "broadphase";
     const size_t n = w.numBodies > 0 ? size_t(w.numBodies) : 0;
     const cl_int numBodies = cl_int(n);
-    const cl_int pairSlot = kPairCount, statusSlot = kStatus;
-    // Never write past the pair buffer, whatever pairCapacity claims.
-    const cl_uint capacity = cl_uint(std::min(w.pairCapacity, w.pairs.capacity()));
-    s.rawPairs.reserve(ctx, std::max<size_t>(capacity, 1));
-
-    cl::Launch(ctx, prog.kernel("pairs_reset"), &w.profiler).arg(w.counters).arg(pairSlot).run(1, 1);
+    const cl_uint capacity = pairSlots(w);
 
     if (n > 0) {
-        if (broadphase == Broadphase::SortAndSweep) sortSweepPairs(w, capacity);
-        else appendGridPairs(w, prog, capacity, cellSize);
         if (w.numLarge > 0)
             cl::Launch(ctx, prog.kernel("large_pairs"), &w.profiler)
                 .arg(w.aabbMin).arg(w.aabbMax).arg(w.props).arg(w.shapes).arg(w.largeBodies).arg(cl_int(w.numLarge))
-                .arg(s.rawPairs).arg(w.counters).arg(pairSlot).arg(capacity).arg(numBodies)
+                .arg(s.rawPairs).arg(w.counters).arg(capacity).arg(numBodies)
                 .run(n);
         if (w.numPlanes > 0)
             cl::Launch(ctx, prog.kernel("plane_pairs"), &w.profiler)
                 .arg(w.aabbMin).arg(w.aabbMax).arg(w.props).arg(w.shapes).arg(w.pos).arg(w.rot).arg(w.planeBodies)
-                .arg(cl_int(w.numPlanes)).arg(s.rawPairs).arg(w.counters).arg(pairSlot).arg(capacity).arg(numBodies)
+                .arg(cl_int(w.numPlanes)).arg(s.rawPairs).arg(w.counters).arg(capacity).arg(numBodies)
                 .run(n);
     }
 
@@ -92,28 +102,34 @@ void findPairs(DeviceWorld& w, Broadphase broadphase, float cellSize)
         const cl_uint rowBits = cl_uint(radixBitsFor(n > 1 ? cl_uint(n - 1) : 0u));
         auto keys = [&](cl_int mode) {
             cl::Launch(ctx, prog.kernel("pair_sort_keys"), &w.profiler)
-                .arg(s.rawPairs).arg(s.pairOrder).arg(s.pairKeys).arg(w.counters).arg(pairSlot).arg(capacity)
+                .arg(s.rawPairs).arg(s.pairOrder).arg(s.pairKeys).arg(w.counters).arg(capacity)
                 .arg(mode).arg(rowBits)
                 .run(capacity);
         };
         if (2 * rowBits <= 32) {
-            keys(0);  // (a, b) packed in one key: a single sort
+            keys(BTG_PAIR_KEY_PACKED);  // (a, b) packed in one key: a single sort
             radixSort(ctx, &w.profiler, s.pairKeys, s.pairOrder, capacity, int(2 * rowBits), s.sort);
         } else {
             // Two stable passes, minor key first. Padding keys are all ones in rowBits; a real b
             // can tie with them, but padding starts after every real slot and the sort is stable.
-            keys(1);
+            keys(BTG_PAIR_KEY_MINOR);
             radixSort(ctx, &w.profiler, s.pairKeys, s.pairOrder, capacity, int(rowBits), s.sort);
-            keys(2);
+            keys(BTG_PAIR_KEY_MAJOR);
             radixSort(ctx, &w.profiler, s.pairKeys, s.pairOrder, capacity, int(rowBits), s.sort);
         }
     } else {
         s.pairOrder.reserve(ctx, 1);
     }
     cl::Launch(ctx, prog.kernel("pairs_write"), &w.profiler)
-        .arg(s.rawPairs).arg(s.pairOrder).arg(w.pairs.mem() ? w.pairs : s.rawPairs).arg(w.counters).arg(pairSlot)
-        .arg(statusSlot).arg(capacity)
+        .arg(s.rawPairs).arg(s.pairOrder).arg(w.pairs.mem() ? w.pairs : s.rawPairs).arg(w.counters)
+        .arg(capacity)
         .run(std::max<size_t>(capacity, 1));
+}
+
+void findPairs(DeviceWorld& w, Broadphase broadphase, float cellSize)
+{
+    smallBodyPairs(w, broadphase, cellSize);
+    finishPairs(w);
 }
 
 }  // namespace btgpu

@@ -15,5 +15,10 @@
 
 namespace btgpu {
 // cellSize (m) is used by the grid only.
+// The two stages of it: the small bodies' pass (the plan's uniform_grid or sort_sweep), which
+// starts the pair count, then find_pairs (large and plane passes, sort, gather into pairs).
+void smallBodyPairs(DeviceWorld& w, Broadphase broadphase, float cellSize);
+void finishPairs(DeviceWorld& w);
+// Both, in order.
 void findPairs(DeviceWorld& w, Broadphase broadphase, float cellSize);
 }

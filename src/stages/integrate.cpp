@@ -5,7 +5,6 @@ namespace btgpu {
 
 void predictMotion(DeviceWorld& w, float dt)
 {
-    w.profiler.stage = "integrate";
     cl::Launch(w.ctx, w.ctx.program("integrate").kernel("predict_motion"), &w.profiler)
         .arg(w.numBodies).arg(w.props).arg(w.linVel).arg(w.angVel).arg(dt)
         .run(w.numBodies);
@@ -13,7 +12,6 @@ void predictMotion(DeviceWorld& w, float dt)
 
 void applyForces(DeviceWorld& w, float dt)
 {
-    w.profiler.stage = "integrate";
     cl::Launch(w.ctx, w.ctx.program("integrate").kernel("apply_forces"), &w.profiler)
         .arg(w.numBodies).arg(w.rot).arg(w.props).arg(w.extForce).arg(w.extTorque).arg(w.invInertiaWorld)
         .arg(w.linVel0).arg(w.angVel0).arg(w.linVel).arg(w.angVel).arg(w.pushLin).arg(w.pushAng).arg(dt)
@@ -22,7 +20,6 @@ void applyForces(DeviceWorld& w, float dt)
 
 void integrateTransforms(DeviceWorld& w, float dt, float splitTurnErp)
 {
-    w.profiler.stage = "integrate";
     cl::Launch(w.ctx, w.ctx.program("integrate").kernel("integrate_transforms"), &w.profiler)
         .arg(w.numBodies).arg(w.props).arg(w.linVel).arg(w.angVel).arg(w.pushLin).arg(w.pushAng)
         .arg(w.pos).arg(w.rot).arg(w.counters).arg(dt).arg(splitTurnErp)

@@ -7,16 +7,13 @@
 
 namespace btgpu {
 
-static_assert(kPairCount == 0, "kernels/narrowphase*.cl read the pair count from slot 0");
-
-void narrowphase(DeviceWorld& w, const PairKinds& kinds)
+void narrowphaseSimple(DeviceWorld& w, const PairKinds& kinds)
 {
-    if (!kinds.any() || w.pairCapacity == 0) return;
-    w.profiler.stage = "narrowphase";
+    if (!kinds.simple() || w.pairCapacity == 0) return;
     w.manifolds.reserveExact(w.ctx, w.pairCapacity);
     const cl_uint capacity = static_cast<cl_uint>(w.pairCapacity);
     const size_t n = w.pairCapacity;
-    if (kinds.simple()) {
+    {
         cl::Program& prog = w.ctx.program("narrowphase");
         if (kinds.sphereSphere)
             cl::Launch(w.ctx, prog.kernel("collide_sphere_sphere"), &w.profiler)
@@ -35,11 +32,24 @@ void narrowphase(DeviceWorld& w, const PairKinds& kinds)
                 .arg(w.pairs).arg(w.counters).arg(capacity).arg(w.pos).arg(w.rot).arg(w.props).arg(w.shapes)
                 .arg(w.hullVertices).arg(w.manifolds).run(n);
     }
-    if (kinds.hullHull)
-        cl::Launch(w.ctx, w.ctx.program("narrowphase_sat").kernel("collide_hull_hull"), &w.profiler)
+}
+
+void narrowphaseSat(DeviceWorld& w)
+{
+    if (w.pairCapacity == 0) return;
+    w.manifolds.reserveExact(w.ctx, w.pairCapacity);
+    const cl_uint capacity = static_cast<cl_uint>(w.pairCapacity);
+    const size_t n = w.pairCapacity;
+    cl::Launch(w.ctx, w.ctx.program("narrowphase_sat").kernel("collide_hull_hull"), &w.profiler)
             .arg(w.pairs).arg(w.counters).arg(capacity).arg(w.pos).arg(w.rot).arg(w.props).arg(w.shapes)
             .arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges)
             .arg(w.manifolds).run(n);
+}
+
+void narrowphase(DeviceWorld& w, const PairKinds& kinds)
+{
+    narrowphaseSimple(w, kinds);
+    if (kinds.hullHull) narrowphaseSat(w);
 }
 
 }  // namespace btgpu

@@ -11,5 +11,10 @@
 #include "world/plan.h"
 
 namespace btgpu {
+// The two stages of it: the kinds without SAT (program "narrowphase"), and hull-hull
+// ("narrowphase_sat").
+void narrowphaseSimple(DeviceWorld& w, const PairKinds& kinds);
+void narrowphaseSat(DeviceWorld& w);
+// Both, as the kinds ask.
 void narrowphase(DeviceWorld& w, const PairKinds& kinds);
 }

@@ -10,7 +10,6 @@ namespace btgpu {
 
 void prepareContacts(DeviceWorld& w, const BtgStepParams& params)
 {
-    w.profiler.stage = "prepare";
     int contactCapacity = int(std::min(w.contactCapacity, w.contacts.capacity()));
     cl::Launch(w.ctx, w.ctx.program("prepare_contacts").kernel("prepare_contacts"), &w.profiler)
         .arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props).arg(w.invInertiaWorld)

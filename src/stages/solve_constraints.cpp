@@ -11,7 +11,6 @@
 namespace btgpu {
 
 namespace {
-enum Mode : int { kWarmStart = 0, kVelocity = 1, kPush = 2 };
 // Up to this many contacts (as of the last readback) a CPU device solves everything in one
 // launch on one work-group: below it launch overhead outweighs the parallelism of one launch
 // per color. (On a GPU one lone group is slow: 1,000 cubes took 8.5 ms that way on an H200.)
@@ -21,7 +20,6 @@ constexpr int kOneGroupMaxContacts = 4096;
 void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iterations, int numColors)
 {
     cl::Context& ctx = w.ctx;
-    w.profiler.stage = "solve";
     size_t slots = std::min(w.contactCapacity, w.contacts.capacity());
     int contactCapacity = int(slots);
     if (numColors < 1) numColors = 1;
@@ -81,10 +79,10 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             }
         }
     };
-    pass(kWarmStart, w.linVel, w.angVel);
-    for (int it = 0; it < iterations; ++it) pass(kVelocity, w.linVel, w.angVel);
+    pass(BTG_PASS_WARM_START, w.linVel, w.angVel);
+    for (int it = 0; it < iterations; ++it) pass(BTG_PASS_VELOCITY, w.linVel, w.angVel);
     if (params.splitImpulse)
-        for (int it = 0; it < iterations; ++it) pass(kPush, w.pushLin, w.pushAng);
+        for (int it = 0; it < iterations; ++it) pass(BTG_PASS_PUSH, w.pushLin, w.pushAng);
 }
 
 }  // namespace btgpu

@@ -10,13 +10,11 @@
 namespace btgpu {
 
 namespace {
-enum Mode : int { kWarmStart = 0, kVelocity = 1, kPush = 2 };
 }
 
 void solveJacobi(DeviceWorld& w, const BtgStepParams& params, int iterations)
 {
     cl::Context& ctx = w.ctx;
-    w.profiler.stage = "solve";
     size_t slots = std::min(w.contactCapacity, w.contacts.capacity());
     int contactCapacity = int(slots);
     int numBodies = std::max(w.numBodies, 0);
@@ -35,8 +33,7 @@ void solveJacobi(DeviceWorld& w, const BtgStepParams& params, int iterations)
     s.jacobiDeltas.reserve(ctx, 4 * slots);
     cl::Launch(ctx, prog.kernel("jacobi_count"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
         .arg(w.props).arg(s.jacobiCursor).run(slots);
-    BTGPU_CL_CHECK(clEnqueueCopyBuffer(ctx.queue(), s.jacobiCursor.mem(), s.jacobiStart.mem(), 0, 0, bodies * sizeof(uint),
-                                       0, nullptr, nullptr));
+    s.jacobiStart.copyRangeFrom(ctx, s.jacobiCursor, bodies);
     exclusiveScan(ctx, &w.profiler, s.jacobiStart, bodies + 1, s.jacobiScan);
     s.jacobiCursor.zero(ctx, bodies);
     cl::Launch(ctx, prog.kernel("jacobi_fill"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
@@ -52,10 +49,10 @@ void solveJacobi(DeviceWorld& w, const BtgStepParams& params, int iterations)
         cl::Launch(ctx, gather, &w.profiler).arg(numBodies).arg(s.jacobiStart).arg(s.jacobiEntries).arg(s.jacobiDeltas)
             .arg(lin).arg(ang).run(bodies);
     };
-    pass(kWarmStart, w.linVel, w.angVel);
-    for (int it = 0; it < iterations; ++it) pass(kVelocity, w.linVel, w.angVel);
+    pass(BTG_PASS_WARM_START, w.linVel, w.angVel);
+    for (int it = 0; it < iterations; ++it) pass(BTG_PASS_VELOCITY, w.linVel, w.angVel);
     if (params.splitImpulse)
-        for (int it = 0; it < iterations; ++it) pass(kPush, w.pushLin, w.pushAng);
+        for (int it = 0; it < iterations; ++it) pass(BTG_PASS_PUSH, w.pushLin, w.pushAng);
 }
 
 }  // namespace btgpu

@@ -17,7 +17,6 @@ void sortSweepPairs(DeviceWorld& w, cl_uint capacity)
     BroadphaseScratch& s = w.broadphase;
     cl::Program& prog = ctx.program("sort_sweep");
     const cl_int numBodies = cl_int(n);
-    const cl_int pairSlot = kPairCount;
     // The reduction's order is fixed by its lane count; a smaller group would change it.
     if (ctx.device().maxWorkGroupSize < BTG_SAP_LANES)
         cl::fail("sap_axis needs a work-group of BTG_SAP_LANES", CL_INVALID_WORK_GROUP_SIZE, __FILE__, __LINE__);
@@ -40,7 +39,7 @@ void sortSweepPairs(DeviceWorld& w, cl_uint capacity)
         .run(n);
     cl::Launch(ctx, prog.kernel("sap_pairs"), &w.profiler)
         .arg(w.props).arg(s.sapAxis).arg(s.sapKeys).arg(s.sapRows).arg(s.sapMin).arg(s.sapMax)
-        .arg(s.rawPairs).arg(w.counters).arg(pairSlot).arg(capacity).arg(numBodies)
+        .arg(s.rawPairs).arg(w.counters).arg(capacity).arg(numBodies)
         .run(n);
 }
 

@@ -47,7 +47,6 @@ void syncIn(DeviceWorld& w, const std::vector<BodyRowUpdate>& updates)
     w.stagingRows.upload(w.ctx, rows);
     w.stagingStates.upload(w.ctx, states);
     w.stagingProps.upload(w.ctx, props);
-    w.profiler.stage = "sync";
     int n = int(updates.size());
     cl::Launch(w.ctx, w.ctx.program("sync_bodies").kernel("scatter_bodies"), &w.profiler)
         .arg(n).arg(w.stagingRows).arg(w.stagingStates).arg(w.stagingProps).arg(w.pos).arg(w.rot).arg(w.linVel).arg(w.angVel)
@@ -65,16 +64,13 @@ void syncOut(DeviceWorld& w, BodyReadback& out)
     out.sleepState.resize(w.ctx, n);
     out.counters.resize(w.ctx, kNumCounters);
     // Non-blocking reads queued together, one wait: a single round trip per call.
-    cl_command_queue q = w.ctx.queue();
-    if (n) {
-        BTGPU_CL_CHECK(clEnqueueReadBuffer(q, w.pos.mem(), CL_FALSE, 0, n * sizeof(BtgFloat4), out.pos.data(), 0, nullptr, nullptr));
-        BTGPU_CL_CHECK(clEnqueueReadBuffer(q, w.rot.mem(), CL_FALSE, 0, n * sizeof(BtgFloat4), out.rot.data(), 0, nullptr, nullptr));
-        BTGPU_CL_CHECK(clEnqueueReadBuffer(q, w.linVel.mem(), CL_FALSE, 0, n * sizeof(BtgFloat4), out.linVel.data(), 0, nullptr, nullptr));
-        BTGPU_CL_CHECK(clEnqueueReadBuffer(q, w.angVel.mem(), CL_FALSE, 0, n * sizeof(BtgFloat4), out.angVel.data(), 0, nullptr, nullptr));
-        BTGPU_CL_CHECK(clEnqueueReadBuffer(q, w.sleepState.mem(), CL_FALSE, 0, n * sizeof(uint), out.sleepState.data(), 0, nullptr, nullptr));
-    }
-    BTGPU_CL_CHECK(clEnqueueReadBuffer(q, w.counters.mem(), CL_FALSE, 0, kNumCounters * sizeof(uint), out.counters.data(), 0, nullptr, nullptr));
-    BTGPU_CL_CHECK(clFinish(q));
+    w.pos.readAsync(w.ctx, out.pos.data(), n);
+    w.rot.readAsync(w.ctx, out.rot.data(), n);
+    w.linVel.readAsync(w.ctx, out.linVel.data(), n);
+    w.angVel.readAsync(w.ctx, out.angVel.data(), n);
+    w.sleepState.readAsync(w.ctx, out.sleepState.data(), n);
+    w.counters.readAsync(w.ctx, out.counters.data(), kNumCounters);
+    w.ctx.finish();
 }
 
 }  // namespace btgpu

@@ -10,7 +10,6 @@ void updateAabbs(DeviceWorld& w, float threshold)
     if (w.numBodies <= 0) return;
     w.aabbMin.reserve(w.ctx, size_t(w.numBodies));
     w.aabbMax.reserve(w.ctx, size_t(w.numBodies));
-    w.profiler.stage = "aabbs";
     cl::Launch(w.ctx, w.ctx.program("update_aabbs").kernel("update_aabbs"), &w.profiler)
         .arg(w.pos).arg(w.rot).arg(w.props).arg(w.shapes).arg(w.aabbMin).arg(w.aabbMax)
         .arg(cl_int(w.numBodies)).arg(threshold)

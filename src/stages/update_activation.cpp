@@ -7,7 +7,6 @@ namespace btgpu {
 
 void updateActivation(DeviceWorld& w, float dt, float deactivationTime, int rounds)
 {
-    w.profiler.stage = "activation";
     cl::Program& prog = w.ctx.program("update_activation");
     const int n = w.numBodies;
     cl::Launch(w.ctx, prog.kernel("own_timers"), &w.profiler)

@@ -12,22 +12,18 @@
 
 namespace btgpu {
 
-// Slots of the `counters` buffer: device-side counts and the status word, read back together.
+// Slots of the `counters` buffer (values from kernels/shared/counters.h): device-side counts
+// and the status word, read back together.
 enum Counter : int {
-    kPairCount = 0,         // pairs written by find_pairs (may exceed capacity: overflow)
-    kContactCount = 1,      // manifolds with points, compacted into `contacts`
-    kPrevContactCount = 2,  // entries of contactCache (the previous substep's contacts)
-    kStatus = 3,            // BTG_STATUS_* bits
-    kNanBody = 4,           // lowest body row found non-finite (0xffffffff: none)
-    kColorsUsed = 5,        // colors the batching assigned in the last substep
-    kLeftovers = 6,         // contacts it left to the solver's serial pass
-    kNumCounters = 8
+    kPairCount = BTG_COUNTER_PAIRS,               // pairs written by find_pairs (may exceed capacity: overflow)
+    kContactCount = BTG_COUNTER_CONTACTS,         // manifolds with points, compacted into `contacts`
+    kPrevContactCount = BTG_COUNTER_PREV_CONTACTS,  // entries of contactCache (the previous substep's contacts)
+    kStatus = BTG_COUNTER_STATUS,                 // BTG_STATUS_* bits
+    kNanBody = BTG_COUNTER_NAN_BODY,              // lowest body row found non-finite (0xffffffff: none)
+    kColorsUsed = BTG_COUNTER_COLORS_USED,        // colors the batching assigned in the last substep
+    kLeftovers = BTG_COUNTER_LEFTOVERS,           // contacts it left to the solver's serial pass
+    kNumCounters = BTG_NUM_COUNTERS
 };
-static_assert(kPairCount == BTG_COUNTER_PAIRS && kContactCount == BTG_COUNTER_CONTACTS &&
-                  kPrevContactCount == BTG_COUNTER_PREV_CONTACTS && kStatus == BTG_COUNTER_STATUS &&
-                  kNanBody == BTG_COUNTER_NAN_BODY && kColorsUsed == BTG_COUNTER_COLORS_USED &&
-                  kLeftovers == BTG_COUNTER_LEFTOVERS,
-              "counter slots agree with kernels/shared/counters.h");
 
 struct DeviceWorld {
     explicit DeviceWorld(cl::Context& c) : ctx(c) {}

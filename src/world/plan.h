@@ -24,6 +24,29 @@ struct PairKinds {
 // grid scans many far-apart neighbours; the sweep's cost does not depend on the largest size.
 enum class Broadphase { UniformGrid, SortAndSweep };
 
+// One stage of a substep, as the pipeline launches it (Box2D's b2SolverStage list): the plan
+// lists them in order, runSubstep runs them, Report::stages and the per-stage profile are
+// named by stageName.
+enum class Stage {
+    Integrate,            // damping and the predicted motion (predictMotion)
+    UpdateAabbs,
+    UniformGrid,          // small bodies' pairs, by grid ...
+    SortSweep,            // ... or by sort-and-sweep
+    FindPairs,            // large and plane passes, pair sort
+    Narrowphase,          // pair kinds without SAT
+    NarrowphaseSat,       // hull-hull
+    ApplyForces,          // gravity, app forces, gyroscopic term
+    ContactCache,         // contact list and warm start
+    PrepareContacts,
+    ColorConstraints,
+    SolveConstraints,
+    SolveJacobi,
+    StoreContactCache,
+    IntegrateTransforms,
+    UpdateActivation,
+};
+const char* stageName(Stage stage);
+
 struct Plan {
     PairKinds kinds;
     bool hasDynamic = false;   // anything to integrate
@@ -33,9 +56,36 @@ struct Plan {
     SolverKind solver = SolverKind::BatchedPgs;  // Config::solver: which solve stages run
     Broadphase broadphase = Broadphase::UniformGrid;
     float cellSize = 1.0f;     // m: uniform grid cell, >= the largest small body's AABB extent
-    // Names of the stages the step launches, in order (visible through Report).
+    // The stages of one substep, in launch order.
+    std::vector<Stage> substep() const;
+    // Names of what a stepSimulation call runs, in order (visible through Report): sync_in, the
+    // substep's stages, sync_out.
     std::vector<std::string> stages() const;
 };
+
+// What the plan needs to know of one body row (compat/ reads it off Bullet's objects).
+struct PlanBody {
+    int shapeType = 0;       // BTG_SHAPE_*
+    float size = 0.0f;       // m: bounding diameter about the body origin (planes: 0)
+    bool movable = false;    // not static (dynamic or kinematic)
+    bool dynamic = false;    // moved by the solver
+    bool gyroscopic = false;  // asks for the implicit gyroscopic term
+};
+struct PlanInput {
+    std::vector<PlanBody> bodies;  // by row
+    SolverKind solver = SolverKind::BatchedPgs;
+    float largeBodyFactor = 4.0f;     // Config::largeBodyFactor
+    float contactThreshold = 0.02f;   // m, Config::contactThreshold (AABB growth)
+};
+struct DerivedPlan {
+    Plan plan;
+    std::vector<int> largeRows;  // rows paired by the large pass (BTG_BODY_LARGE)
+    std::vector<int> planeRows;  // rows whose shape is a plane
+};
+// The plan of a scene: the pair kinds present (a kind needs a body that can move), the large
+// bodies (bounding size above largeBodyFactor x the median: a ground box, paired against
+// everything so it does not inflate the grid cell), the cell, the small bodies' broadphase.
+DerivedPlan derivePlan(const PlanInput& in);
 
 // The broadphase for bodies of these bounding sizes (m; planes left out): those above
 // `largeSize` are paired by the large pass and do not count. Sort-and-sweep when the small

@@ -1,0 +1,98 @@
+// plan_test.cpp — the plan from Bullet-free facts about the rows (derivePlan): which pair kinds
+// and stages a scene gets, in launch order, which bodies leave the grid, the cell size, and the
+// Report's stage names — without a Bullet world or a device.
+#include "shared/types.h"
+#include "world/plan.h"
+
+#include <algorithm>
+#include <gtest/gtest.h>
+
+using namespace btgpu;
+
+namespace {
+
+PlanBody body(int shape, float size, bool dynamic)
+{
+    PlanBody b;
+    b.shapeType = shape;
+    b.size = size;
+    b.movable = dynamic;
+    b.dynamic = dynamic;
+    return b;
+}
+
+bool has(const std::vector<Stage>& stages, Stage s) { return std::find(stages.begin(), stages.end(), s) != stages.end(); }
+
+}  // namespace
+
+TEST(Plan, SpheresOnAPlaneLeaveOutSat)
+{
+    PlanInput in;
+    in.bodies = {body(BTG_SHAPE_PLANE, 0, false), body(BTG_SHAPE_SPHERE, 1, true), body(BTG_SHAPE_SPHERE, 1, true)};
+    DerivedPlan d = derivePlan(in);
+    EXPECT_TRUE(d.plan.kinds.sphereSphere);
+    EXPECT_TRUE(d.plan.kinds.spherePlane);
+    EXPECT_FALSE(d.plan.kinds.hullHull);
+    EXPECT_EQ(d.planeRows, std::vector<int>{0});
+    EXPECT_TRUE(d.largeRows.empty());
+    const std::vector<Stage> stages = d.plan.substep();
+    EXPECT_TRUE(has(stages, Stage::Narrowphase));
+    EXPECT_FALSE(has(stages, Stage::NarrowphaseSat));
+    const std::vector<std::string> names = d.plan.stages();
+    EXPECT_EQ(names.front(), "sync_in");
+    EXPECT_EQ(names.back(), "sync_out");
+    EXPECT_EQ(names.size(), stages.size() + 2);
+}
+
+TEST(Plan, StagesInTheTalksOrder)
+{
+    PlanInput in;
+    in.bodies = {body(BTG_SHAPE_HULL, 100, false), body(BTG_SHAPE_HULL, 1, true), body(BTG_SHAPE_HULL, 1, true)};
+    const std::vector<Stage> expected = {
+        Stage::Integrate,   Stage::UpdateAabbs,      Stage::UniformGrid,       Stage::FindPairs,
+        Stage::NarrowphaseSat, Stage::ApplyForces,   Stage::ContactCache,      Stage::PrepareContacts,
+        Stage::ColorConstraints, Stage::SolveConstraints, Stage::StoreContactCache, Stage::IntegrateTransforms,
+        Stage::UpdateActivation};
+    EXPECT_EQ(derivePlan(in).plan.substep(), expected);
+    in.solver = SolverKind::JacobiMassSplitting;
+    const std::vector<Stage> jacobi = derivePlan(in).plan.substep();
+    EXPECT_TRUE(has(jacobi, Stage::SolveJacobi));
+    EXPECT_FALSE(has(jacobi, Stage::ColorConstraints));
+    EXPECT_FALSE(has(jacobi, Stage::SolveConstraints));
+}
+
+TEST(Plan, NothingToCollideRunsOnlyTheIntegrator)
+{
+    PlanInput in;
+    in.bodies = {body(BTG_SHAPE_HULL, 1, false), body(BTG_SHAPE_SPHERE, 1, false)};
+    const std::vector<Stage> expected = {Stage::Integrate, Stage::ApplyForces, Stage::IntegrateTransforms,
+                                         Stage::UpdateActivation};
+    DerivedPlan d = derivePlan(in);
+    EXPECT_FALSE(d.plan.kinds.any());
+    EXPECT_FALSE(d.plan.hasDynamic);
+    EXPECT_EQ(d.plan.substep(), expected);
+}
+
+TEST(Plan, LargeBodiesLeaveTheGridAndTheCellFitsTheRest)
+{
+    PlanInput in;
+    in.contactThreshold = 0.02f;
+    in.bodies = {body(BTG_SHAPE_HULL, 200, false)};
+    for (int i = 0; i < 10; ++i) in.bodies.push_back(body(BTG_SHAPE_HULL, i == 3 ? 1.5f : 1.0f, true));
+    DerivedPlan d = derivePlan(in);
+    EXPECT_EQ(d.largeRows, std::vector<int>{0});
+    EXPECT_TRUE(d.plan.hasLarge);
+    EXPECT_FLOAT_EQ(d.plan.cellSize, 1.01f * (1.5f + 2.0f * 0.02f));
+    EXPECT_EQ(d.plan.broadphase, Broadphase::UniformGrid);
+}
+
+TEST(Plan, DebrisAmongCratesSweeps)
+{
+    PlanInput in;
+    // Three crates of 2 m (within 4x the median, so still gridded) among 97 pieces of 0.5 m.
+    for (int i = 0; i < 100; ++i) in.bodies.push_back(body(BTG_SHAPE_HULL, i < 3 ? 2.0f : 0.5f, true));
+    EXPECT_EQ(derivePlan(in).plan.broadphase, Broadphase::SortAndSweep);
+    std::vector<Stage> stages = derivePlan(in).plan.substep();
+    EXPECT_TRUE(has(stages, Stage::SortSweep));
+    EXPECT_FALSE(has(stages, Stage::UniformGrid));
+}
