@@ -33,8 +33,8 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::UniformGrid:
         case Stage::SortSweep: smallBodyPairs(w, plan.broadphase, plan.cellSize); break;
         case Stage::FindPairs: finishPairs(w); break;
-        case Stage::Narrowphase: narrowphaseSimple(w, plan.kinds); break;
-        case Stage::NarrowphaseSat: narrowphaseSat(w); break;
+        case Stage::Narrowphase:
+        case Stage::NarrowphaseSat: narrowphaseProgram(w, plan.kinds, narrowphaseProgramOf(stage)); break;
         case Stage::ApplyForces: applyForces(w, p.dt); break;
         case Stage::ContactCache: buildContacts(w, p); break;
         case Stage::PrepareContacts: prepareContacts(w, p); break;

@@ -148,9 +148,8 @@ static inline void btgClosestSegments(BtgFloat4 p1, BtgFloat4 q1, BtgFloat4 p2, 
     *c2 = p2 + d2 * t;
 }
 
-static inline BtgManifold btgCollideHullHull(BtgCollider a, BtgCollider b, BTG_CONST_GLOBAL BtgFloat4* verts,
-                                             BTG_CONST_GLOBAL BtgFace* faces, BTG_CONST_GLOBAL int* indices,
-                                             BTG_CONST_GLOBAL BtgFloat4* edges, float threshold)
+/* The hull–hull routine of the pair-kind table (program "narrowphase_sat"). */
+static inline BtgManifold btgCollideHullHull(BtgCollider a, BtgCollider b, BTG_SHAPE_TABLES, float threshold)
 {
     BtgManifold m = btgEmptyManifold(a.body, b.body);
     float margins = a.shape.margin + b.shape.margin;

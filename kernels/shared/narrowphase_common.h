@@ -1,30 +1,27 @@
-/* narrowphase_common.h — what every contact routine shares: pair kinds, body poses, loading a
- * pair's two bodies from the world columns, and the manifold conventions (normal from B to A,
- * points on B with signed distance). Routines compute in a canonical role order (sphere before
- * hull before plane) and btgSwapManifold restores the pair's own order afterwards. */
+/* narrowphase_common.h — what every contact routine shares: the routine signature, body poses,
+ * loading a pair's two bodies from the world columns, the manifold conventions (normal from B
+ * to A, points on B with signed distance), and (device only) the kernel every pair-kind row
+ * expands into. Routines compute in a canonical role order (sphere before hull before plane)
+ * and btgSwapManifold restores the pair's own order afterwards. */
 #ifndef BTG_NARROWPHASE_COMMON_H
 #define BTG_NARROWPHASE_COMMON_H
 #include "contact_reduce.h"
 #include "math.h"
+#include "counters.h"
+#include "pair_kinds.h"
 
-/* Pair kinds: one kernel owns each. */
-#define BTG_PAIR_NONE 0 /* plane–plane: never produced by the broadphase (both static) */
-#define BTG_PAIR_SPHERE_SPHERE 1
-#define BTG_PAIR_SPHERE_HULL 2
-#define BTG_PAIR_SPHERE_PLANE 3
-#define BTG_PAIR_HULL_PLANE 4
-#define BTG_PAIR_HULL_HULL 5
-
-static inline int btgPairKind(int ta, int tb)
-{
-    int lo = ta < tb ? ta : tb, hi = ta < tb ? tb : ta;
-    if (lo == BTG_SHAPE_SPHERE) {
-        if (hi == BTG_SHAPE_SPHERE) return BTG_PAIR_SPHERE_SPHERE;
-        return hi == BTG_SHAPE_HULL ? BTG_PAIR_SPHERE_HULL : BTG_PAIR_SPHERE_PLANE;
-    }
-    if (lo == BTG_SHAPE_HULL) return hi == BTG_SHAPE_HULL ? BTG_PAIR_HULL_HULL : BTG_PAIR_HULL_PLANE;
-    return BTG_PAIR_NONE;
-}
+/* The shape tables a routine may read (hull vertices, faces, face-vertex indices, unique edge
+ * directions, all rows of the shared tables): every routine takes them all, so the pair-kind
+ * table calls any routine the same way,
+ *     BtgManifold routine(BtgCollider a, BtgCollider b, BTG_SHAPE_TABLES, float threshold). */
+#define BTG_SHAPE_TABLES                                                                             \
+    BTG_CONST_GLOBAL BtgFloat4 *verts, BTG_CONST_GLOBAL BtgFace *faces, BTG_CONST_GLOBAL int *indices, \
+        BTG_CONST_GLOBAL BtgFloat4 *edges
+#define BTG_UNUSED_SHAPE_TABLES \
+    (void)verts;                \
+    (void)faces;                \
+    (void)indices;              \
+    (void)edges
 
 typedef struct {
     BtgFloat4 pos; /* m, centre of mass */
@@ -116,5 +113,28 @@ static inline BtgFloat4 btgFaceVertex(BtgShape s, BtgFace f, BTG_CONST_GLOBAL Bt
 {
     return btgXyz(verts[s.firstVertex + indices[f.firstIndex + k]]);
 }
+
+#ifdef __OPENCL_C_VERSION__
+/* The kernel of one pair-kind row. Launch: one work-item per pair slot (pairCapacity); items
+ * past counters[kPairCount] and pairs of another kind return at once, so each pair is written
+ * by exactly one kernel. Writes manifolds[i] for the pairs of its kind (numPoints 0 when apart). */
+#define BTG_NARROWPHASE_KERNEL(program, kind, shapeA, shapeB, routine, kernel)                                     \
+    __kernel void kernel(__global const BtgPair* restrict pairs, __global const uint* restrict counters,             \
+                         uint capacity, __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot, \
+                         __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes,     \
+                         __global const BtgFloat4* restrict verts, __global const BtgFace* restrict faces,          \
+                         __global const int* restrict indices, __global const BtgFloat4* restrict edges,            \
+                         __global BtgManifold* restrict manifolds)                                                  \
+    {                                                                                                               \
+        uint i = (uint)get_global_id(0);                                                                            \
+        if (i >= min(counters[BTG_COUNTER_PAIRS], capacity)) return;                                                \
+        BtgPair p = pairs[i];                                                                                       \
+        if (btgPairKind(shapes[props[p.a].shape].type, shapes[props[p.b].shape].type) != (kind)) return;            \
+        BtgCollider a = btgLoadCollider(p.a, pos, rot, props, shapes);                                              \
+        BtgCollider b = btgLoadCollider(p.b, pos, rot, props, shapes);                                              \
+        const float t = btgPairThreshold(a.shape, b.shape);                                                         \
+        manifolds[i] = btgWithThreshold(routine(a, b, verts, faces, indices, edges, t), t);                         \
+    }
+#endif
 
 #endif

@@ -1,6 +1,7 @@
 /* simple_contacts.h — contacts for the pairs that need no SAT: sphere–sphere, sphere–hull,
- * sphere–plane, hull–plane. Each btgCollide* takes the pair's two colliders in the pair's own
- * order (A = pair.a) and returns its manifold; hull margins grow the polyhedron outwards. */
+ * sphere–plane, hull–plane (the rows of program "narrowphase" in pair_kinds.h). Each
+ * btgCollide* takes the pair's two colliders in the pair's own order (A = pair.a) and returns
+ * its manifold; hull margins grow the polyhedron outwards. */
 #ifndef BTG_SIMPLE_CONTACTS_H
 #define BTG_SIMPLE_CONTACTS_H
 #include "narrowphase_common.h"
@@ -48,8 +49,9 @@ static inline BtgFloat4 btgClosestOnFace(BtgFloat4 p, BtgShape s, BtgFace f, BTG
     return best;
 }
 
-static inline BtgManifold btgCollideSphereSphere(BtgCollider a, BtgCollider b, float threshold)
+static inline BtgManifold btgCollideSphereSphere(BtgCollider a, BtgCollider b, BTG_SHAPE_TABLES, float threshold)
 {
+    BTG_UNUSED_SHAPE_TABLES;
     BtgManifold m = btgEmptyManifold(a.body, b.body);
     BtgFloat4 d = a.pose.pos - b.pose.pos;
     float len = btgLength3(d);
@@ -78,8 +80,9 @@ static inline BtgManifold btgSpherePlaneCanonical(BtgCollider s, BtgCollider p, 
     return m;
 }
 
-static inline BtgManifold btgCollideSpherePlane(BtgCollider a, BtgCollider b, float threshold)
+static inline BtgManifold btgCollideSpherePlane(BtgCollider a, BtgCollider b, BTG_SHAPE_TABLES, float threshold)
 {
+    BTG_UNUSED_SHAPE_TABLES;
     if (a.shape.type == BTG_SHAPE_SPHERE) return btgSpherePlaneCanonical(a, b, threshold);
     return btgSwapManifold(btgSpherePlaneCanonical(b, a, threshold));
 }
@@ -139,10 +142,9 @@ static inline BtgManifold btgSphereHullCanonical(BtgCollider s, BtgCollider h, B
     return m;
 }
 
-static inline BtgManifold btgCollideSphereHull(BtgCollider a, BtgCollider b, BTG_CONST_GLOBAL BtgFloat4* verts,
-                                               BTG_CONST_GLOBAL BtgFace* faces, BTG_CONST_GLOBAL int* indices,
-                                               float threshold)
+static inline BtgManifold btgCollideSphereHull(BtgCollider a, BtgCollider b, BTG_SHAPE_TABLES, float threshold)
 {
+    (void)edges;
     if (a.shape.type == BTG_SHAPE_SPHERE) return btgSphereHullCanonical(a, b, verts, faces, indices, threshold);
     return btgSwapManifold(btgSphereHullCanonical(b, a, verts, faces, indices, threshold));
 }
@@ -177,9 +179,11 @@ static inline BtgManifold btgHullPlaneCanonical(BtgCollider h, BtgCollider p, BT
     return m;
 }
 
-static inline BtgManifold btgCollideHullPlane(BtgCollider a, BtgCollider b, BTG_CONST_GLOBAL BtgFloat4* verts,
-                                              float threshold)
+static inline BtgManifold btgCollideHullPlane(BtgCollider a, BtgCollider b, BTG_SHAPE_TABLES, float threshold)
 {
+    (void)faces;
+    (void)indices;
+    (void)edges;
     if (a.shape.type == BTG_SHAPE_HULL) return btgHullPlaneCanonical(a, b, verts, threshold);
     return btgSwapManifold(btgHullPlaneCanonical(b, a, verts, threshold));
 }

@@ -17,10 +17,12 @@
 #define BTG_BODY_LARGE 128u      /* too big for the uniform grid: tested against every body */
 #define BTG_BODY_NEVER_SLEEP 256u /* DISABLE_DEACTIVATION, or a kinematic body */
 
-/* Shape kinds (BtgShape.type). Boxes are hulls with 8 vertices and 6 faces. */
+/* Shape kinds (BtgShape.type). Boxes are hulls with 8 vertices and 6 faces. Which pairs of
+ * them collide, and how, is the pair-kind table (pair_kinds.h). */
 #define BTG_SHAPE_SPHERE 0
 #define BTG_SHAPE_HULL 1
 #define BTG_SHAPE_PLANE 2
+#define BTG_NUM_SHAPE_KINDS 3
 
 #define BTG_MAX_POINTS 4 /* contact points per manifold, as Bullet's btPersistentManifold */
 

@@ -1,5 +1,6 @@
-// narrowphase.cpp (reference) — dispatches each pair by kind to the shared routines in
-// kernels/shared/simple_contacts.h and clip.h, exactly as the kernels do.
+// narrowphase.cpp (reference) — dispatches each pair by kind through the pair-kind table
+// (kernels/shared/pair_kinds.h) to the shared routines in simple_contacts.h and clip.h,
+// exactly as the kernels the table expands into do.
 #include "reference/narrowphase.h"
 
 #include "shared/clip.h"
@@ -18,16 +19,14 @@ BtgManifold referenceContact(const BtgPair& pair, const BtgFloat4* pos, const Bt
     BtgCollider a = btgLoadCollider(pair.a, pos, rot, props, t.shapes);
     BtgCollider b = btgLoadCollider(pair.b, pos, rot, props, t.shapes);
     const float threshold = btgPairThreshold(a.shape, b.shape);
+    const BtgFloat4 *verts = t.hullVertices, *edges = t.hullEdges;
+    const BtgFace* faces = t.hullFaces;
+    const int* indices = t.hullIndices;
     switch (pairKind(pair, props, t)) {
-    case BTG_PAIR_SPHERE_SPHERE: return btgWithThreshold(btgCollideSphereSphere(a, b, threshold), threshold);
-    case BTG_PAIR_SPHERE_PLANE: return btgWithThreshold(btgCollideSpherePlane(a, b, threshold), threshold);
-    case BTG_PAIR_SPHERE_HULL:
-        return btgWithThreshold(btgCollideSphereHull(a, b, t.hullVertices, t.hullFaces, t.hullIndices, threshold),
-                                threshold);
-    case BTG_PAIR_HULL_PLANE: return btgWithThreshold(btgCollideHullPlane(a, b, t.hullVertices, threshold), threshold);
-    case BTG_PAIR_HULL_HULL:
-        return btgWithThreshold(
-            btgCollideHullHull(a, b, t.hullVertices, t.hullFaces, t.hullIndices, t.hullEdges, threshold), threshold);
+#define BTGPU_REFERENCE_ROW(program, kind, shapeA, shapeB, routine, kernel) \
+    case kind: return btgWithThreshold(routine(a, b, verts, faces, indices, edges, threshold), threshold);
+        BTG_PAIR_KINDS(BTGPU_REFERENCE_ROW)
+#undef BTGPU_REFERENCE_ROW
     default: return btgEmptyManifold(pair.a, pair.b);
     }
 }

@@ -16,7 +16,7 @@ struct ShapeTablesView {
     const BtgFloat4* hullEdges = nullptr;
 };
 
-// BTG_PAIR_* kind of a pair (shared/narrowphase_common.h).
+// BTG_PAIR_* kind of a pair (shared/pair_kinds.h).
 int pairKind(const BtgPair& pair, const BtgBodyProps* props, const ShapeTablesView& t);
 
 // The manifold the device writes for one pair (bodyA = pair.a, bodyB = pair.b).

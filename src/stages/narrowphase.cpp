@@ -1,55 +1,34 @@
-// narrowphase.cpp — launches one contact kernel per pair kind the plan names; each kernel
-// early-outs on pairs of other kinds, so together they write every pair's manifold once.
-// The SAT program is built only when hull–hull pairs exist.
+// narrowphase.cpp — launches the kernel of each pair-kind row (world/pair_kinds.h) whose kind
+// the plan has, all with the same arguments; each kernel early-outs on pairs of other kinds,
+// so together they write every pair's manifold once. A program is built only when one of its
+// kinds is present (the SAT program only for hull–hull pairs).
 #include "stages/narrowphase.h"
 
 #include "cl/program.h"
 
+#include <cstring>
+
 namespace btgpu {
 
-void narrowphaseSimple(DeviceWorld& w, const PairKinds& kinds)
+void narrowphaseProgram(DeviceWorld& w, const PairKinds& kinds, const char* program)
 {
-    if (!kinds.simple() || w.pairCapacity == 0) return;
+    if (!kinds.anyIn(program) || w.pairCapacity == 0) return;
     w.manifolds.reserveExact(w.ctx, w.pairCapacity);
     const cl_uint capacity = static_cast<cl_uint>(w.pairCapacity);
-    const size_t n = w.pairCapacity;
-    {
-        cl::Program& prog = w.ctx.program("narrowphase");
-        if (kinds.sphereSphere)
-            cl::Launch(w.ctx, prog.kernel("collide_sphere_sphere"), &w.profiler)
-                .arg(w.pairs).arg(w.counters).arg(capacity).arg(w.pos).arg(w.rot).arg(w.props).arg(w.shapes)
-                .arg(w.manifolds).run(n);
-        if (kinds.spherePlane)
-            cl::Launch(w.ctx, prog.kernel("collide_sphere_plane"), &w.profiler)
-                .arg(w.pairs).arg(w.counters).arg(capacity).arg(w.pos).arg(w.rot).arg(w.props).arg(w.shapes)
-                .arg(w.manifolds).run(n);
-        if (kinds.sphereHull)
-            cl::Launch(w.ctx, prog.kernel("collide_sphere_hull"), &w.profiler)
-                .arg(w.pairs).arg(w.counters).arg(capacity).arg(w.pos).arg(w.rot).arg(w.props).arg(w.shapes)
-                .arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.manifolds).run(n);
-        if (kinds.hullPlane)
-            cl::Launch(w.ctx, prog.kernel("collide_hull_plane"), &w.profiler)
-                .arg(w.pairs).arg(w.counters).arg(capacity).arg(w.pos).arg(w.rot).arg(w.props).arg(w.shapes)
-                .arg(w.hullVertices).arg(w.manifolds).run(n);
-    }
-}
-
-void narrowphaseSat(DeviceWorld& w)
-{
-    if (w.pairCapacity == 0) return;
-    w.manifolds.reserveExact(w.ctx, w.pairCapacity);
-    const cl_uint capacity = static_cast<cl_uint>(w.pairCapacity);
-    const size_t n = w.pairCapacity;
-    cl::Launch(w.ctx, w.ctx.program("narrowphase_sat").kernel("collide_hull_hull"), &w.profiler)
+    cl::Program& prog = w.ctx.program(program);
+    for (int r = 0; r < kNumPairKindRows; ++r) {
+        const PairKindRow& row = kPairKindRows[r];
+        if (!kinds.has(row.kind) || std::strcmp(row.program, program) != 0) continue;
+        cl::Launch(w.ctx, prog.kernel(row.kernel), &w.profiler)
             .arg(w.pairs).arg(w.counters).arg(capacity).arg(w.pos).arg(w.rot).arg(w.props).arg(w.shapes)
-            .arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges)
-            .arg(w.manifolds).run(n);
+            .arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges).arg(w.manifolds)
+            .run(w.pairCapacity);
+    }
 }
 
 void narrowphase(DeviceWorld& w, const PairKinds& kinds)
 {
-    narrowphaseSimple(w, kinds);
-    if (kinds.hullHull) narrowphaseSat(w);
+    for (int p = 0; p < kNumNarrowphasePrograms; ++p) narrowphaseProgram(w, kinds, kNarrowphasePrograms[p].program);
 }
 
 }  // namespace btgpu

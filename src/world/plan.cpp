@@ -1,5 +1,5 @@
-// plan.cpp — the plan's stage list, as the pipeline will launch it, and the choice of the
-// small bodies' broadphase.
+// plan.cpp — the plan's stage list, as the pipeline will launch it, the pair kinds a scene has
+// (from the pair-kind table), and the choice of the small bodies' broadphase.
 #include "world/plan.h"
 
 #include "shared/types.h"
@@ -31,6 +31,17 @@ const char* stageName(Stage stage)
     return "?";
 }
 
+const NarrowphaseProgram kNarrowphasePrograms[] = {{"narrowphase", Stage::Narrowphase},
+                                                   {"narrowphase_sat", Stage::NarrowphaseSat}};
+const int kNumNarrowphasePrograms = int(sizeof(kNarrowphasePrograms) / sizeof(kNarrowphasePrograms[0]));
+
+const char* narrowphaseProgramOf(Stage stage)
+{
+    for (int p = 0; p < kNumNarrowphasePrograms; ++p)
+        if (kNarrowphasePrograms[p].stage == stage) return kNarrowphasePrograms[p].program;
+    return nullptr;
+}
+
 std::vector<Stage> Plan::substep() const
 {
     std::vector<Stage> s = {Stage::Integrate};
@@ -39,8 +50,8 @@ std::vector<Stage> Plan::substep() const
         s.push_back(Stage::UpdateAabbs);
         s.push_back(broadphase == Broadphase::SortAndSweep ? Stage::SortSweep : Stage::UniformGrid);
         s.push_back(Stage::FindPairs);
-        if (kinds.simple()) s.push_back(Stage::Narrowphase);
-        if (kinds.hullHull) s.push_back(Stage::NarrowphaseSat);
+        for (int p = 0; p < kNumNarrowphasePrograms; ++p)
+            if (kinds.anyIn(kNarrowphasePrograms[p].program)) s.push_back(kNarrowphasePrograms[p].stage);
     }
     s.push_back(Stage::ApplyForces);
     if (collide) {
@@ -86,23 +97,27 @@ DerivedPlan derivePlan(const PlanInput& in)
     DerivedPlan d;
     Plan& plan = d.plan;
     plan.solver = in.solver;
-    int spheres = 0, hulls = 0, planes = 0, movSpheres = 0, movHulls = 0;
+    // Per shape kind: bodies, and bodies that can move.
+    int count[BTG_NUM_SHAPE_KINDS] = {}, moving[BTG_NUM_SHAPE_KINDS] = {};
     std::vector<float> sizes;
     for (size_t r = 0; r < in.bodies.size(); ++r) {
         const PlanBody& b = in.bodies[r];
         if (b.dynamic) plan.hasDynamic = true;
         if (b.gyroscopic) plan.gyroscopic = true;
-        if (b.shapeType == BTG_SHAPE_SPHERE) { ++spheres; movSpheres += b.movable; }
-        if (b.shapeType == BTG_SHAPE_HULL) { ++hulls; movHulls += b.movable; }
-        if (b.shapeType == BTG_SHAPE_PLANE) { ++planes; d.planeRows.push_back(int(r)); }
+        if (b.shapeType >= 0 && b.shapeType < BTG_NUM_SHAPE_KINDS) {
+            ++count[b.shapeType];
+            moving[b.shapeType] += b.movable;
+        }
+        if (b.shapeType == BTG_SHAPE_PLANE) d.planeRows.push_back(int(r));
         else sizes.push_back(b.size);
     }
-    const int movable = movSpheres + movHulls;
-    plan.kinds.sphereSphere = spheres >= 2 && movSpheres >= 1;
-    plan.kinds.sphereHull = spheres >= 1 && hulls >= 1 && movable >= 1;
-    plan.kinds.hullHull = hulls >= 2 && movHulls >= 1;
-    plan.kinds.spherePlane = planes >= 1 && movSpheres >= 1;
-    plan.kinds.hullPlane = planes >= 1 && movHulls >= 1;
+    for (int k = 0; k < kNumPairKindRows; ++k) {
+        const PairKindRow& row = kPairKindRows[k];
+        const bool same = row.shapeA == row.shapeB;
+        const bool bodies = same ? count[row.shapeA] >= 2 : count[row.shapeA] >= 1 && count[row.shapeB] >= 1;
+        const int movers = moving[row.shapeA] + (same ? 0 : moving[row.shapeB]);
+        if (bodies && movers >= 1) plan.kinds.add(row.kind);
+    }
     float median = 0.0f;
     if (!sizes.empty()) {
         std::vector<float> sorted = sizes;

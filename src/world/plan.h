@@ -1,23 +1,16 @@
-// plan.h — what this scene needs: which pair kinds exist, which stages run. Derived from the
-// scene by compat/ (recomputed when bodies or shapes come and go); the pipeline builds,
-// allocates and launches only what the plan names.
+// plan.h — what this scene needs: which pair kinds exist (rows of the pair-kind table,
+// world/pair_kinds.h), which stages run. Derived from the scene by compat/ (recomputed when
+// bodies or shapes come and go); the pipeline builds, allocates and launches only what the
+// plan names.
 #pragma once
+#include "world/pair_kinds.h"
+
 #include <btgpu/Config.h>
 
 #include <string>
 #include <vector>
 
 namespace btgpu {
-
-struct PairKinds {
-    bool sphereSphere = false;
-    bool sphereHull = false;
-    bool spherePlane = false;
-    bool hullPlane = false;
-    bool hullHull = false;  // needs the SAT + clipping program
-    bool any() const { return sphereSphere || sphereHull || spherePlane || hullPlane || hullHull; }
-    bool simple() const { return sphereSphere || sphereHull || spherePlane || hullPlane; }
-};
 
 // How the small bodies (neither large nor planes) are paired. The grid's cell must hold the
 // largest of them, so when sizes differ a lot most cells hold much more than a body and the
@@ -33,8 +26,8 @@ enum class Stage {
     UniformGrid,          // small bodies' pairs, by grid ...
     SortSweep,            // ... or by sort-and-sweep
     FindPairs,            // large and plane passes, pair sort
-    Narrowphase,          // pair kinds without SAT
-    NarrowphaseSat,       // hull-hull
+    Narrowphase,          // the pair kinds of program "narrowphase" (no SAT)
+    NarrowphaseSat,       // those of "narrowphase_sat" (hull-hull)
     ApplyForces,          // gravity, app forces, gyroscopic term
     ContactCache,         // contact list and warm start
     PrepareContacts,
@@ -46,6 +39,16 @@ enum class Stage {
     UpdateActivation,
 };
 const char* stageName(Stage stage);
+
+// The narrowphase programs of the pair-kind table, in launch order, and the stage of each.
+struct NarrowphaseProgram {
+    const char* program;
+    Stage stage;
+};
+extern const NarrowphaseProgram kNarrowphasePrograms[];
+extern const int kNumNarrowphasePrograms;
+// The program a narrowphase stage launches (nullptr for any other stage).
+const char* narrowphaseProgramOf(Stage stage);
 
 struct Plan {
     PairKinds kinds;
@@ -82,7 +85,8 @@ struct DerivedPlan {
     std::vector<int> largeRows;  // rows paired by the large pass (BTG_BODY_LARGE)
     std::vector<int> planeRows;  // rows whose shape is a plane
 };
-// The plan of a scene: the pair kinds present (a kind needs a body that can move), the large
+// The plan of a scene: the pair kinds present (a row of the table whose two shape kinds occur,
+// on two bodies, one of which can move), the large
 // bodies (bounding size above largeBodyFactor x the median: a ground box, paired against
 // everything so it does not inflate the grid cell), the cell, the small bodies' broadphase.
 DerivedPlan derivePlan(const PlanInput& in);

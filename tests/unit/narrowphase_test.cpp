@@ -53,14 +53,10 @@ struct Scene {
     PairKinds kinds() const
     {
         PairKinds k;
-        for (const BtgPair& p : pairs) switch (ref::pairKind(p, props.data(), t.view())) {
-            case BTG_PAIR_SPHERE_SPHERE: k.sphereSphere = true; break;
-            case BTG_PAIR_SPHERE_HULL: k.sphereHull = true; break;
-            case BTG_PAIR_SPHERE_PLANE: k.spherePlane = true; break;
-            case BTG_PAIR_HULL_PLANE: k.hullPlane = true; break;
-            case BTG_PAIR_HULL_HULL: k.hullHull = true; break;
-            default: break;
-            }
+        for (const BtgPair& p : pairs) {
+            const int kind = ref::pairKind(p, props.data(), t.view());
+            if (kind != BTG_PAIR_NONE) k.add(kind);
+        }
         return k;
     }
 };

@@ -30,9 +30,11 @@ TEST(Plan, SpheresOnAPlaneLeaveOutSat)
     PlanInput in;
     in.bodies = {body(BTG_SHAPE_PLANE, 0, false), body(BTG_SHAPE_SPHERE, 1, true), body(BTG_SHAPE_SPHERE, 1, true)};
     DerivedPlan d = derivePlan(in);
-    EXPECT_TRUE(d.plan.kinds.sphereSphere);
-    EXPECT_TRUE(d.plan.kinds.spherePlane);
-    EXPECT_FALSE(d.plan.kinds.hullHull);
+    EXPECT_TRUE(d.plan.kinds.has(BTG_PAIR_SPHERE_SPHERE));
+    EXPECT_TRUE(d.plan.kinds.has(BTG_PAIR_SPHERE_PLANE));
+    EXPECT_FALSE(d.plan.kinds.has(BTG_PAIR_HULL_HULL));
+    EXPECT_FALSE(d.plan.kinds.has(BTG_PAIR_SPHERE_HULL));
+    EXPECT_EQ(d.plan.kinds.count(), 2);
     EXPECT_EQ(d.planeRows, std::vector<int>{0});
     EXPECT_TRUE(d.largeRows.empty());
     const std::vector<Stage> stages = d.plan.substep();
@@ -95,4 +97,48 @@ TEST(Plan, DebrisAmongCratesSweeps)
     std::vector<Stage> stages = derivePlan(in).plan.substep();
     EXPECT_TRUE(has(stages, Stage::SortSweep));
     EXPECT_FALSE(has(stages, Stage::UniformGrid));
+}
+
+// The pair-kind table: every pair of shape kinds reaches exactly one row or none, in either
+// order; every row's program is a narrowphase program; ids are unique and within range.
+TEST(Plan, PairKindTableCoversEachShapePairOnce)
+{
+    std::vector<int> seen(BTG_NUM_PAIR_KINDS, 0);
+    for (int r = 0; r < kNumPairKindRows; ++r) {
+        const PairKindRow& row = kPairKindRows[r];
+        ASSERT_GT(row.kind, BTG_PAIR_NONE);
+        ASSERT_LT(row.kind, BTG_NUM_PAIR_KINDS);
+        EXPECT_EQ(++seen[size_t(row.kind)], 1) << "kind " << row.kind << " listed twice";
+        EXPECT_LE(row.shapeA, row.shapeB);
+        EXPECT_EQ(btgPairKind(row.shapeA, row.shapeB), row.kind);
+        EXPECT_EQ(btgPairKind(row.shapeB, row.shapeA), row.kind);
+        EXPECT_EQ(pairKindRow(row.kind), &row);
+        bool known = false;
+        for (int p = 0; p < kNumNarrowphasePrograms; ++p) known |= std::string(kNarrowphasePrograms[p].program) == row.program;
+        EXPECT_TRUE(known) << row.kernel << " in unknown program " << row.program;
+    }
+    int rows = 0;
+    for (int a = 0; a < BTG_NUM_SHAPE_KINDS; ++a)
+        for (int b = a; b < BTG_NUM_SHAPE_KINDS; ++b) rows += btgPairKind(a, b) != BTG_PAIR_NONE;
+    EXPECT_EQ(rows, kNumPairKindRows);
+    EXPECT_EQ(btgPairKind(BTG_SHAPE_PLANE, BTG_SHAPE_PLANE), BTG_PAIR_NONE);
+}
+
+// Each row becomes a kind of the plan as soon as its two shapes occur and one can move; the
+// stages are the programs holding those kinds.
+TEST(Plan, KindsComeFromTheTable)
+{
+    for (int r = 0; r < kNumPairKindRows; ++r) {
+        const PairKindRow& row = kPairKindRows[r];
+        PlanInput in;
+        in.bodies = {body(row.shapeA, 1, false), body(row.shapeB, 1, true)};
+        DerivedPlan d = derivePlan(in);
+        EXPECT_EQ(d.plan.kinds.mask, 1u << row.kind) << row.kernel;
+        for (int p = 0; p < kNumNarrowphasePrograms; ++p)
+            EXPECT_EQ(has(d.plan.substep(), kNarrowphasePrograms[p].stage),
+                      std::string(kNarrowphasePrograms[p].program) == row.program)
+                << row.kernel;
+        in.bodies[1].movable = in.bodies[1].dynamic = false;
+        EXPECT_FALSE(derivePlan(in).plan.kinds.any()) << row.kernel << ": nothing can move";
+    }
 }

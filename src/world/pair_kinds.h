@@ -1,0 +1,37 @@
+// pair_kinds.h — the host's view of the pair-kind table (kernels/shared/pair_kinds.h): its rows
+// as data for the plan and the narrowphase launcher, and PairKinds, the set of kinds a scene
+// has. Nothing here lists a kind by hand: every row comes from the shared table.
+#pragma once
+#include "shared/pair_kinds.h"
+
+#include <cstdint>
+
+namespace btgpu {
+
+struct PairKindRow {
+    int kind;             // BTG_PAIR_*
+    int shapeA, shapeB;   // BTG_SHAPE_*, shapeA <= shapeB
+    const char* kernel;   // in `program`
+    const char* program;  // kernels/<program>.cl
+};
+
+// Every row, in table (and launch) order.
+extern const PairKindRow kPairKindRows[];
+extern const int kNumPairKindRows;
+
+// The row of `kind`, or nullptr for BTG_PAIR_NONE.
+const PairKindRow* pairKindRow(int kind);
+
+// A set of pair kinds (bit k: kind k).
+struct PairKinds {
+    uint32_t mask = 0;
+    bool has(int kind) const { return (mask >> kind) & 1u; }
+    void add(int kind) { mask |= 1u << kind; }
+    bool any() const { return mask != 0; }
+    int count() const;
+    // Some kind of the set has its kernel in `program`.
+    bool anyIn(const char* program) const;
+};
+static_assert(BTG_NUM_PAIR_KINDS <= 32, "PairKinds holds one bit per kind");
+
+}  // namespace btgpu
