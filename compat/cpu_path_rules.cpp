@@ -143,7 +143,7 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, int numActions
     if (world.getNumConstraints() > 0) return "constraints (addConstraint) are not on the GPU path yet";
     if (numActions > 0) return "actions (addAction, vehicles, characters) are not on the GPU path yet";
     const btCollisionObjectArray& objs = world.getCollisionObjectArray();
-    shapes->clear();
+    shapes->beginReferences();
     for (int i = 0; i < objs.size(); ++i) {
         const btCollisionObject* o = objs[i];
         int type = o->getInternalType();
