@@ -625,6 +625,12 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             m_report.writeBackMs += msBetween(t2, Clock::now());
             if (m_world.m_internalTickCallback) m_world.m_internalTickCallback(&m_world, fixedTimeStep);
         }
+    } else {
+        // Nothing to simulate this call, but what the app changed is still looked at: a body
+        // made bad is named now, as on the CPU path, not at the next call that steps.
+        Clock::time_point t0 = Clock::now();
+        syncIn(*m_dev, changedRows(false));
+        m_report.syncInMs += msBetween(t0, Clock::now());
     }
     Clock::time_point t3 = Clock::now();
     m_world.synchronizeMotionStates();
