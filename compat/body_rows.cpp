@@ -86,8 +86,9 @@ std::string badInput(const btCollisionObject* obj)
     if (!finite(rb->getGravity())) return "non-finite gravity";
     if (!std::isfinite(rb->getLinearDamping()) || !std::isfinite(rb->getAngularDamping())) return "non-finite damping";
     if (!finite(rb->getLinearFactor()) || !finite(rb->getAngularFactor())) return "non-finite linear or angular factor";
-    if (!std::isfinite(rb->getLinearSleepingThreshold()) || !std::isfinite(rb->getAngularSleepingThreshold()))
-        return "non-finite sleeping threshold";
+    // An infinite threshold is a legal "always slow enough" (Bullet compares v^2 < t^2); NaN is not.
+    if (std::isnan(rb->getLinearSleepingThreshold()) || std::isnan(rb->getAngularSleepingThreshold()))
+        return "NaN sleeping threshold";
     return "";
 }
 

@@ -66,6 +66,7 @@ void btGpuDynamicsWorld::addRigidBody(btRigidBody* body, int group, int mask)
 
 void btGpuDynamicsWorld::removeRigidBody(btRigidBody* body)
 {
+    m_gpu->removed(body);
     btDiscreteDynamicsWorld::removeRigidBody(body);
     m_gpu->structureChanged();
 }
@@ -78,6 +79,7 @@ void btGpuDynamicsWorld::addCollisionObject(btCollisionObject* object, int group
 
 void btGpuDynamicsWorld::removeCollisionObject(btCollisionObject* object)
 {
+    m_gpu->removed(object);
     btDiscreteDynamicsWorld::removeCollisionObject(object);
     m_gpu->structureChanged();
 }

@@ -3,6 +3,7 @@
 // compute something else with it and the GPU path does not follow it. Settings that change
 // nothing for a world of rigid bodies without joints stay on the GPU path; each says why below.
 #include "cpu_path_rules.h"
+#include "subclass_rules.h"
 
 #include "btgpu/Config.h"
 #include "parallel_rows.h"
@@ -143,7 +144,7 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, int numActions
     if (world.getNumConstraints() > 0) return "constraints (addConstraint) are not on the GPU path yet";
     if (numActions > 0) return "actions (addAction, vehicles, characters) are not on the GPU path yet";
     const btCollisionObjectArray& objs = world.getCollisionObjectArray();
-    shapes->clear();
+    shapes->beginReferences();
     for (int i = 0; i < objs.size(); ++i) {
         const btCollisionObject* o = objs[i];
         int type = o->getInternalType();
@@ -164,6 +165,8 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, int numActions
 
 std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
 {
+    std::string subclass = subclassReason(world);
+    if (!subclass.empty()) return subclass;
     // The GPU path is btSequentialImpulseConstraintSolver's projected Gauss-Seidel; any other
     // solver (MLCP, NNCG, the multithreaded one, a subclass) computes something else.
     btConstraintSolver* solver = world.getConstraintSolver();

@@ -17,8 +17,8 @@ struct ShapeTables;
 
 // The scene's make-up: constraints, actions, object kinds, shapes, and body settings fixed at
 // construction. Only changes when something is added or removed, so it is checked then.
-// Builds the GPU shape tables into *shapes on the way (a shape kind they cannot take is a
-// reason).
+// Adds every body's shape to the GPU shape tables *shapes on the way, counting references
+// (a shape kind they cannot take is a reason).
 std::string structureReason(const btDiscreteDynamicsWorld& world, int numActions, ShapeTables* shapes);
 
 // World-level settings an app may change between any two steps (solver, dispatcher and pair

@@ -118,7 +118,7 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
         m_shapeOfObject.resize(size_t(objs.size()));
         for (int i = 0; i < objs.size(); ++i) m_shapeOfObject[size_t(i)] = objs[i]->getCollisionShape();
         m_structureDirty = false;
-        m_needsRebuild = true;
+        m_rowsStale = true;
     }
     if (!m_structureReason.empty()) return m_structureReason;
     std::string why = worldReason(m_world, m_config);
@@ -134,9 +134,15 @@ void GpuWorld::makePlan()
     in.largeBodyFactor = m_config.largeBodyFactor;
     in.contactThreshold = m_config.contactThreshold;
     in.bodies.reserve(m_rows.size());
-    for (const btCollisionObject* o : m_rows) {
-        const BtgShape& s = m_shapes.shapes[size_t(m_shapes.rowOf.at(o->getCollisionShape()))];
+    for (size_t r = 0; r < m_rows.size(); ++r) {
+        const btCollisionObject* o = m_rows.at(r);
         PlanBody b;
+        if (!o) {
+            b.live = false;
+            in.bodies.push_back(b);
+            continue;
+        }
+        const BtgShape& s = m_shapes.shapes[size_t(m_shapes.rowOf.at(o->getCollisionShape()))];
         b.shapeType = s.type;
         b.size = s.type == BTG_SHAPE_PLANE ? 0.0f : 2.0f * boundingRadius(s);
         b.movable = !o->isStaticObject();
@@ -159,13 +165,9 @@ void GpuWorld::makePlan()
     m_report.stages = m_plan.stages();
 }
 
-void GpuWorld::rebuild()
+void GpuWorld::uploadShapeTables()
 {
     DeviceWorld& w = *m_dev;
-    const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
-    m_rows.clear();
-    for (int i = 0; i < objs.size(); ++i) m_rows.push_back(objs[i]);  // shapes: by structureReason()
-    resizeBodies(w, int(m_rows.size()));
     auto uploadTable = [&](auto& arr, auto v) {
         if (v.empty()) v.resize(1);  // a bound buffer even when the table is empty
         arr.upload(w.ctx, v);
@@ -176,6 +178,23 @@ void GpuWorld::rebuild()
     uploadTable(w.hullIndices, m_shapes.indices);
     uploadTable(w.hullEdges, m_shapes.edges);
     w.numShapes = int(m_shapes.shapes.size());
+}
+
+void GpuWorld::rebuild()
+{
+    DeviceWorld& w = *m_dev;
+    const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
+    // Shape rows nobody uses any more are dropped here, where every row is rebuilt anyway.
+    if (m_shapes.unreferenced() > 0) {
+        m_shapes.clear();
+        structureReason(m_world, m_world.m_actions.size(), &m_shapes);  // verdict known: empty
+    }
+    m_shapes.takeGrown();
+    m_rows.reset(objs);
+    m_removed.clear();
+    m_rowsStale = false;
+    resizeBodies(w, int(m_rows.size()));
+    uploadShapeTables();
     makePlan();
     // Rows changed meaning: the warm-start cache is dropped (one step without warm start).
     size_t n = m_rows.size();
@@ -193,6 +212,52 @@ void GpuWorld::rebuild()
     w.islandTime.upload(w.ctx, never);
     m_mirror.assign(n, Mirror());
     syncIn(w, changedRows(true));
+}
+
+void GpuWorld::followRows()
+{
+    DeviceWorld& w = *m_dev;
+    const RowMap::Changes changes = m_rows.follow(m_world.getCollisionObjectArray(), m_removed);
+    m_removed.clear();
+    m_rowsStale = false;
+    // Retired rows are cheap (every stage skips them) but not free: past as many as there are
+    // bodies, and past the unused shape rows' worth, every row is rebuilt densely.
+    if (m_rows.unused() > std::max<size_t>(1024, m_rows.live()) ||
+        m_shapes.unreferenced() > std::max<size_t>(64, m_shapes.shapes.size() / 2)) {
+        rebuild();
+        return;
+    }
+    const size_t n = m_rows.size();
+    resizeBodies(w, int(n));  // keeps every row's contents
+    if (m_shapes.takeGrown()) uploadShapeTables();
+    makePlan();
+    w.pairCapacity = std::max(w.pairCapacity, std::max<size_t>(256, 4 * n));
+    w.contactCapacity = std::max(w.contactCapacity, std::max<size_t>(256, 2 * n));
+    w.pairs.reserveExact(w.ctx, w.pairCapacity);
+    w.manifolds.reserveExact(w.ctx, w.pairCapacity);
+    w.contacts.reserveExact(w.ctx, w.contactCapacity);
+    w.contactCache.reserveExact(w.ctx, w.contactCapacity, true);  // the untouched pairs warm-start
+    m_mirror.resize(n);
+    // A retired row takes no part in anything; a fresh one starts with its timers cleared and
+    // is written whole by the next comparison (its mirror can match nothing).
+    std::vector<BodyRowUpdate> retired;
+    for (size_t r : changes.retired) {
+        BodyRowUpdate u{};
+        u.row = int(r);
+        u.rot = btgMake4(0, 0, 0, 1);
+        u.props.flags = BTG_BODY_EXCLUDED;
+        retired.push_back(u);
+        m_mirror[r] = Mirror();
+        m_mirror[r].props = u.props;
+    }
+    syncIn(w, retired);
+    std::vector<int> fresh;
+    for (size_t r : changes.fresh) {
+        m_mirror[r] = Mirror();
+        m_mirror[r].props.flags = 0xffffffffu;
+        fresh.push_back(int(r));
+    }
+    resetRows(w, fresh);
 }
 
 bool GpuWorld::shapesSwapped() const
@@ -233,7 +298,7 @@ std::vector<BodyRowUpdate> GpuWorld::changedRows(bool all)
     });
     for (const auto& list : newlyBad)
         for (const auto& [r, bad] : list) {
-            btCollisionObject* o = m_rows[r];
+            btCollisionObject* o = m_rows.at(r);
             int index = m_world.getCollisionObjectArray().findLinearSearch(o);
             report({Issue::Kind::BadBody,
                     "body " + std::to_string(index) + " (user index " + std::to_string(o->getUserIndex()) + ", shape " +
@@ -250,7 +315,8 @@ std::vector<BodyRowUpdate> GpuWorld::changedRows(bool all)
 
 bool GpuWorld::compareRow(size_t r, bool all, BodyRowUpdate* u, std::string* newlyBad)
 {
-    btCollisionObject* o = m_rows[r];
+    btCollisionObject* o = m_rows.at(r);
+    if (!o) return false;  // retired: written once when it was
     Mirror& m = m_mirror[r];
     int shapeRow = m_shapes.rowOf.at(o->getCollisionShape());
     std::string bad = badInput(o);
@@ -326,6 +392,7 @@ void GpuWorld::runOnDevice(int substeps, btScalar dt)
     for (const CallEvent& e : outcome.events)
         report({e.kind == CallEvent::Kind::Grew ? Issue::Kind::Overflow : Issue::Kind::Device, e.message});
     m_report.redoneSteps += outcome.redone;
+    m_rows.stepped();
     m_report.pairs = int(std::min<size_t>(m_readback.counters[kPairCount], w.pairCapacity));
     m_report.contacts = int(m_readback.counters[kContactCount]);
 }
@@ -346,7 +413,8 @@ void GpuWorld::writeBack(const BodyReadback& rb, bool last)
     std::vector<std::vector<size_t>> bad(chunks), fellAsleep(chunks);
     forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
         for (size_t r = begin; r < end; ++r) {
-            btRigidBody* body = btRigidBody::upcast(m_rows[r]);
+            btCollisionObject* o = m_rows.at(r);
+            btRigidBody* body = o ? btRigidBody::upcast(o) : nullptr;
             if (!body) continue;
             bool asleepNow = writeRow(r, body, rb, &bad[chunk]);
             if (!fuse) {
@@ -367,7 +435,7 @@ void GpuWorld::writeBack(const BodyReadback& rb, bool last)
     m_fusedWriteBack = fuse;
     for (const std::vector<size_t>& rows : bad)
         for (size_t r : rows) {
-            btCollisionObject* body = m_rows[r];
+            btCollisionObject* body = m_rows.at(r);
             int index = m_world.getCollisionObjectArray().findLinearSearch(body);
             report({Issue::Kind::BadBody,
                     "body " + std::to_string(index) + " (user index " + std::to_string(body->getUserIndex()) +
@@ -378,7 +446,7 @@ void GpuWorld::writeBack(const BodyReadback& rb, bool last)
     // asleep, and synchronizeMotionStates skips sleeping bodies: their motion states get that
     // last move here.
     for (const std::vector<size_t>& rows : fellAsleep)
-        for (size_t r : rows) m_world.synchronizeSingleMotionState(btRigidBody::upcast(m_rows[r]));
+        for (size_t r : rows) m_world.synchronizeSingleMotionState(btRigidBody::upcast(m_rows.at(r)));
 }
 
 bool GpuWorld::writeRow(size_t r, btRigidBody* body, const BodyReadback& rb, std::vector<size_t>* bad)
@@ -493,6 +561,8 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
     if (m_needsRebuild) {
         rebuild();
         m_needsRebuild = false;
+    } else if (m_rowsStale) {
+        followRows();
     }
     m_onCpuPath = false;
     m_report.cpuPathReason.clear();
@@ -555,6 +625,12 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             m_report.writeBackMs += msBetween(t2, Clock::now());
             if (m_world.m_internalTickCallback) m_world.m_internalTickCallback(&m_world, fixedTimeStep);
         }
+    } else {
+        // Nothing to simulate this call, but what the app changed is still looked at: a body
+        // made bad is named now, as on the CPU path, not at the next call that steps.
+        Clock::time_point t0 = Clock::now();
+        syncIn(*m_dev, changedRows(false));
+        m_report.syncInMs += msBetween(t0, Clock::now());
     }
     Clock::time_point t3 = Clock::now();
     m_world.synchronizeMotionStates();

@@ -5,6 +5,7 @@
 #pragma once
 #include "btgpu/btGpuDynamicsWorld.h"
 #include "cpu_path_guard.h"
+#include "row_map.h"
 #include "pipeline.h"
 #include "shape_tables.h"
 #include "stages/sync_bodies.h"
@@ -13,6 +14,7 @@
 
 #include <memory>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 namespace btgpu {
@@ -32,6 +34,8 @@ public:
     int stepOnCpuPath(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep);
 
     void structureChanged() { m_structureDirty = true; }
+    // An object left the world (called before Bullet forgets it; it may be deleted after).
+    void removed(const btCollisionObject* object) { m_removed.insert(object); }
     // An OpenCL failure during a step: reported once, and the world stays on the CPU path.
     void failDevice(const std::string& what);
     void report(Issue issue);
@@ -56,7 +60,12 @@ private:
     // Why this step must run on the CPU path (cpu_path_rules.h), "" for the GPU path; a
     // per-body reason sets *bodyIndex.
     std::string cpuPathReason(int* bodyIndex);
+    // Every row from scratch: the rows, the shape tables, the plan, the device state (the
+    // warm-start cache dropped). After the CPU path ran, or when retired rows pile up.
     void rebuild();
+    // The rows follow the objects added and removed since the last step, the rest untouched.
+    void followRows();
+    void uploadShapeTables();
     void makePlan();
     // True when a collision object's shape is no longer the one the tables were built for.
     bool shapesSwapped() const;
@@ -85,7 +94,9 @@ private:
     long m_calls = 0;  // stepSimulation calls on the GPU path (profiling cadence)
     Plan m_plan;
     ShapeTables m_shapes;
-    std::vector<btCollisionObject*> m_rows;
+    RowMap m_rows;
+    std::unordered_set<const btCollisionObject*> m_removed;  // since the rows last followed the world
+    bool m_rowsStale = true;  // objects added or removed since the rows last followed them
     std::vector<Mirror> m_mirror;
     std::vector<bool> m_large;  // rows paired by brute force instead of the grid
     Snapshot m_snapshot;

@@ -123,7 +123,16 @@ void appendBox(ShapeTables& t, BtgShape& s, const btVector3& h)
 int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
 {
     auto it = rowOf.find(shape);
-    if (it != rowOf.end()) return it->second;
+    if (it != rowOf.end()) {
+        const size_t row = size_t(it->second);
+        // Not referenced until now in this check: verified before it is taken again (it may be
+        // another shape at a reused address, or changed in place).
+        if (references[row] > 0 || (!m_stale[row] && shapeFingerprint(shape) == fingerprint[row])) {
+            ++references[row];
+            return it->second;
+        }
+        rowOf.erase(it);  // the old row stays, unreferenced; a new one is built below
+    }
     BtgShape s{};
     s.firstVertex = s.firstFace = s.firstEdge = 0;
     const int type = shape->getShapeType();
@@ -182,13 +191,40 @@ int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
     badReason.push_back(bad);
     shapeOf.push_back(shape);
     fingerprint.push_back(print);
+    references.push_back(1);
+    m_stale.push_back(0);
+    m_grown = true;
     return row;
+}
+
+void ShapeTables::beginReferences()
+{
+    // A row referenced at the last check may be left with no body now: marked stale, so a
+    // later reference verifies it first.
+    for (size_t r = 0; r < references.size(); ++r) {
+        if (references[r] == 0) m_stale[r] = 1;
+        references[r] = 0;
+    }
+}
+
+bool ShapeTables::takeGrown()
+{
+    const bool grown = m_grown;
+    m_grown = false;
+    return grown;
+}
+
+size_t ShapeTables::unreferenced() const
+{
+    size_t n = 0;
+    for (int r : references) n += r == 0;
+    return n;
 }
 
 bool ShapeTables::changedSinceBuilt() const
 {
     for (size_t r = 0; r < shapeOf.size(); ++r)
-        if (shapeFingerprint(shapeOf[r]) != fingerprint[r]) return true;
+        if (references[r] > 0 && shapeFingerprint(shapeOf[r]) != fingerprint[r]) return true;
     return false;
 }
 

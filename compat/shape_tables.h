@@ -33,6 +33,7 @@ struct ShapeTables {
     std::vector<std::string> badReason;             // per row: "" or why its bodies are kept out
     std::vector<const btCollisionShape*> shapeOf;   // per row
     std::vector<std::uint64_t> fingerprint;         // per row: shapeFingerprint when added
+    std::vector<int> references;                    // per row: bodies using it at the last check
 
     // How each shape's contact breaking threshold is set (BtgShape::breakingThreshold), from
     // the dispatcher: with CD_USE_RELATIVE_CONTACT_BREAKING_THRESHOLD (Bullet's default) the
@@ -41,10 +42,19 @@ struct ShapeTables {
     float absoluteThreshold = 0.02f;
 
     // The shape's row (adding it the first time), or -1 with *whyNot set when the GPU path
-    // cannot take it.
+    // cannot take it. Counts a reference to the row; the first reference of a check to a row
+    // nothing referenced before is verified against the shape (its address may now hold
+    // another shape, or the app changed it in place): a shape that changed gets a new row.
     int add(const btCollisionShape* shape, std::string* whyNot);
-    // True when the app changed a shape of the tables in place since it was added.
+    // Starts a new count of references (the world then adds every body's shape). Rows nobody
+    // references are never read again: the app may have deleted their shapes.
+    void beginReferences();
+    // True when the app changed a referenced shape in place since its row was built.
     bool changedSinceBuilt() const;
+    // Rows added since the last call (the device tables need uploading).
+    bool takeGrown();
+    // Rows no body references (kept until the tables are cleared).
+    size_t unreferenced() const;
     // Empties the tables; the hull faces of this build are kept for the next one only (so
     // hulls the app deleted meanwhile are forgotten after one build).
     void clear();
@@ -55,6 +65,8 @@ private:
         Polyhedron poly;
     };
     std::unordered_map<const btCollisionShape*, CachedHull> m_hullCache, m_previousHulls;
+    std::vector<char> m_stale;  // per row: unreferenced at some check since it was verified
+    bool m_grown = true;
 };
 
 // Radius of a sphere about the body origin that holds the shape (m); planes: 0.

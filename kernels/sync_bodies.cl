@@ -1,7 +1,9 @@
-/* sync_bodies.cl — Stage: sync_in. Writes the rows the app changed between steps.
- * Launch: one work-item per changed row. Reads rows, states (6 float4 per row: pos, rot,
- * linVel, angVel, force, torque), rowProps. Writes pos, rot, linVel, angVel, extForce,
- * extTorque, props at those rows. */
+/* sync_bodies.cl — Stage: sync_in. Writes the rows the app changed between steps, and clears
+ * the per-row timers of rows that take a new body.
+ * Launch: one work-item per changed (or fresh) row. scatter_bodies reads rows, states (6 float4
+ * per row: pos, rot, linVel, angVel, force, torque), rowProps and writes pos, rot, linVel,
+ * angVel, extForce, extTorque, props at those rows; reset_rows writes sleepTime, islandTime,
+ * sleepState at its rows. */
 #include "shared/types.h"
 
 __kernel void scatter_bodies(int n, __global const int* restrict rows, __global const BtgFloat4* restrict states,
@@ -19,4 +21,17 @@ __kernel void scatter_bodies(int n, __global const int* restrict rows, __global 
     extForce[r] = states[6 * k + 4];
     extTorque[r] = states[6 * k + 5];
     props[r] = rowProps[k];
+}
+
+/* A row that takes a new body starts as rebuild() starts every row: no time under the sleeping
+ * thresholds, no island yet (+inf), awake. */
+__kernel void reset_rows(int n, __global const int* restrict rows, __global float* sleepTime,
+                         __global uint* islandTime, __global uint* sleepState)
+{
+    int k = get_global_id(0);
+    if (k >= n) return;
+    int r = rows[k];
+    sleepTime[r] = 0.0f;
+    islandTime[r] = 0x7f800000u;
+    sleepState[r] = 0u;
 }

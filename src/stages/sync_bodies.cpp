@@ -54,6 +54,15 @@ void syncIn(DeviceWorld& w, const std::vector<BodyRowUpdate>& updates)
         .run(size_t(n));
 }
 
+void resetRows(DeviceWorld& w, const std::vector<int>& rows)
+{
+    if (rows.empty()) return;
+    w.stagingRows.upload(w.ctx, rows);
+    cl::Launch(w.ctx, w.ctx.program("sync_bodies").kernel("reset_rows"), &w.profiler)
+        .arg(int(rows.size())).arg(w.stagingRows).arg(w.sleepTime).arg(w.islandTime).arg(w.sleepState)
+        .run(rows.size());
+}
+
 void syncOut(DeviceWorld& w, BodyReadback& out)
 {
     size_t n = size_t(w.numBodies);

@@ -20,6 +20,8 @@ struct BodyRowUpdate {
 void resizeBodies(DeviceWorld& w, int n);
 // Writes the given rows through staging buffers and one scatter launch.
 void syncIn(DeviceWorld& w, const std::vector<BodyRowUpdate>& rows);
+// Clears the sleeping and island timers of rows that now hold a new body.
+void resetRows(DeviceWorld& w, const std::vector<int>& rows);
 
 // In page-locked host memory (cl/pinned.h): the readback is the step's one large transfer.
 // Release before the context goes.

@@ -102,6 +102,7 @@ DerivedPlan derivePlan(const PlanInput& in)
     std::vector<float> sizes;
     for (size_t r = 0; r < in.bodies.size(); ++r) {
         const PlanBody& b = in.bodies[r];
+        if (!b.live) continue;
         if (b.dynamic) plan.hasDynamic = true;
         if (b.gyroscopic) plan.gyroscopic = true;
         if (b.shapeType >= 0 && b.shapeType < BTG_NUM_SHAPE_KINDS) {
@@ -128,7 +129,7 @@ DerivedPlan derivePlan(const PlanInput& in)
     float cell = 0.0f;
     for (size_t r = 0; r < in.bodies.size(); ++r) {
         const PlanBody& b = in.bodies[r];
-        if (b.shapeType == BTG_SHAPE_PLANE) continue;
+        if (!b.live || b.shapeType == BTG_SHAPE_PLANE) continue;
         if (b.size > largeSize) d.largeRows.push_back(int(r));
         else cell = std::max(cell, b.size);
     }

@@ -73,6 +73,7 @@ struct PlanBody {
     bool movable = false;    // not static (dynamic or kinematic)
     bool dynamic = false;    // moved by the solver
     bool gyroscopic = false;  // asks for the implicit gyroscopic term
+    bool live = true;        // false: a retired row (no body), ignored
 };
 struct PlanInput {
     std::vector<PlanBody> bodies;  // by row

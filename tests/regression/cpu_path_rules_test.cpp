@@ -464,3 +464,54 @@ TEST(CpuPathRules, LatencyInterpolationOffAsStock)
         ASSERT_LT((a.getOrigin() - b.getOrigin()).length(), tol::kInterpolatedTransform) << "call " << i;
     }
 }
+
+namespace {
+
+// An app's own world classes: one overrides a step hook the GPU path never calls, one only
+// adds what the GPU path honours.
+struct OwnIntegration : btGpuDynamicsWorld {
+    using btGpuDynamicsWorld::btGpuDynamicsWorld;
+    int calls = 0;
+    void integrateTransforms(btScalar dt) override
+    {
+        ++calls;
+        btGpuDynamicsWorld::integrateTransforms(dt);
+    }
+};
+struct OwnKinematics : btGpuDynamicsWorld {
+    using btGpuDynamicsWorld::btGpuDynamicsWorld;
+    int calls = 0;
+    void saveKinematicState(btScalar dt) override
+    {
+        ++calls;
+        btGpuDynamicsWorld::saveKinematicState(dt);
+    }
+};
+
+template <class World>
+void stepOwnWorld(bool expectGpu)
+{
+    btDefaultCollisionConfiguration config;
+    btCollisionDispatcher dispatcher(&config);
+    btDbvtBroadphase broadphase;
+    btSequentialImpulseConstraintSolver solver;
+    World world(&dispatcher, &broadphase, &solver, &config);
+    btBoxShape box(btVector3(0.5f, 0.5f, 0.5f));
+    btRigidBody::btRigidBodyConstructionInfo info(1, nullptr, &box, btVector3(1, 1, 1));
+    btRigidBody body(info);
+    world.addRigidBody(&body);
+    for (int i = 0; i < 3; ++i) world.stepSimulation(btScalar(1) / 60);
+    EXPECT_EQ(world.isGpuPath(), expectGpu) << world.report().cpuPathReason;
+    EXPECT_EQ(world.calls, 3) << "the app's hook was not called on every step";
+    world.removeRigidBody(&body);
+}
+
+}  // namespace
+
+// A hook the GPU path bypasses sends the world to the CPU path, where Bullet calls it; one it
+// calls (saveKinematicState) keeps the GPU path.
+TEST(CpuPathRules, OwnWorldClassesKeepTheirHooks)
+{
+    stepOwnWorld<OwnIntegration>(false);
+    stepOwnWorld<OwnKinematics>(true);
+}
