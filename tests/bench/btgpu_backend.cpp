@@ -4,6 +4,7 @@
 // column is the call's wall time less the host write-back (results into btRigidBody and motion
 // states, plus Bullet's broadphase AABB sync when that is on).
 #include <chrono>
+#include <cstdio>
 
 #include "bench_backend.h"
 #include "bt_bodies.h"
@@ -29,6 +30,12 @@ public:
         std::string n = "btGpuDynamicsWorld, " + std::to_string(m_iterations) + " iterations, Config::profile on every 10th frame";
         if (m_world && !m_world->isGpuPath()) n += "; CPU PATH: " + m_world->report().cpuPathReason;
         if (m_world) n += "; redone steps " + std::to_string(m_world->report().redoneSteps);
+        if (m_world) {
+            // Bitwise fingerprint of the final state (same scene, device and binary: same hash).
+            char hash[32];
+            std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(m_world->stateHash()));
+            n += std::string("; state hash ") + hash;
+        }
         if (m_noAabbSync) n += "; Config::syncBroadphaseAabbs off";
         if (m_jacobi) n += "; Jacobi with mass splitting";
         n += "; step column = sync-in of app changes + device substeps + readback (Report::syncInMs + deviceMs); "
