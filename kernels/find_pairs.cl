@@ -1,11 +1,16 @@
 /* find_pairs.cl — broadphase: uniform-grid pairs of small bodies, large bodies against every
  * body, planes against every body; unsorted pairs appended with an atomic counter, then sorted
- * by (a, b) with prims/radix_sort (launched from the host between these kernels).
- * Stage: broadphase. Launch: per kernel below (bodies, sorted grid entries or pair slots).
+ * by the key (kind, a, b) with prims/radix_sort (launched from the host between these kernels),
+ * least significant digits first: after the (a, b) passes the pairs are gathered into `pairs`
+ * (the order of manifolds, contacts and the cache), and the kind pass then groups their slots
+ * into kindOrder, each kind's range found on the device (kindRanges).
+ * Stage: broadphase. Launch: per kernel below (bodies, sorted grid entries, pair slots or kinds).
  * Reads: aabbMin, aabbMax, props, shapes, pos, rot, largeBodies, planeBodies.
- * Writes: pairs, counters[BTG_COUNTER_PAIRS] (all pairs found, even past capacity), counters[BTG_COUNTER_STATUS]
- * (BTG_STATUS_PAIR_OVERFLOW), and the scratch of BroadphaseScratch. */
+ * Writes: pairs, kindOrder, kindRanges, counters[BTG_COUNTER_PAIRS] (all pairs found, even past
+ * capacity), counters[BTG_COUNTER_STATUS] (BTG_STATUS_PAIR_OVERFLOW), and the scratch of
+ * BroadphaseScratch. */
 #include "shared/broadphase.h"
+#include "shared/pair_kinds.h"
 
 #define BTG_NO_KEY 0xffffffffu
 
@@ -158,4 +163,53 @@ __kernel void pairs_write(__global const BtgPair* restrict raw, __global const u
     uint total = counters[BTG_COUNTER_PAIRS];
     if (k == 0 && total > capacity) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_PAIR_OVERFLOW);
     if (k < min(total, capacity)) pairs[k] = raw[order[k]];
+}
+
+/* Launch: one work-item per pair slot (capacity). The kind digit of the sort key, for the pairs
+ * already in (a, b) order: key = the pair's kind (BTG_NO_KEY past the count), value = its slot. */
+__kernel void pair_kind_keys(__global const BtgPair* restrict pairs, __global const BtgBodyProps* restrict props,
+                             __global const BtgShape* restrict shapes, __global const uint* restrict counters,
+                             __global uint* restrict keys, __global uint* restrict order, uint capacity)
+{
+    uint k = get_global_id(0);
+    if (k >= capacity) return;
+    order[k] = k;
+    if (k >= min(counters[BTG_COUNTER_PAIRS], capacity)) {
+        keys[k] = BTG_NO_KEY;
+        return;
+    }
+    BtgPair p = pairs[k];
+    keys[k] = (uint)btgPairKind(shapes[props[p.a].shape].type, shapes[props[p.b].shape].type);
+}
+
+/* Launch: one work-item per pair kind (BTG_NUM_PAIR_KINDS). Kind k's [start, end) in the kind
+ * order: a binary search of the sorted kind keys; or, when the scene has one kind only
+ * (singleKind >= 0, nothing sorted, kindOrder unused), every pair for it and none for the rest. */
+__kernel void pair_kind_ranges(__global const uint* restrict keys, __global const uint* restrict counters,
+                               uint capacity, int singleKind, __global uint* restrict kindRanges)
+{
+    int kind = (int)get_global_id(0);
+    if (kind >= BTG_NUM_PAIR_KINDS) return;
+    uint count = min(counters[BTG_COUNTER_PAIRS], capacity);
+    uint start = 0u, end = 0u;
+    if (singleKind >= 0) {
+        end = kind == singleKind ? count : 0u;
+    } else {
+        uint lo = 0u, hi = count;  /* first key >= kind */
+        while (lo < hi) {
+            uint mid = lo + (hi - lo) / 2u;
+            if (keys[mid] < (uint)kind) lo = mid + 1u;
+            else hi = mid;
+        }
+        start = lo;
+        hi = count;  /* first key > kind */
+        while (lo < hi) {
+            uint mid = lo + (hi - lo) / 2u;
+            if (keys[mid] <= (uint)kind) lo = mid + 1u;
+            else hi = mid;
+        }
+        end = lo;
+    }
+    kindRanges[BTG_KIND_RANGE_START(kind)] = start;
+    kindRanges[BTG_KIND_RANGE_END(kind)] = end;
 }

@@ -32,7 +32,7 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::UpdateAabbs: updateAabbs(w, p.contactThreshold); break;
         case Stage::UniformGrid:
         case Stage::SortSweep: smallBodyPairs(w, plan.broadphase, plan.cellSize); break;
-        case Stage::FindPairs: finishPairs(w); break;
+        case Stage::FindPairs: finishPairs(w, plan.kinds); break;
         case Stage::Narrowphase:
         case Stage::NarrowphaseSat: narrowphaseProgram(w, plan.kinds, narrowphaseProgramOf(stage)); break;
         case Stage::ApplyForces: applyForces(w, p.dt); break;

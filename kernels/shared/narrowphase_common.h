@@ -115,25 +115,34 @@ static inline BtgFloat4 btgFaceVertex(BtgShape s, BtgFace f, BTG_CONST_GLOBAL Bt
 }
 
 #ifdef __OPENCL_C_VERSION__
-/* The kernel of one pair-kind row. Launch: one work-item per pair slot (pairCapacity); items
- * past counters[kPairCount] and pairs of another kind return at once, so each pair is written
- * by exactly one kernel. Writes manifolds[i] for the pairs of its kind (numPoints 0 when apart). */
+/* The kernel of one pair-kind row: its routine over the kind's range of the kind-grouped pairs
+ * (find_pairs). Launch: as many work-items as the host likes (it cannot know the range's size
+ * without a readback); they stride over the range, read from kindRanges on the device. The pair
+ * in range slot i is pairs[kindOrder[i]] (indirect), or pairs[i] when the scene has this one kind
+ * only (find_pairs then sorts nothing). A pair whose shapes are not this row's (a stale plan)
+ * gets no points rather than another kind's routine. Writes manifolds[slot] of each pair in the
+ * range (numPoints 0 when apart); manifolds stay in pair order. */
 #define BTG_NARROWPHASE_KERNEL(program, kind, shapeA, shapeB, routine, kernel)                                     \
-    __kernel void kernel(__global const BtgPair* restrict pairs, __global const uint* restrict counters,             \
-                         uint capacity, __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot, \
+    __kernel void kernel(__global const BtgPair* restrict pairs, __global const uint* restrict kindOrder,          \
+                         __global const uint* restrict kindRanges, int indirect,                                    \
+                         __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,            \
                          __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes,     \
                          __global const BtgFloat4* restrict verts, __global const BtgFace* restrict faces,          \
                          __global const int* restrict indices, __global const BtgFloat4* restrict edges,            \
                          __global BtgManifold* restrict manifolds)                                                  \
     {                                                                                                               \
-        uint i = (uint)get_global_id(0);                                                                            \
-        if (i >= min(counters[BTG_COUNTER_PAIRS], capacity)) return;                                                \
-        BtgPair p = pairs[i];                                                                                       \
-        if (btgPairKind(shapes[props[p.a].shape].type, shapes[props[p.b].shape].type) != (kind)) return;            \
-        BtgCollider a = btgLoadCollider(p.a, pos, rot, props, shapes);                                              \
-        BtgCollider b = btgLoadCollider(p.b, pos, rot, props, shapes);                                              \
-        const float t = btgPairThreshold(a.shape, b.shape);                                                         \
-        manifolds[i] = btgWithThreshold(routine(a, b, verts, faces, indices, edges, t), t);                         \
+        const uint end = kindRanges[BTG_KIND_RANGE_END(kind)];                                                      \
+        for (uint i = kindRanges[BTG_KIND_RANGE_START(kind)] + (uint)get_global_id(0); i < end;                    \
+             i += (uint)get_global_size(0)) {                                                                      \
+            const uint slot = indirect ? kindOrder[i] : i;                                                          \
+            const BtgPair p = pairs[slot];                                                                          \
+            BtgCollider a = btgLoadCollider(p.a, pos, rot, props, shapes);                                          \
+            BtgCollider b = btgLoadCollider(p.b, pos, rot, props, shapes);                                          \
+            const float t = btgPairThreshold(a.shape, b.shape);                                                     \
+            manifolds[slot] = btgPairKind(a.shape.type, b.shape.type) == (kind)                                     \
+                                  ? btgWithThreshold(routine(a, b, verts, faces, indices, edges, t), t)             \
+                                  : btgEmptyManifold(p.a, p.b);                                                     \
+        }                                                                                                           \
     }
 #endif
 

@@ -25,6 +25,12 @@
 #define BTG_PAIR_HULL_HULL 5
 #define BTG_NUM_PAIR_KINDS 6
 
+/* The pairs grouped by kind (find_pairs): kindOrder lists the pair slots ordered by (kind, a, b),
+ * and kind k's pairs are kindOrder[kindRanges[BTG_KIND_RANGE_START(k)], kindRanges[BTG_KIND_RANGE_END(k)]). */
+#define BTG_KIND_RANGE_START(kind) (2 * (kind))
+#define BTG_KIND_RANGE_END(kind) (2 * (kind) + 1)
+#define BTG_KIND_RANGES_SIZE (2 * BTG_NUM_PAIR_KINDS)
+
 /* The sub-tables, one per program. Row: X(program, kind, shape A, shape B, routine, kernel),
  * shape A <= shape B. A routine takes the pair's two colliders in the pair's own order
  * (A = pair.a, whichever shape that is), the shape tables and the pair's breaking threshold,

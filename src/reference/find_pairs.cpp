@@ -1,8 +1,11 @@
 // find_pairs.cpp (reference) — two nested loops over the rows that can pair at all, in row
-// order, so the output is already sorted by (a, b).
+// order, so the output is already sorted by (a, b); the kind grouping by one sweep per kind.
 #include "reference/find_pairs.h"
 
 #include "shared/broadphase.h"
+#include "shared/pair_kinds.h"
+
+#include <algorithm>
 
 namespace btgpu::ref {
 std::vector<BtgPair> findPairs(const std::vector<BtgFloat4>& aabbMin, const std::vector<BtgFloat4>& aabbMax,
@@ -38,5 +41,23 @@ std::vector<BtgPair> findPairs(const std::vector<BtgFloat4>& aabbMin, const std:
         }
     }
     return out;
+}
+
+PairKindGroups groupPairsByKind(const std::vector<BtgPair>& pairs, const std::vector<BtgBodyProps>& props,
+                                const std::vector<BtgShape>& shapes)
+{
+    auto kindOf = [&](uint slot) {
+        const BtgPair& p = pairs[slot];
+        return btgPairKind(shapes[size_t(props[size_t(p.a)].shape)].type, shapes[size_t(props[size_t(p.b)].shape)].type);
+    };
+    PairKindGroups g;
+    g.ranges.assign(BTG_KIND_RANGES_SIZE, 0u);
+    for (int kind = 0; kind < BTG_NUM_PAIR_KINDS; ++kind) {
+        g.ranges[BTG_KIND_RANGE_START(kind)] = uint(g.order.size());
+        for (uint slot = 0; slot < uint(pairs.size()); ++slot)
+            if (kindOf(slot) == kind) g.order.push_back(slot);
+        g.ranges[BTG_KIND_RANGE_END(kind)] = uint(g.order.size());
+    }
+    return g;
 }
 }  // namespace btgpu::ref

@@ -1,7 +1,9 @@
 // find_pairs.cpp — host launcher of kernels/find_pairs.cl: the small bodies' pass (grid hash,
 // radix sort of (hash, row), cell ranges, grid pairs; or stages/sort_sweep), the large and
-// plane passes, then a radix sort of the appended pairs by (a, b) and the gather into w.pairs. The pair count stays on the device:
-// the pair sort runs over pairCapacity slots and its kernels read the count (no readback).
+// plane passes, then a radix sort of the appended pairs by (kind, a, b): the (a, b) digits, the
+// gather into w.pairs, the kind digit into w.pairOrder and the kind ranges. The pair count stays
+// on the device: the sort runs over pairCapacity slots and its kernels read the count (no
+// readback).
 #include "stages/find_pairs.h"
 
 #include "cl/program.h"
@@ -74,7 +76,38 @@ void smallBodyPairs(DeviceWorld& w, Broadphase broadphase, float cellSize)
     else appendGridPairs(w, prog, capacity, cellSize);
 }
 
-void finishPairs(DeviceWorld& w)
+void groupPairsByKind(DeviceWorld& w, const PairKinds& kinds)
+{
+    cl::Context& ctx = w.ctx;
+    BroadphaseScratch& s = w.broadphase;
+    cl::Program& prog = ctx.program("find_pairs");
+    const cl_uint capacity = cl_uint(std::min(w.pairCapacity, w.pairs.capacity()));
+    w.pairKindRanges.reserve(ctx, BTG_KIND_RANGES_SIZE);
+    // One kind: the pairs are its range as they stand, nothing to sort.
+    w.pairKindsIndirect = kinds.count() > 1;
+    cl_int singleKind = -1;
+    for (int k = 0; k < BTG_NUM_PAIR_KINDS && !w.pairKindsIndirect; ++k)
+        if (kinds.has(k)) singleKind = k;
+    if (w.pairKindsIndirect && capacity > 0) {
+        s.pairKeys.reserve(ctx, capacity);
+        w.pairOrder.reserve(ctx, capacity);
+        cl::Launch(ctx, prog.kernel("pair_kind_keys"), &w.profiler)
+            .arg(w.pairs).arg(w.props).arg(w.shapes).arg(w.counters).arg(s.pairKeys).arg(w.pairOrder).arg(capacity)
+            .run(capacity);
+        // The most significant digit of (kind, a, b): stable, so each kind keeps (a, b) order. Every
+        // kind id fits (padding keys are all ones and sort last).
+        radixSort(ctx, &w.profiler, s.pairKeys, w.pairOrder, capacity, radixBitsFor(BTG_NUM_PAIR_KINDS - 1), s.sort);
+    } else {
+        s.pairKeys.reserve(ctx, 1);
+        w.pairOrder.reserve(ctx, 1);
+    }
+    cl::Launch(ctx, prog.kernel("pair_kind_ranges"), &w.profiler)
+        .arg(s.pairKeys).arg(w.counters).arg(capacity).arg(w.pairKindsIndirect ? cl_int(-1) : singleKind)
+        .arg(w.pairKindRanges)
+        .run(BTG_NUM_PAIR_KINDS, BTG_NUM_PAIR_KINDS);
+}
+
+void finishPairs(DeviceWorld& w, const PairKinds& kinds)
 {
     cl::Context& ctx = w.ctx;
     BroadphaseScratch& s = w.broadphase;
@@ -98,38 +131,39 @@ void finishPairs(DeviceWorld& w)
 
     if (capacity > 0) {
         s.pairKeys.reserve(ctx, capacity);
-        s.pairOrder.reserve(ctx, capacity);
+        w.pairOrder.reserve(ctx, capacity);
         const cl_uint rowBits = cl_uint(radixBitsFor(n > 1 ? cl_uint(n - 1) : 0u));
         auto keys = [&](cl_int mode) {
             cl::Launch(ctx, prog.kernel("pair_sort_keys"), &w.profiler)
-                .arg(s.rawPairs).arg(s.pairOrder).arg(s.pairKeys).arg(w.counters).arg(capacity)
+                .arg(s.rawPairs).arg(w.pairOrder).arg(s.pairKeys).arg(w.counters).arg(capacity)
                 .arg(mode).arg(rowBits)
                 .run(capacity);
         };
         if (2 * rowBits <= 32) {
             keys(BTG_PAIR_KEY_PACKED);  // (a, b) packed in one key: a single sort
-            radixSort(ctx, &w.profiler, s.pairKeys, s.pairOrder, capacity, int(2 * rowBits), s.sort);
+            radixSort(ctx, &w.profiler, s.pairKeys, w.pairOrder, capacity, int(2 * rowBits), s.sort);
         } else {
             // Two stable passes, minor key first. Padding keys are all ones in rowBits; a real b
             // can tie with them, but padding starts after every real slot and the sort is stable.
             keys(BTG_PAIR_KEY_MINOR);
-            radixSort(ctx, &w.profiler, s.pairKeys, s.pairOrder, capacity, int(rowBits), s.sort);
+            radixSort(ctx, &w.profiler, s.pairKeys, w.pairOrder, capacity, int(rowBits), s.sort);
             keys(BTG_PAIR_KEY_MAJOR);
-            radixSort(ctx, &w.profiler, s.pairKeys, s.pairOrder, capacity, int(rowBits), s.sort);
+            radixSort(ctx, &w.profiler, s.pairKeys, w.pairOrder, capacity, int(rowBits), s.sort);
         }
     } else {
-        s.pairOrder.reserve(ctx, 1);
+        w.pairOrder.reserve(ctx, 1);
     }
     cl::Launch(ctx, prog.kernel("pairs_write"), &w.profiler)
-        .arg(s.rawPairs).arg(s.pairOrder).arg(w.pairs.mem() ? w.pairs : s.rawPairs).arg(w.counters)
+        .arg(s.rawPairs).arg(w.pairOrder).arg(w.pairs.mem() ? w.pairs : s.rawPairs).arg(w.counters)
         .arg(capacity)
         .run(std::max<size_t>(capacity, 1));
+    if (kinds.any()) groupPairsByKind(w, kinds);
 }
 
-void findPairs(DeviceWorld& w, Broadphase broadphase, float cellSize)
+void findPairs(DeviceWorld& w, const PairKinds& kinds, Broadphase broadphase, float cellSize)
 {
     smallBodyPairs(w, broadphase, cellSize);
-    finishPairs(w);
+    finishPairs(w, kinds);
 }
 
 }  // namespace btgpu

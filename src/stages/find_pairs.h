@@ -4,7 +4,9 @@
 // a plane/AABB test. Both small-body passes find the same pairs, so the result does not depend
 // on the choice.
 // Reads aabbMin, aabbMax, props (flags, group, mask), largeBodies, planeBodies, pos, rot, shapes.
-// Writes pairs (a < b, sorted by (a, b), no duplicates) and counters[kPairCount]. When more
+// Writes pairs (a < b, sorted by (a, b), no duplicates), pairOrder and pairKindRanges (the
+// pairs grouped by kind: sorted by (kind, a, b), each kind's range found on the device; see
+// groupPairsByKind) and counters[kPairCount]. When more
 // pairs are found than pairCapacity, the count still says how many, BTG_STATUS_PAIR_OVERFLOW
 // is set in counters[kStatus], and the caller grows the buffer and redoes the step.
 // A pair is kept when: neither body is EXCLUDED or NO_RESPONSE; at least one is DYNAMIC and
@@ -16,9 +18,16 @@
 namespace btgpu {
 // cellSize (m) is used by the grid only.
 // The two stages of it: the small bodies' pass (the plan's uniform_grid or sort_sweep), which
-// starts the pair count, then find_pairs (large and plane passes, sort, gather into pairs).
+// starts the pair count, then find_pairs (large and plane passes, sort, gather into pairs,
+// grouping by the plan's kinds).
 void smallBodyPairs(DeviceWorld& w, Broadphase broadphase, float cellSize);
-void finishPairs(DeviceWorld& w);
+void finishPairs(DeviceWorld& w, const PairKinds& kinds);
 // Both, in order.
-void findPairs(DeviceWorld& w, Broadphase broadphase, float cellSize);
+void findPairs(DeviceWorld& w, const PairKinds& kinds, Broadphase broadphase, float cellSize);
+// The last step of finishPairs, for `pairs` as they stand (tests upload their own): the pairs'
+// slots ordered by (kind, a, b) into pairOrder (stable radix pass on the kind: within a kind
+// the (a, b) order) and kind k's range into pairKindRanges[BTG_KIND_RANGE_*(k)], all on the
+// device. With a single kind in `kinds`, no sort: its range is every pair slot in place, the
+// others empty, and pairKindsIndirect is false.
+void groupPairsByKind(DeviceWorld& w, const PairKinds& kinds);
 }

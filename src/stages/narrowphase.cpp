@@ -1,11 +1,13 @@
 // narrowphase.cpp — launches the kernel of each pair-kind row (world/pair_kinds.h) whose kind
-// the plan has, all with the same arguments; each kernel early-outs on pairs of other kinds,
-// so together they write every pair's manifold once. A program is built only when one of its
-// kinds is present (the SAT program only for hull–hull pairs).
+// the plan has, all with the same arguments; each strides over its kind's range of the
+// kind-grouped pairs (find_pairs), so together they write every pair's manifold once. A
+// program is built only when one of its kinds is present (the SAT program only for hull–hull
+// pairs).
 #include "stages/narrowphase.h"
 
 #include "cl/program.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace btgpu {
@@ -14,15 +16,18 @@ void narrowphaseProgram(DeviceWorld& w, const PairKinds& kinds, const char* prog
 {
     if (!kinds.anyIn(program) || w.pairCapacity == 0) return;
     w.manifolds.reserveExact(w.ctx, w.pairCapacity);
-    const cl_uint capacity = static_cast<cl_uint>(w.pairCapacity);
+    // A range's size is known on the device only: a fixed number of work-items strides over it,
+    // enough to fill the device, never more than there are pair slots.
+    const size_t items = std::min(w.pairCapacity, size_t(std::max<cl_uint>(w.ctx.device().computeUnits, 1)) * 1024);
+    const cl_int indirect = w.pairKindsIndirect ? 1 : 0;
     cl::Program& prog = w.ctx.program(program);
     for (int r = 0; r < kNumPairKindRows; ++r) {
         const PairKindRow& row = kPairKindRows[r];
         if (!kinds.has(row.kind) || std::strcmp(row.program, program) != 0) continue;
         cl::Launch(w.ctx, prog.kernel(row.kernel), &w.profiler)
-            .arg(w.pairs).arg(w.counters).arg(capacity).arg(w.pos).arg(w.rot).arg(w.props).arg(w.shapes)
-            .arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges).arg(w.manifolds)
-            .run(w.pairCapacity);
+            .arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)
+            .arg(w.shapes).arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges).arg(w.manifolds)
+            .run(items);
     }
 }
 

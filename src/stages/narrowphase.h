@@ -3,7 +3,8 @@
 // (sphere–sphere, sphere–hull, sphere–plane, hull–plane) and "narrowphase_sat" (hull–hull:
 // SAT over face normals and edge–edge axes, Sutherland–Hodgman clipping, reduction to <= 4
 // points). A program whose kinds are absent is never built.
-// Reads pairs, counters[kPairCount], pos, rot, props (shape), shapes and hull tables.
+// Reads pairs, pairOrder and pairKindRanges (find_pairs' grouping by kind: each kernel strides
+// over its kind's range), pos, rot, props (shape), shapes and hull tables.
 // Writes manifolds[i] for each pair i < min(count, pairCapacity): bodyA/bodyB = the pair's
 // rows, normal from B to A, points on B with signed distance (kept below the pair's threshold:
 // the smaller of its two shapes' breakingThreshold, m).

@@ -1,7 +1,8 @@
 // broadphase_scratch.h — temporaries find_pairs keeps between steps so nothing is reallocated
 // per step: the grid's sorted (hash, row) list and cell ranges, or the sort-and-sweep's
 // sorted (key, row) list and AABBs (each allocated on first use, so only the broadphase the
-// plan names holds memory), the unsorted pairs and the arrays and scratch of their sort.
+// plan names holds memory), the unsorted pairs and the keys and scratch of their sort (its
+// values, the pair order, are DeviceWorld::pairOrder: the narrowphase reads them).
 // Only src/stages/find_pairs.cpp and src/stages/sort_sweep.cpp look inside.
 #pragma once
 #include "stages/prims/radix_sort.h"
@@ -20,7 +21,6 @@ struct BroadphaseScratch {
     cl::DeviceArray<BtgFloat4> sapMax;
     cl::DeviceArray<BtgPair> rawPairs; // pairCapacity: as appended, unsorted
     cl::DeviceArray<uint> pairKeys;    // pairCapacity: sort keys
-    cl::DeviceArray<uint> pairOrder;   // pairCapacity: slots of rawPairs in sorted order
     RadixScratch sort;
 };
 

@@ -67,6 +67,13 @@ struct DeviceWorld {
     int numPlanes = 0;
     cl::DeviceArray<BtgPair> pairs;    // sorted by (a, b) after find_pairs
     size_t pairCapacity = 0;
+    // The pair sort's values (pairCapacity): while find_pairs sorts, slots of its raw pairs; after
+    // it, the slots of `pairs` ordered by (kind, a, b). Each narrowphase kernel walks its kind's
+    // range, pairKindRanges[BTG_KIND_RANGE_*(kind)]; when the plan has a single kind nothing is
+    // sorted and the ranges index `pairs` directly (pairKindsIndirect false).
+    cl::DeviceArray<uint> pairOrder;
+    cl::DeviceArray<uint> pairKindRanges;  // BTG_KIND_RANGES_SIZE
+    bool pairKindsIndirect = false;
     BroadphaseScratch broadphase;      // find_pairs' own temporaries
 
     // --- narrowphase and contacts ---

@@ -147,19 +147,33 @@ struct PairsRun {
     std::vector<BtgPair> pairs;
     uint count = 0;
     uint status = 0;
+    std::vector<uint> kindOrder;   // pairOrder after the kind pass (empty unless indirect)
+    std::vector<uint> kindRanges;  // BTG_KIND_RANGES_SIZE
 };
 
-inline PairsRun runFindPairs(DeviceWorld& w, Broadphase kind, float cellSize, size_t capacity)
+// Every kind of the pair-kind table.
+inline PairKinds allPairKinds()
+{
+    PairKinds k;
+    for (int r = 0; r < kNumPairKindRows; ++r) k.add(kPairKindRows[r].kind);
+    return k;
+}
+
+inline PairsRun runFindPairs(DeviceWorld& w, Broadphase kind, float cellSize, size_t capacity,
+                             PairKinds kinds = allPairKinds())
 {
     w.pairs.reserve(w.ctx, capacity);
     w.pairCapacity = capacity;
     w.counters.zero(w.ctx, kNumCounters);
-    findPairs(w, kind, cellSize);
+    findPairs(w, kinds, kind, cellSize);
     std::vector<uint> counters = w.counters.download(w.ctx, kNumCounters);
     PairsRun r;
     r.count = counters[kPairCount];
     r.status = counters[kStatus];
-    r.pairs = w.pairs.download(w.ctx, std::min<size_t>(r.count, capacity));
+    const size_t stored = std::min<size_t>(r.count, capacity);
+    r.pairs = w.pairs.download(w.ctx, stored);
+    if (w.pairKindsIndirect) r.kindOrder = w.pairOrder.download(w.ctx, stored);
+    r.kindRanges = w.pairKindRanges.download(w.ctx, BTG_KIND_RANGES_SIZE);
     return r;
 }
 

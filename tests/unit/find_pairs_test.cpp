@@ -1,6 +1,7 @@
 // find_pairs_test.cpp — the device broadphase (grid + large + planes + pair sort) returns exactly
 // the brute-force reference's sorted pair list on random scenes, including one where the grid
-// matters (5000 bodies) and one with more than 65536 rows (the two-pass pair sort); an
+// matters (5000 bodies) and one with more than 65536 rows (the two-pass pair sort), grouped by
+// kind exactly as the reference groups it (or, for a plan of one kind, left in place); an
 // undersized pair buffer raises the overflow flag and still reports the full count.
 #include "broadphase_scene.h"
 #include "reference/find_pairs.h"
@@ -41,9 +42,14 @@ void checkScene(const test::BroadphaseScene& s, size_t minPairs)
     for (size_t i = 0; i < expected.size(); ++i)
         ASSERT_TRUE(r.pairs[i] == expected[i]) << "pair " << i << ": got (" << r.pairs[i].a << ", " << r.pairs[i].b
                                                << ") expected (" << expected[i].a << ", " << expected[i].b << ")";
+    // Grouped by kind exactly as the reference groups the sorted list: (kind, a, b).
+    ref::PairKindGroups groups = ref::groupPairsByKind(expected, s.props, s.shapes);
+    EXPECT_EQ(r.kindRanges, groups.ranges);
+    EXPECT_EQ(r.kindOrder, groups.order);
     // Same input, same list: the atomically appended order does not leak out.
     Result again = runDevice(w, s, expected.size() + 100);
     EXPECT_TRUE(again.pairs == r.pairs);
+    EXPECT_EQ(again.kindOrder, r.kindOrder);
 }
 }  // namespace
 
@@ -77,6 +83,48 @@ TEST(FindPairs, PairKindsArePresent)
     EXPECT_GT(plane, 10u);
     EXPECT_GT(large, 10u);
     EXPECT_GT(largeLarge, 0u);
+}
+
+TEST(FindPairs, KindRangesCoverEveryKind)
+{
+    // The scene has every kind of the table but plane–plane (never a pair): each range is
+    // non-empty, and the ranges tile the kind order.
+    test::BroadphaseScene s = test::makeBroadphaseScene(2000, 18.0f, 21);
+    DeviceWorld w(test::context());
+    s.upload(w);
+    updateAabbs(w, kThreshold);
+    std::vector<BtgPair> expected = reference(w, s);
+    Result r = runDevice(w, s, expected.size() + 10);
+    ASSERT_EQ(r.kindOrder.size(), expected.size());
+    uint next = 0;
+    for (int kind = 0; kind < BTG_NUM_PAIR_KINDS; ++kind) {
+        EXPECT_EQ(r.kindRanges[BTG_KIND_RANGE_START(kind)], next);
+        next = r.kindRanges[BTG_KIND_RANGE_END(kind)];
+        if (kind != BTG_PAIR_NONE) EXPECT_GT(next, r.kindRanges[BTG_KIND_RANGE_START(kind)]) << "kind " << kind;
+    }
+    EXPECT_EQ(next, expected.size());
+}
+
+TEST(FindPairs, OneKindSortsNothing)
+{
+    // A plan of one kind: its range is every pair in place, the other kinds' are empty.
+    test::BroadphaseScene s = test::makeBroadphaseScene(600, 10.0f, 3, false, 0);
+    for (BtgBodyProps& p : s.props)
+        if (p.shape == 0) p.shape = 1;  // boxes only
+    DeviceWorld w(test::context());
+    s.upload(w);
+    updateAabbs(w, kThreshold);
+    std::vector<BtgPair> expected = reference(w, s);
+    ASSERT_GT(expected.size(), 50u);
+    PairKinds hulls;
+    hulls.add(BTG_PAIR_HULL_HULL);
+    Result r = test::runFindPairs(w, Broadphase::UniformGrid, s.maxSmallExtent + 2 * kThreshold, expected.size(), hulls);
+    EXPECT_FALSE(w.pairKindsIndirect);
+    EXPECT_TRUE(r.pairs == expected);
+    for (int kind = 0; kind < BTG_NUM_PAIR_KINDS; ++kind) {
+        EXPECT_EQ(r.kindRanges[BTG_KIND_RANGE_START(kind)], 0u);
+        EXPECT_EQ(r.kindRanges[BTG_KIND_RANGE_END(kind)], kind == BTG_PAIR_HULL_HULL ? expected.size() : 0u);
+    }
 }
 
 TEST(FindPairs, ManyRowsUseTwoPassSort)

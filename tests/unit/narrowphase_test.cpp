@@ -5,6 +5,7 @@
 #include "shape_tables.h"
 #include "shared/math.h"
 #include "shared/narrowphase_common.h"
+#include "stages/find_pairs.h"
 #include "stages/narrowphase.h"
 #include "test_device.h"
 #include "tolerances.h"
@@ -81,6 +82,7 @@ std::vector<BtgManifold> runDevice(cl::Context& ctx, const Scene& s)
     BtgManifold sentinel{};
     sentinel.numPoints = -1;
     w.manifolds.upload(ctx, std::vector<BtgManifold>(w.pairCapacity, sentinel));
+    groupPairsByKind(w, s.kinds());
     narrowphase(w, s.kinds());
     std::vector<BtgManifold> out = w.manifolds.download(ctx, w.pairCapacity);
     for (size_t i = s.pairs.size(); i < out.size(); ++i) EXPECT_EQ(out[i].numPoints, -1) << "slot past the count written";
