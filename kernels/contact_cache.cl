@@ -1,24 +1,24 @@
-/* contact_cache.cl — Stage: contacts (compaction of the manifolds and warm start) and, after the
- * solve, the warm-start cache for the next substep.
+/* contact_cache.cl — Stage: contacts (compaction of the pairs' manifolds and warm start) and,
+ * after the solve, the warm-start cache for the next substep.
  * Launch: count_contacts / write_contacts one work-item per pair slot (pairCapacity), in
  * work-groups whose size the host passes as the local-memory scan size; scan_blocks as one
  * work-item; store_contact_cache one work-item per contact slot.
- * Reads manifolds, counters[kPairCount, kPrevContactCount, kStatus], pos, rot, contactCache.
- * Writes blockSums (scratch), contacts, counters[kContactCount], counters[kStatus]; then
- * contactCache and counters[kPrevContactCount]. */
+ * Reads pairManifolds (each pair's range of manifolds with points), manifolds,
+ * counters[kPairCount, kPrevContactCount, kStatus], pos, rot, contactCache.
+ * Writes blockSums (scratch), contacts and contactManifolds (the manifold slot of each),
+ * counters[kContactCount], counters[kStatus]; then contactCache and counters[kPrevContactCount]. */
 #include "shared/counters.h"
 #include "shared/types.h"
 #include "shared/math.h"
 #include "shared/contact_rows.h"
 
-/* Mirror btgpu::Counter in src/world/device_world.h. */
-
-static uint has_points(__global const BtgManifold* restrict manifolds, __global const uint* restrict counters,
-                       int pairCapacity)
+/* The contacts of this work-item's pair: its manifolds with points. */
+static uint pair_contacts(__global const BtgManifoldRange* restrict pairManifolds, __global const uint* restrict counters,
+                          int pairCapacity)
 {
     uint gid = (uint)get_global_id(0);
     uint n = min(counters[BTG_COUNTER_PAIRS], (uint)pairCapacity);
-    return (gid < n && manifolds[gid].numPoints > 0) ? 1u : 0u;
+    return gid < n ? (uint)pairManifolds[gid].count : 0u;
 }
 
 /* Hillis-Steele inclusive scan of one value per work-item; integers, so any order is exact.
@@ -38,11 +38,11 @@ static uint group_exclusive_scan(uint v, __local uint* tmp, uint* total)
     return tmp[lid] - v;
 }
 
-__kernel void count_contacts(__global const BtgManifold* restrict manifolds, __global const uint* restrict counters,
+__kernel void count_contacts(__global const BtgManifoldRange* restrict pairManifolds, __global const uint* restrict counters,
                              int pairCapacity, __global uint* blockSums, __local uint* tmp)
 {
     uint total;
-    group_exclusive_scan(has_points(manifolds, counters, pairCapacity), tmp, &total);
+    group_exclusive_scan(pair_contacts(pairManifolds, counters, pairCapacity), tmp, &total);
     if (get_local_id(0) == 0) blockSums[get_group_id(0)] = total;
 }
 
@@ -60,32 +60,42 @@ __kernel void scan_blocks(__global uint* blockSums, int numBlocks, __global uint
     if (sum > (uint)contactCapacity) counters[BTG_COUNTER_STATUS] |= BTG_STATUS_CONTACT_OVERFLOW;
 }
 
-__kernel void write_contacts(__global const BtgManifold* restrict manifolds, __global const uint* restrict counters,
+/* A pair's contacts go to consecutive slots from its prefix, in its range's order. */
+__kernel void write_contacts(__global const BtgManifoldRange* restrict pairManifolds,
+                             __global const BtgManifold* restrict manifolds, __global const uint* restrict counters,
                              int pairCapacity, __global const uint* restrict blockSums,
                              __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,
                              __global const BtgCachedContact* restrict cache, int cacheCapacity,
-                             __global BtgContact* contacts, int contactCapacity, BtgStepParams params,
-                             __local uint* tmp)
+                             __global BtgContact* contacts, __global uint* restrict contactManifolds, int contactCapacity,
+                             BtgStepParams params, __local uint* tmp)
 {
-    uint flag = has_points(manifolds, counters, pairCapacity);
+    uint count = pair_contacts(pairManifolds, counters, pairCapacity);
     uint total;
-    uint local_index = group_exclusive_scan(flag, tmp, &total);
-    if (!flag) return;
-    uint dst = blockSums[get_group_id(0)] + local_index;
-    if (dst >= (uint)contactCapacity) return;
-    BtgManifold m = manifolds[get_global_id(0)];
-    BtgContact c = btgContactFromManifold(m, pos[m.bodyA], pos[m.bodyB]);
+    uint local_index = group_exclusive_scan(count, tmp, &total);
+    if (count == 0u) return;
+    BtgManifoldRange range = pairManifolds[get_global_id(0)];
+    uint first = blockSums[get_group_id(0)] + local_index;
     int prevCount = (int)min(counters[BTG_COUNTER_PREV_CONTACTS], (uint)cacheCapacity);
-    int j = btgFindPrevContact(cache, prevCount, m.bodyA, m.bodyB);
-    if (j >= 0) btgWarmStartFrom(&c, rot[m.bodyA], cache[j], m.breakingThreshold, params.warmstartFactor);
-    contacts[dst] = c;
+    for (uint j = 0; j < count; ++j) {
+        uint dst = first + j;
+        if (dst >= (uint)contactCapacity) return;
+        uint slot = (uint)range.start + j;
+        BtgManifold m = manifolds[slot];
+        BtgContact c = btgContactFromManifold(m, pos[m.bodyA], pos[m.bodyB]);
+        int prev = btgFindPrevContact(cache, prevCount, m);
+        if (prev >= 0) btgWarmStartFrom(&c, rot[m.bodyA], m, cache[prev], params.warmstartFactor);
+        contacts[dst] = c;
+        contactManifolds[dst] = slot;
+    }
 }
 
 /* After the solve, before the bodies move: the solved contacts become the next substep's cache.
  * A substep that overflowed, or whose one-launch solve gave up at its grid barrier, leaves the
  * cache as it was, so the redo of a one-substep call finds it unchanged (its results are
  * thrown away anyway). */
-__kernel void store_contact_cache(__global const BtgContact* restrict contacts, __global uint* counters,
+__kernel void store_contact_cache(__global const BtgContact* restrict contacts,
+                                  __global const uint* restrict contactManifolds,
+                                  __global const BtgManifold* restrict manifolds, __global uint* counters,
                                   int contactCapacity, __global const BtgFloat4* restrict rot,
                                   __global BtgCachedContact* cache, int cacheCapacity)
 {
@@ -96,5 +106,5 @@ __kernel void store_contact_cache(__global const BtgContact* restrict contacts, 
     if (i == 0) counters[BTG_COUNTER_PREV_CONTACTS] = n;
     if (i >= n) return;
     BtgContact c = contacts[i];
-    cache[i] = btgCachedContactFrom(c, rot[c.bodyA]);
+    cache[i] = btgCachedContactFrom(c, rot[c.bodyA], manifolds[contactManifolds[i]]);
 }

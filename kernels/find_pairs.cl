@@ -6,7 +6,7 @@
  * into kindOrder, each kind's range found on the device (kindRanges).
  * Stage: broadphase. Launch: per kernel below (bodies, sorted grid entries, pair slots or kinds).
  * Reads: aabbMin, aabbMax, props, shapes, pos, rot, largeBodies, planeBodies.
- * Writes: pairs, kindOrder, kindRanges, counters[BTG_COUNTER_PAIRS] (all pairs found, even past
+ * Writes: pairs, pairManifolds (empty), kindOrder, kindRanges, counters[BTG_COUNTER_PAIRS] (all pairs found, even past
  * capacity), counters[BTG_COUNTER_STATUS] (BTG_STATUS_PAIR_OVERFLOW), and the scratch of
  * BroadphaseScratch. */
 #include "shared/broadphase.h"
@@ -154,15 +154,22 @@ __kernel void pair_sort_keys(__global const BtgPair* restrict raw, __global uint
 }
 
 /* Launch: one work-item per pair slot (capacity). Gathers the sorted pairs into the world's
- * list and flags an overflow. */
+ * list, gives each no manifolds yet (the narrowphase of its kind gives it its range) and flags
+ * an overflow. */
 __kernel void pairs_write(__global const BtgPair* restrict raw, __global const uint* restrict order,
-                          __global BtgPair* restrict pairs, __global uint* counters,
-                          uint capacity)
+                          __global BtgPair* restrict pairs, __global BtgManifoldRange* restrict pairManifolds,
+                          __global uint* counters, uint capacity)
 {
     uint k = get_global_id(0);
     uint total = counters[BTG_COUNTER_PAIRS];
     if (k == 0 && total > capacity) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_PAIR_OVERFLOW);
-    if (k < min(total, capacity)) pairs[k] = raw[order[k]];
+    if (k < min(total, capacity)) {
+        pairs[k] = raw[order[k]];
+        BtgManifoldRange none;
+        none.start = (int)k;
+        none.count = 0;
+        pairManifolds[k] = none;
+    }
 }
 
 /* Launch: one work-item per pair slot (capacity). The kind digit of the sort key, for the pairs

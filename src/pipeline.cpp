@@ -123,7 +123,9 @@ void grow(DeviceWorld& w, const BodyReadback& rb, bool pairOverflow, bool contac
         w.contactCapacity = std::max(w.contactCapacity + w.contactCapacity / 4, contacts + contacts / 8 + 64);
     w.pairs.reserveExact(w.ctx, w.pairCapacity);
     w.manifolds.reserveExact(w.ctx, w.pairCapacity);
+    w.pairManifolds.reserveExact(w.ctx, w.pairCapacity);
     w.contacts.reserveExact(w.ctx, w.contactCapacity);
+    w.contactManifolds.reserveExact(w.ctx, w.contactCapacity);
     w.contactCache.reserveExact(w.ctx, w.contactCapacity, true);
 }
 

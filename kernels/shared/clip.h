@@ -30,7 +30,12 @@ static inline int btgExtremeFace(BtgCollider h, BTG_CONST_GLOBAL BtgFace* faces,
     return best;
 }
 
-static inline int btgClipPolygon(const BtgFloat4* in, int n, BtgFloat4 planeN, float planeD, BtgFloat4* out)
+/* One Sutherland–Hodgman step against the plane planeN.x = planeD (keeps the side <= 0).
+ * Each corner carries the labels of its two polygon edges, (incoming << 8) | outgoing, as
+ * box3d's b3ClipPolygon does: a corner cut on the edge prev -> cur takes that edge and the
+ * clipping plane's label `side`, so the labels name the corner by the features that make it. */
+static inline int btgClipPolygon(const BtgFloat4* in, const uint* inLabels, int n, BtgFloat4 planeN, float planeD,
+                                 uint side, BtgFloat4* out, uint* outLabels)
 {
     int m = 0;
     if (n == 0) return 0;
@@ -38,10 +43,17 @@ static inline int btgClipPolygon(const BtgFloat4* in, int n, BtgFloat4 planeN, f
     float dp = btgDot3(planeN, prev) - planeD;
     for (int i = 0; i < n; ++i) {
         BtgFloat4 cur = in[i];
+        uint label = inLabels[i];
         float dc = btgDot3(planeN, cur) - planeD;
-        if ((dc <= 0.0f) != (dp <= 0.0f) && m < BTG_MAX_POLY)
+        if ((dc <= 0.0f) != (dp <= 0.0f) && m < BTG_MAX_POLY) {
+            uint edge = label >> 8; /* the polygon edge prev -> cur */
+            outLabels[m] = dp <= 0.0f ? (edge << 8) | side : (side << 8) | edge;
             out[m++] = prev + (cur - prev) * (dp / (dp - dc));
-        if (dc <= 0.0f && m < BTG_MAX_POLY) out[m++] = cur;
+        }
+        if (dc <= 0.0f && m < BTG_MAX_POLY) {
+            outLabels[m] = label;
+            out[m++] = cur;
+        }
         prev = cur;
         dp = dc;
     }
@@ -49,29 +61,44 @@ static inline int btgClipPolygon(const BtgFloat4* in, int n, BtgFloat4 planeN, f
 }
 
 /* Clipping of the incident face of `inc` against reference face `refFace` of `ref`.
- * refIsA says which hull of the pair the reference belongs to (for the output conventions). */
+ * refIsA says which hull of the pair the reference belongs to (for the output conventions).
+ * Each point's feature id is BTG_FEATURE_CLIP with its corner's faces and edge labels (types.h):
+ * edges are labelled by hull (A or B), not by role, and the pair is flipped when B is the
+ * reference, because B's loop runs the other way round the same polygon. */
 static inline BtgManifold btgClipFaces(BtgCollider ref, int refFace, BtgCollider inc, int refIsA,
                                        BTG_CONST_GLOBAL BtgFloat4* verts, BTG_CONST_GLOBAL BtgFace* faces,
                                        BTG_CONST_GLOBAL int* indices, float threshold, BtgManifold m)
 {
     BtgFace rf = faces[ref.shape.firstFace + refFace];
     BtgFloat4 nRef = btgMat3MulVec(ref.pose.rot, rf.plane); /* out of ref, towards inc */
-    BtgFace inf = faces[inc.shape.firstFace + btgExtremeFace(inc, faces, nRef, -1.0f)];
+    int incFace = btgExtremeFace(inc, faces, nRef, -1.0f);
+    BtgFace inf = faces[inc.shape.firstFace + incFace];
     BtgFloat4 bufA[BTG_MAX_POLY];
     BtgFloat4 bufB[BTG_MAX_POLY];
+    uint labA[BTG_MAX_POLY];
+    uint labB[BTG_MAX_POLY];
     int n = 0;
     for (int k = 0; k < inf.numIndices && n < BTG_MAX_POLY; ++k)
         bufA[n++] = btgPoseApply(inc.pose, btgFaceVertex(inc.shape, inf, verts, indices, k));
+    const uint refOwner = refIsA ? 0u : BTG_FEATURE_EDGE_OF_B, incOwner = refIsA ? BTG_FEATURE_EDGE_OF_B : 0u;
+    /* corner k of the incident loop: between its edges k - 1 and k */
+    for (int k = 0; k < n; ++k)
+        labA[k] = ((incOwner | (uint)((k + n - 1) % n & 0x7f)) << 8) | incOwner | (uint)(k & 0x7f);
     int inA = 1;
     for (int k = 0; k < rf.numIndices && n > 0; ++k) {
         BtgFloat4 v0 = btgPoseApply(ref.pose, btgFaceVertex(ref.shape, rf, verts, indices, k));
         BtgFloat4 v1 = btgPoseApply(ref.pose, btgFaceVertex(ref.shape, rf, verts, indices, k + 1 < rf.numIndices ? k + 1 : 0));
         BtgFloat4 side = btgCross3(v1 - v0, nRef); /* outward for a counter-clockwise loop */
         float d = btgDot3(side, v0);
-        n = inA ? btgClipPolygon(bufA, n, side, d, bufB) : btgClipPolygon(bufB, n, side, d, bufA);
+        uint label = refOwner | (uint)(k & 0x7f);
+        n = inA ? btgClipPolygon(bufA, labA, n, side, d, label, bufB, labB)
+                : btgClipPolygon(bufB, labB, n, side, d, label, bufA, labA);
         inA = !inA;
     }
     BtgFloat4* poly = inA ? bufA : bufB;
+    uint* labels = inA ? labA : labB;
+    const int faceA = refIsA ? refFace : incFace, faceB = refIsA ? incFace : refFace;
+    const uint faceBits = BTG_FEATURE_CLIP | ((uint)(faceA & 0x7f) << 23) | ((uint)(faceB & 0x7f) << 16);
     float refD = btgDot3(nRef, btgPoseApply(ref.pose, btgFaceVertex(ref.shape, rf, verts, indices, 0)));
     float margins = ref.shape.margin + inc.shape.margin;
     float marginB = refIsA ? inc.shape.margin : ref.shape.margin;
@@ -86,12 +113,11 @@ static inline BtgManifold btgClipFaces(BtgCollider ref, int refFace, BtgCollider
         BtgFloat4 onB = refIsA ? btgXyz(p) : btgXyz(p) - nRef * depth;
         BtgFloat4 c = onB + normal * marginB;
         c.w = dist;
+        uint pair = refIsA ? labels[i] : ((labels[i] & 0xffu) << 8) | (labels[i] >> 8);
+        labels[kept] = faceBits | pair;
         poly[kept++] = c; /* kept <= i: compacting in place is safe */
     }
-    if (kept > 0) {
-        m.normal = normal;
-        btgReduceArray(poly, kept, normal, &m);
-    }
+    if (kept > 0) btgReduceArray(poly, labels, kept, normal, &m);
     return m;
 }
 
@@ -163,10 +189,9 @@ static inline BtgManifold btgCollideHullHull(BtgCollider a, BtgCollider b, BTG_S
             BtgFloat4 pa, pb;
             btgClosestSegments(a0, a1, b0, b1, &pa, &pb);
             float dist = btgDot3(d, pb - pa) - margins;
-            if (dist < threshold) {
-                m.normal = -d;
-                btgAddPoint(&m, pb - d * b.shape.margin, dist);
-            }
+            if (dist < threshold)
+                btgAddPoint(&m, -d, pb - d * b.shape.margin, dist,
+                            BTG_FEATURE_EDGES | ((uint)(sat.indexA & 0x7fff) << 15) | (uint)(sat.indexB & 0x7fff));
             return m;
         }
     }

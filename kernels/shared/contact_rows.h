@@ -109,22 +109,24 @@ static inline BtgBodyVel btgMakeBodyVel(int moving, BtgFloat4 lin, BtgFloat4 ang
 
 /* A contact's geometry from its manifold: rA from the point on A, rB from the point on B (as
  * Bullet's rel_pos1/rel_pos2), rA.w = signed distance (prepare reads it, then writes the target
- * there). Impulses start at zero; the caller warm-starts them. */
+ * there). The contact's normal is its first point's (a manifold's points share one today).
+ * Impulses start at zero; the caller warm-starts them. */
 static inline BtgContact btgContactFromManifold(BtgManifold m, BtgFloat4 posA, BtgFloat4 posB)
 {
     BtgContact c;
-    c.normal = btgXyz(m.normal);
+    c.normal = m.numPoints > 0 ? btgMake4(m.points[0].nx, m.points[0].ny, m.points[0].nz, 0.0f)
+                               : btgMake4(0.0f, 1.0f, 0.0f, 0.0f);
     c.t1 = btgZero4();
     c.t2 = btgZero4();
     for (int k = 0; k < BTG_MAX_POINTS; ++k) {
         c.rA[k] = btgZero4();
         c.rB[k] = btgZero4();
         if (k < m.numPoints) {
-            BtgFloat4 pb = btgXyz(m.pointB[k]);
-            float dist = m.pointB[k].w;
-            BtgFloat4 pa = pb + c.normal * dist;
+            BtgManifoldPoint p = m.points[k];
+            BtgFloat4 pb = btgMake4(p.px, p.py, p.pz, 0.0f);
+            BtgFloat4 pa = pb + btgMake4(p.nx, p.ny, p.nz, 0.0f) * p.distance;
             c.rA[k] = pa - btgXyz(posA);
-            c.rA[k].w = dist;
+            c.rA[k].w = p.distance;
             c.rB[k] = pb - btgXyz(posB);
         }
     }
@@ -150,22 +152,30 @@ static inline BtgFloat4 btgContactKey(BtgMat3 rotA, BtgFloat4 rA)
     return btgMat3TMulVec(rotA, btgXyz(rA));
 }
 
-/* A solved contact as the cache keeps it; rotA is A's rotation when the contact was built. */
-static inline BtgCachedContact btgCachedContactFrom(BtgContact c, BtgFloat4 rotA)
+/* A solved contact as the cache keeps it: its keys and impulses, and the identity of its
+ * manifold `m` (sub-shape keys) and points (feature ids). rotA is A's rotation when the contact
+ * was built. */
+static inline BtgCachedContact btgCachedContactFrom(BtgContact c, BtgFloat4 rotA, BtgManifold m)
 {
     BtgCachedContact e;
     BtgMat3 ra = btgQuatToMat3(rotA);
     for (int k = 0; k < BTG_MAX_POINTS; ++k) {
         e.point[k] = btgZero4();
+        e.featureId[k] = BTG_FEATURE_UNKNOWN;
         if (k < c.numPoints) {
             e.point[k] = btgContactKey(ra, c.rA[k]);
             e.point[k].w = btgLane(c.normalImpulse, k);
+            e.featureId[k] = m.points[k].featureId;
         }
     }
 #if BTG_WARMSTART_FRICTION
     e.friction1Impulse = c.friction1Impulse;
     e.friction2Impulse = c.friction2Impulse;
 #endif
+    e.partIdA = m.partIdA;
+    e.indexA = m.indexA;
+    e.partIdB = m.partIdB;
+    e.indexB = m.indexB;
     e.bodyA = c.bodyA;
     e.bodyB = c.bodyB;
     e.numPoints = c.numPoints;
@@ -178,10 +188,12 @@ static inline int btgPairKeyLess(int a0, int b0, int a1, int b1)
 {
     return a0 < a1 || (a0 == a1 && b0 < b1);
 }
-/* Index of the cached contact of the same body pair (same orientation), or -1. */
-static inline int btgFindPrevContact(BTG_CONST_GLOBAL BtgCachedContact* prev, int count, int bodyA, int bodyB)
+/* The cached manifold that `m` continues, or -1 (Jolt's CachedBodyPair -> CachedManifold): the
+ * entries of m's body pair are consecutive; the one with the same orientation and the same
+ * sub-shape keys. */
+static inline int btgFindPrevContact(BTG_CONST_GLOBAL BtgCachedContact* prev, int count, BtgManifold m)
 {
-    int ka = bodyA < bodyB ? bodyA : bodyB, kb = bodyA < bodyB ? bodyB : bodyA;
+    int ka = m.bodyA < m.bodyB ? m.bodyA : m.bodyB, kb = m.bodyA < m.bodyB ? m.bodyB : m.bodyA;
     int lo = 0, hi = count;
     while (lo < hi) {
         int mid = lo + (hi - lo) / 2;
@@ -190,15 +202,22 @@ static inline int btgFindPrevContact(BTG_CONST_GLOBAL BtgCachedContact* prev, in
         if (btgPairKeyLess(pa, pb, ka, kb)) lo = mid + 1;
         else hi = mid;
     }
-    if (lo < count && prev[lo].bodyA == bodyA && prev[lo].bodyB == bodyB) return lo;
+    for (int j = lo; j < count; ++j) {
+        int ma = prev[j].bodyA, mb = prev[j].bodyB;
+        if ((ma < mb ? ma : mb) != ka || (ma < mb ? mb : ma) != kb) break;
+        if (ma == m.bodyA && mb == m.bodyB && prev[j].partIdA == m.partIdA && prev[j].indexA == m.indexA &&
+            prev[j].partIdB == m.partIdB && prev[j].indexB == m.indexB)
+            return j;
+    }
     return -1;
 }
 /* btPersistentManifold::getCacheEntry: each new point takes the old point nearest in A's frame,
- * strictly within the breaking threshold; its impulses start scaled by the warm-start factor.
- * rotA: A's rotation now (the new points' keys). */
-static inline void btgWarmStartFrom(BtgContact* c, BtgFloat4 rotA, BtgCachedContact old, float threshold, float factor)
+ * strictly within the manifold's breaking threshold; its impulses start scaled by the
+ * warm-start factor. rotA: A's rotation now (the new points' keys). */
+static inline void btgWarmStartFrom(BtgContact* c, BtgFloat4 rotA, BtgManifold m, BtgCachedContact old, float factor)
 {
     BtgMat3 ra = btgQuatToMat3(rotA);
+    const float threshold = m.breakingThreshold;
     for (int k = 0; k < c->numPoints; ++k) {
         BtgFloat4 key = btgContactKey(ra, c->rA[k]);
         float best = threshold * threshold;

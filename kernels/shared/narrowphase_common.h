@@ -63,13 +63,45 @@ static inline BtgCollider btgLoadCollider(int body, BTG_CONST_GLOBAL BtgFloat4* 
 static inline BtgManifold btgEmptyManifold(int bodyA, int bodyB)
 {
     BtgManifold m;
-    m.normal = btgMake4(0.0f, 1.0f, 0.0f, 0.0f);
-    for (int k = 0; k < BTG_MAX_POINTS; ++k) m.pointB[k] = btgZero4();
+    for (int k = 0; k < BTG_MAX_POINTS; ++k) {
+        BtgManifoldPoint p;
+        p.px = 0.0f;
+        p.py = 0.0f;
+        p.pz = 0.0f;
+        p.distance = 0.0f;
+        p.nx = 0.0f;
+        p.ny = 1.0f;
+        p.nz = 0.0f;
+        p.featureId = BTG_FEATURE_UNKNOWN;
+        m.points[k] = p;
+    }
+    m.partIdA = BTG_NO_SUB_SHAPE;
+    m.indexA = BTG_NO_SUB_SHAPE;
+    m.partIdB = BTG_NO_SUB_SHAPE;
+    m.indexB = BTG_NO_SUB_SHAPE;
     m.bodyA = bodyA;
     m.bodyB = bodyB;
     m.numPoints = 0;
     m.breakingThreshold = 0.0f;
     return m;
+}
+
+/* A manifold point's vectors (w 0). */
+static inline BtgFloat4 btgPointOnB(BtgManifoldPoint p) { return btgMake4(p.px, p.py, p.pz, 0.0f); }
+static inline BtgFloat4 btgPointNormal(BtgManifoldPoint p) { return btgMake4(p.nx, p.ny, p.nz, 0.0f); }
+
+static inline BtgManifoldPoint btgMakePoint(BtgFloat4 normal, BtgFloat4 pointB, float distance, uint featureId)
+{
+    BtgManifoldPoint p;
+    p.px = pointB.x;
+    p.py = pointB.y;
+    p.pz = pointB.z;
+    p.distance = distance;
+    p.nx = normal.x;
+    p.ny = normal.y;
+    p.nz = normal.z;
+    p.featureId = featureId;
+    return p;
 }
 
 /* A pair's manifold carries the threshold it was found with. */
@@ -79,26 +111,28 @@ static inline BtgManifold btgWithThreshold(BtgManifold m, float threshold)
     return m;
 }
 
-static inline void btgAddPoint(BtgManifold* m, BtgFloat4 pointB, float distance)
+static inline void btgAddPoint(BtgManifold* m, BtgFloat4 normal, BtgFloat4 pointB, float distance, uint featureId)
 {
     if (m->numPoints >= BTG_MAX_POINTS) return;
-    BtgFloat4 p = btgXyz(pointB);
-    p.w = distance;
-    m->pointB[m->numPoints++] = p;
+    m->points[m->numPoints++] = btgMakePoint(normal, pointB, distance, featureId);
 }
 
-/* The same contact seen with A and B exchanged: the normal flips and each point moves to the
- * other surface (point on A = pointB + normal * distance). */
+/* The same contact seen with A and B exchanged: each normal flips, each point moves to the
+ * other surface (point on A = point on B + normal * distance), the sub-shape keys change sides;
+ * the feature ids stay (they only have to match those of the same roles next step). */
 static inline BtgManifold btgSwapManifold(BtgManifold m)
 {
     BtgManifold s = m;
     s.bodyA = m.bodyB;
     s.bodyB = m.bodyA;
-    s.normal = -btgXyz(m.normal);
+    s.partIdA = m.partIdB;
+    s.indexA = m.indexB;
+    s.partIdB = m.partIdA;
+    s.indexB = m.indexA;
     for (int k = 0; k < m.numPoints; ++k) {
-        BtgFloat4 p = btgXyz(m.pointB[k]) + btgXyz(m.normal) * m.pointB[k].w;
-        p.w = m.pointB[k].w;
-        s.pointB[k] = p;
+        BtgManifoldPoint p = m.points[k];
+        BtgFloat4 n = btgPointNormal(p);
+        s.points[k] = btgMakePoint(-n, btgPointOnB(p) + n * p.distance, p.distance, p.featureId);
     }
     return s;
 }
@@ -114,6 +148,15 @@ static inline BtgFloat4 btgFaceVertex(BtgShape s, BtgFace f, BTG_CONST_GLOBAL Bt
     return btgXyz(verts[s.firstVertex + indices[f.firstIndex + k]]);
 }
 
+/* The range of a pair whose one manifold sits at its own slot: that manifold if it has points. */
+static inline BtgManifoldRange btgOneManifold(int slot, BtgManifold m)
+{
+    BtgManifoldRange r;
+    r.start = slot;
+    r.count = m.numPoints > 0 ? 1 : 0;
+    return r;
+}
+
 #ifdef __OPENCL_C_VERSION__
 /* The kernel of one pair-kind row: its routine over the kind's range of the kind-grouped pairs
  * (find_pairs). Launch: as many work-items as the host likes (it cannot know the range's size
@@ -121,7 +164,8 @@ static inline BtgFloat4 btgFaceVertex(BtgShape s, BtgFace f, BTG_CONST_GLOBAL Bt
  * in range slot i is pairs[kindOrder[i]] (indirect), or pairs[i] when the scene has this one kind
  * only (find_pairs then sorts nothing). A pair whose shapes are not this row's (a stale plan)
  * gets no points rather than another kind's routine. Writes manifolds[slot] of each pair in the
- * range (numPoints 0 when apart); manifolds stay in pair order. */
+ * range (numPoints 0 when apart; manifolds stay in pair order) and pairManifolds[slot], the
+ * pair's range of manifolds with points (btgOneManifold). */
 #define BTG_NARROWPHASE_KERNEL(program, kind, shapeA, shapeB, routine, kernel)                                     \
     __kernel void kernel(__global const BtgPair* restrict pairs, __global const uint* restrict kindOrder,          \
                          __global const uint* restrict kindRanges, int indirect,                                    \
@@ -129,7 +173,8 @@ static inline BtgFloat4 btgFaceVertex(BtgShape s, BtgFace f, BTG_CONST_GLOBAL Bt
                          __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes,     \
                          __global const BtgFloat4* restrict verts, __global const BtgFace* restrict faces,          \
                          __global const int* restrict indices, __global const BtgFloat4* restrict edges,            \
-                         __global BtgManifold* restrict manifolds)                                                  \
+                         __global BtgManifold* restrict manifolds,                                                  \
+                         __global BtgManifoldRange* restrict pairManifolds)                                         \
     {                                                                                                               \
         const uint end = kindRanges[BTG_KIND_RANGE_END(kind)];                                                      \
         for (uint i = kindRanges[BTG_KIND_RANGE_START(kind)] + (uint)get_global_id(0); i < end;                    \
@@ -139,9 +184,11 @@ static inline BtgFloat4 btgFaceVertex(BtgShape s, BtgFace f, BTG_CONST_GLOBAL Bt
             BtgCollider a = btgLoadCollider(p.a, pos, rot, props, shapes);                                          \
             BtgCollider b = btgLoadCollider(p.b, pos, rot, props, shapes);                                          \
             const float t = btgPairThreshold(a.shape, b.shape);                                                     \
-            manifolds[slot] = btgPairKind(a.shape.type, b.shape.type) == (kind)                                     \
-                                  ? btgWithThreshold(routine(a, b, verts, faces, indices, edges, t), t)             \
-                                  : btgEmptyManifold(p.a, p.b);                                                     \
+            const BtgManifold m = btgPairKind(a.shape.type, b.shape.type) == (kind)                                 \
+                                      ? btgWithThreshold(routine(a, b, verts, faces, indices, edges, t), t)         \
+                                      : btgEmptyManifold(p.a, p.b);                                                 \
+            manifolds[slot] = m;                                                                                    \
+            pairManifolds[slot] = btgOneManifold((int)slot, m);                                                     \
         }                                                                                                           \
     }
 #endif

@@ -60,8 +60,7 @@ static inline BtgManifold btgCollideSphereSphere(BtgCollider a, BtgCollider b, B
     if (dist >= threshold) return m;
     /* concentric spheres: any direction will do; Bullet picks +x */
     BtgFloat4 n = len > BTG_DEGENERATE_DIST ? btgXyz(d) * (1.0f / len) : btgMake4(1.0f, 0.0f, 0.0f, 0.0f);
-    m.normal = n;
-    btgAddPoint(&m, btgXyz(b.pose.pos) + n * rb, dist);
+    btgAddPoint(&m, n, btgXyz(b.pose.pos) + n * rb, dist, BTG_FEATURE_SINGLE);
     return m;
 }
 
@@ -75,8 +74,7 @@ static inline BtgManifold btgSpherePlaneCanonical(BtgCollider s, BtgCollider p, 
     float h = btgDot3(n, c) - plane.w;
     float dist = h - s.shape.param.x;
     if (dist >= threshold) return m;
-    m.normal = n;
-    btgAddPoint(&m, c - n * h, dist);
+    btgAddPoint(&m, n, c - n * h, dist, BTG_FEATURE_SINGLE);
     return m;
 }
 
@@ -137,8 +135,7 @@ static inline BtgManifold btgSphereHullCanonical(BtgCollider s, BtgCollider h, B
     float dist = polyDist - r - margin;
     if (dist >= threshold) return m;
     BtgFloat4 n = btgMat3MulVec(h.pose.rot, nl);
-    m.normal = n;
-    btgAddPoint(&m, btgPoseApply(h.pose, q) + n * margin, dist);
+    btgAddPoint(&m, n, btgPoseApply(h.pose, q) + n * margin, dist, BTG_FEATURE_SINGLE);
     return m;
 }
 
@@ -150,8 +147,9 @@ static inline BtgManifold btgCollideSphereHull(BtgCollider a, BtgCollider b, BTG
 }
 
 /* Canonical order: hull h is A, plane p is B. Every hull vertex below the threshold is a
- * candidate (its projection on the plane); the reduction streams over the vertices three times
- * instead of buffering them, so hulls of any vertex count are handled. */
+ * candidate (its projection on the plane, feature BTG_FEATURE_VERTEX | its number); the
+ * reduction streams over the vertices three times instead of buffering them, so hulls of any
+ * vertex count are handled. */
 static inline BtgManifold btgHullPlaneCanonical(BtgCollider h, BtgCollider p, BTG_CONST_GLOBAL BtgFloat4* verts,
                                                 float threshold)
 {
@@ -170,12 +168,11 @@ static inline BtgManifold btgHullPlaneCanonical(BtgCollider h, BtgCollider p, BT
             if (dist >= threshold) continue;
             BtgFloat4 c = btgPoseApply(h.pose, v) - n * height;
             c.w = dist;
-            btgReduceVisit(&st, pass, c);
+            btgReduceVisit(&st, pass, c, BTG_FEATURE_VERTEX | (uint)i);
         }
         btgReduceEndPass(&st, pass);
     }
     btgReduceWrite(&st, &m);
-    if (m.numPoints > 0) m.normal = n;
     return m;
 }
 

@@ -89,18 +89,61 @@ typedef struct {
     int b;
 } BtgPair;
 
-/* Narrowphase output for one pair (same index as the pair); numPoints 0 means no contact. */
+/* Feature ids (BtgManifoldPoint.featureId): which features of the two shapes made a point, so
+ * the warm start can follow it from step to step (box3d's featureId). Unique within a manifold
+ * and the same while the same features touch. The top two bits say how the point was made:
+ *   SINGLE  the one point of a single-point routine (sphere against anything)
+ *   VERTEX  | hull vertex number: hull–plane, the vertex that touches
+ *   CLIP    | face of A & 0x7f << 23 | face of B & 0x7f << 16 | edge label << 8 | edge label:
+ *           hull–hull face contact, a corner of the clipped polygon named by the two polygon
+ *           edges that meet there (box3d's b3FeaturePair); a label is BTG_FEATURE_EDGE_OF_B |
+ *           edge k of B's face, or edge k of A's face (& 0x7f); whichever hull is the reference,
+ *           the same corner gets the same id (the pair is flipped when B is, as box3d does)
+ *   EDGES   | edge direction of A & 0x7fff << 15 | of B & 0x7fff: hull–hull edge contact
+ * BTG_FEATURE_UNKNOWN never matches (a point whose features are not known). */
+#define BTG_FEATURE_SINGLE 0x00000000u
+#define BTG_FEATURE_VERTEX 0x40000000u
+#define BTG_FEATURE_CLIP 0x80000000u
+#define BTG_FEATURE_EDGES 0xc0000000u
+#define BTG_FEATURE_EDGE_OF_B 0x80u
+#define BTG_FEATURE_UNKNOWN 0x3fffffffu
+
+/* Sub-shape key of a whole shape (Bullet's m_partId / m_index of a convex shape: -1, -1). */
+#define BTG_NO_SUB_SHAPE -1
+
+/* One contact point of a manifold (Bullet's btManifoldPoint). Scalars only (4-byte alignment),
+ * so four of them with the manifold's header fill 160 bytes. */
 typedef struct {
-    BtgFloat4 normal;                 /* world unit normal from B towards A (normalWorldOnB) */
-    BtgFloat4 pointB[BTG_MAX_POINTS]; /* world point on B's surface, m; w: signed distance m,
-                                         negative when penetrating; the point on A is
-                                         pointB + normal * distance */
+    float px, py, pz;   /* m: world point on B's surface */
+    float distance;     /* m: signed distance along the normal, negative when penetrating; the
+                           point on A is p + normal * distance */
+    float nx, ny, nz;   /* world unit normal from B towards A (normalWorldOnB) */
+    uint featureId;     /* BTG_FEATURE_*: the features that made the point */
+} BtgManifoldPoint;
+
+/* The contact of one (sub-shape of A, sub-shape of B): up to 4 points. A manifold is one such
+ * pair, so its points share the sub-shape keys (Jolt's SubShapeIDPair per manifold; four copies
+ * per point would cost 48 bytes a manifold). A pair owns the range of manifolds its
+ * BtgManifoldRange names; today one, at the pair's own slot. */
+typedef struct {
+    BtgManifoldPoint points[BTG_MAX_POINTS];
+    int partIdA;        /* sub-shape key of A: Bullet's m_partId0 (mesh part) ... */
+    int indexA;         /* ... and m_index0 (compound child, triangle); BTG_NO_SUB_SHAPE: whole */
+    int partIdB;        /* the same of B: m_partId1, m_index1 */
+    int indexB;
     int bodyA;
     int bodyB;
     int numPoints;
-    float breakingThreshold;          /* m: the pair's (btgPairThreshold), as Bullet's manifold
-                                         keeps its own; the warm-start matching uses it */
+    float breakingThreshold; /* m: the pair's (btgPairThreshold), as Bullet's manifold keeps its
+                                own; the warm-start matching uses it */
 } BtgManifold;
+
+/* The manifolds of one pair: manifolds[start, start + count) are those with points (box3d's
+ * manifoldStart/manifoldCount). Same index as the pair. */
+typedef struct {
+    int start;
+    int count;
+} BtgManifoldRange;
 
 /* One solver row set per manifold: normal, two friction directions, split impulse. The
  * warm-start key (the point in A's frame) is not kept here: it is R_A^T rA, and the cache
@@ -128,7 +171,8 @@ typedef struct {
 } BtgContact;
 
 /* The warm-start cache: what the next substep's matching and warm start read of one solved
- * contact (btPersistentManifold's cached points), in the contacts' pair order. */
+ * contact (btPersistentManifold's cached points), in the contacts' pair order; a pair's
+ * manifolds are consecutive entries (Jolt's CachedBodyPair -> CachedManifold). */
 typedef struct {
     BtgFloat4 point[BTG_MAX_POINTS]; /* xyz: contact point on A in A's body frame, m (the match
                                         key); w: accumulated normal impulse, N s */
@@ -136,6 +180,11 @@ typedef struct {
     BtgFloat4 friction1Impulse;      /* accumulated along t1 per point, N s */
     BtgFloat4 friction2Impulse;      /* accumulated along t2 per point, N s */
 #endif
+    uint featureId[BTG_MAX_POINTS];  /* per point, its manifold point's */
+    int partIdA;                     /* the manifold's sub-shape keys */
+    int indexA;
+    int partIdB;
+    int indexB;
     int bodyA;
     int bodyB;
     int numPoints;
@@ -169,9 +218,11 @@ static_assert(sizeof(BtgBodyProps) == 96, "BtgBodyProps layout");
 static_assert(sizeof(BtgShape) == 96, "BtgShape layout");
 static_assert(sizeof(BtgFace) == 32, "BtgFace layout");
 static_assert(sizeof(BtgPair) == 8, "BtgPair layout");
-static_assert(sizeof(BtgManifold) == 96, "BtgManifold layout");
+static_assert(sizeof(BtgManifoldPoint) == 32, "BtgManifoldPoint layout");
+static_assert(sizeof(BtgManifold) == 32 * BTG_MAX_POINTS + 32, "BtgManifold layout");
+static_assert(sizeof(BtgManifoldRange) == 8, "BtgManifoldRange layout");
 static_assert(sizeof(BtgContact) == 16 * 18 + 16, "BtgContact layout");
-static_assert(sizeof(BtgCachedContact) == 16 * (BTG_MAX_POINTS + 2 * BTG_WARMSTART_FRICTION) + 16,
+static_assert(sizeof(BtgCachedContact) == 16 * (BTG_MAX_POINTS + 2 * BTG_WARMSTART_FRICTION) + 4 * BTG_MAX_POINTS + 32,
               "BtgCachedContact layout");
 static_assert(sizeof(BtgStepParams) == 48, "BtgStepParams layout");
 #endif

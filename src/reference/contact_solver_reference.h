@@ -17,18 +17,36 @@ struct ContactBodies {
     std::vector<BtgBodyProps> props;
 };
 
-// buildContactsFromCache: manifolds[0, min(pairCount, size)) with points, in order,
-// warm-started from the cache (sorted by pair). Returns every contact (the caller compares the
-// count with capacity).
+// The pairs' manifold ranges when each pair's one manifold sits at its own slot (today's
+// narrowphase: btgOneManifold).
+std::vector<BtgManifoldRange> oneManifoldPerPair(const std::vector<BtgManifold>& manifolds);
+
+// The compaction of the ranges of pairs [0, pairCount): each range's manifolds in order, each
+// warm-started from the cache (sorted by pair), with the manifold slot it came from. Returns
+// every contact (the caller compares the count with capacity).
+struct BuiltContacts {
+    std::vector<BtgContact> contacts;
+    std::vector<uint> manifoldOf;  // per contact: its manifold slot (contactManifolds)
+};
+BuiltContacts buildContactsFromRanges(const std::vector<BtgManifoldRange>& ranges, const std::vector<BtgManifold>& manifolds,
+                                      int pairCount, const ContactBodies& bodies,
+                                      const std::vector<BtgCachedContact>& cache, const BtgStepParams& params);
+// buildContactsFromCache: manifolds[0, min(pairCount, size)) with points (one per pair), in
+// order, warm-started from the cache (sorted by pair).
 std::vector<BtgContact> buildContactsFromCache(const std::vector<BtgManifold>& manifolds, int pairCount,
                                                const ContactBodies& bodies, const std::vector<BtgCachedContact>& cache,
                                                const BtgStepParams& params);
 // The same, warm-started from the previous step's solved contacts `prev` (sorted by pair), as
-// the cache stage would store them with the bodies' rotations as they are in `bodies`.
+// storeContactCache(prev, bodies) keeps them.
 std::vector<BtgContact> buildContacts(const std::vector<BtgManifold>& manifolds, int pairCount,
                                       const ContactBodies& bodies, const std::vector<BtgContact>& prev,
                                       const BtgStepParams& params);
-// storeContactCache: each contact as the cache keeps it (keys from bodies.rot of body A).
+// storeContactCache: each contact as the cache keeps it (keys from bodies.rot of body A), with
+// the sub-shape keys and feature ids of its manifold manifolds[manifoldOf[i]].
+std::vector<BtgCachedContact> storeContactCache(const std::vector<BtgContact>& contacts, const std::vector<uint>& manifoldOf,
+                                                const std::vector<BtgManifold>& manifolds, const ContactBodies& bodies);
+// A cache from contacts alone (tests that make up a previous step): whole shapes, features
+// unknown, so points match by distance only.
 std::vector<BtgCachedContact> storeContactCache(const std::vector<BtgContact>& contacts, const ContactBodies& bodies);
 
 // prepareContacts on every contact of the list.

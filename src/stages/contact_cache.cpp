@@ -1,7 +1,7 @@
-// contact_cache.cpp — host launchers of the contacts stage: a two-level scan compacts the
-// manifolds with points into `contacts` (pair order), then each contact warm-starts from the
-// cached contact of its pair (three launches, no readback); after the solve one launch stores
-// the solved contacts as the next substep's cache.
+// contact_cache.cpp — host launchers of the contacts stage: a two-level scan of the pairs'
+// manifold counts compacts their manifolds with points into `contacts` (pair order), then each
+// contact warm-starts from the cached manifold it continues (three launches, no readback);
+// after the solve one launch stores the solved contacts as the next substep's cache.
 #include "stages/contact_cache.h"
 
 #include "cl/program.h"
@@ -27,23 +27,24 @@ void buildContacts(DeviceWorld& w, const BtgStepParams& params)
     cl_kernel scan = prog.kernel("scan_blocks");
     cl_kernel write = prog.kernel("write_contacts");
     size_t group = scanGroupSize(ctx, count, write);
-    int pairCapacity = int(std::min(w.pairCapacity, w.manifolds.capacity()));
+    int pairCapacity = int(std::min(w.pairCapacity, w.pairManifolds.capacity()));
     size_t numBlocks = (size_t(pairCapacity) + group - 1) / group;
     w.solverScratch.blockSums.reserve(ctx, std::max<size_t>(numBlocks, 1));
     w.contacts.reserveExact(ctx, std::max<size_t>(w.contactCapacity, 1));
+    w.contactManifolds.reserveExact(ctx, std::max<size_t>(w.contactCapacity, 1));
     w.contactCache.reserveExact(ctx, 1, true);
-    int contactCapacity = int(std::min(w.contactCapacity, w.contacts.capacity()));
+    int contactCapacity = int(std::min({w.contactCapacity, w.contacts.capacity(), w.contactManifolds.capacity()}));
     int cacheCapacity = int(w.contactCache.capacity());
 
     if (numBlocks > 0)
-        cl::Launch(ctx, count, &w.profiler).arg(w.manifolds).arg(w.counters).arg(pairCapacity)
+        cl::Launch(ctx, count, &w.profiler).arg(w.pairManifolds).arg(w.counters).arg(pairCapacity)
             .arg(w.solverScratch.blockSums).local(group * sizeof(cl_uint)).run(numBlocks * group, group);
     cl::Launch(ctx, scan, &w.profiler).arg(w.solverScratch.blockSums).arg(int(numBlocks)).arg(w.counters)
         .arg(contactCapacity).run(1, 1);
     if (numBlocks > 0)
-        cl::Launch(ctx, write, &w.profiler).arg(w.manifolds).arg(w.counters).arg(pairCapacity)
+        cl::Launch(ctx, write, &w.profiler).arg(w.pairManifolds).arg(w.manifolds).arg(w.counters).arg(pairCapacity)
             .arg(w.solverScratch.blockSums).arg(w.pos).arg(w.rot).arg(w.contactCache).arg(cacheCapacity)
-            .arg(w.contacts).arg(contactCapacity).arg(params).local(group * sizeof(cl_uint))
+            .arg(w.contacts).arg(w.contactManifolds).arg(contactCapacity).arg(params).local(group * sizeof(cl_uint))
             .run(numBlocks * group, group);
 }
 
@@ -51,10 +52,11 @@ void storeContactCache(DeviceWorld& w)
 {
     cl::Context& ctx = w.ctx;
     w.contactCache.reserveExact(ctx, std::max<size_t>(w.contactCapacity, 1), true);
-    int contactCapacity = int(std::min(w.contactCapacity, w.contacts.capacity()));
+    int contactCapacity = int(std::min({w.contactCapacity, w.contacts.capacity(), w.contactManifolds.capacity()}));
     int cacheCapacity = int(w.contactCache.capacity());
     cl::Launch(ctx, ctx.program("contact_cache").kernel("store_contact_cache"), &w.profiler)
-        .arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.rot).arg(w.contactCache).arg(cacheCapacity)
+        .arg(w.contacts).arg(w.contactManifolds).arg(w.manifolds).arg(w.counters).arg(contactCapacity).arg(w.rot)
+        .arg(w.contactCache).arg(cacheCapacity)
         .run(size_t(std::max(contactCapacity, 1)));
 }
 

@@ -1,17 +1,20 @@
 // contact_cache.h — Stage: this step's contact list, its warm start, and the cache.
-// buildContacts compacts the manifolds that have points into `contacts` (in pair order, so the
-// list is a pure function of the sorted pairs) and sets counters[kContactCount]; sets
-// BTG_STATUS_CONTACT_OVERFLOW when they exceed contactCapacity. For each new point, finds the
-// cached contact of the same body pair (contactCache, sorted by (bodyA, bodyB),
-// counters[kPrevContactCount]) and the old point nearest in A's frame within
-// the pair's breakingThreshold (carried by its manifold), and starts from its impulses times
-// params.warmstartFactor.
+// buildContacts compacts each pair's range of manifolds with points (pairManifolds) into
+// `contacts` (in pair order, so the list is a pure function of the sorted pairs), the manifold
+// slot of each into contactManifolds, and sets counters[kContactCount]; sets
+// BTG_STATUS_CONTACT_OVERFLOW when they exceed contactCapacity. For each manifold, finds the
+// cached manifold it continues (contactCache, sorted by (bodyA, bodyB): the entries of its body
+// pair with the same sub-shape keys, counters[kPrevContactCount]) and for each new point the
+// old point nearest in A's frame within the pair's breakingThreshold (carried by its
+// manifold), and starts from its impulses times params.warmstartFactor.
 // rA = point on A - posA (w: signed distance, until prepare), rB = point on B - posB (Bullet's
-// rel_pos1/rel_pos2). Reads manifolds, counters, pos, rot, contactCache. Writes contacts
-// (bodyA, bodyB, numPoints, normal, rA/rB, impulses; color -1), counters, solverScratch.blockSums.
+// rel_pos1/rel_pos2). Reads pairManifolds, manifolds, counters, pos, rot, contactCache. Writes
+// contacts (bodyA, bodyB, numPoints, normal, rA/rB, impulses; color -1), contactManifolds,
+// counters, solverScratch.blockSums.
 // storeContactCache runs after the solve and before integrate_transforms (the keys are R_A^T rA
 // with A's rotation as the contacts were built): writes contactCache (BtgCachedContact: keys,
-// normal impulses) and counters[kPrevContactCount], unless the substep overflowed.
+// normal impulses, the manifold's sub-shape keys and feature ids, read through
+// contactManifolds) and counters[kPrevContactCount], unless the substep overflowed.
 #pragma once
 #include "world/device_world.h"
 

@@ -153,9 +153,10 @@ void finishPairs(DeviceWorld& w, const PairKinds& kinds)
     } else {
         w.pairOrder.reserve(ctx, 1);
     }
+    w.pairManifolds.reserveExact(ctx, std::max<size_t>(w.pairCapacity, 1));
     cl::Launch(ctx, prog.kernel("pairs_write"), &w.profiler)
-        .arg(s.rawPairs).arg(w.pairOrder).arg(w.pairs.mem() ? w.pairs : s.rawPairs).arg(w.counters)
-        .arg(capacity)
+        .arg(s.rawPairs).arg(w.pairOrder).arg(w.pairs.mem() ? w.pairs : s.rawPairs).arg(w.pairManifolds)
+        .arg(w.counters).arg(capacity)
         .run(std::max<size_t>(capacity, 1));
     if (kinds.any()) groupPairsByKind(w, kinds);
 }

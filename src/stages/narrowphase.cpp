@@ -16,6 +16,7 @@ void narrowphaseProgram(DeviceWorld& w, const PairKinds& kinds, const char* prog
 {
     if (!kinds.anyIn(program) || w.pairCapacity == 0) return;
     w.manifolds.reserveExact(w.ctx, w.pairCapacity);
+    w.pairManifolds.reserveExact(w.ctx, w.pairCapacity);
     // A range's size is known on the device only: a fixed number of work-items strides over it,
     // enough to fill the device, never more than there are pair slots.
     const size_t items = std::min(w.pairCapacity, size_t(std::max<cl_uint>(w.ctx.device().computeUnits, 1)) * 1024);
@@ -27,7 +28,7 @@ void narrowphaseProgram(DeviceWorld& w, const PairKinds& kinds, const char* prog
         cl::Launch(w.ctx, prog.kernel(row.kernel), &w.profiler)
             .arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)
             .arg(w.shapes).arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges).arg(w.manifolds)
-            .run(items);
+            .arg(w.pairManifolds).run(items);
     }
 }
 

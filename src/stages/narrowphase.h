@@ -6,8 +6,10 @@
 // Reads pairs, pairOrder and pairKindRanges (find_pairs' grouping by kind: each kernel strides
 // over its kind's range), pos, rot, props (shape), shapes and hull tables.
 // Writes manifolds[i] for each pair i < min(count, pairCapacity): bodyA/bodyB = the pair's
-// rows, normal from B to A, points on B with signed distance (kept below the pair's threshold:
-// the smaller of its two shapes' breakingThreshold, m).
+// rows, sub-shape keys (BTG_NO_SUB_SHAPE for today's whole convex shapes), points on B with
+// signed distance, normal from B to A and feature id (kept below the pair's threshold: the
+// smaller of its two shapes' breakingThreshold, m); and pairManifolds[i], the pair's range of
+// manifolds with points (today (i, 1) or (i, 0)).
 #pragma once
 #include "world/device_world.h"
 #include "world/plan.h"

@@ -77,10 +77,15 @@ struct DeviceWorld {
     BroadphaseScratch broadphase;      // find_pairs' own temporaries
 
     // --- narrowphase and contacts ---
-    cl::DeviceArray<BtgManifold> manifolds;  // one per pair slot
+    // Manifold slots (today one per pair slot, at the pair's own index) and each pair's range of
+    // those with points: pairManifolds[i] = (start, count) of pair i (reset by find_pairs,
+    // written by the narrowphase); the contact list is the ranges' manifolds in pair order.
+    cl::DeviceArray<BtgManifold> manifolds;
+    cl::DeviceArray<BtgManifoldRange> pairManifolds;  // pairCapacity
     cl::DeviceArray<BtgContact> contacts;    // this step's, in pair order
+    cl::DeviceArray<uint> contactManifolds;  // contactCapacity: the manifold slot of each contact
     // The warm-start cache: the last substep's solved contacts, reduced to what matching and
-    // warm start read (80 bytes against a contact's 304), in the same pair order.
+    // warm start read (112 bytes against a contact's 304), in the same pair order.
     cl::DeviceArray<BtgCachedContact> contactCache;
     size_t contactCapacity = 0;              // contacts and contactCache hold this many
     // The cache as this call found it, for a redo; only while a call runs several substeps.

@@ -1,13 +1,16 @@
-// contact_cache_test.cpp — the contacts stage: compaction is exactly the reference's (pair
-// order, counts, overflow flag), warm starting keeps the impulse (times the factor) of a
-// point that moved less than the contact threshold in A's frame, and only of such a point, and
-// the cache store keeps exactly the keys and impulses the next warm start reads, leaving the
-// cache alone when the substep overflowed.
+// contact_cache_test.cpp — the contacts stage: compaction of the pairs' manifold ranges is
+// exactly the reference's (pair order, counts, overflow flag, the manifold of each contact,
+// pairs of several manifolds), warm starting keeps the impulse (times the factor) of a point
+// that moved less than the contact threshold in A's frame, and only of such a point, from the
+// cached manifold of the same sub-shape keys, and the cache store keeps exactly the keys,
+// impulses and ids the next warm start reads, leaving the cache alone when the substep
+// overflowed.
 #include "contact_fixture.h"
 #include "stages/contact_cache.h"
 #include "test_device.h"
 #include "tolerances.h"
 
+#include <algorithm>
 #include <cstring>
 #include <gtest/gtest.h>
 #include <random>
@@ -32,12 +35,13 @@ std::vector<BtgManifold> randomManifolds(int slots, int numBodies, std::mt19937&
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
     std::vector<BtgManifold> ms(slots);
     for (int i = 0; i < slots; ++i) {
-        BtgManifold& m = ms[i];
-        m.bodyA = int(rng() % numBodies);
-        m.bodyB = (m.bodyA + 1 + int(rng() % (numBodies - 1))) % numBodies;
-        m.numPoints = (rng() % 10) < 3 ? 1 + int(rng() % 4) : 0;
-        m.normal = btgNormalize3(btgMake4(u(rng), u(rng), u(rng), 0));
-        for (int k = 0; k < BTG_MAX_POINTS; ++k) m.pointB[k] = btgMake4(u(rng), u(rng), u(rng), 0.01f * u(rng));
+        const int bodyA = int(rng() % numBodies);
+        BtgManifold& m = ms[i] = btgEmptyManifold(bodyA, (bodyA + 1 + int(rng() % (numBodies - 1))) % numBodies);
+        m.breakingThreshold = 0.02f;
+        const int points = (rng() % 10) < 3 ? 1 + int(rng() % 4) : 0;
+        const BtgFloat4 normal = btgNormalize3(btgMake4(u(rng), u(rng), u(rng), 0));
+        for (int k = 0; k < points; ++k)
+            btgAddPoint(&m, normal, btgMake4(u(rng), u(rng), u(rng), 0), 0.01f * u(rng), BTG_FEATURE_VERTEX | uint(k));
     }
     return ms;
 }
@@ -79,6 +83,13 @@ TEST(ContactCache, CompactionMatchesReference)
     std::vector<BtgContact> got = test::downloadContacts(w);
     ASSERT_EQ(got.size(), expect.size());
     for (size_t i = 0; i < got.size(); ++i) expectSameContact(got[i], expect[i], int(i));
+    // Each contact names the manifold it came from (one per pair: the pair's slot).
+    std::vector<uint> from = w.contactManifolds.download(w.ctx, got.size());
+    for (size_t i = 0; i < got.size(); ++i) {
+        EXPECT_GT(ms[from[i]].numPoints, 0);
+        EXPECT_EQ(ms[from[i]].bodyA, got[i].bodyA);
+        if (i > 0) EXPECT_LT(from[i - 1], from[i]);
+    }
 }
 
 TEST(ContactCache, OverflowIsFlaggedAndCounted)
@@ -121,11 +132,11 @@ TEST(ContactCache, WarmStartMatchesNearPointsOnly)
     // This step: the box's corners 0 and 1 moved 5 mm (kept), corner 2 moved 10 cm (lost),
     // corner 3 unchanged; `third` has no previous contact with body 1 (different pair).
     BtgManifold now = test::boxOnPlane(box, ground, boxPos, 0.5f, 0.0f);
-    now.pointB[0].x += 0.005f;
-    now.pointB[1].z -= 0.005f;
-    now.pointB[2].x += 0.1f;
+    now.points[0].px += 0.005f;
+    now.points[1].pz -= 0.005f;
+    now.points[2].px += 0.1f;
     BtgManifold unrelated = test::boxOnPlane(third, box, bodies.pos[third], 0.5f, 0.0f);
-    std::vector<BtgManifold> ms = {now, BtgManifold{}, unrelated};
+    std::vector<BtgManifold> ms = {now, btgEmptyManifold(0, 0), unrelated};
 
     std::vector<BtgContact> expect = ref::buildContacts(ms, 3, bodies, prev, params);
     DeviceWorld w(test::context());
@@ -153,23 +164,26 @@ TEST(ContactCache, WarmStartMatchesNearPointsOnly)
     EXPECT_NEAR(got[0].rB[3].x, -0.5f, 1e-6f);
 }
 
-TEST(ContactCache, StoreKeepsKeysAndImpulses)
+TEST(ContactCache, StoreKeepsKeysImpulsesAndIds)
 {
     std::mt19937 rng(5);
     ref::ContactBodies bodies = randomBodies(30, rng);
     std::vector<BtgManifold> ms = randomManifolds(600, 30, rng);
+    for (size_t i = 0; i < ms.size(); ++i) ms[i].indexB = int(i % 7) - 1;  // some sub-shape keys
     BtgStepParams params = test::defaultParams(30);
-    std::vector<BtgContact> contacts = ref::buildContacts(ms, 600, bodies, {}, params);
+    ref::BuiltContacts built = ref::buildContactsFromRanges(ref::oneManifoldPerPair(ms), ms, 600, bodies, {}, params);
+    std::vector<BtgContact>& contacts = built.contacts;
     ASSERT_GT(contacts.size(), 100u);
     for (size_t i = 0; i < contacts.size(); ++i) {  // as a solve would leave them
         contacts[i].normalImpulse = btgMake4(float(i), 0.5f, 0.25f, 2.0f);
         contacts[i].friction1Impulse = btgMake4(-1, -2, -3, -4);
     }
-    std::vector<BtgCachedContact> expect = ref::storeContactCache(contacts, bodies);
+    std::vector<BtgCachedContact> expect = ref::storeContactCache(contacts, built.manifoldOf, ms, bodies);
 
     DeviceWorld w(test::context());
     test::uploadWorld(w, bodies, ms, 600, {}, contacts.size());
     w.contacts.upload(w.ctx, contacts);
+    w.contactManifolds.upload(w.ctx, built.manifoldOf);
     std::vector<uint> counters = w.counters.download(w.ctx, kNumCounters);
     counters[kContactCount] = uint(contacts.size());
     w.counters.upload(w.ctx, counters);
@@ -179,13 +193,17 @@ TEST(ContactCache, StoreKeepsKeysAndImpulses)
     std::vector<BtgCachedContact> got = w.contactCache.download(w.ctx, contacts.size());
     for (size_t i = 0; i < got.size(); ++i) {
         const BtgCachedContact &g = got[i], &e = expect[i];
+        const BtgManifold& m = ms[built.manifoldOf[i]];
         ASSERT_EQ(g.bodyA, contacts[i].bodyA) << i;
         ASSERT_EQ(g.bodyB, contacts[i].bodyB) << i;
         ASSERT_EQ(g.numPoints, contacts[i].numPoints) << i;
+        EXPECT_EQ(g.indexB, m.indexB) << i;
+        EXPECT_EQ(g.partIdA, BTG_NO_SUB_SHAPE) << i;
         for (int k = 0; k < g.numPoints; ++k) {
             for (int c = 0; c < 3; ++c)
                 EXPECT_NEAR(btgLane(g.point[k], c), btgLane(e.point[k], c), tol::kStageAbs) << i;
             EXPECT_EQ(g.point[k].w, btgLane(contacts[i].normalImpulse, k)) << i;
+            EXPECT_EQ(g.featureId[k], m.points[k].featureId) << i;
             // The key is the point on A in A's frame: rotated back, it is rA again.
             BtgFloat4 back = btgQuatRotate(bodies.rot[g.bodyA], g.point[k]);
             for (int c = 0; c < 3; ++c) EXPECT_NEAR(btgLane(back, c), btgLane(contacts[i].rA[k], c), 1e-5f) << i;
@@ -206,4 +224,61 @@ TEST(ContactCache, StoreKeepsKeysAndImpulses)
     EXPECT_EQ(after[kPrevContactCount], contacts.size());
     std::vector<BtgCachedContact> kept = w.contactCache.download(w.ctx, contacts.size());
     EXPECT_EQ(0, std::memcmp(kept.data(), got.data(), got.size() * sizeof(BtgCachedContact)));
+}
+
+// Pairs that own several manifolds (what compounds and meshes will give): each pair's range
+// compacts into consecutive contacts in range order, and each manifold warm-starts from the
+// cached manifold of its own sub-shape keys, not from its pair's first.
+TEST(ContactCache, SeveralManifoldsPerPair)
+{
+    std::mt19937 rng(17);
+    const int numBodies = 20;
+    ref::ContactBodies bodies = randomBodies(numBodies, rng);
+    // Every body pair once, in (a, b) order as find_pairs leaves them; up to three manifolds
+    // each (children 0..2 of A), the range holding those with points.
+    std::vector<BtgManifold> ms;
+    std::vector<BtgManifoldRange> ranges;
+    std::vector<BtgManifold> pool = randomManifolds(3 * numBodies * numBodies, numBodies, rng);
+    size_t next = 0;
+    for (int a = 0; a < numBodies; ++a)
+        for (int b = a + 1; b < numBodies; ++b) {
+            BtgManifoldRange r{int(ms.size()), 0};
+            for (int j = 0; j < 3; ++j) {
+                BtgManifold m = pool[next++];
+                m.bodyA = a;
+                m.bodyB = b;
+                m.indexA = j;
+                if (m.numPoints == 0) continue;
+                ms.push_back(m);
+                ++r.count;
+            }
+            ranges.push_back(r);
+        }
+    const int pairs = int(ranges.size());
+    ms.push_back(btgEmptyManifold(0, 1));  // a stale slot past every range
+    BtgStepParams params = test::defaultParams(numBodies);
+    // A previous step with the same manifolds and a distinct impulse per manifold.
+    ref::BuiltContacts prev = ref::buildContactsFromRanges(ranges, ms, pairs, bodies, {}, params);
+    ASSERT_GT(prev.contacts.size(), size_t(pairs) / 2);
+    for (size_t i = 0; i < prev.contacts.size(); ++i) prev.contacts[i].normalImpulse = btgMake4(float(i + 1), 1, 1, 1);
+    std::vector<BtgCachedContact> cache = ref::storeContactCache(prev.contacts, prev.manifoldOf, ms, bodies);
+
+    ref::BuiltContacts expect = ref::buildContactsFromRanges(ranges, ms, pairs, bodies, cache, params);
+    DeviceWorld w(test::context());
+    test::uploadWorld(w, bodies, ms, uint(pairs), {}, expect.contacts.size() + 8);
+    w.pairManifolds.upload(w.ctx, ranges);
+    w.pairCapacity = ranges.size();  // pair slots, not manifold slots
+    w.contactCache.upload(w.ctx, cache);
+    std::vector<uint> counters = w.counters.download(w.ctx, kNumCounters);
+    counters[kPrevContactCount] = uint(cache.size());
+    w.counters.upload(w.ctx, counters);
+    buildContacts(w, params);
+    std::vector<BtgContact> got = test::downloadContacts(w);
+    ASSERT_EQ(got.size(), expect.contacts.size());
+    EXPECT_EQ(w.contactManifolds.download(w.ctx, got.size()), expect.manifoldOf);
+    for (size_t i = 0; i < got.size(); ++i) {
+        expectSameContact(got[i], expect.contacts[i], int(i));
+        // Each manifold found its own cached self (same pair, same child): impulse i + 1.
+        EXPECT_FLOAT_EQ(got[i].normalImpulse.x, float(i + 1) * params.warmstartFactor) << i;
+    }
 }

@@ -2,6 +2,7 @@
 // default Bullet 3.24 solver parameters, and a DeviceWorld uploaded from host columns.
 #pragma once
 #include "reference/contact_solver_reference.h"
+#include "shared/narrowphase_common.h"
 #include "world/device_world.h"
 
 #include <algorithm>
@@ -51,18 +52,26 @@ inline int addBody(ref::ContactBodies& b, BtgFloat4 pos, float invMass, BtgFloat
     return int(b.props.size()) - 1;
 }
 
-// A unit box (half extent h, mass m) resting on B: four corner points on B's surface plane y0.
+// A manifold of A on B with one point: on B at pointB, `distance` along the normal (B to A).
+inline BtgManifold onePointManifold(int bodyA, int bodyB, BtgFloat4 normal, BtgFloat4 pointB, float distance,
+                                    uint featureId = BTG_FEATURE_SINGLE)
+{
+    BtgManifold m = btgEmptyManifold(bodyA, bodyB);
+    m.breakingThreshold = 0.02f;
+    btgAddPoint(&m, normal, pointB, distance, featureId);
+    return m;
+}
+
+// A unit box (half extent h, mass m) resting on B: four corner points on B's surface plane y0,
+// each with its vertex's feature id (as hull–plane gives them).
 inline BtgManifold boxOnPlane(int box, int ground, BtgFloat4 boxPos, float h, float distance)
 {
-    BtgManifold m{};
-    m.normal = btgMake4(0, 1, 0, 0);
+    BtgManifold m = btgEmptyManifold(box, ground);
     m.breakingThreshold = 0.02f;
-    m.bodyA = box;
-    m.bodyB = ground;
-    m.numPoints = 4;
     const float sx[4] = {-1, 1, 1, -1}, sz[4] = {-1, -1, 1, 1};
     for (int k = 0; k < 4; ++k)
-        m.pointB[k] = btgMake4(boxPos.x + sx[k] * h, boxPos.y - h - distance, boxPos.z + sz[k] * h, distance);
+        btgAddPoint(&m, btgMake4(0, 1, 0, 0), btgMake4(boxPos.x + sx[k] * h, boxPos.y - h - distance, boxPos.z + sz[k] * h, 0),
+                    distance, BTG_FEATURE_VERTEX | uint(k));
     return m;
 }
 
@@ -103,8 +112,9 @@ inline StackScene stackScene(int columns, int height, unsigned seed)
     return s;
 }
 
-// Uploads the body columns, manifolds (as pair slots) and the previous step's contacts (as the
-// cache stage stores them, keyed with the bodies' rotations); counters as given.
+// Uploads the body columns, manifolds (as pair slots, one each) and the previous step's contacts
+// (as a cache from contacts alone, ref::storeContactCache(prev, b), keyed with the bodies'
+// rotations); counters as given.
 inline void uploadWorld(DeviceWorld& w, const ref::ContactBodies& b, const std::vector<BtgManifold>& manifolds,
                         uint pairCount, const std::vector<BtgContact>& prev, size_t contactCapacity)
 {
@@ -122,10 +132,12 @@ inline void uploadWorld(DeviceWorld& w, const ref::ContactBodies& b, const std::
     w.pushAng.upload(ctx, b.pushAng);
     w.pairCapacity = manifolds.size();
     w.manifolds.upload(ctx, manifolds);
+    w.pairManifolds.upload(ctx, ref::oneManifoldPerPair(manifolds));
     w.contactCache.reserve(ctx, prev.size() + 1);
     w.contactCache.upload(ctx, ref::storeContactCache(prev, b));
     w.contactCapacity = contactCapacity;
     w.contacts.reserve(ctx, contactCapacity);
+    w.contactManifolds.reserve(ctx, contactCapacity);
     std::vector<uint> counters(kNumCounters, 0u);
     counters[kPairCount] = pairCount;
     counters[kPrevContactCount] = uint(prev.size());

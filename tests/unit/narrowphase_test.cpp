@@ -62,6 +62,15 @@ struct Scene {
     }
 };
 
+// A manifold point as one vector: xyz on B, w the signed distance; the manifold's normal (its
+// first point's: they share it).
+BtgFloat4 pointB(const BtgManifold& m, int k)
+{
+    const BtgManifoldPoint& p = m.points[k];
+    return btgMake4(p.px, p.py, p.pz, p.distance);
+}
+BtgFloat4 normalOf(const BtgManifold& m) { return btgPointNormal(m.points[0]); }
+
 constexpr int kSpareSlots = 3;  // slots past the pair count: must stay untouched
 
 std::vector<BtgManifold> runDevice(cl::Context& ctx, const Scene& s)
@@ -95,17 +104,22 @@ void expectSame(const BtgManifold& dev, const BtgManifold& ref, size_t i)
     SCOPED_TRACE("pair " + std::to_string(i));
     EXPECT_EQ(dev.bodyA, ref.bodyA);
     EXPECT_EQ(dev.bodyB, ref.bodyB);
+    EXPECT_EQ(dev.partIdA, BTG_NO_SUB_SHAPE);  // whole convex shapes
+    EXPECT_EQ(dev.indexA, BTG_NO_SUB_SHAPE);
+    EXPECT_EQ(dev.partIdB, BTG_NO_SUB_SHAPE);
+    EXPECT_EQ(dev.indexB, BTG_NO_SUB_SHAPE);
     ASSERT_EQ(dev.numPoints, ref.numPoints);
     if (ref.numPoints == 0) return;
-    EXPECT_GE(btgDot3(dev.normal, ref.normal), tol::kNormalDot);
+    EXPECT_GE(btgDot3(normalOf(dev), normalOf(ref)), tol::kNormalDot);
     for (int k = 0; k < ref.numPoints; ++k) {
         bool found = false;
         for (int j = 0; j < dev.numPoints && !found; ++j) {
-            BtgFloat4 d = dev.pointB[j] - ref.pointB[k];
+            BtgFloat4 d = pointB(dev, j) - pointB(ref, k);
             found = btgLength3(d) <= tol::kContactPoint && std::fabs(d.w) <= tol::kContactDepth;
+            if (found) EXPECT_EQ(dev.points[j].featureId, ref.points[k].featureId) << "point " << k;
         }
-        EXPECT_TRUE(found) << "reference point " << k << " (" << ref.pointB[k].x << ", " << ref.pointB[k].y << ", "
-                           << ref.pointB[k].z << "; " << ref.pointB[k].w << ") has no device match";
+        EXPECT_TRUE(found) << "reference point " << k << " (" << pointB(ref, k).x << ", " << pointB(ref, k).y << ", "
+                           << pointB(ref, k).z << "; " << pointB(ref, k).w << ") has no device match";
     }
 }
 
@@ -118,15 +132,15 @@ std::vector<BtgManifold> collide(const Scene& s)
     return dev;
 }
 
-void expectNormal(const BtgManifold& m, BtgFloat4 n) { EXPECT_GE(btgDot3(m.normal, btgNormalize3(n)), tol::kNormalDot); }
+void expectNormal(const BtgManifold& m, BtgFloat4 n) { EXPECT_GE(btgDot3(normalOf(m), btgNormalize3(n)), tol::kNormalDot); }
 void expectAllDepths(const BtgManifold& m, float distance)
 {
-    for (int k = 0; k < m.numPoints; ++k) EXPECT_NEAR(m.pointB[k].w, distance, tol::kContactDepth) << "point " << k;
+    for (int k = 0; k < m.numPoints; ++k) EXPECT_NEAR(pointB(m, k).w, distance, tol::kContactDepth) << "point " << k;
 }
 bool hasPoint(const BtgManifold& m, BtgFloat4 p, float tolerance = tol::kContactPoint)
 {
     for (int k = 0; k < m.numPoints; ++k)
-        if (btgLength3(btgXyz(m.pointB[k]) - btgXyz(p)) <= tolerance) return true;
+        if (btgLength3(btgXyz(pointB(m, k)) - btgXyz(p)) <= tolerance) return true;
     return false;
 }
 
@@ -169,11 +183,11 @@ TEST(Narrowphase, CrossedBoxesEdgeEdge)
     std::vector<BtgManifold> m = collide(s);
     ASSERT_EQ(m[0].numPoints, 1);
     expectNormal(m[0], btgMake4(0, 1, 0, 0));
-    EXPECT_NEAR(m[0].pointB[0].w, -0.01f, tol::kContactDepth);
+    EXPECT_NEAR(pointB(m[0], 0).w, -0.01f, tol::kContactDepth);
     EXPECT_TRUE(hasPoint(m[0], btgMake4(0, r, 0, 0)));
     ASSERT_EQ(m[1].numPoints, 1);
     expectNormal(m[1], btgMake4(0, -1, 0, 0));
-    EXPECT_NEAR(m[1].pointB[0].w, -0.01f, tol::kContactDepth);
+    EXPECT_NEAR(pointB(m[1], 0).w, -0.01f, tol::kContactDepth);
     EXPECT_TRUE(hasPoint(m[1], btgMake4(5, r - 0.01f, 0, 0)));  // on the upper box's edge
 }
 
@@ -189,7 +203,7 @@ TEST(Narrowphase, VertexOnFace)
     std::vector<BtgManifold> m = collide(s);
     ASSERT_EQ(m[0].numPoints, 1);
     expectNormal(m[0], btgMake4(0, 1, 0, 0));
-    EXPECT_NEAR(m[0].pointB[0].w, -0.01f, tol::kContactDepth);
+    EXPECT_NEAR(pointB(m[0], 0).w, -0.01f, tol::kContactDepth);
     EXPECT_TRUE(hasPoint(m[0], btgMake4(0.3f, 0.5f, -0.2f, 0)));
 }
 
@@ -213,20 +227,20 @@ TEST(Narrowphase, SphereOnBox)
     std::vector<BtgManifold> m = collide(s);
     ASSERT_EQ(m[3].numPoints, 1);
     expectNormal(m[3], btgMake4(0, 1, 0, 0));
-    EXPECT_NEAR(m[3].pointB[0].w, -0.01f, tol::kContactDepth);
+    EXPECT_NEAR(pointB(m[3], 0).w, -0.01f, tol::kContactDepth);
     EXPECT_TRUE(hasPoint(m[3], btgMake4(30.1f, 0.24f, 0, 0)));  // on the grown surface
     ASSERT_EQ(m[0].numPoints, 1);
     expectNormal(m[0], btgMake4(0, 1, 0, 0));
-    EXPECT_NEAR(m[0].pointB[0].w, -0.02f, tol::kContactDepth);
+    EXPECT_NEAR(pointB(m[0], 0).w, -0.02f, tol::kContactDepth);
     EXPECT_TRUE(hasPoint(m[0], btgMake4(0.2f, 0.5f, 0.1f, 0)));
     // ground is A here: the normal points from the ball to the box
     ASSERT_EQ(m[1].numPoints, 1);
     expectNormal(m[1], btgMake4(-1, -1, 0, 0));
-    EXPECT_NEAR(m[1].pointB[0].w, std::sqrt(0.18f) - 0.5f, tol::kContactDepth);
+    EXPECT_NEAR(pointB(m[1], 0).w, std::sqrt(0.18f) - 0.5f, tol::kContactDepth);
     EXPECT_TRUE(hasPoint(m[1], btgMake4(12.3f, 0.8f, 0, 0) + btgMake4(-1, -1, 0, 0) * (0.5f / std::sqrt(2.0f))));
     ASSERT_EQ(m[2].numPoints, 1);
     expectNormal(m[2], btgMake4(0, 1, 0, 0));
-    EXPECT_NEAR(m[2].pointB[0].w, -0.2f - 0.5f, tol::kContactDepth);
+    EXPECT_NEAR(pointB(m[2], 0).w, -0.2f - 0.5f, tol::kContactDepth);
     EXPECT_TRUE(hasPoint(m[2], btgMake4(20, 0.5f, 0, 0)));
 }
 
@@ -245,15 +259,15 @@ TEST(Narrowphase, SphereSphereAndPlane)
     std::vector<BtgManifold> m = collide(s);
     ASSERT_EQ(m[0].numPoints, 1);
     expectNormal(m[0], btgMake4(-1, 0, 0, 0));
-    EXPECT_NEAR(m[0].pointB[0].w, -0.1f, tol::kContactDepth);
+    EXPECT_NEAR(pointB(m[0], 0).w, -0.1f, tol::kContactDepth);
     EXPECT_TRUE(hasPoint(m[0], btgMake4(0.4f, 0, 0, 0)));
     ASSERT_EQ(m[1].numPoints, 1);
     expectNormal(m[1], btgMake4(0, -1, 0, 0));  // plane is A: from the sphere down to the plane
-    EXPECT_NEAR(m[1].pointB[0].w, -0.01f, tol::kContactDepth);
+    EXPECT_NEAR(pointB(m[1], 0).w, -0.01f, tol::kContactDepth);
     EXPECT_TRUE(hasPoint(m[1], btgMake4(3, -0.26f, 0, 0)));  // on the sphere
     ASSERT_EQ(m[2].numPoints, 1);
     expectNormal(m[2], btgMake4(0, 1, 0, 0));
-    EXPECT_NEAR(m[2].pointB[0].w, -0.25f, tol::kContactDepth);
+    EXPECT_NEAR(pointB(m[2], 0).w, -0.25f, tol::kContactDepth);
     EXPECT_TRUE(hasPoint(m[2], btgMake4(0, -0.25f, 0, 0)));
 }
 
@@ -278,7 +292,7 @@ TEST(Narrowphase, BoxOnPlane)
         for (float z : {1.5f, 2.5f}) EXPECT_TRUE(hasPoint(m[0], btgMake4(x, -0.01f, z, 0)));
     ASSERT_EQ(m[1].numPoints, 4);
     expectAllDepths(m[1], -0.01f);
-    for (int k = 0; k < 4; ++k) EXPECT_NEAR(m[1].pointB[k].y, -0.01f, tol::kContactPoint);  // on the grown hull
+    for (int k = 0; k < 4; ++k) EXPECT_NEAR(pointB(m[1], k).y, -0.01f, tol::kContactPoint);  // on the grown hull
     EXPECT_EQ(m[2].numPoints, 0);
 }
 
@@ -304,10 +318,10 @@ TEST(Narrowphase, TetrahedronAndPrismOnBox)
     ASSERT_EQ(m[0].numPoints, 3);
     expectNormal(m[0], btgMake4(0, -1, 0, 0));  // ground is A
     expectAllDepths(m[0], -0.01f);
-    for (int k = 0; k < 3; ++k) EXPECT_NEAR(m[0].pointB[k].y, 0.49f, tol::kContactPoint);  // on the tetrahedron
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(pointB(m[0], k).y, 0.49f, tol::kContactPoint);  // on the tetrahedron
     ASSERT_EQ(m[1].numPoints, 3);
     expectAllDepths(m[1], -0.01f);
-    for (int k = 0; k < 3; ++k) EXPECT_NEAR(m[1].pointB[k].y, 0.49f, tol::kContactPoint);  // on the grown hull
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(pointB(m[1], k).y, 0.49f, tol::kContactPoint);  // on the grown hull
     ASSERT_EQ(m[2].numPoints, 4);
     expectNormal(m[2], btgMake4(0, -1, 0, 0));
     expectAllDepths(m[2], -0.01f);
@@ -418,11 +432,11 @@ TEST(Narrowphase, RandomPosesAgreeAndLieOnSurfaces)
         ASSERT_LE(m[i].numPoints, BTG_MAX_POINTS);
         if (m[i].numPoints == 0) continue;
         ++touching;
-        EXPECT_NEAR(btgLength3(m[i].normal), 1.0f, 1e-5f);
+        EXPECT_NEAR(btgLength3(normalOf(m[i])), 1.0f, 1e-5f);
         for (int k = 0; k < m[i].numPoints; ++k) {
-            BtgFloat4 pb = m[i].pointB[k];
+            BtgFloat4 pb = pointB(m[i], k);
             EXPECT_LT(pb.w, kThreshold);
-            BtgFloat4 pa = btgXyz(pb) + m[i].normal * pb.w;
+            BtgFloat4 pa = btgXyz(pb) + normalOf(m[i]) * pb.w;
             EXPECT_NEAR(surfaceOffset(s, m[i].bodyB, pb), 0.0f, tol::kContactPoint) << "point " << k << " not on B";
             EXPECT_NEAR(surfaceOffset(s, m[i].bodyA, pa), 0.0f, tol::kContactPoint) << "point " << k << " not on A";
         }
@@ -442,8 +456,74 @@ TEST(Narrowphase, EqualBoxesStackedKeepAllFourCorners)
     s.pair(0, 1);
     std::vector<BtgManifold> m = collide(s);
     ASSERT_EQ(m[0].numPoints, 4);
-    for (int k = 0; k < 4; ++k) std::printf("p %f %f %f %f\n", m[0].pointB[k].x, m[0].pointB[k].y, m[0].pointB[k].z, m[0].pointB[k].w);
     expectAllDepths(m[0], -0.005f);
     for (float x : {-0.5f, 0.5f})
         for (float z : {-0.5f, 0.5f}) EXPECT_TRUE(hasPoint(m[0], btgMake4(x, 0.995f, z, 0)));
+}
+
+namespace {
+// The same scene with every body nudged: turned by `angle` about a fixed tilted axis, moved by `shift`.
+Scene nudged(const Scene& s, float angle, BtgFloat4 shift)
+{
+    Scene n = s;
+    const BtgFloat4 q = axisAngle(btgMake4(0.3f, 1, 0.2f, 0), angle);
+    for (size_t i = 0; i < n.pos.size(); i += 2) {  // the first body of each pair
+        n.rot[i] = btgQuatNormalize(btgQuatMul(q, n.rot[i]));
+        n.pos[i] = n.pos[i] + shift;
+    }
+    return n;
+}
+}  // namespace
+
+// Feature ids name points by the features that make them: unique within a manifold, and a
+// small motion keeps each corner's id (the point with the same id is the same corner, nearby),
+// for face contacts (clipping; in pair 0 the nudge moves the reference face from A to B, and
+// the corners keep their ids), vertex contacts on planes, edge contacts and spheres.
+TEST(Narrowphase, FeatureIdsAreUniqueAndStable)
+{
+    Scene s;
+    int ground = s.t.addBox(btgMake4(2, 0.5f, 2, 0)), cube = s.t.addBox(btgMake4(0.5f, 0.5f, 0.5f, 0));
+    int floor = s.t.addPlane(btgMake4(0, 1, 0, 0), 0), ball = s.t.addSphere(0.5f);
+    int prism = s.t.addPrism(9, 0.5f, 0.25f, 0.01f);
+    const float r = 0.5f * std::sqrt(2.0f);
+    s.body(cube, btgMake4(0.1f, 0.99f, 0, 0), axisAngle(btgMake4(0, 1, 0, 0), 0.4f));  // face on face, cube is A
+    s.body(ground, btgMake4(0, 0, 0, 0));
+    s.body(ground, btgMake4(10, 0, 0, 0));  // ground is A: the reference face is B's or A's
+    s.body(cube, btgMake4(10.2f, 0.99f, 0, 0), axisAngle(btgMake4(0, 1, 0, 0), 0.2f));
+    s.body(cube, btgMake4(20, 0.49f, 0, 0));  // on the plane
+    s.body(floor, btgMake4(20, 0, 0, 0));
+    s.body(cube, btgMake4(30, 2 * r - 0.01f, 0, 0), axisAngle(btgMake4(1, 0, 0, 0), 0.78539816f));  // edge on edge
+    s.body(cube, btgMake4(30, 0, 0, 0), axisAngle(btgMake4(0, 0, 1, 0), 0.78539816f));
+    s.body(ball, btgMake4(40, 0.98f, 0, 0));
+    s.body(ground, btgMake4(40, 0, 0, 0));
+    s.body(prism, btgMake4(50, 0.75f - 0.01f, 0, 0), axisAngle(btgMake4(0, 1, 0, 0), 0.3f));  // 18 vertices
+    s.body(ground, btgMake4(50, 0, 0, 0));
+    for (int i = 0; i < 12; i += 2) s.pair(i, i + 1);
+    std::vector<BtgManifold> before = collide(s);
+    std::vector<BtgManifold> after = collide(nudged(s, 0.004f, btgMake4(0.002f, -0.001f, 0.001f, 0)));
+    const int expectPoints[6] = {4, 4, 4, 1, 1, 4};
+    for (size_t i = 0; i < before.size(); ++i) {
+        SCOPED_TRACE("pair " + std::to_string(i));
+        ASSERT_EQ(before[i].numPoints, expectPoints[i]);
+        ASSERT_EQ(after[i].numPoints, expectPoints[i]);
+        int kept = 0;
+        for (int k = 0; k < after[i].numPoints; ++k) {
+            const BtgManifoldPoint& p = after[i].points[k];
+            EXPECT_NE(p.featureId, BTG_FEATURE_UNKNOWN);
+            int same = -1;
+            for (int j = 0; j < before[i].numPoints; ++j) {
+                if (j != k) EXPECT_NE(after[i].points[j].featureId, p.featureId) << "ids repeat in a manifold";
+                if (before[i].points[j].featureId == p.featureId) same = j;
+            }
+            if (same < 0) continue;
+            ++kept;
+            EXPECT_LT(btgLength3(pointB(after[i], k) - pointB(before[i], same)), 0.01f) << "point " << k;
+        }
+        // The 9-gon's reduction to 4 corners may pick others after the nudge; the rest keep all.
+        EXPECT_GE(kept, i == 5 ? 2 : after[i].numPoints);
+    }
+    EXPECT_EQ(before[2].points[0].featureId & 0xc0000000u, BTG_FEATURE_VERTEX);
+    EXPECT_EQ(before[3].points[0].featureId & 0xc0000000u, BTG_FEATURE_EDGES);
+    EXPECT_EQ(before[4].points[0].featureId, BTG_FEATURE_SINGLE);
+    EXPECT_EQ(before[0].points[0].featureId & 0xc0000000u, BTG_FEATURE_CLIP);
 }

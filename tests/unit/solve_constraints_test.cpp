@@ -246,13 +246,7 @@ TEST(SolveConstraints, RestitutionTwoToOne)
     int upper = test::addBody(b, btgMake4(0, 1, 0, 0), 0.5f, btgMake4(1.25f, 1.25f, 1.25f, 0), BTG_BODY_DYNAMIC, 0.5f, 1.0f);
     b.linVel0[upper] = b.linVel[upper] = btgMake4(0, -2, 0, 0);
     b.linVel0[lower] = b.linVel[lower] = btgMake4(0, 1, 0, 0);
-    BtgManifold m{};
-    m.normal = btgMake4(0, 1, 0, 0);
-    m.breakingThreshold = 0.02f;
-    m.bodyA = upper;
-    m.bodyB = lower;
-    m.numPoints = 1;
-    m.pointB[0] = btgMake4(0, 0.5f, 0, 0.0f);
+    BtgManifold m = test::onePointManifold(upper, lower, btgMake4(0, 1, 0, 0), btgMake4(0, 0.5f, 0, 0), 0.0f);
     Result d = runDevice(b, {m}, {}, test::defaultParams(2), 4);
     // Separating at e * 3 m/s = 1.5 m/s, momentum (2 * -2 + 1 * 1) kept: J = 3 N s.
     EXPECT_NEAR(d.bodies.linVel[upper].y - d.bodies.linVel[lower].y, 1.5f, 1e-5f);
