@@ -211,25 +211,59 @@ static inline int btgFindPrevContact(BTG_CONST_GLOBAL BtgCachedContact* prev, in
     }
     return -1;
 }
-/* btPersistentManifold::getCacheEntry: each new point takes the old point nearest in A's frame,
- * strictly within the manifold's breaking threshold; its impulses start scaled by the
- * warm-start factor. rotA: A's rotation now (the new points' keys). */
-static inline void btgWarmStartFrom(BtgContact* c, BtgFloat4 rotA, BtgManifold m, BtgCachedContact old, float factor)
+/* Which old point of the cached manifold `old` each new point of `m` continues. First by
+ * identity (box3d's featureId): the old point with the same feature id, each old point taken
+ * so by one new point only. Bullet's breaking threshold still bounds every match (a point that
+ * moved further in A's frame starts cold, as btPersistentManifold::getCacheEntry has it), so
+ * identity decides only among old points close enough: the nearest may be another feature's
+ * (clipping puts a face corner and an edge crossing a fraction of a millimetre apart), and
+ * distance alone would hand one old impulse to both. A point no old point shares its id with
+ * falls back to getCacheEntry: the old point nearest in A's frame, strictly within the
+ * threshold, among those no identity match took. keys: the new points' keys (btgContactKey).
+ * match[k]: the old point, or -1. */
+static inline void btgMatchPoints(BtgManifold m, const BtgFloat4* keys, BtgCachedContact old, int* match)
 {
-    BtgMat3 ra = btgQuatToMat3(rotA);
     const float threshold = m.breakingThreshold;
-    for (int k = 0; k < c->numPoints; ++k) {
-        BtgFloat4 key = btgContactKey(ra, c->rA[k]);
+    uint claimed = 0u;
+    for (int k = 0; k < m.numPoints; ++k) {
+        match[k] = -1;
+        uint id = m.points[k].featureId;
+        if (id == BTG_FEATURE_UNKNOWN) continue;
+        for (int j = 0; j < old.numPoints && match[k] < 0; ++j) {
+            if ((claimed >> j) & 1u || old.featureId[j] != id) continue;
+            BtgFloat4 d = keys[k] - btgXyz(old.point[j]);
+            if (!(btgDot3(d, d) < threshold * threshold)) continue;
+            match[k] = j;
+            claimed |= 1u << j;
+        }
+    }
+    for (int k = 0; k < m.numPoints; ++k) {
+        if (match[k] >= 0) continue;
         float best = threshold * threshold;
-        int found = -1;
         for (int j = 0; j < old.numPoints; ++j) {
-            BtgFloat4 d = key - btgXyz(old.point[j]);
+            if ((claimed >> j) & 1u) continue;
+            BtgFloat4 d = keys[k] - btgXyz(old.point[j]);
             float d2 = btgDot3(d, d);
             if (d2 < best) {
                 best = d2;
-                found = j;
+                match[k] = j;
             }
         }
+    }
+}
+
+/* The warm start: each new point's impulses start from those of the old point it continues
+ * (btgMatchPoints), scaled by the warm-start factor. rotA: A's rotation now (the new points'
+ * keys). */
+static inline void btgWarmStartFrom(BtgContact* c, BtgFloat4 rotA, BtgManifold m, BtgCachedContact old, float factor)
+{
+    BtgMat3 ra = btgQuatToMat3(rotA);
+    BtgFloat4 keys[BTG_MAX_POINTS];
+    int match[BTG_MAX_POINTS];
+    for (int k = 0; k < BTG_MAX_POINTS; ++k) keys[k] = k < c->numPoints ? btgContactKey(ra, c->rA[k]) : btgZero4();
+    btgMatchPoints(m, keys, old, match);
+    for (int k = 0; k < c->numPoints; ++k) {
+        int found = match[k];
         if (found < 0) continue;
         btgSetLane(&c->normalImpulse, k, old.point[found].w * factor);
 #if BTG_WARMSTART_FRICTION

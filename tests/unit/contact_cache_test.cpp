@@ -282,3 +282,87 @@ TEST(ContactCache, SeveralManifoldsPerPair)
         EXPECT_FLOAT_EQ(got[i].normalImpulse.x, float(i + 1) * params.warmstartFactor) << i;
     }
 }
+
+namespace {
+// A previous step's manifold of `box` on `ground` and its cache entry with the given impulses.
+struct Warm {
+    ref::ContactBodies bodies;
+    int ground = 0, box = 0;
+    BtgStepParams params = test::defaultParams(2);
+    Warm()
+    {
+        ground = test::addBody(bodies, btgZero4(), 0.0f, btgZero4(), BTG_BODY_STATIC);
+        box = test::addBody(bodies, btgMake4(0, 0.5f, 0, 0), 1.0f, btgMake4(6, 6, 6, 0), BTG_BODY_DYNAMIC);
+    }
+    // Points on the ground's top face (y = 0), touching (distance 0), with ids; threshold 3.5 mm
+    // (a 0.1 m box's, as in BasicDemo).
+    BtgManifold manifold(const std::vector<BtgFloat4>& xz, const std::vector<uint>& ids) const
+    {
+        BtgManifold m = btgEmptyManifold(box, ground);
+        m.breakingThreshold = 0.0035f;
+        for (size_t k = 0; k < xz.size(); ++k)
+            btgAddPoint(&m, btgMake4(0, 1, 0, 0), btgMake4(xz[k].x, 0, xz[k].z, 0), 0.0f, ids[k]);
+        return m;
+    }
+    std::vector<BtgCachedContact> cache(const BtgManifold& m, BtgFloat4 impulses) const
+    {
+        BtgContact c = btgContactFromManifold(m, bodies.pos[size_t(box)], bodies.pos[size_t(ground)]);
+        c.normalImpulse = impulses;
+        return ref::storeContactCache({c}, {0u}, {m}, bodies);
+    }
+    // The warm-started normal impulses of `now` from `cache`, on the device (checked against the
+    // reference).
+    BtgFloat4 warmStart(const BtgManifold& now, const std::vector<BtgCachedContact>& cache) const
+    {
+        std::vector<BtgContact> expect = ref::buildContactsFromCache({now}, 1, bodies, cache, params);
+        DeviceWorld w(test::context());
+        test::uploadWorld(w, bodies, {now}, 1, {}, 4);
+        w.contactCache.upload(w.ctx, cache);
+        std::vector<uint> counters = w.counters.download(w.ctx, kNumCounters);
+        counters[kPrevContactCount] = uint(cache.size());
+        w.counters.upload(w.ctx, counters);
+        buildContacts(w, params);
+        std::vector<BtgContact> got = test::downloadContacts(w);
+        EXPECT_EQ(got.size(), 1u);
+        if (got.size() != 1u) return btgZero4();
+        expectSameContact(got[0], expect[0], 0);
+        return got[0].normalImpulse * (1.0f / params.warmstartFactor);
+    }
+};
+const uint kCorner = BTG_FEATURE_CLIP | 0x0201u, kCrossing = BTG_FEATURE_CLIP | 0x8002u;
+const uint kCornerB = BTG_FEATURE_CLIP | 0x0302u;
+}  // namespace
+
+// The cases where matching by distance alone warm-starts from the wrong point, as BasicDemo
+// meets them (0.1 m boxes: a 3.5 mm breaking threshold). Clipping puts a face corner and the
+// crossing of an edge with the other face's side 0.47 mm apart: by distance both took the
+// corner's impulse, so the warm start pushed twice at one place; by identity the crossing,
+// a new point, starts cold. And a corner that slid 2 mm towards another corner 3 mm away is
+// nearer the other: by distance it took that corner's impulse, by identity its own.
+TEST(ContactCache, WarmStartFollowsFeatureIds)
+{
+    Warm t;
+    const BtgFloat4 p = btgMake4(0.05f, 0, 0.05f, 0);
+    // One old corner (impulse 5); now the corner and a crossing 0.47 mm from it.
+    BtgManifold old1 = t.manifold({p}, {kCorner});
+    BtgManifold now1 = t.manifold({p + btgMake4(0.0001f, 0, 0, 0), p + btgMake4(0.00047f, 0, 0, 0)}, {kCorner, kCrossing});
+    BtgFloat4 w1 = t.warmStart(now1, t.cache(old1, btgMake4(5, 0, 0, 0)));
+    EXPECT_FLOAT_EQ(w1.x, 5.0f);
+    EXPECT_EQ(w1.y, 0.0f) << "the crossing took the corner's impulse too";
+    // Two old corners 3 mm apart (impulses 1 and 2); the first slid 2 mm towards the second.
+    BtgManifold old2 = t.manifold({p, p + btgMake4(0.003f, 0, 0, 0)}, {kCorner, kCornerB});
+    BtgManifold now2 = t.manifold({p + btgMake4(0.002f, 0, 0, 0)}, {kCorner});
+    EXPECT_FLOAT_EQ(t.warmStart(now2, t.cache(old2, btgMake4(1, 2, 0, 0))).x, 1.0f);
+    // Identity never reaches past the breaking threshold (Bullet's rule: a point that moved
+    // further starts cold) ...
+    BtgManifold now3 = t.manifold({p + btgMake4(0.004f, 0, 0, 0)}, {kCorner});
+    EXPECT_EQ(t.warmStart(now3, t.cache(old1, btgMake4(5, 0, 0, 0))).x, 0.0f);
+    // ... and a point whose id no old point has falls back to the nearest one within it.
+    BtgManifold now4 = t.manifold({p + btgMake4(0.001f, 0, 0, 0)}, {kCrossing});
+    EXPECT_FLOAT_EQ(t.warmStart(now4, t.cache(old1, btgMake4(5, 0, 0, 0))).x, 5.0f);
+    // An old point an identity match took is not also some other point's nearest.
+    BtgManifold now5 = t.manifold({p + btgMake4(0.0002f, 0, 0, 0), p}, {kCrossing, kCorner});
+    BtgFloat4 w5 = t.warmStart(now5, t.cache(old1, btgMake4(5, 0, 0, 0)));
+    EXPECT_EQ(w5.x, 0.0f);
+    EXPECT_FLOAT_EQ(w5.y, 5.0f);
+}
