@@ -111,8 +111,8 @@ namespace {
 
 // Grows the pair and contact buffers from an overflowed call's full counts (the kernels count
 // past capacity). Contacts take what they need plus an eighth, pairs a quarter: the contact
-// list is the largest buffer (304 + 80 bytes a slot), and every growth is at least 1.25x, so
-// redos stay few.
+// list is the largest buffer (304 + 112 + 4 bytes a slot with its cache entry and manifold
+// slot), and every growth is at least 1.25x, so redos stay few.
 void grow(DeviceWorld& w, const BodyReadback& rb, bool pairOverflow, bool contactOverflow)
 {
     size_t pairs = rb.counters[kPairCount];

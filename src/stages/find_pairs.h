@@ -3,8 +3,9 @@
 // a pass of the `largeBodies` against every body, and the `planeBodies` against every body by
 // a plane/AABB test. Both small-body passes find the same pairs, so the result does not depend
 // on the choice.
-// Reads aabbMin, aabbMax, props (flags, group, mask), largeBodies, planeBodies, pos, rot, shapes.
-// Writes pairs (a < b, sorted by (a, b), no duplicates), pairOrder and pairKindRanges (the
+// Reads aabbMin, aabbMax, props (flags, group, mask, shape), largeBodies, planeBodies, pos, rot, shapes.
+// Writes pairs (a < b, sorted by (a, b), no duplicates), pairManifolds (none yet), pairOrder
+// and pairKindRanges (the
 // pairs grouped by kind: sorted by (kind, a, b), each kind's range found on the device; see
 // groupPairsByKind) and counters[kPairCount]. When more
 // pairs are found than pairCapacity, the count still says how many, BTG_STATUS_PAIR_OVERFLOW
