@@ -106,5 +106,5 @@ __kernel void store_contact_cache(__global const BtgContact* restrict contacts,
     if (i == 0) counters[BTG_COUNTER_PREV_CONTACTS] = n;
     if (i >= n) return;
     BtgContact c = contacts[i];
-    cache[i] = btgCachedContactFrom(c, rot[c.bodyA], manifolds[contactManifolds[i]]);
+    cache[i] = btgCachedContactFrom(c, rot[c.bodyA], &manifolds[contactManifolds[i]]);
 }

@@ -153,9 +153,9 @@ static inline BtgFloat4 btgContactKey(BtgMat3 rotA, BtgFloat4 rA)
 }
 
 /* A solved contact as the cache keeps it: its keys and impulses, and the identity of its
- * manifold `m` (sub-shape keys) and points (feature ids). rotA is A's rotation when the contact
- * was built. */
-static inline BtgCachedContact btgCachedContactFrom(BtgContact c, BtgFloat4 rotA, BtgManifold m)
+ * manifold *m (sub-shape keys) and points (feature ids), read field by field (a pointer: the
+ * kernel loads 32 of the manifold's 160 bytes). rotA is A's rotation when the contact was built. */
+static inline BtgCachedContact btgCachedContactFrom(BtgContact c, BtgFloat4 rotA, BTG_CONST_GLOBAL BtgManifold* m)
 {
     BtgCachedContact e;
     BtgMat3 ra = btgQuatToMat3(rotA);
@@ -165,17 +165,17 @@ static inline BtgCachedContact btgCachedContactFrom(BtgContact c, BtgFloat4 rotA
         if (k < c.numPoints) {
             e.point[k] = btgContactKey(ra, c.rA[k]);
             e.point[k].w = btgLane(c.normalImpulse, k);
-            e.featureId[k] = m.points[k].featureId;
+            e.featureId[k] = m->points[k].featureId;
         }
     }
 #if BTG_WARMSTART_FRICTION
     e.friction1Impulse = c.friction1Impulse;
     e.friction2Impulse = c.friction2Impulse;
 #endif
-    e.partIdA = m.partIdA;
-    e.indexA = m.indexA;
-    e.partIdB = m.partIdB;
-    e.indexB = m.indexB;
+    e.partIdA = m->partIdA;
+    e.indexA = m->indexA;
+    e.partIdB = m->partIdB;
+    e.indexB = m->indexB;
     e.bodyA = c.bodyA;
     e.bodyB = c.bodyB;
     e.numPoints = c.numPoints;

@@ -57,7 +57,7 @@ std::vector<BtgCachedContact> storeContactCache(const std::vector<BtgContact>& c
     std::vector<BtgCachedContact> cache;
     cache.reserve(contacts.size());
     for (size_t i = 0; i < contacts.size(); ++i)
-        cache.push_back(btgCachedContactFrom(contacts[i], bodies.rot[contacts[i].bodyA], manifolds[manifoldOf[i]]));
+        cache.push_back(btgCachedContactFrom(contacts[i], bodies.rot[contacts[i].bodyA], &manifolds[manifoldOf[i]]));
     return cache;
 }
 
@@ -67,7 +67,7 @@ std::vector<BtgCachedContact> storeContactCache(const std::vector<BtgContact>& c
     cache.reserve(contacts.size());
     for (const BtgContact& c : contacts) {
         BtgManifold whole = btgEmptyManifold(c.bodyA, c.bodyB);  // features unknown
-        cache.push_back(btgCachedContactFrom(c, bodies.rot[c.bodyA], whole));
+        cache.push_back(btgCachedContactFrom(c, bodies.rot[c.bodyA], &whole));
     }
     return cache;
 }
