@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "cl/context.h"
 #include "side_by_side.h"
 
 using namespace btgpu;
