@@ -25,7 +25,7 @@ __kernel void prepare_contacts(__global BtgContact* contacts, __global const uin
                                         invInertiaWorld[3 * c.bodyB + 2]);
     BtgBodyVel a0 = btgMakeBodyVel(a.moving, linVel0[c.bodyA], angVel0[c.bodyA]);
     BtgBodyVel b0 = btgMakeBodyVel(b.moving, linVel0[c.bodyB], angVel0[c.bodyB]);
-    btgPrepareContact(&c, a, b, a0, b0, btgCombinedFriction(pa.gravity.w, pb.gravity.w),
+    btgPrepareContact(&c, a, b, a0, b0, btgCombinedFriction(pa.friction, pb.friction),
                       pa.restitution * pb.restitution, btgContactSolvable(pa.flags, pb.flags), params);
     contacts[i] = c;
 }

@@ -83,7 +83,7 @@ static inline BtgSolverBody btgMakeSolverBody(BtgBodyProps p, BtgFloat4 i0, BtgF
     b.linFactor = btgXyz(p.linearFactor);
     b.angFactor = btgXyz(p.angularFactor);
     if (b.dynamic) {
-        b.invMass = p.invInertiaLocal.w;
+        b.invMass = p.invMass;
         b.invI.r0 = btgXyz(i0);
         b.invI.r1 = btgXyz(i1);
         b.invI.r2 = btgXyz(i2);

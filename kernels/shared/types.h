@@ -35,11 +35,15 @@
 
 /* Static per-body properties; rewritten only when the app changes them. */
 typedef struct {
-    BtgFloat4 invInertiaLocal; /* 1/(kg m^2) on the principal axes; w: inverse mass 1/kg */
-    BtgFloat4 linearFactor;    /* per-axis factor (0..1); w: linear damping, 1/s fraction */
-    BtgFloat4 angularFactor;   /* per-axis factor (0..1); w: angular damping */
-    BtgFloat4 gravity;         /* m/s^2, this body's own gravity; w: friction coefficient */
+    BtgFloat4 invInertiaLocal; /* 1/(kg m^2) on the principal axes; w: 0 */
+    BtgFloat4 linearFactor;    /* per-axis factor (0..1); w: 0 */
+    BtgFloat4 angularFactor;   /* per-axis factor (0..1); w: 0 */
+    BtgFloat4 gravity;         /* m/s^2, this body's own gravity; w: 0 */
+    float invMass;             /* 1/kg; 0 unless dynamic */
+    float friction;            /* coefficient, combined by product (btManifoldResult) */
     float restitution;         /* coefficient, combined by product */
+    float linearDamping;       /* Bullet's m_linearDamping: v *= (1 - d)^dt, d in 0..1 */
+    float angularDamping;      /* Bullet's m_angularDamping, the same for the angular velocity */
     int shape;                 /* row in the shape table */
     uint flags;                /* BTG_BODY_* */
     int group;                 /* broadphase collision filter group */
@@ -163,7 +167,7 @@ typedef struct {
 #define BTG_STATUS_GRID_BARRIER_TIMEOUT 8u /* a one-launch solve gave up waiting: redo per color */
 
 #ifndef __OPENCL_C_VERSION__
-static_assert(sizeof(BtgBodyProps) == 96, "BtgBodyProps layout");
+static_assert(sizeof(BtgBodyProps) == 112, "BtgBodyProps layout");
 static_assert(sizeof(BtgShape) == 96, "BtgShape layout");
 static_assert(sizeof(BtgFace) == 32, "BtgFace layout");
 static_assert(sizeof(BtgPair) == 8, "BtgPair layout");

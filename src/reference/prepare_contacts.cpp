@@ -18,7 +18,7 @@ void prepareContacts(std::vector<BtgContact>& contacts, const ContactBodies& bod
         BtgSolverBody a = solverBody(bodies, c.bodyA), b = solverBody(bodies, c.bodyB);
         BtgBodyVel a0 = btgMakeBodyVel(a.moving, bodies.linVel0[c.bodyA], bodies.angVel0[c.bodyA]);
         BtgBodyVel b0 = btgMakeBodyVel(b.moving, bodies.linVel0[c.bodyB], bodies.angVel0[c.bodyB]);
-        btgPrepareContact(&c, a, b, a0, b0, btgCombinedFriction(pa.gravity.w, pb.gravity.w),
+        btgPrepareContact(&c, a, b, a0, b0, btgCombinedFriction(pa.friction, pb.friction),
                           pa.restitution * pb.restitution, btgContactSolvable(pa.flags, pb.flags), params);
     }
 }

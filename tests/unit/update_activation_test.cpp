@@ -27,7 +27,8 @@ Scene chain()
     for (int i = 0; i < n; ++i) {
         BtgBodyProps p{};
         p.flags = i == 5 ? BTG_BODY_STATIC : BTG_BODY_DYNAMIC;
-        p.invInertiaLocal = btgMake4(1, 1, 1, i == 5 ? 0.0f : 1.0f);
+        p.invInertiaLocal = btgMake4(1, 1, 1, 0);
+        p.invMass = i == 5 ? 0.0f : 1.0f;
         p.sleepLinear = 0.8f;
         p.sleepAngular = 1.0f;
         sc.s.props.push_back(p);
