@@ -1,8 +1,8 @@
 /* prepare_contacts.cl — Stage: prepare (solver rows of each contact, setupContactConstraint).
  * Launch: one work-item per contact slot (contactCapacity); early-out past the contact count.
  * Reads counters[kContactCount], props, invInertiaWorld, linVel0, angVel0, contacts.
- * Writes contacts (t1, t2, masses, targets in rA.w / rB.w, friction in normal.w, restitution
- * in t1.w; impulses of non-solvable contacts zeroed). */
+ * Writes contacts (friction, tangent1/2, row masses, normalTarget, pushTarget, pushImpulse
+ * zeroed; impulses of non-solvable contacts zeroed). */
 #include "shared/counters.h"
 #include "shared/types.h"
 #include "shared/math.h"

@@ -5,9 +5,11 @@
  * launch (resident groups on GPUs, one group for small scenes on CPUs);
  * solve_color_serial: one work-item that walks, in index order, the contacts whose color is the
  * last one or higher (so a caller launching fewer colors than were assigned still solves all).
- * mode 0: apply warm-start impulses; 1: velocity iteration; 2: split-impulse iteration.
- * Reads counters[kContactCount], props, invInertiaWorld. Writes contacts (accumulated
- * impulses), linVel, angVel (modes 0, 1) or pushLin, pushAng (mode 2), dynamic bodies only. */
+ * mode 0: apply warm-start impulses; 1: velocity iteration; 2: split-impulse iteration;
+ * twoFriction: SOLVER_USE_2_FRICTION_DIRECTIONS (else the second friction rows are not read).
+ * Reads counters[kContactCount], props, invInertiaWorld, contacts (a pass reads the fields of
+ * its rows only, see BtgContact). Writes contacts (accumulated impulses), linVel, angVel
+ * (modes 0, 1) or pushLin, pushAng (mode 2), dynamic bodies only. */
 #include "shared/types.h"
 #include "shared/math.h"
 #include "shared/contact_rows.h"
@@ -24,9 +26,9 @@ static BtgSolverBody load_body(__global const BtgBodyProps* restrict props,
 /* Body velocities go through BTG_SHARED (volatile on GPUs) pointers: solve_resident shares
  * them between work-groups across its grid barriers, where a non-coherent cache must not
  * serve a stale copy. The arithmetic is the same for every caller. */
-static void solve_one(int i, int mode, __global BtgContact* contacts, __global const BtgBodyProps* restrict props,
-                      __global const BtgFloat4* restrict invInertiaWorld, BTG_SHARED __global BtgFloat4* lin,
-                      BTG_SHARED __global BtgFloat4* ang)
+static void solve_one(int i, int mode, int twoFriction, __global BtgContact* contacts,
+                      __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
+                      BTG_SHARED __global BtgFloat4* lin, BTG_SHARED __global BtgFloat4* ang)
 {
     BtgContact c = contacts[i];
     BtgSolverBody a = load_body(props, invInertiaWorld, c.bodyA);
@@ -36,8 +38,8 @@ static void solve_one(int i, int mode, __global BtgContact* contacts, __global c
     BtgFloat4 linA = lin[c.bodyA], angA = ang[c.bodyA], linB = lin[c.bodyB], angB = ang[c.bodyB];
     BtgBodyVel va = btgMakeBodyVel(movingA, linA, angA);
     BtgBodyVel vb = btgMakeBodyVel(movingB, linB, angB);
-    if (mode == BTG_PASS_WARM_START) btgContactWarmStart(&c, a, b, &va, &vb);
-    else if (mode == BTG_PASS_VELOCITY) btgContactSolveVelocity(&c, a, b, &va, &vb);
+    if (mode == BTG_PASS_WARM_START) btgContactWarmStart(&c, a, b, &va, &vb, twoFriction);
+    else if (mode == BTG_PASS_VELOCITY) btgContactSolveVelocity(&c, a, b, &va, &vb, twoFriction);
     else btgContactSolvePush(&c, a, b, &va, &vb);
     /* w of the velocity columns is not the solver's: keep it. */
     if (a.dynamic) {
@@ -50,11 +52,11 @@ static void solve_one(int i, int mode, __global BtgContact* contacts, __global c
     }
     /* Only the accumulated impulses change: storing just them saves most of the contact's
      * bytes of write traffic per pass. */
-    if (mode == 1) {
+    if (mode == BTG_PASS_VELOCITY) {
         contacts[i].normalImpulse = c.normalImpulse;
         contacts[i].friction1Impulse = c.friction1Impulse;
-        contacts[i].friction2Impulse = c.friction2Impulse;
-    } else if (mode == 2) {
+        if (twoFriction) contacts[i].friction2Impulse = c.friction2Impulse;
+    } else if (mode == BTG_PASS_PUSH) {
         contacts[i].pushImpulse = c.pushImpulse;
     }
 }
@@ -62,7 +64,7 @@ static void solve_one(int i, int mode, __global BtgContact* contacts, __global c
 __kernel void solve_color_serial(__global BtgContact* contacts, __global const uint* restrict counters,
                                  int contactCapacity, __global const BtgBodyProps* restrict props,
                                  __global const BtgFloat4* restrict invInertiaWorld, __global BtgFloat4* lin,
-                                 __global BtgFloat4* ang, int color, int mode)
+                                 __global BtgFloat4* ang, int color, int mode, int twoFriction)
 {
     if (get_global_id(0) != 0) return;
     /* No leftovers from the batching and no color at or past this one (the usual case):
@@ -70,7 +72,7 @@ __kernel void solve_color_serial(__global BtgContact* contacts, __global const u
     if (counters[BTG_COUNTER_LEFTOVERS] == 0u && counters[BTG_COUNTER_COLORS_USED] <= (uint)color) return;
     int n = (int)min(counters[BTG_COUNTER_CONTACTS], (uint)contactCapacity);
     for (int i = 0; i < n; ++i)
-        if (contacts[i].color >= color) solve_one(i, mode, contacts, props, invInertiaWorld, lin, ang);
+        if (contacts[i].color >= color) solve_one(i, mode, twoFriction, contacts, props, invInertiaWorld, lin, ang);
 }
 
 /* Color ranges, so a color's launch touches only its own contacts instead of reading every
@@ -81,12 +83,6 @@ __kernel void solve_color_serial(__global BtgContact* contacts, __global const u
  * list 1 only those with a split-impulse (push) target on some point — the push passes skip
  * the rest, which they would leave unchanged (as Bullet skips rows without m_rhsPenetration).
  * List l's counts and starts are at l * (numColors + 1), its indices at l * orderStride. */
-static int has_push(__global const BtgContact* c)
-{
-    for (int k = 0; k < c->numPoints; ++k)
-        if (c->rB[k].w != 0.0f && btgLane(c->normalMass, k) != 0.0f) return 1;
-    return 0;
-}
 
 __kernel void color_count(__global const BtgContact* restrict contacts, __global const uint* restrict counters,
                           int contactCapacity, __global uint* colorCount, int numColors)
@@ -96,7 +92,8 @@ __kernel void color_count(__global const BtgContact* restrict contacts, __global
     int c = contacts[i].color;
     if (c < 0 || c >= numColors - 1) return;
     atomic_inc(&colorCount[c]);
-    if (has_push(&contacts[i])) atomic_inc(&colorCount[numColors + 1 + c]);
+    BtgContact contact = contacts[i];
+    if (btgContactHasPush(&contact)) atomic_inc(&colorCount[numColors + 1 + c]);
 }
 
 __kernel void color_offsets(__global uint* colorCount, __global uint* colorStart, int numColors)
@@ -123,7 +120,8 @@ __kernel void color_fill(__global const BtgContact* restrict contacts, __global 
     int c = contacts[i].color;
     if (c < 0 || c >= numColors - 1) return;
     colorOrder[colorStart[c] + atomic_inc(&colorCursor[c])] = i;
-    if (has_push(&contacts[i])) {
+    BtgContact contact = contacts[i];
+    if (btgContactHasPush(&contact)) {
         const int p = numColors + 1 + c;
         colorOrder[orderStride + colorStart[p] + atomic_inc(&colorCursor[p])] = i;
     }
@@ -135,13 +133,14 @@ __kernel void color_fill(__global const BtgContact* restrict contacts, __global 
 __kernel void solve_color_range(__global BtgContact* contacts, __global const uint* restrict colorStart,
                                 __global const int* restrict colorOrder, __global const BtgBodyProps* restrict props,
                                 __global const BtgFloat4* restrict invInertiaWorld, __global BtgFloat4* lin,
-                                __global BtgFloat4* ang, int color, int mode, int numColors, int orderStride)
+                                __global BtgFloat4* ang, int color, int mode, int twoFriction, int numColors,
+                                int orderStride)
 {
     const int list = mode == 2 ? 1 : 0;
     const int begin = (int)colorStart[list * (numColors + 1) + color];
     const int end = (int)colorStart[list * (numColors + 1) + color + 1];
     for (int k = begin + (int)get_global_id(0); k < end; k += (int)get_global_size(0))
-        solve_one(colorOrder[list * orderStride + k], mode, contacts, props, invInertiaWorld, lin, ang);
+        solve_one(colorOrder[list * orderStride + k], mode, twoFriction, contacts, props, invInertiaWorld, lin, ang);
 }
 
 /* solve_resident: every pass and color in ONE launch over resident work-groups (GPUs), with a
@@ -158,7 +157,7 @@ __kernel void solve_resident(__global BtgContact* contacts, __global uint* count
                              BTG_SHARED __global BtgFloat4* linVel, BTG_SHARED __global BtgFloat4* angVel,
                              BTG_SHARED __global BtgFloat4* pushLin, BTG_SHARED __global BtgFloat4* pushAng,
                              volatile __global BtgGridBarrier* bar, int numColors, int orderStride, int iterations,
-                             int splitImpulse, int spinLimit)
+                             int splitImpulse, int twoFriction, int spinLimit)
 {
     __local int quit;
     if (counters[BTG_COUNTER_STATUS] & BTG_STATUS_GRID_BARRIER_TIMEOUT) return;
@@ -176,7 +175,8 @@ __kernel void solve_resident(__global BtgContact* contacts, __global uint* count
             const int begin = (int)colorStart[list * (numColors + 1) + color];
             const int end = (int)colorStart[list * (numColors + 1) + color + 1];
             for (int k = begin + gid; k < end; k += gsize)
-                solve_one(colorOrder[list * orderStride + k], mode, contacts, props, invInertiaWorld, lin, ang);
+                solve_one(colorOrder[list * orderStride + k], mode, twoFriction, contacts, props, invInertiaWorld, lin,
+                          ang);
             if (btgGridBarrier(bar, spinLimit, &quit)) {
                 if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
                 return;
@@ -185,7 +185,8 @@ __kernel void solve_resident(__global BtgContact* contacts, __global uint* count
         if (walkLast) {
             if (gid == 0)
                 for (int i = 0; i < n; ++i)
-                    if (contacts[i].color >= last) solve_one(i, mode, contacts, props, invInertiaWorld, lin, ang);
+                    if (contacts[i].color >= last)
+                        solve_one(i, mode, twoFriction, contacts, props, invInertiaWorld, lin, ang);
             if (btgGridBarrier(bar, spinLimit, &quit)) {
                 if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
                 return;

@@ -104,29 +104,43 @@ typedef struct {
                                          keeps its own; the warm-start matching uses it */
 } BtgManifold;
 
-/* One solver row set per manifold: normal, two friction directions, split impulse. The
- * warm-start key (the point in A's frame) is not kept here: it is R_A^T rA, and the cache
- * stage recomputes it from rA and A's unchanged rotation when it stores the cache. */
+/* The solver rows of one contact manifold (the btSolverConstraint rows Bullet builds from one
+ * btPersistentManifold), solved as BtgSolverRow (solver_rows.h). Point k has a normal row along
+ * `normal`, friction rows along tangent1 (and tangent2 with two friction directions) bounded
+ * by friction * its normal impulse, and a split-impulse push row along `normal`; all act at
+ * its lever arms rA[k], rB[k], and lane k of every per-point field is its rows' state.
+ * Fields are in the order the passes read them, so each reads one or two runs: a velocity
+ * pass up to friction1Impulse (friction2Impulse with two friction directions), a push pass up
+ * to normalMass and then the push fields; none reads separation. The warm-start key (the
+ * point in A's frame) is not kept here: it is R_A^T rA, and the cache stage recomputes it
+ * from rA and A's unchanged rotation when it stores the cache. */
 typedef struct {
-    BtgFloat4 normal;                  /* B towards A; w: combined friction */
-    BtgFloat4 t1;                      /* friction direction 1; w: combined restitution */
-    BtgFloat4 t2;                      /* friction direction 2 */
-    BtgFloat4 rA[BTG_MAX_POINTS];      /* contact point on A minus A's centre, m; w: signed
-                                          distance m (negative: penetrating) until prepare,
-                                          then target normal velocity m/s (restitution, bias) */
-    BtgFloat4 rB[BTG_MAX_POINTS];      /* contact point on B minus B's centre, m;
-                                          w: split-impulse target push velocity m/s */
-    BtgFloat4 normalImpulse;           /* accumulated per point, N s */
-    BtgFloat4 pushImpulse;             /* accumulated split (position) impulse per point */
-    BtgFloat4 friction1Impulse;        /* accumulated along t1 per point */
-    BtgFloat4 friction2Impulse;        /* accumulated along t2 per point */
-    BtgFloat4 normalMass;              /* 1 / (J M^-1 J^T) per point, kg */
-    BtgFloat4 friction1Mass;
-    BtgFloat4 friction2Mass;
     int bodyA;
     int bodyB;
     int numPoints;
     int color;                         /* batch: no dynamic body twice in one color */
+    float friction;                    /* combined friction coefficient of the pair */
+    float pad0;
+    float pad1;
+    float pad2;
+    BtgFloat4 normal;                  /* unit, from B towards A; w: 0 */
+    BtgFloat4 rA[BTG_MAX_POINTS];      /* contact point on A minus A's centre, m; w: 0 */
+    BtgFloat4 rB[BTG_MAX_POINTS];      /* contact point on B minus B's centre, m; w: 0 */
+    BtgFloat4 normalMass;              /* per point: 1 / (J M^-1 J^T) of the normal row, kg; 0: the
+                                          point has no rows (its push row shares this mass) */
+    BtgFloat4 normalTarget;            /* per point: normal velocity the row drives to, m/s
+                                          (restitution, position bias or speculative approach) */
+    BtgFloat4 normalImpulse;           /* accumulated per point, N s, in [0, BTG_NORMAL_UPPER_LIMIT] */
+    BtgFloat4 tangent1;                /* friction direction 1, unit, perpendicular to normal; w: 0 */
+    BtgFloat4 friction1Mass;           /* per point, kg; 0: no row */
+    BtgFloat4 friction1Impulse;        /* accumulated along tangent1 per point, N s */
+    BtgFloat4 tangent2;                /* friction direction 2; w: 0 */
+    BtgFloat4 friction2Mass;           /* per point, kg; 0 unless two friction directions */
+    BtgFloat4 friction2Impulse;        /* accumulated along tangent2 per point, N s */
+    BtgFloat4 pushTarget;              /* per point: split-impulse push velocity, m/s; 0: no push row */
+    BtgFloat4 pushImpulse;             /* accumulated split (position) impulse per point, N s */
+    BtgFloat4 separation;              /* per point: signed distance, m (negative: penetrating);
+                                          what prepare forms the targets from */
 } BtgContact;
 
 /* The warm-start cache: what the next substep's matching and warm start read of one solved
@@ -172,7 +186,7 @@ static_assert(sizeof(BtgShape) == 96, "BtgShape layout");
 static_assert(sizeof(BtgFace) == 32, "BtgFace layout");
 static_assert(sizeof(BtgPair) == 8, "BtgPair layout");
 static_assert(sizeof(BtgManifold) == 96, "BtgManifold layout");
-static_assert(sizeof(BtgContact) == 16 * 18 + 16, "BtgContact layout");
+static_assert(sizeof(BtgContact) == 32 + 16 * 21, "BtgContact layout");
 static_assert(sizeof(BtgCachedContact) == 16 * (BTG_MAX_POINTS + 2 * BTG_WARMSTART_FRICTION) + 16,
               "BtgCachedContact layout");
 static_assert(sizeof(BtgStepParams) == 48, "BtgStepParams layout");

@@ -31,8 +31,8 @@ void solveConstraints(std::vector<BtgContact>& contacts, ContactBodies& bodies, 
                 int movingA = mode == BTG_PASS_PUSH ? a.dynamic : a.moving, movingB = mode == BTG_PASS_PUSH ? b.dynamic : b.moving;
                 BtgBodyVel va = btgMakeBodyVel(movingA, lin[c.bodyA], ang[c.bodyA]);
                 BtgBodyVel vb = btgMakeBodyVel(movingB, lin[c.bodyB], ang[c.bodyB]);
-                if (mode == BTG_PASS_WARM_START) btgContactWarmStart(&c, a, b, &va, &vb);
-                else if (mode == BTG_PASS_VELOCITY) btgContactSolveVelocity(&c, a, b, &va, &vb);
+                if (mode == BTG_PASS_WARM_START) btgContactWarmStart(&c, a, b, &va, &vb, params.twoFrictionDirections);
+                else if (mode == BTG_PASS_VELOCITY) btgContactSolveVelocity(&c, a, b, &va, &vb, params.twoFrictionDirections);
                 else btgContactSolvePush(&c, a, b, &va, &vb);
                 if (a.dynamic) {
                     lin[c.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, lin[c.bodyA].w);

@@ -6,7 +6,7 @@
 // so this stage does not read linVel/angVel. Contacts with no dynamic body, or a no-response
 // body, get zero masses and impulses (never solved).
 // Reads contacts, counters, props, invInertiaWorld, linVel0, angVel0.
-// Writes contacts (t1, t2, masses, targets in rA.w / rB.w, combined friction/restitution).
+// Writes contacts (combined friction, tangent1/2, row masses, normal and push targets).
 #pragma once
 #include "world/device_world.h"
 

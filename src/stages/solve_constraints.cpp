@@ -30,6 +30,8 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     }
     if (slots == 0) return;
     cl::Program& prog = ctx.program("solve_constraints");
+    // Without two friction directions the second friction rows have no mass: not read at all.
+    const int twoFriction = params.twoFrictionDirections ? 1 : 0;
     // Contacts sorted into per-color ranges once, so each color's launch reads only its own.
     SolverScratch& sc = w.solverScratch;
     // Two lists (see color_count): every contact, and those with a push target.
@@ -58,7 +60,7 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
         cl::Launch(ctx, k, &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(sc.colorStart)
             .arg(sc.colorOrder).arg(w.props).arg(w.invInertiaWorld).arg(w.linVel).arg(w.angVel).arg(w.pushLin)
             .arg(w.pushAng).arg(gridBarrier(w)).arg(numColors).arg(orderStride).arg(iterations)
-            .arg(params.splitImpulse ? 1 : 0).arg(kGridBarrierSpins).run(groups * group, group);
+            .arg(params.splitImpulse ? 1 : 0).arg(twoFriction).arg(kGridBarrierSpins).run(groups * group, group);
         return;
     }
     // Per-color launches stride over their range: a few work-groups per compute unit.
@@ -71,11 +73,11 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             // then returns at once).
             if (color == numColors - 1) {
                 cl::Launch(ctx, serial, &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props)
-                    .arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).run(1, 1);
+                    .arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(twoFriction).run(1, 1);
             } else {
                 cl::Launch(ctx, parallel, &w.profiler).arg(w.contacts).arg(sc.colorStart).arg(sc.colorOrder)
-                    .arg(w.props).arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(numColors)
-                    .arg(orderStride).run(rangeItems, 64);
+                    .arg(w.props).arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(twoFriction)
+                    .arg(numColors).arg(orderStride).run(rangeItems, 64);
             }
         }
     };
