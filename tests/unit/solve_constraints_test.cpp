@@ -133,6 +133,25 @@ TEST(SolveConstraints, MatchesReferenceWithWarmStart)
     EXPECT_EQ(d.bodies.linVel[kin].x, s.bodies.linVel[kin].x);
 }
 
+// SOLVER_USE_2_FRICTION_DIRECTIONS: the second friction rows are built, solved and warm-started
+// (without it the solve does not read them), the same on the device as in the reference.
+TEST(SolveConstraints, TwoFrictionDirectionsMatchReference)
+{
+    test::StackScene s = test::stackScene(6, 4, 9);
+    BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
+    p.twoFrictionDirections = 1;
+    const int maxColors = 3;
+    Result d1 = runDevice(s.bodies, s.manifolds, {}, p, maxColors);
+    Result r1 = runReference(s.bodies, s.manifolds, {}, p, maxColors);
+    Result d = runDevice(s.bodies, s.manifolds, d1.contacts, p, maxColors);
+    Result r = runReference(s.bodies, s.manifolds, r1.contacts, p, maxColors);
+    test::expectSolvedAlike(d.bodies, d.contacts, r.bodies, r.contacts, 10 * tol::kStageAbs);
+    int second = 0;
+    for (const BtgContact& c : d.contacts)
+        for (int k = 0; k < c.numPoints; ++k) second += btgLane(c.friction2Impulse, k) != 0.0f;
+    EXPECT_GT(second, 0);
+}
+
 // One launch on one work-group walks the colors in the same order as one launch per color:
 // bitwise the same velocities and impulses, leftovers included.
 TEST(SolveConstraints, OneWorkGroupLaunchSolvesTheSame)
