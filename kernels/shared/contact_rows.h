@@ -34,11 +34,7 @@ static inline BtgContact btgContactFromManifold(BtgManifold m, BtgFloat4 posA, B
     c.bodyA = m.bodyA;
     c.bodyB = m.bodyB;
     c.numPoints = m.numPoints;
-    c.color = -1;
     c.friction = 0.0f;
-    c.pad0 = 0.0f;
-    c.pad1 = 0.0f;
-    c.pad2 = 0.0f;
     c.normal = btgXyz(m.normal);
     c.separation = btgZero4();
     for (int k = 0; k < BTG_MAX_POINTS; ++k) {
@@ -146,6 +142,15 @@ static inline void btgWarmStartFrom(BtgContact* c, BtgFloat4 rotA, BtgCachedCont
 }
 
 /* ---- a manifold's rows (setupContactConstraint / setupFrictionConstraint) ---- */
+
+/* A contact's edge of the constraint graph. */
+static inline BtgEdge btgContactEdge(BtgContact c)
+{
+    BtgEdge e;
+    e.bodyA = c.bodyA;
+    e.bodyB = c.bodyB;
+    return e;
+}
 
 /* btSequentialImpulseConstraintSolver's restitutionCurve, clamped at zero as setup does. */
 static inline float btgRestitution(float relVel, float restitution, float threshold)

@@ -118,11 +118,7 @@ typedef struct {
     int bodyA;
     int bodyB;
     int numPoints;
-    int color;                         /* batch: no dynamic body twice in one color */
     float friction;                    /* combined friction coefficient of the pair */
-    float pad0;
-    float pad1;
-    float pad2;
     BtgFloat4 normal;                  /* unit, from B towards A; w: 0 */
     BtgFloat4 rA[BTG_MAX_POINTS];      /* contact point on A minus A's centre, m; w: 0 */
     BtgFloat4 rB[BTG_MAX_POINTS];      /* contact point on B minus B's centre, m; w: 0 */
@@ -142,6 +138,14 @@ typedef struct {
     BtgFloat4 separation;              /* per point: signed distance, m (negative: penetrating);
                                           what prepare forms the targets from */
 } BtgContact;
+
+/* An edge of the constraint graph: one constraint between two bodies. The batching colors
+ * edges and the islands walk them, whatever kind of constraint each is: edges [0, contacts)
+ * are the contacts, in their order; other kinds (joints) append theirs after them. */
+typedef struct {
+    int bodyA;
+    int bodyB;
+} BtgEdge;
 
 /* The warm-start cache: what the next substep's matching and warm start read of one solved
  * contact (btPersistentManifold's cached points), in the contacts' pair order. */
@@ -186,7 +190,8 @@ static_assert(sizeof(BtgShape) == 96, "BtgShape layout");
 static_assert(sizeof(BtgFace) == 32, "BtgFace layout");
 static_assert(sizeof(BtgPair) == 8, "BtgPair layout");
 static_assert(sizeof(BtgManifold) == 96, "BtgManifold layout");
-static_assert(sizeof(BtgContact) == 32 + 16 * 21, "BtgContact layout");
+static_assert(sizeof(BtgContact) == 16 + 16 * 21, "BtgContact layout");
+static_assert(sizeof(BtgEdge) == 8, "BtgEdge layout");
 static_assert(sizeof(BtgCachedContact) == 16 * (BTG_MAX_POINTS + 2 * BTG_WARMSTART_FRICTION) + 16,
               "BtgCachedContact layout");
 static_assert(sizeof(BtgStepParams) == 48, "BtgStepParams layout");

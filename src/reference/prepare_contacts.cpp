@@ -1,4 +1,5 @@
-// prepare_contacts.cpp — CPU reference of the prepare stage (btgPrepareContact per contact).
+// prepare_contacts.cpp — CPU reference of the prepare stage (btgPrepareContact per contact, and
+// the contacts' graph edges).
 #include "reference/contact_solver_reference.h"
 
 namespace btgpu::ref {
@@ -10,9 +11,12 @@ BtgSolverBody solverBody(const ContactBodies& b, int i)
 }
 }  // namespace
 
-void prepareContacts(std::vector<BtgContact>& contacts, const ContactBodies& bodies, const BtgStepParams& params)
+std::vector<BtgEdge> prepareContacts(std::vector<BtgContact>& contacts, const ContactBodies& bodies,
+                                     const BtgStepParams& params)
 {
+    std::vector<BtgEdge> edges;
     for (BtgContact& c : contacts) {
+        edges.push_back(btgContactEdge(c));
         const BtgBodyProps& pa = bodies.props[c.bodyA];
         const BtgBodyProps& pb = bodies.props[c.bodyB];
         BtgSolverBody a = solverBody(bodies, c.bodyA), b = solverBody(bodies, c.bodyB);
@@ -21,6 +25,7 @@ void prepareContacts(std::vector<BtgContact>& contacts, const ContactBodies& bod
         btgPrepareContact(&c, a, b, a0, b0, btgCombinedFriction(pa.friction, pb.friction),
                           pa.restitution * pb.restitution, btgContactSolvable(pa.flags, pb.flags), params);
     }
+    return edges;
 }
 
 }  // namespace btgpu::ref

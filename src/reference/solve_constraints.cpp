@@ -1,14 +1,14 @@
 // solve_constraints.cpp — CPU reference of the solve stage: the same passes as the device
-// (warm start, velocity iterations, split-impulse iterations), colors in order and the
-// contacts of a color in index order, which is what the batched launches compute.
+// (warm start, velocity iterations, split-impulse iterations), colors in order and the edges
+// (contacts) of a color in index order, which is what the batched launches compute.
 #include "reference/contact_solver_reference.h"
 
 #include <algorithm>
 
 namespace btgpu::ref {
 
-void solveConstraints(std::vector<BtgContact>& contacts, ContactBodies& bodies, const BtgStepParams& params,
-                      int iterations, int numColors)
+void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>& colors, ContactBodies& bodies,
+                      const BtgStepParams& params, int iterations, int numColors)
 {
     if (numColors < 1) numColors = 1;
     size_t n = bodies.props.size();
@@ -24,9 +24,10 @@ void solveConstraints(std::vector<BtgContact>& contacts, ContactBodies& bodies, 
         std::vector<BtgFloat4>& lin = mode == BTG_PASS_PUSH ? bodies.pushLin : bodies.linVel;
         std::vector<BtgFloat4>& ang = mode == BTG_PASS_PUSH ? bodies.pushAng : bodies.angVel;
         for (int color = 0; color < numColors; ++color)
-            for (BtgContact& c : contacts) {
+            for (size_t e = 0; e < contacts.size(); ++e) {
+                BtgContact& c = contacts[e];
                 bool last = color == numColors - 1;  // the serial launch takes higher colors too
-                if (last ? c.color < color : c.color != color) continue;
+                if (last ? colors[e] < color : colors[e] != color) continue;
                 BtgSolverBody a = body(c.bodyA), b = body(c.bodyB);
                 int movingA = mode == BTG_PASS_PUSH ? a.dynamic : a.moving, movingB = mode == BTG_PASS_PUSH ? b.dynamic : b.moving;
                 BtgBodyVel va = btgMakeBodyVel(movingA, lin[c.bodyA], ang[c.bodyA]);

@@ -47,7 +47,6 @@ void expectSameContact(const BtgContact& d, const BtgContact& r, int i)
     ASSERT_EQ(d.bodyA, r.bodyA) << i;
     ASSERT_EQ(d.bodyB, r.bodyB) << i;
     ASSERT_EQ(d.numPoints, r.numPoints) << i;
-    EXPECT_EQ(d.color, -1);
     for (int k = 0; k < r.numPoints; ++k) {
         for (int e = 0; e < 4; ++e) {
             EXPECT_NEAR(btgLane(d.rA[k], e), btgLane(r.rA[k], e), tol::kStageAbs) << i;

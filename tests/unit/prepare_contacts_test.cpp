@@ -15,12 +15,17 @@ using namespace btgpu;
 
 namespace {
 
-std::vector<BtgContact> runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms, const BtgStepParams& p)
+std::vector<BtgContact> runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms, const BtgStepParams& p,
+                                  std::vector<BtgEdge>* edges = nullptr)
 {
     DeviceWorld w(test::context());
     test::uploadWorld(w, b, ms, uint(ms.size()), {}, ms.size() + 4);
     buildContacts(w, p);
     prepareContacts(w, p);
+    if (edges) {
+        size_t n = w.counters.download(w.ctx, kNumCounters)[kEdgeCount];
+        *edges = w.edges.download(w.ctx, n);
+    }
     return test::downloadContacts(w);
 }
 
@@ -37,9 +42,17 @@ TEST(PrepareContacts, MatchesReference)
     BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
     const std::vector<BtgContact> built = ref::buildContacts(s.manifolds, int(s.manifolds.size()), s.bodies, {}, p);
     std::vector<BtgContact> expect = built;
-    ref::prepareContacts(expect, s.bodies, p);
-    std::vector<BtgContact> got = runDevice(s.bodies, s.manifolds, p);
+    std::vector<BtgEdge> expectEdges = ref::prepareContacts(expect, s.bodies, p);
+    std::vector<BtgEdge> gotEdges;
+    std::vector<BtgContact> got = runDevice(s.bodies, s.manifolds, p, &gotEdges);
     ASSERT_EQ(got.size(), expect.size());
+    // Every contact is an edge of the constraint graph, in contact order.
+    ASSERT_EQ(gotEdges.size(), expectEdges.size());
+    for (size_t i = 0; i < gotEdges.size(); ++i) {
+        EXPECT_EQ(gotEdges[i].bodyA, expectEdges[i].bodyA) << i;
+        EXPECT_EQ(gotEdges[i].bodyB, expectEdges[i].bodyB) << i;
+        EXPECT_EQ(gotEdges[i].bodyA, got[i].bodyA) << i;
+    }
     int split = 0, speculative = 0;
     for (size_t i = 0; i < got.size(); ++i) {
         const BtgContact &g = got[i], &e = expect[i];

@@ -28,7 +28,8 @@ const int kIterations = 10;
 struct Result {
     ref::ContactBodies bodies;
     std::vector<BtgContact> contacts;
-    uint status = 0;  // counters[kStatus] after the solve
+    std::vector<int> colors;  // the contacts' edge colors
+    uint status = 0;          // counters[kStatus] after the solve
 };
 
 // contacts -> prepare -> batching -> solve on the device; prev is last step's contact list.
@@ -54,6 +55,7 @@ Result runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms
     r.bodies.pushLin = w.pushLin.download(w.ctx, n);
     r.bodies.pushAng = w.pushAng.download(w.ctx, n);
     r.contacts = test::downloadContacts(w);
+    r.colors = w.edgeColor.download(w.ctx, r.contacts.size());
     r.status = w.counters.download(w.ctx, kNumCounters)[kStatus];
     return r;
 }
@@ -64,9 +66,9 @@ Result runReference(const ref::ContactBodies& b, const std::vector<BtgManifold>&
     Result r;
     r.bodies = b;
     r.contacts = ref::buildContacts(ms, int(ms.size()), b, prev, p);
-    ref::prepareContacts(r.contacts, r.bodies, p);
-    ref::colorConstraints(r.contacts, r.bodies, maxColors);
-    ref::solveConstraints(r.contacts, r.bodies, p, kIterations, maxColors);
+    std::vector<BtgEdge> edges = ref::prepareContacts(r.contacts, r.bodies, p);
+    r.colors = ref::colorConstraints(edges, r.bodies, maxColors);
+    ref::solveConstraints(r.contacts, r.colors, r.bodies, p, kIterations, maxColors);
     return r;
 }
 
@@ -115,14 +117,14 @@ TEST(SolveConstraints, MatchesReferenceWithWarmStart)
     EXPECT_EQ(0, std::memcmp(again.bodies.angVel.data(), d.bodies.angVel.data(), d.bodies.angVel.size() * sizeof(BtgFloat4)));
 
     int serial = 0;
-    for (const BtgContact& c : r.contacts) serial += c.color == maxColors - 1;
+    for (int c : r.colors) serial += c == maxColors - 1;
     EXPECT_GT(serial, 0);
     const float tv = 10 * tol::kStageAbs;  // ten iterations of accumulated rounding
     RecordProperty("max_velocity_deviation",
                    std::to_string(test::expectSolvedAlike(d.bodies, d.contacts, r.bodies, r.contacts, tv)));
     bool warm = false;
     for (size_t i = 0; i < std::min(d.contacts.size(), r.contacts.size()); ++i) {
-        EXPECT_EQ(d.contacts[i].color, r.contacts[i].color);
+        EXPECT_EQ(d.colors[i], r.colors[i]);
         warm = warm || btgLane(d1.contacts[i].normalImpulse, 0) > 0.0f;
     }
     EXPECT_TRUE(warm);
@@ -309,9 +311,8 @@ TEST(SolveConstraints, FewerColorsThanAssignedStillSolvesEveryContact)
     Result r;
     r.bodies = s.bodies;
     r.contacts = ref::buildContacts(s.manifolds, int(s.manifolds.size()), s.bodies, {}, p);
-    ref::prepareContacts(r.contacts, r.bodies, p);
-    ref::colorConstraints(r.contacts, r.bodies, 8);
-    ref::solveConstraints(r.contacts, r.bodies, p, kIterations, 1);
+    std::vector<BtgEdge> edges = ref::prepareContacts(r.contacts, r.bodies, p);
+    ref::solveConstraints(r.contacts, ref::colorConstraints(edges, r.bodies, 8), r.bodies, p, kIterations, 1);
     std::vector<BtgContact> got = test::downloadContacts(w);
     ASSERT_EQ(got.size(), r.contacts.size());
     size_t active = 0;  // contacts that pushed at all (the rest separate or approach from afar)
