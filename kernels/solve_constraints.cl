@@ -32,7 +32,7 @@ static void solve_contact(int i, int mode, int twoFriction, __global BtgContact*
                       __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
                       BTG_SHARED __global BtgFloat4* lin, BTG_SHARED __global BtgFloat4* ang)
 {
-    BtgContact c = contacts[i];
+    BtgContact c = btgLoadContactRows(contacts, i, mode, twoFriction);
     BtgSolverBody a = load_body(props, invInertiaWorld, c.bodyA);
     BtgSolverBody b = load_body(props, invInertiaWorld, c.bodyB);
     /* Push velocities of infinite-mass bodies are zero, as Bullet's solver bodies start them. */
@@ -52,15 +52,7 @@ static void solve_contact(int i, int mode, int twoFriction, __global BtgContact*
         lin[c.bodyB] = btgMake4(vb.lin.x, vb.lin.y, vb.lin.z, linB.w);
         ang[c.bodyB] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, angB.w);
     }
-    /* Only the accumulated impulses change: storing just them saves most of the contact's
-     * bytes of write traffic per pass. */
-    if (mode == BTG_PASS_VELOCITY) {
-        contacts[i].normalImpulse = c.normalImpulse;
-        contacts[i].friction1Impulse = c.friction1Impulse;
-        if (twoFriction) contacts[i].friction2Impulse = c.friction2Impulse;
-    } else if (mode == BTG_PASS_PUSH) {
-        contacts[i].pushImpulse = c.pushImpulse;
-    }
+    btgStoreContactImpulses(contacts, i, &c, mode, twoFriction);
 }
 
 /* One edge of the graph: the contacts are the edges [0, contacts); a constraint kind with
@@ -80,8 +72,7 @@ static int edge_count(__global const uint* restrict counters, int edgeCapacity)
 /* Whether edge e has a split-impulse row (only contacts do: Bullet pushes contacts only). */
 static int edge_has_push(__global const BtgContact* restrict contacts, int e)
 {
-    BtgContact c = contacts[e];
-    return btgContactHasPush(&c);
+    return btgContactHasPush(contacts, e);
 }
 
 __kernel void solve_color_serial(__global const int* restrict edgeColor, __global BtgContact* contacts,

@@ -232,6 +232,50 @@ static inline void btgPrepareContact(BtgContact* c, BtgSolverBody a, BtgSolverBo
 
 /* ---- solve (one contact, bodies loaded by the caller) ---- */
 
+/* What pass `mode` reads of contact i (see BtgContact), the rest zero: a solver pass loads
+ * these fields and nothing else (a copy of the whole contact would read all its bytes every
+ * pass), the lever arms of the contact's points only. twoFriction: the second friction rows
+ * exist (SOLVER_USE_2_FRICTION_DIRECTIONS). */
+static inline BtgContact btgLoadContactRows(BTG_CONST_GLOBAL BtgContact* contacts, int i, int mode, int twoFriction)
+{
+    BtgContact c;
+    c.bodyA = contacts[i].bodyA;
+    c.bodyB = contacts[i].bodyB;
+    c.numPoints = contacts[i].numPoints;
+    c.friction = mode == BTG_PASS_VELOCITY ? contacts[i].friction : 0.0f;
+    c.normal = contacts[i].normal;
+    for (int k = 0; k < BTG_MAX_POINTS; ++k) {
+        c.rA[k] = k < c.numPoints ? contacts[i].rA[k] : btgZero4();
+        c.rB[k] = k < c.numPoints ? contacts[i].rB[k] : btgZero4();
+    }
+    c.normalMass = contacts[i].normalMass;
+    const int push = mode == BTG_PASS_PUSH, second = !push && twoFriction;
+    c.normalTarget = mode == BTG_PASS_VELOCITY ? contacts[i].normalTarget : btgZero4();
+    c.normalImpulse = push ? btgZero4() : contacts[i].normalImpulse;
+    c.tangent1 = push ? btgZero4() : contacts[i].tangent1;
+    c.friction1Mass = push ? btgZero4() : contacts[i].friction1Mass;
+    c.friction1Impulse = push ? btgZero4() : contacts[i].friction1Impulse;
+    c.tangent2 = second ? contacts[i].tangent2 : btgZero4();
+    c.friction2Mass = second ? contacts[i].friction2Mass : btgZero4();
+    c.friction2Impulse = second ? contacts[i].friction2Impulse : btgZero4();
+    c.pushTarget = push ? contacts[i].pushTarget : btgZero4();
+    c.pushImpulse = push ? contacts[i].pushImpulse : btgZero4();
+    c.separation = btgZero4();
+    return c;
+}
+/* What pass `mode` changed of contact c, written back to slot i: its accumulated impulses. */
+static inline void btgStoreContactImpulses(BTG_GLOBAL BtgContact* contacts, int i, const BtgContact* c, int mode,
+                                           int twoFriction)
+{
+    if (mode == BTG_PASS_VELOCITY) {
+        contacts[i].normalImpulse = c->normalImpulse;
+        contacts[i].friction1Impulse = c->friction1Impulse;
+        if (twoFriction) contacts[i].friction2Impulse = c->friction2Impulse;
+    } else if (mode == BTG_PASS_PUSH) {
+        contacts[i].pushImpulse = c->pushImpulse;
+    }
+}
+
 /* Point k's rows as solver rows (see BtgContact): the normal row is unilateral, the friction
  * rows are bounded by friction times the point's normal impulse as it stands, the push row
  * shares the normal row's direction and mass. */
@@ -298,11 +342,14 @@ static inline void btgContactSolveVelocity(BtgContact* c, BtgSolverBody a, BtgSo
         }
     }
 }
-/* Whether any point has a push row (the push passes visit only such contacts). */
-static inline int btgContactHasPush(const BtgContact* c)
+/* Whether any of the contact's points has a push row (the push passes visit only such
+ * contacts); read straight from the list, three fields. */
+static inline int btgContactHasPush(BTG_CONST_GLOBAL BtgContact* contacts, int i)
 {
-    for (int k = 0; k < c->numPoints; ++k)
-        if (btgLane(c->pushTarget, k) != 0.0f && btgLane(c->normalMass, k) != 0.0f) return 1;
+    const int n = contacts[i].numPoints;
+    const BtgFloat4 target = contacts[i].pushTarget, mass = contacts[i].normalMass;
+    for (int k = 0; k < n; ++k)
+        if (btgLane(target, k) != 0.0f && btgLane(mass, k) != 0.0f) return 1;
     return 0;
 }
 /* One split-impulse iteration (resolveSplitPenetrationImpulse) on push/turn velocities. */

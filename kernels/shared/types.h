@@ -109,9 +109,10 @@ typedef struct {
  * `normal`, friction rows along tangent1 (and tangent2 with two friction directions) bounded
  * by friction * its normal impulse, and a split-impulse push row along `normal`; all act at
  * its lever arms rA[k], rB[k], and lane k of every per-point field is its rows' state.
- * Fields are in the order the passes read them, so each reads one or two runs: a velocity
- * pass up to friction1Impulse (friction2Impulse with two friction directions), a push pass up
- * to normalMass and then the push fields; none reads separation. The warm-start key (the
+ * A solver pass loads only its rows' fields (btgLoadContactRows), which lie in the order the
+ * passes read them: a velocity pass reads up to friction1Impulse (friction2Impulse with two
+ * friction directions), a push pass up to normalMass and then the push fields, none reads
+ * separation; lever arms only of the numPoints points. The warm-start key (the
  * point in A's frame) is not kept here: it is R_A^T rA, and the cache stage recomputes it
  * from rA and A's unchanged rotation when it stores the cache. */
 typedef struct {

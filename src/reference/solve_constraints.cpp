@@ -25,9 +25,9 @@ void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>&
         std::vector<BtgFloat4>& ang = mode == BTG_PASS_PUSH ? bodies.pushAng : bodies.angVel;
         for (int color = 0; color < numColors; ++color)
             for (size_t e = 0; e < contacts.size(); ++e) {
-                BtgContact& c = contacts[e];
                 bool last = color == numColors - 1;  // the serial launch takes higher colors too
                 if (last ? colors[e] < color : colors[e] != color) continue;
+                BtgContact c = btgLoadContactRows(contacts.data(), int(e), mode, params.twoFrictionDirections);
                 BtgSolverBody a = body(c.bodyA), b = body(c.bodyB);
                 int movingA = mode == BTG_PASS_PUSH ? a.dynamic : a.moving, movingB = mode == BTG_PASS_PUSH ? b.dynamic : b.moving;
                 BtgBodyVel va = btgMakeBodyVel(movingA, lin[c.bodyA], ang[c.bodyA]);
@@ -43,6 +43,7 @@ void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>&
                     lin[c.bodyB] = btgMake4(vb.lin.x, vb.lin.y, vb.lin.z, lin[c.bodyB].w);
                     ang[c.bodyB] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, ang[c.bodyB].w);
                 }
+                btgStoreContactImpulses(contacts.data(), int(e), &c, mode, params.twoFrictionDirections);
             }
     };
     pass(BTG_PASS_WARM_START);
