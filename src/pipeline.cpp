@@ -51,6 +51,7 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
 void runSubstep(DeviceWorld& w, const Plan& plan, const std::vector<Stage>& stages, const StepSettings& s)
 {
     fillCounters(w, kPairCount, 2, 0u);  // pair and contact counts
+    fillCounters(w, kEdgeCount, 1, 0u);  // the constraint graph, rebuilt by the stages that add edges
     for (Stage stage : stages) {
         w.profiler.stage = stageName(stage);
         runStage(stage, w, plan, s);
@@ -111,7 +112,7 @@ namespace {
 
 // Grows the pair and contact buffers from an overflowed call's full counts (the kernels count
 // past capacity). Contacts take what they need plus an eighth, pairs a quarter: the contact
-// list is the largest buffer (304 + 80 bytes a slot), and every growth is at least 1.25x, so
+// list is the largest buffer (352 + 80 bytes a slot, and an 8 + 4 byte graph edge), and every growth is at least 1.25x, so
 // redos stay few.
 void grow(DeviceWorld& w, const BodyReadback& rb, bool pairOverflow, bool contactOverflow)
 {
