@@ -30,18 +30,20 @@ BtgBodyProps bodyProps(const btCollisionObject* obj, int shapeRow, const BtgShap
     if (shape.type == BTG_SHAPE_PLANE) flags = (flags & ~(BTG_BODY_DYNAMIC | BTG_BODY_KINEMATIC)) | BTG_BODY_STATIC;
     if (rb) {
         if (rb->getFlags() & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY) flags |= BTG_BODY_GYRO;
-        float invMass = (flags & BTG_BODY_DYNAMIC) ? rb->getInvMass() : 0.0f;
-        p.invInertiaLocal = f4(rb->getInvInertiaDiagLocal(), invMass);
-        p.linearFactor = f4(rb->getLinearFactor(), rb->getLinearDamping());
-        p.angularFactor = f4(rb->getAngularFactor(), rb->getAngularDamping());
-        p.gravity = f4(rb->getGravity(), obj->getFriction());
+        p.invMass = (flags & BTG_BODY_DYNAMIC) ? rb->getInvMass() : 0.0f;
+        p.invInertiaLocal = f4(rb->getInvInertiaDiagLocal());
+        p.linearFactor = f4(rb->getLinearFactor());
+        p.angularFactor = f4(rb->getAngularFactor());
+        p.linearDamping = rb->getLinearDamping();
+        p.angularDamping = rb->getAngularDamping();
+        p.gravity = f4(rb->getGravity());
         p.sleepLinear = rb->getLinearSleepingThreshold();
         p.sleepAngular = rb->getAngularSleepingThreshold();
     } else {
         p.linearFactor = btgMake4(1, 1, 1, 0);
         p.angularFactor = btgMake4(1, 1, 1, 0);
-        p.gravity = btgMake4(0, 0, 0, obj->getFriction());
     }
+    p.friction = obj->getFriction();
     p.restitution = obj->getRestitution();
     p.shape = shapeRow;
     p.flags = flags;

@@ -530,6 +530,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         m_report.gpuPath = false;
         return false;
     }
+    const Clock::time_point checkStart = Clock::now();
     m_stepDt = maxSubSteps ? fixedTimeStep : timeStep;
     // A body given another shape (setCollisionShape), or a shape the app changed in place
     // (setLocalScaling, setMargin, its points) since the tables were built: they are built
@@ -566,6 +567,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
     }
     m_onCpuPath = false;
     m_report.cpuPathReason.clear();
+    m_report.checkMs = msBetween(checkStart, Clock::now());
 
     // Time bookkeeping exactly as btDiscreteDynamicsWorld::stepSimulation.
     btScalar localTime = m_world.m_localTime;

@@ -50,9 +50,9 @@ public:
 
 private:
     struct Mirror {  // what the device holds for a row, as last written or read back
-        btTransform xf;
-        btVector3 linVel, angVel, force, torque;
-        BtgBodyProps props;
+        btTransform xf = btTransform::getIdentity();
+        btVector3 linVel{0, 0, 0}, angVel{0, 0, 0}, force{0, 0, 0}, torque{0, 0, 0};
+        BtgBodyProps props{};
         bool excluded = false;
     };
 

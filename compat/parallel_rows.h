@@ -1,25 +1,39 @@
 // parallel_rows.h — splits a row range over the host's cores for the per-body host work of a
-// step (write-back, motion states). Each chunk gets its own index so callers collect results
-// per chunk and merge them in order: the outcome does not depend on thread timing.
+// step (checks, row comparison, write-back, motion states). Each chunk gets its own index so
+// callers collect results per chunk and merge them in order: the outcome does not depend on
+// thread timing. The workers are started once and kept (a step runs several such passes, and
+// starting a thread costs tens of microseconds).
 #pragma once
 #include <algorithm>
 #include <cstddef>
 #include <exception>
+#include <functional>
 #include <thread>
 #include <vector>
 
 namespace btgpu {
 
+// Runs job(k) for k in [0, count): 0 on the calling thread, the rest on the pool's workers;
+// returns when all are done. Calls from a worker, or while another thread's run is under way,
+// run serially on the caller.
+void runOnPool(size_t count, const std::function<void(size_t)>& job);
+
+// How many chunks forEachChunk will use for n rows (to size per-chunk result lists first).
+inline int chunkCount(size_t n, size_t minPerThread)
+{
+    size_t hw = std::max<size_t>(1, std::thread::hardware_concurrency());
+    return int(std::max<size_t>(1, std::min(hw, n / std::max<size_t>(minPerThread, 1))));
+}
+
 // Calls f(begin, end, chunk) on contiguous chunks covering [0, n); chunk 0 runs on the calling
 // thread. Returns the number of chunks. Below minPerThread rows per thread it stays serial.
-// An exception in any chunk is rethrown here after every thread has joined (one escaping a
+// An exception in any chunk is rethrown here after every chunk has finished (one escaping a
 // worker thread would terminate the app).
 template <typename F>
 int forEachChunk(size_t n, size_t minPerThread, F f)
 {
-    size_t hw = std::max<size_t>(1, std::thread::hardware_concurrency());
-    size_t chunks = std::max<size_t>(1, std::min(hw, n / std::max<size_t>(minPerThread, 1)));
-    size_t per = (n + chunks - 1) / chunks;
+    const size_t chunks = size_t(chunkCount(n, minPerThread));
+    const size_t per = (n + chunks - 1) / chunks;
     std::vector<std::exception_ptr> failed(chunks);
     auto run = [&](size_t k) {
         try {
@@ -28,20 +42,11 @@ int forEachChunk(size_t n, size_t minPerThread, F f)
             failed[k] = std::current_exception();
         }
     };
-    std::vector<std::thread> threads;
-    for (size_t k = 1; k < chunks; ++k) threads.emplace_back(run, k);
-    run(0);
-    for (std::thread& t : threads) t.join();
+    if (chunks == 1) run(0);
+    else runOnPool(chunks, run);
     for (const std::exception_ptr& e : failed)
         if (e) std::rethrow_exception(e);
     return int(chunks);
-}
-
-// How many chunks forEachChunk will use for n rows (to size per-chunk result lists first).
-inline int chunkCount(size_t n, size_t minPerThread)
-{
-    size_t hw = std::max<size_t>(1, std::thread::hardware_concurrency());
-    return int(std::max<size_t>(1, std::min(hw, n / std::max<size_t>(minPerThread, 1))));
 }
 
 }  // namespace btgpu

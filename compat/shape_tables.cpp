@@ -2,6 +2,7 @@
 // btSphereShape and btStaticPlaneShape into the GPU tables, reading the app's shapes only.
 #include "shape_tables.h"
 
+#include "parallel_rows.h"
 #include "shape_checks.h"
 
 #include <btBulletDynamicsCommon.h>
@@ -223,9 +224,19 @@ size_t ShapeTables::unreferenced() const
 
 bool ShapeTables::changedSinceBuilt() const
 {
-    for (size_t r = 0; r < shapeOf.size(); ++r)
-        if (references[r] > 0 && shapeFingerprint(shapeOf[r]) != fingerprint[r]) return true;
-    return false;
+    // Every step, over every shape in use (scenes of one shape per body have as many as
+    // bodies): in parallel chunks.
+    const size_t n = shapeOf.size();
+    const size_t minPerThread = 2048;
+    std::vector<char> changed(size_t(chunkCount(n, minPerThread)), 0);
+    forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
+        for (size_t r = begin; r < end; ++r)
+            if (references[r] > 0 && shapeFingerprint(shapeOf[r]) != fingerprint[r]) {
+                changed[size_t(chunk)] = 1;
+                return;
+            }
+    });
+    return std::find(changed.begin(), changed.end(), 1) != changed.end();
 }
 
 void ShapeTables::clear()

@@ -1,16 +1,16 @@
-/* color_constraints.cl — Stage: batching (greedy graph coloring of the contacts).
- * Launch: one work-item per contact slot (contactCapacity) for color_init / color_claim /
+/* color_constraints.cl — Stage: batching (greedy coloring of the constraint graph: contacts
+ * and any other constraint kind's edges together, as Box2D v3's b2GraphColor).
+ * Launch: one work-item per edge slot (edgeCapacity) for color_init / color_claim /
  * color_assign / color_finish, one per body for claim_reset / body_color_reset. Each color is
- * filled in a few sub-rounds: every uncolored contact whose dynamic bodies are still free in
+ * filled in a few sub-rounds: every uncolored edge whose dynamic bodies are still free in
  * this color claims them with atomic_min of a hashed priority (a fixed bijection of its index,
- * so neighbouring contacts do not form long chains of losers); those that own all their bodies
+ * so neighbouring edges do not form long chains of losers); those that own all their bodies
  * take the color and mark the bodies used. Integer atomics only: the coloring is a pure
- * function of the contact list. Reads counters[kContactCount], props (flags), contacts.
- * Writes contacts.color, claim and bodyColor (per-body scratch), counters[kColorsUsed],
+ * function of the edge list. Reads counters[kEdgeCount], props (flags), edges.
+ * Writes edgeColor, claim and bodyColor (per-body scratch), counters[kColorsUsed],
  * counters[kLeftovers]. */
 #include "shared/types.h"
-#include "shared/math.h"
-#include "shared/contact_rows.h"
+#include "shared/solver_rows.h"
 
 #include "shared/coloring.h"
 #include "shared/counters.h"
@@ -19,15 +19,15 @@
 #define NO_CLAIM 0x7fffffff
 
 
-static int contact_count(__global const uint* restrict counters, int contactCapacity)
+static int edge_count(__global const uint* restrict counters, int edgeCapacity)
 {
-    return (int)min(counters[BTG_COUNTER_CONTACTS], (uint)contactCapacity);
+    return (int)min(counters[BTG_COUNTER_EDGES], (uint)edgeCapacity);
 }
 
-__kernel void color_init(__global BtgContact* contacts, __global const uint* restrict counters, int contactCapacity)
+__kernel void color_init(__global int* edgeColor, __global const uint* restrict counters, int edgeCapacity)
 {
     int i = (int)get_global_id(0);
-    if (i < contact_count(counters, contactCapacity)) contacts[i].color = -1;
+    if (i < edge_count(counters, edgeCapacity)) edgeColor[i] = -1;
 }
 
 __kernel void claim_reset(__global int* claim, int numBodies)
@@ -51,60 +51,61 @@ static int body_free(__global const BtgBodyProps* restrict props, BTG_SHARED __g
     return !btgIsSolverDynamic(props[body].flags) || bodyColor[body] != color;
 }
 
-/* One contact's claim in a sub-round: an uncolored contact whose dynamic bodies are still free
- * in this color bids for them with its priority. */
-static void claim_contact(__global const BtgContact* restrict contacts, int i, __global const BtgBodyProps* restrict props,
-                          BTG_SHARED __global int* claim, BTG_SHARED __global const int* bodyColor, int color)
+/* One edge's claim in a sub-round: an uncolored edge whose dynamic bodies are still free in
+ * this color bids for them with its priority. */
+static void claim_edge(__global const BtgEdge* restrict edges, __global const int* edgeColor, int i,
+                       __global const BtgBodyProps* restrict props, BTG_SHARED __global int* claim,
+                       BTG_SHARED __global const int* bodyColor, int color)
 {
-    if (contacts[i].color >= 0) return;
-    int a = contacts[i].bodyA, b = contacts[i].bodyB;
+    if (edgeColor[i] >= 0) return;
+    int a = edges[i].bodyA, b = edges[i].bodyB;
     if (!body_free(props, bodyColor, a, color) || !body_free(props, bodyColor, b, color)) return;
     int p = btgColorPriority(i);
     if (btgIsSolverDynamic(props[a].flags)) atomic_min(&claim[a], p);
     if (btgIsSolverDynamic(props[b].flags)) atomic_min(&claim[b], p);
 }
 
-/* One contact's assignment: it takes the color when it won every dynamic body it bid for. */
-static void assign_contact(__global BtgContact* contacts, int i, __global uint* counters,
-                           __global const BtgBodyProps* restrict props, BTG_SHARED __global const int* claim,
-                           BTG_SHARED __global int* bodyColor, int color)
+/* One edge's assignment: it takes the color when it won every dynamic body it bid for. */
+static void assign_edge(__global const BtgEdge* restrict edges, __global int* edgeColor, int i, __global uint* counters,
+                        __global const BtgBodyProps* restrict props, BTG_SHARED __global const int* claim,
+                        BTG_SHARED __global int* bodyColor, int color)
 {
-    if (contacts[i].color >= 0) return;
-    int a = contacts[i].bodyA, b = contacts[i].bodyB;
+    if (edgeColor[i] >= 0) return;
+    int a = edges[i].bodyA, b = edges[i].bodyB;
     if (!body_free(props, bodyColor, a, color) || !body_free(props, bodyColor, b, color)) return;
     int p = btgColorPriority(i);
     int dynA = btgIsSolverDynamic(props[a].flags), dynB = btgIsSolverDynamic(props[b].flags);
     if ((dynA && claim[a] != p) || (dynB && claim[b] != p)) return;
-    contacts[i].color = color;
-    /* Only this contact owns these bodies now: plain stores are race-free. */
+    edgeColor[i] = color;
+    /* Only this edge owns these bodies now: plain stores are race-free. */
     if (dynA) bodyColor[a] = color;
     if (dynB) bodyColor[b] = color;
     atomic_max(&counters[BTG_COUNTER_COLORS_USED], (uint)(color + 1));
 }
 
-__kernel void color_claim(__global const BtgContact* restrict contacts, __global const uint* restrict counters,
-                          int contactCapacity, __global const BtgBodyProps* restrict props, __global int* claim,
+__kernel void color_claim(__global const BtgEdge* restrict edges, __global const int* restrict edgeColor,
+                          __global const uint* restrict counters, int edgeCapacity,
+                          __global const BtgBodyProps* restrict props, __global int* claim,
                           __global const int* restrict bodyColor, int color)
 {
     int i = (int)get_global_id(0);
-    if (i < contact_count(counters, contactCapacity)) claim_contact(contacts, i, props, claim, bodyColor, color);
+    if (i < edge_count(counters, edgeCapacity)) claim_edge(edges, edgeColor, i, props, claim, bodyColor, color);
 }
 
-__kernel void color_assign(__global BtgContact* contacts, __global uint* counters, int contactCapacity,
-                           __global const BtgBodyProps* restrict props, __global const int* restrict claim,
-                           __global int* bodyColor, int color)
+__kernel void color_assign(__global const BtgEdge* restrict edges, __global int* edgeColor, __global uint* counters,
+                           int edgeCapacity, __global const BtgBodyProps* restrict props,
+                           __global const int* restrict claim, __global int* bodyColor, int color)
 {
     int i = (int)get_global_id(0);
-    if (i < contact_count(counters, contactCapacity)) assign_contact(contacts, i, counters, props, claim, bodyColor, color);
+    if (i < edge_count(counters, edgeCapacity)) assign_edge(edges, edgeColor, i, counters, props, claim, bodyColor, color);
 }
 
-/* Contacts left after the rounds share the last color, which the solver runs serially. */
-__kernel void color_finish(__global BtgContact* contacts, __global uint* counters, int contactCapacity,
-                           int lastColor)
+/* Edges left after the rounds share the last color, which the solver runs serially. */
+__kernel void color_finish(__global int* edgeColor, __global uint* counters, int edgeCapacity, int lastColor)
 {
     int i = (int)get_global_id(0);
-    if (i < contact_count(counters, contactCapacity) && contacts[i].color < 0) {
-        contacts[i].color = lastColor;
+    if (i < edge_count(counters, edgeCapacity) && edgeColor[i] < 0) {
+        edgeColor[i] = lastColor;
         atomic_inc(&counters[BTG_COUNTER_LEFTOVERS]);
     }
 }
@@ -113,17 +114,17 @@ __kernel void color_finish(__global BtgContact* contacts, __global uint* counter
  * small scenes on CPUs): the same
  * init, claim/assign sub-rounds and finish as the per-launch kernels, with a grid barrier
  * (shared/grid_barrier.h) where those have a kernel boundary, so the coloring is identical.
- * Contact i is handled by the same work-item in every round (its color is read and written by
+ * Edge i is handled by the same work-item in every round (its color is read and written by
  * no other); claims and body colors are shared, through BTG_SHARED pointers and atomics. */
-__kernel void color_resident(__global BtgContact* contacts, __global uint* counters, int contactCapacity,
-                             __global const BtgBodyProps* restrict props, BTG_SHARED __global int* claim,
-                             BTG_SHARED __global int* bodyColor, int numBodies, int rounds,
-                             volatile __global BtgGridBarrier* bar, int spinLimit)
+__kernel void color_resident(__global const BtgEdge* restrict edges, __global int* edgeColor, __global uint* counters,
+                             int edgeCapacity, __global const BtgBodyProps* restrict props,
+                             BTG_SHARED __global int* claim, BTG_SHARED __global int* bodyColor, int numBodies,
+                             int rounds, volatile __global BtgGridBarrier* bar, int spinLimit)
 {
     __local int quit;
     const int gid = (int)get_global_id(0), gsize = (int)get_global_size(0);
-    const int n = contact_count(counters, contactCapacity);
-    for (int i = gid; i < n; i += gsize) contacts[i].color = -1;
+    const int n = edge_count(counters, edgeCapacity);
+    for (int i = gid; i < n; i += gsize) edgeColor[i] = -1;
     for (int b = gid; b < numBodies; b += gsize) bodyColor[b] = -1;
     int stop = btgGridBarrier(bar, spinLimit, &quit);
     for (int color = 0; color < rounds && !stop; ++color) {
@@ -131,10 +132,11 @@ __kernel void color_resident(__global BtgContact* contacts, __global uint* count
             for (int b = gid; b < numBodies; b += gsize) claim[b] = NO_CLAIM;
             stop = btgGridBarrier(bar, spinLimit, &quit);
             if (stop) break;
-            for (int i = gid; i < n; i += gsize) claim_contact(contacts, i, props, claim, bodyColor, color);
+            for (int i = gid; i < n; i += gsize) claim_edge(edges, edgeColor, i, props, claim, bodyColor, color);
             stop = btgGridBarrier(bar, spinLimit, &quit);
             if (stop) break;
-            for (int i = gid; i < n; i += gsize) assign_contact(contacts, i, counters, props, claim, bodyColor, color);
+            for (int i = gid; i < n; i += gsize)
+                assign_edge(edges, edgeColor, i, counters, props, claim, bodyColor, color);
             stop = btgGridBarrier(bar, spinLimit, &quit);
         }
     }
@@ -143,8 +145,8 @@ __kernel void color_resident(__global BtgContact* contacts, __global uint* count
         return;
     }
     for (int i = gid; i < n; i += gsize)
-        if (contacts[i].color < 0) {
-            contacts[i].color = rounds;
+        if (edgeColor[i] < 0) {
+            edgeColor[i] = rounds;
             atomic_inc(&counters[BTG_COUNTER_LEFTOVERS]);
         }
 }

@@ -15,8 +15,8 @@ __kernel void predict_motion(int n, __global const BtgBodyProps* restrict props,
     if (i >= n) return;
     BtgBodyProps p = props[i];
     if (!btgIsMoving(p.flags)) return;
-    linVel[i] = btgDamp(linVel[i], p.linearFactor.w, dt);
-    angVel[i] = btgDamp(angVel[i], p.angularFactor.w, dt);
+    linVel[i] = btgDamp(linVel[i], p.linearDamping, dt);
+    angVel[i] = btgDamp(angVel[i], p.angularDamping, dt);
 }
 
 __kernel void apply_forces(int n, __global const BtgFloat4* restrict rot, __global const BtgBodyProps* restrict props,

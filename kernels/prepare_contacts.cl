@@ -1,23 +1,28 @@
-/* prepare_contacts.cl — Stage: prepare (solver rows of each contact, setupContactConstraint).
+/* prepare_contacts.cl — Stage: prepare (solver rows of each contact, setupContactConstraint,
+ * and the contacts' edges of the constraint graph).
  * Launch: one work-item per contact slot (contactCapacity); early-out past the contact count.
  * Reads counters[kContactCount], props, invInertiaWorld, linVel0, angVel0, contacts.
- * Writes contacts (t1, t2, masses, targets in rA.w / rB.w, friction in normal.w, restitution
- * in t1.w; impulses of non-solvable contacts zeroed). */
+ * Writes contacts (friction, tangent1/2, row masses, normalTarget, pushTarget, pushImpulse
+ * zeroed; impulses of non-solvable contacts zeroed), edges[0, contacts) (edge i: contact i's
+ * bodies), counters[kEdgeCount] (= the contacts; kinds that follow append to it). */
 #include "shared/counters.h"
 #include "shared/types.h"
 #include "shared/math.h"
 #include "shared/contact_rows.h"
 
 
-__kernel void prepare_contacts(__global BtgContact* contacts, __global const uint* restrict counters,
+__kernel void prepare_contacts(__global BtgContact* contacts, __global uint* counters,
                                int contactCapacity, __global const BtgBodyProps* restrict props,
                                __global const BtgFloat4* restrict invInertiaWorld,
                                __global const BtgFloat4* restrict linVel0, __global const BtgFloat4* restrict angVel0,
-                               BtgStepParams params)
+                               __global BtgEdge* edges, BtgStepParams params)
 {
     uint i = (uint)get_global_id(0);
-    if (i >= min(counters[BTG_COUNTER_CONTACTS], (uint)contactCapacity)) return;
+    const uint n = min(counters[BTG_COUNTER_CONTACTS], (uint)contactCapacity);
+    if (i == 0) counters[BTG_COUNTER_EDGES] = n;
+    if (i >= n) return;
     BtgContact c = contacts[i];
+    edges[i] = btgContactEdge(c);
     BtgBodyProps pa = props[c.bodyA], pb = props[c.bodyB];
     BtgSolverBody a = btgMakeSolverBody(pa, invInertiaWorld[3 * c.bodyA], invInertiaWorld[3 * c.bodyA + 1],
                                         invInertiaWorld[3 * c.bodyA + 2]);
@@ -25,7 +30,7 @@ __kernel void prepare_contacts(__global BtgContact* contacts, __global const uin
                                         invInertiaWorld[3 * c.bodyB + 2]);
     BtgBodyVel a0 = btgMakeBodyVel(a.moving, linVel0[c.bodyA], angVel0[c.bodyA]);
     BtgBodyVel b0 = btgMakeBodyVel(b.moving, linVel0[c.bodyB], angVel0[c.bodyB]);
-    btgPrepareContact(&c, a, b, a0, b0, btgCombinedFriction(pa.gravity.w, pb.gravity.w),
+    btgPrepareContact(&c, a, b, a0, b0, btgCombinedFriction(pa.friction, pb.friction),
                       pa.restitution * pb.restitution, btgContactSolvable(pa.flags, pb.flags), params);
     contacts[i] = c;
 }

@@ -15,8 +15,9 @@ __kernel void probe_layout(__global int* out, float a, float b, float c)
     out[5] = (int)sizeof(BtgContact);
     out[6] = (int)sizeof(BtgStepParams);
     out[8] = (int)sizeof(BtgCachedContact);
-    out[9] = (int)sizeof(BtgManifoldPoint);
-    out[10] = (int)sizeof(BtgManifoldRange);
+    out[9] = (int)sizeof(BtgEdge);
+    out[10] = (int)sizeof(BtgManifoldPoint);
+    out[11] = (int)sizeof(BtgManifoldRange);
     float r = a * b + c; /* with contraction this is fma(a, b, c): a different float */
     out[7] = as_int(r);
 }

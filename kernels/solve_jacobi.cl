@@ -22,9 +22,9 @@ static int num_contacts(__global const uint* restrict counters, int contactCapac
 }
 
 /* A side enters the lists when its body is dynamic and the contact is solved at all. */
-static int side_listed(__global const BtgBodyProps* restrict props, BtgContact c, int side)
+static int side_listed(__global const BtgBodyProps* restrict props, int bodyA, int bodyB, int side)
 {
-    uint fa = props[c.bodyA].flags, fb = props[c.bodyB].flags;
+    uint fa = props[bodyA].flags, fb = props[bodyB].flags;
     return btgContactSolvable(fa, fb) && btgIsSolverDynamic(side == 0 ? fa : fb);
 }
 
@@ -33,9 +33,9 @@ __kernel void jacobi_count(__global const BtgContact* restrict contacts, __globa
 {
     int i = (int)get_global_id(0);
     if (i >= num_contacts(counters, contactCapacity)) return;
-    BtgContact c = contacts[i];
-    if (side_listed(props, c, 0)) atomic_inc(&cursor[c.bodyA]);
-    if (side_listed(props, c, 1)) atomic_inc(&cursor[c.bodyB]);
+    const int a = contacts[i].bodyA, b = contacts[i].bodyB;
+    if (side_listed(props, a, b, 0)) atomic_inc(&cursor[a]);
+    if (side_listed(props, a, b, 1)) atomic_inc(&cursor[b]);
 }
 
 __kernel void jacobi_fill(__global const BtgContact* restrict contacts, __global const uint* restrict counters,
@@ -44,9 +44,9 @@ __kernel void jacobi_fill(__global const BtgContact* restrict contacts, __global
 {
     int i = (int)get_global_id(0);
     if (i >= num_contacts(counters, contactCapacity)) return;
-    BtgContact c = contacts[i];
-    if (side_listed(props, c, 0)) entries[start[c.bodyA] + atomic_inc(&cursor[c.bodyA])] = 2u * (uint)i;
-    if (side_listed(props, c, 1)) entries[start[c.bodyB] + atomic_inc(&cursor[c.bodyB])] = 2u * (uint)i + 1u;
+    const int a = contacts[i].bodyA, b = contacts[i].bodyB;
+    if (side_listed(props, a, b, 0)) entries[start[a] + atomic_inc(&cursor[a])] = 2u * (uint)i;
+    if (side_listed(props, a, b, 1)) entries[start[b] + atomic_inc(&cursor[b])] = 2u * (uint)i + 1u;
 }
 
 /* Insertion sort of one body's entries: lists are short (the contacts touching one body). */
@@ -78,7 +78,8 @@ __kernel void jacobi_solve(__global BtgContact* contacts, __global const uint* r
 {
     int i = (int)get_global_id(0);
     if (i >= num_contacts(counters, contactCapacity)) return;
-    BtgContact c = contacts[i];
+    /* Every row is visited (second friction rows too: see btgJacobiContact). */
+    BtgContact c = btgLoadContactRows(contacts, i, mode, 1);
     int ia = c.bodyA, ib = c.bodyB;
     BtgSolverBody a = btgMakeSolverBody(props[ia], invInertiaWorld[3 * ia], invInertiaWorld[3 * ia + 1], invInertiaWorld[3 * ia + 2]);
     BtgSolverBody b = btgMakeSolverBody(props[ib], invInertiaWorld[3 * ib], invInertiaWorld[3 * ib + 1], invInertiaWorld[3 * ib + 2]);
@@ -93,7 +94,7 @@ __kernel void jacobi_solve(__global BtgContact* contacts, __global const uint* r
     deltas[4 * i + 1] = dA.ang;
     deltas[4 * i + 2] = dB.lin;
     deltas[4 * i + 3] = dB.ang;
-    if (mode != BTG_PASS_WARM_START) contacts[i] = c;
+    btgStoreContactImpulses(contacts, i, &c, mode, 1);
 }
 
 __kernel void jacobi_gather(int numBodies, __global const uint* restrict start, __global const uint* restrict entries,

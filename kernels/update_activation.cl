@@ -1,7 +1,8 @@
 /* update_activation.cl — Stage: update_activation (deactivation, as Bullet's).
  * own_timers      one work-item per body. Reads linVel, angVel, props. Writes sleepTime (own
  *                 timer), islandTime (min(own, island + dt)), wake (cleared).
- * island_min      one work-item per contact. Reads contacts, counters, props, islandSrc.
+ * island_min      one work-item per constraint-graph edge (contacts and any other kind).
+ *                 Reads edges, counters[kEdgeCount], props, sleepTime, islandSrc.
  *                 Writes islandDst (atomic_min over both bodies: deterministic, min is order-
  *                 free), wake (a sleeping body touched by a moving, non-slow body).
  * apply_sleep     one work-item per body. Reads islandTime, wake, sleepTime. Writes props.flags
@@ -28,15 +29,14 @@ __kernel void own_timers(int n, __global const BtgFloat4* restrict linVel, __glo
     islandTime[i] = as_uint(island);
 }
 
-__kernel void island_min(__global const BtgContact* restrict contacts, __global const uint* restrict counters,
+__kernel void island_min(__global const BtgEdge* restrict edges, __global const uint* restrict counters,
                          int capacity, __global const BtgBodyProps* restrict props, __global const float* restrict sleepTime,
                          __global const uint* restrict islandSrc, __global uint* islandDst, __global uint* wake)
 {
     int k = get_global_id(0);
-    int count = min((int)counters[BTG_COUNTER_CONTACTS], capacity);
+    int count = (int)min(counters[BTG_COUNTER_EDGES], (uint)capacity);
     if (k >= count) return;
-    BtgContact c = contacts[k];
-    if (c.numPoints <= 0) return;
+    BtgEdge c = edges[k];
     uint fa = props[c.bodyA].flags, fb = props[c.bodyB].flags;
     if (btgCanSleep(fa) && btgCanSleep(fb)) {
         atomic_min(&islandDst[c.bodyA], islandSrc[c.bodyB]);

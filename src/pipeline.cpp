@@ -51,6 +51,7 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
 void runSubstep(DeviceWorld& w, const Plan& plan, const std::vector<Stage>& stages, const StepSettings& s)
 {
     fillCounters(w, kPairCount, 2, 0u);  // pair and contact counts
+    fillCounters(w, kEdgeCount, 1, 0u);  // the constraint graph, rebuilt by the stages that add edges
     for (Stage stage : stages) {
         w.profiler.stage = stageName(stage);
         runStage(stage, w, plan, s);
@@ -111,8 +112,8 @@ namespace {
 
 // Grows the pair and contact buffers from an overflowed call's full counts (the kernels count
 // past capacity). Contacts take what they need plus an eighth, pairs a quarter: the contact
-// list is the largest buffer (304 + 112 + 4 bytes a slot with its cache entry and manifold
-// slot), and every growth is at least 1.25x, so redos stay few.
+// list is the largest buffer (352 + 112 + 4 bytes a slot with its cache entry and manifold
+// slot, and an 8 + 4 byte graph edge), and every growth is at least 1.25x, so redos stay few.
 void grow(DeviceWorld& w, const BodyReadback& rb, bool pairOverflow, bool contactOverflow)
 {
     size_t pairs = rb.counters[kPairCount];

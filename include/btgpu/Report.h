@@ -34,6 +34,7 @@ struct Report {
     // changed and uploading it; the device substeps with their one readback (enqueue, wait,
     // copy); writing the results into the btRigidBody objects and their motion states (and
     // clearing forces); keeping Bullet's own broadphase AABBs current (Config::syncBroadphaseAabbs).
+    double checkMs = 0.0;             // the checks before it: CPU-path rules, shape changes, rows followed
     double syncInMs = 0.0;
     double deviceMs = 0.0;
     double writeBackMs = 0.0;

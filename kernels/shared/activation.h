@@ -1,6 +1,6 @@
 /* activation.h — Bullet's deactivation rules as shared functions: a body's own timer
- * (btRigidBody::updateDeactivation) and its island's (the least timer among the bodies its
- * contacts connect it to; an island sleeps when every body in it has been slow for
+ * (btRigidBody::updateDeactivation) and its island's (the least timer among the bodies the
+ * constraint graph's edges, contacts and any other kind, connect it to; an island sleeps when every body in it has been slow for
  * gDeactivationTime, as btSimulationIslandManager decides). Timers are non-negative floats,
  * compared as their uint bits so atomic_min orders them exactly. */
 #ifndef BTG_ACTIVATION_H

@@ -1,72 +1,21 @@
-/* contact_rows.h — the per-point math of btSequentialImpulseConstraintSolver, shared by the
- * contact kernels (contact_cache, prepare_contacts, solve_constraints) and their CPU references:
- * contact geometry and warm-start matching, Jacobian rows and effective masses
- * (setupContactConstraint), the restitution curve, and the clamped row solve
- * (resolveSingleConstraintRow*, resolveSplitPenetrationImpulse), all on private copies. */
+/* contact_rows.h — the contacts' part of btSequentialImpulseConstraintSolver, shared by the
+ * contact kernels (contact_cache, prepare_contacts, solve_constraints, solve_jacobi) and their
+ * CPU references: contact geometry and warm-start matching, the rows of a manifold
+ * (setupContactConstraint / setupFrictionConstraint, the restitution curve), and their solve as
+ * solver_rows.h rows (resolveSingleConstraintRow*, resolveSplitPenetrationImpulse), all on
+ * private copies. */
 #ifndef BTG_CONTACT_ROWS_H
 #define BTG_CONTACT_ROWS_H
 #include "counters.h"
 #include "prelude.h"
 #include "types.h"
 #include "math.h"
+#include "solver_rows.h"
 
 /* BTG_WARMSTART_FRICTION (friction impulses kept across steps) is in types.h. */
 #define BTG_MAX_FRICTION 10.0f       /* btManifoldResult::calculateCombinedFriction's clamp */
 #define BTG_NORMAL_UPPER_LIMIT 1e10f /* setupContactConstraint's m_upperLimit */
 
-/* A body as the solver sees it (btSolverBody): infinite mass unless dynamic. */
-typedef struct {
-    BtgMat3 invI;          /* world inverse inertia, zero unless dynamic */
-    BtgFloat4 invMassLin;  /* invMass * linearFactor (btSolverBody::m_invMass) */
-    BtgFloat4 linFactor;
-    BtgFloat4 angFactor;
-    float invMass;         /* 1/kg, zero unless dynamic */
-    int dynamic;
-    int moving;            /* dynamic or kinematic: its velocity enters the rows */
-    int pad0;
-} BtgSolverBody;
-
-/* Linear and angular velocity of one body (or its push/turn velocity for split impulse). */
-typedef struct {
-    BtgFloat4 lin;
-    BtgFloat4 ang;
-} BtgBodyVel;
-
-/* One Jacobian row along dir: Bullet's m_contactNormal1/2, m_relpos1/2CrossNormal and
- * m_angularComponentA/B (the B side is stored already negated, as Bullet does). */
-typedef struct {
-    BtgFloat4 dir;
-    BtgFloat4 crossA; /* rA x dir */
-    BtgFloat4 crossB; /* -(rB x dir) */
-    BtgFloat4 angA;   /* invI_A crossA * angularFactor_A */
-    BtgFloat4 angB;   /* invI_B crossB * angularFactor_B */
-} BtgRow;
-
-static inline float btgLane(BtgFloat4 v, int k)
-{
-    return k == 0 ? v.x : (k == 1 ? v.y : (k == 2 ? v.z : v.w));
-}
-static inline void btgSetLane(BtgFloat4* v, int k, float x)
-{
-    if (k == 0) (*v).x = x;
-    else if (k == 1) (*v).y = x;
-    else if (k == 2) (*v).z = x;
-    else (*v).w = x;
-}
-
-/* Kinematic bodies take part with their velocity but infinite mass (Bullet gives them a solver
- * body of their own); excluded and static rows are Bullet's shared fixed body. */
-static inline int btgIsSolverDynamic(uint flags)
-{
-    /* A sleeping body holds still like a static one until the activation stage wakes it. */
-    return (flags & BTG_BODY_DYNAMIC) != 0u &&
-           (flags & (BTG_BODY_KINEMATIC | BTG_BODY_STATIC | BTG_BODY_EXCLUDED | BTG_BODY_SLEEPING)) == 0u;
-}
-static inline int btgIsSolverMoving(uint flags)
-{
-    return btgIsSolverDynamic(flags) ||
-           ((flags & BTG_BODY_KINEMATIC) != 0u && (flags & BTG_BODY_EXCLUDED) == 0u);
-}
 /* convertContact skips pairs of two infinite masses; the dispatcher skips no-response bodies. */
 static inline int btgContactSolvable(uint flagsA, uint flagsB)
 {
@@ -74,50 +23,22 @@ static inline int btgContactSolvable(uint flagsA, uint flagsB)
     return btgIsSolverDynamic(flagsA) || btgIsSolverDynamic(flagsB);
 }
 
-static inline BtgSolverBody btgMakeSolverBody(BtgBodyProps p, BtgFloat4 i0, BtgFloat4 i1, BtgFloat4 i2)
-{
-    BtgSolverBody b;
-    b.dynamic = btgIsSolverDynamic(p.flags);
-    b.moving = btgIsSolverMoving(p.flags);
-    b.pad0 = 0;
-    b.linFactor = btgXyz(p.linearFactor);
-    b.angFactor = btgXyz(p.angularFactor);
-    if (b.dynamic) {
-        b.invMass = p.invInertiaLocal.w;
-        b.invI.r0 = btgXyz(i0);
-        b.invI.r1 = btgXyz(i1);
-        b.invI.r2 = btgXyz(i2);
-    } else {
-        b.invMass = 0.0f;
-        b.invI.r0 = btgZero4();
-        b.invI.r1 = btgZero4();
-        b.invI.r2 = btgZero4();
-    }
-    b.invMassLin = b.linFactor * b.invMass;
-    return b;
-}
-/* Velocity a body contributes to a row: zero for the fixed body. */
-static inline BtgBodyVel btgMakeBodyVel(int moving, BtgFloat4 lin, BtgFloat4 ang)
-{
-    BtgBodyVel v;
-    v.lin = moving ? btgXyz(lin) : btgZero4();
-    v.ang = moving ? btgXyz(ang) : btgZero4();
-    return v;
-}
-
 /* ---- contact cache: geometry and warm start ---- */
 
 /* A contact's geometry from its manifold: rA from the point on A, rB from the point on B (as
- * Bullet's rel_pos1/rel_pos2), rA.w = signed distance (prepare reads it, then writes the target
- * there). The contact's normal is its first point's (a manifold's points share one today).
+ * Bullet's rel_pos1/rel_pos2), and each point's signed distance, which prepare turns into the
+ * targets. The contact's normal is its first point's (a manifold's points share one today).
  * Impulses start at zero; the caller warm-starts them. */
 static inline BtgContact btgContactFromManifold(BtgManifold m, BtgFloat4 posA, BtgFloat4 posB)
 {
     BtgContact c;
+    c.bodyA = m.bodyA;
+    c.bodyB = m.bodyB;
+    c.numPoints = m.numPoints;
+    c.friction = 0.0f;
     c.normal = m.numPoints > 0 ? btgMake4(m.points[0].nx, m.points[0].ny, m.points[0].nz, 0.0f)
                                : btgMake4(0.0f, 1.0f, 0.0f, 0.0f);
-    c.t1 = btgZero4();
-    c.t2 = btgZero4();
+    c.separation = btgZero4();
     for (int k = 0; k < BTG_MAX_POINTS; ++k) {
         c.rA[k] = btgZero4();
         c.rB[k] = btgZero4();
@@ -126,21 +47,21 @@ static inline BtgContact btgContactFromManifold(BtgManifold m, BtgFloat4 posA, B
             BtgFloat4 pb = btgMake4(p.px, p.py, p.pz, 0.0f);
             BtgFloat4 pa = pb + btgMake4(p.nx, p.ny, p.nz, 0.0f) * p.distance;
             c.rA[k] = pa - btgXyz(posA);
-            c.rA[k].w = p.distance;
             c.rB[k] = pb - btgXyz(posB);
+            btgSetLane(&c.separation, k, p.distance);
         }
     }
-    c.normalImpulse = btgZero4();
-    c.pushImpulse = btgZero4();
-    c.friction1Impulse = btgZero4();
-    c.friction2Impulse = btgZero4();
     c.normalMass = btgZero4();
+    c.normalTarget = btgZero4();
+    c.normalImpulse = btgZero4();
+    c.tangent1 = btgZero4();
     c.friction1Mass = btgZero4();
+    c.friction1Impulse = btgZero4();
+    c.tangent2 = btgZero4();
     c.friction2Mass = btgZero4();
-    c.bodyA = m.bodyA;
-    c.bodyB = m.bodyB;
-    c.numPoints = m.numPoints;
-    c.color = -1;
+    c.friction2Impulse = btgZero4();
+    c.pushTarget = btgZero4();
+    c.pushImpulse = btgZero4();
     return c;
 }
 
@@ -273,57 +194,15 @@ static inline void btgWarmStartFrom(BtgContact* c, BtgFloat4 rotA, BtgManifold m
     }
 }
 
-/* ---- rows and effective masses (setupContactConstraint / setupFrictionConstraint) ---- */
+/* ---- a manifold's rows (setupContactConstraint / setupFrictionConstraint) ---- */
 
-static inline BtgRow btgMakeRow(BtgFloat4 dir, BtgFloat4 rA, BtgFloat4 rB, BtgSolverBody a, BtgSolverBody b)
+/* A contact's edge of the constraint graph. */
+static inline BtgEdge btgContactEdge(BtgContact c)
 {
-    BtgRow r;
-    r.dir = btgXyz(dir);
-    r.crossA = btgCross3(rA, r.dir);
-    r.crossB = -btgCross3(rB, r.dir);
-    r.angA = btgMat3MulVec(a.invI, r.crossA) * a.angFactor;
-    r.angB = btgMat3MulVec(b.invI, r.crossB) * b.angFactor;
-    return r;
-}
-/* m_jacDiagABInv with relaxation 1 and cfm 0; 0 marks a row with no mobility (never solved). */
-static inline float btgRowMass(BtgRow r, BtgFloat4 rA, BtgFloat4 rB, BtgSolverBody a, BtgSolverBody b)
-{
-    float denomA = a.invMass + btgDot3(r.dir, btgCross3(r.angA, rA));
-    float denomB = b.invMass + btgDot3(r.dir, btgCross3(-r.angB, rB));
-    float denom = denomA + denomB;
-    return denom > 0.0f ? 1.0f / denom : 0.0f;
-}
-/* Relative velocity along the row (vel1Dotn + vel2Dotn). */
-static inline float btgRowVelocity(BtgRow r, BtgBodyVel va, BtgBodyVel vb)
-{
-    float v1 = btgDot3(r.dir, va.lin) + btgDot3(r.crossA, va.ang);
-    float v2 = btgDot3(-r.dir, vb.lin) + btgDot3(r.crossB, vb.ang);
-    return v1 + v2;
-}
-/* btSolverBody::internalApplyImpulse on both bodies: the linear and angular factors enter
- * twice (once in the component, once in the apply), as in Bullet. */
-static inline void btgRowApply(BtgRow r, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb, float impulse)
-{
-    va->lin = va->lin + (r.dir * a.invMassLin) * impulse * a.linFactor;
-    va->ang = va->ang + r.angA * (a.angFactor * impulse);
-    vb->lin = vb->lin + (-r.dir * b.invMassLin) * impulse * b.linFactor;
-    vb->ang = vb->ang + r.angB * (b.angFactor * impulse);
-}
-/* One projected Gauss-Seidel step on a row: returns the impulse to apply, updates the sum. */
-static inline float btgSolveRow(float target, float velocity, float mass, float* accumulated, float lo, float hi)
-{
-    float delta = (target - velocity) * mass;
-    float sum = *accumulated + delta;
-    if (sum < lo) {
-        delta = lo - *accumulated;
-        *accumulated = lo;
-    } else if (sum > hi) {
-        delta = hi - *accumulated;
-        *accumulated = hi;
-    } else {
-        *accumulated = sum;
-    }
-    return delta;
+    BtgEdge e;
+    e.bodyA = c.bodyA;
+    e.bodyB = c.bodyB;
+    return e;
 }
 
 /* btSequentialImpulseConstraintSolver's restitutionCurve, clamped at zero as setup does. */
@@ -368,10 +247,9 @@ static inline void btgPrepareContact(BtgContact* c, BtgSolverBody a, BtgSolverBo
         t2 = btgNormalize3(btgCross3(t1, n));
     }
     c->normal = n;
-    c->normal.w = friction;
-    c->t1 = t1;
-    c->t1.w = restitution;
-    c->t2 = t2;
+    c->friction = friction;
+    c->tangent1 = btgXyz(t1);
+    c->tangent2 = btgXyz(t2);
     c->normalMass = btgZero4();
     c->friction1Mass = btgZero4();
     c->friction2Mass = btgZero4();
@@ -382,13 +260,13 @@ static inline void btgPrepareContact(BtgContact* c, BtgSolverBody a, BtgSolverBo
         BtgFloat4 rB = btgXyz(c->rB[k]);
         float target = 0.0f, push = 0.0f;
         if (k < c->numPoints && solvable) {
-            btgSetLane(&c->normalMass, k, btgRowMass(btgMakeRow(n, rA, rB, a, b), rA, rB, a, b));
-            btgSetLane(&c->friction1Mass, k, btgRowMass(btgMakeRow(t1, rA, rB, a, b), rA, rB, a, b));
+            btgSetLane(&c->normalMass, k, btgPointRowMass(btgPointJacobian(n, rA, rB, a, b), rA, rB, a, b));
+            btgSetLane(&c->friction1Mass, k, btgPointRowMass(btgPointJacobian(t1, rA, rB, a, b), rA, rB, a, b));
             if (p.twoFrictionDirections)
-                btgSetLane(&c->friction2Mass, k, btgRowMass(btgMakeRow(t2, rA, rB, a, b), rA, rB, a, b));
+                btgSetLane(&c->friction2Mass, k, btgPointRowMass(btgPointJacobian(t2, rA, rB, a, b), rA, rB, a, b));
             BtgFloat4 velA = a0.lin + btgCross3(a0.ang, rA);
             BtgFloat4 velB = b0.lin + btgCross3(b0.ang, rB);
-            float penetration = c->rA[k].w; /* the distance, until the target replaces it below */
+            float penetration = btgLane(c->separation, k);
             target = btgRestitution(btgDot3(n, velA - velB), restitution, p.restitutionThreshold);
             float positional = 0.0f;
             if (penetration > 0.0f) target -= penetration * invDt; /* speculative: reach, not pass */
@@ -400,77 +278,141 @@ static inline void btgPrepareContact(BtgContact* c, BtgSolverBody a, BtgSolverBo
             btgSetLane(&c->friction1Impulse, k, 0.0f);
             btgSetLane(&c->friction2Impulse, k, 0.0f);
         }
-        c->rA[k].w = target;
-        c->rB[k].w = push;
+        btgSetLane(&c->normalTarget, k, target);
+        btgSetLane(&c->pushTarget, k, push);
     }
 }
 
 /* ---- solve (one contact, bodies loaded by the caller) ---- */
 
-/* The setup-time warm start: accumulated impulses applied once before the iterations. */
-static inline void btgContactWarmStart(const BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb)
+/* What pass `mode` reads of contact i (see BtgContact), the rest zero: a solver pass loads
+ * these fields and nothing else (a copy of the whole contact would read all its bytes every
+ * pass), the lever arms of the contact's points only. twoFriction: the second friction rows
+ * exist (SOLVER_USE_2_FRICTION_DIRECTIONS). */
+static inline BtgContact btgLoadContactRows(BTG_CONST_GLOBAL BtgContact* contacts, int i, int mode, int twoFriction)
+{
+    BtgContact c;
+    c.bodyA = contacts[i].bodyA;
+    c.bodyB = contacts[i].bodyB;
+    c.numPoints = contacts[i].numPoints;
+    c.friction = mode == BTG_PASS_VELOCITY ? contacts[i].friction : 0.0f;
+    c.normal = contacts[i].normal;
+    for (int k = 0; k < BTG_MAX_POINTS; ++k) {
+        c.rA[k] = k < c.numPoints ? contacts[i].rA[k] : btgZero4();
+        c.rB[k] = k < c.numPoints ? contacts[i].rB[k] : btgZero4();
+    }
+    c.normalMass = contacts[i].normalMass;
+    const int push = mode == BTG_PASS_PUSH, second = !push && twoFriction;
+    c.normalTarget = mode == BTG_PASS_VELOCITY ? contacts[i].normalTarget : btgZero4();
+    c.normalImpulse = push ? btgZero4() : contacts[i].normalImpulse;
+    c.tangent1 = push ? btgZero4() : contacts[i].tangent1;
+    c.friction1Mass = push ? btgZero4() : contacts[i].friction1Mass;
+    c.friction1Impulse = push ? btgZero4() : contacts[i].friction1Impulse;
+    c.tangent2 = second ? contacts[i].tangent2 : btgZero4();
+    c.friction2Mass = second ? contacts[i].friction2Mass : btgZero4();
+    c.friction2Impulse = second ? contacts[i].friction2Impulse : btgZero4();
+    c.pushTarget = push ? contacts[i].pushTarget : btgZero4();
+    c.pushImpulse = push ? contacts[i].pushImpulse : btgZero4();
+    c.separation = btgZero4();
+    return c;
+}
+/* What pass `mode` changed of contact c, written back to slot i: its accumulated impulses. */
+static inline void btgStoreContactImpulses(BTG_GLOBAL BtgContact* contacts, int i, const BtgContact* c, int mode,
+                                           int twoFriction)
+{
+    if (mode == BTG_PASS_VELOCITY) {
+        contacts[i].normalImpulse = c->normalImpulse;
+        contacts[i].friction1Impulse = c->friction1Impulse;
+        if (twoFriction) contacts[i].friction2Impulse = c->friction2Impulse;
+    } else if (mode == BTG_PASS_PUSH) {
+        contacts[i].pushImpulse = c->pushImpulse;
+    }
+}
+
+/* Point k's rows as solver rows (see BtgContact): the normal row is unilateral, the friction
+ * rows are bounded by friction times the point's normal impulse as it stands, the push row
+ * shares the normal row's direction and mass. */
+static inline BtgSolverRow btgContactNormalRow(const BtgContact* c, int k, BtgSolverBody a, BtgSolverBody b)
+{
+    BtgFloat4 rA = btgXyz(c->rA[k]), rB = btgXyz(c->rB[k]);
+    return btgMakeSolverRow(btgPointJacobian(c->normal, rA, rB, a, b), btgLane(c->normalMass, k),
+                            btgLane(c->normalTarget, k), 0.0f, BTG_NORMAL_UPPER_LIMIT, btgLane(c->normalImpulse, k));
+}
+static inline BtgSolverRow btgContactFrictionRow(const BtgContact* c, int k, BtgFloat4 dir, float mass, float impulse,
+                                                 BtgSolverBody a, BtgSolverBody b)
+{
+    BtgFloat4 rA = btgXyz(c->rA[k]), rB = btgXyz(c->rB[k]);
+    float lim = c->friction * btgLane(c->normalImpulse, k);
+    return btgMakeSolverRow(btgPointJacobian(dir, rA, rB, a, b), mass, 0.0f, -lim, lim, impulse);
+}
+static inline BtgSolverRow btgContactPushRow(const BtgContact* c, int k, BtgSolverBody a, BtgSolverBody b)
+{
+    BtgFloat4 rA = btgXyz(c->rA[k]), rB = btgXyz(c->rB[k]);
+    return btgMakeSolverRow(btgPointJacobian(c->normal, rA, rB, a, b), btgLane(c->normalMass, k),
+                            btgLane(c->pushTarget, k), 0.0f, BTG_NORMAL_UPPER_LIMIT, btgLane(c->pushImpulse, k));
+}
+
+/* The setup-time warm start: accumulated impulses applied once before the iterations.
+ * twoFriction: SOLVER_USE_2_FRICTION_DIRECTIONS (without it the second friction rows have no
+ * mass, and are not read at all). */
+static inline void btgContactWarmStart(const BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
+                                       BtgBodyVel* vb, int twoFriction)
 {
     for (int k = 0; k < c->numPoints; ++k) {
         BtgFloat4 rA = btgXyz(c->rA[k]), rB = btgXyz(c->rB[k]);
         if (btgLane(c->normalMass, k) == 0.0f) continue;
-        btgRowApply(btgMakeRow(c->normal, rA, rB, a, b), a, b, va, vb, btgLane(c->normalImpulse, k));
+        btgRowApply(btgPointJacobian(c->normal, rA, rB, a, b), a, b, va, vb, btgLane(c->normalImpulse, k));
         if (btgLane(c->friction1Mass, k) != 0.0f)
-            btgRowApply(btgMakeRow(c->t1, rA, rB, a, b), a, b, va, vb, btgLane(c->friction1Impulse, k));
-        if (btgLane(c->friction2Mass, k) != 0.0f)
-            btgRowApply(btgMakeRow(c->t2, rA, rB, a, b), a, b, va, vb, btgLane(c->friction2Impulse, k));
+            btgRowApply(btgPointJacobian(c->tangent1, rA, rB, a, b), a, b, va, vb, btgLane(c->friction1Impulse, k));
+        if (twoFriction && btgLane(c->friction2Mass, k) != 0.0f)
+            btgRowApply(btgPointJacobian(c->tangent2, rA, rB, a, b), a, b, va, vb, btgLane(c->friction2Impulse, k));
     }
 }
-/* One velocity iteration: all normal rows, then the friction rows (t1, t2 per point) whose
- * normal impulse is positive, clamped to friction * normal impulse (solveSingleIteration). */
-static inline void btgContactSolveVelocity(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb)
+/* One velocity iteration: all normal rows, then the friction rows (tangent1, tangent2 per point)
+ * whose normal impulse is positive (solveSingleIteration). */
+static inline void btgContactSolveVelocity(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
+                                           BtgBodyVel* vb, int twoFriction)
 {
     for (int k = 0; k < c->numPoints; ++k) {
-        float m = btgLane(c->normalMass, k);
-        if (m == 0.0f) continue;
-        BtgFloat4 rA = btgXyz(c->rA[k]), rB = btgXyz(c->rB[k]);
-        BtgRow r = btgMakeRow(c->normal, rA, rB, a, b);
-        float acc = btgLane(c->normalImpulse, k);
-        float d = btgSolveRow(c->rA[k].w, btgRowVelocity(r, *va, *vb), m, &acc, 0.0f, BTG_NORMAL_UPPER_LIMIT);
-        btgSetLane(&c->normalImpulse, k, acc);
-        btgRowApply(r, a, b, va, vb, d);
+        if (btgLane(c->normalMass, k) == 0.0f) continue;
+        BtgSolverRow r = btgContactNormalRow(c, k, a, b);
+        btgRowSolve(&r, a, b, va, vb);
+        btgSetLane(&c->normalImpulse, k, r.impulse);
     }
-    float friction = c->normal.w;
     for (int k = 0; k < c->numPoints; ++k) {
-        float total = btgLane(c->normalImpulse, k);
-        if (!(total > 0.0f)) continue;
-        float lim = friction * total;
-        BtgFloat4 rA = btgXyz(c->rA[k]), rB = btgXyz(c->rB[k]);
+        if (!(btgLane(c->normalImpulse, k) > 0.0f)) continue;
         float m1 = btgLane(c->friction1Mass, k);
         if (m1 != 0.0f) {
-            BtgRow r = btgMakeRow(c->t1, rA, rB, a, b);
-            float acc = btgLane(c->friction1Impulse, k);
-            float d = btgSolveRow(0.0f, btgRowVelocity(r, *va, *vb), m1, &acc, -lim, lim);
-            btgSetLane(&c->friction1Impulse, k, acc);
-            btgRowApply(r, a, b, va, vb, d);
+            BtgSolverRow r = btgContactFrictionRow(c, k, c->tangent1, m1, btgLane(c->friction1Impulse, k), a, b);
+            btgRowSolve(&r, a, b, va, vb);
+            btgSetLane(&c->friction1Impulse, k, r.impulse);
         }
-        float m2 = btgLane(c->friction2Mass, k);
+        float m2 = twoFriction ? btgLane(c->friction2Mass, k) : 0.0f;
         if (m2 != 0.0f) {
-            BtgRow r = btgMakeRow(c->t2, rA, rB, a, b);
-            float acc = btgLane(c->friction2Impulse, k);
-            float d = btgSolveRow(0.0f, btgRowVelocity(r, *va, *vb), m2, &acc, -lim, lim);
-            btgSetLane(&c->friction2Impulse, k, acc);
-            btgRowApply(r, a, b, va, vb, d);
+            BtgSolverRow r = btgContactFrictionRow(c, k, c->tangent2, m2, btgLane(c->friction2Impulse, k), a, b);
+            btgRowSolve(&r, a, b, va, vb);
+            btgSetLane(&c->friction2Impulse, k, r.impulse);
         }
     }
+}
+/* Whether any of the contact's points has a push row (the push passes visit only such
+ * contacts); read straight from the list, three fields. */
+static inline int btgContactHasPush(BTG_CONST_GLOBAL BtgContact* contacts, int i)
+{
+    const int n = contacts[i].numPoints;
+    const BtgFloat4 target = contacts[i].pushTarget, mass = contacts[i].normalMass;
+    for (int k = 0; k < n; ++k)
+        if (btgLane(target, k) != 0.0f && btgLane(mass, k) != 0.0f) return 1;
+    return 0;
 }
 /* One split-impulse iteration (resolveSplitPenetrationImpulse) on push/turn velocities. */
 static inline void btgContactSolvePush(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* pa, BtgBodyVel* pb)
 {
     for (int k = 0; k < c->numPoints; ++k) {
-        float m = btgLane(c->normalMass, k);
-        float target = c->rB[k].w;
-        if (m == 0.0f || target == 0.0f) continue;
-        BtgFloat4 rA = btgXyz(c->rA[k]), rB = btgXyz(c->rB[k]);
-        BtgRow r = btgMakeRow(c->normal, rA, rB, a, b);
-        float acc = btgLane(c->pushImpulse, k);
-        float d = btgSolveRow(target, btgRowVelocity(r, *pa, *pb), m, &acc, 0.0f, BTG_NORMAL_UPPER_LIMIT);
-        btgSetLane(&c->pushImpulse, k, acc);
-        btgRowApply(r, a, b, pa, pb, d);
+        if (btgLane(c->normalMass, k) == 0.0f || btgLane(c->pushTarget, k) == 0.0f) continue;
+        BtgSolverRow r = btgContactPushRow(c, k, a, b);
+        btgRowSolve(&r, a, b, pa, pb);
+        btgSetLane(&c->pushImpulse, k, r.impulse);
     }
 }
 

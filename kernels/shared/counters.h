@@ -9,7 +9,8 @@
 #define BTG_COUNTER_STATUS 3
 #define BTG_COUNTER_NAN_BODY 4
 #define BTG_COUNTER_COLORS_USED 5 /* colors the batching assigned, leftovers excluded */
-#define BTG_COUNTER_LEFTOVERS 6   /* contacts left for the serial pass */
+#define BTG_COUNTER_LEFTOVERS 6   /* constraint-graph edges left for the serial pass */
+#define BTG_COUNTER_EDGES 7       /* constraint-graph edges: the contacts, then other kinds' */
 #define BTG_NUM_COUNTERS 8
 
 /* Solver passes (solve_constraints, solve_jacobi): warm start, a velocity iteration, a

@@ -24,7 +24,7 @@ static inline BtgFloat4 btgDamp(BtgFloat4 v, float damping, float dt)
  * (btRigidBody::applyCentralForce applies it), gravity gets it here (applyGravity). */
 static inline BtgFloat4 btgApplyLinearForces(BtgFloat4 linVel, BtgFloat4 force, BtgBodyProps p, float dt)
 {
-    float invMass = p.invInertiaLocal.w;
+    float invMass = p.invMass;
     BtgFloat4 g = btgXyz(p.gravity) * p.linearFactor;
     return btgXyz(linVel) + (btgXyz(force) * invMass + g) * dt;
 }

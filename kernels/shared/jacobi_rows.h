@@ -26,15 +26,17 @@ static inline void btgContactSplitMasses(BtgContact* c, BtgSolverBody a, BtgSolv
     for (int k = 0; k < c->numPoints; ++k) {
         BtgFloat4 rA = btgXyz(c->rA[k]), rB = btgXyz(c->rB[k]);
         if (btgLane(c->normalMass, k) != 0.0f)
-            btgSetLane(&c->normalMass, k, btgRowMass(btgMakeRow(c->normal, rA, rB, a, b), rA, rB, a, b));
+            btgSetLane(&c->normalMass, k, btgPointRowMass(btgPointJacobian(c->normal, rA, rB, a, b), rA, rB, a, b));
         if (btgLane(c->friction1Mass, k) != 0.0f)
-            btgSetLane(&c->friction1Mass, k, btgRowMass(btgMakeRow(c->t1, rA, rB, a, b), rA, rB, a, b));
+            btgSetLane(&c->friction1Mass, k, btgPointRowMass(btgPointJacobian(c->tangent1, rA, rB, a, b), rA, rB, a, b));
         if (btgLane(c->friction2Mass, k) != 0.0f)
-            btgSetLane(&c->friction2Mass, k, btgRowMass(btgMakeRow(c->t2, rA, rB, a, b), rA, rB, a, b));
+            btgSetLane(&c->friction2Mass, k, btgPointRowMass(btgPointJacobian(c->tangent2, rA, rB, a, b), rA, rB, a, b));
     }
 }
 
 /* One contact's Jacobi step. mode 0: warm start, 1: velocity iteration, 2: push iteration.
+ * Every row is visited (second friction rows too: without two friction directions their mass
+ * is 0 and they are skipped on that).
  * a, b: split bodies; va, vb: the bodies' current (averaged) velocities, zero unless moving
  * (push: unless dynamic). Updates the contact's accumulated impulses (modes 1, 2) and returns
  * the change of each copy in dA, dB (lin, ang). */
@@ -44,8 +46,8 @@ static inline void btgJacobiContact(BtgContact* c, BtgSolverBody a, BtgSolverBod
     BtgContact s = *c;
     btgContactSplitMasses(&s, a, b);
     BtgBodyVel ca = va, cb = vb;
-    if (mode == BTG_PASS_WARM_START) btgContactWarmStart(&s, a, b, &ca, &cb);
-    else if (mode == BTG_PASS_VELOCITY) btgContactSolveVelocity(&s, a, b, &ca, &cb);
+    if (mode == BTG_PASS_WARM_START) btgContactWarmStart(&s, a, b, &ca, &cb, 1);
+    else if (mode == BTG_PASS_VELOCITY) btgContactSolveVelocity(&s, a, b, &ca, &cb, 1);
     else btgContactSolvePush(&s, a, b, &ca, &cb);
     c->normalImpulse = s.normalImpulse;
     c->friction1Impulse = s.friction1Impulse;

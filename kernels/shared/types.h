@@ -37,11 +37,15 @@
 
 /* Static per-body properties; rewritten only when the app changes them. */
 typedef struct {
-    BtgFloat4 invInertiaLocal; /* 1/(kg m^2) on the principal axes; w: inverse mass 1/kg */
-    BtgFloat4 linearFactor;    /* per-axis factor (0..1); w: linear damping, 1/s fraction */
-    BtgFloat4 angularFactor;   /* per-axis factor (0..1); w: angular damping */
-    BtgFloat4 gravity;         /* m/s^2, this body's own gravity; w: friction coefficient */
+    BtgFloat4 invInertiaLocal; /* 1/(kg m^2) on the principal axes; w: 0 */
+    BtgFloat4 linearFactor;    /* per-axis factor (0..1); w: 0 */
+    BtgFloat4 angularFactor;   /* per-axis factor (0..1); w: 0 */
+    BtgFloat4 gravity;         /* m/s^2, this body's own gravity; w: 0 */
+    float invMass;             /* 1/kg; 0 unless dynamic */
+    float friction;            /* coefficient, combined by product (btManifoldResult) */
     float restitution;         /* coefficient, combined by product */
+    float linearDamping;       /* Bullet's m_linearDamping: v *= (1 - d)^dt, d in 0..1 */
+    float angularDamping;      /* Bullet's m_angularDamping, the same for the angular velocity */
     int shape;                 /* row in the shape table */
     uint flags;                /* BTG_BODY_* */
     int group;                 /* broadphase collision filter group */
@@ -145,30 +149,49 @@ typedef struct {
     int count;
 } BtgManifoldRange;
 
-/* One solver row set per manifold: normal, two friction directions, split impulse. The
- * warm-start key (the point in A's frame) is not kept here: it is R_A^T rA, and the cache
- * stage recomputes it from rA and A's unchanged rotation when it stores the cache. */
+/* The solver rows of one contact manifold (the btSolverConstraint rows Bullet builds from one
+ * btPersistentManifold), solved as BtgSolverRow (solver_rows.h). Point k has a normal row along
+ * `normal`, friction rows along tangent1 (and tangent2 with two friction directions) bounded
+ * by friction * its normal impulse, and a split-impulse push row along `normal`; all act at
+ * its lever arms rA[k], rB[k], and lane k of every per-point field is its rows' state.
+ * A solver pass loads only its rows' fields (btgLoadContactRows), which lie in the order the
+ * passes read them: a velocity pass reads up to friction1Impulse (friction2Impulse with two
+ * friction directions), a push pass up to normalMass and then the push fields, none reads
+ * separation; lever arms only of the numPoints points. The warm-start key (the
+ * point in A's frame) is not kept here: it is R_A^T rA, and the cache stage recomputes it
+ * from rA and A's unchanged rotation when it stores the cache. */
 typedef struct {
-    BtgFloat4 normal;                  /* B towards A; w: combined friction */
-    BtgFloat4 t1;                      /* friction direction 1; w: combined restitution */
-    BtgFloat4 t2;                      /* friction direction 2 */
-    BtgFloat4 rA[BTG_MAX_POINTS];      /* contact point on A minus A's centre, m; w: signed
-                                          distance m (negative: penetrating) until prepare,
-                                          then target normal velocity m/s (restitution, bias) */
-    BtgFloat4 rB[BTG_MAX_POINTS];      /* contact point on B minus B's centre, m;
-                                          w: split-impulse target push velocity m/s */
-    BtgFloat4 normalImpulse;           /* accumulated per point, N s */
-    BtgFloat4 pushImpulse;             /* accumulated split (position) impulse per point */
-    BtgFloat4 friction1Impulse;        /* accumulated along t1 per point */
-    BtgFloat4 friction2Impulse;        /* accumulated along t2 per point */
-    BtgFloat4 normalMass;              /* 1 / (J M^-1 J^T) per point, kg */
-    BtgFloat4 friction1Mass;
-    BtgFloat4 friction2Mass;
     int bodyA;
     int bodyB;
     int numPoints;
-    int color;                         /* batch: no dynamic body twice in one color */
+    float friction;                    /* combined friction coefficient of the pair */
+    BtgFloat4 normal;                  /* unit, from B towards A; w: 0 */
+    BtgFloat4 rA[BTG_MAX_POINTS];      /* contact point on A minus A's centre, m; w: 0 */
+    BtgFloat4 rB[BTG_MAX_POINTS];      /* contact point on B minus B's centre, m; w: 0 */
+    BtgFloat4 normalMass;              /* per point: 1 / (J M^-1 J^T) of the normal row, kg; 0: the
+                                          point has no rows (its push row shares this mass) */
+    BtgFloat4 normalTarget;            /* per point: normal velocity the row drives to, m/s
+                                          (restitution, position bias or speculative approach) */
+    BtgFloat4 normalImpulse;           /* accumulated per point, N s, in [0, BTG_NORMAL_UPPER_LIMIT] */
+    BtgFloat4 tangent1;                /* friction direction 1, unit, perpendicular to normal; w: 0 */
+    BtgFloat4 friction1Mass;           /* per point, kg; 0: no row */
+    BtgFloat4 friction1Impulse;        /* accumulated along tangent1 per point, N s */
+    BtgFloat4 tangent2;                /* friction direction 2; w: 0 */
+    BtgFloat4 friction2Mass;           /* per point, kg; 0 unless two friction directions */
+    BtgFloat4 friction2Impulse;        /* accumulated along tangent2 per point, N s */
+    BtgFloat4 pushTarget;              /* per point: split-impulse push velocity, m/s; 0: no push row */
+    BtgFloat4 pushImpulse;             /* accumulated split (position) impulse per point, N s */
+    BtgFloat4 separation;              /* per point: signed distance, m (negative: penetrating);
+                                          what prepare forms the targets from */
 } BtgContact;
+
+/* An edge of the constraint graph: one constraint between two bodies. The batching colors
+ * edges and the islands walk them, whatever kind of constraint each is: edges [0, contacts)
+ * are the contacts, in their order; other kinds (joints) append theirs after them. */
+typedef struct {
+    int bodyA;
+    int bodyB;
+} BtgEdge;
 
 /* The warm-start cache: what the next substep's matching and warm start read of one solved
  * contact (btPersistentManifold's cached points), in the contacts' pair order; a pair's
@@ -214,14 +237,15 @@ typedef struct {
 #define BTG_STATUS_GRID_BARRIER_TIMEOUT 8u /* a one-launch solve gave up waiting: redo per color */
 
 #ifndef __OPENCL_C_VERSION__
-static_assert(sizeof(BtgBodyProps) == 96, "BtgBodyProps layout");
+static_assert(sizeof(BtgBodyProps) == 112, "BtgBodyProps layout");
 static_assert(sizeof(BtgShape) == 96, "BtgShape layout");
 static_assert(sizeof(BtgFace) == 32, "BtgFace layout");
 static_assert(sizeof(BtgPair) == 8, "BtgPair layout");
 static_assert(sizeof(BtgManifoldPoint) == 32, "BtgManifoldPoint layout");
 static_assert(sizeof(BtgManifold) == 32 * BTG_MAX_POINTS + 32, "BtgManifold layout");
 static_assert(sizeof(BtgManifoldRange) == 8, "BtgManifoldRange layout");
-static_assert(sizeof(BtgContact) == 16 * 18 + 16, "BtgContact layout");
+static_assert(sizeof(BtgContact) == 16 + 16 * 21, "BtgContact layout");
+static_assert(sizeof(BtgEdge) == 8, "BtgEdge layout");
 static_assert(sizeof(BtgCachedContact) == 16 * (BTG_MAX_POINTS + 2 * BTG_WARMSTART_FRICTION) + 4 * BTG_MAX_POINTS + 32,
               "BtgCachedContact layout");
 static_assert(sizeof(BtgStepParams) == 48, "BtgStepParams layout");

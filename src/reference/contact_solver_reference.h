@@ -1,7 +1,8 @@
 // contact_solver_reference.h — CPU references of the contact stages (contacts, prepare,
-// batching, solve). Each calls the same kernels/shared/contact_rows.h functions as its kernel
-// and visits contacts in the order the device's result depends on, so integer stages match
-// exactly and float stages up to the device's sqrt/divide rounding.
+// batching, solve). Each calls the same kernels/shared/contact_rows.h and solver_rows.h
+// functions as its kernel and visits contacts (and the constraint graph's edges) in the order
+// the device's result depends on, so integer stages match exactly and float stages up to the
+// device's sqrt/divide rounding.
 #pragma once
 #include "shared/contact_rows.h"
 
@@ -49,15 +50,18 @@ std::vector<BtgCachedContact> storeContactCache(const std::vector<BtgContact>& c
 // unknown, so points match by distance only.
 std::vector<BtgCachedContact> storeContactCache(const std::vector<BtgContact>& contacts, const ContactBodies& bodies);
 
-// prepareContacts on every contact of the list.
-void prepareContacts(std::vector<BtgContact>& contacts, const ContactBodies& bodies, const BtgStepParams& params);
+// prepareContacts on every contact of the list; returns the contacts' edges of the constraint
+// graph (edge i: contact i), as the stage writes them.
+std::vector<BtgEdge> prepareContacts(std::vector<BtgContact>& contacts, const ContactBodies& bodies,
+                                     const BtgStepParams& params);
 
-// colorConstraints: the device's rounds replayed in order; sets every contact's color.
-void colorConstraints(std::vector<BtgContact>& contacts, const ContactBodies& bodies, int maxColors);
+// colorConstraints: the device's rounds replayed in order; returns every edge's color.
+std::vector<int> colorConstraints(const std::vector<BtgEdge>& edges, const ContactBodies& bodies, int maxColors);
 
-// solveConstraints: colors in order, contacts of a color in index order; updates linVel/angVel
-// and (zeroed first when params.splitImpulse) pushLin/pushAng.
-void solveConstraints(std::vector<BtgContact>& contacts, ContactBodies& bodies, const BtgStepParams& params,
-                      int iterations, int numColors);
+// solveConstraints: colors in order, the edges (contacts) of a color in index order; colors
+// are the edges'; updates linVel/angVel and (zeroed first when params.splitImpulse)
+// pushLin/pushAng.
+void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>& colors, ContactBodies& bodies,
+                      const BtgStepParams& params, int iterations, int numColors);
 
 }  // namespace btgpu::ref

@@ -9,8 +9,8 @@ void predictMotion(Bodies& b, float dt)
 {
     for (size_t i = 0; i < b.props.size(); ++i) {
         if (!btgIsMoving(b.props[i].flags)) continue;
-        b.linVel[i] = btgDamp(b.linVel[i], b.props[i].linearFactor.w, dt);
-        b.angVel[i] = btgDamp(b.angVel[i], b.props[i].angularFactor.w, dt);
+        b.linVel[i] = btgDamp(b.linVel[i], b.props[i].linearDamping, dt);
+        b.angVel[i] = btgDamp(b.angVel[i], b.props[i].angularDamping, dt);
     }
 }
 

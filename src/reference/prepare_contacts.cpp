@@ -1,4 +1,5 @@
-// prepare_contacts.cpp — CPU reference of the prepare stage (btgPrepareContact per contact).
+// prepare_contacts.cpp — CPU reference of the prepare stage (btgPrepareContact per contact, and
+// the contacts' graph edges).
 #include "reference/contact_solver_reference.h"
 
 namespace btgpu::ref {
@@ -10,17 +11,21 @@ BtgSolverBody solverBody(const ContactBodies& b, int i)
 }
 }  // namespace
 
-void prepareContacts(std::vector<BtgContact>& contacts, const ContactBodies& bodies, const BtgStepParams& params)
+std::vector<BtgEdge> prepareContacts(std::vector<BtgContact>& contacts, const ContactBodies& bodies,
+                                     const BtgStepParams& params)
 {
+    std::vector<BtgEdge> edges;
     for (BtgContact& c : contacts) {
+        edges.push_back(btgContactEdge(c));
         const BtgBodyProps& pa = bodies.props[c.bodyA];
         const BtgBodyProps& pb = bodies.props[c.bodyB];
         BtgSolverBody a = solverBody(bodies, c.bodyA), b = solverBody(bodies, c.bodyB);
         BtgBodyVel a0 = btgMakeBodyVel(a.moving, bodies.linVel0[c.bodyA], bodies.angVel0[c.bodyA]);
         BtgBodyVel b0 = btgMakeBodyVel(b.moving, bodies.linVel0[c.bodyB], bodies.angVel0[c.bodyB]);
-        btgPrepareContact(&c, a, b, a0, b0, btgCombinedFriction(pa.gravity.w, pb.gravity.w),
+        btgPrepareContact(&c, a, b, a0, b0, btgCombinedFriction(pa.friction, pb.friction),
                           pa.restitution * pb.restitution, btgContactSolvable(pa.flags, pb.flags), params);
     }
+    return edges;
 }
 
 }  // namespace btgpu::ref

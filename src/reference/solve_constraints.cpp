@@ -1,14 +1,14 @@
 // solve_constraints.cpp — CPU reference of the solve stage: the same passes as the device
-// (warm start, velocity iterations, split-impulse iterations), colors in order and the
-// contacts of a color in index order, which is what the batched launches compute.
+// (warm start, velocity iterations, split-impulse iterations), colors in order and the edges
+// (contacts) of a color in index order, which is what the batched launches compute.
 #include "reference/contact_solver_reference.h"
 
 #include <algorithm>
 
 namespace btgpu::ref {
 
-void solveConstraints(std::vector<BtgContact>& contacts, ContactBodies& bodies, const BtgStepParams& params,
-                      int iterations, int numColors)
+void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>& colors, ContactBodies& bodies,
+                      const BtgStepParams& params, int iterations, int numColors)
 {
     if (numColors < 1) numColors = 1;
     size_t n = bodies.props.size();
@@ -24,15 +24,16 @@ void solveConstraints(std::vector<BtgContact>& contacts, ContactBodies& bodies, 
         std::vector<BtgFloat4>& lin = mode == BTG_PASS_PUSH ? bodies.pushLin : bodies.linVel;
         std::vector<BtgFloat4>& ang = mode == BTG_PASS_PUSH ? bodies.pushAng : bodies.angVel;
         for (int color = 0; color < numColors; ++color)
-            for (BtgContact& c : contacts) {
+            for (size_t e = 0; e < contacts.size(); ++e) {
                 bool last = color == numColors - 1;  // the serial launch takes higher colors too
-                if (last ? c.color < color : c.color != color) continue;
+                if (last ? colors[e] < color : colors[e] != color) continue;
+                BtgContact c = btgLoadContactRows(contacts.data(), int(e), mode, params.twoFrictionDirections);
                 BtgSolverBody a = body(c.bodyA), b = body(c.bodyB);
                 int movingA = mode == BTG_PASS_PUSH ? a.dynamic : a.moving, movingB = mode == BTG_PASS_PUSH ? b.dynamic : b.moving;
                 BtgBodyVel va = btgMakeBodyVel(movingA, lin[c.bodyA], ang[c.bodyA]);
                 BtgBodyVel vb = btgMakeBodyVel(movingB, lin[c.bodyB], ang[c.bodyB]);
-                if (mode == BTG_PASS_WARM_START) btgContactWarmStart(&c, a, b, &va, &vb);
-                else if (mode == BTG_PASS_VELOCITY) btgContactSolveVelocity(&c, a, b, &va, &vb);
+                if (mode == BTG_PASS_WARM_START) btgContactWarmStart(&c, a, b, &va, &vb, params.twoFrictionDirections);
+                else if (mode == BTG_PASS_VELOCITY) btgContactSolveVelocity(&c, a, b, &va, &vb, params.twoFrictionDirections);
                 else btgContactSolvePush(&c, a, b, &va, &vb);
                 if (a.dynamic) {
                     lin[c.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, lin[c.bodyA].w);
@@ -42,6 +43,7 @@ void solveConstraints(std::vector<BtgContact>& contacts, ContactBodies& bodies, 
                     lin[c.bodyB] = btgMake4(vb.lin.x, vb.lin.y, vb.lin.z, lin[c.bodyB].w);
                     ang[c.bodyB] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, ang[c.bodyB].w);
                 }
+                btgStoreContactImpulses(contacts.data(), int(e), &c, mode, params.twoFrictionDirections);
             }
     };
     pass(BTG_PASS_WARM_START);

@@ -23,7 +23,7 @@ uint asUint(float f)
 }
 }  // namespace
 
-void updateActivation(ActivationState& s, const std::vector<BtgContact>& contacts, float dt, float deactivationTime,
+void updateActivation(ActivationState& s, const std::vector<BtgEdge>& edges, float dt, float deactivationTime,
                       int rounds)
 {
     size_t n = s.props.size();
@@ -42,8 +42,7 @@ void updateActivation(ActivationState& s, const std::vector<BtgContact>& contact
     if (deactivationTime <= 0.0f) rounds = 0;
     for (int r = 0; r < rounds; ++r) {
         std::vector<uint> dst = s.islandTime;
-        for (const BtgContact& c : contacts) {
-            if (c.numPoints <= 0) continue;
+        for (const BtgEdge& c : edges) {
             uint fa = s.props[c.bodyA].flags, fb = s.props[c.bodyB].flags;
             if (btgCanSleep(fa) && btgCanSleep(fb)) {
                 dst[c.bodyA] = std::min(dst[c.bodyA], s.islandTime[c.bodyB]);

@@ -1,5 +1,6 @@
 // update_activation.h (reference) — the deactivation stage on the CPU, same shared rules
-// (kernels/shared/activation.h), same double-buffered island rounds.
+// (kernels/shared/activation.h), same double-buffered island rounds over the constraint
+// graph's edges.
 #pragma once
 #include "shared/types.h"
 
@@ -15,7 +16,7 @@ struct ActivationState {
     std::vector<uint> sleepState;
 };
 
-void updateActivation(ActivationState& s, const std::vector<BtgContact>& contacts, float dt, float deactivationTime,
+void updateActivation(ActivationState& s, const std::vector<BtgEdge>& edges, float dt, float deactivationTime,
                       int rounds = 4);
 
 }  // namespace btgpu::reference

@@ -17,7 +17,8 @@ namespace {
 // Claim/assign passes per color: the first takes the local minima, the next fill the color up
 // to nearly a maximal matching, which keeps the number of colors near the bodies' degree.
 constexpr int kSubRounds = BTG_COLOR_SUB_ROUNDS;
-// Small scenes (as of the last readback) color in one launch on one work-group on CPUs.
+// Small scenes (as of the last readback) color in one launch on one work-group on CPUs
+// (counted in contacts, the edges' bulk).
 constexpr int kOneGroupMaxContacts = 4096;
 constexpr int kOneGroupMaxBodies = 16384;
 }  // namespace
@@ -29,8 +30,8 @@ void colorConstraints(DeviceWorld& w, int maxColors)
     const int rounds = std::clamp(w.colorRounds, 0, maxColors - 1);
     w.numColors = rounds + 1;  // the last one is the serial pass for leftovers
     cl::Program& prog = ctx.program("color_constraints");
-    size_t slots = std::min(w.contactCapacity, w.contacts.capacity());
-    int contactCapacity = int(slots);
+    size_t slots = std::min({w.edgeCapacity, w.edges.capacity(), w.edgeColor.capacity()});
+    int edgeCapacity = int(slots);
     if (slots == 0) return;
     size_t bodies = size_t(std::max(w.numBodies, 1));
     w.solverScratch.bodyClaim.reserve(ctx, bodies);
@@ -44,7 +45,7 @@ void colorConstraints(DeviceWorld& w, int maxColors)
         size_t group = std::min<size_t>(256, cl::kernelGroupLimit(ctx, k));
         size_t items = std::min(slots, size_t(std::max(w.lastContactCount, 1)));
         size_t groups = resident ? residentGroups(w, std::max(items, size_t(w.numBodies)), group) : 1;
-        cl::Launch(ctx, k, &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props)
+        cl::Launch(ctx, k, &w.profiler).arg(w.edges).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity).arg(w.props)
             .arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(w.numBodies).arg(rounds)
             .arg(gridBarrier(w)).arg(kGridBarrierSpins).run(groups * group, group);
         return;
@@ -53,18 +54,18 @@ void colorConstraints(DeviceWorld& w, int maxColors)
     cl_kernel claim = prog.kernel("color_claim");
     cl_kernel assign = prog.kernel("color_assign");
 
-    cl::Launch(ctx, prog.kernel("color_init"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity).run(slots);
+    cl::Launch(ctx, prog.kernel("color_init"), &w.profiler).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity).run(slots);
     cl::Launch(ctx, prog.kernel("body_color_reset"), &w.profiler).arg(w.solverScratch.bodyColor).arg(w.numBodies).run(bodies);
     for (int color = 0; color < rounds; ++color) {
         for (int sub = 0; sub < kSubRounds; ++sub) {
             cl::Launch(ctx, reset, &w.profiler).arg(w.solverScratch.bodyClaim).arg(w.numBodies).run(bodies);
-            cl::Launch(ctx, claim, &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props)
-                .arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(color).run(slots);
-            cl::Launch(ctx, assign, &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props)
-                .arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(color).run(slots);
+            cl::Launch(ctx, claim, &w.profiler).arg(w.edges).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity)
+                .arg(w.props).arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(color).run(slots);
+            cl::Launch(ctx, assign, &w.profiler).arg(w.edges).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity)
+                .arg(w.props).arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(color).run(slots);
         }
     }
-    cl::Launch(ctx, prog.kernel("color_finish"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
+    cl::Launch(ctx, prog.kernel("color_finish"), &w.profiler).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity)
         .arg(rounds).run(slots);
 }
 

@@ -1,5 +1,6 @@
 // prepare_contacts.cpp — host launcher of the prepare stage: one work-item per contact slot;
-// the kernel stops at the device-side contact count.
+// the kernel stops at the device-side contact count. The constraint graph holds an edge slot
+// per contact slot (a joint kind will add its own).
 #include "stages/prepare_contacts.h"
 
 #include "cl/program.h"
@@ -11,9 +12,12 @@ namespace btgpu {
 void prepareContacts(DeviceWorld& w, const BtgStepParams& params)
 {
     int contactCapacity = int(std::min(w.contactCapacity, w.contacts.capacity()));
+    w.edgeCapacity = size_t(contactCapacity);
+    w.edges.reserveExact(w.ctx, w.edgeCapacity);
+    w.edgeColor.reserveExact(w.ctx, w.edgeCapacity);
     cl::Launch(w.ctx, w.ctx.program("prepare_contacts").kernel("prepare_contacts"), &w.profiler)
         .arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props).arg(w.invInertiaWorld)
-        .arg(w.linVel0).arg(w.angVel0).arg(params).run(size_t(contactCapacity));
+        .arg(w.linVel0).arg(w.angVel0).arg(w.edges).arg(params).run(size_t(contactCapacity));
 }
 
 }  // namespace btgpu

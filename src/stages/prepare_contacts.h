@@ -5,8 +5,11 @@
 // Targets are velocities the solver reaches against the live velocity ((target - J v) * mass),
 // so this stage does not read linVel/angVel. Contacts with no dynamic body, or a no-response
 // body, get zero masses and impulses (never solved).
+// Each contact is also an edge of the constraint graph (edge i = contact i's bodies), which the
+// batching colors and the islands walk.
 // Reads contacts, counters, props, invInertiaWorld, linVel0, angVel0.
-// Writes contacts (t1, t2, masses, targets in rA.w / rB.w, combined friction/restitution).
+// Writes contacts (combined friction, tangent1/2, row masses, normal and push targets),
+// edges[0, contacts), counters[kEdgeCount], w.edgeCapacity (= contact slots).
 #pragma once
 #include "world/device_world.h"
 

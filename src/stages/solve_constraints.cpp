@@ -20,8 +20,8 @@ constexpr int kOneGroupMaxContacts = 4096;
 void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iterations, int numColors)
 {
     cl::Context& ctx = w.ctx;
-    size_t slots = std::min(w.contactCapacity, w.contacts.capacity());
-    int contactCapacity = int(slots);
+    size_t slots = std::min({w.edgeCapacity, w.edges.capacity(), w.edgeColor.capacity()});
+    int edgeCapacity = int(slots);
     if (numColors < 1) numColors = 1;
     size_t bodies = size_t(std::max(w.numBodies, 0));
     if (params.splitImpulse && bodies > 0) {
@@ -30,21 +30,23 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     }
     if (slots == 0) return;
     cl::Program& prog = ctx.program("solve_constraints");
-    // Contacts sorted into per-color ranges once, so each color's launch reads only its own.
+    // Without two friction directions the second friction rows have no mass: not read at all.
+    const int twoFriction = params.twoFrictionDirections ? 1 : 0;
+    // Edges sorted into per-color ranges once, so each color's launch reads only its own.
     SolverScratch& sc = w.solverScratch;
-    // Two lists (see color_count): every contact, and those with a push target.
+    // Two lists (see color_count): every edge, and the contacts with a push target.
     const size_t ranges = 2 * (size_t(numColors) + 1);
-    const int orderStride = contactCapacity;
+    const int orderStride = edgeCapacity;
     sc.colorCount.reserve(ctx, ranges);
     sc.colorStart.reserve(ctx, ranges);
     sc.colorOrder.reserve(ctx, 2 * slots);
     sc.colorCount.zero(ctx, ranges);
-    cl::Launch(ctx, prog.kernel("color_count"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
-        .arg(sc.colorCount).arg(numColors).run(slots);
+    cl::Launch(ctx, prog.kernel("color_count"), &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.counters)
+        .arg(edgeCapacity).arg(sc.colorCount).arg(numColors).run(slots);
     cl::Launch(ctx, prog.kernel("color_offsets"), &w.profiler).arg(sc.colorCount).arg(sc.colorStart).arg(numColors)
         .run(1, 1);
-    cl::Launch(ctx, prog.kernel("color_fill"), &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity)
-        .arg(sc.colorStart).arg(sc.colorCount).arg(sc.colorOrder).arg(numColors).arg(orderStride).run(slots);
+    cl::Launch(ctx, prog.kernel("color_fill"), &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.counters)
+        .arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorCount).arg(sc.colorOrder).arg(numColors).arg(orderStride).run(slots);
     // Every pass and color in one launch: on a GPU over one group per compute unit (each
     // contact is a chain of dependent loads, so more work-items in flight beat cheaper
     // barriers: H200, 1,000 cubes: 1.7 ms with 132 groups, 2.2 with 2; 112,500: 3.1 against
@@ -55,10 +57,11 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
         cl_kernel k = prog.kernel("solve_resident");
         size_t group = std::min<size_t>(256, cl::kernelGroupLimit(ctx, k));
         size_t groups = resident ? std::max<cl_uint>(ctx.device().computeUnits, 1) : 1;
-        cl::Launch(ctx, k, &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(sc.colorStart)
+        cl::Launch(ctx, k, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.counters).arg(edgeCapacity)
+            .arg(sc.colorStart)
             .arg(sc.colorOrder).arg(w.props).arg(w.invInertiaWorld).arg(w.linVel).arg(w.angVel).arg(w.pushLin)
             .arg(w.pushAng).arg(gridBarrier(w)).arg(numColors).arg(orderStride).arg(iterations)
-            .arg(params.splitImpulse ? 1 : 0).arg(kGridBarrierSpins).run(groups * group, group);
+            .arg(params.splitImpulse ? 1 : 0).arg(twoFriction).arg(kGridBarrierSpins).run(groups * group, group);
         return;
     }
     // Per-color launches stride over their range: a few work-groups per compute unit.
@@ -70,12 +73,13 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             // The last color holds the coloring's leftovers (usually none: the serial kernel
             // then returns at once).
             if (color == numColors - 1) {
-                cl::Launch(ctx, serial, &w.profiler).arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props)
-                    .arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).run(1, 1);
+                cl::Launch(ctx, serial, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.counters)
+                    .arg(edgeCapacity).arg(w.props)
+                    .arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(twoFriction).run(1, 1);
             } else {
                 cl::Launch(ctx, parallel, &w.profiler).arg(w.contacts).arg(sc.colorStart).arg(sc.colorOrder)
-                    .arg(w.props).arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(numColors)
-                    .arg(orderStride).run(rangeItems, 64);
+                    .arg(w.props).arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(twoFriction)
+                    .arg(numColors).arg(orderStride).run(rangeItems, 64);
             }
         }
     };

@@ -1,11 +1,13 @@
-// solve_constraints.h — Stage: batched projected Gauss–Seidel on the contacts, color by color
-// (one launch per color per iteration; the last color serially). First applies the
+// solve_constraints.h — Stage: batched projected Gauss–Seidel over the colored constraint
+// graph (its edges: the contacts now), color by color (one launch per color per iteration;
+// the last color serially). Each constraint's rows are solved as solver_rows.h rows. First
+// applies the
 // warm-start impulses, then `iterations` passes over normal and friction rows (friction
 // clamped by friction * normal impulse), then, when params.splitImpulse, the same number of
 // passes on the push velocities for the split rows.
 // pushLin/pushAng are zeroed here (first numBodies rows) when params.splitImpulse. The last
 // color's launch also takes any higher color, so numColors may be below what was assigned.
-// Reads contacts, props, invInertiaWorld, counters. Writes linVel, angVel, pushLin, pushAng
+// Reads edgeColor, contacts, props, invInertiaWorld, counters. Writes linVel, angVel, pushLin, pushAng
 // (xyz of dynamic rows only), contacts (accumulated impulses, kept for next step's warm start).
 #pragma once
 #include "world/device_world.h"

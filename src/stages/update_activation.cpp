@@ -1,6 +1,7 @@
 // update_activation.cpp — host launcher of the deactivation stage.
 #include "stages/update_activation.h"
 
+#include <algorithm>
 #include <utility>
 
 namespace btgpu {
@@ -12,15 +13,15 @@ void updateActivation(DeviceWorld& w, float dt, float deactivationTime, int roun
     cl::Launch(w.ctx, prog.kernel("own_timers"), &w.profiler)
         .arg(n).arg(w.linVel).arg(w.angVel).arg(w.props).arg(w.sleepTime).arg(w.islandTime).arg(w.wake).arg(dt)
         .run(n);
-    const int capacity = int(w.contactCapacity);
+    const int capacity = int(std::min(w.edgeCapacity, w.edges.capacity()));
     // With deactivation off only apply_sleep runs, to report the sleep state the app set.
     if (deactivationTime <= 0.0f) rounds = 0;
     for (int r = 0; r < rounds; ++r) {
         w.islandScratch.copyFrom(w.ctx, w.islandTime, size_t(n));
         cl::Launch(w.ctx, prog.kernel("island_min"), &w.profiler)
-            .arg(w.contacts).arg(w.counters).arg(capacity).arg(w.props).arg(w.sleepTime).arg(w.islandTime)
+            .arg(w.edges).arg(w.counters).arg(capacity).arg(w.props).arg(w.sleepTime).arg(w.islandTime)
             .arg(w.islandScratch).arg(w.wake)
-            .run(w.contactCapacity);
+            .run(size_t(capacity));
         std::swap(w.islandTime, w.islandScratch);
     }
     cl::Launch(w.ctx, prog.kernel("apply_sleep"), &w.profiler)

@@ -1,8 +1,9 @@
 // update_activation.h — Stage: update_activation (kernels/update_activation.cl). Bullet's
-// deactivation on the device: per-body timers, island minimum spread over contacts
+// deactivation on the device: per-body timers, island minimum spread over the constraint
+// graph's edges (contacts, and any constraint kind that adds edges)
 // (`rounds` hops per substep, double-buffered so the result is order-free), sleep when the
 // island has been slow for `deactivationTime` s, wake when a moving body touches a sleeper.
-// Reads linVel, angVel, props, contacts, counters. Writes sleepTime, islandTime, wake,
+// Reads linVel, angVel, props, edges, counters[kEdgeCount]. Writes sleepTime, islandTime, wake,
 // props.flags (SLEEPING), linVel/angVel (zeroed on falling asleep), sleepState.
 // deactivationTime 0 (gDisableDeactivation) turns sleeping off.
 #pragma once

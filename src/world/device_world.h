@@ -21,7 +21,8 @@ enum Counter : int {
     kStatus = BTG_COUNTER_STATUS,                 // BTG_STATUS_* bits
     kNanBody = BTG_COUNTER_NAN_BODY,              // lowest body row found non-finite (0xffffffff: none)
     kColorsUsed = BTG_COUNTER_COLORS_USED,        // colors the batching assigned in the last substep
-    kLeftovers = BTG_COUNTER_LEFTOVERS,           // contacts it left to the solver's serial pass
+    kLeftovers = BTG_COUNTER_LEFTOVERS,           // edges it left to the solver's serial pass
+    kEdgeCount = BTG_COUNTER_EDGES,               // constraint-graph edges (contacts first, then other kinds)
     kNumCounters = BTG_NUM_COUNTERS
 };
 
@@ -85,12 +86,19 @@ struct DeviceWorld {
     cl::DeviceArray<BtgContact> contacts;    // this step's, in pair order
     cl::DeviceArray<uint> contactManifolds;  // contactCapacity: the manifold slot of each contact
     // The warm-start cache: the last substep's solved contacts, reduced to what matching and
-    // warm start read (112 bytes against a contact's 304), in the same pair order.
+    // warm start read (112 bytes against a contact's 352), in the same pair order.
     cl::DeviceArray<BtgCachedContact> contactCache;
     size_t contactCapacity = 0;              // contacts and contactCache hold this many
     // The cache as this call found it, for a redo; only while a call runs several substeps.
     cl::DeviceArray<BtgCachedContact> contactCacheAtCall;
     bool contactCacheKept = false;
+
+    // --- the constraint graph: one edge (body A, body B) per constraint of any kind ---
+    // Rebuilt every substep; the batching colors it and the islands walk it. Edge e below the
+    // contact count is contact e (prepare_contacts writes those); other kinds append after them.
+    cl::DeviceArray<BtgEdge> edges;
+    cl::DeviceArray<int> edgeColor;          // batch of each edge: no dynamic body twice in one
+    size_t edgeCapacity = 0;                 // edges and edgeColor hold this many (contactCapacity now)
     int numColors = 0;                       // batches the solver launches (host estimate)
     int colorRounds = 8;                     // coloring rounds to run: set from the last readback
     int lastContactCount = 1 << 30;          // contacts at the last readback (chooses launch shapes)

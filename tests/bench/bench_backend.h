@@ -25,6 +25,9 @@ struct Options {
     bool jacobi = false;            // btgpu: Config::solver = JacobiMassSplitting
     bool requireGpuPath = false;    // btgpu: skip (not fail) when the world is not on the GPU path
     bool b3NativeInertia = false;   // b3gpu: keep Bullet3's own (inflated) box inertia
+    // Bullet worlds: one absolute contact breaking threshold (CD_USE_RELATIVE_CONTACT_BREAKING_
+    // THRESHOLD off), to compare with builds from before btgpu followed the relative one.
+    bool absoluteThresholds = false;
 };
 
 struct Pose {

@@ -14,6 +14,9 @@ BtBodies::~BtBodies()
 
 void BtBodies::build(const Scene& scene, const Options& options, btDiscreteDynamicsWorld* world)
 {
+    if (options.absoluteThresholds)
+        if (auto* d = dynamic_cast<btCollisionDispatcher*>(world->getDispatcher()))
+            d->setDispatcherFlags(d->getDispatcherFlags() & ~btCollisionDispatcher::CD_USE_RELATIVE_CONTACT_BREAKING_THRESHOLD);
     m_world = world;
     world->setGravity(btVector3(scene.gravity[0], scene.gravity[1], scene.gravity[2]));
     world->getSolverInfo().m_numIterations = scene.iterations;

@@ -85,12 +85,12 @@ public:
     void info(FrameInfo& out, bool) override
     {
         const btgpu::Report& r = m_world->report();
-        out.stageMs = r.stageMs;
-        if (!r.stageMs.empty()) {  // host zones of the same (profiled) frame, beside the device stages
-            out.stageMs["host: sync-in (compare rows, upload)"] = r.syncInMs;
-            out.stageMs["host: enqueue + wait + readback"] = r.deviceMs;
-            out.stageMs["host: write-back"] = r.writeBackMs;
-        }
+        out.stageMs = r.stageMs;  // device stages: profiled frames only
+        // Host zones: every frame (their medians are over all frames).
+        out.stageMs["host: checks (CPU-path rules, shape changes)"] = r.checkMs;
+        out.stageMs["host: sync-in (compare rows, upload)"] = r.syncInMs;
+        out.stageMs["host: enqueue + wait + readback"] = r.deviceMs;
+        out.stageMs["host: write-back"] = r.writeBackMs;
         out.pairs = r.pairs;
         out.manifolds = r.contacts;
         out.deviceBytes = static_cast<long long>(r.deviceBytes);

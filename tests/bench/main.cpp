@@ -18,7 +18,7 @@ namespace {
 const char* kUsage =
     "usage: btgpu_bench [--scene cubes|spheres|mixed] [--n 1000|8000|32768|112500|1000000 | --dims NX NY NZ]\n"
     "                   [--frames F] [--backends btgpu,bullet,b3gpu] [--csv PATH] [--budget-s S]\n"
-    "                   [--no-sleep] [--no-aabb-sync] [--jacobi] [--b3-native-inertia] [--smoke]\n"
+    "                   [--no-sleep] [--no-aabb-sync] [--jacobi] [--b3-native-inertia] [--absolute-thresholds] [--smoke]\n"
     "  BTGPU_DEVICE=gpu|cpu|<name substring> picks the OpenCL device (btgpu and b3gpu alike).\n";
 
 [[noreturn]] void usage(const char* why)
@@ -58,6 +58,7 @@ int main(int argc, char** argv)
         else if (a == "--no-aabb-sync") options.noAabbSync = true;
         else if (a == "--jacobi") options.jacobi = true;
         else if (a == "--b3-native-inertia") options.b3NativeInertia = true;
+        else if (a == "--absolute-thresholds") options.absoluteThresholds = true;
         else if (a == "--smoke") smoke = true;
         else if (a == "--help" || a == "-h") {
             std::fputs(kUsage, stdout);

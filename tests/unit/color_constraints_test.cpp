@@ -1,6 +1,6 @@
-// color_constraints_test.cpp — the batching stage: colors exactly the reference's, no dynamic
-// body twice in a parallel color (static and kinematic ones may be), every contact colored,
-// and the result the same when run again.
+// color_constraints_test.cpp — the batching stage on the constraint graph: colors exactly the
+// reference's, no dynamic body twice in a parallel color (static and kinematic ones may be),
+// every edge colored, and the result the same when run again.
 #include "contact_fixture.h"
 #include "stages/color_constraints.h"
 #include "test_device.h"
@@ -16,10 +16,10 @@ namespace {
 
 struct Graph {
     ref::ContactBodies bodies;
-    std::vector<BtgContact> contacts;
+    std::vector<BtgEdge> edges;
 };
 
-Graph randomGraph(int numBodies, int numContacts, unsigned seed)
+Graph randomGraph(int numBodies, int numEdges, unsigned seed)
 {
     std::mt19937 rng(seed);
     Graph g;
@@ -27,15 +27,13 @@ Graph randomGraph(int numBodies, int numContacts, unsigned seed)
         uint flags = i < 6 ? BTG_BODY_STATIC : (i == 6 ? BTG_BODY_KINEMATIC : BTG_BODY_DYNAMIC);
         test::addBody(g.bodies, btgZero4(), flags == BTG_BODY_DYNAMIC ? 1.0f : 0.0f, btgMake4(1, 1, 1, 0), flags);
     }
-    for (int i = 0; i < numContacts; ++i) {
-        BtgContact c{};
+    for (int i = 0; i < numEdges; ++i) {
+        BtgEdge e{};
         // Static rows are popular partners, as a ground is.
-        c.bodyA = 6 + int(rng() % (numBodies - 6));
-        c.bodyB = (rng() % 3 == 0) ? int(rng() % 7) : 6 + int(rng() % (numBodies - 6));
-        if (c.bodyB == c.bodyA) c.bodyB = 0;
-        c.numPoints = 1;
-        c.color = 1234;  // the stage must overwrite stale colors
-        g.contacts.push_back(c);
+        e.bodyA = 6 + int(rng() % (numBodies - 6));
+        e.bodyB = (rng() % 3 == 0) ? int(rng() % 7) : 6 + int(rng() % (numBodies - 6));
+        if (e.bodyB == e.bodyA) e.bodyB = 0;
+        g.edges.push_back(e);
     }
     return g;
 }
@@ -49,10 +47,13 @@ std::vector<int> runDevice(const Graph& g, int maxColors, bool fused = false,
     DeviceWorld w(test::context());
     w.resident = resident;
     w.lastContactCount = fused ? 0 : (1 << 30);
-    test::uploadWorld(w, g.bodies, {}, 0, {}, g.contacts.size() + 8);
-    w.contacts.upload(w.ctx, g.contacts);
+    test::uploadWorld(w, g.bodies, {}, 0, {}, g.edges.size() + 8);
+    w.edgeCapacity = g.edges.size() + 8;
+    w.edges.reserve(w.ctx, w.edgeCapacity);
+    w.edges.upload(w.ctx, g.edges);
+    w.edgeColor.upload(w.ctx, std::vector<int>(w.edgeCapacity, 1234));  // the stage must overwrite stale colors
     std::vector<uint> counters = w.counters.download(w.ctx, kNumCounters);
-    counters[kContactCount] = uint(g.contacts.size());
+    counters[kEdgeCount] = uint(g.edges.size());
     w.counters.upload(w.ctx, counters);
     w.colorRounds = maxColors - 1;
     colorConstraints(w, maxColors);
@@ -60,16 +61,14 @@ std::vector<int> runDevice(const Graph& g, int maxColors, bool fused = false,
     std::vector<uint> after = w.counters.download(w.ctx, kNumCounters);
     if (status) *status = after[kStatus];
     if (after[kStatus] & BTG_STATUS_GRID_BARRIER_TIMEOUT) return {};  // nothing to check: redone
-    std::vector<BtgContact> out = test::downloadContacts(w);
+    std::vector<int> colors = w.edgeColor.download(w.ctx, g.edges.size());
     int leftovers = 0, used = 0;
-    for (const BtgContact& c : out) {
-        leftovers += c.color == maxColors - 1;
-        used = std::max(used, c.color < maxColors - 1 ? c.color + 1 : 0);
+    for (int c : colors) {
+        leftovers += c == maxColors - 1;
+        used = std::max(used, c < maxColors - 1 ? c + 1 : 0);
     }
     EXPECT_EQ(after[kLeftovers], uint(leftovers));
     EXPECT_EQ(after[kColorsUsed], uint(used));
-    std::vector<int> colors;
-    for (const BtgContact& c : out) colors.push_back(c.color);
     return colors;
 }
 
@@ -80,15 +79,15 @@ TEST(ColorConstraints, MatchesReferenceAndIsAValidColoring)
     for (int maxColors : {1, 4, 12}) {
         Graph g = randomGraph(80, 600, 5);
         std::vector<int> got = runDevice(g, maxColors);
-        ref::colorConstraints(g.contacts, g.bodies, maxColors);
-        ASSERT_EQ(got.size(), g.contacts.size());
+        std::vector<int> want = ref::colorConstraints(g.edges, g.bodies, maxColors);
+        ASSERT_EQ(got.size(), g.edges.size());
         std::vector<std::set<int>> used(maxColors);
         for (size_t i = 0; i < got.size(); ++i) {
-            ASSERT_EQ(got[i], g.contacts[i].color) << "contact " << i << " maxColors " << maxColors;
+            ASSERT_EQ(got[i], want[i]) << "edge " << i << " maxColors " << maxColors;
             ASSERT_GE(got[i], 0);
             ASSERT_LT(got[i], maxColors);
             if (got[i] == maxColors - 1) continue;  // the serial color may repeat bodies
-            for (int b : {g.contacts[i].bodyA, g.contacts[i].bodyB}) {
+            for (int b : {g.edges[i].bodyA, g.edges[i].bodyB}) {
                 if (!btgIsSolverDynamic(g.bodies.props[b].flags)) continue;
                 EXPECT_TRUE(used[got[i]].insert(b).second) << "body " << b << " twice in color " << got[i];
             }
@@ -99,7 +98,7 @@ TEST(ColorConstraints, MatchesReferenceAndIsAValidColoring)
 
 TEST(ColorConstraints, SparseSceneNeedsFewSerialContacts)
 {
-    // 150 contacts on 74 dynamic bodies (degree about 4): 15 rounds leave little for the serial color.
+    // 150 edges on 74 dynamic bodies (degree about 4): 15 rounds leave little for the serial color.
     Graph g = randomGraph(80, 150, 6);
     std::vector<int> got = runDevice(g, 16);
     size_t serial = size_t(std::count(got.begin(), got.end(), 15));
@@ -134,7 +133,7 @@ TEST(ColorConstraints, OneResidentLaunchColorsTheSame)
 
 TEST(ColorConstraints, EnoughColorsLeaveNoLeftovers)
 {
-    // 80 bodies, 600 contacts: ~15 contacts per body. Filled colors need about the largest
+    // 80 bodies, 600 edges: ~15 edges per body. Filled colors need about the largest
     // degree (plus a few), far below 64, so nothing is left for the slow serial pass.
     Graph g = randomGraph(80, 600, 3);
     std::vector<int> got = runDevice(g, 64);

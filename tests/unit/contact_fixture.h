@@ -36,10 +36,12 @@ inline int addBody(ref::ContactBodies& b, BtgFloat4 pos, float invMass, BtgFloat
                    float friction = 0.5f, float restitution = 0.0f)
 {
     BtgBodyProps p{};
-    p.invInertiaLocal = btgMake4(invInertia.x, invInertia.y, invInertia.z, invMass);
+    p.invInertiaLocal = btgMake4(invInertia.x, invInertia.y, invInertia.z, 0);
+    p.invMass = invMass;
     p.linearFactor = btgMake4(1, 1, 1, 0);
     p.angularFactor = btgMake4(1, 1, 1, 0);
-    p.gravity = btgMake4(0, -9.81f, 0, friction);
+    p.gravity = btgMake4(0, -9.81f, 0, 0);
+    p.friction = friction;
     p.restitution = restitution;
     p.flags = flags;
     b.props.push_back(p);

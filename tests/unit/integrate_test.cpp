@@ -30,10 +30,14 @@ reference::Bodies randomBodies(int n, unsigned seed)
         b.pushLin.push_back(i % 4 == 0 ? btgMake4(0.1f * u(rng), 0.1f * u(rng), 0, 0) : btgZero4());
         b.pushAng.push_back(i % 4 == 0 ? btgMake4(0.1f * u(rng), 0, 0.1f * u(rng), 0) : btgZero4());
         BtgBodyProps p{};
-        p.invInertiaLocal = btgMake4(1.0f + u(rng) * 0.5f, 2.0f, 1.5f, 0.5f);
-        p.linearFactor = btgMake4(1, 1, 1, i % 2 ? 0.1f : 0.0f);
-        p.angularFactor = btgMake4(1, 1, 1, i % 2 ? 0.2f : 0.0f);
-        p.gravity = btgMake4(0, -10, 0, 0.5f);
+        p.invInertiaLocal = btgMake4(1.0f + u(rng) * 0.5f, 2.0f, 1.5f, 0);
+        p.invMass = 0.5f;
+        p.linearFactor = btgMake4(1, 1, 1, 0);
+        p.angularFactor = btgMake4(1, 1, 1, 0);
+        p.linearDamping = i % 2 ? 0.1f : 0.0f;
+        p.angularDamping = i % 2 ? 0.2f : 0.0f;
+        p.gravity = btgMake4(0, -10, 0, 0);
+        p.friction = 0.5f;
         p.flags = (i % 7 == 0) ? BTG_BODY_STATIC : BTG_BODY_DYNAMIC | (i % 2 ? BTG_BODY_GYRO : 0u);
         b.props.push_back(p);
     }
@@ -106,10 +110,10 @@ TEST(Integrate, FreeFallDampingAndSpin)
         b.angVel[i] = btgZero4();
         b.extForce[i] = b.extTorque[i] = btgZero4();
         b.props[i].flags = BTG_BODY_DYNAMIC;
-        b.props[i].linearFactor.w = 0.0f;
-        b.props[i].angularFactor.w = 0.0f;
+        b.props[i].linearDamping = 0.0f;
+        b.props[i].angularDamping = 0.0f;
     }
-    b.props[1].linearFactor.w = 0.5f;  // damped
+    b.props[1].linearDamping = 0.5f;  // damped
     b.linVel[1] = btgMake4(1, 0, 0, 0);
     b.props[1].gravity = btgZero4();
     b.angVel[2] = btgMake4(0, 0, 2, 0);  // spin about a principal axis, no gyroscopic flag

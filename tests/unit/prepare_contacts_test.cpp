@@ -15,12 +15,17 @@ using namespace btgpu;
 
 namespace {
 
-std::vector<BtgContact> runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms, const BtgStepParams& p)
+std::vector<BtgContact> runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms, const BtgStepParams& p,
+                                  std::vector<BtgEdge>* edges = nullptr)
 {
     DeviceWorld w(test::context());
     test::uploadWorld(w, b, ms, uint(ms.size()), {}, ms.size() + 4);
     buildContacts(w, p);
     prepareContacts(w, p);
+    if (edges) {
+        size_t n = w.counters.download(w.ctx, kNumCounters)[kEdgeCount];
+        *edges = w.edges.download(w.ctx, n);
+    }
     return test::downloadContacts(w);
 }
 
@@ -37,24 +42,34 @@ TEST(PrepareContacts, MatchesReference)
     BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
     const std::vector<BtgContact> built = ref::buildContacts(s.manifolds, int(s.manifolds.size()), s.bodies, {}, p);
     std::vector<BtgContact> expect = built;
-    ref::prepareContacts(expect, s.bodies, p);
-    std::vector<BtgContact> got = runDevice(s.bodies, s.manifolds, p);
+    std::vector<BtgEdge> expectEdges = ref::prepareContacts(expect, s.bodies, p);
+    std::vector<BtgEdge> gotEdges;
+    std::vector<BtgContact> got = runDevice(s.bodies, s.manifolds, p, &gotEdges);
     ASSERT_EQ(got.size(), expect.size());
+    // Every contact is an edge of the constraint graph, in contact order.
+    ASSERT_EQ(gotEdges.size(), expectEdges.size());
+    for (size_t i = 0; i < gotEdges.size(); ++i) {
+        EXPECT_EQ(gotEdges[i].bodyA, expectEdges[i].bodyA) << i;
+        EXPECT_EQ(gotEdges[i].bodyB, expectEdges[i].bodyB) << i;
+        EXPECT_EQ(gotEdges[i].bodyA, got[i].bodyA) << i;
+    }
     int split = 0, speculative = 0;
     for (size_t i = 0; i < got.size(); ++i) {
         const BtgContact &g = got[i], &e = expect[i];
         for (int c = 0; c < 4; ++c) {
-            expectNearRel(btgLane(g.normal, c), btgLane(e.normal, c), "normal/friction", int(i));
-            expectNearRel(btgLane(g.t1, c), btgLane(e.t1, c), "t1/restitution", int(i));
-            expectNearRel(btgLane(g.t2, c), btgLane(e.t2, c), "t2", int(i));
+            expectNearRel(btgLane(g.normal, c), btgLane(e.normal, c), "normal", int(i));
+            expectNearRel(btgLane(g.tangent1, c), btgLane(e.tangent1, c), "tangent1", int(i));
+            expectNearRel(btgLane(g.tangent2, c), btgLane(e.tangent2, c), "tangent2", int(i));
             expectNearRel(btgLane(g.normalMass, c), btgLane(e.normalMass, c), "normalMass", int(i));
             expectNearRel(btgLane(g.friction1Mass, c), btgLane(e.friction1Mass, c), "friction1Mass", int(i));
             expectNearRel(btgLane(g.friction2Mass, c), btgLane(e.friction2Mass, c), "friction2Mass", int(i));
-            expectNearRel(g.rA[c].w, e.rA[c].w, "target", int(i));
-            expectNearRel(g.rB[c].w, e.rB[c].w, "push target", int(i));
-            split += e.rB[c].w != 0.0f;
-            speculative += built[i].rA[c].w > 0.0f;  // the signed distance, before prepare
+            expectNearRel(btgLane(g.normalTarget, c), btgLane(e.normalTarget, c), "target", int(i));
+            expectNearRel(btgLane(g.pushTarget, c), btgLane(e.pushTarget, c), "push target", int(i));
+            EXPECT_EQ(btgLane(g.separation, c), btgLane(built[i].separation, c)) << "separation " << i;
+            split += btgLane(e.pushTarget, c) != 0.0f;
+            speculative += btgLane(built[i].separation, c) > 0.0f;
         }
+        expectNearRel(g.friction, e.friction, "friction", int(i));
     }
     EXPECT_GT(split, 0);  // the scene covers every kind of row
     EXPECT_GT(speculative, 0);
@@ -76,23 +91,23 @@ TEST(PrepareContacts, BulletTargets)
     const float invDt = 60.0f;
     for (int k = 0; k < 4; ++k) {
         // Shallow: erp2 * depth / dt joins the velocity row.
-        EXPECT_NEAR(c[0].rA[k].w, 0.01f * p.erp2 * invDt, 1e-5f);
-        EXPECT_EQ(c[0].rB[k].w, 0.0f);
+        EXPECT_NEAR(btgLane(c[0].normalTarget, k), 0.01f * p.erp2 * invDt, 1e-5f);
+        EXPECT_EQ(btgLane(c[0].pushTarget, k), 0.0f);
         // Past the split threshold: the bias moves to the push row, the velocity row keeps 0.
-        EXPECT_NEAR(c[1].rA[k].w, 0.0f, 1e-6f);
-        EXPECT_NEAR(c[1].rB[k].w, 0.05f * p.erp2 * invDt, 1e-5f);
+        EXPECT_NEAR(btgLane(c[1].normalTarget, k), 0.0f, 1e-6f);
+        EXPECT_NEAR(btgLane(c[1].pushTarget, k), 0.05f * p.erp2 * invDt, 1e-5f);
         // Separated: approach at most distance / dt.
-        EXPECT_NEAR(c[2].rA[k].w, -0.01f * invDt, 1e-5f);
+        EXPECT_NEAR(btgLane(c[2].normalTarget, k), -0.01f * invDt, 1e-5f);
         // Two infinite masses: no rows at all.
         EXPECT_EQ(btgLane(c[3].normalMass, k), 0.0f);
     }
-    EXPECT_FLOAT_EQ(c[0].normal.w, 0.25f);  // friction 0.5 * 0.5
+    EXPECT_FLOAT_EQ(c[0].friction, 0.25f);  // 0.5 * 0.5
     // Corner point of a unit box (inertia 1/6): 1 / (1 + 6 |r x n|^2) with r x n = (0.5, 0, -0.5) up to sign.
     EXPECT_NEAR(c[0].normalMass.x, 1.0f / (1.0f + 6.0f * 0.5f), 1e-5f);
     // Friction directions: orthonormal, perpendicular to the normal.
-    EXPECT_NEAR(btgDot3(c[0].t1, c[0].normal), 0.0f, 1e-6f);
-    EXPECT_NEAR(btgDot3(c[0].t2, c[0].normal), 0.0f, 1e-6f);
-    EXPECT_NEAR(btgDot3(c[0].t1, c[0].t2), 0.0f, 1e-6f);
+    EXPECT_NEAR(btgDot3(c[0].tangent1, c[0].normal), 0.0f, 1e-6f);
+    EXPECT_NEAR(btgDot3(c[0].tangent2, c[0].normal), 0.0f, 1e-6f);
+    EXPECT_NEAR(btgDot3(c[0].tangent1, c[0].tangent2), 0.0f, 1e-6f);
 }
 
 TEST(PrepareContacts, RestitutionTwoToOne)
@@ -108,13 +123,12 @@ TEST(PrepareContacts, RestitutionTwoToOne)
     BtgStepParams p = test::defaultParams(2);
     std::vector<BtgContact> c = runDevice(b, {m}, p);
     ASSERT_EQ(c.size(), 1u);
-    EXPECT_NEAR(c[0].t1.w, 0.5f, 1e-7f);
-    EXPECT_NEAR(c[0].rA[0].w, 1.5f, 1e-5f);                   // -e * rel_vel, rel_vel = -3 m/s
+    EXPECT_NEAR(c[0].normalTarget.x, 1.5f, 1e-5f);  // -e * rel_vel with e = 1 * 0.5, rel_vel = -3 m/s
     EXPECT_NEAR(c[0].normalMass.x, 1.0f / 1.5f, 1e-6f);       // central: 1 / (1/2 + 1/1)
     b.linVel0[upper] = b.linVel[upper] = btgMake4(0, -0.05f, 0, 0);
     b.linVel0[lower] = b.linVel[lower] = btgMake4(0, 0.05f, 0, 0);
     c = runDevice(b, {slow}, p);
-    EXPECT_EQ(c[0].rA[0].w, 0.0f);
+    EXPECT_EQ(c[0].normalTarget.x, 0.0f);
 }
 
 // A NaN friction must never pose as a legal one (fmin/fmax would turn it into -10).

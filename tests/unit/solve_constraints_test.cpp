@@ -28,7 +28,8 @@ const int kIterations = 10;
 struct Result {
     ref::ContactBodies bodies;
     std::vector<BtgContact> contacts;
-    uint status = 0;  // counters[kStatus] after the solve
+    std::vector<int> colors;  // the contacts' edge colors
+    uint status = 0;          // counters[kStatus] after the solve
 };
 
 // contacts -> prepare -> batching -> solve on the device; prev is last step's contact list.
@@ -54,6 +55,7 @@ Result runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms
     r.bodies.pushLin = w.pushLin.download(w.ctx, n);
     r.bodies.pushAng = w.pushAng.download(w.ctx, n);
     r.contacts = test::downloadContacts(w);
+    r.colors = w.edgeColor.download(w.ctx, r.contacts.size());
     r.status = w.counters.download(w.ctx, kNumCounters)[kStatus];
     return r;
 }
@@ -64,9 +66,9 @@ Result runReference(const ref::ContactBodies& b, const std::vector<BtgManifold>&
     Result r;
     r.bodies = b;
     r.contacts = ref::buildContacts(ms, int(ms.size()), b, prev, p);
-    ref::prepareContacts(r.contacts, r.bodies, p);
-    ref::colorConstraints(r.contacts, r.bodies, maxColors);
-    ref::solveConstraints(r.contacts, r.bodies, p, kIterations, maxColors);
+    std::vector<BtgEdge> edges = ref::prepareContacts(r.contacts, r.bodies, p);
+    r.colors = ref::colorConstraints(edges, r.bodies, maxColors);
+    ref::solveConstraints(r.contacts, r.colors, r.bodies, p, kIterations, maxColors);
     return r;
 }
 
@@ -115,14 +117,14 @@ TEST(SolveConstraints, MatchesReferenceWithWarmStart)
     EXPECT_EQ(0, std::memcmp(again.bodies.angVel.data(), d.bodies.angVel.data(), d.bodies.angVel.size() * sizeof(BtgFloat4)));
 
     int serial = 0;
-    for (const BtgContact& c : r.contacts) serial += c.color == maxColors - 1;
+    for (int c : r.colors) serial += c == maxColors - 1;
     EXPECT_GT(serial, 0);
     const float tv = 10 * tol::kStageAbs;  // ten iterations of accumulated rounding
     RecordProperty("max_velocity_deviation",
                    std::to_string(test::expectSolvedAlike(d.bodies, d.contacts, r.bodies, r.contacts, tv)));
     bool warm = false;
     for (size_t i = 0; i < std::min(d.contacts.size(), r.contacts.size()); ++i) {
-        EXPECT_EQ(d.contacts[i].color, r.contacts[i].color);
+        EXPECT_EQ(d.colors[i], r.colors[i]);
         warm = warm || btgLane(d1.contacts[i].normalImpulse, 0) > 0.0f;
     }
     EXPECT_TRUE(warm);
@@ -131,6 +133,25 @@ TEST(SolveConstraints, MatchesReferenceWithWarmStart)
     for (size_t i = 0; i < s.bodies.props.size(); ++i)
         if (s.bodies.props[i].flags & BTG_BODY_KINEMATIC) kin = int(i);
     EXPECT_EQ(d.bodies.linVel[kin].x, s.bodies.linVel[kin].x);
+}
+
+// SOLVER_USE_2_FRICTION_DIRECTIONS: the second friction rows are built, solved and warm-started
+// (without it the solve does not read them), the same on the device as in the reference.
+TEST(SolveConstraints, TwoFrictionDirectionsMatchReference)
+{
+    test::StackScene s = test::stackScene(6, 4, 9);
+    BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
+    p.twoFrictionDirections = 1;
+    const int maxColors = 3;
+    Result d1 = runDevice(s.bodies, s.manifolds, {}, p, maxColors);
+    Result r1 = runReference(s.bodies, s.manifolds, {}, p, maxColors);
+    Result d = runDevice(s.bodies, s.manifolds, d1.contacts, p, maxColors);
+    Result r = runReference(s.bodies, s.manifolds, r1.contacts, p, maxColors);
+    test::expectSolvedAlike(d.bodies, d.contacts, r.bodies, r.contacts, 10 * tol::kStageAbs);
+    int second = 0;
+    for (const BtgContact& c : d.contacts)
+        for (int k = 0; k < c.numPoints; ++k) second += btgLane(c.friction2Impulse, k) != 0.0f;
+    EXPECT_GT(second, 0);
 }
 
 // One launch on one work-group walks the colors in the same order as one launch per color:
@@ -210,12 +231,12 @@ TEST(SolveConstraints, FrictionHoldsSlowSlideAndSaturatesOnFastOne)
         const BtgContact& c = d.contacts[0];
         BtgFloat4 total = btgZero4();
         for (int k = 0; k < 4; ++k) {
-            EXPECT_NEAR(pointVelocity(d.bodies, c, k, c.t1), 0.0f, 1e-3f) << "point " << k;
-            EXPECT_NEAR(pointVelocity(d.bodies, c, k, c.t2), 0.0f, 1e-3f) << "point " << k;
+            EXPECT_NEAR(pointVelocity(d.bodies, c, k, c.tangent1), 0.0f, 1e-3f) << "point " << k;
+            EXPECT_NEAR(pointVelocity(d.bodies, c, k, c.tangent2), 0.0f, 1e-3f) << "point " << k;
             float n = btgLane(c.normalImpulse, k);
             EXPECT_LE(std::fabs(btgLane(c.friction1Impulse, k)), mu * n + 1e-6f);
             EXPECT_LE(std::fabs(btgLane(c.friction2Impulse, k)), mu * n + 1e-6f);
-            total = total + c.t1 * btgLane(c.friction1Impulse, k) + c.t2 * btgLane(c.friction2Impulse, k);
+            total = total + c.tangent1 * btgLane(c.friction1Impulse, k) + c.tangent2 * btgLane(c.friction2Impulse, k);
         }
         EXPECT_NEAR(total.x, -0.02f, 1e-3f);
         EXPECT_NEAR(d.bodies.linVel[s.box].x, 0.0f, 1e-3f);
@@ -284,9 +305,8 @@ TEST(SolveConstraints, FewerColorsThanAssignedStillSolvesEveryContact)
     Result r;
     r.bodies = s.bodies;
     r.contacts = ref::buildContacts(s.manifolds, int(s.manifolds.size()), s.bodies, {}, p);
-    ref::prepareContacts(r.contacts, r.bodies, p);
-    ref::colorConstraints(r.contacts, r.bodies, 8);
-    ref::solveConstraints(r.contacts, r.bodies, p, kIterations, 1);
+    std::vector<BtgEdge> edges = ref::prepareContacts(r.contacts, r.bodies, p);
+    ref::solveConstraints(r.contacts, ref::colorConstraints(edges, r.bodies, 8), r.bodies, p, kIterations, 1);
     std::vector<BtgContact> got = test::downloadContacts(w);
     ASSERT_EQ(got.size(), r.contacts.size());
     size_t active = 0;  // contacts that pushed at all (the rest separate or approach from afar)

@@ -16,10 +16,11 @@ namespace {
 
 struct Scene {
     reference::ActivationState s;
-    std::vector<BtgContact> contacts;
+    std::vector<BtgEdge> edges;
 };
 
-// A chain 0-1-2-3 of dynamic bodies in contact, body 4 apart, body 5 static under body 0.
+// A chain 0-1-2-3 of dynamic bodies in contact (edges of the constraint graph), body 4 apart,
+// body 5 static under body 0.
 Scene chain()
 {
     Scene sc;
@@ -27,7 +28,8 @@ Scene chain()
     for (int i = 0; i < n; ++i) {
         BtgBodyProps p{};
         p.flags = i == 5 ? BTG_BODY_STATIC : BTG_BODY_DYNAMIC;
-        p.invInertiaLocal = btgMake4(1, 1, 1, i == 5 ? 0.0f : 1.0f);
+        p.invInertiaLocal = btgMake4(1, 1, 1, 0);
+        p.invMass = i == 5 ? 0.0f : 1.0f;
         p.sleepLinear = 0.8f;
         p.sleepAngular = 1.0f;
         sc.s.props.push_back(p);
@@ -38,14 +40,18 @@ Scene chain()
         sc.s.sleepState.push_back(0);
     }
     int links[4][2] = {{0, 1}, {1, 2}, {2, 3}, {0, 5}};
-    for (auto& l : links) {
-        BtgContact c{};
-        c.bodyA = l[0];
-        c.bodyB = l[1];
-        c.numPoints = 1;
-        sc.contacts.push_back(c);
-    }
+    for (auto& l : links) sc.edges.push_back(BtgEdge{l[0], l[1]});
     return sc;
+}
+
+// The graph's edges on the device, as prepare_contacts (and other kinds) leave them.
+void setEdges(DeviceWorld& w, const std::vector<BtgEdge>& edges)
+{
+    w.edgeCapacity = edges.size();
+    w.edges.upload(w.ctx, edges);
+    std::vector<uint> counters(kNumCounters, 0);
+    counters[kEdgeCount] = uint(edges.size());
+    w.counters.upload(w.ctx, counters);
 }
 
 struct Device {
@@ -59,11 +65,7 @@ struct Device {
         w.props.upload(w.ctx, sc.s.props);
         w.sleepTime.upload(w.ctx, sc.s.sleepTime);
         w.islandTime.upload(w.ctx, sc.s.islandTime);
-        w.contactCapacity = sc.contacts.size();
-        w.contacts.upload(w.ctx, sc.contacts);
-        std::vector<uint> counters(kNumCounters, 0);
-        counters[kContactCount] = uint(sc.contacts.size());
-        w.counters.upload(w.ctx, counters);
+        setEdges(w, sc.edges);
     }
     std::vector<uint> sleepState() { return w.sleepState.download(w.ctx, size_t(w.numBodies)); }
 };
@@ -78,7 +80,7 @@ TEST(UpdateActivation, IslandSleepsTogetherAndMatchesReference)
     const float dt = 1.0f / 60.0f;
     for (int step = 0; step < 150; ++step) {
         updateActivation(d.w, dt, 2.0f);
-        reference::updateActivation(sc.s, sc.contacts, dt, 2.0f);
+        reference::updateActivation(sc.s, sc.edges, dt, 2.0f);
     }
     std::vector<uint> dev = d.sleepState();
     EXPECT_EQ(dev, sc.s.sleepState);
@@ -101,17 +103,9 @@ TEST(UpdateActivation, WholeIslandSleepsThenWakes)
     for (int i = 0; i < 4; ++i) EXPECT_EQ(st[i], 1u) << i;
     EXPECT_EQ(st[4], 0u);  // DISABLE_DEACTIVATION
     // Wake: body 4 moves and touches body 3.
-    std::vector<BtgContact> cs = sc.contacts;
-    BtgContact c{};
-    c.bodyA = 3;
-    c.bodyB = 4;
-    c.numPoints = 1;
-    cs.push_back(c);
-    d.w.contactCapacity = cs.size();
-    d.w.contacts.upload(d.w.ctx, cs);
-    std::vector<uint> counters(kNumCounters, 0);
-    counters[kContactCount] = uint(cs.size());
-    d.w.counters.upload(d.w.ctx, counters);
+    std::vector<BtgEdge> es = sc.edges;
+    es.push_back(BtgEdge{3, 4});
+    setEdges(d.w, es);
     std::vector<BtgFloat4> v(6, btgZero4());
     v[4] = btgMake4(3, 0, 0, 0);
     d.w.linVel.upload(d.w.ctx, v);

@@ -1,0 +1,184 @@
+/* solver_rows.h — the solver row every constraint kind is solved as (btSolverConstraint's
+ * role; Jolt's AxisConstraintPart): a Jacobian on two bodies, an effective mass, impulse bounds,
+ * a target velocity and an accumulated impulse, with the projected Gauss-Seidel step on it.
+ * Shared by the solver kernels and their CPU references; contacts build their rows from
+ * contact_rows.h's BtgContact, joints (issue 11) from their own stored rows. */
+#ifndef BTG_SOLVER_ROWS_H
+#define BTG_SOLVER_ROWS_H
+#include "prelude.h"
+#include "types.h"
+#include "math.h"
+
+/* A body as the solver sees it (btSolverBody): infinite mass unless dynamic. */
+typedef struct {
+    BtgMat3 invI;          /* world inverse inertia, zero unless dynamic */
+    BtgFloat4 invMassLin;  /* invMass * linearFactor (btSolverBody::m_invMass) */
+    BtgFloat4 linFactor;
+    BtgFloat4 angFactor;
+    float invMass;         /* 1/kg, zero unless dynamic */
+    int dynamic;
+    int moving;            /* dynamic or kinematic: its velocity enters the rows */
+    int pad0;
+} BtgSolverBody;
+
+/* Linear and angular velocity of one body (or its push/turn velocity for split impulse). */
+typedef struct {
+    BtgFloat4 lin;
+    BtgFloat4 ang;
+} BtgBodyVel;
+
+/* A row's Jacobian J = [linear, angularA; -linear, angularB] with the angular parts of
+ * M^-1 J^T (Bullet's m_contactNormal1/2, m_relpos1/2CrossNormal, m_angularComponentA/B; B's
+ * angular part is stored already negated, as Bullet does). */
+typedef struct {
+    BtgFloat4 linear;   /* unit direction on A; B's linear part is -linear */
+    BtgFloat4 angularA; /* rA x linear */
+    BtgFloat4 angularB; /* -(rB x linear) */
+    BtgFloat4 responseA; /* invI_A angularA * angularFactor_A: A's angular velocity per N s */
+    BtgFloat4 responseB; /* invI_B angularB * angularFactor_B */
+} BtgJacobian;
+
+/* One scalar constraint row between the two bodies of its constraint's graph edge: J v is
+ * driven towards target while the accumulated impulse stays in [lower, upper]. Rows live in
+ * private memory for one pass: each constraint kind stores what it needs to rebuild them (a
+ * contact: a point's lever arms, its manifold's directions and lane k of its row fields; see
+ * BtgContact) and writes the impulse back. A friction row's bounds are its friction
+ * coefficient times the impulse of the normal row at the same point, taken when the row is
+ * built (after that point's normal row in the same pass). */
+typedef struct {
+    BtgJacobian jacobian;
+    float mass;    /* effective mass 1/(J M^-1 J^T), kg (kg m^2 for angular rows); 0: not solved */
+    float target;  /* velocity J v is driven to, m/s: restitution, Baumgarte bias, motor speed */
+    float lower;   /* impulse bounds, N s */
+    float upper;
+    float impulse; /* accumulated impulse, N s */
+} BtgSolverRow;
+
+static inline float btgLane(BtgFloat4 v, int k)
+{
+    return k == 0 ? v.x : (k == 1 ? v.y : (k == 2 ? v.z : v.w));
+}
+static inline void btgSetLane(BtgFloat4* v, int k, float x)
+{
+    if (k == 0) (*v).x = x;
+    else if (k == 1) (*v).y = x;
+    else if (k == 2) (*v).z = x;
+    else (*v).w = x;
+}
+
+/* Kinematic bodies take part with their velocity but infinite mass (Bullet gives them a solver
+ * body of their own); excluded and static rows are Bullet's shared fixed body. */
+static inline int btgIsSolverDynamic(uint flags)
+{
+    /* A sleeping body holds still like a static one until the activation stage wakes it. */
+    return (flags & BTG_BODY_DYNAMIC) != 0u &&
+           (flags & (BTG_BODY_KINEMATIC | BTG_BODY_STATIC | BTG_BODY_EXCLUDED | BTG_BODY_SLEEPING)) == 0u;
+}
+static inline int btgIsSolverMoving(uint flags)
+{
+    return btgIsSolverDynamic(flags) ||
+           ((flags & BTG_BODY_KINEMATIC) != 0u && (flags & BTG_BODY_EXCLUDED) == 0u);
+}
+
+static inline BtgSolverBody btgMakeSolverBody(BtgBodyProps p, BtgFloat4 i0, BtgFloat4 i1, BtgFloat4 i2)
+{
+    BtgSolverBody b;
+    b.dynamic = btgIsSolverDynamic(p.flags);
+    b.moving = btgIsSolverMoving(p.flags);
+    b.pad0 = 0;
+    b.linFactor = btgXyz(p.linearFactor);
+    b.angFactor = btgXyz(p.angularFactor);
+    if (b.dynamic) {
+        b.invMass = p.invMass;
+        b.invI.r0 = btgXyz(i0);
+        b.invI.r1 = btgXyz(i1);
+        b.invI.r2 = btgXyz(i2);
+    } else {
+        b.invMass = 0.0f;
+        b.invI.r0 = btgZero4();
+        b.invI.r1 = btgZero4();
+        b.invI.r2 = btgZero4();
+    }
+    b.invMassLin = b.linFactor * b.invMass;
+    return b;
+}
+/* Velocity a body contributes to a row: zero for the fixed body. */
+static inline BtgBodyVel btgMakeBodyVel(int moving, BtgFloat4 lin, BtgFloat4 ang)
+{
+    BtgBodyVel v;
+    v.lin = moving ? btgXyz(lin) : btgZero4();
+    v.ang = moving ? btgXyz(ang) : btgZero4();
+    return v;
+}
+
+/* The Jacobian of a row along dir acting at lever arms rA, rB (a contact point's rows; a
+ * joint's linear rows). */
+static inline BtgJacobian btgPointJacobian(BtgFloat4 dir, BtgFloat4 rA, BtgFloat4 rB, BtgSolverBody a, BtgSolverBody b)
+{
+    BtgJacobian j;
+    j.linear = btgXyz(dir);
+    j.angularA = btgCross3(rA, j.linear);
+    j.angularB = -btgCross3(rB, j.linear);
+    j.responseA = btgMat3MulVec(a.invI, j.angularA) * a.angFactor;
+    j.responseB = btgMat3MulVec(b.invI, j.angularB) * b.angFactor;
+    return j;
+}
+/* The effective mass of a point row as setupContactConstraint forms it (m_jacDiagABInv with
+ * relaxation 1 and cfm 0); 0 marks a row with no mobility (never solved). */
+static inline float btgPointRowMass(BtgJacobian j, BtgFloat4 rA, BtgFloat4 rB, BtgSolverBody a, BtgSolverBody b)
+{
+    float denomA = a.invMass + btgDot3(j.linear, btgCross3(j.responseA, rA));
+    float denomB = b.invMass + btgDot3(j.linear, btgCross3(-j.responseB, rB));
+    float denom = denomA + denomB;
+    return denom > 0.0f ? 1.0f / denom : 0.0f;
+}
+static inline BtgSolverRow btgMakeSolverRow(BtgJacobian j, float mass, float target, float lower, float upper,
+                                            float impulse)
+{
+    BtgSolverRow r;
+    r.jacobian = j;
+    r.mass = mass;
+    r.target = target;
+    r.lower = lower;
+    r.upper = upper;
+    r.impulse = impulse;
+    return r;
+}
+
+/* Relative velocity along the row, J v (vel1Dotn + vel2Dotn). */
+static inline float btgRowVelocity(BtgJacobian j, BtgBodyVel va, BtgBodyVel vb)
+{
+    float v1 = btgDot3(j.linear, va.lin) + btgDot3(j.angularA, va.ang);
+    float v2 = btgDot3(-j.linear, vb.lin) + btgDot3(j.angularB, vb.ang);
+    return v1 + v2;
+}
+/* btSolverBody::internalApplyImpulse on both bodies: the linear and angular factors enter
+ * twice (once in the component, once in the apply), as in Bullet. */
+static inline void btgRowApply(BtgJacobian j, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb,
+                               float impulse)
+{
+    va->lin = va->lin + (j.linear * a.invMassLin) * impulse * a.linFactor;
+    va->ang = va->ang + j.responseA * (a.angFactor * impulse);
+    vb->lin = vb->lin + (-j.linear * b.invMassLin) * impulse * b.linFactor;
+    vb->ang = vb->ang + j.responseB * (b.angFactor * impulse);
+}
+/* One projected Gauss-Seidel step on a row (resolveSingleConstraintRowLowerLimit / Generic):
+ * the impulse change that drives J v to the target, clamped so the accumulated impulse stays
+ * within the bounds, applied to both bodies. */
+static inline void btgRowSolve(BtgSolverRow* r, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb)
+{
+    float delta = (r->target - btgRowVelocity(r->jacobian, *va, *vb)) * r->mass;
+    float sum = r->impulse + delta;
+    if (sum < r->lower) {
+        delta = r->lower - r->impulse;
+        r->impulse = r->lower;
+    } else if (sum > r->upper) {
+        delta = r->upper - r->impulse;
+        r->impulse = r->upper;
+    } else {
+        r->impulse = sum;
+    }
+    btgRowApply(r->jacobian, a, b, va, vb, delta);
+}
+
+#endif
