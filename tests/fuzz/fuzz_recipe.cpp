@@ -165,18 +165,25 @@ private:
         return s;
     }
 
+    // What a skipped choice becomes: drawn after the choice's own random numbers, so that
+    // BTGPU_FUZZ_SKIP changes nothing else in the scene.
+    ShapeSpec plainBox(const std::string& skipped)
+    {
+        ShapeSpec s;
+        s.kind = ShapeKind::Box;
+        s.size = btVector3(0.5f, 0.5f, 0.5f);
+        s.choice = "box(" + skipped + " skipped)";
+        return s;
+    }
+
     // The finite but odd: extreme sizes and aspect ratios, degenerate hulls.
     ShapeSpec extremeShape(std::string* choice)
     {
+        static const std::vector<std::string> kinds = {
+            "size-huge",      "size-tiny", "size-plank",     "sphere-huge",     "sphere-tiny",
+            "hull-coplanar", "hull-one-point", "hull-few", "hull-collinear", "hull-same-point", "hull-tiny"};
         ShapeSpec s;
-        std::vector<std::string> kinds = {"size-huge",      "size-tiny",      "size-plank",   "sphere-huge",
-                                          "sphere-tiny",    "hull-coplanar",  "hull-one-point", "hull-few",
-                                          "hull-collinear", "hull-empty",     "hull-same-point", "hull-tiny"};
-        std::vector<std::string> allowed;
-        for (const std::string& k : kinds)
-            if (!m_skip.has(k)) allowed.push_back(k);
-        if (allowed.empty()) return normalShape();
-        *choice = m_rng.pick(allowed);
+        *choice = m_rng.pick(kinds);
         const std::string& c = *choice;
         s.choice = c;
         if (c == "size-huge") {
@@ -196,7 +203,7 @@ private:
             s.size = btVector3(m_rng.logUniform(1e-6, 1e-3), 0, 0);
         } else {
             s.kind = ShapeKind::Hull;
-            int n = c == "hull-one-point" ? 1 : c == "hull-few" ? m_rng.between(2, 3) : c == "hull-empty" ? 0 : m_rng.between(3, 10);
+            int n = c == "hull-one-point" ? 1 : c == "hull-few" ? m_rng.between(2, 3) : m_rng.between(3, 10);
             float extent = m_rng.range(0.2, 1.0);
             btVector3 same = m_rng.vec(-extent, extent), dir = m_rng.vec(-1, 1);
             for (int i = 0; i < n; ++i) {
@@ -208,19 +215,18 @@ private:
                 s.points.push_back(q);
             }
         }
+        if (m_skip.has(c)) s = plainBox(c), *choice = s.choice;
         return s;
     }
 
-    // A shape that is bad from the start (BadShapes): NaN or Inf in its parameters.
+    // A shape that is bad from the start (BadShapes): NaN or Inf in its parameters, or a hull
+    // without points (stock Bullet segfaults in GJK when one touches anything).
     ShapeSpec badShape(std::string* choice)
     {
+        static const std::vector<std::string> kinds = {"hull-nan-point", "hull-inf-point", "box-nan-extent",
+                                                       "sphere-nan-radius", "hull-empty"};
         ShapeSpec s = normalShape();
-        std::vector<std::string> kinds = {"hull-nan-point", "hull-inf-point", "box-nan-extent", "sphere-nan-radius"};
-        std::vector<std::string> allowed;
-        for (const std::string& k : kinds)
-            if (!m_skip.has(k)) allowed.push_back(k);
-        if (allowed.empty()) return s;
-        *choice = m_rng.pick(allowed);
+        *choice = m_rng.pick(kinds);
         const std::string& c = *choice;
         s.choice = c;
         if (c == "hull-nan-point" || c == "hull-inf-point") {
@@ -232,10 +238,14 @@ private:
             s.kind = ShapeKind::Box;
             s.size = m_rng.vec(0.2, 1.0);
             s.size[m_rng.below(3)] = kNan;
-        } else {
+        } else if (c == "sphere-nan-radius") {
             s.kind = ShapeKind::Sphere;
             s.size = btVector3(m_rng.chance(0.5) ? kNan : kInf, 0, 0);
+        } else {
+            s.kind = ShapeKind::Hull;
+            s.points.clear();
         }
+        if (m_skip.has(c)) s = plainBox(c), *choice = s.choice;
         return s;
     }
 
@@ -278,6 +288,7 @@ private:
                 std::string choice;
                 b.shape = addShape(badShape(&choice));
                 b.choice = choice;
+                b.stockSafe = choice != "hull-empty";
             } else {
                 b.shape = shared >= 0 && m_rng.chance(0.8) ? shared : addShape(normalShape());
             }
@@ -289,10 +300,10 @@ private:
                 btQuaternion q(m_rng.range(-1, 1), m_rng.range(-1, 1), m_rng.range(-1, 1), m_rng.range(0.1, 1));
                 b.start.setRotation(q.normalized());
             }
-            if (role == Role::Bad && m_r.profile == Profile::BadBodies && m_rng.chance(0.1) && !m_skip.has("bad-start")) {
+            if (role == Role::Bad && m_r.profile == Profile::BadBodies && m_rng.chance(0.1)) {
                 // Bad from the first step: the body is built with a NaN velocity.
-                b.linVel = badVec(m_rng, 2);
-                b.choice = "bad-start";
+                btVector3 v = badVec(m_rng, 2);
+                if (!m_skip.has("bad-start")) b.linVel = v, b.choice = "bad-start";
             }
             b.atStart = m_rng.chance(0.85);
             m_r.bodies.push_back(b);
@@ -314,17 +325,14 @@ private:
 
     bool addUnsupported(int c)
     {
-        std::vector<std::string> kinds = {"capsule", "cylinder", "cone", "compound"};
-        std::vector<std::string> allowed;
-        for (const std::string& k : kinds)
-            if (!m_skip.has(k)) allowed.push_back(k);
-        if (allowed.empty()) return true;
+        static const std::vector<std::string> kinds = {"capsule", "cylinder", "cone", "compound"};
         ShapeSpec s;
-        s.choice = m_rng.pick(allowed);
+        s.choice = m_rng.pick(kinds);
         s.kind = s.choice == "capsule" ? ShapeKind::Capsule
                : s.choice == "cylinder" ? ShapeKind::Cylinder
                : s.choice == "cone" ? ShapeKind::Cone : ShapeKind::Compound;
         s.size = btVector3(m_rng.range(0.2, 0.6), m_rng.range(0.4, 1.5), m_rng.range(0.2, 0.6));
+        if (m_skip.has(s.choice)) s = plainBox(s.choice);
         BodySpec b;
         b.cluster = c;
         b.shape = addShape(s);
@@ -513,7 +521,6 @@ private:
 
     void stepOp(float* localTime, bool odd)
     {
-        if (m_skip.has("step-args")) odd = false;
         for (int attempt = 0;; ++attempt) {
             Op op;
             op.kind = OpKind::Step;
@@ -539,6 +546,12 @@ private:
             // Stock Bullet would run a bad call for ever or write Inf: it never gets one (and
             // btgpu must leave the time as it was, so the mirror skips it too).
             op.stockSafe = cls != ArgClass::Bad;
+            if (m_skip.has(op.choice)) {
+                op = Op();
+                op.a = op.b = kStep;
+                t = *localTime;
+                bulletSubsteps(op.a, op.n, op.b, &t, &simulated);
+            }
             *localTime = t;
             m_r.ops.push_back(op);
             return;

@@ -3,7 +3,8 @@
 // Environment: BTGPU_FUZZ_SCENES (scenes per case), BTGPU_FUZZ_SEED (first seed),
 // BTGPU_FUZZ_SKIP (generator choices left out, comma-separated), BTGPU_FUZZ_TIMEOUT (s per
 // scene), BTGPU_FUZZ_VERBOSE=1 (keep the library's stderr), BTGPU_FUZZ_STOCK_ALL=1 (give stock
-// every op too: for finding what crashes it, one seed per process).
+// every op too: for finding what crashes it, one seed per process), BTGPU_FUZZ_ONLY=stock|gpu
+// (run one engine; the verdict then needs btgpu's trace, so stock-only checks nothing).
 #include <gtest/gtest.h>
 
 #include "fuzz_guard.h"
@@ -29,6 +30,7 @@ struct FuzzEnv {
     Skip skip;
     bool stockEverything = false;
     bool verbose = false;
+    std::string only;  // "", "stock" or "gpu"
     double timeout = 120.0;
 };
 
@@ -44,6 +46,7 @@ FuzzEnv readEnv(int defaultScenes)
         for (std::string item; std::getline(ss, item, ',');) e.skip.names.push_back(item);
     }
     if (const char* s = std::getenv("BTGPU_FUZZ_TIMEOUT")) e.timeout = std::atof(s);
+    if (const char* s = std::getenv("BTGPU_FUZZ_ONLY")) e.only = s;
     e.stockEverything = std::getenv("BTGPU_FUZZ_STOCK_ALL") && std::atoi(std::getenv("BTGPU_FUZZ_STOCK_ALL"));
     e.verbose = e.scenes == 1 || (std::getenv("BTGPU_FUZZ_VERBOSE") && std::atoi(std::getenv("BTGPU_FUZZ_VERBOSE")));
     return e;
@@ -65,6 +68,7 @@ std::string reproduce(const FuzzEnv& e, Profile p, std::uint64_t seed)
 
 struct ClassStats {
     int scenes = 0;
+    std::uint64_t lastSeed = ~std::uint64_t(0);
     std::vector<std::uint64_t> seeds;  // the first few
     std::string example;
 };
@@ -72,7 +76,8 @@ struct ClassStats {
 void note(std::map<std::string, ClassStats>& m, const std::string& kind, std::uint64_t seed, const std::string& example)
 {
     ClassStats& c = m[kind];
-    if (!c.seeds.empty() && c.seeds.back() == seed) return;  // once per scene
+    if (c.lastSeed == seed) return;  // once per scene
+    c.lastSeed = seed;
     ++c.scenes;
     if (c.seeds.size() < 6) c.seeds.push_back(seed);
     if (c.example.empty()) c.example = example;
@@ -107,16 +112,17 @@ void runProfile(Profile profile, int defaultScenes)
         if (e.verbose) std::cout << "[fuzz] " << line << "\n" << std::flush;
         Trace stock, gpu;
         guardScene("  scene: " + line + "\n  reproduce: " + repro + "\n  stage: stock Bullet");
-        {
+        if (e.only != "gpu") {
             QuietStderr quiet(!e.verbose);
             stock = run(recipe, Engine::Stock, options);
         }
         guardScene("  scene: " + line + "\n  reproduce: " + repro + "\n  stage: btGpuDynamicsWorld");
-        {
+        if (e.only != "stock") {
             QuietStderr quiet(!e.verbose);
             gpu = run(recipe, Engine::Gpu, options);
         }
         sceneDone();
+        if (!e.only.empty()) continue;
         if (e.scenes == 1) std::cout << "  stock:\n" << dump(recipe, stock) << "  btgpu:\n" << dump(recipe, gpu) << std::flush;
         if (!gpu.cpuReason.empty()) ++cpuPathScenes;
         for (const std::string& n : stockNotes(recipe, stock)) note(stockSide, n.substr(0, n.find(' ')), seed, n);
@@ -140,7 +146,7 @@ void runProfile(Profile profile, int defaultScenes)
             << failedScenes << " failed, " << seconds << " s\n";
     if (!failures.empty()) summary << "failure classes:\n" << table(failures);
     if (!stockSide.empty()) summary << "stock Bullet on the same seeds (for the record, not failures):\n" << table(stockSide);
-    std::cout << summary.str() << std::flush;
+    if (failedScenes == 0) std::cout << summary.str() << std::flush;
     EXPECT_EQ(failedScenes, 0) << summary.str();
 }
 

@@ -52,6 +52,7 @@ std::string shapeBad(const btCollisionShape* shape)
             break;
         case CONVEX_HULL_SHAPE_PROXYTYPE: {
             auto* hull = static_cast<const btConvexHullShape*>(shape);
+            if (hull->getNumPoints() == 0) return "hull without points";
             for (int i = 0; i < hull->getNumPoints(); ++i)
                 if (!finite(hull->getUnscaledPoints()[i])) return "hull point";
             break;
@@ -126,6 +127,7 @@ public:
         m_shapes.resize(r.shapes.size());
         m_bodies.resize(r.bodies.size());
         m_inWorld.assign(r.bodies.size(), false);
+        m_inputBad.assign(r.bodies.size(), false);
         if (r.groundPlane) {
             m_planeShape = std::make_unique<btStaticPlaneShape>(r.planeNormal, 0.0f);
             m_plane = std::make_unique<btRigidBody>(0.0f, nullptr, m_planeShape.get());
@@ -136,6 +138,7 @@ public:
             if (engine == Engine::Stock && !spec.stockSafe && !options.stockEverything) continue;
             m_bodies[i] = makeBody(spec);
             m_trace.bodies[i].built = true;
+            judgeInput(int(i), "");
             if (spec.atStart) add(int(i));
         }
     }
@@ -160,7 +163,11 @@ public:
             }
             if (m_engine == Engine::Stock && !op.stockSafe && !m_options.stockEverything) continue;
             if (op.body >= 0 && !m_bodies[size_t(op.body)]) continue;
+            std::vector<int> touched = affected(op);
+            std::vector<std::string> before;
+            for (int i : touched) before.push_back(badReason(m_bodies[size_t(i)].get()));
             guarded(toString(op.kind), [&] { apply(op); });
+            for (size_t j = 0; j < touched.size(); ++j) judgeInput(touched[j], before[j]);
         }
         closingCheck(&localTime);
         m_trace.issues = m_gpu ? int(m_gpu->report().issues.size()) : 0;
@@ -178,6 +185,36 @@ private:
         } catch (...) {
             m_trace.exceptions.push_back(what + ": unknown exception");
         }
+    }
+
+    // The bodies an op can give bad input: its target, every user of a shape it changes, and
+    // for world gravity every body (Bullet sets it on each active one).
+    std::vector<int> affected(const Op& op)
+    {
+        std::vector<int> out;
+        for (size_t i = 0; i < m_bodies.size(); ++i) {
+            if (!m_bodies[i]) continue;
+            bool hit = op.kind == OpKind::WorldGravity || int(i) == op.body;
+            if ((op.kind == OpKind::Scaling || op.kind == OpKind::Margin) && m_r.bodies[i].shape == m_r.bodies[size_t(op.body)].shape)
+                hit = true;
+            if (hit) out.push_back(int(i));
+        }
+        return out;
+    }
+
+    // Bad input is what an app call leaves in a body that was fine before it; a body that went
+    // non-finite in a step is the world's doing, not the app's, and is judged as such.
+    void judgeInput(int i, const std::string& before)
+    {
+        std::string after = badReason(m_bodies[size_t(i)].get());
+        if (after.empty()) {
+            m_inputBad[size_t(i)] = false;
+            return;
+        }
+        if (!before.empty()) return;
+        m_inputBad[size_t(i)] = true;
+        BodyTrace& t = m_trace.bodies[size_t(i)];
+        if (t.badWhy.empty()) t.badWhy = after, t.badAtCall = int(m_trace.calls.size());
     }
 
     btCollisionShape* shape(int index)
@@ -343,15 +380,8 @@ private:
             return;
         }
         std::vector<int> badNow;
-        for (size_t i = 0; i < m_bodies.size(); ++i) {
-            if (!m_bodies[i]) continue;
-            std::string why = badReason(m_bodies[i].get());
-            if (why.empty()) continue;
-            // Out of the world it taints nothing, but is still not a well-formed body.
-            if (m_inWorld[i]) badNow.push_back(int(i));
-            BodyTrace& t = m_trace.bodies[i];
-            if (t.badWhy.empty()) t.badWhy = why, t.badAtCall = callIndex;
-        }
+        for (size_t i = 0; i < m_bodies.size(); ++i)
+            if (m_bodies[i] && m_inWorld[i] && m_inputBad[i]) badNow.push_back(int(i));
         std::vector<Saved> before;
         if (call.cls == ArgClass::Bad) before = save();
         const size_t issuesBefore = m_gpu ? m_gpu->report().issues.size() : 0;
@@ -459,6 +489,7 @@ private:
     std::unique_ptr<btDiscreteDynamicsWorld> m_world;
     btGpuDynamicsWorld* m_gpu = nullptr;
     std::vector<bool> m_inWorld;
+    std::vector<bool> m_inputBad;  // holds bad input from the app now
     std::map<const btCollisionObject*, int> m_ids;
 };
 
