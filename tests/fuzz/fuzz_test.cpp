@@ -126,7 +126,9 @@ void runProfile(Profile profile, int defaultScenes)
         if (e.scenes == 1) std::cout << "  stock:\n" << dump(recipe, stock) << "  btgpu:\n" << dump(recipe, gpu) << std::flush;
         if (!gpu.cpuReason.empty()) ++cpuPathScenes;
         for (const std::string& n : stockNotes(recipe, stock)) note(stockSide, n.substr(0, n.find(' ')), seed, n);
-        const std::vector<Failure> found = judge(recipe, gpu, &stock);
+        std::vector<Failure> notes;
+        const std::vector<Failure> found = judge(recipe, gpu, &stock, &notes);
+        for (const Failure& n : notes) note(stockSide, n.kind, seed, n.detail);
         if (found.empty()) continue;
         ++failedScenes;
         std::ostringstream os;
@@ -145,7 +147,7 @@ void runProfile(Profile profile, int defaultScenes)
             << e.firstSeed + std::uint64_t(std::max(e.scenes, 1)) - 1 << "), " << cpuPathScenes << " on the CPU path, "
             << failedScenes << " failed, " << seconds << " s\n";
     if (!failures.empty()) summary << "failure classes:\n" << table(failures);
-    if (!stockSide.empty()) summary << "stock Bullet on the same seeds (for the record, not failures):\n" << table(stockSide);
+    if (!stockSide.empty()) summary << "for the record, not failures (stock Bullet on the same seeds; NaN btgpu shares with it):\n" << table(stockSide);
     if (failedScenes == 0) std::cout << summary.str() << std::flush;
     EXPECT_EQ(failedScenes, 0) << summary.str();
 }

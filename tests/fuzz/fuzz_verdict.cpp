@@ -37,10 +37,13 @@ std::string callName(const Recipe& r, const Trace& t, int call)
 
 }  // namespace
 
-std::vector<Failure> judge(const Recipe& r, const Trace& gpu, const Trace* stock)
+std::vector<Failure> judge(const Recipe& r, const Trace& gpu, const Trace* stock, std::vector<Failure>* notes)
 {
     std::vector<Failure> out;
     auto fail = [&](std::string kind, std::string detail) { out.push_back({std::move(kind), std::move(detail)}); };
+    auto note = [&](std::string kind, std::string detail) {
+        if (notes) notes->push_back({std::move(kind), std::move(detail)});
+    };
     for (const std::string& e : gpu.exceptions) fail("exception", e);
     for (const std::string& e : gpu.badIndex) fail("issue-bad-index", e);
     for (const std::string& e : gpu.namedOthers) fail("named-wellformed", "the plane or the closing probe: " + e);
@@ -57,10 +60,13 @@ std::vector<Failure> judge(const Recipe& r, const Trace& gpu, const Trace* stock
         const bool wellFormed = g.badWhy.empty() && !tainted.count(r.bodies[i].cluster);
         const BodyTrace* s = stock && stock->bodies[i].built ? &stock->bodies[i] : nullptr;
         const std::string name = bodyName(r, int(i));
+        // Asserted where stock keeps the body finite (a normal body also where stock did not
+        // get the scene's bad bodies); where stock goes NaN too it is only noted.
         if (wellFormed && g.nonFiniteAtCall >= 0) {
             std::string when = "non-finite after " + callName(r, gpu, g.nonFiniteAtCall);
-            if (role != Role::Extreme) fail("nan-wellformed", name + ": " + when);
-            else if (s && s->nonFiniteAtCall < 0) fail("nan-extreme", name + ": " + when + "; stock stays finite");
+            if (s && s->nonFiniteAtCall >= 0) note("nan-like-stock(" + std::string(toString(role)) + ")", name + ": " + when + ", as on stock");
+            else if (role != Role::Extreme) fail("nan-wellformed", name + ": " + when);
+            else if (s) fail("nan-extreme", name + ": " + when + "; stock stays finite");
         }
         if (!g.badWhy.empty() && g.mustBeNamed && !g.named)
             fail("unnamed-bad(" + g.mustPath + ": " + g.badWhy + ")",
@@ -94,7 +100,8 @@ std::vector<Failure> judge(const Recipe& r, const Trace& gpu, const Trace* stock
                                         std::to_string(stock->calls[k].returned));
     }
 
-    if (!gpu.probeFinite) fail("probe-nan", "the free-falling probe went non-finite");
+    if (!gpu.probeFinite && stock && !stock->probeFinite) note("nan-like-stock(probe)", "the probe went non-finite, as on stock");
+    else if (!gpu.probeFinite) fail("probe-nan", "the free-falling probe went non-finite");
     else if (std::fabs(gpu.probeDv - kClosingDv) > kClosingTol)
         fail("probe-stopped", "probe's vy changed by " + std::to_string(gpu.probeDv) + " over the closing steps, not -0.5");
     if (sameTime && gpu.probeFinite && stock->probeFinite) {
@@ -102,7 +109,8 @@ std::vector<Failure> judge(const Recipe& r, const Trace& gpu, const Trace* stock
         if (d > 1e-3f * (1.0f + stock->probePos.length() * 1e-3f))
             fail("probe-differs", "probe " + std::to_string(d) + " m from stock's after the recipe");
     }
-    if (!gpu.lateProbeFinite) fail("late-probe-nan", "a sphere added at the end went non-finite");
+    if (!gpu.lateProbeFinite && stock && !stock->lateProbeFinite) note("nan-like-stock(probe)", "the closing sphere went non-finite, as on stock");
+    else if (!gpu.lateProbeFinite) fail("late-probe-nan", "a sphere added at the end went non-finite");
     else if (std::fabs(gpu.lateProbeDv - kClosingDv) > kClosingTol)
         fail("late-probe-stopped", "a sphere added at the end: vy changed by " + std::to_string(gpu.lateProbeDv));
     return out;

@@ -15,8 +15,9 @@ struct Failure {
     std::string detail;  // which body or call, and what was seen
 };
 
-// stock may be null (not run); then extreme bodies are not asserted finite.
-std::vector<Failure> judge(const Recipe& recipe, const Trace& gpu, const Trace* stock);
+// stock may be null (not run); then extreme bodies are not asserted finite. notes, if given,
+// gets what is not asserted but worth a line (a well-formed body NaN on both engines).
+std::vector<Failure> judge(const Recipe& recipe, const Trace& gpu, const Trace* stock, std::vector<Failure>* notes = nullptr);
 
 // What stock Bullet itself did with the scene, for the record (never a failure of btgpu).
 std::vector<std::string> stockNotes(const Recipe& recipe, const Trace& stock);

@@ -41,8 +41,6 @@ bool same(const btVector3& a, const btVector3& b) { return std::memcmp(&a, &b, s
 
 std::string shapeBad(const btCollisionShape* shape)
 {
-    if (!finite(shape->getLocalScaling())) return "shape scaling";
-    if (!std::isfinite(shape->getMargin())) return "shape margin";
     switch (shape->getShapeType()) {
         case BOX_SHAPE_PROXYTYPE:
             if (!finite(static_cast<const btBoxShape*>(shape)->getHalfExtentsWithMargin())) return "box half extents";
@@ -67,6 +65,8 @@ std::string shapeBad(const btCollisionShape* shape)
         }
         default: break;
     }
+    if (!finite(shape->getLocalScaling())) return "shape scaling";
+    if (!std::isfinite(shape->getMargin())) return "shape margin";
     if (shape->getShapeType() != STATIC_PLANE_PROXYTYPE) {
         btVector3 mn, mx;
         shape->getAabb(btTransform::getIdentity(), mn, mx);
