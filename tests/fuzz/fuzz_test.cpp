@@ -156,7 +156,7 @@ void runProfile(Profile profile, int defaultScenes)
 
 // Scenes per case in CI: a few hundred in all, within two minutes on two cores (Release).
 TEST(Fuzz, BadBodies) { runProfile(Profile::BadBodies, 80); }
-TEST(Fuzz, CpuPath) { runProfile(Profile::CpuPath, 60); }
+TEST(Fuzz, CpuPath) { runProfile(Profile::CpuPath, 100); }
 TEST(Fuzz, StepArguments) { runProfile(Profile::StepArguments, 60); }
 TEST(Fuzz, Extreme) { runProfile(Profile::Extreme, 60); }
 // Last: a NaN hull point crashes today's library, and a crash ends the process.

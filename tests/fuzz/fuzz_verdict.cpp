@@ -48,6 +48,16 @@ std::vector<Failure> judge(const Recipe& r, const Trace& gpu, const Trace* stock
     for (const std::string& e : gpu.badIndex) fail("issue-bad-index", e);
     for (const std::string& e : gpu.namedOthers) fail("named-wellformed", "the plane or the closing probe: " + e);
 
+    // What follows a bad stepSimulation call btgpu did not turn away is most likely its doing:
+    // such failures carry a suffix, so the root cause stays one class.
+    int firstBadCall = int(gpu.calls.size());
+    for (size_t k = 0; k < gpu.calls.size(); ++k)
+        if (gpu.calls[k].cls == ArgClass::Bad && (gpu.calls[k].returned != 0 || gpu.calls[k].changedBodies)) {
+            firstBadCall = int(k);
+            break;
+        }
+    auto after = [&](int call) { return call >= firstBadCall ? std::string("(after bad step arguments)") : std::string(); };
+
     std::set<int> tainted;
     for (size_t i = 0; i < r.bodies.size(); ++i) {
         if (!gpu.bodies[i].badWhy.empty()) tainted.insert(r.bodies[i].cluster);
@@ -65,13 +75,14 @@ std::vector<Failure> judge(const Recipe& r, const Trace& gpu, const Trace* stock
         if (wellFormed && g.nonFiniteAtCall >= 0) {
             std::string when = "non-finite after " + callName(r, gpu, g.nonFiniteAtCall);
             if (s && s->nonFiniteAtCall >= 0) note("nan-like-stock(" + std::string(toString(role)) + ")", name + ": " + when + ", as on stock");
-            else if (role != Role::Extreme) fail("nan-wellformed", name + ": " + when);
-            else if (s) fail("nan-extreme", name + ": " + when + "; stock stays finite");
+            else if (role != Role::Extreme) fail("nan-wellformed" + after(g.nonFiniteAtCall), name + ": " + when);
+            else if (s) fail("nan-extreme" + after(g.nonFiniteAtCall), name + ": " + when + "; stock stays finite");
         }
         if (!g.badWhy.empty() && g.mustBeNamed && !g.named)
             fail("unnamed-bad(" + g.mustPath + ": " + g.badWhy + ")",
                  name + ": bad " + g.badWhy + " from " + callName(r, gpu, g.badAtCall) + ", no BadBody issue with its index");
-        if (wellFormed && g.named && role != Role::Extreme) fail("named-wellformed", name + ": " + g.namedBy);
+        if (wellFormed && g.named && role != Role::Extreme)
+            fail("named-wellformed" + after(g.namedAtCall), name + ": " + g.namedBy);
         if (wellFormed && role == Role::Normal && g.maxSpeed > kRunawaySpeed && (!s || s->maxSpeed < kStockCalmSpeed)) {
             std::ostringstream os;
             os << name << ": " << g.maxSpeed << " m/s (stock " << (s ? s->maxSpeed : -1.0f) << ")";
@@ -96,8 +107,8 @@ std::vector<Failure> judge(const Recipe& r, const Trace& gpu, const Trace* stock
             continue;
         }
         if (sameTime && k < stock->calls.size() && stock->calls[k].ran && c.returned != stock->calls[k].returned)
-            fail("substeps-differ", callName(r, gpu, int(k)) + " returned " + std::to_string(c.returned) + ", stock " +
-                                        std::to_string(stock->calls[k].returned));
+            fail("substeps-differ" + after(int(k)), callName(r, gpu, int(k)) + " returned " + std::to_string(c.returned) +
+                                                        ", stock " + std::to_string(stock->calls[k].returned));
     }
 
     if (!gpu.probeFinite && stock && !stock->probeFinite) note("nan-like-stock(probe)", "the probe went non-finite, as on stock");
@@ -107,7 +118,7 @@ std::vector<Failure> judge(const Recipe& r, const Trace& gpu, const Trace* stock
     if (sameTime && gpu.probeFinite && stock->probeFinite) {
         float d = (gpu.probePos - stock->probePos).length();
         if (d > 1e-3f * (1.0f + stock->probePos.length() * 1e-3f))
-            fail("probe-differs", "probe " + std::to_string(d) + " m from stock's after the recipe");
+            fail("probe-differs" + after(int(gpu.calls.size()) - 3), "probe " + std::to_string(d) + " m from stock's after the recipe");
     }
     if (!gpu.lateProbeFinite && stock && !stock->lateProbeFinite) note("nan-like-stock(probe)", "the closing sphere went non-finite, as on stock");
     else if (!gpu.lateProbeFinite) fail("late-probe-nan", "a sphere added at the end went non-finite");

@@ -427,7 +427,7 @@ private:
                 continue;
             }
             BodyTrace& t = m_trace.bodies[size_t(it->second)];
-            if (!t.named) t.named = true, t.namedBy = issue.message;
+            if (!t.named) t.named = true, t.namedBy = issue.message, t.namedAtCall = int(m_trace.calls.size());
         }
     }
 

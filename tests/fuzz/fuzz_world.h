@@ -21,6 +21,7 @@ struct BodyTrace {
     std::string mustPath;       // "gpu" or "cpu": the path of that call
     bool named = false;         // a BadBody issue named it by index
     std::string namedBy;        // that issue's message
+    int namedAtCall = -1;       // the call that issue came with
     int nonFiniteAtCall = -1;   // first call after which its state was not finite
     float maxSpeed = 0.0f;      // m/s, largest linear speed seen after a call
 };
