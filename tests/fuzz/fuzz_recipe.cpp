@@ -124,6 +124,11 @@ public:
         makeProbe();
         place();
         makeTimeline();
+        // Last, so a scene's bodies and ops do not depend on them.
+        m_r.internalSubsteps = m_rng.chance(0.8) ? 1 : m_rng.pick(std::vector<int>{2, 4});
+        m_r.jacobi = m_rng.chance(0.15);
+        m_r.profiling = m_rng.chance(0.15);
+        m_r.syncAabbs = m_rng.chance(0.85);
         return m_r;
     }
 
@@ -380,7 +385,7 @@ private:
                 if (b.cluster != int(c) || b.choice == "ground") continue;
                 float r = boundingRadius(m_r.shapes[size_t(b.shape)]);
                 btVector3 p(0, 0, 0);
-                if (cl.role == Role::Probe) p = btVector3(0, 50, 0);
+                if (cl.role == Role::Probe) p = btVector3(0, 1000, 0);  // free fall for the whole scene
                 else if (cl.layout == "pile") p = btVector3(0, pileY + 0.5f, 0);
                 else if (cl.layout == "stack") {
                     p = btVector3(m_rng.range(-0.05, 0.05), height + r + 0.01f, m_rng.range(-0.05, 0.05));
@@ -722,6 +727,10 @@ std::string describe(const Recipe& r)
 {
     std::ostringstream os;
     os << toString(r.profile) << " seed " << r.seed << ": " << (r.groundPlane ? "plane" + vec(r.planeNormal) : "no plane");
+    if (r.internalSubsteps != 1) os << " internalSubsteps=" << r.internalSubsteps;
+    if (r.jacobi) os << " jacobi";
+    if (r.profiling) os << " profiling";
+    if (!r.syncAabbs) os << " no-aabb-sync";
     for (size_t c = 0; c < r.clusters.size(); ++c) {
         const ClusterSpec& cl = r.clusters[c];
         os << " | C" << c << " " << toString(cl.role) << " " << cl.layout << (cl.ground ? "+ground" : "") << ":";

@@ -94,6 +94,11 @@ struct Recipe {
     std::vector<ClusterSpec> clusters;
     std::vector<BodySpec> bodies;
     std::vector<Op> ops;
+    // btgpu's Config (public): device substeps, solver kind, profiling, AABB sync.
+    int internalSubsteps = 1;
+    bool jacobi = false;
+    bool profiling = false;
+    bool syncAabbs = true;
     int probe = -1;      // body index of the free-falling probe
     float farX = 0.0f;   // x beyond every cluster (where the end-of-scene probe goes)
 };

@@ -117,7 +117,12 @@ public:
         m_broadphase = std::make_unique<btDbvtBroadphase>();
         m_solver = std::make_unique<btSequentialImpulseConstraintSolver>();
         if (engine == Engine::Gpu) {
-            m_gpu = new btGpuDynamicsWorld(m_dispatcher.get(), m_broadphase.get(), m_solver.get(), m_config.get());
+            btgpu::Config config;
+            config.internalSubsteps = r.internalSubsteps;
+            config.solver = r.jacobi ? btgpu::SolverKind::JacobiMassSplitting : btgpu::SolverKind::BatchedPgs;
+            config.profile = r.profiling;
+            config.syncBroadphaseAabbs = r.syncAabbs;
+            m_gpu = new btGpuDynamicsWorld(m_dispatcher.get(), m_broadphase.get(), m_solver.get(), m_config.get(), config);
             m_world.reset(m_gpu);
         } else {
             m_world = std::make_unique<btDiscreteDynamicsWorld>(m_dispatcher.get(), m_broadphase.get(), m_solver.get(),
@@ -405,6 +410,7 @@ private:
                 if (!t.mustBeNamed) t.mustBeNamed = true, t.mustPath = m_gpu ? call.gpuPath : "stock";
             }
         observe(callIndex);
+        call.stateHash = hashState();
         m_trace.calls.push_back(call);
     }
 
@@ -431,6 +437,24 @@ private:
         }
     }
 
+    unsigned long long hashState() const
+    {
+        unsigned long long h = 1469598103934665603ull;
+        auto mix = [&](const void* p, size_t n) {
+            const unsigned char* c = static_cast<const unsigned char*>(p);
+            for (size_t i = 0; i < n; ++i) h = (h ^ c[i]) * 1099511628211ull;
+        };
+        for (const std::unique_ptr<btRigidBody>& b : m_bodies) {
+            if (!b) continue;
+            const btTransform& t = b->getWorldTransform();
+            mix(&t.getOrigin(), 3 * sizeof(float));
+            for (int r = 0; r < 3; ++r) mix(&t.getBasis()[r], 3 * sizeof(float));
+            mix(&b->getLinearVelocity(), 3 * sizeof(float));
+            mix(&b->getAngularVelocity(), 3 * sizeof(float));
+        }
+        return h;
+    }
+
     void observe(int callIndex)
     {
         for (size_t i = 0; i < m_bodies.size(); ++i) {
@@ -441,7 +465,8 @@ private:
                 if (t.nonFiniteAtCall < 0) t.nonFiniteAtCall = callIndex;
                 continue;
             }
-            t.maxSpeed = std::max(t.maxSpeed, b->getLinearVelocity().length());
+            float speed = b->getLinearVelocity().length();
+            if (speed > t.maxSpeed) t.maxSpeed = speed, t.maxSpeedAtCall = callIndex;
         }
     }
 

@@ -24,6 +24,7 @@ struct BodyTrace {
     int namedAtCall = -1;       // the call that issue came with
     int nonFiniteAtCall = -1;   // first call after which its state was not finite
     float maxSpeed = 0.0f;      // m/s, largest linear speed seen after a call
+    int maxSpeedAtCall = -1;    // that call
 };
 
 struct CallTrace {
@@ -34,6 +35,7 @@ struct CallTrace {
     bool changedBodies = false; // a bad call moved a body or a motion state
     bool reported = false;      // a bad or ambiguous call came with an issue naming the argument
     std::string gpuPath;        // "gpu" / "cpu" after the call (btgpu only)
+    unsigned long long stateHash = 0;  // FNV-1a of every built body's transform and velocities after it
 };
 
 struct Trace {
