@@ -60,7 +60,6 @@ void writeScene(const char* why)
     writeAll("\n", 1);
 }
 
-#ifndef BTGPU_FUZZ_ASAN
 void onSignal(int sig)
 {
     const char* name = sig == SIGSEGV ? "SIGSEGV" : sig == SIGABRT ? "SIGABRT" : sig == SIGFPE ? "SIGFPE"
@@ -69,11 +68,16 @@ void onSignal(int sig)
     std::signal(sig, SIG_DFL);
     std::raise(sig);
 }
-#else
-void onDeath() { writeScene("sanitizer report (above)"); }
-#endif
 
 }  // namespace
+
+#ifdef BTGPU_FUZZ_ASAN
+// ASan's death callback prints the scene after an ASan report. GCC links UBSan as a runtime of
+// its own, which calls no callback of ASan's and resets SIGABRT before aborting: for UB the
+// seed line printed before each scene (sanitized builds only) names the scene.
+extern "C" const char* __ubsan_default_options() { return "print_stacktrace=1"; }
+void onDeath() { writeScene("sanitizer report (above)"); }
+#endif
 
 bool sanitized()
 {
@@ -92,7 +96,9 @@ void installGuards(double timeoutSeconds)
     g_errFd = ::dup(2);
     if (g_errFd < 0) g_errFd = 2;
 #ifdef BTGPU_FUZZ_ASAN
+    // ASan reports faults itself (its handler must stay); it leaves SIGABRT alone.
     __sanitizer_set_death_callback(onDeath);
+    std::signal(SIGABRT, onSignal);
 #else
     for (int sig : {SIGSEGV, SIGABRT, SIGFPE, SIGBUS, SIGILL}) std::signal(sig, onSignal);
 #endif

@@ -110,6 +110,7 @@ void runProfile(Profile profile, int defaultScenes)
         const std::string line = describe(recipe);
         const std::string repro = reproduce(e, profile, seed);
         if (e.verbose) std::cout << "[fuzz] " << line << "\n" << std::flush;
+        else if (sanitized()) printToStderr("[fuzz] Fuzz." + std::string(toString(profile)) + " seed " + std::to_string(seed) + "\n");
         Trace stock, gpu;
         guardScene("  scene: " + line + "\n  reproduce: " + repro + "\n  stage: stock Bullet");
         if (e.only != "gpu") {
