@@ -36,8 +36,13 @@ bool finite(const btTransform& t)
     const btMatrix3x3& b = t.getBasis();
     return finite(t.getOrigin()) && finite(b[0]) && finite(b[1]) && finite(b[2]);
 }
-bool same(const btTransform& a, const btTransform& b) { return std::memcmp(&a, &b, sizeof(btTransform)) == 0; }
-bool same(const btVector3& a, const btVector3& b) { return std::memcmp(&a, &b, sizeof(btVector3)) == 0; }
+// Bitwise, x y z only (a NaN left as it was is unchanged; the fourth lane is padding).
+bool same(const btVector3& a, const btVector3& b) { return std::memcmp(&a, &b, 3 * sizeof(float)) == 0; }
+bool same(const btTransform& a, const btTransform& b)
+{
+    return same(a.getOrigin(), b.getOrigin()) && same(a.getBasis()[0], b.getBasis()[0]) &&
+           same(a.getBasis()[1], b.getBasis()[1]) && same(a.getBasis()[2], b.getBasis()[2]);
+}
 
 std::string shapeBad(const btCollisionShape* shape)
 {
