@@ -414,6 +414,10 @@ private:
                 BodyTrace& t = m_trace.bodies[size_t(i)];
                 if (!t.mustBeNamed) t.mustBeNamed = true, t.mustPath = m_gpu ? call.gpuPath : "stock";
             }
+        // A call may clear bad input (stepSimulation clears forces even when it simulates
+        // nothing): a body whose input is fine now need not be named for it later.
+        for (size_t i = 0; i < m_bodies.size(); ++i)
+            if (m_bodies[i] && m_inputBad[i] && badReason(m_bodies[i].get()).empty()) m_inputBad[i] = false;
         observe(callIndex);
         call.stateHash = hashState();
         m_trace.calls.push_back(call);
