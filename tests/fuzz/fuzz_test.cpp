@@ -156,9 +156,9 @@ void runProfile(Profile profile, int defaultScenes)
 }  // namespace
 
 // Scenes per case in CI: a few hundred in all, within two minutes on two cores (Release).
-TEST(Fuzz, BadBodies) { runProfile(Profile::BadBodies, 80); }
+TEST(Fuzz, BadBodies) { runProfile(Profile::BadBodies, 70); }
 TEST(Fuzz, CpuPath) { runProfile(Profile::CpuPath, 100); }
-TEST(Fuzz, StepArguments) { runProfile(Profile::StepArguments, 60); }
-TEST(Fuzz, Extreme) { runProfile(Profile::Extreme, 60); }
+TEST(Fuzz, StepArguments) { runProfile(Profile::StepArguments, 50); }
+TEST(Fuzz, Extreme) { runProfile(Profile::Extreme, 50); }
 // Last: a NaN hull point crashes today's library, and a crash ends the process.
 TEST(Fuzz, BadShapes) { runProfile(Profile::BadShapes, 40); }
