@@ -3,6 +3,7 @@
 // finite, since they may touch the bad one. Clusters are far apart, so the rest are.
 #include "fuzz_verdict.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -129,8 +130,13 @@ std::vector<Failure> judge(const Recipe& r, const Trace& gpu, const Trace* stock
         sameInput = stock->bodies[i].built && gpu.bodies[i].badWhy.empty() && stock->bodies[i].badWhy.empty();
     for (const Op& op : r.ops) sameInput = sameInput && op.stockSafe;
     for (const CallTrace& c : gpu.calls) sameInput = sameInput && c.gpuPath == "cpu";
+    // Until a body goes non-finite: from then on btgpu holds it out (named) where stock keeps it.
+    size_t firstNan = gpu.calls.size();
+    for (size_t i = 0; sameInput && i < r.bodies.size(); ++i)
+        for (int c : {gpu.bodies[i].nonFiniteAtCall, stock ? stock->bodies[i].nonFiniteAtCall : -1})
+            if (c >= 0) firstNan = std::min(firstNan, size_t(c));
     if (sameInput)
-        for (size_t k = 0; k < gpu.calls.size() && k < stock->calls.size(); ++k)
+        for (size_t k = 0; k < firstNan && k < stock->calls.size(); ++k)
             if (gpu.calls[k].stateHash != stock->calls[k].stateHash) {
                 fail("cpu-path-differs-from-stock", "bodies differ bitwise from stock's after " + callName(r, gpu, int(k)) +
                                                         " (CPU path all along, same input)");
