@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <set>
 #include <sstream>
 
@@ -105,15 +106,24 @@ std::vector<Failure> judge(const Recipe& r, const Trace& gpu, const Trace* stock
     // Calls. Substeps are compared with stock's while both have kept the same time; an
     // ambiguous call btgpu reported as bad ends the comparison (stock took Bullet's meaning).
     bool sameTime = stock != nullptr;
+    // The same bad call again right after one that was reported need not be reported again (an
+    // app stuck on dt = NaN would flood the issues).
+    auto repeat = [&](size_t k) {
+        const CallTrace &a = gpu.calls[k], &b = gpu.calls[k - 1];
+        return std::memcmp(&a.dt, &b.dt, sizeof(float)) == 0 && a.maxSubSteps == b.maxSubSteps &&
+               std::memcmp(&a.fixedStep, &b.fixedStep, sizeof(float)) == 0;
+    };
+    std::vector<bool> reported(gpu.calls.size(), false);
     for (size_t k = 0; k < gpu.calls.size(); ++k) {
         const CallTrace& c = gpu.calls[k];
+        reported[k] = c.reported || (k > 0 && reported[k - 1] && repeat(k));
         if (c.cls == ArgClass::Bad) {
             if (c.returned != 0) fail("bad-args-simulated", callName(r, gpu, int(k)) + " returned " + std::to_string(c.returned));
             if (c.changedBodies) fail("bad-args-moved-bodies", callName(r, gpu, int(k)) + " changed a body or motion state");
-            if (!c.reported) fail("bad-args-unreported", callName(r, gpu, int(k)) + " added no issue naming the argument");
+            if (!reported[k]) fail("bad-args-unreported", callName(r, gpu, int(k)) + " added no issue naming the argument");
             continue;
         }
-        if (c.cls == ArgClass::Ambiguous && c.reported) {
+        if (c.cls == ArgClass::Ambiguous && reported[k]) {
             if (c.changedBodies) fail("bad-args-moved-bodies", callName(r, gpu, int(k)) + " reported bad yet changed bodies");
             sameTime = false;
             continue;

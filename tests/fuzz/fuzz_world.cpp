@@ -383,6 +383,7 @@ private:
     {
         CallTrace call;
         call.op = opIndex;
+        call.dt = op.a, call.maxSubSteps = op.n, call.fixedStep = op.b;
         call.cls = classify(op.a, op.n, op.b, *localTime);
         const int callIndex = int(m_trace.calls.size());
         if (m_engine == Engine::Stock && call.cls == ArgClass::Bad && !m_options.stockEverything) {

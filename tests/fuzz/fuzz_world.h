@@ -29,6 +29,8 @@ struct BodyTrace {
 
 struct CallTrace {
     int op = -1;                // index in Recipe::ops (-1: one of the closing steps)
+    float dt = 0.0f, fixedStep = 0.0f;
+    int maxSubSteps = 0;
     ArgClass cls = ArgClass::Normal;
     bool ran = false;           // run on this engine (stock skips bad arguments)
     int returned = 0;
