@@ -13,6 +13,21 @@
 
 namespace btgpu {
 
+std::string CpuPathGuard::badKinematicMotionState(const btCollisionObject* o)
+{
+    // Bullet reads a kinematic body's motion state inside the step (saveKinematicState): a
+    // non-finite transform there would only show after it, so it is looked at here, as the GPU
+    // path sees it before its substeps.
+    const btRigidBody* rb = btRigidBody::upcast(o);
+    if (!rb || !o->isKinematicObject() || !rb->getMotionState()) return "";
+    btTransform t;
+    rb->getMotionState()->getWorldTransform(t);
+    const btMatrix3x3& b = t.getBasis();
+    const bool finite = std::isfinite(t.getOrigin().length2()) && std::isfinite(b[0].length2()) &&
+                        std::isfinite(b[1].length2()) && std::isfinite(b[2].length2());
+    return finite ? "" : "non-finite transform from its motion state (kinematic body)";
+}
+
 std::string CpuPathGuard::badShape(const btCollisionShape* shape, int depth)
 {
     auto it = m_shapeVerdicts.find(shape);
@@ -39,6 +54,7 @@ void CpuPathGuard::hold(btDiscreteDynamicsWorld& world, const std::function<void
             std::string shape = badShape(o->getCollisionShape(), 0);
             if (!shape.empty()) why = "shape: " + shape;
         }
+        if (why.empty()) why = badKinematicMotionState(o);
         if (why.empty()) {
             // Good again after being held: a new proxy finds its pairs again (the broadphase
             // would not look for them while the body stands still).

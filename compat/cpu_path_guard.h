@@ -35,6 +35,7 @@ private:
         btTransform appTransform;  // the app's own, when swapped
     };
     std::string badShape(const btCollisionShape* shape, int depth);
+    static std::string badKinematicMotionState(const btCollisionObject* o);
 
     std::vector<Held> m_held;
     std::unordered_set<const btCollisionObject*> m_bad;  // bad at the last hold, already named
