@@ -391,8 +391,10 @@ private:
             return;
         }
         std::vector<int> badNow;
+        // Still bad now: the world's own setGravity (the closing check) fixes per-body gravity.
         for (size_t i = 0; i < m_bodies.size(); ++i)
-            if (m_bodies[i] && m_inWorld[i] && m_inputBad[i]) badNow.push_back(int(i));
+            if (m_bodies[i] && m_inWorld[i] && m_inputBad[i] && !badReason(m_bodies[i].get()).empty())
+                badNow.push_back(int(i));
         std::vector<Saved> before;
         if (call.cls == ArgClass::Bad) before = save();
         const size_t issuesBefore = m_gpu ? m_gpu->report().issues.size() : 0;
