@@ -93,7 +93,10 @@ std::vector<Failure> judge(const Recipe& r, const Trace& gpu, const Trace* stock
         // Naming a body that had already gone non-finite is right; the NaN is the failure (or
         // shared with stock).
         const bool nanFirst = g.nonFiniteAtCall >= 0 && g.nonFiniteAtCall < g.namedAtCall;
-        if (wellFormed && g.named && role != Role::Extreme && !nanFirst)
+        // A body that ran away at a microsecond step may rightly be disabled for its AABB.
+        if (wellFormed && g.named && role != Role::Extreme && !nanFirst && tinyStep && g.maxSpeed > kRunawaySpeed)
+            note("named-after-tiny-fixed-step", name + ": " + g.namedBy);
+        else if (wellFormed && g.named && role != Role::Extreme && !nanFirst)
             fail("named-wellformed" + after(g.namedAtCall), name + ": " + g.namedBy);
         if (wellFormed && role == Role::Normal && g.maxSpeed > kRunawaySpeed && (!s || s->maxSpeed < kStockCalmSpeed)) {
             std::ostringstream os;

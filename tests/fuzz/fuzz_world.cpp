@@ -391,10 +391,12 @@ private:
             return;
         }
         std::vector<int> badNow;
+        // Still bad now: the world's own setGravity (the closing check) fixes per-body gravity.
         for (size_t i = 0; i < m_bodies.size(); ++i)
-            if (m_bodies[i] && m_inWorld[i] && m_inputBad[i]) badNow.push_back(int(i));
+            if (m_bodies[i] && m_inWorld[i] && m_inputBad[i] && !badReason(m_bodies[i].get()).empty())
+                badNow.push_back(int(i));
         std::vector<Saved> before;
-        if (call.cls == ArgClass::Bad) before = save();
+        if (call.cls != ArgClass::Normal) before = save();
         const size_t issuesBefore = m_gpu ? m_gpu->report().issues.size() : 0;
         call.ran = true;
         guarded("stepSimulation", [&] { call.returned = m_world->stepSimulation(op.a, op.n, op.b); });
@@ -402,7 +404,7 @@ private:
             int simulated = 0;
             bulletSubsteps(op.a, op.n, op.b, localTime, &simulated);
         }
-        if (call.cls == ArgClass::Bad) call.changedBodies = changedSince(before);
+        if (call.cls != ArgClass::Normal) call.changedBodies = changedSince(before);
         if (m_gpu) {
             call.gpuPath = m_gpu->isGpuPath() ? "gpu" : "cpu";
             if (!m_gpu->isGpuPath()) m_trace.cpuReason = m_gpu->report().cpuPathReason;

@@ -34,7 +34,7 @@ struct CallTrace {
     ArgClass cls = ArgClass::Normal;
     bool ran = false;           // run on this engine (stock skips bad arguments)
     int returned = 0;
-    bool changedBodies = false; // a bad call moved a body or a motion state
+    bool changedBodies = false; // a bad or ambiguous call moved a body or a motion state
     bool reported = false;      // a bad or ambiguous call came with an issue naming the argument
     std::string gpuPath;        // "gpu" / "cpu" after the call (btgpu only)
     unsigned long long stateHash = 0;  // FNV-1a of every built body's transform and velocities after it
