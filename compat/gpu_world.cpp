@@ -15,6 +15,7 @@
 #include <cstring>
 #include <iostream>
 #include <limits>
+#include <type_traits>
 #include <typeinfo>
 
 namespace btgpu {
@@ -165,12 +166,23 @@ void GpuWorld::makePlan()
     m_report.stages = m_plan.stages();
 }
 
-void GpuWorld::uploadShapeTables()
+void GpuWorld::uploadShapeTables(bool appended)
 {
+    // The tables only grow between rebuilds (rows are never changed in place), so after an add
+    // only their new tails travel.
     DeviceWorld& w = *m_dev;
-    auto uploadTable = [&](auto& arr, auto v) {
-        if (v.empty()) v.resize(1);  // a bound buffer even when the table is empty
-        arr.upload(w.ctx, v);
+    size_t table = 0;
+    auto uploadTable = [&](auto& arr, const auto& v) {
+        size_t& done = m_uploadedShapeRows[table++];
+        if (!appended) done = 0;
+        if (v.empty()) {
+            std::decay_t<decltype(v)> one(1);  // a bound buffer even when the table is empty
+            arr.upload(w.ctx, one);
+            done = 0;
+        } else if (v.size() > done) {
+            arr.upload(w.ctx, v.data() + done, v.size() - done, done);
+            done = v.size();
+        }
     };
     uploadTable(w.shapes, m_shapes.shapes);
     uploadTable(w.hullVertices, m_shapes.vertices);
@@ -194,7 +206,7 @@ void GpuWorld::rebuild()
     m_removed.clear();
     m_rowsStale = false;
     resizeBodies(w, int(m_rows.size()));
-    uploadShapeTables();
+    uploadShapeTables(false);
     makePlan();
     // Rows changed meaning: the warm-start cache is dropped (one step without warm start).
     size_t n = m_rows.size();
@@ -229,7 +241,7 @@ void GpuWorld::followRows()
     }
     const size_t n = m_rows.size();
     resizeBodies(w, int(n));  // keeps every row's contents
-    if (m_shapes.takeGrown()) uploadShapeTables();
+    if (m_shapes.takeGrown()) uploadShapeTables(true);
     makePlan();
     w.pairCapacity = std::max(w.pairCapacity, std::max<size_t>(256, 4 * n));
     w.contactCapacity = std::max(w.contactCapacity, std::max<size_t>(256, 2 * n));

@@ -65,7 +65,8 @@ private:
     void rebuild();
     // The rows follow the objects added and removed since the last step, the rest untouched.
     void followRows();
-    void uploadShapeTables();
+    // The shape tables to the device: whole, or (appended) only the rows added since.
+    void uploadShapeTables(bool appended);
     void makePlan();
     // True when a collision object's shape is no longer the one the tables were built for.
     bool shapesSwapped() const;
@@ -95,6 +96,7 @@ private:
     Plan m_plan;
     ShapeTables m_shapes;
     RowMap m_rows;
+    size_t m_uploadedShapeRows[5] = {};  // rows of each shape table on the device
     std::unordered_set<const btCollisionObject*> m_removed;  // since the rows last followed the world
     bool m_rowsStale = true;  // objects added or removed since the rows last followed them
     std::vector<Mirror> m_mirror;

@@ -92,3 +92,21 @@ TEST(Churn, PileStaysWhileBodiesComeAndGo)
     EXPECT_LT(worst, 1e-3) << "pile body " << worstBody << " moved";
     EXPECT_TRUE(scenes::allFinite(busy));
 }
+
+// Shapes that first come with a body added mid-run reach the device as appended table rows:
+// a hull and a sphere added after the world has stepped land as on stock.
+TEST(Churn, NewShapesMidRunLandAsStock)
+{
+    SideBySide s(scenes::restingBox);
+    s.step(10);
+    s.both([](Scene& scene) {
+        std::vector<btVector3> points;
+        for (int i = 0; i < 8; ++i) points.emplace_back((i & 1) ? 0.4f : -0.4f, (i & 2) ? 0.3f : -0.3f, (i & 4) ? 0.5f : -0.5f);
+        scene.addBody(scene.hullShape(points), 1, btVector3(3, 2, 0));
+        scene.addBody(scene.sphereShape(0.25f), 1, btVector3(-3, 2, 0));
+    });
+    s.step(90);
+    ASSERT_TRUE(s.onGpu()) << s.gpu->report()->cpuPathReason;
+    for (int i = 2; i <= 3; ++i)
+        EXPECT_NEAR(s.gpuY(i), s.stockY(i), 0.01) << "body " << i << ": btgpu " << s.gpuY(i) << ", stock " << s.stockY(i);
+}
