@@ -27,12 +27,13 @@ const btVector3* hullPoints(const btCollisionShape* shape, int* count)
         case CONVEX_HULL_SHAPE_PROXYTYPE: {
             auto* hull = static_cast<const btConvexHullShape*>(shape);
             *count = hull->getNumPoints();
-            return hull->getUnscaledPoints();
+            // Bullet's getUnscaledPoints takes &array[0]: undefined on an empty hull.
+            return *count > 0 ? hull->getUnscaledPoints() : nullptr;
         }
         case CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE: {
             auto* cloud = static_cast<const btConvexPointCloudShape*>(shape);
             *count = cloud->getNumPoints();
-            return cloud->getUnscaledPoints();
+            return *count > 0 ? cloud->getUnscaledPoints() : nullptr;
         }
         default:
             *count = 0;
