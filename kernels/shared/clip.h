@@ -32,7 +32,7 @@ static inline int btgExtremeFace(BtgCollider h, BTG_CONST_GLOBAL BtgFace* faces,
 
 /* One Sutherland–Hodgman step against the plane planeN.x = planeD (keeps the side <= 0).
  * Each corner carries the labels of its two polygon edges, (incoming << 8) | outgoing, as
- * box3d's b3ClipPolygon does: a corner cut on the edge prev -> cur takes that edge and the
+ * box3d's polygon clipping does: a corner cut on the edge prev -> cur takes that edge and the
  * clipping plane's label `side`, so the labels name the corner by the features that make it. */
 static inline int btgClipPolygon(const BtgFloat4* in, const uint* inLabels, int n, BtgFloat4 planeN, float planeD,
                                  uint side, BtgFloat4* out, uint* outLabels)

@@ -100,7 +100,7 @@ typedef struct {
  *   VERTEX  | hull vertex number: hull–plane, the vertex that touches
  *   CLIP    | face of A & 0x7f << 23 | face of B & 0x7f << 16 | edge label << 8 | edge label:
  *           hull–hull face contact, a corner of the clipped polygon named by the two polygon
- *           edges that meet there (box3d's b3FeaturePair); a label is BTG_FEATURE_EDGE_OF_B |
+ *           edges that meet there (box3d's feature pair); a label is BTG_FEATURE_EDGE_OF_B |
  *           edge k of B's face, or edge k of A's face (& 0x7f); whichever hull is the reference,
  *           the same corner gets the same id (the pair is flipped when B is, as box3d does)
  *   EDGES   | edge direction of A & 0x7fff << 15 | of B & 0x7fff: hull–hull edge contact
