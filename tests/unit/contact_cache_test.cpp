@@ -64,6 +64,18 @@ void expectSameContact(const BtgContact& d, const BtgContact& r, int i)
 
 }  // namespace
 
+
+namespace {
+// The warm-start cache as the previous substep left it: its entries and their count.
+void uploadCache(DeviceWorld& w, const std::vector<BtgCachedContact>& cache)
+{
+    w.contactCache.upload(w.ctx, cache);
+    std::vector<uint> counters = w.counters.download(w.ctx, kNumCounters);
+    counters[kPrevContactCount] = uint(cache.size());
+    w.counters.upload(w.ctx, counters);
+}
+}  // namespace
+
 TEST(ContactCache, CompactionMatchesReference)
 {
     std::mt19937 rng(7);
@@ -268,10 +280,7 @@ TEST(ContactCache, SeveralManifoldsPerPair)
     test::uploadWorld(w, bodies, ms, uint(pairs), {}, expect.contacts.size() + 8);
     w.pairManifolds.upload(w.ctx, ranges);
     w.pairCapacity = ranges.size();  // pair slots, not manifold slots
-    w.contactCache.upload(w.ctx, cache);
-    std::vector<uint> counters = w.counters.download(w.ctx, kNumCounters);
-    counters[kPrevContactCount] = uint(cache.size());
-    w.counters.upload(w.ctx, counters);
+    uploadCache(w, cache);
     buildContacts(w, params);
     std::vector<BtgContact> got = test::downloadContacts(w);
     ASSERT_EQ(got.size(), expect.contacts.size());
@@ -317,10 +326,7 @@ struct Warm {
         std::vector<BtgContact> expect = ref::buildContactsFromCache({now}, 1, bodies, cache, params);
         DeviceWorld w(test::context());
         test::uploadWorld(w, bodies, {now}, 1, {}, 4);
-        w.contactCache.upload(w.ctx, cache);
-        std::vector<uint> counters = w.counters.download(w.ctx, kNumCounters);
-        counters[kPrevContactCount] = uint(cache.size());
-        w.counters.upload(w.ctx, counters);
+        uploadCache(w, cache);
         buildContacts(w, params);
         std::vector<BtgContact> got = test::downloadContacts(w);
         EXPECT_EQ(got.size(), 1u);
