@@ -20,7 +20,10 @@ std::string fmt(const char* f, double v)
     return b;
 }
 std::string g6(double v) { return fmt("%.6g", v); }
-std::string vec(const btVector3& v) { return "(" + g6(v.x()) + ", " + g6(v.y()) + ", " + g6(v.z()) + ")"; }
+std::string vec(const btVector3& v)
+{
+    return "(" + g6(v.x() + 0.0) + ", " + g6(v.y() + 0.0) + ", " + g6(v.z() + 0.0) + ")";  // + 0.0: no "-0"
+}
 
 const char* verdictWords(int code)
 {

@@ -56,6 +56,7 @@ void restoreObject(btRigidBody& b, const CO& c, Restoration& r)
     auto note = [&](bool differs, const char* field) {
         if (differs) ++r.restored[field];
     };
+    const int importedFlags = b.getCollisionFlags();
     note(b.getFriction() != btScalar(c.m_friction), "friction");
     b.setFriction(btScalar(c.m_friction));
     note(b.getRestitution() != btScalar(c.m_restitution), "restitution");
@@ -88,7 +89,7 @@ void restoreObject(btRigidBody& b, const CO& c, Restoration& r)
     b.setInterpolationAngularVelocity(vec(c.m_interpolationAngularVelocity));
     // Last: the setters above add CF_HAS_CONTACT_STIFFNESS_DAMPING; the file's flags are the truth
     // (kinematic, static, no contact response, custom material callback, ...).
-    note(b.getCollisionFlags() != c.m_collisionFlags, "collision flags (kinematic, no contact response, ...)");
+    note(importedFlags != c.m_collisionFlags, "collision flags (kinematic, no contact response, ...)");
     b.setCollisionFlags(c.m_collisionFlags);
     // Which objects a body ignores (setIgnoreCollisionCheck) is not in the file; constraints
     // that disable collisions between their bodies set the same switch and are imported.

@@ -332,3 +332,29 @@ TEST(Compare, DifferentPhysicsIsCaught)
     EXPECT_FALSE(r.aggregatesWithin);
     EXPECT_EQ(r.bodiesOutside, 1);
 }
+
+// A triangle-mesh ground (Bullet serializes the mesh and its BVH): today meshes send the world to
+// the CPU path (exit 3); once the GPU path serves them the same file must stay within chaos.
+TEST(Compare, MeshGroundFollowsItsPath)
+{
+    btTriangleMesh mesh;
+    mesh.addTriangle(btVector3(-20, 0, -20), btVector3(20, 0, -20), btVector3(-20, 0, 20));
+    mesh.addTriangle(btVector3(20, 0, -20), btVector3(20, 0, 20), btVector3(-20, 0, 20));
+    scenes::Scene scene(WorldKind::Stock);
+    scene.addBody(scene.ownShape(new btBvhTriangleMeshShape(&mesh, true)), 0, btVector3(0, 0, 0));
+    btBoxShape* box = scene.boxShape(btVector3(0.5f, 0.5f, 0.5f));
+    for (int i = 0; i < 3; ++i) scene.addBody(box, 1, btVector3(btScalar(1.5 * i), btScalar(1 + i), 0));
+    const CompareResult r = compareFile(savedScene("mesh_ground", scene), 120);
+    std::fputs(summary(r).c_str(), stdout);
+    ASSERT_NE(r.exitCode, kBadInput) << r.error;
+    EXPECT_EQ(r.bodies, 4);
+    if (r.gpuPathEveryStep) {
+        EXPECT_EQ(r.exitCode, kWithinChaos);
+    } else {
+        EXPECT_EQ(r.exitCode, kCpuPath);
+        EXPECT_FALSE(r.cpuPathReason.empty());
+    }
+    // The boxes landed on the mesh on stock (it was imported, not dropped): centres at 0.5.
+    for (const BodyResult& b : r.finalBodies)
+        if (b.dynamic) EXPECT_NEAR(b.stock.y(), 0.5, 0.05) << "body " << b.index;
+}
