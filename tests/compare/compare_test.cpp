@@ -358,3 +358,62 @@ TEST(Compare, MeshGroundFollowsItsPath)
     for (const BodyResult& b : r.finalBodies)
         if (b.dynamic) EXPECT_NEAR(b.stock.y(), 0.5, 0.05) << "body " << b.index;
 }
+
+#ifdef BTGPU_DOUBLE_WRITER
+#include "double_scene.h"
+
+// A file from Bullet's double build: its double records restored into the float worlds.
+TEST(Compare, DoublePrecisionFileLoads)
+{
+    namespace ds = btgpu::double_scene;
+    const std::string path = tempDir() + "/double.bullet";
+    ASSERT_EQ(std::system((std::string(BTGPU_DOUBLE_WRITER) + " " + path).c_str()), 0);
+    const FileCheck file = checkBulletFile(path);
+    ASSERT_TRUE(file.ok) << file.error;
+    EXPECT_TRUE(file.doublePrecision);
+    std::string error;
+    std::unique_ptr<ImportedWorld> w = ImportedWorld::load(file, Engine::Stock, Config(), error);
+    ASSERT_TRUE(w) << error;
+    ASSERT_EQ(int(w->bodies().size()), ds::kBoxes + 1);
+    for (int i = 0; i < ds::kBoxes; ++i) {
+        const btRigidBody& b = *w->bodies()[size_t(i + 1)];
+        EXPECT_EQ(b.getLinearVelocity(), btVector3(btScalar(ds::kVelocityX), 0, btScalar(ds::kVelocityZPerBody * i)));
+        EXPECT_EQ(b.getLinearDamping(), btScalar(ds::kLinearDamping));
+        EXPECT_EQ(b.getAngularDamping(), btScalar(ds::kAngularDamping));
+        EXPECT_EQ(b.getLinearSleepingThreshold(), btScalar(ds::kLinearSleep));
+        EXPECT_EQ(b.getAngularSleepingThreshold(), btScalar(ds::kAngularSleep));
+        EXPECT_FLOAT_EQ(1 / b.getInvMass(), btScalar(ds::kMass));
+    }
+    const CompareResult r = compareFile(path, 60);
+    std::fputs(summary(r).c_str(), stdout);
+    EXPECT_TRUE(r.gpuPathEveryStep) << r.cpuPathReason;
+    EXPECT_EQ(r.exitCode, kWithinChaos);
+}
+#endif
+
+// The app's own use: a btgpu world saved mid-run, its bodies back as the GPU path left them; a
+// btgpu world saved at its start and loaded steps bitwise as the one that was saved.
+TEST(SaveWorld, GpuWorldSavesAndReloads)
+{
+    scenes::ScenePtr running = scenes::basicDemo(WorldKind::Gpu);
+    for (int i = 0; i < 45; ++i) running->step();  // landing: contacts, velocities
+    ASSERT_TRUE(running->gpuWorld()->isGpuPath()) << running->report()->cpuPathReason;
+    std::string error;
+    std::unique_ptr<ImportedWorld> w =
+        ImportedWorld::load(checkBulletFile(savedScene("gpu_running", *running)), Engine::Gpu, Config(), error);
+    ASSERT_TRUE(w) << error;
+    btCollisionObjectArray& saved = running->world().getCollisionObjectArray();
+    ASSERT_EQ(int(w->bodies().size()), saved.size());
+    for (int i = 0; i < saved.size(); ++i) expectSameBody(*btRigidBody::upcast(saved[i]), *w->bodies()[size_t(i)], i);
+
+    scenes::ScenePtr fresh = scenes::basicDemo(WorldKind::Gpu);
+    std::unique_ptr<ImportedWorld> g =
+        ImportedWorld::load(checkBulletFile(savedScene("gpu_fresh", *fresh)), Engine::Gpu, Config(), error);
+    ASSERT_TRUE(g) << error;
+    for (int s = 0; s < 120; ++s) {
+        fresh->step();
+        g->world().stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
+        ASSERT_TRUE(g->gpuWorld()->isGpuPath()) << g->gpuWorld()->report().cpuPathReason;
+    }
+    EXPECT_EQ(fresh->gpuWorld()->stateHash(), g->gpuWorld()->stateHash());
+}
