@@ -136,8 +136,8 @@ std::string markdown(const CompareResult& r)
     o << "\n## Bodies at the last step\n\n" << r.bodiesOutside << " of " << r.dynamicBodies
       << " dynamic bodies are farther from the nudged runs' mean centre than " << tol::kChaosFactor
       << " × their largest stock-to-stock distance + " << tol::kChaosPositionFloor * 100
-      << " cm. The farthest (all in `bodies.csv`):\n\n| body | name | btgpu centre | nudged stock mean | distance m | band m | within |\n"
-         "| --- | --- | --- | --- | --- | --- | --- |\n";
+      << " cm. The farthest (all in `bodies.csv`):\n\n| body | name | btgpu centre | nudged stock mean | distance m | band m | within | speed m/s btgpu / stock | at rest btgpu / stock runs |\n"
+         "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
     std::vector<const BodyResult*> order;
     for (const BodyResult& b : r.finalBodies)
         if (b.dynamic) order.push_back(&b);
@@ -147,7 +147,9 @@ std::string markdown(const CompareResult& r)
     for (size_t i = 0; i < order.size() && i < 10; ++i) {
         const BodyResult& b = *order[i];
         o << "| " << b.index << " | " << b.name << " | " << vec(b.gpu) << " | " << vec(b.stockMean) << " | " << g6(b.distance)
-          << " | " << g6(b.bound) << " | " << (b.within() ? "yes" : "**no**") << " |\n";
+          << " | " << g6(b.bound) << " | " << (b.within() ? "yes" : "**no**") << " | " << fmt("%.3g", b.gpuSpeed) << " / "
+          << fmt("%.3g", b.stockMeanSpeed) << " | " << (b.gpuAtRest ? "yes" : "no") << " / " << fmt("%.0f%%", 100 * b.stockAtRest)
+          << " |\n";
     }
     o << "\n## What the loading restored and lost\n\n";
     o << "Bullet's `btBulletWorldImporter` keeps each body's transform, shape, mass, friction, restitution and factors, "
@@ -186,13 +188,14 @@ std::string bodiesCsv(const CompareResult& r)
     std::ostringstream o;
     o.precision(9);
     o << "body,name,dynamic,btgpu x,btgpu y,btgpu z,stock x,stock y,stock z,nudged mean x,nudged mean y,nudged mean z,"
-         "distance,stock chaos,band,within\n";
+         "distance,stock chaos,band,within,btgpu speed,nudged mean speed,btgpu at rest,nudged runs at rest\n";
     for (const BodyResult& b : r.finalBodies) {
         std::string name = b.name;
         std::replace(name.begin(), name.end(), ',', ' ');
         o << b.index << "," << name << "," << (b.dynamic ? 1 : 0) << "," << b.gpu.x() << "," << b.gpu.y() << "," << b.gpu.z()
           << "," << b.stock.x() << "," << b.stock.y() << "," << b.stock.z() << "," << b.stockMean.x() << "," << b.stockMean.y()
-          << "," << b.stockMean.z() << "," << b.distance << "," << b.chaos << "," << b.bound << "," << (b.within() ? 1 : 0) << "\n";
+          << "," << b.stockMean.z() << "," << b.distance << "," << b.chaos << "," << b.bound << "," << (b.within() ? 1 : 0) << "," << b.gpuSpeed
+          << "," << b.stockMeanSpeed << "," << (b.gpuAtRest ? 1 : 0) << "," << b.stockAtRest << "\n";
     }
     return o.str();
 }

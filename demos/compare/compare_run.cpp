@@ -18,8 +18,19 @@ namespace {
 struct Run {
     std::vector<std::vector<double>> measures;  // [step][measure]
     std::vector<std::vector<btVector3>> centres;  // [sample][body]
+    std::vector<double> finalSpeed;               // [body], m/s, after the last step
+    std::vector<bool> finalAtRest;                // [body]
     std::vector<double> stepMs;
 };
+
+// Asleep, or slower than its own sleeping thresholds (Bullet's test for starting the clock that
+// puts a body to sleep).
+bool atRest(const btRigidBody* b)
+{
+    const bool still = b->getLinearVelocity().length2() < b->getLinearSleepingThreshold() * b->getLinearSleepingThreshold() &&
+                       b->getAngularVelocity().length2() < b->getAngularSleepingThreshold() * b->getAngularSleepingThreshold();
+    return b->getActivationState() == ISLAND_SLEEPING || still;
+}
 
 double atRestFraction(const std::vector<btRigidBody*>& bodies)
 {
@@ -27,9 +38,7 @@ double atRestFraction(const std::vector<btRigidBody*>& bodies)
     for (const btRigidBody* b : bodies) {
         if (b->getInvMass() == 0) continue;
         ++n;
-        const bool still = b->getLinearVelocity().length2() < b->getLinearSleepingThreshold() * b->getLinearSleepingThreshold() &&
-                           b->getAngularVelocity().length2() < b->getAngularSleepingThreshold() * b->getAngularSleepingThreshold();
-        rest += b->getActivationState() == ISLAND_SLEEPING || still ? 1 : 0;
+        rest += atRest(b) ? 1 : 0;
     }
     return n ? double(rest) / n : 0.0;
 }
@@ -127,6 +136,10 @@ CompareResult runCompare(const CompareOptions& o)
                 ++nextSample;
             }
         }
+        for (const btRigidBody* b : w.bodies()) {
+            r.finalSpeed.push_back(b->getLinearVelocity().length());
+            r.finalAtRest.push_back(atRest(b));
+        }
         return r;
     };
 
@@ -219,6 +232,12 @@ CompareResult runCompare(const CompareOptions& o)
                 br.stock = stock.centres[k][j];
                 br.stockMean = mean;
                 br.distance = distance;
+                br.gpuSpeed = gpu.finalSpeed[j];
+                br.gpuAtRest = gpu.finalAtRest[j];
+                for (const Run& r : nudged) {
+                    br.stockMeanSpeed += r.finalSpeed[j] / double(nudged.size());
+                    br.stockAtRest += (r.finalAtRest[j] ? 1.0 : 0.0) / double(nudged.size());
+                }
                 br.chaos = chaos;
                 br.bound = bound;
                 res.finalBodies.push_back(br);

@@ -32,6 +32,9 @@ struct BodyResult {
     double distance = 0.0;            // |gpu - stockMean|, m
     double chaos = 0.0;               // largest distance between two nudged stock runs, m
     double bound = 0.0;               // kChaosFactor * chaos + kChaosPositionFloor
+    double gpuSpeed = 0.0, stockMeanSpeed = 0.0;  // m/s
+    bool gpuAtRest = false;
+    double stockAtRest = 0.0;         // fraction of the nudged runs in which it is at rest
     bool within() const { return distance <= bound; }
 };
 
