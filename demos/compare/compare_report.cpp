@@ -126,7 +126,7 @@ std::string markdown(const CompareResult& r)
           << r.stepsOutside[m] << " of " << r.steps << " | " << worst + 1 << " (" << fmt("%.2f", r.ratio(m, worst)) << ") |\n";
     }
     o << "\nMeasures: mean height and spread of the dynamic bodies' centres (m; spread = rms distance across `up` from "
-         "their centroid), their kinetic energy (J, linear), contacts (manifolds with points: stock's dispatcher, btgpu's `Report::contacts` on the GPU path — not judged: btgpu keeps no manifold for a sleeping pair and keeps edge-touching ones stock's box-box detector drops), at rest (fraction of dynamic "
+         "their centroid), their kinetic energy (J, linear), contacts (manifolds with points: stock's dispatcher, btgpu's `Report::contacts` on the GPU path — not judged: btgpu keeps no manifold for a sleeping pair and makes one for boxes touching only at an edge or a corner, which stock's box-box detector leaves without points), at rest (fraction of dynamic "
          "bodies asleep or below their own sleeping thresholds).\n";
     if (!r.outside.empty()) {
         o << "\n";

@@ -168,10 +168,15 @@ std::unique_ptr<ImportedWorld> ImportedWorld::load(const FileCheck& file, Engine
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstring>
+#include <thread>
 
 namespace btgpu::compare {
+
+constexpr int kProbeSeconds = 120;
 
 std::string probeImport(const FileCheck& file)
 {
@@ -183,13 +188,27 @@ std::string probeImport(const FileCheck& file)
         std::unique_ptr<ImportedWorld> w = ImportedWorld::load(file, Engine::Stock, Config(), error);
         ::_exit(w ? 0 : 3);
     }
+    // A damaged count can also make the importer loop for hours (a hull's points are added one by
+    // one, each recomputing its bounds): the child gets a deadline.
     int status = 0;
-    while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kProbeSeconds);
+    for (;;) {
+        const pid_t done = ::waitpid(child, &status, WNOHANG);
+        if (done == child) break;
+        if (done < 0 && errno != EINTR) return "";
+        if (std::chrono::steady_clock::now() > deadline) {
+            ::kill(child, SIGKILL);
+            while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+            }
+            return "corrupt: Bullet's importer did not finish within " + std::to_string(kProbeSeconds) + " s";
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
     if (WIFSIGNALED(status))
         return std::string("corrupt: Bullet's importer crashed on it (") + strsignal(WTERMSIG(status)) + ")";
     if (WIFEXITED(status) && WEXITSTATUS(status) == 3) return "Bullet's importer rejected the file";
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return "Bullet's importer failed on it (exit " + std::to_string(WEXITSTATUS(status)) + ")";
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+        return "corrupt: Bullet's importer failed on it (exit " + std::to_string(WEXITSTATUS(status)) + ")";
     return "";
 }
 

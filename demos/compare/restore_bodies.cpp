@@ -66,7 +66,7 @@ void restoreObject(btRigidBody& b, const CO& c, Restoration& r)
     const btVector3 af = vec(c.m_anisotropicFriction);
     note(b.getAnisotropicFriction() != af || b.hasAnisotropicFriction(c.m_hasAnisotropicFriction) != (c.m_hasAnisotropicFriction != 0),
          "anisotropic friction");
-    b.setAnisotropicFriction(af, c.m_hasAnisotropicFriction ? c.m_hasAnisotropicFriction : btCollisionObject::CF_ANISOTROPIC_FRICTION);
+    b.setAnisotropicFriction(af, c.m_hasAnisotropicFriction);  // the mode (friction, rolling friction) as saved
     note(b.getContactStiffness() != btScalar(c.m_contactStiffness) || b.getContactDamping() != btScalar(c.m_contactDamping),
          "contact stiffness and damping");
     b.setContactStiffnessAndDamping(btScalar(c.m_contactStiffness), btScalar(c.m_contactDamping));
