@@ -20,6 +20,12 @@ std::string fmt(const char* f, double v)
     return b;
 }
 std::string g6(double v) { return fmt("%.6g", v); }
+std::string joined(const std::vector<std::string>& v)
+{
+    std::string s;
+    for (const std::string& x : v) s += (s.empty() ? "" : ", ") + x;
+    return s.empty() ? "none" : s;
+}
 std::string vec(const btVector3& v)
 {
     return "(" + g6(v.x() + 0.0) + ", " + g6(v.y() + 0.0) + ", " + g6(v.z() + 0.0) + ")";  // + 0.0: no "-0"
@@ -68,7 +74,7 @@ std::string summary(const CompareResult& r)
       << r.constraints << " constraints, " << r.steps << " steps of " << g6(r.dt) << " s\n";
     o << "  device: " << (r.device.empty() ? "none" : r.device) << "; ms/step stock " << fmt("%.3f", r.stockMsPerStep)
       << ", btgpu " << fmt("%.3f", r.gpuMsPerStep) << "\n";
-    if (r.gpuPathEveryStep) o << "  GPU path: every step\n";
+    if (r.gpuPathEveryStep) o << "  GPU path: every step; stages " << joined(r.gpuStages) << "\n";
     else
         o << "  GPU path: no, " << r.cpuPathSteps << " of " << r.steps << " steps on the CPU path from step "
           << r.firstCpuPathStep << ": " << r.cpuPathReason << "\n";
@@ -102,7 +108,9 @@ std::string markdown(const CompareResult& r)
     o << "- run: " << r.steps << " steps of " << g6(r.dt) << " s (`stepSimulation(dt, 1, dt)`), stock Bullet "
       << fmt("%.3f", r.stockMsPerStep) << " ms/step, btgpu " << fmt("%.3f", r.gpuMsPerStep) << " ms/step on "
       << (r.device.empty() ? "no device" : r.device) << "\n";
-    if (r.gpuPathEveryStep) o << "- GPU path: **every step**\n";
+    if (r.gpuPathEveryStep)
+        o << "- GPU path: **every step**; the plan's stages: " << joined(r.gpuStages) << "; programs built: " << joined(r.gpuPrograms)
+          << "\n";
     else
         o << "- GPU path: **no** — " << r.cpuPathSteps << " of " << r.steps << " steps on the CPU path, from step "
           << r.firstCpuPathStep << ": " << r.cpuPathReason << "\n";

@@ -165,6 +165,8 @@ CompareResult runCompare(const CompareOptions& o)
     });
     res.gpuPathEveryStep = res.cpuPathSteps == 0;
     res.device = gpuWorld->report().device;
+    res.gpuStages = gpuWorld->report().stages;
+    res.gpuPrograms = gpuWorld->report().builtPrograms;
     res.gpuMsPerStep = median(gpu.stepMs);
     gw.reset();
 

@@ -54,6 +54,8 @@ struct CompareResult {
     int cpuPathSteps = 0, firstCpuPathStep = -1;
     std::string cpuPathReason;
     double stockMsPerStep = 0.0, gpuMsPerStep = 0.0;  // medians
+    // The btgpu world's plan after the last step: the stages it launched, the programs it built.
+    std::vector<std::string> gpuStages, gpuPrograms;
     // Aggregates: names, and per step (index s = after step s+1) btgpu's value, unnudged stock's,
     // and the band of the nudged runs.
     std::vector<std::string> measures;

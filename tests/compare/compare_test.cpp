@@ -7,6 +7,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -56,6 +57,13 @@ void writeAll(const std::string& path, const std::vector<char>& bytes)
 {
     std::ofstream f(path, std::ios::binary);
     f.write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+// The stages a box scene on the GPU path must have run: pairs, box-box contacts, the solve.
+void expectBoxStages(const CompareResult& r)
+{
+    for (const char* stage : {"find_pairs", "narrowphase_sat", "prepare_contacts", "solve_constraints", "integrate_transforms"})
+        EXPECT_NE(std::find(r.gpuStages.begin(), r.gpuStages.end(), stage), r.gpuStages.end()) << stage;
 }
 
 CompareResult compareFile(const std::string& path, int steps)
@@ -315,6 +323,7 @@ TEST(Compare, PileStaysWithinStocksChaos)
     EXPECT_TRUE(r.gpuPathEveryStep) << r.cpuPathReason;
     EXPECT_EQ(r.exitCode, kWithinChaos);
     EXPECT_EQ(r.dynamicBodies, 125);
+    expectBoxStages(r);
     const std::string out = tempDir() + "/pile_out";
     ASSERT_EQ(writeOutputs(r, out), "");
     for (const char* f : {"compare.md", "timeline.csv", "bodies.csv", "divergence.svg"})
@@ -329,6 +338,7 @@ TEST(Compare, StackStaysWithinStocksChaos)
     EXPECT_TRUE(r.gpuPathEveryStep) << r.cpuPathReason;
     EXPECT_EQ(r.exitCode, kWithinChaos);
     EXPECT_EQ(r.bodiesOutside, 0);
+    expectBoxStages(r);
 }
 
 TEST(Compare, JointedSceneRunsOnTheCpuPath)
@@ -379,6 +389,7 @@ TEST(Compare, DifferentPhysicsIsCaught)
     std::fputs(summary(r).c_str(), stdout);
     EXPECT_TRUE(r.gpuPathEveryStep) << r.cpuPathReason;
     EXPECT_EQ(r.exitCode, kOutsideChaos);
+    EXPECT_NE(std::find(r.gpuStages.begin(), r.gpuStages.end(), "solve_constraints"), r.gpuStages.end());
     EXPECT_FALSE(r.aggregatesWithin);
     EXPECT_EQ(r.bodiesOutside, 1);
 }
@@ -438,6 +449,7 @@ TEST(Compare, DoublePrecisionFileLoads)
     std::fputs(summary(r).c_str(), stdout);
     EXPECT_TRUE(r.gpuPathEveryStep) << r.cpuPathReason;
     EXPECT_EQ(r.exitCode, kWithinChaos);
+    expectBoxStages(r);
 }
 #endif
 
