@@ -134,17 +134,19 @@ void restoreRigid(btRigidBody& b, const RB& d, Restoration& r)
     b.setLinearFactor(vec(d.m_linearFactor));
     b.setAngularFactor(vec(d.m_angularFactor));
     // Forces applied since the last step: Bullet stores them multiplied by the factors, and
-    // applyCentralForce/applyTorque multiply again, so only unit factors give them back exactly.
+    // applyCentralForce/applyTorque multiply again, so they are applied under unit factors and
+    // the factors put back (exactly the stored sums).
     const btVector3 force = vec(d.m_totalForce), torque = vec(d.m_totalTorque);
     if (!force.isZero() || !torque.isZero()) {
-        if (b.getLinearFactor() == btVector3(1, 1, 1) && b.getAngularFactor() == btVector3(1, 1, 1)) {
-            b.clearForces();
-            b.applyCentralForce(force);
-            b.applyTorque(torque);
-            ++r.restored["forces and torques applied since the last step"];
-        } else {
-            ++r.lost["forces applied since the last step on a body with non-unit factors"];
-        }
+        const btVector3 linearFactor = b.getLinearFactor(), angularFactor = b.getAngularFactor();
+        b.setLinearFactor(btVector3(1, 1, 1));
+        b.setAngularFactor(btVector3(1, 1, 1));
+        b.clearForces();
+        b.applyCentralForce(force);
+        b.applyTorque(torque);
+        b.setLinearFactor(linearFactor);
+        b.setAngularFactor(angularFactor);
+        ++r.restored["forces and torques applied since the last step"];
     }
     // btRigidBody keeps these private and sets them only from its construction info.
     if (d.m_additionalDamping) ++r.lost["additional damping (m_additionalDamping: construction info only)"];

@@ -104,6 +104,12 @@ struct OddBodies {
             b->setActivationState(DISABLE_DEACTIVATION);
         }
         bodies[2]->setCollisionFlags(bodies[2]->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+        bodies[1]->setContactStiffnessAndDamping(3e4f, 0.25f);
+        bodies[1]->setHitFraction(0.5f);
+        bodies[0]->applyCentralForce(btVector3(4, 5, 6));  // pending until the next step
+        bodies[0]->applyTorque(btVector3(-1, 2, -3));
+        bodies[0]->setInterpolationLinearVelocity(btVector3(0.5f, 0.25f, 0.125f));
+        bodies[0]->setInterpolationAngularVelocity(btVector3(-0.5f, 0.75f, 1));
     }
 };
 
@@ -132,6 +138,13 @@ void expectSameBody(const btRigidBody& a, const btRigidBody& b, int i)
     EXPECT_EQ(a.getContactProcessingThreshold(), b.getContactProcessingThreshold());
     EXPECT_EQ(a.getCcdMotionThreshold(), b.getCcdMotionThreshold());
     EXPECT_EQ(a.getCcdSweptSphereRadius(), b.getCcdSweptSphereRadius());
+    EXPECT_EQ(a.getContactStiffness(), b.getContactStiffness());
+    EXPECT_EQ(a.getContactDamping(), b.getContactDamping());
+    EXPECT_EQ(a.getHitFraction(), b.getHitFraction());
+    EXPECT_EQ(a.getInterpolationLinearVelocity(), b.getInterpolationLinearVelocity());
+    EXPECT_EQ(a.getInterpolationAngularVelocity(), b.getInterpolationAngularVelocity());
+    EXPECT_EQ(a.getTotalForce(), b.getTotalForce());
+    EXPECT_EQ(a.getTotalTorque(), b.getTotalTorque());
     EXPECT_EQ(a.getCollisionFlags(), b.getCollisionFlags());
     EXPECT_EQ(a.getActivationState(), b.getActivationState());
     EXPECT_EQ(a.getDeactivationTime(), b.getDeactivationTime());
