@@ -42,6 +42,13 @@ constexpr double kChaosHeightFloor = 0.01;   // m
 constexpr double kChaosSpreadFloor = 0.01;   // m
 constexpr double kChaosEnergyFloor = 1e-3;   // J
 constexpr double kChaosStandingFloor = 0.01;
+// btgpu_compare (demos/compare) also bands, against the same stock runs: the number of touching
+// pairs (manifolds with points; 2, as a pair starts or stops touching a step earlier on either
+// side of the threshold), the fraction of bodies at rest (one in 100, as standing) and each
+// body's position (1 cm, as the mean height).
+constexpr double kChaosContactsFloor = 2.0;
+constexpr double kChaosAtRestFloor = 0.01;
+constexpr double kChaosPositionFloor = 0.01;  // m
 // No box centre of BasicDemo's pile more than 2 cm below its resting height (half extent 0.1),
 // i.e. sunk into the ground.
 constexpr double kSinkDepth = 0.02;          // m
