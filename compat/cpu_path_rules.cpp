@@ -7,6 +7,7 @@
 
 #include "btgpu/Config.h"
 #include "parallel_rows.h"
+#include "convex_rows.h"
 #include "shape_tables.h"
 
 #include <btBulletDynamicsCommon.h>
@@ -85,7 +86,7 @@ bool servedShapeType(int type)
 {
     return type == BOX_SHAPE_PROXYTYPE || type == CONVEX_HULL_SHAPE_PROXYTYPE ||
            type == CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE || type == SPHERE_SHAPE_PROXYTYPE ||
-           type == STATIC_PLANE_PROXYTYPE;
+           type == STATIC_PLANE_PROXYTYPE || isSupportShapeType(type);
 }
 
 // What a world built the stock way would use: a btDefaultCollisionConfiguration with the
@@ -133,6 +134,12 @@ const char* shapeTypeName(int type)
         case CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE: return "convex point cloud";
         case SPHERE_SHAPE_PROXYTYPE: return "sphere";
         case STATIC_PLANE_PROXYTYPE: return "static plane";
+        case CAPSULE_SHAPE_PROXYTYPE: return "capsule";
+        case CYLINDER_SHAPE_PROXYTYPE: return "cylinder";
+        case CONE_SHAPE_PROXYTYPE: return "cone";
+        case MULTI_SPHERE_SHAPE_PROXYTYPE: return "multi-sphere";
+        case CONVEX_TRIANGLEMESH_SHAPE_PROXYTYPE: return "convex triangle mesh";
+        case UNIFORM_SCALING_SHAPE_PROXYTYPE: return "uniform scaling";
         default: return "shape";
     }
 }

@@ -29,6 +29,8 @@ TEST(WorldApi, PlanLeavesOutSatUntilAHullPairExists)
     ASSERT_TRUE(r->gpuPath) << r->cpuPathReason;
     EXPECT_FALSE(has(r->builtPrograms, "narrowphase_sat"));
     EXPECT_FALSE(has(r->stages, "narrowphase_sat"));
+    EXPECT_FALSE(has(r->builtPrograms, "narrowphase_gjk"));  // no convex shape: no GJK program
+    EXPECT_FALSE(has(r->stages, "narrowphase_gjk"));
     EXPECT_TRUE(has(r->builtPrograms, "narrowphase"));
     // Two boxes arrive: a hull–hull pair kind now exists, and the program comes in.
     btBoxShape* box = scene.boxShape(btVector3(.5, .5, .5));
@@ -37,6 +39,7 @@ TEST(WorldApi, PlanLeavesOutSatUntilAHullPairExists)
     for (int i = 0; i < 30; ++i) scene.step();
     EXPECT_TRUE(has(r->stages, "narrowphase_sat"));
     EXPECT_TRUE(has(r->builtPrograms, "narrowphase_sat"));
+    EXPECT_FALSE(has(r->builtPrograms, "narrowphase_gjk"));
     EXPECT_GT(scene.body(6)->getWorldTransform().getOrigin().y(), 1.4) << "the upper box fell through";
 }
 

@@ -63,6 +63,29 @@ TEST(Plan, StagesInTheTalksOrder)
     EXPECT_FALSE(has(jacobi, Stage::SolveConstraints));
 }
 
+TEST(Plan, ConvexShapesBringTheGjkStagesAndNothingElseDoes)
+{
+    // Spheres, boxes and a plane: no GJK program, no persistent-manifold store.
+    PlanInput in;
+    in.bodies = {body(BTG_SHAPE_PLANE, 0, false), body(BTG_SHAPE_SPHERE, 1, true), body(BTG_SHAPE_HULL, 1, true)};
+    std::vector<Stage> stages = derivePlan(in).plan.substep();
+    EXPECT_FALSE(has(stages, Stage::NarrowphaseGjk));
+    EXPECT_FALSE(has(stages, Stage::StorePersistentManifolds));
+    // A capsule (a convex row) arrives: its pairs with the plane, the sphere and the box are GJK
+    // kinds; the store follows the cache's.
+    in.bodies.push_back(body(BTG_SHAPE_CONVEX, 1, true));
+    DerivedPlan d = derivePlan(in);
+    EXPECT_TRUE(d.plan.kinds.has(BTG_PAIR_PLANE_CONVEX));
+    EXPECT_TRUE(d.plan.kinds.has(BTG_PAIR_SPHERE_CONVEX));
+    EXPECT_TRUE(d.plan.kinds.has(BTG_PAIR_HULL_CONVEX));
+    EXPECT_FALSE(d.plan.kinds.has(BTG_PAIR_CONVEX_CONVEX));
+    stages = d.plan.substep();
+    ASSERT_TRUE(has(stages, Stage::NarrowphaseGjk));
+    auto at = [&](Stage st) { return std::find(stages.begin(), stages.end(), st) - stages.begin(); };
+    EXPECT_EQ(at(Stage::StorePersistentManifolds), at(Stage::StoreContactCache) + 1);
+    EXPECT_LT(at(Stage::NarrowphaseGjk), at(Stage::ContactCache));
+}
+
 TEST(Plan, NothingToCollideRunsOnlyTheIntegrator)
 {
     PlanInput in;
