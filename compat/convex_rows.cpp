@@ -50,6 +50,13 @@ bool isSupportShapeType(int type)
            type == UNIFORM_SCALING_SHAPE_PROXYTYPE;
 }
 
+bool isFeaturelessHull(const btCollisionShape* shape)
+{
+    const int type = shape->getShapeType();
+    return (type == CONVEX_HULL_SHAPE_PROXYTYPE || type == CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE) &&
+           !static_cast<const btPolyhedralConvexShape*>(shape)->getConvexPolyhedron();
+}
+
 bool convexRow(const btCollisionShape* shape, float factor, BtgShape& s, std::vector<BtgFloat4>& vertices,
                std::string* whyNot)
 {
@@ -112,6 +119,27 @@ bool convexRow(const btCollisionShape* shape, float factor, BtgShape& s, std::ve
             s.convexType = BTG_CONVEX_POINTS;
             s.margin = m->getMargin() * f;
             appendPoints(std::move(collect.points), f, s, vertices);
+            return true;
+        }
+        case CONVEX_HULL_SHAPE_PROXYTYPE:
+        case CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE: {
+            // A hull without polyhedral features: stock collides it by GJK on its scaled points
+            // (btConvexHullShape::localGetSupportingVertex), so it is a support-function row.
+            int n = 0;
+            const btVector3* points = hullPoints(shape, &n);
+            if (n <= 0 || !points) {
+                *whyNot = "convex hull without points";
+                return false;
+            }
+            std::vector<std::array<float, 3>> scaled;
+            const btVector3& sc = shape->getLocalScaling();
+            for (int i = 0; i < n; ++i) {
+                btVector3 p = points[i] * sc;
+                scaled.push_back({p.x(), p.y(), p.z()});
+            }
+            s.convexType = BTG_CONVEX_POINTS;
+            s.margin = shape->getMargin() * f;
+            appendPoints(std::move(scaled), f, s, vertices);
             return true;
         }
         case UNIFORM_SCALING_SHAPE_PROXYTYPE: {

@@ -14,6 +14,9 @@ namespace btgpu {
 
 // A shape type served as a BTG_SHAPE_CONVEX row.
 bool isSupportShapeType(int type);
+// A btConvexHullShape or btConvexPointCloudShape the app gave no polyhedral features: stock
+// collides it by GJK, so it is served as a BTG_SHAPE_CONVEX row of its points too.
+bool isFeaturelessHull(const btCollisionShape* shape);
 
 // Fills s's type, convexType, upAxis, isCapsule, param and margin (scaled by `factor`, a
 // btUniformScalingShape's) and appends its vertex rows to `vertices`; false with *whyNot when

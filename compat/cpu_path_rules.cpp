@@ -152,6 +152,7 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, int numActions
     if (numActions > 0) return "actions (addAction, vehicles, characters) are not on the GPU path yet";
     const btCollisionObjectArray& objs = world.getCollisionObjectArray();
     shapes->beginReferences();
+    bool featuredBox = false, plainBox = false;
     for (int i = 0; i < objs.size(); ++i) {
         const btCollisionObject* o = objs[i];
         int type = o->getInternalType();
@@ -159,6 +160,8 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, int numActions
             return "collision object " + std::to_string(i) + " is not a rigid body (ghost, soft or other object)";
         std::string why;
         if (shapes->add(o->getCollisionShape(), &why) < 0) return "body " + std::to_string(i) + ": " + why;
+        if (o->getCollisionShape()->getShapeType() == BOX_SHAPE_PROXYTYPE)
+            (static_cast<const btBoxShape*>(o->getCollisionShape())->getConvexPolyhedron() ? featuredBox : plainBox) = true;
         // Set only through btRigidBodyConstructionInfo, so it cannot change after the add (any
         // body: a static one may be made dynamic later). btRigidBody::applyDamping then scales
         // slow bodies' velocities down; the GPU path does not.
@@ -167,6 +170,10 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, int numActions
             return "body " + std::to_string(i) +
                    ": additional damping (btRigidBodyConstructionInfo::m_additionalDamping)";
     }
+    // A featured box is served as a featured hull (clipped against featured shapes, GJK against
+    // the rest); against a box without features stock still runs btBoxBoxDetector.
+    if (featuredBox && plainBox)
+        return "boxes with polyhedral features (initializePolyhedralFeatures) beside boxes without";
     return "";
 }
 

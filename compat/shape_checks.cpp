@@ -185,9 +185,12 @@ std::uint64_t shapeFingerprint(const btCollisionShape* shape)
     int type = shape->getShapeType();
     mix(&type, sizeof(type));
     switch (type) {
-        case BOX_SHAPE_PROXYTYPE:
+        case BOX_SHAPE_PROXYTYPE: {
             mixVec(static_cast<const btBoxShape*>(shape)->getHalfExtentsWithMargin());
+            const int featured = static_cast<const btBoxShape*>(shape)->getConvexPolyhedron() != nullptr;
+            mix(&featured, sizeof(featured));
             break;
+        }
         case SPHERE_SHAPE_PROXYTYPE: {
             float r = static_cast<const btSphereShape*>(shape)->getRadius();
             mix(&r, sizeof(r));
@@ -206,6 +209,9 @@ std::uint64_t shapeFingerprint(const btCollisionShape* shape)
             const btVector3* points = hullPoints(shape, &n);
             mix(&n, sizeof(n));
             for (int i = 0; i < n; ++i) mixVec(points[i]);
+            // features given later (initializePolyhedralFeatures) change how stock collides it
+            const int featured = static_cast<const btPolyhedralConvexShape*>(shape)->getConvexPolyhedron() != nullptr;
+            mix(&featured, sizeof(featured));
             break;
         }
         case CAPSULE_SHAPE_PROXYTYPE: {

@@ -153,7 +153,10 @@ int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
         s.type = BTG_SHAPE_SPHERE;
     } else if (type == BOX_SHAPE_PROXYTYPE) {
         auto* box = static_cast<const btBoxShape*>(shape);
-        s.type = BTG_SHAPE_HULL;
+        // A box the app gave polyhedral features meets other featured shapes by clipping on
+        // stock, as a featured hull does (a world that also holds boxes without features, whose
+        // box-box pairs stock still clips, falls back: cpu_path_rules.cpp).
+        s.type = box->getConvexPolyhedron() ? BTG_SHAPE_HULL : BTG_SHAPE_BOX;
         s.margin = 0.0f;  // Bullet keeps a box's margin inside its extents
         appendBox(*this, s, box->getHalfExtentsWithMargin());
         // GJK against a box runs on the box shrunk by its margin, then rounded by it (support.h)
@@ -173,7 +176,7 @@ int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
         s.param = f4(plane->getPlaneNormal().normalized(), plane->getPlaneConstant());
         s.localAabbMin = btgMake4(-1e30f, -1e30f, -1e30f, 0);
         s.localAabbMax = btgMake4(1e30f, 1e30f, 1e30f, 0);
-    } else if (isSupportShapeType(type)) {
+    } else if (isSupportShapeType(type) || isFeaturelessHull(shape)) {
         if (!convexRow(shape, 1.0f, s, vertices, whyNot)) return -1;
         setLocalAabb(s, shape);
     } else {

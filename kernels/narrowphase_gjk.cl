@@ -5,12 +5,12 @@
  * after the solve, store_persistent_manifolds keeps those manifolds for the next substep.
  * Launch: collide_* any number of work-items, striding over the kind's range of the
  * kind-grouped pairs; store_persistent_manifolds one work-item per contact slot.
- * Reads pairs, kindOrder, kindRanges, pos, rot, props, shapes, hull vertices, counters
+ * Reads pairs, kindOrder, kindRanges, pos, rot, props, shapes, hull vertices/faces/indices, counters
  * [kPrevContactCount], contactCache (to find a pair's previous manifold), gjkCache.
  * Writes manifolds[slot], pairManifolds[slot] and gjkPairState[slot] of the kind's pairs;
  * then gjkCache (in the warm-start cache's order). */
 #include "shared/contact_rows.h"
-#include "shared/persistent_manifold.h"
+#include "shared/polyhedral_contacts.h"
 
 /* The manifold the pair kept last substep: found through the warm-start cache (the contacts in
  * pair order), whose entry j the GJK cache holds at j too. None when the pair had no points, or
@@ -37,7 +37,9 @@ static BtgPersistentManifold previous_manifold(BtgPair p, int kind, __global con
                          __global const uint* restrict kindRanges, int indirect,                                      \
                          __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,              \
                          __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes,       \
-                         __global const BtgFloat4* restrict verts, __global const uint* restrict counters,            \
+                         __global const BtgFloat4* restrict verts, __global const BtgFace* restrict faces,            \
+                         __global const int* restrict indices, __global const BtgFloat4* restrict edges,              \
+                         __global const uint* restrict counters,                                                      \
                          __global const BtgCachedContact* restrict cache, int cacheCapacity,                          \
                          __global const BtgPersistentManifold* restrict gjkCache, int gjkCapacity,                    \
                          __global BtgManifold* restrict manifolds, __global BtgManifoldRange* restrict pairManifolds, \
@@ -57,8 +59,7 @@ static BtgPersistentManifold previous_manifold(BtgPair p, int kind, __global con
                 float dist[BTG_MAX_POINTS];                                                                           \
                 BtgPersistentManifold prev =                                                                          \
                     previous_manifold(p, kind, counters, cache, cacheCapacity, gjkCache, gjkCapacity);                \
-                BtgConvexPoint cp = btgConvexPairPoint(a, b, verts, t);                                               \
-                pm = btgPersistentStep(prev, cp, a.pose, b.pose, t, dist);                                            \
+                pm = btgPairStep(prev, a, b, verts, faces, indices, edges, t, dist);                                  \
                 m = btgManifoldFromPersistent(pm, dist, b.pose);                                                      \
             }                                                                                                         \
             m = btgWithThreshold(m, t);                                                                               \

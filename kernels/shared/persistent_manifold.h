@@ -57,13 +57,15 @@ static inline int btgSortCachedPoints(const BtgPersistentManifold* m, const floa
     return best;
 }
 
-/* A fresh identity: none the manifold held before this step (so a new point never inherits
- * the warm start of one it does not continue). */
-static inline uint btgFreshId(const BtgPersistentManifold* prev)
+/* A fresh identity: none the manifold held before this step, nor one a point added in this step
+ * took (so a new point never inherits the warm start of one it does not continue). With at most
+ * 4 points before and 4 after, one of the 8 is always free. */
+static inline uint btgFreshId(const BtgPersistentManifold* prev, const BtgPersistentManifold* now)
 {
     for (uint id = 0u; id < 8u; ++id) {
         int used = 0;
         for (int k = 0; k < prev->numPoints; ++k) used |= prev->id[k] == id;
+        for (int k = 0; k < now->numPoints; ++k) used |= now->id[k] == id;
         if (!used) return id;
     }
     return 7u;
@@ -82,60 +84,79 @@ static inline void btgRemovePersistentPoint(BtgPersistentManifold* m, float* dis
     m->numPoints = last;
 }
 
+/* The cached points' distances from the last refresh (Bullet's m_distance1, what
+ * sortCachedPoints compares), into dist. */
+static inline void btgPersistentBegin(const BtgPersistentManifold* m, float* dist)
+{
+    for (int k = 0; k < BTG_MAX_POINTS; ++k) dist[k] = 0.0f;
+    for (int k = 0; k < m->numPoints; ++k) dist[k] = m->normal[k].w;
+}
+
+/* btManifoldResult::addContactPoint: one point (normal from B towards A, the point on B, its
+ * signed distance) into the manifold, prev being the manifold as the step began. */
+static inline void btgPersistentAdd(BtgPersistentManifold* m, float* dist, const BtgPersistentManifold* prev,
+                                    BtgFloat4 normal, BtgFloat4 pointB, float distance, BtgPose pa, BtgPose pb,
+                                    float threshold)
+{
+    if (distance > threshold) return;
+    BtgFloat4 worldA = pointB + normal * distance;
+    BtgFloat4 la = btgPoseApplyInv(pa, worldA), lb = btgPoseApplyInv(pb, pointB);
+    int slot = -1;
+    float shortest = threshold * threshold;
+    for (int k = 0; k < m->numPoints; ++k) {
+        BtgFloat4 d = m->localA[k] - la;
+        float d2 = btgDot3(d, d);
+        if (d2 < shortest) {
+            shortest = d2;
+            slot = k;
+        }
+    }
+    uint id;
+    if (slot >= 0) {
+        id = m->id[slot]; /* replaceContactPoint keeps the impulses and the lifetime */
+    } else if (m->numPoints < BTG_MAX_POINTS) {
+        id = btgFreshId(prev, m);
+        slot = m->numPoints++;
+    } else {
+        slot = btgSortCachedPoints(m, dist, la, distance);
+        id = btgFreshId(prev, m);
+    }
+    m->localA[slot] = la;
+    m->localB[slot] = lb;
+    m->normal[slot] = btgXyz(normal);
+    m->id[slot] = id;
+    dist[slot] = distance;
+}
+
+/* refreshContactPoints: every point from its two body-frame points, removed back to front;
+ * each kept point's refreshed distance left in dist and in its normal's w. */
+static inline void btgPersistentRefresh(BtgPersistentManifold* m, float* dist, BtgPose pa, BtgPose pb, float threshold)
+{
+    for (int k = m->numPoints - 1; k >= 0; --k) {
+        BtgFloat4 wa = btgPoseApply(pa, m->localA[k]), wb = btgPoseApply(pb, m->localB[k]);
+        dist[k] = btgDot3(wa - wb, m->normal[k]);
+    }
+    for (int k = m->numPoints - 1; k >= 0; --k) {
+        BtgFloat4 wa = btgPoseApply(pa, m->localA[k]), wb = btgPoseApply(pb, m->localB[k]);
+        if (dist[k] > threshold) {
+            btgRemovePersistentPoint(m, dist, k);
+            continue;
+        }
+        BtgFloat4 drift = wb - (wa - m->normal[k] * dist[k]);
+        if (btgDot3(drift, drift) > threshold * threshold) btgRemovePersistentPoint(m, dist, k);
+    }
+    for (int k = 0; k < m->numPoints; ++k) m->normal[k].w = dist[k];
+}
+
 /* One substep of the pair's manifold: prev (empty for a new pair), the point found now (if
  * valid), the poses now. dist receives each kept point's refreshed distance. */
 static inline BtgPersistentManifold btgPersistentStep(BtgPersistentManifold prev, BtgConvexPoint p, BtgPose pa,
                                                       BtgPose pb, float threshold, float* dist)
 {
     BtgPersistentManifold m = prev;
-    for (int k = 0; k < BTG_MAX_POINTS; ++k) dist[k] = 0.0f;
-    /* the cached points' distances from the last refresh (Bullet's m_distance1, what
-       sortCachedPoints compares) */
-    for (int k = 0; k < m.numPoints; ++k) dist[k] = m.normal[k].w;
-    if (p.valid && p.distance <= threshold) {
-        BtgFloat4 worldA = p.pointB + p.normal * p.distance;
-        BtgFloat4 la = btgPoseApplyInv(pa, worldA), lb = btgPoseApplyInv(pb, p.pointB);
-        int slot = -1;
-        float shortest = threshold * threshold;
-        for (int k = 0; k < m.numPoints; ++k) {
-            BtgFloat4 d = m.localA[k] - la;
-            float d2 = btgDot3(d, d);
-            if (d2 < shortest) {
-                shortest = d2;
-                slot = k;
-            }
-        }
-        uint id;
-        if (slot >= 0) {
-            id = m.id[slot]; /* replaceContactPoint keeps the impulses and the lifetime */
-        } else if (m.numPoints < BTG_MAX_POINTS) {
-            slot = m.numPoints++;
-            id = btgFreshId(&prev);
-        } else {
-            slot = btgSortCachedPoints(&m, dist, la, p.distance);
-            id = btgFreshId(&prev);
-        }
-        m.localA[slot] = la;
-        m.localB[slot] = lb;
-        m.normal[slot] = btgXyz(p.normal);
-        m.id[slot] = id;
-        dist[slot] = p.distance;
-    }
-    /* refreshContactPoints: every point from its two body-frame points, removed back to front */
-    for (int k = m.numPoints - 1; k >= 0; --k) {
-        BtgFloat4 wa = btgPoseApply(pa, m.localA[k]), wb = btgPoseApply(pb, m.localB[k]);
-        dist[k] = btgDot3(wa - wb, m.normal[k]);
-    }
-    for (int k = m.numPoints - 1; k >= 0; --k) {
-        BtgFloat4 wa = btgPoseApply(pa, m.localA[k]), wb = btgPoseApply(pb, m.localB[k]);
-        if (dist[k] > threshold) {
-            btgRemovePersistentPoint(&m, dist, k);
-            continue;
-        }
-        BtgFloat4 drift = wb - (wa - m.normal[k] * dist[k]);
-        if (btgDot3(drift, drift) > threshold * threshold) btgRemovePersistentPoint(&m, dist, k);
-    }
-    for (int k = 0; k < m.numPoints; ++k) m.normal[k].w = dist[k];
+    btgPersistentBegin(&m, dist);
+    if (p.valid) btgPersistentAdd(&m, dist, &prev, p.normal, p.pointB, p.distance, pa, pb, threshold);
+    btgPersistentRefresh(&m, dist, pa, pb, threshold);
     return m;
 }
 
@@ -147,20 +168,6 @@ static inline BtgManifold btgManifoldFromPersistent(BtgPersistentManifold pm, co
     for (int k = 0; k < pm.numPoints; ++k)
         btgAddPoint(&m, btgXyz(pm.normal[k]), btgPoseApply(pb, pm.localB[k]), dist[k], BTG_FEATURE_SINGLE | pm.id[k]);
     return m;
-}
-
-/* A pair's manifold when it has no previous one (its first step): the routine every GJK row of
- * the pair-kind table names, so the CPU reference and tests can call it like any other. */
-static inline BtgManifold btgCollideGjk(BtgCollider a, BtgCollider b, BTG_SHAPE_TABLES, float threshold)
-{
-    (void)faces;
-    (void)indices;
-    (void)edges;
-    float dist[BTG_MAX_POINTS];
-    BtgConvexPoint p = btgConvexPairPoint(a, b, verts, threshold);
-    BtgPersistentManifold pm =
-        btgPersistentStep(btgEmptyPersistent(a.body, b.body, 0), p, a.pose, b.pose, threshold, dist);
-    return btgManifoldFromPersistent(pm, dist, b.pose);
 }
 
 #endif

@@ -17,8 +17,12 @@
 #define BTG_BODY_LARGE 128u      /* too big for the uniform grid: tested against every body */
 #define BTG_BODY_NEVER_SLEEP 256u /* DISABLE_DEACTIVATION, or a kinematic body */
 
-/* Shape kinds (BtgShape.type). Boxes are hulls with 8 vertices and 6 faces. Which pairs of
- * them collide, and how, is the pair-kind table (pair_kinds.h). CONVEX is every convex shape
+/* Shape kinds (BtgShape.type). Which pairs of them collide, and how, is the pair-kind table
+ * (pair_kinds.h), which follows stock's choice of algorithm per pair: BOX is a btBoxShape (a
+ * hull row of 8 vertices and 6 faces; box-box pairs are clipped as btBoxBoxDetector does, a box
+ * meets every other convex by GJK); HULL is a hull the app gave polyhedral features
+ * (initializePolyhedralFeatures: stock clips two of them), and a hull without them is a CONVEX
+ * row of its points, collided by GJK as stock does. CONVEX is every convex shape
  * known only by its support function (capsule, cylinder, cone, multi-sphere, convex triangle
  * mesh, uniformly scaled convex): Bullet collides those by GJK/EPA into a persistent manifold
  * (narrowphase_gjk.cl); BtgShape.convexType says which support function. */
@@ -26,7 +30,8 @@
 #define BTG_SHAPE_HULL 1
 #define BTG_SHAPE_PLANE 2
 #define BTG_SHAPE_CONVEX 3
-#define BTG_NUM_SHAPE_KINDS 4
+#define BTG_SHAPE_BOX 4
+#define BTG_NUM_SHAPE_KINDS 5
 
 /* Support functions (BtgShape.convexType, shared/support.h). A hull row (BTG_SHAPE_HULL) has
  * BTG_CONVEX_HULL, or BTG_CONVEX_BOX for a btBoxShape, whose GJK core is the box shrunk by its

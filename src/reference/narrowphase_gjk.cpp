@@ -1,8 +1,8 @@
 // narrowphase_gjk.cpp (reference) — the loop of kernels/narrowphase_gjk.cl's collide kernels on
-// the CPU (btgConvexPairPoint, btgPersistentStep, btgManifoldFromPersistent), for tests.
+// the CPU (btgPairStep, btgManifoldFromPersistent), for tests.
 #include "reference/narrowphase_gjk.h"
 
-#include "shared/persistent_manifold.h"
+#include "shared/polyhedral_contacts.h"
 
 namespace btgpu::ref {
 
@@ -19,8 +19,8 @@ GjkStep referenceGjkStep(const std::vector<BtgPair>& pairs, const BtgFloat4* pos
         const int kind = btgPairKind(a.shape.type, b.shape.type);
         BtgPersistentManifold prev = i < previous.size() ? previous[i] : btgEmptyPersistent(p.a, p.b, kind);
         float dist[BTG_MAX_POINTS];
-        BtgConvexPoint cp = btgConvexPairPoint(a, b, t.hullVertices, threshold);
-        BtgPersistentManifold pm = btgPersistentStep(prev, cp, a.pose, b.pose, threshold, dist);
+        BtgPersistentManifold pm =
+            btgPairStep(prev, a, b, t.hullVertices, t.hullFaces, t.hullIndices, t.hullEdges, threshold, dist);
         pm.kind = kind;
         out.states.push_back(pm);
         out.manifolds.push_back(btgWithThreshold(btgManifoldFromPersistent(pm, dist, b.pose), threshold));

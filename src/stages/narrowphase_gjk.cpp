@@ -46,7 +46,7 @@ void narrowphaseGjk(DeviceWorld& w, const PairKinds& kinds)
         if (!kinds.has(row.kind) || std::strcmp(row.program, kProgram) != 0) continue;
         cl::Launch(w.ctx, prog.kernel(row.kernel), &w.profiler)
             .arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)
-            .arg(w.shapes).arg(w.hullVertices).arg(w.counters).arg(w.contactCache).arg(cacheCapacity)
+            .arg(w.shapes).arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges).arg(w.counters).arg(w.contactCache).arg(cacheCapacity)
             .arg(w.gjkCache).arg(gjkCapacity).arg(w.manifolds).arg(w.pairManifolds).arg(w.gjkPairState)
             .run(items);
     }

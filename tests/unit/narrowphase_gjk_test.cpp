@@ -371,3 +371,96 @@ TEST(NarrowphaseGjk, PersistentManifoldKeepsFourByArea)
     m = btgPersistentStep(m, btgNoPoint(), pa, pb, t, dist);
     EXPECT_EQ(m.numPoints, 0);
 }
+
+namespace {
+
+// Bullet's algorithm for the pair in this pose, run once from an empty manifold as the
+// dispatcher runs it (btConvexConvexAlgorithm for two featured hulls: the GJK point, then the
+// clipped faces, into its own persistent manifold): the manifold's points.
+std::vector<btManifoldPoint> stockManifold(const Body& a, const Body& b)
+{
+    btDefaultCollisionConfiguration config;
+    btCollisionDispatcher dispatcher(&config);
+    btCollisionObject oa, ob;
+    oa.setCollisionShape(a.shape);
+    oa.setWorldTransform(a.pose);
+    ob.setCollisionShape(b.shape);
+    ob.setWorldTransform(b.pose);
+    btCollisionObjectWrapper wa(nullptr, a.shape, &oa, oa.getWorldTransform(), -1, -1);
+    btCollisionObjectWrapper wb(nullptr, b.shape, &ob, ob.getWorldTransform(), -1, -1);
+    btCollisionAlgorithm* algo = dispatcher.findAlgorithm(&wa, &wb, nullptr, BT_CONTACT_POINT_ALGORITHMS);
+    btManifoldResult result(&wa, &wb);
+    btDispatcherInfo info;
+    algo->processCollision(&wa, &wb, info, &result);
+    std::vector<btManifoldPoint> out;
+    if (const btPersistentManifold* m = result.getPersistentManifold())
+        for (int k = 0; k < m->getNumContacts(); ++k) out.push_back(m->getContactPoint(k));
+    algo->~btCollisionAlgorithm();
+    dispatcher.freeCollisionAlgorithm(algo);
+    return out;
+}
+
+btConvexHullShape* featuredHull(Fixture& f, const std::vector<btVector3>& points)
+{
+    auto* h = f.own(new btConvexHullShape(&points[0].x(), int(points.size()), sizeof(btVector3)));
+    h->initializePolyhedralFeatures();
+    return h;
+}
+std::vector<btVector3> prismPoints(int sides, double radius, double halfHeight)
+{
+    std::vector<btVector3> v;
+    for (int k = 0; k < sides; ++k)
+        for (int s = -1; s <= 1; s += 2) {
+            const double t = 2 * M_PI * k / sides;
+            v.emplace_back(btScalar(radius * std::cos(t)), btScalar(s * halfHeight), btScalar(radius * std::sin(t)));
+        }
+    return v;
+}
+
+}  // namespace
+
+TEST(NarrowphaseGjk, FeaturedHullsClipAsBullet)
+{
+    // Two hulls with polyhedral features: the manifold one step builds from nothing, on the
+    // device, on the reference and by Bullet's own algorithm for the same pose.
+    Fixture f;
+    btConvexHullShape* slab = featuredHull(f, prismPoints(4, 2.0, 0.5));  // a square slab, top at 0.5
+    btConvexHullShape* barrel = featuredHull(f, prismPoints(16, 0.4, 0.6));
+    btConvexHullShape* tetra = featuredHull(f, {{0, -0.4f, 0}, {0.4f, 0.3f, 0}, {-0.3f, 0.3f, 0.3f}, {-0.2f, 0.3f, -0.4f}});
+    // 0: the barrel standing 1 cm into the slab, turned about its axis
+    f.pair(f.body(barrel, btVector3(0, btScalar(0.5 + 0.6 - 0.01), 0), btVector3(0, 1, 0), btScalar(0.3)),
+           f.body(slab, btVector3(0, 0, 0)));
+    // 1: the barrel tilted 5 degrees, its low rim 2 cm in (the first step of a landing)
+    const double tilt = 5 * M_PI / 180, low = 0.6 * std::cos(tilt) + 0.4 * std::sin(tilt);
+    f.pair(f.body(barrel, btVector3(10, btScalar(0.5 + low - 0.02), 0), btVector3(1, 0, 0), btScalar(tilt)),
+           f.body(slab, btVector3(10, 0, 0)));
+    // 2: the slab (A) under a tetrahedron whose vertex is 5 mm in
+    f.pair(f.body(slab, btVector3(20, 0, 0)), f.body(tetra, btVector3(20, btScalar(0.5 + 0.4 - 0.005), 0)));
+    // 3: the tetrahedron 2 cm apart, inside the margins (4 cm each) but polyhedra apart: the GJK point only
+    f.pair(f.body(tetra, btVector3(30, btScalar(0.5 + 0.4 + 0.02), 0)), f.body(slab, btVector3(30, 0, 0)));
+    f.build();
+    std::vector<BtgPersistentManifold> states;
+    std::vector<BtgManifold> dev = runDevice(test::context(), f, {}, {}, &states);
+    ref::GjkStep ref = ref::referenceGjkStep(f.pairs, f.pos.data(), f.rot.data(), f.props.data(), f.view.view(), {});
+    const int expectPoints[4] = {4, 4, 1, 0};  // stock's own counts, checked below
+    for (size_t i = 0; i < f.pairs.size(); ++i) {
+        SCOPED_TRACE("case " + std::to_string(i));
+        EXPECT_EQ(f.view.shapes[size_t(f.props[size_t(f.pairs[i].a)].shape)].type, BTG_SHAPE_HULL);
+        expectSame(dev[i], ref.manifolds[i], i);
+        std::vector<btManifoldPoint> stock = stockManifold(f.bodies[size_t(f.pairs[i].a)], f.bodies[size_t(f.pairs[i].b)]);
+        EXPECT_EQ(int(stock.size()), expectPoints[i]);
+        ASSERT_EQ(dev[i].numPoints, int(stock.size()));
+        for (const btManifoldPoint& s : stock) {
+            bool found = false;
+            for (int k = 0; k < dev[i].numPoints && !found; ++k) {
+                const BtgManifoldPoint& p = dev[i].points[k];
+                const btVector3& q = s.getPositionWorldOnB();
+                found = std::fabs(p.px - q.x()) < kMillimetre && std::fabs(p.py - q.y()) < kMillimetre &&
+                        std::fabs(p.pz - q.z()) < kMillimetre && std::fabs(p.distance - s.getDistance()) < kMillimetre &&
+                        p.nx * s.m_normalWorldOnB.x() + p.ny * s.m_normalWorldOnB.y() + p.nz * s.m_normalWorldOnB.z() >= kDegree;
+            }
+            EXPECT_TRUE(found) << "stock point (" << s.getPositionWorldOnB().x() << ", " << s.getPositionWorldOnB().y()
+                               << ", " << s.getPositionWorldOnB().z() << "; " << s.getDistance() << ") has no match";
+        }
+    }
+}
