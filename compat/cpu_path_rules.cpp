@@ -7,6 +7,7 @@
 
 #include "btgpu/Config.h"
 #include "parallel_rows.h"
+#include "convex_rows.h"
 #include "shape_tables.h"
 
 #include <btBulletDynamicsCommon.h>
@@ -85,7 +86,7 @@ bool servedShapeType(int type)
 {
     return type == BOX_SHAPE_PROXYTYPE || type == CONVEX_HULL_SHAPE_PROXYTYPE ||
            type == CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE || type == SPHERE_SHAPE_PROXYTYPE ||
-           type == STATIC_PLANE_PROXYTYPE;
+           type == STATIC_PLANE_PROXYTYPE || isSupportShapeType(type);
 }
 
 // What a world built the stock way would use: a btDefaultCollisionConfiguration with the
@@ -133,6 +134,12 @@ const char* shapeTypeName(int type)
         case CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE: return "convex point cloud";
         case SPHERE_SHAPE_PROXYTYPE: return "sphere";
         case STATIC_PLANE_PROXYTYPE: return "static plane";
+        case CAPSULE_SHAPE_PROXYTYPE: return "capsule";
+        case CYLINDER_SHAPE_PROXYTYPE: return "cylinder";
+        case CONE_SHAPE_PROXYTYPE: return "cone";
+        case MULTI_SPHERE_SHAPE_PROXYTYPE: return "multi-sphere";
+        case CONVEX_TRIANGLEMESH_SHAPE_PROXYTYPE: return "convex triangle mesh";
+        case UNIFORM_SCALING_SHAPE_PROXYTYPE: return "uniform scaling";
         default: return "shape";
     }
 }
@@ -145,6 +152,7 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, int numActions
     if (numActions > 0) return "actions (addAction, vehicles, characters) are not on the GPU path yet";
     const btCollisionObjectArray& objs = world.getCollisionObjectArray();
     shapes->beginReferences();
+    bool featuredBox = false, plainBox = false;
     for (int i = 0; i < objs.size(); ++i) {
         const btCollisionObject* o = objs[i];
         int type = o->getInternalType();
@@ -152,6 +160,8 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, int numActions
             return "collision object " + std::to_string(i) + " is not a rigid body (ghost, soft or other object)";
         std::string why;
         if (shapes->add(o->getCollisionShape(), &why) < 0) return "body " + std::to_string(i) + ": " + why;
+        if (o->getCollisionShape()->getShapeType() == BOX_SHAPE_PROXYTYPE)
+            (static_cast<const btBoxShape*>(o->getCollisionShape())->getConvexPolyhedron() ? featuredBox : plainBox) = true;
         // Set only through btRigidBodyConstructionInfo, so it cannot change after the add (any
         // body: a static one may be made dynamic later). btRigidBody::applyDamping then scales
         // slow bodies' velocities down; the GPU path does not.
@@ -160,6 +170,10 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, int numActions
             return "body " + std::to_string(i) +
                    ": additional damping (btRigidBodyConstructionInfo::m_additionalDamping)";
     }
+    // A featured box is served as a featured hull (clipped against featured shapes, GJK against
+    // the rest); against a box without features stock still runs btBoxBoxDetector.
+    if (featuredBox && plainBox)
+        return "boxes with polyhedral features (initializePolyhedralFeatures) beside boxes without";
     return "";
 }
 

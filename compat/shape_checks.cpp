@@ -1,13 +1,19 @@
 // shape_checks.cpp — shape parameter checks and fingerprints for the shape kinds the GPU path
-// takes (box, sphere, static plane, convex hull, convex point cloud). Other kinds never reach
+// takes (box, sphere, static plane, convex hull, convex point cloud, capsule, cylinder, cone,
+// multi-sphere, convex triangle mesh, uniform scaling). Other kinds never reach
 // the tables (the world runs on the CPU path), so they check as "" and hash by type.
 #include "shape_checks.h"
 
 #include <btBulletDynamicsCommon.h>
 #include <BulletCollision/CollisionShapes/btConvexPointCloudShape.h>
+#include <BulletCollision/CollisionShapes/btConvexTriangleMeshShape.h>
+#include <BulletCollision/CollisionShapes/btMultiSphereShape.h>
+#include <BulletCollision/CollisionShapes/btTriangleCallback.h>
+#include <BulletCollision/CollisionShapes/btUniformScalingShape.h>
 
 #include <cmath>
 #include <cstring>
+#include <functional>
 
 namespace btgpu {
 
@@ -52,11 +58,78 @@ std::string checkScalingAndMargin(const btCollisionShape* shape)
     return "";
 }
 
+bool usable(float x) { return std::isfinite(x) && x >= 0.0f && x <= kMaxShapeSize; }
+
+// A mesh's triangles' vertices, as Bullet's support function visits them (scaled).
+struct MeshVisitor : btInternalTriangleIndexCallback {
+    std::function<void(const btVector3&)> visit;
+    void internalProcessTriangleIndex(btVector3* triangle, int, int) override
+    {
+        for (int i = 0; i < 3; ++i) visit(triangle[i]);
+    }
+};
+void forEachMeshVertex(const btConvexTriangleMeshShape* mesh, const std::function<void(const btVector3&)>& visit)
+{
+    MeshVisitor v;
+    v.visit = visit;
+    const btVector3 big(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT);
+    mesh->getMeshInterface()->InternalProcessAllTriangles(&v, -big, big);
+}
+
 }  // namespace
 
 std::string badShapeInput(const btCollisionShape* shape)
 {
     switch (shape->getShapeType()) {
+        case CAPSULE_SHAPE_PROXYTYPE: {
+            auto* c = static_cast<const btCapsuleShape*>(shape);
+            if (!usable(c->getRadius())) return "negative, non-finite or huge capsule radius";
+            if (!usable(c->getHalfHeight())) return "negative, non-finite or huge capsule height";
+            return checkScalingAndMargin(shape);
+        }
+        case CYLINDER_SHAPE_PROXYTYPE: {
+            std::string why = checkScalingAndMargin(shape);
+            if (!why.empty()) return why;
+            const btVector3 h = static_cast<const btCylinderShape*>(shape)->getHalfExtentsWithMargin();
+            if (!usable(h.x()) || !usable(h.y()) || !usable(h.z())) return "negative, non-finite or huge cylinder half extents";
+            const btVector3 c = static_cast<const btCylinderShape*>(shape)->getHalfExtentsWithoutMargin();
+            if (c.x() < 0.0f || c.y() < 0.0f || c.z() < 0.0f) return "cylinder margin larger than its half extents";
+            return "";
+        }
+        case CONE_SHAPE_PROXYTYPE: {
+            auto* c = static_cast<const btConeShape*>(shape);
+            if (!usable(c->getRadius())) return "negative, non-finite or huge cone radius";
+            if (!usable(c->getHeight())) return "negative, non-finite or huge cone height";
+            if (c->getRadius() == 0.0f && c->getHeight() == 0.0f) return "cone of zero radius and height";
+            return checkScalingAndMargin(shape);
+        }
+        case MULTI_SPHERE_SHAPE_PROXYTYPE: {
+            std::string why = checkScalingAndMargin(shape);
+            if (!why.empty()) return why;
+            auto* m = static_cast<const btMultiSphereShape*>(shape);
+            if (m->getSphereCount() <= 0) return "multi-sphere without spheres";
+            for (int i = 0; i < m->getSphereCount(); ++i) {
+                const btVector3 p = m->getSpherePosition(i) * m->getLocalScaling();
+                if (!finite(p) || !sized(p)) return "non-finite or huge multi-sphere position " + std::to_string(i);
+                if (!usable(m->getSphereRadius(i))) return "negative, non-finite or huge multi-sphere radius " + std::to_string(i);
+            }
+            return "";
+        }
+        case CONVEX_TRIANGLEMESH_SHAPE_PROXYTYPE: {
+            std::string why = checkScalingAndMargin(shape);
+            if (!why.empty()) return why;
+            bool bad = false;
+            forEachMeshVertex(static_cast<const btConvexTriangleMeshShape*>(shape),
+                              [&](const btVector3& p) { bad = bad || !finite(p) || !sized(p); });
+            return bad ? "non-finite or huge convex triangle mesh vertex" : "";
+        }
+        case UNIFORM_SCALING_SHAPE_PROXYTYPE: {
+            auto* u = static_cast<const btUniformScalingShape*>(shape);
+            const float f = u->getUniformScalingFactor();
+            if (!std::isfinite(f) || f <= 0.0f || f > kMaxShapeSize) return "non-positive, non-finite or huge uniform scaling factor";
+            std::string why = badShapeInput(u->getChildShape());
+            return why.empty() ? "" : "uniform scaling child: " + why;
+        }
         case BOX_SHAPE_PROXYTYPE: {
             std::string why = checkScalingAndMargin(shape);
             if (!why.empty()) return why;
@@ -112,9 +185,12 @@ std::uint64_t shapeFingerprint(const btCollisionShape* shape)
     int type = shape->getShapeType();
     mix(&type, sizeof(type));
     switch (type) {
-        case BOX_SHAPE_PROXYTYPE:
+        case BOX_SHAPE_PROXYTYPE: {
             mixVec(static_cast<const btBoxShape*>(shape)->getHalfExtentsWithMargin());
+            const int featured = static_cast<const btBoxShape*>(shape)->getConvexPolyhedron() != nullptr;
+            mix(&featured, sizeof(featured));
             break;
+        }
         case SPHERE_SHAPE_PROXYTYPE: {
             float r = static_cast<const btSphereShape*>(shape)->getRadius();
             mix(&r, sizeof(r));
@@ -133,6 +209,58 @@ std::uint64_t shapeFingerprint(const btCollisionShape* shape)
             const btVector3* points = hullPoints(shape, &n);
             mix(&n, sizeof(n));
             for (int i = 0; i < n; ++i) mixVec(points[i]);
+            // features given later (initializePolyhedralFeatures) change how stock collides it
+            const int featured = static_cast<const btPolyhedralConvexShape*>(shape)->getConvexPolyhedron() != nullptr;
+            mix(&featured, sizeof(featured));
+            break;
+        }
+        case CAPSULE_SHAPE_PROXYTYPE: {
+            auto* c = static_cast<const btCapsuleShape*>(shape);
+            float v[2] = {c->getRadius(), c->getHalfHeight()};
+            int up = c->getUpAxis();
+            mix(v, sizeof(v));
+            mix(&up, sizeof(up));
+            break;
+        }
+        case CYLINDER_SHAPE_PROXYTYPE: {
+            auto* c = static_cast<const btCylinderShape*>(shape);
+            mixVec(c->getHalfExtentsWithoutMargin());
+            int up = c->getUpAxis();
+            mix(&up, sizeof(up));
+            break;
+        }
+        case CONE_SHAPE_PROXYTYPE: {
+            auto* c = static_cast<const btConeShape*>(shape);
+            float v[2] = {c->getRadius(), c->getHeight()};
+            int up = c->getConeUpIndex();
+            mix(v, sizeof(v));
+            mix(&up, sizeof(up));
+            break;
+        }
+        case MULTI_SPHERE_SHAPE_PROXYTYPE: {
+            auto* m = static_cast<const btMultiSphereShape*>(shape);
+            int n = m->getSphereCount();
+            mix(&n, sizeof(n));
+            for (int i = 0; i < n; ++i) {
+                mixVec(m->getSpherePosition(i));
+                float r = m->getSphereRadius(i);
+                mix(&r, sizeof(r));
+            }
+            break;
+        }
+        case CONVEX_TRIANGLEMESH_SHAPE_PROXYTYPE: {
+            auto* m = static_cast<const btConvexTriangleMeshShape*>(shape);
+            int features = m->getConvexPolyhedron() != nullptr;
+            mix(&features, sizeof(features));
+            forEachMeshVertex(m, mixVec);
+            break;
+        }
+        case UNIFORM_SCALING_SHAPE_PROXYTYPE: {
+            auto* u = static_cast<const btUniformScalingShape*>(shape);
+            float f = u->getUniformScalingFactor();
+            mix(&f, sizeof(f));
+            std::uint64_t child = shapeFingerprint(u->getChildShape());
+            mix(&child, sizeof(child));
             break;
         }
         default:

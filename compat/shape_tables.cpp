@@ -1,7 +1,9 @@
 // shape_tables.cpp — conversion of btBoxShape, btConvexHullShape and btConvexPointCloudShape,
-// btSphereShape and btStaticPlaneShape into the GPU tables, reading the app's shapes only.
+// btSphereShape and btStaticPlaneShape into the GPU tables, and of the support-function convex
+// shapes through convex_rows, reading the app's shapes only.
 #include "shape_tables.h"
 
+#include "convex_rows.h"
 #include "parallel_rows.h"
 #include "shape_checks.h"
 
@@ -138,7 +140,8 @@ int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
     s.firstVertex = s.firstFace = s.firstEdge = 0;
     const int type = shape->getShapeType();
     const bool known = type == BOX_SHAPE_PROXYTYPE || type == SPHERE_SHAPE_PROXYTYPE || type == STATIC_PLANE_PROXYTYPE ||
-                       type == CONVEX_HULL_SHAPE_PROXYTYPE || type == CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE;
+                       type == CONVEX_HULL_SHAPE_PROXYTYPE || type == CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE ||
+                       isSupportShapeType(type);
     if (!known) {
         *whyNot = std::string("unsupported shape '") + shape->getName() + "'";
         return -1;
@@ -150,16 +153,22 @@ int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
         s.type = BTG_SHAPE_SPHERE;
     } else if (type == BOX_SHAPE_PROXYTYPE) {
         auto* box = static_cast<const btBoxShape*>(shape);
-        s.type = BTG_SHAPE_HULL;
+        // A box the app gave polyhedral features meets other featured shapes by clipping on
+        // stock, as a featured hull does (a world that also holds boxes without features, whose
+        // box-box pairs stock still clips, falls back: cpu_path_rules.cpp).
+        s.type = box->getConvexPolyhedron() ? BTG_SHAPE_HULL : BTG_SHAPE_BOX;
         s.margin = 0.0f;  // Bullet keeps a box's margin inside its extents
         appendBox(*this, s, box->getHalfExtentsWithMargin());
-        s.param = f4(box->getHalfExtentsWithMargin());
+        // GJK against a box runs on the box shrunk by its margin, then rounded by it (support.h)
+        s.convexType = BTG_CONVEX_BOX;
+        s.param = f4(box->getHalfExtentsWithMargin(), box->getMargin());
         setLocalAabb(s, shape);
     } else if (type == SPHERE_SHAPE_PROXYTYPE) {
         auto* sphere = static_cast<const btSphereShape*>(shape);
         s.type = BTG_SHAPE_SPHERE;
         s.param = btgMake4(sphere->getRadius(), 0, 0, 0);
         s.margin = 0.0f;
+        s.isCapsule = 2;  // Bullet's capsule-sphere closed form takes btSphereShape
         setLocalAabb(s, shape);
     } else if (type == STATIC_PLANE_PROXYTYPE) {
         auto* plane = static_cast<const btStaticPlaneShape*>(shape);
@@ -167,6 +176,9 @@ int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
         s.param = f4(plane->getPlaneNormal().normalized(), plane->getPlaneConstant());
         s.localAabbMin = btgMake4(-1e30f, -1e30f, -1e30f, 0);
         s.localAabbMax = btgMake4(1e30f, 1e30f, 1e30f, 0);
+    } else if (isSupportShapeType(type) || isFeaturelessHull(shape)) {
+        if (!convexRow(shape, 1.0f, s, vertices, whyNot)) return -1;
+        setLocalAabb(s, shape);
     } else {
         auto cached = m_hullCache.find(shape);
         if (cached == m_hullCache.end()) {

@@ -18,6 +18,9 @@ __kernel void probe_layout(__global int* out, float a, float b, float c)
     out[9] = (int)sizeof(BtgEdge);
     out[10] = (int)sizeof(BtgManifoldPoint);
     out[11] = (int)sizeof(BtgManifoldRange);
+    out[12] = (int)sizeof(BtgPersistentManifold);
+    BtgShape shape;
+    out[13] = (int)((char*)&shape.convexType - (char*)&shape);
     float r = a * b + c; /* with contraction this is fma(a, b, c): a different float */
     out[7] = as_int(r);
 }

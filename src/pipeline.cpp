@@ -10,6 +10,7 @@
 #include "stages/find_pairs.h"
 #include "stages/integrate.h"
 #include "stages/narrowphase.h"
+#include "stages/narrowphase_gjk.h"
 #include "stages/prepare_contacts.h"
 #include "stages/solve_constraints.h"
 #include "stages/solve_jacobi.h"
@@ -34,14 +35,20 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::SortSweep: smallBodyPairs(w, plan.broadphase, plan.cellSize); break;
         case Stage::FindPairs: finishPairs(w, plan.kinds); break;
         case Stage::Narrowphase:
-        case Stage::NarrowphaseSat: narrowphaseProgram(w, plan.kinds, narrowphaseProgramOf(stage)); break;
+        case Stage::NarrowphaseSat:
+        case Stage::NarrowphaseGjk: narrowphaseProgram(w, plan.kinds, narrowphaseProgramOf(stage)); break;
         case Stage::ApplyForces: applyForces(w, p.dt); break;
         case Stage::ContactCache: buildContacts(w, p); break;
         case Stage::PrepareContacts: prepareContacts(w, p); break;
         case Stage::ColorConstraints: colorConstraints(w, s.maxColors); break;
         case Stage::SolveConstraints: solveConstraints(w, p, s.iterations, w.numColors); break;
         case Stage::SolveJacobi: solveJacobi(w, p, s.iterations); break;
-        case Stage::StoreContactCache: storeContactCache(w); break;
+        case Stage::StoreContactCache:
+            storeContactCache(w);
+            // A cache stored without the GJK manifolds beside it leaves those stale.
+            if (!plan.kinds.anyIn("narrowphase_gjk")) w.gjkCacheCurrent = false;
+            break;
+        case Stage::StorePersistentManifolds: storePersistentManifolds(w); break;
         case Stage::IntegrateTransforms: integrateTransforms(w, p.dt, p.splitTurnErp); break;
         case Stage::UpdateActivation: updateActivation(w, p.dt, p.deactivationTime); break;
     }
@@ -74,6 +81,12 @@ void runSubsteps(DeviceWorld& w, const Plan& plan, const StepSettings& s)
     } else {
         w.contactCacheAtCall.release();
     }
+    if (w.contactCacheKept && w.gjkCache.capacity() > 0) {
+        w.gjkCacheAtCall.reserveExact(w.ctx, w.gjkCache.capacity());
+        w.gjkCacheAtCall.copyFrom(w.ctx, w.gjkCache, w.gjkCache.capacity());
+    } else {
+        w.gjkCacheAtCall.release();
+    }
     const std::vector<Stage> stages = plan.substep();
     for (int i = 0; i < s.substeps; ++i) runSubstep(w, plan, stages, s);
 }
@@ -104,6 +117,10 @@ void restoreSnapshot(DeviceWorld& w, Snapshot& s)
     if (w.contactCacheKept) {
         size_t m = std::min(w.contactCacheAtCall.capacity(), w.contactCache.capacity());
         w.contactCache.copyRangeFrom(w.ctx, w.contactCacheAtCall, m);
+    }
+    if (w.contactCacheKept && w.gjkCacheAtCall.capacity() > 0) {
+        size_t m = std::min(w.gjkCacheAtCall.capacity(), w.gjkCache.capacity());
+        w.gjkCache.copyRangeFrom(w.ctx, w.gjkCacheAtCall, m);
     }
     w.counters.copyFrom(w.ctx, s.counters, kNumCounters);
 }

@@ -9,7 +9,9 @@
  * its routines (one per shape it meets) with the signature of BTG_COLLIDE_ROUTINE below, and
  * add one row per pair to the sub-table of the program that includes the routines. A new
  * program is a kernels/<program>.cl that includes its routines and expands its sub-table,
- * plus its Stage (src/world/plan.h, kNarrowphasePrograms in plan.cpp). */
+ * plus its Stage (src/world/plan.h, kNarrowphasePrograms in plan.cpp). A convex shape known
+ * only by its support function needs no new kind: it is a BTG_SHAPE_CONVEX row with a new
+ * BTG_CONVEX_* support function (support.h). */
 #ifndef BTG_PAIR_KINDS_H
 #define BTG_PAIR_KINDS_H
 #include "types.h"
@@ -23,7 +25,16 @@
 #define BTG_PAIR_SPHERE_PLANE 3
 #define BTG_PAIR_HULL_PLANE 4
 #define BTG_PAIR_HULL_HULL 5
-#define BTG_NUM_PAIR_KINDS 6
+#define BTG_PAIR_SPHERE_CONVEX 6
+#define BTG_PAIR_HULL_CONVEX 7
+#define BTG_PAIR_PLANE_CONVEX 8
+#define BTG_PAIR_CONVEX_CONVEX 9
+#define BTG_PAIR_SPHERE_BOX 10
+#define BTG_PAIR_HULL_BOX 11
+#define BTG_PAIR_PLANE_BOX 12
+#define BTG_PAIR_CONVEX_BOX 13
+#define BTG_PAIR_BOX_BOX 14
+#define BTG_NUM_PAIR_KINDS 15
 
 /* The pairs grouped by kind (find_pairs): kindOrder lists the pair slots ordered by (kind, a, b),
  * and kind k's pairs are kindOrder[kindRanges[BTG_KIND_RANGE_START(k)], kindRanges[BTG_KIND_RANGE_END(k)]). */
@@ -42,12 +53,29 @@
       collide_sphere_hull)                                                                                     \
     X(narrowphase, BTG_PAIR_SPHERE_PLANE, BTG_SHAPE_SPHERE, BTG_SHAPE_PLANE, btgCollideSpherePlane,            \
       collide_sphere_plane)                                                                                    \
-    X(narrowphase, BTG_PAIR_HULL_PLANE, BTG_SHAPE_HULL, BTG_SHAPE_PLANE, btgCollideHullPlane, collide_hull_plane)
+    X(narrowphase, BTG_PAIR_SPHERE_BOX, BTG_SHAPE_SPHERE, BTG_SHAPE_BOX, btgCollideSphereHull, collide_sphere_box)
+/* Two boxes: clipped after the SAT at once, as stock's btBoxBoxDetector finds them. */
 #define BTG_PAIR_KINDS_NARROWPHASE_SAT(X) \
-    X(narrowphase_sat, BTG_PAIR_HULL_HULL, BTG_SHAPE_HULL, BTG_SHAPE_HULL, btgCollideHullHull, collide_hull_hull)
+    X(narrowphase_sat, BTG_PAIR_BOX_BOX, BTG_SHAPE_BOX, BTG_SHAPE_BOX, btgCollideHullHull, collide_box_box)
+/* The pairs stock collides by GJK/EPA (btConvexConvexAlgorithm) or by the plane's support point
+ * (btConvexPlaneCollisionAlgorithm, boxes and hulls included): one point a substep into a
+ * persistent manifold (persistent_manifold.h); two hulls with polyhedral features add their
+ * clipped faces after the GJK point (polyhedral_contacts.h). Their kernels also read and write
+ * the manifold each pair kept (narrowphase_gjk.cl); the routine is the first step of a new pair. */
+#define BTG_PAIR_KINDS_NARROWPHASE_GJK(X)                                                                               \
+    X(narrowphase_gjk, BTG_PAIR_SPHERE_CONVEX, BTG_SHAPE_SPHERE, BTG_SHAPE_CONVEX, btgCollideGjk, collide_sphere_convex) \
+    X(narrowphase_gjk, BTG_PAIR_HULL_CONVEX, BTG_SHAPE_HULL, BTG_SHAPE_CONVEX, btgCollideGjk, collide_hull_convex)       \
+    X(narrowphase_gjk, BTG_PAIR_PLANE_CONVEX, BTG_SHAPE_PLANE, BTG_SHAPE_CONVEX, btgCollideGjk, collide_plane_convex)    \
+    X(narrowphase_gjk, BTG_PAIR_CONVEX_CONVEX, BTG_SHAPE_CONVEX, BTG_SHAPE_CONVEX, btgCollideGjk, collide_convex_convex) \
+    X(narrowphase_gjk, BTG_PAIR_HULL_HULL, BTG_SHAPE_HULL, BTG_SHAPE_HULL, btgCollideGjk, collide_hull_hull)             \
+    X(narrowphase_gjk, BTG_PAIR_HULL_PLANE, BTG_SHAPE_HULL, BTG_SHAPE_PLANE, btgCollideGjk, collide_hull_plane)          \
+    X(narrowphase_gjk, BTG_PAIR_HULL_BOX, BTG_SHAPE_HULL, BTG_SHAPE_BOX, btgCollideGjk, collide_hull_box)                \
+    X(narrowphase_gjk, BTG_PAIR_PLANE_BOX, BTG_SHAPE_PLANE, BTG_SHAPE_BOX, btgCollideGjk, collide_plane_box)             \
+    X(narrowphase_gjk, BTG_PAIR_CONVEX_BOX, BTG_SHAPE_CONVEX, BTG_SHAPE_BOX, btgCollideGjk, collide_convex_box)
 
 /* The whole table, program by program in launch order. */
-#define BTG_PAIR_KINDS(X) BTG_PAIR_KINDS_NARROWPHASE(X) BTG_PAIR_KINDS_NARROWPHASE_SAT(X)
+#define BTG_PAIR_KINDS(X) \
+    BTG_PAIR_KINDS_NARROWPHASE(X) BTG_PAIR_KINDS_NARROWPHASE_SAT(X) BTG_PAIR_KINDS_NARROWPHASE_GJK(X)
 
 /* Kind of a pair of shape kinds, in either order; BTG_PAIR_NONE when no row takes it. */
 #define BTG_PAIR_KIND_IF_ROW(program, kind, shapeA, shapeB, routine, kernel) \

@@ -17,12 +17,33 @@
 #define BTG_BODY_LARGE 128u      /* too big for the uniform grid: tested against every body */
 #define BTG_BODY_NEVER_SLEEP 256u /* DISABLE_DEACTIVATION, or a kinematic body */
 
-/* Shape kinds (BtgShape.type). Boxes are hulls with 8 vertices and 6 faces. Which pairs of
- * them collide, and how, is the pair-kind table (pair_kinds.h). */
+/* Shape kinds (BtgShape.type). Which pairs of them collide, and how, is the pair-kind table
+ * (pair_kinds.h), which follows stock's choice of algorithm per pair: BOX is a btBoxShape (a
+ * hull row of 8 vertices and 6 faces; box-box pairs are clipped as btBoxBoxDetector does, a box
+ * meets every other convex by GJK); HULL is a hull the app gave polyhedral features
+ * (initializePolyhedralFeatures: stock clips two of them), and a hull without them is a CONVEX
+ * row of its points, collided by GJK as stock does. CONVEX is every convex shape
+ * known only by its support function (capsule, cylinder, cone, multi-sphere, convex triangle
+ * mesh, uniformly scaled convex): Bullet collides those by GJK/EPA into a persistent manifold
+ * (narrowphase_gjk.cl); BtgShape.convexType says which support function. */
 #define BTG_SHAPE_SPHERE 0
 #define BTG_SHAPE_HULL 1
 #define BTG_SHAPE_PLANE 2
-#define BTG_NUM_SHAPE_KINDS 3
+#define BTG_SHAPE_CONVEX 3
+#define BTG_SHAPE_BOX 4
+#define BTG_NUM_SHAPE_KINDS 5
+
+/* Support functions (BtgShape.convexType, shared/support.h). A hull row (BTG_SHAPE_HULL) has
+ * BTG_CONVEX_HULL, or BTG_CONVEX_BOX for a btBoxShape, whose GJK core is the box shrunk by its
+ * margin (param.w) as Bullet's; the others are BTG_SHAPE_CONVEX rows. */
+#define BTG_CONVEX_HULL 0       /* hull vertices, plus margin */
+#define BTG_CONVEX_CAPSULE 1    /* param.x radius (= margin), .y half height, m; upAxis */
+#define BTG_CONVEX_CYLINDER 2   /* param.xyz half extents without margin, m; upAxis */
+#define BTG_CONVEX_CONE 3       /* param.x radius, .y height, m, .z sine of the half angle; upAxis */
+#define BTG_CONVEX_SPHERES 4    /* vertex rows: xyz scaled centre, w unscaled radius; param.xyz scaling */
+#define BTG_CONVEX_POINTS 5     /* vertex rows: scaled points (convex triangle mesh, scaled hull) */
+#define BTG_CONVEX_BOX 6        /* param.xyz half extents with margin, .w margin, m */
+#define BTG_CONVEX_SPHERE 7     /* a point core whose margin is the radius (a scaled sphere) */
 
 #define BTG_MAX_POINTS 4 /* contact points per manifold, as Bullet's btPersistentManifold */
 
@@ -60,7 +81,8 @@ typedef struct {
     BtgFloat4 localAabbMin; /* m, margin included */
     BtgFloat4 localAabbMax; /* m, margin included */
     BtgFloat4 param;        /* sphere: x radius m; plane: xyz unit normal, w constant m
-                               (points p with n.p = w lie on it); hull: unused */
+                               (points p with n.p = w lie on it); box: xyz half extents, w its
+                               Bullet margin (m); hull: unused; convex: per convexType */
     int type;               /* BTG_SHAPE_* */
     int firstVertex;        /* hull: rows in the vertex table (BtgFloat4, m, local frame) */
     int numVertices;
@@ -69,13 +91,14 @@ typedef struct {
     int firstEdge;          /* hull: unique edge directions (BtgFloat4, unit, local frame) */
     int numEdges;
     float margin;           /* m: distance added around the hull (0 for boxes, whose margin
-                               lies inside the extents as in Bullet) */
+                               lies inside the extents as in Bullet); convex: around the core */
     float breakingThreshold; /* m: Bullet's contact breaking threshold of this shape
                                 (getContactBreakingThreshold, or the absolute one); a pair
                                 keeps points closer than the smaller of its two shapes' */
-    float pad0;
-    float pad1;
-    float pad2;
+    int convexType;         /* BTG_CONVEX_*: the support function (hull and convex rows) */
+    int upAxis;             /* capsule, cylinder, cone: 0, 1 or 2 (Bullet's X/Y/Z variants) */
+    int isCapsule;          /* 1: a btCapsuleShape, 2: a btSphereShape (Bullet's closed-form
+                               capsule pairs take these types only); 0 otherwise */
 } BtgShape;
 
 /* A hull face: its outward plane and its vertex loop (counter-clockwise seen from outside). */
@@ -214,6 +237,22 @@ typedef struct {
     int pad0;
 } BtgCachedContact;
 
+/* A persistent manifold of a GJK pair (Bullet's btPersistentManifold, narrowphase_gjk.cl): its
+ * points in both bodies' frames as they were added, each with the world normal it was found
+ * with; refreshed every substep. Kept per pair slot by the narrowphase and per contact (the
+ * warm-start cache's order) for the next substep. */
+typedef struct {
+    BtgFloat4 localA[BTG_MAX_POINTS]; /* m, point on A in A's body frame; w 0 */
+    BtgFloat4 localB[BTG_MAX_POINTS]; /* m, point on B in B's body frame; w 0 */
+    BtgFloat4 normal[BTG_MAX_POINTS]; /* xyz world unit normal from B towards A (m_normalWorldOnB);
+                                         w: distance at the last refresh, m (m_distance1) */
+    uint id[BTG_MAX_POINTS];          /* the point's identity, 0..7 (its featureId's low bits) */
+    int bodyA;
+    int bodyB;
+    int numPoints;
+    int kind;                         /* BTG_PAIR_* of the pair that wrote it */
+} BtgPersistentManifold;
+
 /* Per-step scalars, passed by value to the kernels that need them. */
 typedef struct {
     float dt;                    /* s */
@@ -249,6 +288,8 @@ static_assert(sizeof(BtgEdge) == 8, "BtgEdge layout");
 static_assert(sizeof(BtgCachedContact) == 16 * (BTG_MAX_POINTS + 2 * BTG_WARMSTART_FRICTION) + 4 * BTG_MAX_POINTS + 32,
               "BtgCachedContact layout");
 static_assert(sizeof(BtgStepParams) == 48, "BtgStepParams layout");
+static_assert(sizeof(BtgPersistentManifold) == 16 * 3 * BTG_MAX_POINTS + 4 * BTG_MAX_POINTS + 16,
+              "BtgPersistentManifold layout");
 #endif
 
 #endif

@@ -4,6 +4,7 @@
 #include "reference/narrowphase.h"
 
 #include "shared/clip.h"
+#include "shared/polyhedral_contacts.h"
 #include "shared/simple_contacts.h"
 
 namespace btgpu::ref {

@@ -6,6 +6,7 @@
 #include "stages/narrowphase.h"
 
 #include "cl/program.h"
+#include "stages/narrowphase_gjk.h"
 
 #include <algorithm>
 #include <cstring>
@@ -14,6 +15,7 @@ namespace btgpu {
 
 void narrowphaseProgram(DeviceWorld& w, const PairKinds& kinds, const char* program)
 {
+    if (std::strcmp(program, "narrowphase_gjk") == 0) return narrowphaseGjk(w, kinds);  // its own arguments
     if (!kinds.anyIn(program) || w.pairCapacity == 0) return;
     w.manifolds.reserveExact(w.ctx, w.pairCapacity);
     w.pairManifolds.reserveExact(w.ctx, w.pairCapacity);

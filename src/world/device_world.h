@@ -92,6 +92,13 @@ struct DeviceWorld {
     // The cache as this call found it, for a redo; only while a call runs several substeps.
     cl::DeviceArray<BtgCachedContact> contactCacheAtCall;
     bool contactCacheKept = false;
+    // The GJK pair kinds' persistent manifolds (narrowphase_gjk): this substep's per pair slot,
+    // and the previous substep's beside the warm-start cache (same index), with the copy a
+    // redo starts from. Allocated only when the plan has those kinds.
+    cl::DeviceArray<BtgPersistentManifold> gjkPairState;
+    cl::DeviceArray<BtgPersistentManifold> gjkCache;
+    cl::DeviceArray<BtgPersistentManifold> gjkCacheAtCall;
+    bool gjkCacheCurrent = false;  // gjkCache was stored by the last substep that stored the cache
 
     // --- the constraint graph: one edge (body A, body B) per constraint of any kind ---
     // Rebuilt every substep; the batching colors it and the islands walk it. Edge e below the

@@ -18,6 +18,7 @@ const char* stageName(Stage stage)
         case Stage::FindPairs: return "find_pairs";
         case Stage::Narrowphase: return "narrowphase";
         case Stage::NarrowphaseSat: return "narrowphase_sat";
+        case Stage::NarrowphaseGjk: return "narrowphase_gjk";
         case Stage::ApplyForces: return "apply_forces";
         case Stage::ContactCache: return "contact_cache";
         case Stage::PrepareContacts: return "prepare_contacts";
@@ -25,6 +26,7 @@ const char* stageName(Stage stage)
         case Stage::SolveConstraints: return "solve_constraints";
         case Stage::SolveJacobi: return "solve_jacobi";
         case Stage::StoreContactCache: return "store_contact_cache";
+        case Stage::StorePersistentManifolds: return "store_persistent_manifolds";
         case Stage::IntegrateTransforms: return "integrate_transforms";
         case Stage::UpdateActivation: return "update_activation";
     }
@@ -32,7 +34,8 @@ const char* stageName(Stage stage)
 }
 
 const NarrowphaseProgram kNarrowphasePrograms[] = {{"narrowphase", Stage::Narrowphase},
-                                                   {"narrowphase_sat", Stage::NarrowphaseSat}};
+                                                   {"narrowphase_sat", Stage::NarrowphaseSat},
+                                                   {"narrowphase_gjk", Stage::NarrowphaseGjk}};
 const int kNumNarrowphasePrograms = int(sizeof(kNarrowphasePrograms) / sizeof(kNarrowphasePrograms[0]));
 
 const char* narrowphaseProgramOf(Stage stage)
@@ -60,6 +63,7 @@ std::vector<Stage> Plan::substep() const
         else s.insert(s.end(), {Stage::ColorConstraints, Stage::SolveConstraints});
         // Before the bodies move: the cache keys use A's rotation as the contacts were built.
         s.push_back(Stage::StoreContactCache);
+        if (kinds.anyIn("narrowphase_gjk")) s.push_back(Stage::StorePersistentManifolds);
     }
     s.insert(s.end(), {Stage::IntegrateTransforms, Stage::UpdateActivation});
     return s;

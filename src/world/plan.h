@@ -28,6 +28,7 @@ enum class Stage {
     FindPairs,            // large and plane passes, pair sort
     Narrowphase,          // the pair kinds of program "narrowphase" (no SAT)
     NarrowphaseSat,       // those of "narrowphase_sat" (hull-hull)
+    NarrowphaseGjk,       // those of "narrowphase_gjk" (support-function convex shapes)
     ApplyForces,          // gravity, app forces, gyroscopic term
     ContactCache,         // contact list and warm start
     PrepareContacts,
@@ -35,6 +36,7 @@ enum class Stage {
     SolveConstraints,
     SolveJacobi,
     StoreContactCache,
+    StorePersistentManifolds,  // the GJK kinds' manifolds beside the cache
     IntegrateTransforms,
     UpdateActivation,
 };

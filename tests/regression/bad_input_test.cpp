@@ -93,6 +93,11 @@ std::vector<BadCase> badCases()
              box->setLocalScaling(btVector3(1, kInf, 1));
              return box;
          }},
+        {"capsule with NaN radius", nullptr, [](Scene& s) { return s.ownShape(new btCapsuleShape(kNan, 1.0f)); }},
+        {"capsule with negative height", nullptr, [](Scene& s) { return s.ownShape(new btCapsuleShape(0.3f, -1.0f)); }},
+        {"cylinder with NaN half extents", nullptr,
+         [](Scene& s) { return s.ownShape(new btCylinderShape(btVector3(0.5f, kNan, 0.5f))); }},
+        {"cone with negative height", nullptr, [](Scene& s) { return s.ownShape(new btConeShape(0.5f, -1.0f)); }},
         // Bullet's hull computer crashes on a NaN point: the world must not run it.
         {"hull with a NaN point", nullptr,
          [](Scene& s) {

@@ -92,6 +92,8 @@ std::vector<Rule> rules()
     static btMLCPSolver mlcp(&dantzig);
     static AcceptAll acceptAll;
     static btCapsuleShape capsule(.5, 1);
+    static btCompoundShape compound;
+    if (compound.getNumChildShapes() == 0) compound.addChildShape(btTransform::getIdentity(), &capsule);
     auto solver = [](const std::string& name, btConstraintSolver* other) {
         auto saved = std::make_shared<std::map<const Scene*, btConstraintSolver*>>();
         return Rule{name, "constraint solver",
@@ -200,8 +202,8 @@ std::vector<Rule> rules()
         {"world-frame gyroscopic term", "gyroscopic",
          [](Scene& s) { s.body(1)->setFlags(s.body(1)->getFlags() | BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD); },
          [](Scene& s) { s.body(1)->setFlags(s.body(1)->getFlags() & ~BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD); }},
-        {"shape swapped for a capsule", "unsupported shape",
-         [](Scene& s) { s.body(2)->setCollisionShape(&capsule); },
+        {"shape swapped for a compound", "unsupported shape",
+         [](Scene& s) { s.body(2)->setCollisionShape(&compound); },
          [](Scene& s) { s.body(2)->setCollisionShape(s.body(1)->getCollisionShape()); }},
     };
 }

@@ -17,8 +17,8 @@ std::vector<btVector3> cubePoints(float h)
     return p;
 }
 
-// Two hull cubes falling onto each other on a ground box; `capsule` adds a capsule (a shape
-// the GPU path does not take), sending the world to the CPU path.
+// Two hull cubes falling onto each other on a ground box; `capsule` adds a compound holding a
+// capsule (a shape the GPU path does not take), sending the world to the CPU path.
 ScenePtr hulls(WorldKind kind, const Config& config, bool capsule)
 {
     auto scene = std::make_unique<Scene>(kind, config);
@@ -27,7 +27,11 @@ ScenePtr hulls(WorldKind kind, const Config& config, bool capsule)
     scene->addBody(hull, 1, btVector3(0, 0.6f, 0));
     btTransform t(btQuaternion(btVector3(1, 1, 0).normalized(), 0.4f), btVector3(0.2f, 2.0f, 0.1f));
     scene->addBody(hull, 1, t);
-    if (capsule) scene->addBody(scene->ownShape(new btCapsuleShape(0.3f, 1.0f)), 1, btVector3(5, 1, 0));
+    if (capsule) {
+        btCompoundShape* compound = scene->ownShape(new btCompoundShape());
+        compound->addChildShape(btTransform::getIdentity(), scene->ownShape(new btCapsuleShape(0.3f, 1.0f)));
+        scene->addBody(compound, 1, btVector3(5, 1, 0));
+    }
     return scene;
 }
 

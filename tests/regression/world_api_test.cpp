@@ -17,7 +17,7 @@ namespace {
 bool has(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
 }  // namespace
 
-TEST(WorldApi, PlanLeavesOutSatUntilAHullPairExists)
+TEST(WorldApi, PlanLeavesOutSatUntilABoxPairExists)
 {
     // Spheres over a static plane: no hull at all, so no SAT/clipping program and no stage.
     btStaticPlaneShape plane(btVector3(0, 1, 0), 0);  // outlives the scene that uses it
@@ -29,14 +29,18 @@ TEST(WorldApi, PlanLeavesOutSatUntilAHullPairExists)
     ASSERT_TRUE(r->gpuPath) << r->cpuPathReason;
     EXPECT_FALSE(has(r->builtPrograms, "narrowphase_sat"));
     EXPECT_FALSE(has(r->stages, "narrowphase_sat"));
+    EXPECT_FALSE(has(r->builtPrograms, "narrowphase_gjk"));  // no convex shape: no GJK program
+    EXPECT_FALSE(has(r->stages, "narrowphase_gjk"));
     EXPECT_TRUE(has(r->builtPrograms, "narrowphase"));
-    // Two boxes arrive: a hull–hull pair kind now exists, and the program comes in.
+    // Two boxes arrive: a box–box pair kind now exists, and the program comes in; the lower box
+    // meets the plane as stock's convex–plane algorithm does, one point a step (the GJK program).
     btBoxShape* box = scene.boxShape(btVector3(.5, .5, .5));
     scene.addBody(box, 1, btVector3(10, .5, 0));
     scene.addBody(box, 1, btVector3(10, 1.6, 0));
     for (int i = 0; i < 30; ++i) scene.step();
     EXPECT_TRUE(has(r->stages, "narrowphase_sat"));
     EXPECT_TRUE(has(r->builtPrograms, "narrowphase_sat"));
+    EXPECT_TRUE(has(r->builtPrograms, "narrowphase_gjk"));
     EXPECT_GT(scene.body(6)->getWorldTransform().getOrigin().y(), 1.4) << "the upper box fell through";
 }
 

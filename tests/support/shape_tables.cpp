@@ -41,7 +41,12 @@ int ShapeTables::addBox(BtgFloat4 h)
     std::vector<BtgFloat4> v;
     for (int i = 0; i < 8; ++i)
         v.push_back(btgMake4(i & 1 ? h.x : -h.x, i & 2 ? h.y : -h.y, i & 4 ? h.z : -h.z, 0));
-    return addHull(v, {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}});
+    const int row = addHull(v, {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}});
+    // as compat/shape_tables.cpp makes a btBoxShape's row: its own kind, a zero-margin GJK core
+    shapes[size_t(row)].type = BTG_SHAPE_BOX;
+    shapes[size_t(row)].convexType = BTG_CONVEX_BOX;
+    shapes[size_t(row)].param = btgMake4(h.x, h.y, h.z, 0);
+    return row;
 }
 
 int ShapeTables::addPrism(int sides, float radius, float halfHeight, float margin)

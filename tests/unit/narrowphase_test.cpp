@@ -1,11 +1,12 @@
 // narrowphase_test.cpp — the narrowphase stage against its CPU reference (same shared
 // routines; points matched as sets within tests/tolerances.h), and the physics directly:
-// face–face, edge–edge and vertex–face boxes, spheres, planes, a tetrahedron, an 18-vertex hull.
+// face–face, edge–edge and vertex–face boxes, spheres, planes, a sphere on an 18-vertex hull.
 #include "reference/narrowphase.h"
 #include "shape_tables.h"
 #include "shared/math.h"
 #include "shared/narrowphase_common.h"
 #include "stages/find_pairs.h"
+#include "world/pair_kinds.h"
 #include "stages/narrowphase.h"
 #include "test_device.h"
 #include "tolerances.h"
@@ -271,63 +272,6 @@ TEST(Narrowphase, SphereSphereAndPlane)
     EXPECT_TRUE(hasPoint(m[2], btgMake4(0, -0.25f, 0, 0)));
 }
 
-TEST(Narrowphase, BoxOnPlane)
-{
-    Scene s;
-    int floor = s.t.addPlane(btgMake4(0, 1, 0, 0), 0);
-    int cube = s.t.addBox(btgMake4(0.5f, 0.5f, 0.5f, 0));
-    int prism = s.t.addPrism(9, 0.5f, 0.25f, 0.04f);  // 18 vertices, a margin
-    s.body(floor, btgMake4(0, 0, 0, 0));
-    s.body(cube, btgMake4(1, 0.49f, 2, 0));
-    s.body(prism, btgMake4(5, 0.25f + 0.03f, 0, 0));  // polyhedron 3 cm up, margin 4 cm: 1 cm deep
-    s.body(cube, btgMake4(-4, 0.5f + 0.05f, 0, 0));   // 5 cm up: beyond the threshold
-    s.pair(0, 1);
-    s.pair(0, 2);
-    s.pair(0, 3);
-    std::vector<BtgManifold> m = collide(s);
-    ASSERT_EQ(m[0].numPoints, 4);
-    expectNormal(m[0], btgMake4(0, -1, 0, 0));  // plane is A
-    expectAllDepths(m[0], -0.01f);
-    for (float x : {0.5f, 1.5f})
-        for (float z : {1.5f, 2.5f}) EXPECT_TRUE(hasPoint(m[0], btgMake4(x, -0.01f, z, 0)));
-    ASSERT_EQ(m[1].numPoints, 4);
-    expectAllDepths(m[1], -0.01f);
-    for (int k = 0; k < 4; ++k) EXPECT_NEAR(pointB(m[1], k).y, -0.01f, tol::kContactPoint);  // on the grown hull
-    EXPECT_EQ(m[2].numPoints, 0);
-}
-
-TEST(Narrowphase, TetrahedronAndPrismOnBox)
-{
-    Scene s;
-    int ground = s.t.addBox(btgMake4(2, 0.5f, 2, 0));
-    const float size = 0.3f;
-    int tet = s.t.addTetrahedron(size), roundTet = s.t.addTetrahedron(size, 0.04f);
-    int prism = s.t.addPrism(9, 0.5f, 0.25f);
-    BtgFloat4 faceDown = rotationBetween(btgMake4(-1, -1, -1, 0), btgMake4(0, -1, 0, 0));
-    const float faceDist = size / std::sqrt(3.0f);  // centre to the face opposite (s, s, s)
-    s.body(ground, btgMake4(0, 0, 0, 0));
-    s.body(tet, btgMake4(0.5f, 0.5f + faceDist - 0.01f, 0, 0), faceDown);
-    s.body(roundTet, btgMake4(-1, 0.5f + faceDist + 0.03f, 0, 0), faceDown);  // margin 4 cm: 1 cm deep
-    s.body(prism, btgMake4(0, 0.75f - 0.01f, 1, 0), axisAngle(btgMake4(0, 1, 0, 0), 0.3f));
-    s.body(tet, btgMake4(0, 2, 0, 0));  // well apart
-    s.pair(0, 1);
-    s.pair(0, 2);
-    s.pair(0, 3);
-    s.pair(0, 4);
-    std::vector<BtgManifold> m = collide(s);
-    ASSERT_EQ(m[0].numPoints, 3);
-    expectNormal(m[0], btgMake4(0, -1, 0, 0));  // ground is A
-    expectAllDepths(m[0], -0.01f);
-    for (int k = 0; k < 3; ++k) EXPECT_NEAR(pointB(m[0], k).y, 0.49f, tol::kContactPoint);  // on the tetrahedron
-    ASSERT_EQ(m[1].numPoints, 3);
-    expectAllDepths(m[1], -0.01f);
-    for (int k = 0; k < 3; ++k) EXPECT_NEAR(pointB(m[1], k).y, 0.49f, tol::kContactPoint);  // on the grown hull
-    ASSERT_EQ(m[2].numPoints, 4);
-    expectNormal(m[2], btgMake4(0, -1, 0, 0));
-    expectAllDepths(m[2], -0.01f);
-    EXPECT_EQ(m[3].numPoints, 0);
-}
-
 TEST(Narrowphase, SeparatedPairsHaveNoPoints)
 {
     Scene s;
@@ -402,12 +346,18 @@ float surfaceOffset(const Scene& s, int body, BtgFloat4 p)
 }  // namespace
 
 // Random poses of boxes, prisms, tetrahedra and spheres near touching: the device agrees with
-// the reference, and every contact's two points lie on the two surfaces, `distance` apart.
+// the reference, and every contact's two points lie on the two surfaces, `distance` apart. The
+// pairs of this stage only: box-box, sphere-box, sphere-sphere and sphere-hull (a hull meets a
+// box or a hull through GJK, narrowphase_gjk_test.cpp).
 TEST(Narrowphase, RandomPosesAgreeAndLieOnSurfaces)
 {
     Scene s;
     std::vector<int> kinds = {s.t.addBox(btgMake4(0.5f, 0.3f, 0.4f, 0)), s.t.addPrism(9, 0.4f, 0.2f),
                               s.t.addTetrahedron(0.35f), s.t.addSphere(0.4f), s.t.addBox(btgMake4(1.5f, 0.2f, 1.0f, 0))};
+    auto thisStage = [&](int sa, int sb) {
+        const PairKindRow* row = pairKindRow(btgPairKind(s.t.shapes[size_t(sa)].type, s.t.shapes[size_t(sb)].type));
+        return row && std::strcmp(row->program, "narrowphase_gjk") != 0;
+    };
     uint32_t seed = 12345u;
     auto rnd = [&seed] {
         seed = seed * 1664525u + 1013904223u;
@@ -418,6 +368,7 @@ TEST(Narrowphase, RandomPosesAgreeAndLieOnSurfaces)
     };
     for (int i = 0; i < 60; ++i) {
         int sa = kinds[i % kinds.size()], sb = kinds[(i / kinds.size() + i) % kinds.size()];
+        if (!thisStage(sa, sb)) continue;
         BtgFloat4 centre = btgMake4(10.0f * float(i), 0, 0, 0);
         BtgFloat4 dir = btgNormalize3(btgMake4(rnd() - 0.5f, rnd() - 0.5f, rnd() - 0.5f, 0));
         float gap = 0.45f + 0.6f * rnd();
@@ -441,7 +392,7 @@ TEST(Narrowphase, RandomPosesAgreeAndLieOnSurfaces)
             EXPECT_NEAR(surfaceOffset(s, m[i].bodyA, pa), 0.0f, tol::kContactPoint) << "point " << k << " not on A";
         }
     }
-    EXPECT_GT(touching, 20);
+    EXPECT_GT(touching, 12);
 }
 
 // Equal boxes stacked exactly: every incident corner lies on a side plane of the reference
@@ -481,27 +432,25 @@ Scene nudged(const Scene& s, float angle, BtgFloat4 shift)
 // the corners keep their ids), vertex contacts on planes, edge contacts and spheres.
 TEST(Narrowphase, FeatureIdsAreUniqueAndStable)
 {
+    // The pairs this stage makes at once (box-box clipping, sphere-box); a box or hull meets a
+    // plane or a hull through GJK, whose points keep their identity in the persistent manifold
+    // (narrowphase_gjk_test.cpp).
     Scene s;
     int ground = s.t.addBox(btgMake4(2, 0.5f, 2, 0)), cube = s.t.addBox(btgMake4(0.5f, 0.5f, 0.5f, 0));
-    int floor = s.t.addPlane(btgMake4(0, 1, 0, 0), 0), ball = s.t.addSphere(0.5f);
-    int prism = s.t.addPrism(9, 0.5f, 0.25f, 0.01f);
+    int ball = s.t.addSphere(0.5f);
     const float r = 0.5f * std::sqrt(2.0f);
     s.body(cube, btgMake4(0.1f, 0.99f, 0, 0), axisAngle(btgMake4(0, 1, 0, 0), 0.4f));  // face on face, cube is A
     s.body(ground, btgMake4(0, 0, 0, 0));
     s.body(ground, btgMake4(10, 0, 0, 0));  // ground is A: the reference face is B's or A's
     s.body(cube, btgMake4(10.2f, 0.99f, 0, 0), axisAngle(btgMake4(0, 1, 0, 0), 0.2f));
-    s.body(cube, btgMake4(20, 0.49f, 0, 0));  // on the plane
-    s.body(floor, btgMake4(20, 0, 0, 0));
     s.body(cube, btgMake4(30, 2 * r - 0.01f, 0, 0), axisAngle(btgMake4(1, 0, 0, 0), 0.78539816f));  // edge on edge
     s.body(cube, btgMake4(30, 0, 0, 0), axisAngle(btgMake4(0, 0, 1, 0), 0.78539816f));
     s.body(ball, btgMake4(40, 0.98f, 0, 0));
     s.body(ground, btgMake4(40, 0, 0, 0));
-    s.body(prism, btgMake4(50, 0.75f - 0.01f, 0, 0), axisAngle(btgMake4(0, 1, 0, 0), 0.3f));  // 18 vertices
-    s.body(ground, btgMake4(50, 0, 0, 0));
-    for (int i = 0; i < 12; i += 2) s.pair(i, i + 1);
+    for (int i = 0; i < 8; i += 2) s.pair(i, i + 1);
     std::vector<BtgManifold> before = collide(s);
     std::vector<BtgManifold> after = collide(nudged(s, 0.004f, btgMake4(0.002f, -0.001f, 0.001f, 0)));
-    const int expectPoints[6] = {4, 4, 4, 1, 1, 4};
+    const int expectPoints[4] = {4, 4, 1, 1};
     for (size_t i = 0; i < before.size(); ++i) {
         SCOPED_TRACE("pair " + std::to_string(i));
         ASSERT_EQ(before[i].numPoints, expectPoints[i]);
@@ -519,11 +468,9 @@ TEST(Narrowphase, FeatureIdsAreUniqueAndStable)
             ++kept;
             EXPECT_LT(btgLength3(pointB(after[i], k) - pointB(before[i], same)), 0.01f) << "point " << k;
         }
-        // The 9-gon's reduction to 4 corners may pick others after the nudge; the rest keep all.
-        EXPECT_GE(kept, i == 5 ? 2 : after[i].numPoints);
+        EXPECT_GE(kept, after[i].numPoints);
     }
-    EXPECT_EQ(before[2].points[0].featureId & 0xc0000000u, BTG_FEATURE_VERTEX);
-    EXPECT_EQ(before[3].points[0].featureId & 0xc0000000u, BTG_FEATURE_EDGES);
-    EXPECT_EQ(before[4].points[0].featureId, BTG_FEATURE_SINGLE);
+    EXPECT_EQ(before[2].points[0].featureId & 0xc0000000u, BTG_FEATURE_EDGES);
+    EXPECT_EQ(before[3].points[0].featureId, BTG_FEATURE_SINGLE);
     EXPECT_EQ(before[0].points[0].featureId & 0xc0000000u, BTG_FEATURE_CLIP);
 }

@@ -49,7 +49,7 @@ TEST(Plan, SpheresOnAPlaneLeaveOutSat)
 TEST(Plan, StagesInTheTalksOrder)
 {
     PlanInput in;
-    in.bodies = {body(BTG_SHAPE_HULL, 100, false), body(BTG_SHAPE_HULL, 1, true), body(BTG_SHAPE_HULL, 1, true)};
+    in.bodies = {body(BTG_SHAPE_BOX, 100, false), body(BTG_SHAPE_BOX, 1, true), body(BTG_SHAPE_BOX, 1, true)};
     const std::vector<Stage> expected = {
         Stage::Integrate,   Stage::UpdateAabbs,      Stage::UniformGrid,       Stage::FindPairs,
         Stage::NarrowphaseSat, Stage::ApplyForces,   Stage::ContactCache,      Stage::PrepareContacts,
@@ -61,6 +61,51 @@ TEST(Plan, StagesInTheTalksOrder)
     EXPECT_TRUE(has(jacobi, Stage::SolveJacobi));
     EXPECT_FALSE(has(jacobi, Stage::ColorConstraints));
     EXPECT_FALSE(has(jacobi, Stage::SolveConstraints));
+}
+
+TEST(Plan, ConvexShapesBringTheGjkStagesAndNothingElseDoes)
+{
+    // Spheres and boxes: no GJK program, no persistent-manifold store (box-box pairs are
+    // clipped, sphere-box pairs are closed form).
+    PlanInput in;
+    in.bodies = {body(BTG_SHAPE_BOX, 0, false), body(BTG_SHAPE_SPHERE, 1, true), body(BTG_SHAPE_BOX, 1, true)};
+    std::vector<Stage> stages = derivePlan(in).plan.substep();
+    EXPECT_FALSE(has(stages, Stage::NarrowphaseGjk));
+    EXPECT_FALSE(has(stages, Stage::StorePersistentManifolds));
+    // A capsule (a convex row) arrives: its pairs with the box, the sphere and the ground box
+    // are GJK kinds; the store follows the cache's.
+    in.bodies.push_back(body(BTG_SHAPE_CONVEX, 1, true));
+    DerivedPlan d = derivePlan(in);
+    EXPECT_TRUE(d.plan.kinds.has(BTG_PAIR_CONVEX_BOX));
+    EXPECT_TRUE(d.plan.kinds.has(BTG_PAIR_SPHERE_CONVEX));
+    EXPECT_FALSE(d.plan.kinds.has(BTG_PAIR_CONVEX_CONVEX));
+    stages = d.plan.substep();
+    ASSERT_TRUE(has(stages, Stage::NarrowphaseGjk));
+    auto at = [&](Stage st) { return std::find(stages.begin(), stages.end(), st) - stages.begin(); };
+    EXPECT_EQ(at(Stage::StorePersistentManifolds), at(Stage::StoreContactCache) + 1);
+    EXPECT_LT(at(Stage::NarrowphaseGjk), at(Stage::ContactCache));
+}
+
+TEST(Plan, PairsFollowStocksAlgorithmChoice)
+{
+    // Stock clips two boxes (btBoxBoxDetector) and two hulls with polyhedral features; a box
+    // meets such a hull, and anything meets a plane, through GJK or the plane's support point.
+    PlanInput in;
+    in.bodies = {body(BTG_SHAPE_BOX, 1, true), body(BTG_SHAPE_BOX, 1, true)};
+    DerivedPlan d = derivePlan(in);
+    EXPECT_TRUE(d.plan.kinds.has(BTG_PAIR_BOX_BOX));
+    EXPECT_TRUE(has(d.plan.substep(), Stage::NarrowphaseSat));
+    EXPECT_FALSE(has(d.plan.substep(), Stage::NarrowphaseGjk));
+    in.bodies.push_back(body(BTG_SHAPE_PLANE, 0, false));
+    d = derivePlan(in);
+    EXPECT_TRUE(d.plan.kinds.has(BTG_PAIR_PLANE_BOX));
+    EXPECT_TRUE(has(d.plan.substep(), Stage::NarrowphaseGjk));
+    in.bodies = {body(BTG_SHAPE_HULL, 1, true), body(BTG_SHAPE_HULL, 1, true), body(BTG_SHAPE_BOX, 10, false)};
+    d = derivePlan(in);
+    EXPECT_TRUE(d.plan.kinds.has(BTG_PAIR_HULL_HULL));
+    EXPECT_TRUE(d.plan.kinds.has(BTG_PAIR_HULL_BOX));
+    EXPECT_FALSE(has(d.plan.substep(), Stage::NarrowphaseSat));  // featured hull pairs: GJK, then clipping
+    EXPECT_TRUE(has(d.plan.substep(), Stage::NarrowphaseGjk));
 }
 
 TEST(Plan, NothingToCollideRunsOnlyTheIntegrator)

@@ -1,0 +1,31 @@
+// narrowphase_gjk.cpp (reference) — the loop of kernels/narrowphase_gjk.cl's collide kernels on
+// the CPU (btgPairStep, btgManifoldFromPersistent), for tests.
+#include "reference/narrowphase_gjk.h"
+
+#include "shared/polyhedral_contacts.h"
+
+namespace btgpu::ref {
+
+GjkStep referenceGjkStep(const std::vector<BtgPair>& pairs, const BtgFloat4* pos, const BtgFloat4* rot,
+                         const BtgBodyProps* props, const ShapeTablesView& t,
+                         const std::vector<BtgPersistentManifold>& previous)
+{
+    GjkStep out;
+    for (size_t i = 0; i < pairs.size(); ++i) {
+        const BtgPair& p = pairs[i];
+        BtgCollider a = btgLoadCollider(p.a, pos, rot, props, t.shapes);
+        BtgCollider b = btgLoadCollider(p.b, pos, rot, props, t.shapes);
+        const float threshold = btgPairThreshold(a.shape, b.shape);
+        const int kind = btgPairKind(a.shape.type, b.shape.type);
+        BtgPersistentManifold prev = i < previous.size() ? previous[i] : btgEmptyPersistent(p.a, p.b, kind);
+        float dist[BTG_MAX_POINTS];
+        BtgPersistentManifold pm =
+            btgPairStep(prev, a, b, t.hullVertices, t.hullFaces, t.hullIndices, t.hullEdges, threshold, dist);
+        pm.kind = kind;
+        out.states.push_back(pm);
+        out.manifolds.push_back(btgWithThreshold(btgManifoldFromPersistent(pm, dist, b.pose), threshold));
+    }
+    return out;
+}
+
+}  // namespace btgpu::ref

@@ -1,0 +1,65 @@
+// narrowphase_gjk.cpp — host launchers of the GJK narrowphase: one kernel per GJK row of the
+// pair-kind table the plan has, each striding over its kind's range; and the store of the
+// persistent manifolds beside the warm-start cache. The GJK cache is kept as large as the
+// warm-start cache, whose indices it shares.
+#include "stages/narrowphase_gjk.h"
+
+#include "cl/program.h"
+
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+namespace btgpu {
+
+namespace {
+constexpr const char* kProgram = "narrowphase_gjk";
+
+void reserveGjk(DeviceWorld& w)
+{
+    w.gjkPairState.reserveExact(w.ctx, std::max<size_t>(w.pairCapacity, 1));
+    w.gjkCache.reserveExact(w.ctx, std::max<size_t>(w.contactCache.capacity(), 1), true);
+}
+}  // namespace
+
+void narrowphaseGjk(DeviceWorld& w, const PairKinds& kinds)
+{
+    if (!kinds.anyIn(kProgram) || w.pairCapacity == 0) return;
+    w.manifolds.reserveExact(w.ctx, w.pairCapacity);
+    w.pairManifolds.reserveExact(w.ctx, w.pairCapacity);
+    w.contactCache.reserveExact(w.ctx, std::max<size_t>(w.contactCache.capacity(), 1), true);
+    reserveGjk(w);
+    if (!w.gjkCacheCurrent) {
+        // Entries no store of this kind wrote (a fresh buffer, or one left from before the plan
+        // last had these kinds) must match no pair: kind 0 is BTG_PAIR_NONE.
+        std::vector<BtgPersistentManifold> none(w.gjkCache.capacity(), BtgPersistentManifold{});
+        w.gjkCache.upload(w.ctx, none);
+        w.gjkCacheCurrent = true;
+    }
+    const size_t items = std::min(w.pairCapacity, size_t(std::max<cl_uint>(w.ctx.device().computeUnits, 1)) * 1024);
+    const cl_int indirect = w.pairKindsIndirect ? 1 : 0;
+    const int cacheCapacity = int(w.contactCache.capacity());
+    const int gjkCapacity = int(w.gjkCache.capacity());
+    cl::Program& prog = w.ctx.program(kProgram);
+    for (int r = 0; r < kNumPairKindRows; ++r) {
+        const PairKindRow& row = kPairKindRows[r];
+        if (!kinds.has(row.kind) || std::strcmp(row.program, kProgram) != 0) continue;
+        cl::Launch(w.ctx, prog.kernel(row.kernel), &w.profiler)
+            .arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)
+            .arg(w.shapes).arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges).arg(w.counters).arg(w.contactCache).arg(cacheCapacity)
+            .arg(w.gjkCache).arg(gjkCapacity).arg(w.manifolds).arg(w.pairManifolds).arg(w.gjkPairState)
+            .run(items);
+    }
+}
+
+void storePersistentManifolds(DeviceWorld& w)
+{
+    reserveGjk(w);
+    const int contactCapacity = int(std::min({w.contactCapacity, w.contacts.capacity(), w.contactManifolds.capacity()}));
+    cl::Launch(w.ctx, w.ctx.program(kProgram).kernel("store_persistent_manifolds"), &w.profiler)
+        .arg(w.contactManifolds).arg(w.manifolds).arg(w.counters).arg(contactCapacity).arg(w.props).arg(w.shapes)
+        .arg(w.gjkPairState).arg(int(w.gjkPairState.capacity())).arg(w.gjkCache).arg(int(w.gjkCache.capacity()))
+        .run(size_t(std::max(contactCapacity, 1)));
+}
+
+}  // namespace btgpu

@@ -1,0 +1,122 @@
+// convex_shapes_test.cpp — the convex shapes Bullet collides by GJK (capsules, cylinders, cones
+// of each axis, a multi-sphere, a convex triangle mesh, a uniformly scaled capsule, locally
+// scaled boxes and hulls) on stock Bullet and on btgpu in the same test: rest heights, a
+// cylinder rolling down a ramp, a mixed pile within stock's own chaos. Every step must stay on
+// the GPU path and run the GJK stage.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "scenes/convex_scenes.h"
+#include "scenes/stock_chaos.h"
+#include "side_by_side.h"
+
+using namespace btgpu;
+using namespace btgpu::test;
+using scenes::ConvexKind;
+
+namespace {
+
+bool has(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
+
+// Steps both worlds, asserting the GPU path (and the GJK stage) after every step.
+void stepOnGpu(SideBySide& s, int steps, bool gjk = true)
+{
+    for (int i = 0; i < steps; ++i) {
+        s.step();
+        ASSERT_TRUE(s.onGpu()) << "step " << i << ": " << s.gpu->report()->cpuPathReason;
+        if (gjk) ASSERT_TRUE(has(s.gpu->report()->stages, "narrowphase_gjk")) << "step " << i;
+    }
+}
+
+struct Landing {
+    const char* name;
+    ConvexKind kind;
+    int axis;
+    double tilt;
+    bool gjk;  // the scene has a GJK pair (scaled boxes and hulls keep their own kinds)
+};
+
+void expectRestsAsStock(const Landing& c, int steps = 180)
+{
+    SCOPED_TRACE(c.name);
+    SideBySide s([&](scenes::WorldKind k, const Config& cfg) { return scenes::convexLanding(k, c.kind, c.axis, c.tilt, 1.5, cfg); });
+    ASSERT_NO_FATAL_FAILURE(stepOnGpu(s, steps, c.gjk));
+    EXPECT_NEAR(s.gpuY(1), s.stockY(1), tol::kRestHeight) << c.name;
+    // at rest, not still falling or rolling away
+    EXPECT_LT(s.gpu->body(1)->getLinearVelocity().length(), 0.05) << c.name;
+}
+
+}  // namespace
+
+TEST(ConvexShapes, CapsuleOnItsSideRestsAtStockHeight)
+{
+    expectRestsAsStock({"capsule y on its side", ConvexKind::Capsule, 1, M_PI / 2, true});
+}
+
+TEST(ConvexShapes, CylinderOnItsSideRestsAtStockHeight)
+{
+    expectRestsAsStock({"cylinder y on its side", ConvexKind::Cylinder, 1, M_PI / 2, true});
+}
+
+TEST(ConvexShapes, ConeRestsAtStockHeight)
+{
+    expectRestsAsStock({"cone y upright", ConvexKind::Cone, 1, 0.0, true});
+}
+
+TEST(ConvexShapes, EveryAxisRestsAtStockHeight)
+{
+    for (int axis = 0; axis < 3; ++axis) {
+        expectRestsAsStock({"capsule upright", ConvexKind::Capsule, axis, 0.0, true});
+        expectRestsAsStock({"cylinder upright", ConvexKind::Cylinder, axis, 0.0, true});
+        expectRestsAsStock({"cone", ConvexKind::Cone, axis, 0.0, true});
+    }
+}
+
+TEST(ConvexShapes, MultiSphereAndConvexMeshLandAsStock)
+{
+    expectRestsAsStock({"multi-sphere", ConvexKind::MultiSphere, 1, 0.0, true});
+    expectRestsAsStock({"convex triangle mesh", ConvexKind::ConvexMesh, 1, 0.0, true});
+    expectRestsAsStock({"uniformly scaled capsule", ConvexKind::UniformCapsule, 1, M_PI / 2, true});
+}
+
+TEST(ConvexShapes, ScaledBoxAndHullRestAsStock)
+{
+    expectRestsAsStock({"scaled box", ConvexKind::ScaledBox, 1, 0.0, false});
+    expectRestsAsStock({"scaled hull", ConvexKind::ScaledHull, 1, 0.0, false});
+}
+
+TEST(ConvexShapes, CylinderRollsDownRampAsStock)
+{
+    SideBySide s(scenes::cylinderRamp);
+    const btVector3 start = s.stock->body(1)->getWorldTransform().getOrigin();
+    ASSERT_NO_FATAL_FAILURE(stepOnGpu(s, 180));
+    const double stockDist = (s.stock->body(1)->getWorldTransform().getOrigin() - start).length();
+    const double gpuDist = (s.gpu->body(1)->getWorldTransform().getOrigin() - start).length();
+    ASSERT_GT(stockDist, 1.0) << "stock's cylinder did not roll: the scene is wrong";
+    EXPECT_NEAR(gpuDist, stockDist, tol::kRollDistanceRel * stockDist);
+}
+
+TEST(ConvexShapes, MixedPileWithinStockChaos)
+{
+    const int steps = 240;
+    auto measure = [](const scenes::Scene& sc) {
+        scenes::Aggregates a = scenes::aggregates(sc);
+        return std::vector<double>{a.meanHeight, a.spread};
+    };
+    const std::vector<scenes::ChaosBand> bands =
+        scenes::stockChaos([](scenes::WorldKind k) { return scenes::convexPile(k); }, steps, measure,
+                           {"mean height", "spread"}, {tol::kChaosHeightFloor, tol::kChaosSpreadFloor});
+    scenes::ScenePtr gpu = scenes::convexPile(scenes::WorldKind::Gpu);
+    for (int i = 0; i < steps; ++i) {
+        gpu->step();
+        ASSERT_TRUE(gpu->gpuWorld()->isGpuPath()) << "step " << i << ": " << gpu->report()->cpuPathReason;
+        ASSERT_TRUE(has(gpu->report()->stages, "narrowphase_gjk"));
+    }
+    ASSERT_TRUE(scenes::allFinite(*gpu));
+    const std::vector<double> values = measure(*gpu);
+    for (size_t k = 0; k < bands.size(); ++k)
+        EXPECT_TRUE(bands[k].admits(values[k])) << bands[k].name << ": btgpu " << values[k] << ", stock "
+                                                << bands[k].stockMean << " +- " << bands[k].bound();
+}
