@@ -141,6 +141,11 @@ public:
         b3SetCustomErrorMessageFunc(onError);
         b3SetCustomEnterProfileZoneFunc(enterZone);
         b3SetCustomLeaveProfileZoneFunc(leaveZone);
+        for (const BodySpec& b : scene.bodies)
+            if (b.shape != ShapeKind::Box && b.shape != ShapeKind::Sphere) {
+                *why = "this backend builds boxes and spheres only (the scene has hulls or planes)";
+                return false;
+            }
         m_dt = scene.dt;
         m_nativeInertia = options.b3NativeInertia;
         // Bullet3 caches kernel binaries on disk (in ./cache by default); btgpu caches in

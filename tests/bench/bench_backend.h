@@ -13,11 +13,13 @@ namespace btgpu::bench {
 
 // The scene data is the shared scene library's (tests/scenes/scene_specs.h).
 using scenes::spec::BodySpec;
+using scenes::spec::HullSpec;
 using scenes::spec::Scene;
 using scenes::spec::ShapeKind;
 using scenes::spec::dimsForCount;
 using scenes::spec::makeMixed;
 using scenes::spec::makeStack;
+using scenes::spec::makeVoronoi;
 
 struct Options {
     bool noSleep = false;           // disable Bullet's deactivation on every dynamic body

@@ -24,11 +24,21 @@ Percentiles percentiles(std::vector<double> v)
 }
 
 // The lowest point of a body: its centre minus its extent along y in world space.
-float lowestY(const BodySpec& b, const Pose& p)
+float lowestY(const Scene& scene, const BodySpec& b, const Pose& p)
 {
     if (b.shape == ShapeKind::Sphere) return p.p[1] - b.radius;
+    if (b.shape == ShapeKind::Plane) return p.p[1];
     float x = p.q[0], y = p.q[1], z = p.q[2], w = p.q[3];
     float r10 = 2 * (x * y + w * z), r11 = 1 - 2 * (x * x + z * z), r12 = 2 * (y * z - w * x);  // row y of R
+    if (b.shape == ShapeKind::Hull) {
+        const std::vector<float>& v = scene.hulls.at(size_t(b.hull)).points;
+        float lowest = 0;
+        for (size_t i = 0; i + 2 < v.size(); i += 3) {
+            const float py = r10 * v[i] + r11 * v[i + 1] + r12 * v[i + 2];
+            if (i == 0 || py < lowest) lowest = py;
+        }
+        return p.p[1] + lowest;
+    }
     return p.p[1] - (std::fabs(r10) * b.half[0] + std::fabs(r11) * b.half[1] + std::fabs(r12) * b.half[2]);
 }
 
@@ -79,7 +89,7 @@ RunResult runBackend(Backend& backend, const Scene& scene, const Options& option
         for (size_t i = 0; i < poses.size() && i < scene.bodies.size(); ++i) {
             const BodySpec& b = scene.bodies[i];
             if (b.mass <= 0 || !finite(poses[i])) continue;
-            float low = lowestY(b, poses[i]);
+            float low = lowestY(scene, b, poses[i]);
             if (low < r.minLowestY) r.minLowestY = low, r.minLowestFrame = frame;
         }
         FrameInfo info;
@@ -95,7 +105,7 @@ RunResult runBackend(Backend& backend, const Scene& scene, const Options& option
                     continue;
                 }
                 if (scene.bodies[i].mass <= 0) continue;
-                r.finalLowestY = std::min(r.finalLowestY, lowestY(scene.bodies[i], poses[i]));
+                r.finalLowestY = std::min(r.finalLowestY, lowestY(scene, scene.bodies[i], poses[i]));
                 if (poses[i].p[1] < 0) ++r.belowGround;
             }
             r.cutShort = frame < frames;

@@ -25,14 +25,25 @@ void BtBodies::build(const Scene& scene, const Options& options, btDiscreteDynam
     std::map<std::tuple<int, float, float, float>, btCollisionShape*> shared;
     m_bodies.reserve(scene.bodies.size());
     for (const BodySpec& b : scene.bodies) {
-        auto key = b.shape == ShapeKind::Box ? std::make_tuple(0, b.half[0], b.half[1], b.half[2])
-                                             : std::make_tuple(1, b.radius, 0.f, 0.f);
+        auto key = b.shape == ShapeKind::Box      ? std::make_tuple(0, b.half[0], b.half[1], b.half[2])
+                   : b.shape == ShapeKind::Sphere ? std::make_tuple(1, b.radius, 0.f, 0.f)
+                   : b.shape == ShapeKind::Hull   ? std::make_tuple(2, float(b.hull), 0.f, 0.f)
+                                                  : std::make_tuple(3, 0.f, 0.f, 0.f);
         btCollisionShape*& shape = shared[key];
         if (!shape) {
-            if (b.shape == ShapeKind::Box)
+            if (b.shape == ShapeKind::Box) {
                 m_shapes.emplace_back(new btBoxShape(btVector3(b.half[0], b.half[1], b.half[2])));
-            else
+            } else if (b.shape == ShapeKind::Sphere) {
                 m_shapes.emplace_back(new btSphereShape(b.radius));
+            } else if (b.shape == ShapeKind::Hull) {
+                const HullSpec& h = scene.hulls.at(size_t(b.hull));
+                auto* hull = new btConvexHullShape(h.points.data(), int(h.points.size() / 3), 3 * sizeof(float));
+                if (h.polyhedral) hull->initializePolyhedralFeatures();
+                hull->setMargin(h.margin);
+                m_shapes.emplace_back(hull);
+            } else {
+                m_shapes.emplace_back(new btStaticPlaneShape(btVector3(0, 1, 0), 0));
+            }
             shape = m_shapes.back().get();
         }
         btVector3 inertia(0, 0, 0);

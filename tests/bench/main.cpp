@@ -16,7 +16,7 @@ using namespace btgpu::bench;
 namespace {
 
 const char* kUsage =
-    "usage: btgpu_bench [--scene cubes|spheres|mixed] [--n 1000|8000|32768|112500|1000000 | --dims NX NY NZ]\n"
+    "usage: btgpu_bench [--scene cubes|spheres|mixed|voronoi] [--n 1000|8000|32768|112500|1000000 | --dims NX NY NZ]\n"
     "                   [--frames F] [--backends btgpu,bullet,b3gpu] [--csv PATH] [--budget-s S]\n"
     "                   [--no-sleep] [--no-aabb-sync] [--jacobi] [--b3-native-inertia] [--absolute-thresholds] [--smoke]\n"
     "  BTGPU_DEVICE=gpu|cpu|<name substring> picks the OpenCL device (btgpu and b3gpu alike).\n";
@@ -34,6 +34,7 @@ int main(int argc, char** argv)
     std::string sceneName = "cubes", backends = "btgpu,bullet,b3gpu", csvPath;
     int dims[3] = {20, 20, 20};
     int frames = 300;
+    int nCells = 90;
     double budgetS = 600;  // per backend: a slow backend stops early and says so
     bool smoke = false;
     Options options;
@@ -78,7 +79,8 @@ int main(int argc, char** argv)
     if (sceneName == "cubes") scene = makeStack(dims[0], dims[1], dims[2], ShapeKind::Box);
     else if (sceneName == "spheres") scene = makeStack(dims[0], dims[1], dims[2], ShapeKind::Sphere);
     else if (sceneName == "mixed") scene = makeMixed();
-    else usage("--scene must be cubes, spheres or mixed");
+    else if (sceneName == "voronoi") scene = makeVoronoi(nCells);
+    else usage("--scene must be cubes, spheres, mixed or voronoi");
 
     std::vector<RunResult> results;
     std::stringstream list(backends);

@@ -9,12 +9,20 @@
 
 namespace btgpu::scenes::spec {
 
-enum class ShapeKind { Box, Sphere };
+enum class ShapeKind { Box, Sphere, Hull, Plane };
+
+// A convex hull's points (local frame, m), as an app passes them to btConvexHullShape.
+struct HullSpec {
+    std::vector<float> points;  // x, y, z per point
+    float margin = 0.04f;       // m (btConvexHullShape's default is 0.04)
+    bool polyhedral = true;     // the app calls initializePolyhedralFeatures
+};
 
 struct BodySpec {
     ShapeKind shape = ShapeKind::Box;
     float half[3] = {1, 1, 1};  // m, box half extents (Box)
     float radius = 1;           // m (Sphere)
+    int hull = -1;              // Hull: index in Scene::hulls (Plane: the plane y = pos[1], normal +y)
     float mass = 0;             // kg; 0 = static
     float pos[3] = {0, 0, 0};   // m, centre of mass; every body starts unrotated and at rest
     float friction = 1;
@@ -24,6 +32,7 @@ struct BodySpec {
 struct Scene {
     std::string name;                // e.g. "cubes 10x10x10"
     std::vector<BodySpec> bodies;
+    std::vector<HullSpec> hulls;     // shapes of the Hull bodies
     float gravity[3] = {0, -10, 0};  // m/s^2
     float dt = 1.0f / 60.0f;         // s, one substep per frame
     int iterations = 10;             // solver iterations
@@ -34,6 +43,11 @@ struct Scene {
 Scene makeStack(int nx, int ny, int nz, ShapeKind shape);
 // 32³ boxes of random half extents in [0.1, 2.5] over 16 static pillars (fixed seed).
 Scene makeMixed(std::uint32_t seed = 12345u);
+// Bullet's BenchmarkDemo test 8: `cells` Voronoi cells of a 2 m cube (sites on a Halton
+// sequence), each a convex hull of many faces with polyhedral features and margin 0.04, mass =
+// volume, friction 0.6, released 3.5 m up over a ground plane; 20 solver iterations. The demo also
+// sets erp 0.8 and a global CFM, which btgpu does not serve: left at Bullet's defaults here.
+Scene makeVoronoi(int cells = 90);
 // Sizes named by --n: 1000, 8000, 32768, 112500, 1000000; false if n is not one of them.
 bool dimsForCount(long n, int dims[3]);
 
