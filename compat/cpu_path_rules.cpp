@@ -265,10 +265,12 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
                "velocity-independent friction directions, interleaving)";
 
     // Dispatch info. m_useContinuous only matters for CCD bodies (a body rule); the CCD fields
-    // (m_allowedCcdPenetration) likewise. The GPU path always clips hull pairs after SAT, what
-    // m_enableSatConvex asks of Bullet. m_useConvexConservativeDistanceUtil and its threshold
+    // (m_allowedCcdPenetration) likewise. m_useConvexConservativeDistanceUtil and its threshold
     // are compiled out of 3.24 (USE_SEPDISTANCE_UTIL2), m_useEpa and m_enableSPU are unread,
     // and m_deterministicOverlappingPairs orders stock's pairs (the GPU path is deterministic).
+    if (world.getDispatchInfo().m_enableSatConvex)
+        return "btDispatcherInfo::m_enableSatConvex (stock then finds the normal of two hulls with polyhedral "
+               "features by SAT; the GPU path follows the default, GJK)";
     if (world.getDispatchInfo().m_dispatchFunc != btDispatcherInfo::DISPATCH_DISCRETE)
         return "btDispatcherInfo::m_dispatchFunc is not DISPATCH_DISCRETE (time of impact instead of contacts)";
     return "";

@@ -143,6 +143,9 @@ std::vector<Rule> rules()
                    [](btContactSolverInfo& i) {
                        i.m_solverMode |= SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS;
                    }),
+        {"SAT for featured hulls", "m_enableSatConvex",
+         [](Scene& s) { s.world().getDispatchInfo().m_enableSatConvex = true; },
+         [](Scene& s) { s.world().getDispatchInfo().m_enableSatConvex = false; }},
         {"continuous dispatch", "m_dispatchFunc",
          [](Scene& s) { s.world().getDispatchInfo().m_dispatchFunc = btDispatcherInfo::DISPATCH_CONTINUOUS; },
          [](Scene& s) { s.world().getDispatchInfo().m_dispatchFunc = btDispatcherInfo::DISPATCH_DISCRETE; }},
@@ -388,7 +391,6 @@ TEST(CpuPathRules, SettingsThatChangeNothingHereStayOnGpu)
     info.m_articulatedWarmstartingFactor = 0.5f;
     info.m_numNonContactInnerIterations = 3;
     info.m_solverMode = (info.m_solverMode & ~SOLVER_SIMD) | SOLVER_CACHE_FRIENDLY | SOLVER_FRICTION_SEPARATE;
-    w.getDispatchInfo().m_enableSatConvex = true;
     w.getDispatchInfo().m_deterministicOverlappingPairs = true;
     w.getDispatchInfo().m_allowedCcdPenetration = 0.1f;
     dispatcher(*scene).setDispatcherFlags(btCollisionDispatcher::CD_STATIC_STATIC_REPORTED);
@@ -516,4 +518,23 @@ TEST(CpuPathRules, OwnWorldClassesKeepTheirHooks)
 {
     stepOwnWorld<OwnIntegration>(false);
     stepOwnWorld<OwnKinematics>(true);
+}
+
+TEST(CpuPathRules, FeaturedBoxesBesidePlainBoxesFallBack)
+{
+    // Stock clips two boxes whatever their features, but a featured box against a featured hull
+    // too: the GPU path serves featured boxes as featured hulls, so the mix falls back.
+    ScenePtr scene = scenes::dropRow(WorldKind::Gpu);
+    scene->step();
+    ASSERT_TRUE(scene->report()->gpuPath) << scene->report()->cpuPathReason;
+    btBoxShape* featured = scene->boxShape(btVector3(.5, .5, .5));
+    featured->initializePolyhedralFeatures();
+    btRigidBody* b = scene->addBody(featured, 1, btVector3(6, 3, 0));
+    scene->step();
+    EXPECT_FALSE(scene->report()->gpuPath);
+    EXPECT_NE(scene->report()->cpuPathReason.find("polyhedral features"), std::string::npos)
+        << scene->report()->cpuPathReason;
+    scene->removeBody(b);
+    scene->step();
+    EXPECT_TRUE(scene->report()->gpuPath) << scene->report()->cpuPathReason;
 }
