@@ -548,7 +548,7 @@ static inline BtgConvexPoint btgPlanePoint(BtgCollider c, BtgCollider p, BTG_CON
 {
     BtgFloat4 n = btgMat3MulVec(p.pose.rot, btgXyz(p.shape.param));
     const float w = p.shape.param.w + btgDot3(n, p.pose.pos);
-    BtgFloat4 support = btgSupportFull(c.shape, verts, btgMat3TMulVec(c.pose.rot, -n));
+    BtgFloat4 support = btgSupportForPlane(c.shape, verts, btgMat3TMulVec(c.pose.rot, -n));
     BtgFloat4 vtx = btgPoseApply(c.pose, support);
     const float dist = btgDot3(n, vtx) - w;
     if (dist >= threshold) return btgNoPoint();
