@@ -565,7 +565,9 @@ static inline BtgConvexPoint btgConvexPairPoint(BtgCollider a, BtgCollider b, BT
         if (p.valid) p = btgMakeConvexPoint(-p.normal, p.pointB + p.normal * p.distance, p.distance);
         return p;
     }
-    if (a.shape.isCapsule && b.shape.isCapsule && (a.shape.isCapsule == 1 || b.shape.isCapsule == 1))
+    const uint round = BTG_CONVEX_FLAG_CAPSULE | BTG_CONVEX_FLAG_SPHERE;
+    if ((a.shape.convexFlags & round) && (b.shape.convexFlags & round) &&
+        ((a.shape.convexFlags | b.shape.convexFlags) & BTG_CONVEX_FLAG_CAPSULE))
         return btgCapsulePoint(a, b, threshold);
     return btgGjkPoint(a, b, verts, threshold);
 }

@@ -5,6 +5,7 @@
 // same poses: normal within 1 degree, depth within 1 mm, the same point.
 #include "reference/narrowphase_gjk.h"
 #include "shape_tables.h"
+#include "shared/aabb.h"
 #include "shared/persistent_manifold.h"
 #include "stages/find_pairs.h"
 #include "stages/narrowphase.h"
@@ -451,6 +452,62 @@ TEST(NarrowphaseGjk, SupportFunctionsAreBullets)
             EXPECT_NEAR(btgDot3(c, dd), core.dot(d), 1e-5f) << "direction " << k;
             EXPECT_NEAR(btgDot3(f, dd), full.dot(d), 1e-5f) << "direction " << k;
             EXPECT_NEAR(btgDot3(p, dd), plane.dot(d), 1e-5f) << "direction " << k;
+        }
+    }
+}
+
+TEST(NarrowphaseGjk, AabbsAreBullets)
+{
+    // btgBodyAabb of every convex row against the shape's own getAabb in turned poses: equal
+    // (within 0.1 mm) for all, but a uniformly scaled point set, whose box may only be larger.
+    std::vector<std::unique_ptr<btCollisionShape>> keep;
+    std::vector<std::unique_ptr<btTriangleMesh>> meshes;
+    auto own = [&](btConvexShape* s) {
+        keep.emplace_back(s);
+        return s;
+    };
+    btConvexShape* hull = own(new btConvexHullShape());
+    for (const btVector3& p : {btVector3(-.5, -.3, -.4), btVector3(.5, -.3, -.4), btVector3(0, .5, 0), btVector3(.1, 0, .6)})
+        static_cast<btConvexHullShape*>(hull)->addPoint(p);
+    const btVector3 mp[2] = {{-.4, 0, 0}, {.4, .1, 0}};
+    const btScalar mr[2] = {.3, .2};
+    std::vector<std::pair<btConvexShape*, bool>> shapes = {
+        {own(new btCapsuleShape(.3, 1)), true},          {own(new btCapsuleShapeX(.2, .5)), true},
+        {own(new btCylinderShapeZ(btVector3(.2, .2, .9))), true}, {own(new btConeShape(.5, 1)), true},
+        {own(new btConeShapeX(.3, .8)), true},           {own(new btConeShapeZ(.4, .6)), true},
+        {own(new btMultiSphereShape(mp, mr, 2)), true},
+    };
+    shapes.push_back({own(new btUniformScalingShape(shapes[0].first, 1.7)), true});
+    shapes.push_back({own(new btUniformScalingShape(shapes[3].first, 0.8)), true});
+    shapes.push_back({own(new btUniformScalingShape(own(new btBoxShape(btVector3(.3, .2, .5))), 1.4)), true});
+    shapes.push_back({own(new btUniformScalingShape(own(new btSphereShape(.4)), 1.3)), true});
+    shapes.push_back({own(new btUniformScalingShape(hull, 1.2)), false});
+    ShapeTables tables;
+    for (auto [shape, exact] : shapes) {
+        SCOPED_TRACE(shape->getName());
+        std::string why;
+        const int row = tables.add(shape, &why);
+        ASSERT_GE(row, 0) << why;
+        for (int k = 0; k < 12; ++k) {
+            btTransform t;
+            t.setIdentity();
+            t.setOrigin(btVector3(btScalar(k), btScalar(0.5 * k), btScalar(-k)));
+            t.setRotation(btQuaternion(btVector3(btScalar(1 + k), btScalar(2 - k), btScalar(0.5 * k)).normalized(),
+                                       btScalar(0.37 * k)));
+            btVector3 mn, mx;
+            shape->getAabb(t, mn, mx);
+            const btQuaternion q = t.getRotation();
+            BtgAabb a = btgBodyAabb(btgMake4(t.getOrigin().x(), t.getOrigin().y(), t.getOrigin().z(), 0),
+                                    btgMake4(q.x(), q.y(), q.z(), q.w()), tables.shapes[size_t(row)], 0u, 0.0f);
+            const float lo[3] = {a.lo.x, a.lo.y, a.lo.z}, hi[3] = {a.hi.x, a.hi.y, a.hi.z};
+            for (int i = 0; i < 3; ++i) {
+                EXPECT_LE(lo[i], mn[i] + 1e-4f) << "pose " << k << " axis " << i;
+                EXPECT_GE(hi[i], mx[i] - 1e-4f) << "pose " << k << " axis " << i;
+                if (exact) {
+                    EXPECT_NEAR(lo[i], mn[i], 1e-4f) << "pose " << k << " axis " << i;
+                    EXPECT_NEAR(hi[i], mx[i], 1e-4f) << "pose " << k << " axis " << i;
+                }
+            }
         }
     }
 }
