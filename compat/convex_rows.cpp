@@ -41,6 +41,54 @@ void appendPoints(std::vector<std::array<float, 3>> points, float factor, BtgSha
     for (const auto& p : points) vertices.push_back(btgMake4(p[0] * factor, p[1] * factor, p[2] * factor, 0.0f));
 }
 
+// A btUniformScalingShape's row: its child's, every length times the factor (Bullet's support
+// of the child times the factor, margin times the factor).
+bool uniformScalingRow(const btUniformScalingShape* u, float f, BtgShape& s, std::vector<BtgFloat4>& vertices,
+                       std::string* whyNot)
+{
+    const btConvexShape* child = u->getChildShape();
+    const float g = f * u->getUniformScalingFactor();
+    switch (child->getShapeType()) {
+        case BOX_SHAPE_PROXYTYPE: {
+            auto* box = static_cast<const btBoxShape*>(child);
+            s.convexType = BTG_CONVEX_BOX;
+            s.param = f4(box->getHalfExtentsWithMargin() * g, box->getMargin() * g);
+            s.margin = box->getMargin() * g;
+            return true;
+        }
+        case SPHERE_SHAPE_PROXYTYPE:
+            s.convexType = BTG_CONVEX_SPHERE;
+            s.margin = static_cast<const btSphereShape*>(child)->getRadius() * g;
+            s.param = btgMake4(s.margin, 0.0f, 0.0f, 0.0f);
+            return true;
+        case CONVEX_HULL_SHAPE_PROXYTYPE:
+        case CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE: {
+            int n = 0;
+            const btVector3* points = hullPoints(child, &n);
+            if (n <= 0 || !points) {
+                *whyNot = "uniform scaling of a convex hull without points";
+                return false;
+            }
+            std::vector<std::array<float, 3>> scaled;
+            const btVector3& sc = child->getLocalScaling();
+            for (int i = 0; i < n; ++i) {
+                btVector3 p = points[i] * sc;
+                scaled.push_back({p.x(), p.y(), p.z()});
+            }
+            s.convexType = BTG_CONVEX_POINTS;
+            s.margin = child->getMargin() * g;
+            appendPoints(std::move(scaled), g, s, vertices);
+            return true;
+        }
+        default:
+            // the child's row scaled; a scaled capsule is no btCapsuleShape to Bullet (the flags
+            // are set by the caller)
+            if (isSupportShapeType(child->getShapeType())) return convexRow(child, g, s, vertices, whyNot);
+            *whyNot = std::string("uniform scaling of unsupported shape '") + child->getName() + "'";
+            return false;
+    }
+}
+
 }  // namespace
 
 bool isSupportShapeType(int type)
@@ -61,14 +109,14 @@ bool convexRow(const btCollisionShape* shape, float factor, BtgShape& s, std::ve
                std::string* whyNot)
 {
     s.type = BTG_SHAPE_CONVEX;
-    s.isCapsule = 0;
+    s.convexFlags = 0u;
     s.upAxis = 1;
     const float f = factor;
     switch (shape->getShapeType()) {
         case CAPSULE_SHAPE_PROXYTYPE: {
             auto* c = static_cast<const btCapsuleShape*>(shape);
             s.convexType = BTG_CONVEX_CAPSULE;
-            s.isCapsule = f == 1.0f ? 1 : 0;  // Bullet's closed form takes btCapsuleShape pairs only
+            s.convexFlags = BTG_CONVEX_FLAG_CAPSULE;  // Bullet's closed form takes btCapsuleShape pairs only
             s.upAxis = c->getUpAxis();
             s.param = btgMake4(c->getRadius() * f, c->getHalfHeight() * f, 0.0f, 0.0f);
             s.margin = c->getMargin() * f;  // the radius (Bullet keeps them equal)
@@ -90,6 +138,7 @@ bool convexRow(const btCollisionShape* shape, float factor, BtgShape& s, std::ve
             // btConeShape's m_sinAngle, as its constructor and setLocalScaling compute it
             s.param = btgMake4(r * f, h * f, r / std::sqrt(r * r + h * h), 0.0f);
             s.margin = c->getMargin() * f;
+            s.convexFlags = BTG_CONVEX_FLAG_AABB_SLOW;  // btConeShape keeps getAabbSlow
             return true;
         }
         case MULTI_SPHERE_SHAPE_PROXYTYPE: {
@@ -143,51 +192,12 @@ bool convexRow(const btCollisionShape* shape, float factor, BtgShape& s, std::ve
             return true;
         }
         case UNIFORM_SCALING_SHAPE_PROXYTYPE: {
-            auto* u = static_cast<const btUniformScalingShape*>(shape);
-            const btConvexShape* child = u->getChildShape();
-            const float g = f * u->getUniformScalingFactor();
-            switch (child->getShapeType()) {
-                case BOX_SHAPE_PROXYTYPE: {
-                    auto* box = static_cast<const btBoxShape*>(child);
-                    s.convexType = BTG_CONVEX_BOX;
-                    s.param = f4(box->getHalfExtentsWithMargin() * g, box->getMargin() * g);
-                    s.margin = box->getMargin() * g;
-                    return true;
-                }
-                case SPHERE_SHAPE_PROXYTYPE:
-                    s.convexType = BTG_CONVEX_SPHERE;
-                    s.margin = static_cast<const btSphereShape*>(child)->getRadius() * g;
-                    s.param = btgMake4(s.margin, 0.0f, 0.0f, 0.0f);
-                    return true;
-                case CONVEX_HULL_SHAPE_PROXYTYPE:
-                case CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE: {
-                    int n = 0;
-                    const btVector3* points = hullPoints(child, &n);
-                    if (n <= 0 || !points) {
-                        *whyNot = "uniform scaling of a convex hull without points";
-                        return false;
-                    }
-                    std::vector<std::array<float, 3>> scaled;
-                    const btVector3& sc = child->getLocalScaling();
-                    for (int i = 0; i < n; ++i) {
-                        btVector3 p = points[i] * sc;
-                        scaled.push_back({p.x(), p.y(), p.z()});
-                    }
-                    s.convexType = BTG_CONVEX_POINTS;
-                    s.margin = child->getMargin() * g;
-                    appendPoints(std::move(scaled), g, s, vertices);
-                    return true;
-                }
-                default:
-                    if (isSupportShapeType(child->getShapeType())) {
-                        // the child's rows scaled; a scaled capsule is no btCapsuleShape to Bullet
-                        if (!convexRow(child, g, s, vertices, whyNot)) return false;
-                        s.isCapsule = 0;
-                        return true;
-                    }
-                    *whyNot = std::string("uniform scaling of unsupported shape '") + child->getName() + "'";
-                    return false;
-            }
+            if (!uniformScalingRow(static_cast<const btUniformScalingShape*>(shape), f, s, vertices, whyNot)) return false;
+            // btUniformScalingShape::getAabbSlow: the core's support along the world axes plus the
+            // margin (rows with vertex tables keep the rotated local box: a superset)
+            const bool table = s.convexType == BTG_CONVEX_POINTS || s.convexType == BTG_CONVEX_SPHERES;
+            s.convexFlags = table ? 0u : BTG_CONVEX_FLAG_AABB_SUPPORT;
+            return true;
         }
         default:
             *whyNot = std::string("unsupported shape '") + shape->getName() + "'";

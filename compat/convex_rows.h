@@ -18,7 +18,7 @@ bool isSupportShapeType(int type);
 // collides it by GJK, so it is served as a BTG_SHAPE_CONVEX row of its points too.
 bool isFeaturelessHull(const btCollisionShape* shape);
 
-// Fills s's type, convexType, upAxis, isCapsule, param and margin (scaled by `factor`, a
+// Fills s's type, convexType, upAxis, convexFlags, param and margin (scaled by `factor`, a
 // btUniformScalingShape's) and appends its vertex rows to `vertices`; false with *whyNot when
 // the shape cannot be taken.
 bool convexRow(const btCollisionShape* shape, float factor, BtgShape& s, std::vector<BtgFloat4>& vertices,

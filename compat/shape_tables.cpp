@@ -168,7 +168,7 @@ int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
         s.type = BTG_SHAPE_SPHERE;
         s.param = btgMake4(sphere->getRadius(), 0, 0, 0);
         s.margin = 0.0f;
-        s.isCapsule = 2;  // Bullet's capsule-sphere closed form takes btSphereShape
+        s.convexFlags = BTG_CONVEX_FLAG_SPHERE;  // Bullet's capsule-sphere closed form takes btSphereShape
         setLocalAabb(s, shape);
     } else if (type == STATIC_PLANE_PROXYTYPE) {
         auto* plane = static_cast<const btStaticPlaneShape*>(shape);

@@ -548,7 +548,7 @@ static inline BtgConvexPoint btgPlanePoint(BtgCollider c, BtgCollider p, BTG_CON
 {
     BtgFloat4 n = btgMat3MulVec(p.pose.rot, btgXyz(p.shape.param));
     const float w = p.shape.param.w + btgDot3(n, p.pose.pos);
-    BtgFloat4 support = btgSupportFull(c.shape, verts, btgMat3TMulVec(c.pose.rot, -n));
+    BtgFloat4 support = btgSupportForPlane(c.shape, verts, btgMat3TMulVec(c.pose.rot, -n));
     BtgFloat4 vtx = btgPoseApply(c.pose, support);
     const float dist = btgDot3(n, vtx) - w;
     if (dist >= threshold) return btgNoPoint();
@@ -565,7 +565,9 @@ static inline BtgConvexPoint btgConvexPairPoint(BtgCollider a, BtgCollider b, BT
         if (p.valid) p = btgMakeConvexPoint(-p.normal, p.pointB + p.normal * p.distance, p.distance);
         return p;
     }
-    if (a.shape.isCapsule && b.shape.isCapsule && (a.shape.isCapsule == 1 || b.shape.isCapsule == 1))
+    const uint round = BTG_CONVEX_FLAG_CAPSULE | BTG_CONVEX_FLAG_SPHERE;
+    if ((a.shape.convexFlags & round) && (b.shape.convexFlags & round) &&
+        ((a.shape.convexFlags | b.shape.convexFlags) & BTG_CONVEX_FLAG_CAPSULE))
         return btgCapsulePoint(a, b, threshold);
     return btgGjkPoint(a, b, verts, threshold);
 }

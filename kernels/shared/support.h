@@ -1,8 +1,9 @@
 /* support.h — support functions of every convex shape row, as Bullet 3.24 defines them
  * (localGetSupportVertexWithoutMarginNonVirtual and the shapes' own localGetSupportingVertex):
  * the "core" point of a shape farthest along a shape-local direction, and the margin GJK adds
- * around the core. Bullet's GJK runs on the cores and adds the margins afterwards; its EPA and
- * its convex-plane algorithm use the full shape (core + margin along the unit direction). */
+ * around the core. Bullet's GJK runs on the cores and adds the margins afterwards; its EPA uses
+ * the full shape (core + margin along the unit direction: localGetSupportVertexNonVirtual), its
+ * convex-plane algorithm the shape's own localGetSupportingVertex (the same but for boxes). */
 #ifndef BTG_SUPPORT_H
 #define BTG_SUPPORT_H
 #include "math.h"
@@ -142,6 +143,17 @@ static inline BtgFloat4 btgSupportFull(BtgShape s, BTG_CONST_GLOBAL BtgFloat4* v
     BtgFloat4 n = btgSupportDir(d, BTG_SUPPORT_EPSILON * BTG_SUPPORT_EPSILON, btgMake4(-1.0f, -1.0f, -1.0f, 0.0f));
     if (btgDot3(d, d) < BTG_SUPPORT_EPSILON * BTG_SUPPORT_EPSILON) n = btgNormalize3(n);
     return core + n * m;
+}
+
+/* The support the convex-plane algorithm reads (the shape's virtual localGetSupportingVertex):
+ * the full support, but a box's is its sharp corner (btBoxShape overrides it), which a
+ * uniformly scaled box inherits. */
+static inline BtgFloat4 btgSupportForPlane(BtgShape s, BTG_CONST_GLOBAL BtgFloat4* verts, BtgFloat4 d)
+{
+    if (s.convexType == BTG_CONVEX_BOX)
+        return btgMake4(d.x >= 0.0f ? s.param.x : -s.param.x, d.y >= 0.0f ? s.param.y : -s.param.y,
+                        d.z >= 0.0f ? s.param.z : -s.param.z, 0.0f);
+    return btgSupportFull(s, verts, d);
 }
 
 #endif

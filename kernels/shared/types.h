@@ -44,6 +44,13 @@
 #define BTG_CONVEX_POINTS 5     /* vertex rows: scaled points (convex triangle mesh, scaled hull) */
 #define BTG_CONVEX_BOX 6        /* param.xyz half extents with margin, .w margin, m */
 #define BTG_CONVEX_SPHERE 7     /* a point core whose margin is the radius (a scaled sphere) */
+/* BtgShape.convexFlags */
+#define BTG_CONVEX_FLAG_CAPSULE 1u      /* a btCapsuleShape (Bullet's closed-form capsule pairs) */
+#define BTG_CONVEX_FLAG_SPHERE 2u       /* a btSphereShape (capsule-sphere closed form) */
+#define BTG_CONVEX_FLAG_AABB_SUPPORT 4u /* world AABB from the core's support along the world axes
+                                           plus the margin (btUniformScalingShape::getAabbSlow) */
+#define BTG_CONVEX_FLAG_AABB_SLOW 8u    /* ... from the full support plus the margin
+                                           (btConvexInternalShape::getAabbSlow: a cone) */
 
 #define BTG_MAX_POINTS 4 /* contact points per manifold, as Bullet's btPersistentManifold */
 
@@ -97,8 +104,8 @@ typedef struct {
                                 keeps points closer than the smaller of its two shapes' */
     int convexType;         /* BTG_CONVEX_*: the support function (hull and convex rows) */
     int upAxis;             /* capsule, cylinder, cone: 0, 1 or 2 (Bullet's X/Y/Z variants) */
-    int isCapsule;          /* 1: a btCapsuleShape, 2: a btSphereShape (Bullet's closed-form
-                               capsule pairs take these types only); 0 otherwise */
+    uint convexFlags;       /* BTG_CONVEX_FLAG_*: what Bullet's shape type decides beyond the
+                               support function */
 } BtgShape;
 
 /* A hull face: its outward plane and its vertex loop (counter-clockwise seen from outside). */

@@ -87,6 +87,54 @@ TEST(ConvexShapes, ScaledBoxAndHullRestAsStock)
     expectRestsAsStock({"scaled hull", ConvexKind::ScaledHull, 1, 0.0, false});
 }
 
+TEST(ConvexShapes, LocallyScaledShapesRestAsStock)
+{
+    for (int axis = 0; axis < 3; ++axis) {
+        expectRestsAsStock({"scaled capsule", ConvexKind::ScaledCapsule, axis, 0.0, true});
+        expectRestsAsStock({"scaled cylinder", ConvexKind::ScaledCylinder, axis, 0.0, true});
+        expectRestsAsStock({"scaled cone", ConvexKind::ScaledCone, axis, 0.0, true});
+    }
+    expectRestsAsStock({"scaled multi-sphere", ConvexKind::ScaledMultiSphere, 1, 0.0, true});
+    expectRestsAsStock({"scaled sphere", ConvexKind::ScaledSphere, 1, 0.0, false});
+}
+
+TEST(ConvexShapes, PileIsDeterministic)
+{
+    // Same scene, same device, same binary: bitwise the same states, step by step.
+    scenes::ScenePtr a = scenes::convexPile(scenes::WorldKind::Gpu), b = scenes::convexPile(scenes::WorldKind::Gpu);
+    for (int i = 0; i < 120; ++i) {
+        a->step();
+        b->step();
+        for (size_t k = 0; k < a->bodies().size(); ++k) {
+            const btTransform &ta = a->body(int(k))->getWorldTransform(), &tb = b->body(int(k))->getWorldTransform();
+            ASSERT_EQ(ta.getOrigin(), tb.getOrigin()) << "step " << i << " body " << k;
+            ASSERT_EQ(ta.getRotation(), tb.getRotation()) << "step " << i << " body " << k;
+        }
+    }
+    ASSERT_TRUE(a->gpuWorld()->isGpuPath());
+}
+
+TEST(ConvexShapes, SubstepsAsStock)
+{
+    // Four substeps a call (the GJK manifolds and the warm-start cache carried between them and
+    // kept for a redo), a capsule and a cone landing: rest heights as stock's at the same calls.
+    auto make = [](scenes::WorldKind k, const Config& c) {
+        scenes::ScenePtr s = scenes::convexLanding(k, ConvexKind::Capsule, 0, 0.0, 1.5, c);
+        btTransform t;
+        t.setIdentity();
+        t.setOrigin(btVector3(3, 1.2f, 0));
+        s->addBody(s->ownShape(new btConeShapeZ(.4f, .9f)), 1, t);
+        return s;
+    };
+    SideBySide s(make);
+    for (int i = 0; i < 45; ++i) {
+        s.step(1, btScalar(4) / btScalar(60), 4);
+        ASSERT_TRUE(s.onGpu()) << s.gpu->report()->cpuPathReason;
+    }
+    EXPECT_NEAR(s.gpuY(1), s.stockY(1), tol::kRestHeight);
+    EXPECT_NEAR(s.gpuY(2), s.stockY(2), tol::kRestHeight);
+}
+
 TEST(ConvexShapes, CylinderRollsDownRampAsStock)
 {
     SideBySide s(scenes::cylinderRamp);

@@ -4,6 +4,9 @@
 // the GPU path on purpose (they change nothing Bullet computes here) keep it.
 #include <gtest/gtest.h>
 
+#include <BulletCollision/CollisionShapes/btConvexTriangleMeshShape.h>
+#include <BulletCollision/CollisionShapes/btTriangleMesh.h>
+
 #include <BulletDynamics/ConstraintSolver/btNNCGConstraintSolver.h>
 #include <BulletDynamics/MLCPSolvers/btDantzigSolver.h>
 #include <BulletDynamics/MLCPSolvers/btMLCPSolver.h>
@@ -94,6 +97,19 @@ std::vector<Rule> rules()
     static btCapsuleShape capsule(.5, 1);
     static btCompoundShape compound;
     if (compound.getNumChildShapes() == 0) compound.addChildShape(btTransform::getIdentity(), &capsule);
+    // A convex triangle mesh the app gave polyhedral features: stock then clips it against
+    // featured hulls, which the GPU path does not.
+    static btTriangleMesh featuredMesh;
+    static btConvexTriangleMeshShape featured(&featuredMesh);
+    if (featuredMesh.getNumTriangles() == 0) {
+        const btVector3 v[4] = {{0, -.5f, 0}, {.5f, .3f, 0}, {-.4f, .3f, .4f}, {-.3f, .3f, -.5f}};
+        featuredMesh.addTriangle(v[0], v[1], v[2]);
+        featuredMesh.addTriangle(v[0], v[2], v[3]);
+        featuredMesh.addTriangle(v[0], v[3], v[1]);
+        featuredMesh.addTriangle(v[1], v[3], v[2]);
+        featured.recalcLocalAabb();
+        featured.initializePolyhedralFeatures();
+    }
     auto solver = [](const std::string& name, btConstraintSolver* other) {
         auto saved = std::make_shared<std::map<const Scene*, btConstraintSolver*>>();
         return Rule{name, "constraint solver",
@@ -205,6 +221,9 @@ std::vector<Rule> rules()
         {"world-frame gyroscopic term", "gyroscopic",
          [](Scene& s) { s.body(1)->setFlags(s.body(1)->getFlags() | BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD); },
          [](Scene& s) { s.body(1)->setFlags(s.body(1)->getFlags() & ~BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD); }},
+        {"shape swapped for a convex mesh with polyhedral features", "polyhedral features",
+         [](Scene& s) { s.body(2)->setCollisionShape(&featured); },
+         [](Scene& s) { s.body(2)->setCollisionShape(s.body(1)->getCollisionShape()); }},
         {"shape swapped for a compound", "unsupported shape",
          [](Scene& s) { s.body(2)->setCollisionShape(&compound); },
          [](Scene& s) { s.body(2)->setCollisionShape(s.body(1)->getCollisionShape()); }},

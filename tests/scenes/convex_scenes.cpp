@@ -77,6 +77,28 @@ btCollisionShape* makeShape(Scene& scene, ConvexKind shape, int axis)
         }
         case ConvexKind::UniformCapsule:
             return scene.ownShape(new OwnedScaling(new btCapsuleShape(.2, .6), 1.5));
+        case ConvexKind::ScaledCapsule:
+        case ConvexKind::ScaledCylinder:
+        case ConvexKind::ScaledCone:
+        case ConvexKind::ScaledMultiSphere: {
+            const ConvexKind base = shape == ConvexKind::ScaledCapsule    ? ConvexKind::Capsule
+                                    : shape == ConvexKind::ScaledCylinder ? ConvexKind::Cylinder
+                                    : shape == ConvexKind::ScaledCone     ? ConvexKind::Cone
+                                                                          : ConvexKind::MultiSphere;
+            btCollisionShape* s = makeShape(scene, base, axis);
+            // 0.7 along the shape's axis, 1.3 across it: Bullet's cylinder takes its radius
+            // from one radial axis only, so unequal radial scaling has no round meaning there
+            btVector3 scaling(1.3, 1.3, 1.3);
+            scaling[axis] = btScalar(.7);
+            if (base == ConvexKind::MultiSphere) scaling = btVector3(1.5, .7, 1.2);
+            s->setLocalScaling(scaling);
+            return s;
+        }
+        case ConvexKind::ScaledSphere: {
+            btSphereShape* s = scene.sphereShape(.4);
+            s->setLocalScaling(btVector3(1.5, .7, 1.2));
+            return s;
+        }
     }
     return nullptr;
 }

@@ -6,7 +6,13 @@
 
 namespace btgpu::scenes {
 
-enum class ConvexKind { Capsule, Cylinder, Cone, MultiSphere, ConvexMesh, ScaledBox, ScaledHull, UniformCapsule };
+enum class ConvexKind {
+    Capsule, Cylinder, Cone, MultiSphere, ConvexMesh, ScaledBox, ScaledHull, UniformCapsule,
+    // setLocalScaling on each: 0.7 along a capsule's, cylinder's or cone's axis and 1.3 across,
+    // (1.5, 0.7, 1.2) on a sphere and a multi-sphere (Bullet's own rule per shape: a capsule
+    // scales its radius by one radial axis, a cone by the mean of the two, a sphere by x)
+    ScaledCapsule, ScaledCylinder, ScaledCone, ScaledSphere, ScaledMultiSphere
+};
 
 // One body of `kind` (up axis `axis` for capsules, cylinders and cones) dropped from `height`
 // onto a box ground, turned by `tilt` rad about z (pi/2 lays a y-axis capsule on its side).

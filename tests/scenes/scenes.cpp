@@ -1,6 +1,7 @@
 // scenes.cpp — Scene (owning every Bullet object, building stock or GPU worlds alike), the
 // scene builders, the catalog by name, and the measures the tests and demos compare.
 #include "scenes/scenes.h"
+#include "scenes/convex_scenes.h"
 #include "scenes/scene_specs.h"
 
 #include <map>
@@ -309,6 +310,9 @@ const std::vector<SceneEntry>& catalog()
         {"bouncing_sphere", "a sphere with restitution 0.5 dropped from 5 m", bouncingSphere},
         {"box_stack", "8 unit boxes stacked", [](WorldKind k, const Config& c) { return boxStack(k, c, 8); }},
         {"kinematic_push", "a kinematic box pushing three boxes", kinematicPush},
+        {"convex_pile", "12 capsules, cylinders, cones, spheres, a multi-sphere, a convex mesh and scaled boxes",
+         [](WorldKind k, const Config& c) { return convexPile(k, c); }},
+        {"cylinder_ramp", "a cylinder rolling down a 15 degree box ramp", [](WorldKind k, const Config& c) { return cylinderRamp(k, c); }},
         {"cubes", "4x4x4 lattice of boxes (cubes:NXxNYxNZ for other sizes)",
          [](WorldKind k, const Config& c) { return cubes(k, 4, 4, 4, c); }},
         {"spheres", "4x4x4 lattice of spheres (spheres:NXxNYxNZ for other sizes)",
