@@ -80,12 +80,15 @@ std::string typeName(const std::type_info& type)
     return type.name();
 }
 
-// The shape types the GPU path simulates (ShapeTables::add); bit t of a mask is proxy type t.
+bool isMeshType(int type) { return type == TRIANGLE_MESH_SHAPE_PROXYTYPE || type == SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE; }
+
+// The shape types the GPU path simulates (ShapeTables::add; meshes only btBvhTriangleMeshShape
+// and its scaled wrapper, which add checks); bit t of a mask is proxy type t.
 bool servedShapeType(int type)
 {
     return type == BOX_SHAPE_PROXYTYPE || type == CONVEX_HULL_SHAPE_PROXYTYPE ||
            type == CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE || type == SPHERE_SHAPE_PROXYTYPE ||
-           type == STATIC_PLANE_PROXYTYPE;
+           type == STATIC_PLANE_PROXYTYPE || isMeshType(type);
 }
 
 // What a world built the stock way would use: a btDefaultCollisionConfiguration with the
@@ -133,6 +136,9 @@ const char* shapeTypeName(int type)
         case CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE: return "convex point cloud";
         case SPHERE_SHAPE_PROXYTYPE: return "sphere";
         case STATIC_PLANE_PROXYTYPE: return "static plane";
+        case TRIANGLE_MESH_SHAPE_PROXYTYPE: return "triangle mesh";
+        case SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE: return "scaled triangle mesh";
+        case TRIANGLE_SHAPE_PROXYTYPE: return "triangle";
         default: return "shape";
     }
 }
@@ -293,6 +299,8 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     if (o->*CollisionObjectPeek::kCheckCollideWith) return "collision check exceptions (setIgnoreCollisionCheck)";
     const btRigidBody* rb = btRigidBody::upcast(o);
     if (!rb || rb->isStaticOrKinematicObject()) return "";
+    if (isMeshType(o->getCollisionShape()->getShapeType()))
+        return "dynamic triangle mesh body (the GPU path takes static and kinematic meshes)";
     // integrateTransforms sweeps a sphere of the swept radius (even radius 0) for a body moving
     // more than its motion threshold and stops it at the hit; createPredictiveContacts adds a
     // contact there. The GPU path has only its speculative contacts.
@@ -347,10 +355,15 @@ std::string collisionAlgorithmReason(btDiscreteDynamicsWorld& world, std::uint64
     if (!dispatcher) return "";  // worldReason has already refused it
     const CreateFuncTable& table = dispatcher->*DispatcherPeek::kContactPoints;
     btDefaultCollisionConfiguration& reference = referenceConfiguration();
+    // A mesh's triangles meet the convex shapes through the algorithms registered for
+    // btTriangleShape (btConvexConcaveCollisionAlgorithm dispatches each triangle): those too.
+    if (shapeTypes & ((std::uint64_t(1) << TRIANGLE_MESH_SHAPE_PROXYTYPE) | (std::uint64_t(1) << SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE)))
+        shapeTypes |= std::uint64_t(1) << TRIANGLE_SHAPE_PROXYTYPE;
+    auto checked = [](int t) { return servedShapeType(t) || t == TRIANGLE_SHAPE_PROXYTYPE; };
     for (int a = 0; a < 64; ++a) {
-        if (!(shapeTypes >> a & 1) || !servedShapeType(a)) continue;
+        if (!(shapeTypes >> a & 1) || !checked(a)) continue;
         for (int b = 0; b < 64; ++b) {
-            if (!(shapeTypes >> b & 1) || !servedShapeType(b)) continue;
+            if (!(shapeTypes >> b & 1) || !checked(b)) continue;
             if (!sameCreateFunc(table[a][b], reference.getCollisionAlgorithmCreateFunc(a, b)))
                 return std::string("collision algorithm for ") + shapeTypeName(a) + "-" + shapeTypeName(b) +
                        " pairs is not Bullet's default (registerCollisionCreateFunc, "

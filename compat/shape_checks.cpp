@@ -1,7 +1,9 @@
 // shape_checks.cpp — shape parameter checks and fingerprints for the shape kinds the GPU path
-// takes (box, sphere, static plane, convex hull, convex point cloud). Other kinds never reach
+// takes (box, sphere, static plane, convex hull, convex point cloud, BVH triangle meshes). Other kinds never reach
 // the tables (the world runs on the CPU path), so they check as "" and hash by type.
 #include "shape_checks.h"
+
+#include "mesh_tables.h"
 
 #include <btBulletDynamicsCommon.h>
 #include <BulletCollision/CollisionShapes/btConvexPointCloudShape.h>
@@ -93,6 +95,16 @@ std::string badShapeInput(const btCollisionShape* shape)
             }
             return "";
         }
+        case TRIANGLE_MESH_SHAPE_PROXYTYPE:
+        case SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE: {
+            const btBvhTriangleMeshShape* mesh = bvhMeshOf(shape);
+            if (!mesh) return "";  // not a mesh the GPU path takes: refused with its reason
+            std::string why = checkScalingAndMargin(shape);
+            if (!why.empty()) return why;
+            const btVector3& s = shape->getLocalScaling();
+            if (s.x() == 0.0f || s.y() == 0.0f || s.z() == 0.0f) return "zero local scaling of a triangle mesh";
+            return badMeshInput(mesh);
+        }
         default:
             return "";
     }
@@ -133,6 +145,14 @@ std::uint64_t shapeFingerprint(const btCollisionShape* shape)
             const btVector3* points = hullPoints(shape, &n);
             mix(&n, sizeof(n));
             for (int i = 0; i < n; ++i) mixVec(points[i]);
+            break;
+        }
+        case TRIANGLE_MESH_SHAPE_PROXYTYPE:
+        case SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE: {
+            // Every vertex, index and BVH node: the app may edit its vertices and refit the tree.
+            const btBvhTriangleMeshShape* mesh = bvhMeshOf(shape);
+            std::uint64_t m = mesh ? meshFingerprint(mesh) : 0;
+            mix(&m, sizeof(m));
             break;
         }
         default:

@@ -1,5 +1,6 @@
 // shape_tables.cpp — conversion of btBoxShape, btConvexHullShape and btConvexPointCloudShape,
-// btSphereShape and btStaticPlaneShape into the GPU tables, reading the app's shapes only.
+// btSphereShape, btStaticPlaneShape and the BVH triangle meshes into the GPU tables, reading
+// the app's shapes only.
 #include "shape_tables.h"
 
 #include "parallel_rows.h"
@@ -137,8 +138,10 @@ int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
     BtgShape s{};
     s.firstVertex = s.firstFace = s.firstEdge = 0;
     const int type = shape->getShapeType();
+    const btBvhTriangleMeshShape* mesh = bvhMeshOf(shape);
     const bool known = type == BOX_SHAPE_PROXYTYPE || type == SPHERE_SHAPE_PROXYTYPE || type == STATIC_PLANE_PROXYTYPE ||
-                       type == CONVEX_HULL_SHAPE_PROXYTYPE || type == CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE;
+                       type == CONVEX_HULL_SHAPE_PROXYTYPE || type == CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE || mesh;
+    s.mesh = -1;
     if (!known) {
         *whyNot = std::string("unsupported shape '") + shape->getName() + "'";
         return -1;
@@ -167,6 +170,18 @@ int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
         s.param = f4(plane->getPlaneNormal().normalized(), plane->getPlaneConstant());
         s.localAabbMin = btgMake4(-1e30f, -1e30f, -1e30f, 0);
         s.localAabbMax = btgMake4(1e30f, 1e30f, 1e30f, 0);
+    } else if (mesh) {
+        s.mesh = meshTables.add(mesh, whyNot);
+        if (s.mesh < 0) return -1;
+        s.type = BTG_SHAPE_MESH;
+        // Bullet's collisionMarginTriangle: the body's concave shape's own margin.
+        s.margin = shape->getMargin();
+        // A btBvhTriangleMeshShape keeps its scaling in the mesh interface (read with the
+        // vertices); a scaled wrapper scales the shared mesh's triangles itself.
+        const btVector3 scaling = type == SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE ? shape->getLocalScaling()
+                                                                               : btVector3(1, 1, 1);
+        s.param = f4(scaling);
+        setLocalAabb(s, shape);
     } else {
         auto cached = m_hullCache.find(shape);
         if (cached == m_hullCache.end()) {

@@ -23,7 +23,11 @@
 #define BTG_PAIR_SPHERE_PLANE 3
 #define BTG_PAIR_HULL_PLANE 4
 #define BTG_PAIR_HULL_HULL 5
-#define BTG_NUM_PAIR_KINDS 6
+#define BTG_PAIR_SPHERE_MESH 6 /* the mesh kinds are consecutive: the midphase walks their range */
+#define BTG_PAIR_HULL_MESH 7
+#define BTG_NUM_PAIR_KINDS 8
+#define BTG_FIRST_MESH_PAIR_KIND BTG_PAIR_SPHERE_MESH
+#define BTG_LAST_MESH_PAIR_KIND BTG_PAIR_HULL_MESH
 
 /* The pairs grouped by kind (find_pairs): kindOrder lists the pair slots ordered by (kind, a, b),
  * and kind k's pairs are kindOrder[kindRanges[BTG_KIND_RANGE_START(k)], kindRanges[BTG_KIND_RANGE_END(k)]). */
@@ -46,8 +50,20 @@
 #define BTG_PAIR_KINDS_NARROWPHASE_SAT(X) \
     X(narrowphase_sat, BTG_PAIR_HULL_HULL, BTG_SHAPE_HULL, BTG_SHAPE_HULL, btgCollideHullHull, collide_hull_hull)
 
-/* The whole table, program by program in launch order. */
-#define BTG_PAIR_KINDS(X) BTG_PAIR_KINDS_NARROWPHASE(X) BTG_PAIR_KINDS_NARROWPHASE_SAT(X)
+/* Convex against mesh: the midphase (kernels/midphase.cl) splits each pair into (convex,
+ * triangle) sub-pairs; a row's routine takes one of them (BTG_TRIANGLE_ROUTINE in
+ * triangle_contacts.h: the convex, the mesh, the triangle's mesh-local vertices) and its
+ * kernel strides over the sub-pairs of its kind. */
+#define BTG_PAIR_KINDS_NARROWPHASE_MESH(X)                                                                    \
+    X(narrowphase_mesh, BTG_PAIR_SPHERE_MESH, BTG_SHAPE_SPHERE, BTG_SHAPE_MESH, btgCollideSphereTriangle,     \
+      collide_sphere_triangles)                                                                               \
+    X(narrowphase_mesh, BTG_PAIR_HULL_MESH, BTG_SHAPE_HULL, BTG_SHAPE_MESH, btgCollideHullTriangle,           \
+      collide_hull_triangles)
+
+/* The pairs of two convex shapes (one routine call a pair), and the whole table, program by
+ * program in launch order. */
+#define BTG_PAIR_KINDS_CONVEX(X) BTG_PAIR_KINDS_NARROWPHASE(X) BTG_PAIR_KINDS_NARROWPHASE_SAT(X)
+#define BTG_PAIR_KINDS(X) BTG_PAIR_KINDS_CONVEX(X) BTG_PAIR_KINDS_NARROWPHASE_MESH(X)
 
 /* Kind of a pair of shape kinds, in either order; BTG_PAIR_NONE when no row takes it. */
 #define BTG_PAIR_KIND_IF_ROW(program, kind, shapeA, shapeB, routine, kernel) \

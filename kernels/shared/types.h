@@ -22,7 +22,8 @@
 #define BTG_SHAPE_SPHERE 0
 #define BTG_SHAPE_HULL 1
 #define BTG_SHAPE_PLANE 2
-#define BTG_NUM_SHAPE_KINDS 3
+#define BTG_SHAPE_MESH 3 /* static or kinematic triangle mesh with a BVH (mesh.h) */
+#define BTG_NUM_SHAPE_KINDS 4
 
 #define BTG_MAX_POINTS 4 /* contact points per manifold, as Bullet's btPersistentManifold */
 
@@ -60,7 +61,8 @@ typedef struct {
     BtgFloat4 localAabbMin; /* m, margin included */
     BtgFloat4 localAabbMax; /* m, margin included */
     BtgFloat4 param;        /* sphere: x radius m; plane: xyz unit normal, w constant m
-                               (points p with n.p = w lie on it); hull: unused */
+                               (points p with n.p = w lie on it); mesh: xyz the scaling of a
+                               btScaledBvhTriangleMeshShape (1 otherwise); hull: unused */
     int type;               /* BTG_SHAPE_* */
     int firstVertex;        /* hull: rows in the vertex table (BtgFloat4, m, local frame) */
     int numVertices;
@@ -69,11 +71,12 @@ typedef struct {
     int firstEdge;          /* hull: unique edge directions (BtgFloat4, unit, local frame) */
     int numEdges;
     float margin;           /* m: distance added around the hull (0 for boxes, whose margin
-                               lies inside the extents as in Bullet) */
+                               lies inside the extents as in Bullet); mesh: its triangles'
+                               margin (Bullet's concave getMargin) */
     float breakingThreshold; /* m: Bullet's contact breaking threshold of this shape
                                 (getContactBreakingThreshold, or the absolute one); a pair
                                 keeps points closer than the smaller of its two shapes' */
-    float pad0;
+    int mesh;               /* mesh: row in the mesh table (BtgMesh, mesh.h), else -1 */
     float pad1;
     float pad2;
 } BtgShape;
@@ -235,6 +238,7 @@ typedef struct {
 #define BTG_STATUS_CONTACT_OVERFLOW 2u
 #define BTG_STATUS_NAN 4u
 #define BTG_STATUS_GRID_BARRIER_TIMEOUT 8u /* a one-launch solve gave up waiting: redo per color */
+#define BTG_STATUS_SUB_PAIR_OVERFLOW 16u   /* the midphase found more triangles than subPairs holds */
 
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(BtgBodyProps) == 112, "BtgBodyProps layout");

@@ -1,0 +1,371 @@
+/* triangle_contacts.h — contacts of a convex shape against one mesh triangle (the rows of
+ * program "narrowphase_mesh" in pair_kinds.h): sphere–triangle as Bullet's SphereTriangleDetector
+ * computes it, hull–triangle by SAT over the hull's faces, the triangle's two-sided normal and
+ * the edge cross products, then clipping (clip.h's scheme, the triangle as a flat face). A
+ * triangle is passed by value (its three vertices in the mesh body's frame), so later convex
+ * kinds can take it as a small convex of their own. Canonical roles: the convex is A, the
+ * mesh B; the kernel swaps when the pair has them the other way round. */
+#ifndef BTG_TRIANGLE_CONTACTS_H
+#define BTG_TRIANGLE_CONTACTS_H
+#include "clip.h"
+#include "mesh.h"
+
+#define BTG_FLT_EPSILON 1.1920929e-07f /* Bullet's SIMD_EPSILON (float build) */
+
+typedef struct {
+    BtgFloat4 v[3]; /* m, the mesh body's frame */
+} BtgTriangleVerts;
+
+/* Bullet's SegmentSqrDistance (SphereTriangleDetector.cpp). */
+static inline float btgSegmentSqrDistance(BtgFloat4 from, BtgFloat4 to, BtgFloat4 p, BtgFloat4* nearest)
+{
+    BtgFloat4 diff = p - from;
+    BtgFloat4 v = to - from;
+    float t = btgDot3(v, diff);
+    if (t > 0.0f) {
+        float dotVV = btgDot3(v, v);
+        if (t < dotVV) {
+            t = t * (1.0f / dotVV); /* btScalar /= : times the reciprocal */
+            diff = diff - v * t;
+        } else {
+            t = 1.0f;
+            diff = diff - v;
+        }
+    } else {
+        t = 0.0f;
+    }
+    *nearest = from + v * t;
+    return btgDot3(diff, diff);
+}
+
+/* SphereTriangleDetector::pointInTriangle. */
+static inline int btgPointInTriangle(BtgTriangleVerts t, BtgFloat4 n, BtgFloat4 p)
+{
+    BtgFloat4 e1 = t.v[1] - t.v[0], e2 = t.v[2] - t.v[1], e3 = t.v[0] - t.v[2];
+    float r1 = btgDot3(btgCross3(e1, n), p - t.v[0]);
+    float r2 = btgDot3(btgCross3(e2, n), p - t.v[1]);
+    float r3 = btgDot3(btgCross3(e3, n), p - t.v[2]);
+    return (r1 > 0.0f && r2 > 0.0f && r3 > 0.0f) || (r1 <= 0.0f && r2 <= 0.0f && r3 <= 0.0f);
+}
+
+/* SphereTriangleDetector::collide in the mesh's frame: the face when the centre projects into
+ * the triangle, else the nearest edge within radius + threshold; one point on the triangle,
+ * normal from it to the centre (the triangle's own normal when the centre lies on it). */
+static inline BtgManifold btgCollideSphereTriangle(BtgCollider s, BtgCollider mesh, BtgTriangleVerts tri,
+                                                   BTG_SHAPE_TABLES, float threshold)
+{
+    BTG_UNUSED_SHAPE_TABLES;
+    BtgManifold m = btgEmptyManifold(s.body, mesh.body);
+    BtgFloat4 c = btgPoseApplyInv(mesh.pose, s.pose.pos);
+    float radius = s.shape.param.x;
+    float rt = radius + threshold;
+    BtgFloat4 n = btgCross3(tri.v[1] - tri.v[0], tri.v[2] - tri.v[0]);
+    float l2 = btgDot3(n, n);
+    if (!(l2 >= BTG_FLT_EPSILON * BTG_FLT_EPSILON)) return m;
+    n = n * (1.0f / btgSqrt(l2));
+    float fromPlane = btgDot3(c - tri.v[0], n);
+    if (fromPlane < 0.0f) {
+        fromPlane = -fromPlane;
+        n = -n;
+    }
+    if (!(fromPlane < rt)) return m;
+    int has = 0;
+    BtgFloat4 contact = btgZero4();
+    if (btgPointInTriangle(tri, n, c)) {
+        has = 1;
+        contact = c - n * fromPlane;
+    } else {
+        float minD2 = rt * rt;
+        for (int i = 0; i < 3; ++i) {
+            BtgFloat4 nearest;
+            float d2 = btgSegmentSqrDistance(tri.v[i], tri.v[(i + 1) % 3], c, &nearest);
+            if (d2 < minD2) {
+                minD2 = d2;
+                has = 1;
+                contact = nearest;
+            }
+        }
+    }
+    if (!has) return m;
+    BtgFloat4 toCentre = c - contact;
+    float d2 = btgDot3(toCentre, toCentre);
+    if (!(d2 < rt * rt)) return m;
+    BtgFloat4 nl;
+    float depth;
+    if (d2 > BTG_FLT_EPSILON) {
+        float dist = btgSqrt(d2);
+        nl = toCentre * (1.0f / btgLength3(toCentre));
+        depth = dist - radius;
+    } else {
+        nl = n;
+        depth = -radius;
+    }
+    btgAddPoint(&m, btgMat3MulVec(mesh.pose.rot, nl), btgPoseApply(mesh.pose, contact), depth, BTG_FEATURE_SINGLE);
+    return m;
+}
+
+/* Separation of hull h (A) and the world triangle w (B) along d; *axis: d or -d, from A to B. */
+static inline float btgHullTriangleSeparation(BtgCollider h, BTG_CONST_GLOBAL BtgFloat4* verts, const BtgFloat4* w,
+                                              BtgFloat4 d, BtgFloat4* axis)
+{
+    float loA, hiA;
+    btgHullInterval(h, verts, d, &loA, &hiA);
+    float p0 = btgDot3(d, w[0]), p1 = btgDot3(d, w[1]), p2 = btgDot3(d, w[2]);
+    float loB = btgMin(p0, btgMin(p1, p2)), hiB = btgMax(p0, btgMax(p1, p2));
+    float overlapPlus = hiA - loB, overlapMinus = hiB - loA;
+    if (overlapPlus <= overlapMinus) {
+        *axis = d;
+        return -overlapPlus;
+    }
+    *axis = -d;
+    return -overlapMinus;
+}
+
+/* Clips polygon poly[0, n) (labels alongside) by the planes side[k].xyz . p <= side[k].w; the
+ * result is left in poly. */
+static inline int btgClipBySides(BtgFloat4* poly, uint* labels, int n, const BtgFloat4* side, const uint* sideLabel,
+                                 int numSides)
+{
+    BtgFloat4 tmp[BTG_MAX_POLY];
+    uint tmpLabels[BTG_MAX_POLY];
+    for (int k = 0; k < numSides && n > 0; ++k) {
+        n = btgClipPolygon(poly, labels, n, btgXyz(side[k]), side[k].w, sideLabel[k], tmp, tmpLabels);
+        for (int i = 0; i < n; ++i) {
+            poly[i] = tmp[i];
+            labels[i] = tmpLabels[i];
+        }
+    }
+    return n;
+}
+
+/* Hull h (A) against one triangle (B). Reference face: the hull's when a hull face axis wins
+ * (the triangle clipped by that face's side planes), the triangle's when its normal does (the
+ * hull's most anti-parallel face clipped by the triangle's sides); an edge pair: the closest
+ * points of the two edges. Reduced to at most 4 points with one normal. */
+static inline BtgManifold btgCollideHullTriangle(BtgCollider h, BtgCollider mesh, BtgTriangleVerts tri,
+                                                 BTG_SHAPE_TABLES, float threshold)
+{
+    BtgManifold m = btgEmptyManifold(h.body, mesh.body);
+    BtgFloat4 w[3];
+    for (int k = 0; k < 3; ++k) w[k] = btgPoseApply(mesh.pose, tri.v[k]);
+    BtgFloat4 nt = btgCross3(w[1] - w[0], w[2] - w[0]);
+    float ntLen = btgLength3(nt);
+    if (!(ntLen > 1e-12f) || h.shape.numFaces == 0) return m;
+    nt = nt * (1.0f / ntLen);
+    const float margins = h.shape.margin + mesh.shape.margin;
+    const float reject = threshold + margins;
+    /* SAT: hull faces, then the triangle's normal, then edge pairs (the biases of sat.h). */
+    BtgFloat4 bestAxis = nt;
+    float best = -3.0e38f;
+    int feature = BTG_SAT_FACE_A, indexA = -1, indexB = -1;
+    for (int f = 0; f < h.shape.numFaces; ++f) {
+        BtgFloat4 axis;
+        float sep = btgHullTriangleSeparation(h, verts, w, btgMat3MulVec(h.pose.rot, faces[h.shape.firstFace + f].plane),
+                                              &axis);
+        if (indexA < 0 || sep > best) {
+            best = sep;
+            bestAxis = axis;
+            indexA = f;
+            if (sep > reject) return m;
+        }
+    }
+    {
+        BtgFloat4 axis;
+        float sep = btgHullTriangleSeparation(h, verts, w, nt, &axis);
+        if (sep > reject) return m;
+        if (sep > best + BTG_SAT_FACE_BIAS) {
+            best = sep;
+            bestAxis = axis;
+            feature = BTG_SAT_FACE_B;
+            indexB = 0;
+        }
+    }
+    int edgeA = -1, edgeB = -1;
+    float bestEdge = -3.0e38f;
+    BtgFloat4 edgeAxis = bestAxis;
+    for (int i = 0; i < h.shape.numEdges; ++i) {
+        BtgFloat4 ea = btgMat3MulVec(h.pose.rot, edges[h.shape.firstEdge + i]);
+        for (int j = 0; j < 3; ++j) {
+            BtgFloat4 eb = w[(j + 1) % 3] - w[j];
+            float ebLen = btgLength3(eb);
+            if (!(ebLen > 0.0f)) continue;
+            BtgFloat4 c = btgCross3(ea, eb * (1.0f / ebLen));
+            float len = btgLength3(c);
+            if (len < BTG_SAT_PARALLEL) continue;
+            BtgFloat4 axis;
+            float sep = btgHullTriangleSeparation(h, verts, w, c * (1.0f / len), &axis);
+            if (sep > reject) return m;
+            if (edgeA < 0 || sep > bestEdge) {
+                bestEdge = sep;
+                edgeAxis = axis;
+                edgeA = i;
+                edgeB = j;
+            }
+        }
+    }
+    if (edgeA >= 0 && bestEdge > best + BTG_SAT_EDGE_BIAS) {
+        BtgFloat4 d = edgeAxis; /* A towards B */
+        BtgFloat4 a0, a1;
+        if (btgSupportEdge(h, verts, faces, indices, edges[h.shape.firstEdge + edgeA], d, 1.0f, &a0, &a1)) {
+            BtgFloat4 pa, pb;
+            btgClosestSegments(a0, a1, w[edgeB], w[(edgeB + 1) % 3], &pa, &pb);
+            float dist = btgDot3(d, pb - pa) - margins;
+            if (dist < threshold)
+                btgAddPoint(&m, -d, pb - d * mesh.shape.margin, dist,
+                            BTG_FEATURE_EDGES | ((uint)(edgeA & 0x7fff) << 15) | (uint)(edgeB & 0x7fff));
+            return m;
+        }
+        feature = BTG_SAT_FACE_B; /* no supporting edge found: clip against the triangle */
+        bestAxis = btgDot3(nt, d) >= 0.0f ? nt : -nt;
+    }
+    BtgFloat4 poly[BTG_MAX_POLY];
+    uint labels[BTG_MAX_POLY];
+    BtgFloat4 side[BTG_MAX_POLY];
+    uint sideLabel[BTG_MAX_POLY];
+    int n = 0;
+    BtgFloat4 normal, nRef;
+    float refD;
+    int refIsA = feature == BTG_SAT_FACE_A;
+    int faceA;
+    if (refIsA) {
+        /* the hull face most aligned with the axis; the triangle is the incident polygon */
+        faceA = btgExtremeFace(h, faces, bestAxis, 1.0f);
+        BtgFace rf = faces[h.shape.firstFace + faceA];
+        nRef = btgMat3MulVec(h.pose.rot, rf.plane);
+        for (int k = 0; k < 3; ++k) {
+            poly[k] = w[k];
+            labels[k] = ((BTG_FEATURE_EDGE_OF_B | (uint)((k + 2) % 3)) << 8) | BTG_FEATURE_EDGE_OF_B | (uint)k;
+        }
+        n = 3;
+        int sides = rf.numIndices < BTG_MAX_POLY ? rf.numIndices : BTG_MAX_POLY;
+        for (int k = 0; k < sides; ++k) {
+            BtgFloat4 v0 = btgPoseApply(h.pose, btgFaceVertex(h.shape, rf, verts, indices, k));
+            BtgFloat4 v1 = btgPoseApply(h.pose, btgFaceVertex(h.shape, rf, verts, indices, k + 1 < rf.numIndices ? k + 1 : 0));
+            side[k] = btgCross3(v1 - v0, nRef);
+            side[k].w = btgDot3(side[k], v0);
+            sideLabel[k] = (uint)(k & 0x7f);
+        }
+        n = btgClipBySides(poly, labels, n, side, sideLabel, sides);
+        refD = btgDot3(nRef, btgPoseApply(h.pose, btgFaceVertex(h.shape, rf, verts, indices, 0)));
+        normal = -nRef;
+    } else {
+        /* the triangle's normal towards the hull; the hull's most anti-parallel face is incident */
+        nRef = -bestAxis;
+        faceA = btgExtremeFace(h, faces, nRef, -1.0f);
+        BtgFace inf = faces[h.shape.firstFace + faceA];
+        for (int k = 0; k < inf.numIndices && n < BTG_MAX_POLY; ++k) {
+            poly[n] = btgPoseApply(h.pose, btgFaceVertex(h.shape, inf, verts, indices, k));
+            labels[n] = ((uint)((k + inf.numIndices - 1) % inf.numIndices & 0x7f) << 8) | (uint)(k & 0x7f);
+            ++n;
+        }
+        for (int k = 0; k < 3; ++k) {
+            BtgFloat4 s = btgCross3(w[(k + 1) % 3] - w[k], nRef);
+            if (btgDot3(s, w[(k + 2) % 3] - w[k]) > 0.0f) s = -s; /* outward whatever the winding */
+            s.w = btgDot3(s, w[k]);
+            side[k] = s;
+            sideLabel[k] = BTG_FEATURE_EDGE_OF_B | (uint)k;
+        }
+        n = btgClipBySides(poly, labels, n, side, sideLabel, 3);
+        refD = btgDot3(nRef, w[0]);
+        normal = nRef;
+    }
+    const uint faceBits = BTG_FEATURE_CLIP | ((uint)(faceA & 0x7f) << 23);
+    int kept = 0;
+    for (int i = 0; i < n; ++i) {
+        BtgFloat4 p = poly[i];
+        float depth = btgDot3(nRef, p) - refD;
+        float dist = depth - margins;
+        if (dist >= threshold) continue;
+        /* refIsA: p lies on the triangle; else on the hull, and p - nRef*depth on the triangle */
+        BtgFloat4 onB = refIsA ? btgXyz(p) : btgXyz(p) - nRef * depth;
+        BtgFloat4 c = onB + normal * mesh.shape.margin;
+        c.w = dist;
+        labels[kept] = faceBits | (labels[i] & 0xffffu);
+        poly[kept++] = c;
+    }
+    if (kept > 0) btgReduceArray(poly, labels, kept, normal, &m);
+    return m;
+}
+
+/* A triangle's point ids made distinct from another triangle's in a manifold that merges both
+ * (never BTG_FEATURE_UNKNOWN, which matches nothing). */
+static inline uint btgTriangleFeature(uint id, int triangle)
+{
+    uint mixed = id ^ ((uint)triangle * 2654435761u);
+    return mixed == BTG_FEATURE_UNKNOWN ? mixed ^ 1u : mixed;
+}
+
+static inline BtgTriangleVerts btgLoadTriangle(BtgShape mesh, BtgTriangle t, BTG_CONST_GLOBAL BtgFloat4* meshVerts)
+{
+    BtgTriangleVerts v;
+    btgTriangleVertices(mesh, t, meshVerts, v.v);
+    return v;
+}
+
+/* A triangle routine's manifold (convex A, mesh B) for the pair (a, b): ids made distinct per
+ * triangle, the triangle's keys (Bullet's part id and triangle index) on the mesh side, the
+ * pair's own order and threshold. */
+static inline BtgManifold btgFinishTriangle(BtgCollider a, BtgCollider b, BtgSubPair sp, BtgManifold m)
+{
+    for (int k = 0; k < m.numPoints; ++k) m.points[k].featureId = btgTriangleFeature(m.points[k].featureId, sp.triangle);
+    m.partIdB = sp.partId;
+    m.indexB = sp.index;
+    if (a.shape.type == BTG_SHAPE_MESH) m = btgSwapManifold(m);
+    m.breakingThreshold = btgPairThreshold(a.shape, b.shape);
+    return m;
+}
+
+/* The routine on the pair's convex and triangle, in canonical roles, returned in the pair's own
+ * order with the triangle's keys on the mesh side and its ids made distinct per triangle. */
+#define btgTriangleManifold(a, b, sp, triangles, meshVerts, verts, faces, indices, edges, routine)               \
+    btgFinishTriangle(a, b, sp,                                                                                    \
+                      routine(a.shape.type == BTG_SHAPE_MESH ? b : a, a.shape.type == BTG_SHAPE_MESH ? a : b,      \
+                              btgLoadTriangle(a.shape.type == BTG_SHAPE_MESH ? a.shape : b.shape,                  \
+                                              triangles[sp.triangle], meshVerts),                                  \
+                              verts, faces, indices, edges, btgPairThreshold(a.shape, b.shape)))
+
+/* Normals within this cosine (about 0.8 degrees) share one manifold of a convex–mesh pair. */
+#define BTG_MESH_MERGE_COS 0.9999f
+
+/* The manifolds of one convex–mesh pair from its triangles' (region[first, end), in the
+ * midphase's order): those with points are compacted to the front, and one whose normal is
+ * within BTG_MESH_MERGE_COS of an earlier one's is merged into it (its points and the earlier
+ * one's reduced to at most 4 along the earlier normal, keeping the earlier one's keys: the
+ * first triangle's). A flat mesh gives one manifold, as stock's one manifold per pair; points
+ * of triangles at an angle stay in manifolds of their own, because a contact's solver rows
+ * carry one normal (stock's manifold has one per point). Returns how many are left. */
+static inline int btgGatherMeshManifolds(BTG_GLOBAL BtgManifold* region, int first, int end)
+{
+    int out = 0;
+    for (int s = first; s < end; ++s) {
+        BtgManifold t = region[s];
+        if (t.numPoints == 0) continue;
+        BtgFloat4 n = btgPointNormal(t.points[0]);
+        int merged = 0;
+        for (int k = 0; k < out && !merged; ++k) {
+            BtgManifold o = region[first + k];
+            BtgFloat4 on = btgPointNormal(o.points[0]);
+            if (!(btgDot3(on, n) >= BTG_MESH_MERGE_COS)) continue;
+            BtgFloat4 pts[2 * BTG_MAX_POINTS];
+            uint ids[2 * BTG_MAX_POINTS];
+            int c = 0;
+            for (int j = 0; j < o.numPoints; ++j, ++c) {
+                pts[c] = btgPointOnB(o.points[j]);
+                pts[c].w = o.points[j].distance;
+                ids[c] = o.points[j].featureId;
+            }
+            for (int j = 0; j < t.numPoints; ++j, ++c) {
+                pts[c] = btgPointOnB(t.points[j]);
+                pts[c].w = t.points[j].distance;
+                ids[c] = t.points[j].featureId;
+            }
+            btgReduceArray(pts, ids, c, on, &o);
+            region[first + k] = o;
+            merged = 1;
+        }
+        if (!merged) region[first + out++] = t;
+    }
+    return out;
+}
+
+#endif
