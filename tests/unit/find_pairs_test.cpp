@@ -87,8 +87,9 @@ TEST(FindPairs, PairKindsArePresent)
 
 TEST(FindPairs, KindRangesCoverEveryKind)
 {
-    // The scene has every kind of the table but plane–plane (never a pair): each range is
-    // non-empty, and the ranges tile the kind order.
+    // The scene has every convex kind of the table but plane–plane (never a pair): each range
+    // is non-empty, and the ranges tile the kind order. It has no mesh (the mesh kinds' ranges,
+    // empty here, are walked in midphase_test).
     test::BroadphaseScene s = test::makeBroadphaseScene(2000, 18.0f, 21);
     DeviceWorld w(test::context());
     s.upload(w);
@@ -100,7 +101,8 @@ TEST(FindPairs, KindRangesCoverEveryKind)
     for (int kind = 0; kind < BTG_NUM_PAIR_KINDS; ++kind) {
         EXPECT_EQ(r.kindRanges[BTG_KIND_RANGE_START(kind)], next);
         next = r.kindRanges[BTG_KIND_RANGE_END(kind)];
-        if (kind != BTG_PAIR_NONE) EXPECT_GT(next, r.kindRanges[BTG_KIND_RANGE_START(kind)]) << "kind " << kind;
+        if (kind != BTG_PAIR_NONE && kind < BTG_FIRST_MESH_PAIR_KIND)
+            EXPECT_GT(next, r.kindRanges[BTG_KIND_RANGE_START(kind)]) << "kind " << kind;
     }
     EXPECT_EQ(next, expected.size());
 }
