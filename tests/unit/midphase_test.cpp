@@ -2,11 +2,14 @@
 // lists in the same order), against Bullet's own btBvhTriangleMeshShape::processAllTriangles for
 // the same boxes (as sets of (part, triangle)), and its overflow protocol: past capacity it
 // counts on and raises the status bit, writing nothing out of bounds.
+#include "../compat/shape_tables.h"
 #include "mesh_scene.h"
 #include "reference/midphase.h"
 #include "shared/math.h"
 #include "stages/midphase.h"
 #include "test_device.h"
+
+#include <BulletCollision/CollisionShapes/btScaledBvhTriangleMeshShape.h>
 
 #include <algorithm>
 #include <random>
@@ -143,4 +146,27 @@ TEST(Midphase, OverflowCountsOnAndRaisesTheStatus)
     EXPECT_EQ(dev.total, ref.size());  // the full count, for the host to grow to
     ref.resize(256);
     expectSame(dev.subPairs, ref);  // what fits is written, in order
+}
+
+TEST(Midphase, AMeshIsStoredOnceWhateverUsesIt)
+{
+    // compat's tables: the mesh shape and a scaled wrapper of it are two shape rows of one mesh.
+    auto mesh = BulletMesh::terrain(6, 1.0f, true);
+    ShapeTables tables;
+    std::string why;
+    const int plain = tables.add(mesh->shape.get(), &why);
+    ASSERT_GE(plain, 0) << why;
+    const size_t triangles = tables.meshTables.triangles.size(), nodes = tables.meshTables.nodes.size();
+    EXPECT_EQ(triangles, 2u * 2u * 36u);
+    btScaledBvhTriangleMeshShape scaled(mesh->shape.get(), btVector3(2, 1, 2));
+    const int wrapped = tables.add(&scaled, &why);
+    ASSERT_GE(wrapped, 0) << why;
+    EXPECT_NE(plain, wrapped);
+    EXPECT_EQ(tables.add(mesh->shape.get(), &why), plain);  // a second body on the same shape
+    EXPECT_EQ(tables.shapes[size_t(plain)].mesh, tables.shapes[size_t(wrapped)].mesh);
+    EXPECT_EQ(tables.meshTables.meshes.size(), 1u);
+    EXPECT_EQ(tables.meshTables.triangles.size(), triangles);
+    EXPECT_EQ(tables.meshTables.nodes.size(), nodes);
+    EXPECT_EQ(tables.shapes[size_t(wrapped)].param.x, 2.0f);
+    EXPECT_EQ(tables.shapes[size_t(plain)].type, BTG_SHAPE_MESH);
 }

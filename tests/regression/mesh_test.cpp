@@ -1,0 +1,203 @@
+// mesh_test.cpp — triangle-mesh ground (btBvhTriangleMeshShape) on stock Bullet and on btgpu in
+// the same test, the GPU path asserted after every step and the midphase seen to run: a box
+// and a sphere at rest, 100 bodies dropped apart, a mesh shared by two ground bodies, a scaled
+// wrapper, vertices edited and the BVH refitted between steps, a kinematic mesh platform; and
+// the mesh cases that keep the CPU path, each with its reason.
+#include <gtest/gtest.h>
+
+#include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
+#include <BulletCollision/CollisionShapes/btScaledBvhTriangleMeshShape.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "scenes/mesh_scenes.h"
+#include "side_by_side.h"
+
+using namespace btgpu;
+using namespace btgpu::test;
+
+namespace {
+
+bool has(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
+
+// Steps both worlds, the btgpu one on the GPU path every step, with the mesh stages in its plan
+// and their programs built.
+void stepOnGpu(SideBySide& run, int steps)
+{
+    int contacts = 0;  // the most in any step (bodies at rest fall asleep and have none)
+    for (int i = 0; i < steps; ++i) {
+        run.step();
+        ASSERT_TRUE(run.onGpu()) << "step " << i << ": " << run.gpu->report()->cpuPathReason;
+        contacts = std::max(contacts, run.gpu->report()->contacts);
+    }
+    const Report& r = *run.gpu->report();
+    EXPECT_TRUE(has(r.stages, "midphase"));
+    EXPECT_TRUE(has(r.stages, "narrowphase_mesh"));
+    EXPECT_TRUE(has(r.builtPrograms, "midphase"));
+    EXPECT_TRUE(has(r.builtPrograms, "narrowphase_mesh"));
+    EXPECT_GT(contacts, 0);
+}
+
+// Horizontal drift of a body from where it started.
+struct Starts {
+    std::vector<btVector3> stock, gpu;
+    explicit Starts(const SideBySide& run)
+    {
+        for (btRigidBody* b : run.stock->bodies()) stock.push_back(b->getWorldTransform().getOrigin());
+        for (btRigidBody* b : run.gpu->bodies()) gpu.push_back(b->getWorldTransform().getOrigin());
+    }
+};
+double drift(const scenes::Scene& s, const std::vector<btVector3>& starts, int i)
+{
+    btVector3 d = s.body(i)->getWorldTransform().getOrigin() - starts[size_t(i)];
+    d.setY(0);
+    return d.length();
+}
+
+// Each body's rest height within 1 mm of stock's, and no more sideways drift than stock's
+// (stock's boxes, landing on one GJK point a frame, rock and slide further).
+void expectRestHeights(const SideBySide& run, const Starts& starts, int first, int last)
+{
+    for (int i = first; i <= last; ++i) {
+        EXPECT_NEAR(run.gpuY(i), run.stockY(i), tol::kRestHeight) << "body " << i;
+        EXPECT_LE(drift(*run.gpu, starts.gpu, i), drift(*run.stock, starts.stock, i) + 0.02) << "body " << i;
+    }
+}
+
+}  // namespace
+
+TEST(Mesh, BoxAndSphereRestOnAMeshGroundAsOnStock)
+{
+    SideBySide run(scenes::restOnMesh);
+    Starts starts(run);
+    stepOnGpu(run, 120);
+    expectRestHeights(run, starts, 1, 2);
+    EXPECT_NEAR(run.gpuY(1), 0.5, 0.01);  // on the mesh, not through it
+    EXPECT_NEAR(run.gpuY(2), 0.5, 0.01);
+}
+
+TEST(Mesh, HundredBodiesDroppedApartRestAsOnStock)
+{
+    SideBySide run(scenes::dropOnMesh);
+    Starts starts(run);
+    stepOnGpu(run, 150);
+    expectRestHeights(run, starts, 1, 100);
+}
+
+TEST(Mesh, OneMeshOnTwoBodies)
+{
+    SideBySide run(scenes::sharedMesh);
+    Starts starts(run);
+    stepOnGpu(run, 120);
+    expectRestHeights(run, starts, 2, 5);
+}
+
+TEST(Mesh, ScaledWrapperOfAMesh)
+{
+    // btScaledBvhTriangleMeshShape, twice as wide and lifted by 0.5 in y scaling a mesh whose
+    // surface is at y = 1: the box rests at 1.0 * 0.5 + 0.5.
+    auto make = [](WorldKind kind, const Config& config) {
+        auto scene = std::make_unique<scenes::Scene>(kind, config, "scaled_mesh");
+        btBvhTriangleMeshShape* mesh = scenes::gridMesh(*scene, 8, 1.0f, true, true);
+        auto* scaled = scene->ownShape(new btScaledBvhTriangleMeshShape(mesh, btVector3(2, btScalar(.5), 2)));
+        scene->addBody(scaled, 0, btVector3(0, 0, 0));
+        scene->addBody(scene->boxShape(btVector3(.5, .5, .5)), 1, btVector3(3, btScalar(.6), 1));
+        scene->addBody(scene->sphereShape(.5), 1, btVector3(-5, btScalar(.6), -2));
+        return scene;
+    };
+    SideBySide run(make);
+    Starts starts(run);
+    stepOnGpu(run, 120);
+    expectRestHeights(run, starts, 1, 2);
+}
+
+TEST(Mesh, EditedVerticesAndRefittedTreeArePickedUp)
+{
+    // The app lowers the whole mesh by 0.3 m and refits its BVH: the bodies on it fall onto it
+    // on both worlds (the GPU path reads the mesh again: its fingerprint changed).
+    SideBySide run(scenes::restOnMesh);
+    Starts starts(run);
+    stepOnGpu(run, 60);
+    run.both([](scenes::Scene& s) {
+        auto* mesh = static_cast<btBvhTriangleMeshShape*>(s.body(0)->getCollisionShape());
+        btStridingMeshInterface* iface = mesh->getMeshInterface();
+        for (int p = 0; p < iface->getNumSubParts(); ++p) {
+            unsigned char *vb, *ib;
+            int nv, stride, istride, nf;
+            PHY_ScalarType vt, it;
+            iface->getLockedVertexIndexBase(&vb, nv, vt, stride, &ib, istride, nf, it, p);
+            for (int i = 0; i < nv; ++i) reinterpret_cast<float*>(vb + i * stride)[1] -= 0.3f;
+            iface->unLockVertexBase(p);
+        }
+        btVector3 lo, hi;
+        iface->calculateAabbBruteForce(lo, hi);
+        mesh->refitTree(lo, hi);
+        for (int i = 1; i <= 2; ++i) s.body(i)->activate(true);
+    });
+    stepOnGpu(run, 90);
+    expectRestHeights(run, starts, 1, 2);
+    EXPECT_NEAR(run.gpuY(1), 0.2, 0.01);
+}
+
+TEST(Mesh, KinematicMeshPlatformLiftsABox)
+{
+    // A kinematic mesh platform rising at 0.5 m/s for 1 s carries a box up, as on stock.
+    auto make = [](WorldKind kind, const Config& config) {
+        auto scene = std::make_unique<scenes::Scene>(kind, config, "mesh_platform");
+        btBvhTriangleMeshShape* mesh = scenes::gridMesh(*scene, 6, 1.0f, true, false);
+        btRigidBody* platform = scene->addKinematic(mesh, btTransform::getIdentity());
+        scene->addBody(scene->boxShape(btVector3(.5, .5, .5)), 1, btVector3(btScalar(.3), btScalar(.55), btScalar(-.2)));
+        scene->beforeStep = [platform](scenes::Scene&, double end) {
+            btTransform t = btTransform::getIdentity();
+            t.setOrigin(btVector3(0, btScalar(0.5 * std::min(std::max(end - 0.5, 0.0), 1.0)), 0));
+            platform->getMotionState()->setWorldTransform(t);
+        };
+        return scene;
+    };
+    SideBySide run(make);
+    stepOnGpu(run, 150);
+    EXPECT_NEAR(run.gpuY(1), run.stockY(1), tol::kRestHeight);
+    EXPECT_NEAR(run.gpuY(1), 1.0, 0.01);
+}
+
+TEST(Mesh, UnservedMeshCasesKeepTheCpuPathWithTheirReason)
+{
+    struct Case {
+        const char* what;
+        std::function<void(scenes::Scene&)> build;
+        const char* reason;
+    };
+    const std::vector<Case> cases = {
+        {"dynamic mesh",
+         [](scenes::Scene& s) {
+             btBvhTriangleMeshShape* mesh = scenes::gridMesh(s, 2, 1.0f, true, false);
+             s.addBody(mesh, 1, btVector3(0, 2, 0));
+         },
+         "dynamic triangle mesh body"},
+        {"mesh without quantized BVH",
+         [](scenes::Scene& s) {
+             scenes::MeshData* d = nullptr;
+             scenes::gridMesh(s, 2, 1.0f, true, false, &d);
+             s.addBody(s.ownShape(new btBvhTriangleMeshShape(d->array, false)), 0, btVector3(0, 0, 0));
+         },
+         "without quantized AABB compression"},
+        {"heightfield",
+         [](scenes::Scene& s) {
+             auto* heights = s.ownData(new std::vector<float>(16 * 16, 0.0f));
+             s.addBody(s.ownShape(new btHeightfieldTerrainShape(16, 16, heights->data(), 1, -1, 1, 1, PHY_FLOAT, false)),
+                       0, btVector3(0, 0, 0));
+         },
+         "unsupported shape"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.what);
+        scenes::Scene scene(WorldKind::Gpu);
+        c.build(scene);
+        scene.addBody(scene.sphereShape(.5), 1, btVector3(0, 3, 0));
+        scene.step();
+        const Report& r = *scene.report();
+        EXPECT_FALSE(r.gpuPath);
+        EXPECT_NE(r.cpuPathReason.find(c.reason), std::string::npos) << r.cpuPathReason;
+    }
+}
