@@ -80,7 +80,11 @@ std::string typeName(const std::type_info& type)
     return type.name();
 }
 
-bool isMeshType(int type) { return type == TRIANGLE_MESH_SHAPE_PROXYTYPE || type == SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE; }
+bool isMeshType(int type)
+{
+    return type == TRIANGLE_MESH_SHAPE_PROXYTYPE || type == SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE ||
+           type == TERRAIN_SHAPE_PROXYTYPE;
+}
 
 // The shape types the GPU path simulates (ShapeTables::add; meshes only btBvhTriangleMeshShape
 // and its scaled wrapper, which add checks); bit t of a mask is proxy type t.
@@ -138,6 +142,7 @@ const char* shapeTypeName(int type)
         case STATIC_PLANE_PROXYTYPE: return "static plane";
         case TRIANGLE_MESH_SHAPE_PROXYTYPE: return "triangle mesh";
         case SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE: return "scaled triangle mesh";
+        case TERRAIN_SHAPE_PROXYTYPE: return "heightfield";
         case TRIANGLE_SHAPE_PROXYTYPE: return "triangle";
         default: return "shape";
     }
@@ -300,7 +305,7 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     const btRigidBody* rb = btRigidBody::upcast(o);
     if (!rb || rb->isStaticOrKinematicObject()) return "";
     if (isMeshType(o->getCollisionShape()->getShapeType()))
-        return "dynamic triangle mesh body (the GPU path takes static and kinematic meshes)";
+        return "dynamic triangle mesh or heightfield body (the GPU path takes static and kinematic ones)";
     // integrateTransforms sweeps a sphere of the swept radius (even radius 0) for a body moving
     // more than its motion threshold and stops it at the hit; createPredictiveContacts adds a
     // contact there. The GPU path has only its speculative contacts.
@@ -357,7 +362,8 @@ std::string collisionAlgorithmReason(btDiscreteDynamicsWorld& world, std::uint64
     btDefaultCollisionConfiguration& reference = referenceConfiguration();
     // A mesh's triangles meet the convex shapes through the algorithms registered for
     // btTriangleShape (btConvexConcaveCollisionAlgorithm dispatches each triangle): those too.
-    if (shapeTypes & ((std::uint64_t(1) << TRIANGLE_MESH_SHAPE_PROXYTYPE) | (std::uint64_t(1) << SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE)))
+    if (shapeTypes & ((std::uint64_t(1) << TRIANGLE_MESH_SHAPE_PROXYTYPE) |
+                      (std::uint64_t(1) << SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE) | (std::uint64_t(1) << TERRAIN_SHAPE_PROXYTYPE)))
         shapeTypes |= std::uint64_t(1) << TRIANGLE_SHAPE_PROXYTYPE;
     auto checked = [](int t) { return servedShapeType(t) || t == TRIANGLE_SHAPE_PROXYTYPE; };
     for (int a = 0; a < 64; ++a) {

@@ -195,6 +195,8 @@ void GpuWorld::uploadShapeTables(bool appended)
     uploadTable(w.meshTriangles, mesh.triangles);
     uploadTable(w.meshVertices, mesh.vertices);
     uploadTable(w.meshParts, mesh.parts);
+    uploadTable(w.heightfields, mesh.heightfields);
+    uploadTable(w.heightfieldHeights, mesh.heights);
     w.numShapes = int(m_shapes.shapes.size());
 }
 

@@ -6,7 +6,7 @@
 // app's objects are only read; a fingerprint of everything read tells when the app has edited
 // its vertices or refitted its BVH (refitTree, partialRefitTree), and the mesh is then read again.
 #pragma once
-#include "shared/mesh.h"
+#include "shared/concave.h"
 
 #include <cstdint>
 #include <string>
@@ -15,6 +15,7 @@
 
 class btBvhTriangleMeshShape;
 class btCollisionShape;
+class btHeightfieldTerrainShape;
 
 namespace btgpu {
 
@@ -24,10 +25,14 @@ struct MeshTables {
     std::vector<BtgTriangle> triangles;
     std::vector<BtgFloat4> vertices;
     std::vector<int> parts;
+    std::vector<BtgHeightfield> heightfields;
+    std::vector<float> heights;
 
     // The mesh row of `shape` (read the first time, and again when its fingerprint changed), or
     // -1 with *whyNot set when the GPU path cannot take it.
     int add(const btBvhTriangleMeshShape* shape, std::string* whyNot);
+    // The heightfield row of `shape`, its heights read from the app's array now (heightfield_tables.cpp).
+    int addHeightfield(const btHeightfieldTerrainShape* shape, std::string* whyNot);
 
 private:
     struct Row {
@@ -48,5 +53,12 @@ std::uint64_t meshFingerprint(const btBvhTriangleMeshShape* shape);
 // "" when the mesh can be simulated, else why not as bad input (a non-finite vertex, an index
 // out of range). Reads every vertex: called when a mesh is first read.
 std::string badMeshInput(const btBvhTriangleMeshShape* shape);
+
+// The heightfield the GPU path may take (exactly btHeightfieldTerrainShape: a subclass may
+// override getRawHeightFieldValue), else nullptr; its fingerprint (every height byte and every
+// parameter the walk reads) and its bad input (a non-finite height, scaling or zero scaling).
+const btHeightfieldTerrainShape* heightfieldOf(const btCollisionShape* shape);
+std::uint64_t heightfieldFingerprint(const btHeightfieldTerrainShape* shape);
+std::string badHeightfieldInput(const btHeightfieldTerrainShape* shape);
 
 }  // namespace btgpu

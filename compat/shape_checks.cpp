@@ -95,6 +95,12 @@ std::string badShapeInput(const btCollisionShape* shape)
             }
             return "";
         }
+        case TERRAIN_SHAPE_PROXYTYPE: {
+            const btHeightfieldTerrainShape* h = heightfieldOf(shape);
+            if (!h) return "";
+            std::string why = checkScalingAndMargin(shape);
+            return why.empty() ? badHeightfieldInput(h) : why;
+        }
         case TRIANGLE_MESH_SHAPE_PROXYTYPE:
         case SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE: {
             const btBvhTriangleMeshShape* mesh = bvhMeshOf(shape);
@@ -152,6 +158,13 @@ std::uint64_t shapeFingerprint(const btCollisionShape* shape)
             // Every vertex, index and BVH node: the app may edit its vertices and refit the tree.
             const btBvhTriangleMeshShape* mesh = bvhMeshOf(shape);
             std::uint64_t m = mesh ? meshFingerprint(mesh) : 0;
+            mix(&m, sizeof(m));
+            break;
+        }
+        case TERRAIN_SHAPE_PROXYTYPE: {
+            // Every height of the app's array, and the grid's parameters.
+            const btHeightfieldTerrainShape* h = heightfieldOf(shape);
+            std::uint64_t m = h ? heightfieldFingerprint(h) : 0;
             mix(&m, sizeof(m));
             break;
         }

@@ -139,8 +139,10 @@ int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
     s.firstVertex = s.firstFace = s.firstEdge = 0;
     const int type = shape->getShapeType();
     const btBvhTriangleMeshShape* mesh = bvhMeshOf(shape);
+    const btHeightfieldTerrainShape* heightfield = heightfieldOf(shape);
     const bool known = type == BOX_SHAPE_PROXYTYPE || type == SPHERE_SHAPE_PROXYTYPE || type == STATIC_PLANE_PROXYTYPE ||
-                       type == CONVEX_HULL_SHAPE_PROXYTYPE || type == CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE || mesh;
+                       type == CONVEX_HULL_SHAPE_PROXYTYPE || type == CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE || mesh ||
+                       heightfield;
     s.mesh = -1;
     if (!known) {
         *whyNot = std::string("unsupported shape '") + shape->getName() + "'";
@@ -181,6 +183,15 @@ int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
         const btVector3 scaling = type == SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE ? shape->getLocalScaling()
                                                                                : btVector3(1, 1, 1);
         s.param = f4(scaling);
+        setLocalAabb(s, shape);
+    } else if (heightfield) {
+        // The heights are copied now; a change to the app's array changes the fingerprint and
+        // the shape gets a new row, read again.
+        s.mesh = meshTables.addHeightfield(heightfield, whyNot);
+        if (s.mesh < 0) return -1;
+        s.type = BTG_SHAPE_HEIGHTFIELD;
+        s.margin = shape->getMargin();
+        s.param = btgMake4(1, 1, 1, 0);  // the walk applies the heightfield's own scaling
         setLocalAabb(s, shape);
     } else {
         auto cached = m_hullCache.find(shape);

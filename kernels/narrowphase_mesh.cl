@@ -6,7 +6,7 @@
  * (counters[BTG_COUNTER_SUB_PAIRS], read on the device); gather_mesh_manifolds any number
  * striding over the mesh pairs (kindRanges, read on the device).
  * Reads subPairs, subPairOffsets (the midphase's), pairs, kindOrder, kindRanges, pos, rot, props,
- * shapes, hull tables, meshTriangles, meshVertices. Writes manifolds[base + s] for each
+ * shapes, hull tables, the concave tables (shared/concave.h). Writes manifolds[base + s] for each
  * sub-pair s (base: the first manifold slot past the pair slots), compacted and merged per pair
  * by the gather, which writes pairManifolds[slot] = (base + first, count) and an empty
  * manifolds[slot] for each mesh pair. */
@@ -20,9 +20,11 @@
                          __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes,     \
                          __global const BtgFloat4* restrict verts, __global const BtgFace* restrict faces,          \
                          __global const int* restrict indices, __global const BtgFloat4* restrict edges,            \
-                         __global const BtgTriangle* restrict triangles,                                            \
-                         __global const BtgFloat4* restrict meshVerts, __global BtgManifold* restrict manifolds,    \
-                         uint base)                                                                                 \
+                         __global const BtgMesh* restrict meshes, __global const BtgBvhNode* restrict nodes,        \
+                         __global const int* restrict parts, __global const BtgTriangle* restrict triangles,        \
+                         __global const BtgFloat4* restrict meshVerts,                                              \
+                         __global const BtgHeightfield* restrict heightfields, __global const float* restrict heights, \
+                         __global BtgManifold* restrict manifolds, uint base)                                       \
     {                                                                                                               \
         const uint n = min(counters[BTG_COUNTER_SUB_PAIRS], capacity);                                              \
         for (uint s = (uint)get_global_id(0); s < n; s += (uint)get_global_size(0)) {                               \
@@ -31,8 +33,7 @@
             BtgCollider a = btgLoadCollider(p.a, pos, rot, props, shapes);                                          \
             BtgCollider b = btgLoadCollider(p.b, pos, rot, props, shapes);                                          \
             if (btgPairKind(a.shape.type, b.shape.type) != (kind)) continue;                                       \
-            manifolds[base + s] = btgTriangleManifold(a, b, sp, triangles, meshVerts, verts, faces, indices, edges,  \
-                                                      routine);                                                     \
+            manifolds[base + s] = btgTriangleManifold(a, b, sp, verts, faces, indices, edges, routine);            \
         }                                                                                                           \
     }
 

@@ -196,24 +196,6 @@ static inline void btgMeshPairRange(BTG_CONST_GLOBAL uint* kindRanges, uint* sta
     *end = hi;
 }
 
-/* The midphase of one broadphase pair: 0 unless exactly one side is a mesh; else the walk of
- * the convex's box (btgMidphaseBox with the pair's threshold) through the mesh's BVH. */
-static inline uint btgMidphasePair(BtgPair p, int slot, BTG_CONST_GLOBAL BtgFloat4* pos, BTG_CONST_GLOBAL BtgFloat4* rot,
-                                   BTG_CONST_GLOBAL BtgBodyProps* props, BTG_CONST_GLOBAL BtgShape* shapes,
-                                   BTG_CONST_GLOBAL BtgMesh* meshes, BTG_CONST_GLOBAL BtgBvhNode* nodes,
-                                   BTG_CONST_GLOBAL int* parts, BTG_GLOBAL BtgSubPair* out, uint first, uint capacity)
-{
-    BtgShape sa = shapes[props[p.a].shape], sb = shapes[props[p.b].shape];
-    int meshIsA = sa.type == BTG_SHAPE_MESH;
-    BtgShape cs = meshIsA ? sb : sa, ms = meshIsA ? sa : sb;
-    if (ms.type != BTG_SHAPE_MESH || cs.type == BTG_SHAPE_MESH || cs.type == BTG_SHAPE_PLANE) return 0u;
-    int c = meshIsA ? p.b : p.a, mb = meshIsA ? p.a : p.b;
-    float t = sa.breakingThreshold < sb.breakingThreshold ? sa.breakingThreshold : sb.breakingThreshold;
-    BtgAabb box = btgMidphaseBox(pos[c], rot[c], cs, pos[mb], rot[mb], ms, t);
-    BtgMesh m = meshes[ms.mesh];
-    return btgMidphaseWalk(m, nodes, parts, btgQuantizeBox(m, box), slot, out, first, capacity);
-}
-
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(BtgMesh) == 80, "BtgMesh layout");
 static_assert(sizeof(BtgBvhNode) == 16, "BtgBvhNode layout");

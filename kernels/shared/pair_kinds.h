@@ -25,9 +25,12 @@
 #define BTG_PAIR_HULL_HULL 5
 #define BTG_PAIR_SPHERE_MESH 6 /* the mesh kinds are consecutive: the midphase walks their range */
 #define BTG_PAIR_HULL_MESH 7
-#define BTG_NUM_PAIR_KINDS 8
+#define BTG_PAIR_SPHERE_HEIGHTFIELD 8
+#define BTG_PAIR_HULL_HEIGHTFIELD 9
+#define BTG_NUM_PAIR_KINDS 10
+/* Convex against a concave shape (mesh or heightfield): the kinds the midphase walks. */
 #define BTG_FIRST_MESH_PAIR_KIND BTG_PAIR_SPHERE_MESH
-#define BTG_LAST_MESH_PAIR_KIND BTG_PAIR_HULL_MESH
+#define BTG_LAST_MESH_PAIR_KIND BTG_PAIR_HULL_HEIGHTFIELD
 
 /* The pairs grouped by kind (find_pairs): kindOrder lists the pair slots ordered by (kind, a, b),
  * and kind k's pairs are kindOrder[kindRanges[BTG_KIND_RANGE_START(k)], kindRanges[BTG_KIND_RANGE_END(k)]). */
@@ -58,7 +61,11 @@
     X(narrowphase_mesh, BTG_PAIR_SPHERE_MESH, BTG_SHAPE_SPHERE, BTG_SHAPE_MESH, btgCollideSphereTriangle,     \
       collide_sphere_triangles)                                                                               \
     X(narrowphase_mesh, BTG_PAIR_HULL_MESH, BTG_SHAPE_HULL, BTG_SHAPE_MESH, btgCollideHullTriangle,           \
-      collide_hull_triangles)
+      collide_hull_triangles)                                                                                 \
+    X(narrowphase_mesh, BTG_PAIR_SPHERE_HEIGHTFIELD, BTG_SHAPE_SPHERE, BTG_SHAPE_HEIGHTFIELD,                 \
+      btgCollideSphereTriangle, collide_sphere_heightfield)                                                   \
+    X(narrowphase_mesh, BTG_PAIR_HULL_HEIGHTFIELD, BTG_SHAPE_HULL, BTG_SHAPE_HEIGHTFIELD,                     \
+      btgCollideHullTriangle, collide_hull_heightfield)
 
 /* The pairs of two convex shapes (one routine call a pair), and the whole table, program by
  * program in launch order. */

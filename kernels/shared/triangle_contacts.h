@@ -1,20 +1,16 @@
 /* triangle_contacts.h — contacts of a convex shape against one mesh triangle (the rows of
  * program "narrowphase_mesh" in pair_kinds.h): sphere–triangle as Bullet's SphereTriangleDetector
- * computes it, hull–triangle by SAT over the hull's faces, the triangle's two-sided normal and
- * the edge cross products, then clipping (clip.h's scheme, the triangle as a flat face). A
+ * computes it, hull–triangle by SAT rejection and clipping against the triangle as a face
+ * (clip.h's scheme; the triangle's normal, turned to the hull's side, for every point). A
  * triangle is passed by value (its three vertices in the mesh body's frame), so later convex
  * kinds can take it as a small convex of their own. Canonical roles: the convex is A, the
  * mesh B; the kernel swaps when the pair has them the other way round. */
 #ifndef BTG_TRIANGLE_CONTACTS_H
 #define BTG_TRIANGLE_CONTACTS_H
 #include "clip.h"
-#include "mesh.h"
+#include "concave.h"
 
 #define BTG_FLT_EPSILON 1.1920929e-07f /* Bullet's SIMD_EPSILON (float build) */
-
-typedef struct {
-    BtgFloat4 v[3]; /* m, the mesh body's frame */
-} BtgTriangleVerts;
 
 /* Bullet's SegmentSqrDistance (SphereTriangleDetector.cpp). */
 static inline float btgSegmentSqrDistance(BtgFloat4 from, BtgFloat4 to, BtgFloat4 p, BtgFloat4* nearest)
@@ -138,10 +134,10 @@ static inline int btgClipBySides(BtgFloat4* poly, uint* labels, int n, const Btg
     return n;
 }
 
-/* Hull h (A) against one triangle (B). Reference face: the hull's when a hull face axis wins
- * (the triangle clipped by that face's side planes), the triangle's when its normal does (the
- * hull's most anti-parallel face clipped by the triangle's sides); an edge pair: the closest
- * points of the two edges. Reduced to at most 4 points with one normal. */
+/* Hull h (A) against one triangle (B): rejected when any SAT axis (the hull's faces, the
+ * triangle's normal, the edge pairs) separates them beyond the threshold; else the triangle is
+ * the reference face and the hull's most anti-parallel face is clipped by its sides. Reduced to
+ * at most 4 points with the triangle's normal. */
 static inline BtgManifold btgCollideHullTriangle(BtgCollider h, BtgCollider mesh, BtgTriangleVerts tri,
                                                  BTG_SHAPE_TABLES, float threshold)
 {
@@ -154,35 +150,18 @@ static inline BtgManifold btgCollideHullTriangle(BtgCollider h, BtgCollider mesh
     nt = nt * (1.0f / ntLen);
     const float margins = h.shape.margin + mesh.shape.margin;
     const float reject = threshold + margins;
-    /* SAT: hull faces, then the triangle's normal, then edge pairs (the biases of sat.h). */
-    BtgFloat4 bestAxis = nt;
-    float best = -3.0e38f;
-    int feature = BTG_SAT_FACE_A, indexA = -1, indexB = -1;
-    for (int f = 0; f < h.shape.numFaces; ++f) {
-        BtgFloat4 axis;
-        float sep = btgHullTriangleSeparation(h, verts, w, btgMat3MulVec(h.pose.rot, faces[h.shape.firstFace + f].plane),
-                                              &axis);
-        if (indexA < 0 || sep > best) {
-            best = sep;
-            bestAxis = axis;
-            indexA = f;
-            if (sep > reject) return m;
-        }
-    }
-    {
-        BtgFloat4 axis;
-        float sep = btgHullTriangleSeparation(h, verts, w, nt, &axis);
-        if (sep > reject) return m;
-        if (sep > best + BTG_SAT_FACE_BIAS) {
-            best = sep;
-            bestAxis = axis;
-            feature = BTG_SAT_FACE_B;
-            indexB = 0;
-        }
-    }
-    int edgeA = -1, edgeB = -1;
-    float bestEdge = -3.0e38f;
-    BtgFloat4 edgeAxis = bestAxis;
+    /* Apart along some axis by more than the threshold: no contact. The axes only reject: a
+     * triangle is a piece of a surface, so a hull in contact range of it takes its normal,
+     * turned to the side of the hull's centre. Bullet's per-triangle GJK gives, where a hull
+     * overlaps a triangle's edge by less than it sinks into the plane, the edge's normal: a
+     * sideways "ghost" push at every internal edge of a flat mesh (what
+     * btAdjustInternalEdgeContacts exists to remove, behind gContactAddedCallback). */
+    BtgFloat4 axis;
+    if (btgHullTriangleSeparation(h, verts, w, nt, &axis) > reject) return m;
+    for (int f = 0; f < h.shape.numFaces; ++f)
+        if (btgHullTriangleSeparation(h, verts, w, btgMat3MulVec(h.pose.rot, faces[h.shape.firstFace + f].plane), &axis) >
+            reject)
+            return m;
     for (int i = 0; i < h.shape.numEdges; ++i) {
         BtgFloat4 ea = btgMat3MulVec(h.pose.rot, edges[h.shape.firstEdge + i]);
         for (int j = 0; j < 3; ++j) {
@@ -192,83 +171,34 @@ static inline BtgManifold btgCollideHullTriangle(BtgCollider h, BtgCollider mesh
             BtgFloat4 c = btgCross3(ea, eb * (1.0f / ebLen));
             float len = btgLength3(c);
             if (len < BTG_SAT_PARALLEL) continue;
-            BtgFloat4 axis;
-            float sep = btgHullTriangleSeparation(h, verts, w, c * (1.0f / len), &axis);
-            if (sep > reject) return m;
-            if (edgeA < 0 || sep > bestEdge) {
-                bestEdge = sep;
-                edgeAxis = axis;
-                edgeA = i;
-                edgeB = j;
-            }
+            if (btgHullTriangleSeparation(h, verts, w, c * (1.0f / len), &axis) > reject) return m;
         }
     }
-    if (edgeA >= 0 && bestEdge > best + BTG_SAT_EDGE_BIAS) {
-        BtgFloat4 d = edgeAxis; /* A towards B */
-        BtgFloat4 a0, a1;
-        if (btgSupportEdge(h, verts, faces, indices, edges[h.shape.firstEdge + edgeA], d, 1.0f, &a0, &a1)) {
-            BtgFloat4 pa, pb;
-            btgClosestSegments(a0, a1, w[edgeB], w[(edgeB + 1) % 3], &pa, &pb);
-            float dist = btgDot3(d, pb - pa) - margins;
-            if (dist < threshold)
-                btgAddPoint(&m, -d, pb - d * mesh.shape.margin, dist,
-                            BTG_FEATURE_EDGES | ((uint)(edgeA & 0x7fff) << 15) | (uint)(edgeB & 0x7fff));
-            return m;
-        }
-        feature = BTG_SAT_FACE_B; /* no supporting edge found: clip against the triangle */
-        bestAxis = btgDot3(nt, d) >= 0.0f ? nt : -nt;
-    }
+    /* The triangle is the reference face; the hull's face most anti-parallel to its normal is
+     * clipped by the triangle's three side planes. */
+    const BtgFloat4 nRef = btgDot3(nt, btgXyz(h.pose.pos) - w[0]) >= 0.0f ? nt : -nt; /* towards the hull */
+    const int faceA = btgExtremeFace(h, faces, nRef, -1.0f);
+    BtgFace inf = faces[h.shape.firstFace + faceA];
     BtgFloat4 poly[BTG_MAX_POLY];
     uint labels[BTG_MAX_POLY];
-    BtgFloat4 side[BTG_MAX_POLY];
-    uint sideLabel[BTG_MAX_POLY];
+    BtgFloat4 side[3];
+    uint sideLabel[3];
     int n = 0;
-    BtgFloat4 normal, nRef;
-    float refD;
-    int refIsA = feature == BTG_SAT_FACE_A;
-    int faceA;
-    if (refIsA) {
-        /* the hull face most aligned with the axis; the triangle is the incident polygon */
-        faceA = btgExtremeFace(h, faces, bestAxis, 1.0f);
-        BtgFace rf = faces[h.shape.firstFace + faceA];
-        nRef = btgMat3MulVec(h.pose.rot, rf.plane);
-        for (int k = 0; k < 3; ++k) {
-            poly[k] = w[k];
-            labels[k] = ((BTG_FEATURE_EDGE_OF_B | (uint)((k + 2) % 3)) << 8) | BTG_FEATURE_EDGE_OF_B | (uint)k;
-        }
-        n = 3;
-        int sides = rf.numIndices < BTG_MAX_POLY ? rf.numIndices : BTG_MAX_POLY;
-        for (int k = 0; k < sides; ++k) {
-            BtgFloat4 v0 = btgPoseApply(h.pose, btgFaceVertex(h.shape, rf, verts, indices, k));
-            BtgFloat4 v1 = btgPoseApply(h.pose, btgFaceVertex(h.shape, rf, verts, indices, k + 1 < rf.numIndices ? k + 1 : 0));
-            side[k] = btgCross3(v1 - v0, nRef);
-            side[k].w = btgDot3(side[k], v0);
-            sideLabel[k] = (uint)(k & 0x7f);
-        }
-        n = btgClipBySides(poly, labels, n, side, sideLabel, sides);
-        refD = btgDot3(nRef, btgPoseApply(h.pose, btgFaceVertex(h.shape, rf, verts, indices, 0)));
-        normal = -nRef;
-    } else {
-        /* the triangle's normal towards the hull; the hull's most anti-parallel face is incident */
-        nRef = -bestAxis;
-        faceA = btgExtremeFace(h, faces, nRef, -1.0f);
-        BtgFace inf = faces[h.shape.firstFace + faceA];
-        for (int k = 0; k < inf.numIndices && n < BTG_MAX_POLY; ++k) {
-            poly[n] = btgPoseApply(h.pose, btgFaceVertex(h.shape, inf, verts, indices, k));
-            labels[n] = ((uint)((k + inf.numIndices - 1) % inf.numIndices & 0x7f) << 8) | (uint)(k & 0x7f);
-            ++n;
-        }
-        for (int k = 0; k < 3; ++k) {
-            BtgFloat4 s = btgCross3(w[(k + 1) % 3] - w[k], nRef);
-            if (btgDot3(s, w[(k + 2) % 3] - w[k]) > 0.0f) s = -s; /* outward whatever the winding */
-            s.w = btgDot3(s, w[k]);
-            side[k] = s;
-            sideLabel[k] = BTG_FEATURE_EDGE_OF_B | (uint)k;
-        }
-        n = btgClipBySides(poly, labels, n, side, sideLabel, 3);
-        refD = btgDot3(nRef, w[0]);
-        normal = nRef;
+    for (int k = 0; k < inf.numIndices && n < BTG_MAX_POLY; ++k) {
+        poly[n] = btgPoseApply(h.pose, btgFaceVertex(h.shape, inf, verts, indices, k));
+        labels[n] = ((uint)((k + inf.numIndices - 1) % inf.numIndices & 0x7f) << 8) | (uint)(k & 0x7f);
+        ++n;
     }
+    for (int k = 0; k < 3; ++k) {
+        BtgFloat4 sk = btgCross3(w[(k + 1) % 3] - w[k], nRef);
+        if (btgDot3(sk, w[(k + 2) % 3] - w[k]) > 0.0f) sk = -sk; /* outward whatever the winding */
+        sk.w = btgDot3(sk, w[k]);
+        side[k] = sk;
+        sideLabel[k] = BTG_FEATURE_EDGE_OF_B | (uint)k;
+    }
+    n = btgClipBySides(poly, labels, n, side, sideLabel, 3);
+    const float refD = btgDot3(nRef, w[0]);
+    const BtgFloat4 normal = nRef; /* from the triangle (B) towards the hull (A) */
     const uint faceBits = BTG_FEATURE_CLIP | ((uint)(faceA & 0x7f) << 23);
     int kept = 0;
     for (int i = 0; i < n; ++i) {
@@ -276,8 +206,8 @@ static inline BtgManifold btgCollideHullTriangle(BtgCollider h, BtgCollider mesh
         float depth = btgDot3(nRef, p) - refD;
         float dist = depth - margins;
         if (dist >= threshold) continue;
-        /* refIsA: p lies on the triangle; else on the hull, and p - nRef*depth on the triangle */
-        BtgFloat4 onB = refIsA ? btgXyz(p) : btgXyz(p) - nRef * depth;
+        /* p lies on the hull, p - nRef*depth on the triangle */
+        BtgFloat4 onB = btgXyz(p) - nRef * depth;
         BtgFloat4 c = onB + normal * mesh.shape.margin;
         c.w = dist;
         labels[kept] = faceBits | (labels[i] & 0xffffu);
@@ -295,13 +225,6 @@ static inline uint btgTriangleFeature(uint id, int triangle)
     return mixed == BTG_FEATURE_UNKNOWN ? mixed ^ 1u : mixed;
 }
 
-static inline BtgTriangleVerts btgLoadTriangle(BtgShape mesh, BtgTriangle t, BTG_CONST_GLOBAL BtgFloat4* meshVerts)
-{
-    BtgTriangleVerts v;
-    btgTriangleVertices(mesh, t, meshVerts, v.v);
-    return v;
-}
-
 /* A triangle routine's manifold (convex A, mesh B) for the pair (a, b): ids made distinct per
  * triangle, the triangle's keys (Bullet's part id and triangle index) on the mesh side, the
  * pair's own order and threshold. */
@@ -310,22 +233,49 @@ static inline BtgManifold btgFinishTriangle(BtgCollider a, BtgCollider b, BtgSub
     for (int k = 0; k < m.numPoints; ++k) m.points[k].featureId = btgTriangleFeature(m.points[k].featureId, sp.triangle);
     m.partIdB = sp.partId;
     m.indexB = sp.index;
-    if (a.shape.type == BTG_SHAPE_MESH) m = btgSwapManifold(m);
+    if (btgIsConcave(a.shape.type)) m = btgSwapManifold(m);
     m.breakingThreshold = btgPairThreshold(a.shape, b.shape);
     return m;
 }
 
 /* The routine on the pair's convex and triangle, in canonical roles, returned in the pair's own
- * order with the triangle's keys on the mesh side and its ids made distinct per triangle. */
-#define btgTriangleManifold(a, b, sp, triangles, meshVerts, verts, faces, indices, edges, routine)               \
+ * order with the triangle's keys on the concave side and its ids made distinct per triangle. */
+#define btgTriangleManifold(a, b, sp, verts, faces, indices, edges, routine)                                      \
     btgFinishTriangle(a, b, sp,                                                                                    \
-                      routine(a.shape.type == BTG_SHAPE_MESH ? b : a, a.shape.type == BTG_SHAPE_MESH ? a : b,      \
-                              btgLoadTriangle(a.shape.type == BTG_SHAPE_MESH ? a.shape : b.shape,                  \
-                                              triangles[sp.triangle], meshVerts),                                  \
+                      routine(btgIsConcave(a.shape.type) ? b : a, btgIsConcave(a.shape.type) ? a : b,              \
+                              btgConcaveTriangle(btgIsConcave(a.shape.type) ? a.shape : b.shape, sp,               \
+                                                 BTG_CONCAVE_TABLE_ARGS),                                          \
                               verts, faces, indices, edges, btgPairThreshold(a.shape, b.shape)))
 
 /* Normals within this cosine (about 0.8 degrees) share one manifold of a convex–mesh pair. */
 #define BTG_MESH_MERGE_COS 0.9999f
+
+/* contact_reduce.h's choice (deepest, farthest from it, largest triangle each side) for the
+ * points of two triangles; when they lie on one line (a box edge along a slope, across the
+ * triangles) and the deepest is inside the segment, the far end beyond it is kept too, so the
+ * contact spans the whole segment. */
+static inline void btgReduceMerged(const BtgFloat4* pts, const uint* ids, int n, BtgFloat4 normal, BtgManifold* m)
+{
+    btgReduceArray(pts, ids, n, normal, m);
+    if (m->numPoints != 2) return;
+    BtgFloat4 p0 = btgPointOnB(m->points[0]), p1 = btgPointOnB(m->points[1]);
+    BtgFloat4 d01 = btgInPlane(p1 - p0, normal);
+    float reach = btgDot3(d01, d01);
+    int best = -1;
+    float bestD2 = 0.0f;
+    for (int i = 0; i < n; ++i) {
+        BtgFloat4 d = btgInPlane(btgXyz(pts[i]) - p1, normal);
+        float d2 = btgDot3(d, d);
+        float limit = btgSqrt(reach) + BTG_REDUCE_MIN_DIST;
+        if (d2 > limit * limit && (best < 0 || d2 > bestD2)) {
+            best = i;
+            bestD2 = d2;
+        }
+    }
+    if (best < 0) return;
+    BtgFloat4 c = pts[best];
+    btgAddPoint(m, normal, btgXyz(c), c.w, ids[best]);
+}
 
 /* The manifolds of one convex–mesh pair from its triangles' (region[first, end), in the
  * midphase's order): those with points are compacted to the front, and one whose normal is
@@ -359,7 +309,7 @@ static inline int btgGatherMeshManifolds(BTG_GLOBAL BtgManifold* region, int fir
                 pts[c].w = t.points[j].distance;
                 ids[c] = t.points[j].featureId;
             }
-            btgReduceArray(pts, ids, c, on, &o);
+            btgReduceMerged(pts, ids, c, on, &o);
             region[first + k] = o;
             merged = 1;
         }

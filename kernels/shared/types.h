@@ -23,7 +23,8 @@
 #define BTG_SHAPE_HULL 1
 #define BTG_SHAPE_PLANE 2
 #define BTG_SHAPE_MESH 3 /* static or kinematic triangle mesh with a BVH (mesh.h) */
-#define BTG_NUM_SHAPE_KINDS 4
+#define BTG_SHAPE_HEIGHTFIELD 4 /* static or kinematic height grid (heightfield.h) */
+#define BTG_NUM_SHAPE_KINDS 5
 
 #define BTG_MAX_POINTS 4 /* contact points per manifold, as Bullet's btPersistentManifold */
 
@@ -76,7 +77,8 @@ typedef struct {
     float breakingThreshold; /* m: Bullet's contact breaking threshold of this shape
                                 (getContactBreakingThreshold, or the absolute one); a pair
                                 keeps points closer than the smaller of its two shapes' */
-    int mesh;               /* mesh: row in the mesh table (BtgMesh, mesh.h), else -1 */
+    int mesh;               /* mesh: row in the mesh table (BtgMesh, mesh.h); heightfield: row in
+                               the heightfield table (BtgHeightfield, heightfield.h); else -1 */
     float pad1;
     float pad2;
 } BtgShape;

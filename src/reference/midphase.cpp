@@ -11,11 +11,12 @@ std::vector<BtgSubPair> referenceMidphase(const std::vector<int>& slots, const B
     std::vector<BtgSubPair> out;
     for (int slot : slots) {
         const BtgPair& p = pairs[slot];
-        uint n = btgMidphasePair(p, slot, pos, rot, props, shapes, m.meshes, m.nodes, m.parts, nullptr, 0u, 0u);
+        uint n = btgMidphasePair(p, slot, pos, rot, props, shapes, m.meshes, m.nodes, m.parts, m.triangles, m.vertices,
+                                 m.heightfields, m.heights, nullptr, 0u, 0u);
         size_t first = out.size();
         out.resize(first + n);
-        btgMidphasePair(p, slot, pos, rot, props, shapes, m.meshes, m.nodes, m.parts, out.data(), uint(first),
-                        uint(out.size()));
+        btgMidphasePair(p, slot, pos, rot, props, shapes, m.meshes, m.nodes, m.parts, m.triangles, m.vertices,
+                        m.heightfields, m.heights, out.data(), uint(first), uint(out.size()));
     }
     return out;
 }

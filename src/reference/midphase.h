@@ -1,7 +1,7 @@
 // midphase.h (reference) — the midphase on the CPU, calling the same shared walk as
 // kernels/midphase.cl (btgMidphasePair), for tests to compare against exactly.
 #pragma once
-#include "shared/mesh.h"
+#include "shared/concave.h"
 
 #include <vector>
 
@@ -14,6 +14,8 @@ struct MeshTablesView {
     const BtgTriangle* triangles = nullptr;
     const BtgFloat4* vertices = nullptr;
     const int* parts = nullptr;
+    const BtgHeightfield* heightfields = nullptr;
+    const float* heights = nullptr;
 };
 
 // The sub-pairs of each (slot, pair) in the order given (the device's: the mesh kinds' range of

@@ -52,11 +52,16 @@ BtgManifold referenceTriangleContact(const BtgSubPair& sp, const BtgPair* pairs,
     const BtgFloat4 *verts = t.hullVertices, *edges = t.hullEdges;
     const BtgFace* faces = t.hullFaces;
     const int* indices = t.hullIndices;
+    const BtgMesh* meshes = mt.meshes;
+    const BtgBvhNode* nodes = mt.nodes;
+    const int* parts = mt.parts;
     const BtgTriangle* triangles = mt.triangles;
     const BtgFloat4* meshVerts = mt.vertices;
+    const BtgHeightfield* heightfields = mt.heightfields;
+    const float* heights = mt.heights;
     switch (btgPairKind(a.shape.type, b.shape.type)) {
 #define BTGPU_REFERENCE_TRIANGLE_ROW(program, kind, shapeA, shapeB, routine, kernel) \
-    case kind: return btgTriangleManifold(a, b, sp, triangles, meshVerts, verts, faces, indices, edges, routine);
+    case kind: return btgTriangleManifold(a, b, sp, verts, faces, indices, edges, routine);
         BTG_PAIR_KINDS_NARROWPHASE_MESH(BTGPU_REFERENCE_TRIANGLE_ROW)
 #undef BTGPU_REFERENCE_TRIANGLE_ROW
     default: return btgEmptyManifold(p.a, p.b);

@@ -13,7 +13,9 @@ void midphase(DeviceWorld& w)
 {
     cl::Context& ctx = w.ctx;
     if (w.pairCapacity == 0) return;
-    w.subPairCapacity = std::max<size_t>(w.subPairCapacity, 256);
+    // First use: one sub-pair per two pair slots (a body on a mesh meets a few triangles, and
+    // most pairs are not mesh pairs); an overflow grows it to what the midphase counted.
+    w.subPairCapacity = std::max<size_t>(w.subPairCapacity, std::max<size_t>(256, w.pairCapacity / 2));
     const size_t slots = w.pairCapacity + 1;
     w.subPairOffsets.reserve(ctx, slots);
     w.subPairs.reserveExact(ctx, w.subPairCapacity);
@@ -25,14 +27,16 @@ void midphase(DeviceWorld& w)
     cl::Program& prog = ctx.program("midphase");
     cl::Launch(ctx, prog.kernel("midphase_count"), &w.profiler)
         .arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)
-        .arg(w.shapes).arg(w.meshes).arg(w.meshNodes).arg(w.meshParts).arg(w.subPairOffsets).arg(countSlots)
+        .arg(w.shapes).arg(w.meshes).arg(w.meshNodes).arg(w.meshParts).arg(w.meshTriangles).arg(w.meshVertices)
+        .arg(w.heightfields).arg(w.heightfieldHeights).arg(w.subPairOffsets).arg(countSlots)
         .run(items);
     exclusiveScan(ctx, &w.profiler, w.subPairOffsets, slots, w.subPairScan);
     cl::Launch(ctx, prog.kernel("midphase_total"), &w.profiler)
         .arg(w.subPairOffsets).arg(countSlots).arg(w.counters).arg(capacity).run(1, 1);
     cl::Launch(ctx, prog.kernel("midphase_write"), &w.profiler)
         .arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)
-        .arg(w.shapes).arg(w.meshes).arg(w.meshNodes).arg(w.meshParts).arg(w.subPairOffsets).arg(countSlots)
+        .arg(w.shapes).arg(w.meshes).arg(w.meshNodes).arg(w.meshParts).arg(w.meshTriangles).arg(w.meshVertices)
+        .arg(w.heightfields).arg(w.heightfieldHeights).arg(w.subPairOffsets).arg(countSlots)
         .arg(w.subPairs).arg(capacity)
         .run(items);
 }

@@ -49,7 +49,8 @@ void narrowphaseMesh(DeviceWorld& w, const PairKinds& kinds)
         cl::Launch(ctx, prog.kernel(row.kernel), &w.profiler)
             .arg(w.subPairs).arg(w.counters).arg(capacity).arg(w.pairs).arg(w.pos).arg(w.rot).arg(w.props)
             .arg(w.shapes).arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges)
-            .arg(w.meshTriangles).arg(w.meshVertices).arg(w.manifolds).arg(base)
+            .arg(w.meshes).arg(w.meshNodes).arg(w.meshParts).arg(w.meshTriangles).arg(w.meshVertices)
+            .arg(w.heightfields).arg(w.heightfieldHeights).arg(w.manifolds).arg(base)
             .run(std::min(w.subPairCapacity, units));
     }
     cl::Launch(ctx, prog.kernel("gather_mesh_manifolds"), &w.profiler)

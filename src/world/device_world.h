@@ -6,7 +6,7 @@
 #include "cl/buffer.h"
 #include "cl/launch.h"
 #include "shared/counters.h"
-#include "shared/mesh.h"
+#include "shared/concave.h"
 #include "shared/types.h"
 #include "world/broadphase_scratch.h"
 #include "world/solver_scratch.h"
@@ -71,6 +71,10 @@ struct DeviceWorld {
     cl::DeviceArray<BtgTriangle> meshTriangles;
     cl::DeviceArray<BtgFloat4> meshVertices;
     cl::DeviceArray<int> meshParts;
+    // Heightfields (shared/heightfield.h): the grid's parameters and the app's heights as
+    // floats; triangles are formed from them where the midphase finds them, never stored.
+    cl::DeviceArray<BtgHeightfield> heightfields;
+    cl::DeviceArray<float> heightfieldHeights;
 
     // --- broadphase ---
     cl::DeviceArray<int> largeBodies;  // rows flagged BTG_BODY_LARGE (planes excluded)

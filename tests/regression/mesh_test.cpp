@@ -1,8 +1,9 @@
 // mesh_test.cpp — triangle-mesh ground (btBvhTriangleMeshShape) on stock Bullet and on btgpu in
 // the same test, the GPU path asserted after every step and the midphase seen to run: a box
 // and a sphere at rest, 100 bodies dropped apart, a mesh shared by two ground bodies, a scaled
-// wrapper, vertices edited and the BVH refitted between steps, a kinematic mesh platform; and
-// the mesh cases that keep the CPU path, each with its reason.
+// wrapper, vertices edited and the BVH refitted between steps, a kinematic mesh platform; the
+// same on a btHeightfieldTerrainShape (heights changed by the app between steps); and the
+// cases that keep the CPU path, each with its reason.
 #include <gtest/gtest.h>
 
 #include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
@@ -161,6 +162,54 @@ TEST(Mesh, KinematicMeshPlatformLiftsABox)
     EXPECT_NEAR(run.gpuY(1), 1.0, 0.01);
 }
 
+TEST(Heightfield, BoxAndSphereRestAsOnStock)
+{
+    SideBySide run(scenes::restOnHeightfield);
+    Starts starts(run);
+    stepOnGpu(run, 120);
+    expectRestHeights(run, starts, 1, 2);
+    EXPECT_NEAR(run.gpuY(1), 0.5, 0.01);
+    EXPECT_NEAR(run.gpuY(2), 0.5, 0.01);
+}
+
+TEST(Heightfield, HundredBodiesDroppedApartRestAsOnStock)
+{
+    SideBySide run(scenes::dropOnHeightfield);
+    Starts starts(run);
+    stepOnGpu(run, 150);
+    expectRestHeights(run, starts, 1, 100);
+}
+
+TEST(Heightfield, HeightsChangedByTheAppArePickedUp)
+{
+    // The app lowers its height array by 0.25 m between steps (the shape points into it).
+    std::vector<std::vector<float>*> arrays;
+    auto make = [&arrays](WorldKind kind, const Config& config) {
+        auto scene = std::make_unique<scenes::Scene>(kind, config, "heightfield_edit");
+        std::vector<float>* heights = nullptr;
+        scene->addBody(scenes::flatHeightfield(*scene, 17, &heights), 0, btVector3(0, 0, 0));
+        arrays.push_back(heights);
+        scene->addBody(scene->boxShape(btVector3(.5, .5, .5)), 1, btVector3(1, btScalar(.55), 0));
+        scene->addBody(scene->sphereShape(.5), 1, btVector3(-3, btScalar(.55), 2));
+        return scene;
+    };
+    SideBySide run(make);
+    Starts starts(run);
+    stepOnGpu(run, 60);
+    for (std::vector<float>* h : arrays)
+        for (float& v : *h) v -= 0.25f;
+    // As a Bullet app must after changing the heights under resting bodies: stock's manifolds
+    // would keep the old surface's points (the GPU path builds its manifolds afresh anyway).
+    run.both([](scenes::Scene& s) {
+        s.world().getBroadphase()->getOverlappingPairCache()->cleanProxyFromPairs(s.body(0)->getBroadphaseHandle(),
+                                                                                  s.world().getDispatcher());
+        for (int i = 1; i <= 2; ++i) s.body(i)->activate(true);
+    });
+    stepOnGpu(run, 90);
+    expectRestHeights(run, starts, 1, 2);
+    EXPECT_NEAR(run.gpuY(1), 0.25, 0.01);
+}
+
 TEST(Mesh, UnservedMeshCasesKeepTheCpuPathWithTheirReason)
 {
     struct Case {
@@ -174,7 +223,7 @@ TEST(Mesh, UnservedMeshCasesKeepTheCpuPathWithTheirReason)
              btBvhTriangleMeshShape* mesh = scenes::gridMesh(s, 2, 1.0f, true, false);
              s.addBody(mesh, 1, btVector3(0, 2, 0));
          },
-         "dynamic triangle mesh body"},
+         "dynamic triangle mesh or heightfield body"},
         {"mesh without quantized BVH",
          [](scenes::Scene& s) {
              scenes::MeshData* d = nullptr;
@@ -182,11 +231,13 @@ TEST(Mesh, UnservedMeshCasesKeepTheCpuPathWithTheirReason)
              s.addBody(s.ownShape(new btBvhTriangleMeshShape(d->array, false)), 0, btVector3(0, 0, 0));
          },
          "without quantized AABB compression"},
-        {"heightfield",
+        {"heightfield subclass",
          [](scenes::Scene& s) {
+             struct Own : btHeightfieldTerrainShape {
+                 using btHeightfieldTerrainShape::btHeightfieldTerrainShape;
+             };
              auto* heights = s.ownData(new std::vector<float>(16 * 16, 0.0f));
-             s.addBody(s.ownShape(new btHeightfieldTerrainShape(16, 16, heights->data(), 1, -1, 1, 1, PHY_FLOAT, false)),
-                       0, btVector3(0, 0, 0));
+             s.addBody(s.ownShape(new Own(16, 16, heights->data(), 1, -1, 1, 1, PHY_FLOAT, false)), 0, btVector3(0, 0, 0));
          },
          "unsupported shape"},
     };

@@ -3,6 +3,7 @@
 #include "scenes/mesh_scenes.h"
 
 #include <btBulletDynamicsCommon.h>
+#include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
 
 #include <cmath>
 
@@ -69,6 +70,47 @@ btBvhTriangleMeshShape* gridMesh(Scene& scene, int n, float cell, bool flat, boo
                               PHY_INTEGER);
     if (out) *out = d;
     return scene.ownShape(new btBvhTriangleMeshShape(array, true));
+}
+
+btHeightfieldTerrainShape* flatHeightfield(Scene& scene, int n, std::vector<float>** heights)
+{
+    auto* h = scene.ownData(new std::vector<float>(size_t(n) * size_t(n), 0.0f));
+    if (heights) *heights = h;
+    return scene.ownShape(new btHeightfieldTerrainShape(n, n, h->data(), 1, -1, 1, 1, PHY_FLOAT, false));
+}
+
+namespace {
+void restBodies(Scene& scene)
+{
+    scene.addBody(scene.boxShape(btVector3(.5, .5, .5)), 1, btVector3(-2, btScalar(.6), btScalar(.3)));
+    scene.addBody(scene.sphereShape(.5), 1, btVector3(2, btScalar(.6), btScalar(-.2)));
+}
+void dropBodies(Scene& scene)
+{
+    btCollisionShape* box = scene.boxShape(btVector3(btScalar(.3), btScalar(.3), btScalar(.3)));
+    btCollisionShape* sphere = scene.sphereShape(btScalar(.3));
+    for (int i = 0; i < 10; ++i)
+        for (int j = 0; j < 10; ++j) {
+            const bool isBox = (i + j) % 2 == 0;
+            scene.addBody(isBox ? box : sphere, 1, btVector3(btScalar(-6.75 + 1.5 * i), btScalar(1.3), btScalar(-6.75 + 1.5 * j)));
+        }
+}
+}  // namespace
+
+ScenePtr restOnHeightfield(WorldKind kind, const Config& config)
+{
+    auto scene = std::make_unique<Scene>(kind, config, "rest_on_heightfield");
+    scene->addBody(flatHeightfield(*scene, 17), 0, btVector3(0, 0, 0));
+    restBodies(*scene);
+    return scene;
+}
+
+ScenePtr dropOnHeightfield(WorldKind kind, const Config& config)
+{
+    auto scene = std::make_unique<Scene>(kind, config, "drop_on_heightfield");
+    scene->addBody(flatHeightfield(*scene, 25), 0, btVector3(0, 0, 0));
+    dropBodies(*scene);
+    return scene;
 }
 
 ScenePtr restOnMesh(WorldKind kind, const Config& config)

@@ -6,6 +6,7 @@
 #include "scenes/scenes.h"
 
 class btBvhTriangleMeshShape;
+class btHeightfieldTerrainShape;
 class btTriangleIndexVertexArray;
 
 namespace btgpu::scenes {
@@ -34,6 +35,12 @@ ScenePtr dropOnMesh(WorldKind kind, const Config& config = Config());
 // One flat mesh shape on two static ground bodies at x = -10 and x = 10, a box and a sphere
 // over each (bodies 2..5).
 ScenePtr sharedMesh(WorldKind kind, const Config& config = Config());
+// A btHeightfieldTerrainShape ground of n x n grid points 1 m apart, up axis y, flat at y = 0
+// (float heights, all 0; the scene owns the array, which a test may change between steps).
+btHeightfieldTerrainShape* flatHeightfield(Scene& scene, int n, std::vector<float>** heights = nullptr);
+// restOnMesh and dropOnMesh on a flat heightfield instead of the mesh.
+ScenePtr restOnHeightfield(WorldKind kind, const Config& config = Config());
+ScenePtr dropOnHeightfield(WorldKind kind, const Config& config = Config());
 // Bench 5's layout on a rolling mesh terrain of 100 x 100 quads (2 m): boxes, spheres and
 // hulls dropped in a lattice of `count` bodies.
 ScenePtr landscape(WorldKind kind, const Config& config = Config(), int count = 1000);

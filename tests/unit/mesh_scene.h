@@ -90,6 +90,8 @@ struct MeshScene {
     std::vector<BtgFloat4> pos, rot;
     std::vector<BtgBodyProps> props;
     std::vector<BtgPair> pairs;
+    std::vector<BtgHeightfield> heightfields;
+    std::vector<float> heights;
 
     // The mesh shape row (BTG_SHAPE_MESH) of a Bullet mesh, `scaling` as a scaled wrapper's.
     int addMesh(const btBvhTriangleMeshShape* shape, float margin = 0.0f, BtgFloat4 scaling = btgMake4(1, 1, 1, 0))
@@ -125,6 +127,8 @@ struct MeshScene {
         v.triangles = meshes.triangles.data();
         v.vertices = meshes.vertices.data();
         v.parts = meshes.parts.data();
+        v.heightfields = heightfields.data();
+        v.heights = heights.data();
         return v;
     }
     PairKinds kinds() const
@@ -165,6 +169,8 @@ struct MeshScene {
         put(ctx, w.meshTriangles, meshes.triangles);
         put(ctx, w.meshVertices, meshes.vertices);
         put(ctx, w.meshParts, meshes.parts);
+        put(ctx, w.heightfields, heightfields);
+        put(ctx, w.heightfieldHeights, heights);
         w.pairCapacity = pairs.size() + 3;
         std::vector<BtgPair> padded = pairs;
         padded.resize(w.pairCapacity, BtgPair{0, 0});

@@ -1,7 +1,9 @@
 // midphase_test.cpp — the midphase stage against its CPU reference exactly (integer sub-pair
-// lists in the same order), against Bullet's own btBvhTriangleMeshShape::processAllTriangles for
-// the same boxes (as sets of (part, triangle)), and its overflow protocol: past capacity it
-// counts on and raises the status bit, writing nothing out of bounds.
+// lists in the same order), against Bullet's own processAllTriangles for the same boxes (a
+// btBvhTriangleMeshShape: as sets of (part, triangle); a btHeightfieldTerrainShape of every height
+// type, up axis and subdivision: the same cells and each triangle's vertices bit for bit), and its
+// overflow protocol: past capacity it counts on and raises the status bit, writing nothing out of
+// bounds. Meshes are stored once whatever uses them.
 #include "../compat/shape_tables.h"
 #include "mesh_scene.h"
 #include "reference/midphase.h"
@@ -9,9 +11,12 @@
 #include "stages/midphase.h"
 #include "test_device.h"
 
+#include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
 #include <BulletCollision/CollisionShapes/btScaledBvhTriangleMeshShape.h>
 
 #include <algorithm>
+#include <array>
+#include <map>
 #include <random>
 #include <set>
 #include <utility>
@@ -169,4 +174,111 @@ TEST(Midphase, AMeshIsStoredOnceWhateverUsesIt)
     EXPECT_EQ(tables.meshTables.nodes.size(), nodes);
     EXPECT_EQ(tables.shapes[size_t(wrapped)].param.x, 2.0f);
     EXPECT_EQ(tables.shapes[size_t(plain)].type, BTG_SHAPE_MESH);
+}
+
+namespace {
+
+// What Bullet's own heightfield walk reports, with each triangle's vertices.
+struct CollectTriangles : btTriangleCallback {
+    std::map<std::pair<int, int>, std::array<btVector3, 3>> found;
+    void processTriangle(btVector3* v, int partId, int index) override { found[{partId, index}] = {v[0], v[1], v[2]}; }
+};
+
+struct HeightfieldCase {
+    PHY_ScalarType type;
+    int upAxis;
+    btVector3 scaling;
+    bool flipQuadEdges, diamond, zigzag, flipWinding;
+};
+
+}  // namespace
+
+TEST(Midphase, HeightfieldCellsAndTrianglesAsBullets)
+{
+    const int w = 17, l = 13;
+    std::vector<float> f(w * l);
+    std::vector<double> d(w * l);
+    std::vector<short> s(w * l);
+    std::vector<unsigned char> u(w * l);
+    for (int y = 0; y < l; ++y)
+        for (int x = 0; x < w; ++x) {
+            float h = 1.5f * std::sin(0.4f * float(x)) * std::cos(0.3f * float(y)) + 0.2f * float(x % 3);
+            f[size_t(y * w + x)] = h;
+            d[size_t(y * w + x)] = double(h) + 1e-9;
+            s[size_t(y * w + x)] = short(std::lround(h * 100.0f));
+            u[size_t(y * w + x)] = (unsigned char)std::lround((h + 2.0f) * 50.0f);
+        }
+    const std::vector<HeightfieldCase> cases = {
+        {PHY_FLOAT, 1, btVector3(1, 1, 1), false, false, false, false},
+        {PHY_FLOAT, 1, btVector3(0.7f, 1.3f, 2.0f), true, false, false, false},
+        {PHY_DOUBLE, 0, btVector3(1.2f, 0.5f, 0.8f), false, true, false, false},
+        {PHY_SHORT, 2, btVector3(0.9f, 1.1f, 1.0f), false, false, true, true},
+        {PHY_UCHAR, 1, btVector3(1, 1, 1), false, true, false, true},
+        {PHY_FLOAT, 2, btVector3(-1.0f, 1.0f, 1.5f), false, false, false, true},
+    };
+    for (size_t ci = 0; ci < cases.size(); ++ci) {
+        SCOPED_TRACE("heightfield case " + std::to_string(ci));
+        const HeightfieldCase& c = cases[ci];
+        const void* data = c.type == PHY_FLOAT ? static_cast<const void*>(f.data())
+                           : c.type == PHY_DOUBLE ? static_cast<const void*>(d.data())
+                           : c.type == PHY_SHORT  ? static_cast<const void*>(s.data())
+                                                  : static_cast<const void*>(u.data());
+        const float scale = c.type == PHY_SHORT ? 0.01f : c.type == PHY_UCHAR ? 0.02f : 1.0f;
+        btHeightfieldTerrainShape hf(w, l, data, scale, -3.0f, 6.0f, c.upAxis, c.type, c.flipQuadEdges);
+        hf.setUseDiamondSubdivision(c.diamond);
+        hf.setUseZigzagSubdivision(c.zigzag);
+        hf.setFlipTriangleWinding(c.flipWinding);
+        hf.setLocalScaling(c.scaling);
+        ShapeTables tables;
+        std::string why;
+        const int row = tables.add(&hf, &why);
+        ASSERT_GE(row, 0) << why;
+        MeshScene sc;
+        const int sphere = sc.t.addSphere(0.6f), box = sc.t.addBox(btgMake4(0.8f, 0.4f, 1.1f, 0));
+        BtgShape hs = tables.shapes[size_t(row)];
+        sc.t.shapes.push_back(hs);
+        const int hfShape = int(sc.t.shapes.size()) - 1;
+        sc.heightfields = tables.meshTables.heightfields;
+        sc.heights = tables.meshTables.heights;
+        sc.body(hfShape, btgMake4(0.3f, -0.2f, 0.1f, 0), kIdentity, BTG_BODY_STATIC);
+        std::mt19937 rng(unsigned(ci) + 1);
+        std::uniform_real_distribution<float> a(-7.0f, 7.0f), up(-2.0f, 3.0f);
+        for (int i = 0; i < 30; ++i) {
+            BtgFloat4 p = btgMake4(a(rng), a(rng), a(rng), 0);
+            if (c.upAxis == 0) p.x = up(rng);
+            if (c.upAxis == 1) p.y = up(rng);
+            if (c.upAxis == 2) p.z = up(rng);
+            sc.body(i % 2 ? box : sphere, p, randomRotation(rng), BTG_BODY_DYNAMIC);
+            sc.pairs.push_back(BtgPair{0, i + 1});
+        }
+        std::vector<BtgSubPair> ref = ref::referenceMidphase(sc.meshSlots(), sc.pairs.data(), sc.pos.data(), sc.rot.data(),
+                                                             sc.props.data(), sc.t.shapes.data(), sc.meshView());
+        // Bullet does not swap a box's ends under negative scaling, so that case finds fewer.
+        EXPECT_GT(ref.size(), c.scaling.x() < 0 ? 10u : 50u);
+        DeviceResult dev = runMidphase(sc, 1 << 14);
+        EXPECT_EQ(dev.total, ref.size());
+        expectSame(dev.subPairs, ref);
+        // Bullet's processAllTriangles for each pair's box: the same triangles, bit for bit.
+        for (size_t pi = 0; pi < sc.pairs.size(); ++pi) {
+            const BtgPair p = sc.pairs[pi];
+            BtgAabb q = btgMidphaseBox(sc.pos[size_t(p.b)], sc.rot[size_t(p.b)], sc.t.shapes[size_t(sc.props[size_t(p.b)].shape)],
+                                       sc.pos[0], sc.rot[0], hs, test::kTestBreakingThreshold);
+            CollectTriangles bullet;
+            hf.processAllTriangles(&bullet, btVector3(q.lo.x, q.lo.y, q.lo.z), btVector3(q.hi.x, q.hi.y, q.hi.z));
+            std::vector<BtgSubPair> ours = ref::referenceMidphase({int(pi)}, sc.pairs.data(), sc.pos.data(), sc.rot.data(),
+                                                                  sc.props.data(), sc.t.shapes.data(), sc.meshView());
+            ASSERT_EQ(ours.size(), bullet.found.size()) << "pair " << pi;
+            for (const BtgSubPair& sp : ours) {
+                auto it = bullet.found.find({sp.partId, sp.index});
+                ASSERT_NE(it, bullet.found.end()) << "triangle " << sp.partId << "/" << sp.index;
+                BtgTriangleVerts v = btgConcaveTriangle(hs, sp, nullptr, nullptr, nullptr, nullptr, nullptr,
+                                                        sc.heightfields.data(), sc.heights.data());
+                for (int k = 0; k < 3; ++k) {
+                    EXPECT_EQ(v.v[k].x, it->second[size_t(k)].x());
+                    EXPECT_EQ(v.v[k].y, it->second[size_t(k)].y());
+                    EXPECT_EQ(v.v[k].z, it->second[size_t(k)].z());
+                }
+            }
+        }
+    }
 }

@@ -251,6 +251,16 @@ void compareWithStock(const BulletMesh& mesh, const std::vector<Case>& cases)
             EXPECT_EQ(alongGpu, alongStock);
         }
         if (getenv("BTGPU_DEBUG_MESH")) {
+            std::vector<BtgSubPair> sub = ref::referenceMidphase({int(i)}, s.pairs.data(), s.pos.data(), s.rot.data(),
+                                                                 s.props.data(), s.t.shapes.data(), s.meshView());
+            for (const BtgSubPair& sp : sub) {
+                BtgManifold m = ref::referenceTriangleContact(sp, s.pairs.data(), s.pos.data(), s.rot.data(),
+                                                              s.props.data(), s.t.view(), s.meshView());
+                printf("case %zu tri %d/%d points %d", i, sp.partId, sp.index, m.numPoints);
+                for (int k = 0; k < m.numPoints; ++k)
+                    printf(" (%.3f %.3f %.3f; %.4f)", m.points[k].px, m.points[k].py, m.points[k].pz, m.points[k].distance);
+                printf("\n");
+            }
             for (const Point& p : stock)
                 printf("case %zu stock p (%.3f %.3f %.3f) d %.4f n (%.3f %.3f %.3f)\n", i, p.onMesh.x(), p.onMesh.y(),
                        p.onMesh.z(), p.distance, p.normal.x(), p.normal.y(), p.normal.z());
