@@ -72,18 +72,7 @@ const btHeightfieldTerrainShape* heightfieldOf(const btCollisionShape* shape)
 std::uint64_t heightfieldFingerprint(const btHeightfieldTerrainShape* h)
 {
     std::uint64_t x = 0x9e3779b97f4a7c15ull;
-    auto mix = [&](const void* p, size_t n) {
-        const unsigned char* c = static_cast<const unsigned char*>(p);
-        size_t i = 0;
-        for (; i + 8 <= n; i += 8) {
-            std::uint64_t w;
-            std::memcpy(&w, c + i, 8);
-            x = (x ^ w) * 0x100000001b3ull;
-            x ^= x >> 29;
-        }
-        for (; i < n; ++i) x = (x ^ c[i]) * 0x100000001b3ull;
-        x ^= n;
-    };
+    auto mix = [&](const void* p, size_t n) { x = (x ^ hashBytes(p, n)) * 0x100000001b3ull; };
     const int width = h->*P::kWidth, length = h->*P::kLength;
     int ints[6] = {width, length, h->*P::kUpAxis, int(h->*P::kType),
                    (h->*P::kFlipQuad ? 1 : 0) | (h->*P::kDiamond ? 2 : 0) | (h->*P::kZigzag ? 4 : 0) |

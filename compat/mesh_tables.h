@@ -50,6 +50,9 @@ const btBvhTriangleMeshShape* bvhMeshOf(const btCollisionShape* shape);
 // and quantization, the interface's scaling); equal hashes: the table still holds.
 std::uint64_t meshFingerprint(const btBvhTriangleMeshShape* shape);
 
+// The fingerprints' hash of a buffer (in parallel chunks for megabytes).
+std::uint64_t hashBytes(const void* data, size_t n);
+
 // "" when the mesh can be simulated, else why not as bad input (a non-finite vertex, an index
 // out of range). Reads every vertex: called when a mesh is first read.
 std::string badMeshInput(const btBvhTriangleMeshShape* shape);

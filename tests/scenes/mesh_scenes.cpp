@@ -150,10 +150,10 @@ ScenePtr sharedMesh(WorldKind kind, const Config& config)
     return scene;
 }
 
-ScenePtr landscape(WorldKind kind, const Config& config, int count)
+ScenePtr landscape(WorldKind kind, const Config& config, int count, int quads)
 {
     auto scene = std::make_unique<Scene>(kind, config, "landscape");
-    scene->addBody(gridMesh(*scene, 100, 2.0f, false, false), 0, btVector3(0, 0, 0));
+    scene->addBody(gridMesh(*scene, quads, 200.0f / float(quads), false, false), 0, btVector3(0, 0, 0));
     btCollisionShape* box = scene->boxShape(btVector3(btScalar(.5), btScalar(.5), btScalar(.5)));
     btCollisionShape* sphere = scene->sphereShape(btScalar(.5));
     btCollisionShape* hull = scene->hullShape({{-.5, -.4, -.5}, {.5, -.4, -.5}, {.5, -.4, .5}, {-.5, -.4, .5},

@@ -318,6 +318,8 @@ const std::vector<SceneEntry>& catalog()
         {"drop_on_mesh", "100 boxes and spheres dropped apart onto a flat triangle mesh", dropOnMesh},
         {"landscape", "bench 5: boxes, spheres and hulls on a rolling triangle-mesh landscape (1,000)",
          [](WorldKind k, const Config& c) { return landscape(k, c, 1000); }},
+        {"landscape_1m", "1,000 bodies on a 1,000,000-triangle landscape",
+         [](WorldKind k, const Config& c) { return landscape(k, c, 1000, 708); }},
     };
     return entries;
 }
