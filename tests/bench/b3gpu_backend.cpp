@@ -141,6 +141,11 @@ public:
         b3SetCustomErrorMessageFunc(onError);
         b3SetCustomEnterProfileZoneFunc(enterZone);
         b3SetCustomLeaveProfileZoneFunc(leaveZone);
+        for (const BodySpec& b : scene.bodies)
+            if (b.shape == ShapeKind::Mesh) {
+                *why = "triangle meshes are not set up for Bullet3's pipeline in this benchmark";
+                return false;
+            }
         m_dt = scene.dt;
         m_nativeInertia = options.b3NativeInertia;
         // Bullet3 caches kernel binaries on disk (in ./cache by default); btgpu caches in

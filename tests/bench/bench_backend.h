@@ -16,6 +16,7 @@ using scenes::spec::BodySpec;
 using scenes::spec::Scene;
 using scenes::spec::ShapeKind;
 using scenes::spec::dimsForCount;
+using scenes::spec::makeLandscape;
 using scenes::spec::makeMixed;
 using scenes::spec::makeStack;
 

@@ -25,11 +25,19 @@ void BtBodies::build(const Scene& scene, const Options& options, btDiscreteDynam
     std::map<std::tuple<int, float, float, float>, btCollisionShape*> shared;
     m_bodies.reserve(scene.bodies.size());
     for (const BodySpec& b : scene.bodies) {
-        auto key = b.shape == ShapeKind::Box ? std::make_tuple(0, b.half[0], b.half[1], b.half[2])
-                                             : std::make_tuple(1, b.radius, 0.f, 0.f);
+        auto key = b.shape == ShapeKind::Box    ? std::make_tuple(0, b.half[0], b.half[1], b.half[2])
+                   : b.shape == ShapeKind::Mesh ? std::make_tuple(2, 0.f, 0.f, 0.f)
+                                                : std::make_tuple(1, b.radius, 0.f, 0.f);
         btCollisionShape*& shape = shared[key];
         if (!shape) {
-            if (b.shape == ShapeKind::Box)
+            if (b.shape == ShapeKind::Mesh) {
+                // The scene's own arrays, read in place (BenchmarkDemo's way), 32-bit indices.
+                m_mesh = std::make_unique<btTriangleIndexVertexArray>(
+                    int(scene.meshIndices.size() / 3), const_cast<int*>(scene.meshIndices.data()), 3 * int(sizeof(int)),
+                    int(scene.meshVertices.size() / 3), const_cast<float*>(scene.meshVertices.data()),
+                    3 * int(sizeof(float)));
+                m_shapes.emplace_back(new btBvhTriangleMeshShape(m_mesh.get(), true));
+            } else if (b.shape == ShapeKind::Box)
                 m_shapes.emplace_back(new btBoxShape(btVector3(b.half[0], b.half[1], b.half[2])));
             else
                 m_shapes.emplace_back(new btSphereShape(b.radius));

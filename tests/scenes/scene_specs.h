@@ -9,7 +9,7 @@
 
 namespace btgpu::scenes::spec {
 
-enum class ShapeKind { Box, Sphere };
+enum class ShapeKind { Box, Sphere, Mesh };  // Mesh: the scene's triangle mesh (static only)
 
 struct BodySpec {
     ShapeKind shape = ShapeKind::Box;
@@ -24,6 +24,9 @@ struct BodySpec {
 struct Scene {
     std::string name;                // e.g. "cubes 10x10x10"
     std::vector<BodySpec> bodies;
+    // The one triangle mesh of ShapeKind::Mesh bodies: xyz per vertex (m), three per triangle.
+    std::vector<float> meshVertices;
+    std::vector<int> meshIndices;
     float gravity[3] = {0, -10, 0};  // m/s^2
     float dt = 1.0f / 60.0f;         // s, one substep per frame
     int iterations = 10;             // solver iterations
@@ -34,6 +37,9 @@ struct Scene {
 Scene makeStack(int nx, int ny, int nz, ShapeKind shape);
 // 32³ boxes of random half extents in [0.1, 2.5] over 16 static pillars (fixed seed).
 Scene makeMixed(std::uint32_t seed = 12345u);
+// Bench 5 on a rolling landscape mesh of quads x quads cells 200 m across (2 quads^2 triangles,
+// the heights of landscapeHeight in mesh_scenes.h): `count` boxes and spheres dropped over it.
+Scene makeLandscape(int count, int quads);
 // Sizes named by --n: 1000, 8000, 32768, 112500, 1000000; false if n is not one of them.
 bool dimsForCount(long n, int dims[3]);
 
