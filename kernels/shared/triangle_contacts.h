@@ -217,20 +217,31 @@ static inline BtgManifold btgCollideHullTriangle(BtgCollider h, BtgCollider mesh
     return m;
 }
 
-/* A triangle's point ids made distinct from another triangle's in a manifold that merges both
- * (never BTG_FEATURE_UNKNOWN, which matches nothing). */
-static inline uint btgTriangleFeature(uint id, int triangle)
+/* A concave manifold point's feature id is its triangle's sub-shape key, so every point keeps
+ * its own (Bullet's per-point m_partId / m_index on the concave side) even in a manifold that
+ * merges several triangles: a mesh triangle as Bullet's BVH leaf names it, (part << 21) |
+ * index; a heightfield triangle as j * 2 (width - 1) + part id (part id 2x + t, index j). The
+ * points of one triangle share it; the warm start then matches them by position within the
+ * threshold. The one key equal to BTG_FEATURE_UNKNOWN (part 511, index 2^21 - 1) has bit 31 set,
+ * which btgTriangleKeyPart masks off. */
+static inline uint btgTriangleKey(BtgShape concave, BtgSubPair sp)
 {
-    uint mixed = id ^ ((uint)triangle * 2654435761u);
-    return mixed == BTG_FEATURE_UNKNOWN ? mixed ^ 1u : mixed;
+    uint key = concave.type == BTG_SHAPE_HEIGHTFIELD ? (uint)sp.triangle
+                                                     : ((uint)sp.partId << BTG_BVH_PART_SHIFT) | (uint)sp.index;
+    return key == BTG_FEATURE_UNKNOWN ? key | 0x80000000u : key;
 }
+/* A mesh point's (part id, triangle index) back from its feature id (heightfields: divide by
+ * 2 (width - 1) for the index, the remainder is the part id). */
+static inline int btgTriangleKeyPart(uint key) { return (int)((key & 0x7fffffffu) >> BTG_BVH_PART_SHIFT); }
+static inline int btgTriangleKeyIndex(uint key) { return (int)(key & BTG_BVH_TRIANGLE_MASK); }
 
-/* A triangle routine's manifold (convex A, mesh B) for the pair (a, b): ids made distinct per
- * triangle, the triangle's keys (Bullet's part id and triangle index) on the mesh side, the
- * pair's own order and threshold. */
+/* A triangle routine's manifold (convex A, concave B) for the pair (a, b): each point's feature
+ * id its triangle's key (btgTriangleKey), the triangle's keys (Bullet's part id and triangle
+ * index) on the concave side of the manifold, the pair's own order and threshold. */
 static inline BtgManifold btgFinishTriangle(BtgCollider a, BtgCollider b, BtgSubPair sp, BtgManifold m)
 {
-    for (int k = 0; k < m.numPoints; ++k) m.points[k].featureId = btgTriangleFeature(m.points[k].featureId, sp.triangle);
+    const uint key = btgTriangleKey(btgIsConcave(a.shape.type) ? a.shape : b.shape, sp);
+    for (int k = 0; k < m.numPoints; ++k) m.points[k].featureId = key;
     m.partIdB = sp.partId;
     m.indexB = sp.index;
     if (btgIsConcave(a.shape.type)) m = btgSwapManifold(m);

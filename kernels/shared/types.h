@@ -109,6 +109,8 @@ typedef struct {
  *           edge k of B's face, or edge k of A's face (& 0x7f); whichever hull is the reference,
  *           the same corner gets the same id (the pair is flipped when B is, as box3d does)
  *   EDGES   | edge direction of A & 0x7fff << 15 | of B & 0x7fff: hull–hull edge contact
+ * A point against a mesh or heightfield triangle has its triangle's key instead
+ * (btgTriangleKey in triangle_contacts.h): Bullet's per-point sub-shape key on the concave side.
  * BTG_FEATURE_UNKNOWN never matches (a point whose features are not known). */
 #define BTG_FEATURE_SINGLE 0x00000000u
 #define BTG_FEATURE_VERTEX 0x40000000u

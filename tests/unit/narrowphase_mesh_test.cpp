@@ -8,6 +8,7 @@
 #include "reference/midphase.h"
 #include "shared/math.h"
 #include "shared/narrowphase_common.h"
+#include "shared/triangle_contacts.h"
 #include "stages/midphase.h"
 #include "stages/narrowphase.h"
 #include "test_device.h"
@@ -190,9 +191,29 @@ void compareWithStock(const BulletMesh& mesh, const std::vector<Case>& cases)
         for (size_t m = 0; m < ref[i].manifolds.size(); ++m) expectSameManifold(dev[i].manifolds[m], ref[i].manifolds[m]);
         for (const BtgManifold& m : dev[i].manifolds) {
             EXPECT_EQ(m.bodyA, 0);
-            EXPECT_GE(m.indexA, 0);  // the mesh side carries its triangle's keys
+            EXPECT_GE(m.indexA, 0);  // the mesh side carries its first triangle's keys
             EXPECT_GE(m.partIdA, 0);
             EXPECT_EQ(m.indexB, BTG_NO_SUB_SHAPE);
+            // Each point names its own triangle (Bullet's per-point m_partId / m_index), and
+            // lies over it: its point on the mesh is in the triangle's plane, inside its edges.
+            for (int k = 0; k < m.numPoints; ++k) {
+                const uint key = m.points[k].featureId;
+                BtgSubPair sp{0, 0, btgTriangleKeyPart(key), btgTriangleKeyIndex(key)};
+                ASSERT_LT(sp.partId, int(s.meshes.meshes[0].numParts));
+                sp.triangle = s.meshes.meshes[0].firstTriangle + s.meshes.parts[size_t(sp.partId)] + sp.index;
+                BtgTriangleVerts tv = btgConcaveTriangle(s.t.shapes[size_t(meshRow)], sp, nullptr, nullptr, nullptr,
+                                                         s.meshes.triangles.data(), s.meshes.vertices.data(), nullptr,
+                                                         nullptr);
+                const BtgManifoldPoint& p = m.points[k];
+                BtgFloat4 onMesh = btgMake4(p.px + p.nx * p.distance, p.py + p.ny * p.distance, p.pz + p.nz * p.distance, 0);
+                BtgFloat4 n = btgNormalize3(btgCross3(tv.v[1] - tv.v[0], tv.v[2] - tv.v[0]));
+                EXPECT_NEAR(btgDot3(n, onMesh - tv.v[0]), 0.0f, 1e-4f) << "point " << k << " not on its triangle";
+                for (int e = 0; e < 3; ++e) {
+                    BtgFloat4 side = btgCross3(tv.v[(e + 1) % 3] - tv.v[e], n);
+                    float out = btgDot3(side, onMesh - tv.v[e]) * btgDot3(side, tv.v[(e + 2) % 3] - tv.v[e]);
+                    EXPECT_GE(out, -1e-4f) << "point " << k << " outside its triangle";
+                }
+            }
         }
         const Case& c = cases[i];
         std::vector<Point> stock = stockContact(c.box ? static_cast<btCollisionShape*>(&shapes.box) : &shapes.sphere,
