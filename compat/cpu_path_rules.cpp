@@ -9,6 +9,7 @@
 #include "parallel_rows.h"
 #include "convex_rows.h"
 #include "shape_tables.h"
+#include "shared/pair_kinds.h"
 
 #include <btBulletDynamicsCommon.h>
 #include <BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h>
@@ -81,12 +82,19 @@ std::string typeName(const std::type_info& type)
     return type.name();
 }
 
-// The shape types the GPU path simulates (ShapeTables::add); bit t of a mask is proxy type t.
+bool isMeshType(int type)
+{
+    return type == TRIANGLE_MESH_SHAPE_PROXYTYPE || type == SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE ||
+           type == TERRAIN_SHAPE_PROXYTYPE;
+}
+
+// The shape types the GPU path simulates (ShapeTables::add; meshes only btBvhTriangleMeshShape
+// and its scaled wrapper, which add checks); bit t of a mask is proxy type t.
 bool servedShapeType(int type)
 {
     return type == BOX_SHAPE_PROXYTYPE || type == CONVEX_HULL_SHAPE_PROXYTYPE ||
            type == CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE || type == SPHERE_SHAPE_PROXYTYPE ||
-           type == STATIC_PLANE_PROXYTYPE || isSupportShapeType(type);
+           type == STATIC_PLANE_PROXYTYPE || isSupportShapeType(type) || isMeshType(type);
 }
 
 // What a world built the stock way would use: a btDefaultCollisionConfiguration with the
@@ -140,6 +148,27 @@ const char* shapeTypeName(int type)
         case MULTI_SPHERE_SHAPE_PROXYTYPE: return "multi-sphere";
         case CONVEX_TRIANGLEMESH_SHAPE_PROXYTYPE: return "convex triangle mesh";
         case UNIFORM_SCALING_SHAPE_PROXYTYPE: return "uniform scaling";
+        case TRIANGLE_MESH_SHAPE_PROXYTYPE: return "triangle mesh";
+        case SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE: return "scaled triangle mesh";
+        case TERRAIN_SHAPE_PROXYTYPE: return "heightfield";
+        case TRIANGLE_SHAPE_PROXYTYPE: return "triangle";
+        default: return "shape";
+    }
+}
+
+// What the GPU path calls each of its shape kinds, in a fallback reason.
+const char* shapeKindName(int kind)
+{
+    switch (kind) {
+        case BTG_SHAPE_SPHERE: return "sphere";
+        case BTG_SHAPE_HULL: return "convex hull with polyhedral features";
+        case BTG_SHAPE_PLANE: return "static plane";
+        case BTG_SHAPE_CONVEX:
+            return "support-function convex shape (capsule, cylinder, cone, multi-sphere, convex mesh, scaled "
+                   "convex, hull without polyhedral features)";
+        case BTG_SHAPE_BOX: return "box";
+        case BTG_SHAPE_MESH: return "triangle mesh";
+        case BTG_SHAPE_HEIGHTFIELD: return "heightfield";
         default: return "shape";
     }
 }
@@ -153,13 +182,20 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, int numActions
     const btCollisionObjectArray& objs = world.getCollisionObjectArray();
     shapes->beginReferences();
     bool featuredBox = false, plainBox = false;
+    unsigned presentKinds = 0, dynamicKinds = 0;  // bit per BTG_SHAPE_*
     for (int i = 0; i < objs.size(); ++i) {
         const btCollisionObject* o = objs[i];
         int type = o->getInternalType();
         if (type != btCollisionObject::CO_RIGID_BODY && type != btCollisionObject::CO_COLLISION_OBJECT)
             return "collision object " + std::to_string(i) + " is not a rigid body (ghost, soft or other object)";
         std::string why;
-        if (shapes->add(o->getCollisionShape(), &why) < 0) return "body " + std::to_string(i) + ": " + why;
+        const int row = shapes->add(o->getCollisionShape(), &why);
+        if (row < 0) return "body " + std::to_string(i) + ": " + why;
+        const unsigned kindBit = 1u << shapes->shapes[size_t(row)].type;
+        presentKinds |= kindBit;
+        // (a dynamic mesh or heightfield has its own rule, in bodiesReason)
+        if (!o->isStaticOrKinematicObject() && !(kindBit & (1u << BTG_SHAPE_MESH | 1u << BTG_SHAPE_HEIGHTFIELD)))
+            dynamicKinds |= kindBit;
         if (o->getCollisionShape()->getShapeType() == BOX_SHAPE_PROXYTYPE)
             (static_cast<const btBoxShape*>(o->getCollisionShape())->getConvexPolyhedron() ? featuredBox : plainBox) = true;
         // Set only through btRigidBodyConstructionInfo, so it cannot change after the add (any
@@ -174,6 +210,13 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, int numActions
     // the rest); against a box without features stock still runs btBoxBoxDetector.
     if (featuredBox && plainBox)
         return "boxes with polyhedral features (initializePolyhedralFeatures) beside boxes without";
+    // Every pair of shape kinds that can meet (a dynamic body against anything) needs a row of
+    // the pair-kind table; one without would be a pair the GPU path silently never collides.
+    for (int a = 0; a < BTG_NUM_SHAPE_KINDS; ++a)
+        for (int b = 0; b < BTG_NUM_SHAPE_KINDS; ++b)
+            if ((dynamicKinds >> a & 1u) && (presentKinds >> b & 1u) && btgPairKind(a, b) == BTG_PAIR_NONE)
+                return std::string("a ") + shapeKindName(a) + " meeting a " + shapeKindName(b) +
+                       " is not on the GPU path yet";
     return "";
 }
 
@@ -309,6 +352,8 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     if (o->*CollisionObjectPeek::kCheckCollideWith) return "collision check exceptions (setIgnoreCollisionCheck)";
     const btRigidBody* rb = btRigidBody::upcast(o);
     if (!rb || rb->isStaticOrKinematicObject()) return "";
+    if (isMeshType(o->getCollisionShape()->getShapeType()))
+        return "dynamic triangle mesh or heightfield body (the GPU path takes static and kinematic ones)";
     // integrateTransforms sweeps a sphere of the swept radius (even radius 0) for a body moving
     // more than its motion threshold and stops it at the hit; createPredictiveContacts adds a
     // contact there. The GPU path has only its speculative contacts.
@@ -363,10 +408,16 @@ std::string collisionAlgorithmReason(btDiscreteDynamicsWorld& world, std::uint64
     if (!dispatcher) return "";  // worldReason has already refused it
     const CreateFuncTable& table = dispatcher->*DispatcherPeek::kContactPoints;
     btDefaultCollisionConfiguration& reference = referenceConfiguration();
+    // A mesh's triangles meet the convex shapes through the algorithms registered for
+    // btTriangleShape (btConvexConcaveCollisionAlgorithm dispatches each triangle): those too.
+    if (shapeTypes & ((std::uint64_t(1) << TRIANGLE_MESH_SHAPE_PROXYTYPE) |
+                      (std::uint64_t(1) << SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE) | (std::uint64_t(1) << TERRAIN_SHAPE_PROXYTYPE)))
+        shapeTypes |= std::uint64_t(1) << TRIANGLE_SHAPE_PROXYTYPE;
+    auto checked = [](int t) { return servedShapeType(t) || t == TRIANGLE_SHAPE_PROXYTYPE; };
     for (int a = 0; a < 64; ++a) {
-        if (!(shapeTypes >> a & 1) || !servedShapeType(a)) continue;
+        if (!(shapeTypes >> a & 1) || !checked(a)) continue;
         for (int b = 0; b < 64; ++b) {
-            if (!(shapeTypes >> b & 1) || !servedShapeType(b)) continue;
+            if (!(shapeTypes >> b & 1) || !checked(b)) continue;
             if (!sameCreateFunc(table[a][b], reference.getCollisionAlgorithmCreateFunc(a, b)))
                 return std::string("collision algorithm for ") + shapeTypeName(a) + "-" + shapeTypeName(b) +
                        " pairs is not Bullet's default (registerCollisionCreateFunc, "

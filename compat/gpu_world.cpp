@@ -189,6 +189,14 @@ void GpuWorld::uploadShapeTables(bool appended)
     uploadTable(w.hullFaces, m_shapes.faces);
     uploadTable(w.hullIndices, m_shapes.indices);
     uploadTable(w.hullEdges, m_shapes.edges);
+    const MeshTables& mesh = m_shapes.meshTables;
+    uploadTable(w.meshes, mesh.meshes);
+    uploadTable(w.meshNodes, mesh.nodes);
+    uploadTable(w.meshTriangles, mesh.triangles);
+    uploadTable(w.meshVertices, mesh.vertices);
+    uploadTable(w.meshParts, mesh.parts);
+    uploadTable(w.heightfields, mesh.heightfields);
+    uploadTable(w.heightfieldHeights, mesh.heights);
     w.numShapes = int(m_shapes.shapes.size());
 }
 

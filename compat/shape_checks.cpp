@@ -1,8 +1,10 @@
 // shape_checks.cpp — shape parameter checks and fingerprints for the shape kinds the GPU path
 // takes (box, sphere, static plane, convex hull, convex point cloud, capsule, cylinder, cone,
-// multi-sphere, convex triangle mesh, uniform scaling). Other kinds never reach
+// multi-sphere, convex triangle mesh, uniform scaling, BVH triangle meshes, heightfields). Other kinds never reach
 // the tables (the world runs on the CPU path), so they check as "" and hash by type.
 #include "shape_checks.h"
+
+#include "mesh_tables.h"
 
 #include <btBulletDynamicsCommon.h>
 #include <BulletCollision/CollisionShapes/btConvexPointCloudShape.h>
@@ -166,6 +168,22 @@ std::string badShapeInput(const btCollisionShape* shape)
             }
             return "";
         }
+        case TERRAIN_SHAPE_PROXYTYPE: {
+            const btHeightfieldTerrainShape* h = heightfieldOf(shape);
+            if (!h) return "";
+            std::string why = checkScalingAndMargin(shape);
+            return why.empty() ? badHeightfieldInput(h) : why;
+        }
+        case TRIANGLE_MESH_SHAPE_PROXYTYPE:
+        case SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE: {
+            const btBvhTriangleMeshShape* mesh = bvhMeshOf(shape);
+            if (!mesh) return "";  // not a mesh the GPU path takes: refused with its reason
+            std::string why = checkScalingAndMargin(shape);
+            if (!why.empty()) return why;
+            const btVector3& s = shape->getLocalScaling();
+            if (s.x() == 0.0f || s.y() == 0.0f || s.z() == 0.0f) return "zero local scaling of a triangle mesh";
+            return badMeshInput(mesh);
+        }
         default:
             return "";
     }
@@ -261,6 +279,21 @@ std::uint64_t shapeFingerprint(const btCollisionShape* shape)
             mix(&f, sizeof(f));
             std::uint64_t child = shapeFingerprint(u->getChildShape());
             mix(&child, sizeof(child));
+            break;
+        }
+        case TRIANGLE_MESH_SHAPE_PROXYTYPE:
+        case SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE: {
+            // Every vertex, index and BVH node: the app may edit its vertices and refit the tree.
+            const btBvhTriangleMeshShape* mesh = bvhMeshOf(shape);
+            std::uint64_t m = mesh ? meshFingerprint(mesh) : 0;
+            mix(&m, sizeof(m));
+            break;
+        }
+        case TERRAIN_SHAPE_PROXYTYPE: {
+            // Every height of the app's array, and the grid's parameters.
+            const btHeightfieldTerrainShape* h = heightfieldOf(shape);
+            std::uint64_t m = h ? heightfieldFingerprint(h) : 0;
+            mix(&m, sizeof(m));
             break;
         }
         default:

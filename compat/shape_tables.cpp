@@ -1,6 +1,7 @@
 // shape_tables.cpp — conversion of btBoxShape, btConvexHullShape and btConvexPointCloudShape,
-// btSphereShape and btStaticPlaneShape into the GPU tables, and of the support-function convex
-// shapes through convex_rows, reading the app's shapes only.
+// btSphereShape, btStaticPlaneShape and the BVH triangle meshes and heightfields into the GPU
+// tables, and of the support-function convex shapes through convex_rows, reading the app's
+// shapes only.
 #include "shape_tables.h"
 
 #include "convex_rows.h"
@@ -139,9 +140,13 @@ int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
     BtgShape s{};
     s.firstVertex = s.firstFace = s.firstEdge = 0;
     const int type = shape->getShapeType();
+    const btBvhTriangleMeshShape* mesh = bvhMeshOf(shape);
+    const btHeightfieldTerrainShape* heightfield = heightfieldOf(shape);
     const bool known = type == BOX_SHAPE_PROXYTYPE || type == SPHERE_SHAPE_PROXYTYPE || type == STATIC_PLANE_PROXYTYPE ||
                        type == CONVEX_HULL_SHAPE_PROXYTYPE || type == CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE ||
-                       isSupportShapeType(type);
+                       isSupportShapeType(type) || mesh ||
+                       heightfield;
+    s.mesh = -1;
     if (!known) {
         *whyNot = std::string("unsupported shape '") + shape->getName() + "'";
         return -1;
@@ -178,6 +183,27 @@ int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
         s.localAabbMax = btgMake4(1e30f, 1e30f, 1e30f, 0);
     } else if (isSupportShapeType(type) || isFeaturelessHull(shape)) {
         if (!convexRow(shape, 1.0f, s, vertices, whyNot)) return -1;
+        setLocalAabb(s, shape);
+    } else if (mesh) {
+        s.mesh = meshTables.add(mesh, whyNot);
+        if (s.mesh < 0) return -1;
+        s.type = BTG_SHAPE_MESH;
+        // Bullet's collisionMarginTriangle: the body's concave shape's own margin.
+        s.margin = shape->getMargin();
+        // A btBvhTriangleMeshShape keeps its scaling in the mesh interface (read with the
+        // vertices); a scaled wrapper scales the shared mesh's triangles itself.
+        const btVector3 scaling = type == SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE ? shape->getLocalScaling()
+                                                                               : btVector3(1, 1, 1);
+        s.param = f4(scaling);
+        setLocalAabb(s, shape);
+    } else if (heightfield) {
+        // The heights are copied now; a change to the app's array changes the fingerprint and
+        // the shape gets a new row, read again.
+        s.mesh = meshTables.addHeightfield(heightfield, whyNot);
+        if (s.mesh < 0) return -1;
+        s.type = BTG_SHAPE_HEIGHTFIELD;
+        s.margin = shape->getMargin();
+        s.param = btgMake4(1, 1, 1, 0);  // the walk applies the heightfield's own scaling
         setLocalAabb(s, shape);
     } else {
         auto cached = m_hullCache.find(shape);

@@ -2,9 +2,11 @@
 // Boxes become 8-vertex hulls (margin inside the extents, as btBoxShape), convex hulls use
 // Bullet's own face extraction run on a private copy (margin kept as an outward rounding; the
 // app's shape is never changed), spheres and static planes are parameters. Anything else is
-// refused with a reason (the world then runs on the CPU path). A shape of a known kind with
+// refused with a reason (the world then runs on the CPU path). btBvhTriangleMeshShape and
+// btScaledBvhTriangleMeshShape become mesh rows (mesh_tables.h). A shape of a known kind with
 // unusable parameters gets a placeholder row and a reason: the bodies using it are kept out.
 #pragma once
+#include "mesh_tables.h"
 #include "shared/types.h"
 
 #include <cstdint>
@@ -29,6 +31,7 @@ struct ShapeTables {
     std::vector<BtgFace> faces;
     std::vector<int> indices;
     std::vector<BtgFloat4> edges;
+    MeshTables meshTables;  // the meshes of BTG_SHAPE_MESH rows (BtgShape::mesh), each once
     std::unordered_map<const btCollisionShape*, int> rowOf;
     std::vector<std::string> badReason;             // per row: "" or why its bodies are kept out
     std::vector<const btCollisionShape*> shapeOf;   // per row

@@ -9,6 +9,7 @@
 #include "stages/contact_cache.h"
 #include "stages/find_pairs.h"
 #include "stages/integrate.h"
+#include "stages/midphase.h"
 #include "stages/narrowphase.h"
 #include "stages/narrowphase_gjk.h"
 #include "stages/prepare_contacts.h"
@@ -34,9 +35,11 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::UniformGrid:
         case Stage::SortSweep: smallBodyPairs(w, plan.broadphase, plan.cellSize); break;
         case Stage::FindPairs: finishPairs(w, plan.kinds); break;
+        case Stage::Midphase: midphase(w); break;
         case Stage::Narrowphase:
         case Stage::NarrowphaseSat:
         case Stage::NarrowphaseGjk: narrowphaseProgram(w, plan.kinds, narrowphaseProgramOf(stage)); break;
+        case Stage::NarrowphaseMesh: narrowphaseMesh(w, plan.kinds); break;
         case Stage::ApplyForces: applyForces(w, p.dt); break;
         case Stage::ContactCache: buildContacts(w, p); break;
         case Stage::PrepareContacts: prepareContacts(w, p); break;
@@ -131,8 +134,14 @@ namespace {
 // past capacity). Contacts take what they need plus an eighth, pairs a quarter: the contact
 // list is the largest buffer (352 + 112 + 4 bytes a slot with its cache entry and manifold
 // slot, and an 8 + 4 byte graph edge), and every growth is at least 1.25x, so redos stay few.
-void grow(DeviceWorld& w, const BodyReadback& rb, bool pairOverflow, bool contactOverflow)
+void grow(DeviceWorld& w, const BodyReadback& rb, bool pairOverflow, bool contactOverflow, bool subPairOverflow)
 {
+    // Sub-pairs: what the midphase found plus a quarter; of the pairs found when those overflowed.
+    if (subPairOverflow || pairOverflow) {
+        size_t sub = rb.counters[kSubPairCount];
+        if (pairOverflow) sub = sub * rb.counters[kPairCount] / std::max<size_t>(w.pairCapacity, 1);
+        w.subPairCapacity = std::max(w.subPairCapacity + w.subPairCapacity / 4, sub + sub / 4 + 64);
+    }
     size_t pairs = rb.counters[kPairCount];
     size_t contacts = rb.counters[kContactCount];
     if (pairOverflow) contacts = contacts * pairs / std::max<size_t>(w.pairCapacity, 1);  // of the pairs found
@@ -161,6 +170,7 @@ CallOutcome runCall(DeviceWorld& w, const Plan& plan, const StepSettings& s, Sna
         const uint status = rb.counters[kStatus];
         const bool pairOverflow = status & BTG_STATUS_PAIR_OVERFLOW;
         const bool contactOverflow = status & BTG_STATUS_CONTACT_OVERFLOW;
+        const bool subPairOverflow = status & BTG_STATUS_SUB_PAIR_OVERFLOW;
         const bool barrierTimeout = status & BTG_STATUS_GRID_BARRIER_TIMEOUT;
         if (barrierTimeout && attempt < 8) {
             // This device does not keep all work-groups of a launch resident: the one-launch
@@ -171,14 +181,16 @@ CallOutcome runCall(DeviceWorld& w, const Plan& plan, const StepSettings& s, Sna
             out.events.push_back({CallEvent::Kind::ResidentOff,
                                   "one-launch batching/solve timed out at a grid barrier on this device; per-round "
                                   "launches from now on; step redone"});
-        } else if ((pairOverflow || contactOverflow) && attempt < 8) {
+        } else if ((pairOverflow || contactOverflow || subPairOverflow) && attempt < 8) {
             // Back to the state before the call first (the warm-start cache as it was), then
             // grow, keeping the cache's contents.
             restoreSnapshot(w, snapshot);
-            grow(w, rb, pairOverflow, contactOverflow);
+            grow(w, rb, pairOverflow, contactOverflow, subPairOverflow);
             ++out.redone;
-            out.events.push_back({CallEvent::Kind::Grew, "pair/contact buffers grew to " + std::to_string(w.pairCapacity) +
-                                                             "/" + std::to_string(w.contactCapacity) + "; step redone"});
+            out.events.push_back({CallEvent::Kind::Grew, "pair/contact/sub-pair buffers grew to " +
+                                                             std::to_string(w.pairCapacity) + "/" +
+                                                             std::to_string(w.contactCapacity) + "/" +
+                                                             std::to_string(w.subPairCapacity) + "; step redone"});
         } else {
             break;
         }

@@ -11,7 +11,8 @@
 #define BTG_COUNTER_COLORS_USED 5 /* colors the batching assigned, leftovers excluded */
 #define BTG_COUNTER_LEFTOVERS 6   /* constraint-graph edges left for the serial pass */
 #define BTG_COUNTER_EDGES 7       /* constraint-graph edges: the contacts, then other kinds' */
-#define BTG_NUM_COUNTERS 8
+#define BTG_COUNTER_SUB_PAIRS 8   /* midphase (convex, triangle) sub-pairs found, even past capacity */
+#define BTG_NUM_COUNTERS 9
 
 /* Solver passes (solve_constraints, solve_jacobi): warm start, a velocity iteration, a
  * split-impulse push iteration. */

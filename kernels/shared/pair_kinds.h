@@ -34,7 +34,16 @@
 #define BTG_PAIR_PLANE_BOX 12
 #define BTG_PAIR_CONVEX_BOX 13
 #define BTG_PAIR_BOX_BOX 14
-#define BTG_NUM_PAIR_KINDS 15
+#define BTG_PAIR_SPHERE_MESH 15 /* the mesh kinds are consecutive: the midphase walks their range */
+#define BTG_PAIR_HULL_MESH 16
+#define BTG_PAIR_BOX_MESH 17
+#define BTG_PAIR_SPHERE_HEIGHTFIELD 18
+#define BTG_PAIR_HULL_HEIGHTFIELD 19
+#define BTG_PAIR_BOX_HEIGHTFIELD 20
+#define BTG_NUM_PAIR_KINDS 21
+/* Convex against a concave shape (mesh or heightfield): the kinds the midphase walks. */
+#define BTG_FIRST_MESH_PAIR_KIND BTG_PAIR_SPHERE_MESH
+#define BTG_LAST_MESH_PAIR_KIND BTG_PAIR_BOX_HEIGHTFIELD
 
 /* The pairs grouped by kind (find_pairs): kindOrder lists the pair slots ordered by (kind, a, b),
  * and kind k's pairs are kindOrder[kindRanges[BTG_KIND_RANGE_START(k)], kindRanges[BTG_KIND_RANGE_END(k)]). */
@@ -73,9 +82,33 @@
     X(narrowphase_gjk, BTG_PAIR_PLANE_BOX, BTG_SHAPE_PLANE, BTG_SHAPE_BOX, btgCollideGjk, collide_plane_box)             \
     X(narrowphase_gjk, BTG_PAIR_CONVEX_BOX, BTG_SHAPE_CONVEX, BTG_SHAPE_BOX, btgCollideGjk, collide_convex_box)
 
-/* The whole table, program by program in launch order. */
+/* Convex against mesh: the midphase (kernels/midphase.cl) splits each pair into (convex,
+ * triangle) sub-pairs; a row's routine takes one of them (BTG_TRIANGLE_ROUTINE in
+ * triangle_contacts.h: the convex, the mesh, the triangle's mesh-local vertices) and its
+ * kernel strides over the sub-pairs of its kind. Boxes and hulls (a box's row holds its hull)
+ * take the same routine; convex shapes known only by their support function have no triangle
+ * routine yet, and a world where one could meet a concave shape falls back
+ * (compat/cpu_path_rules.cpp: every pair of kinds present must have a row). */
+#define BTG_PAIR_KINDS_NARROWPHASE_MESH(X)                                                                    \
+    X(narrowphase_mesh, BTG_PAIR_SPHERE_MESH, BTG_SHAPE_SPHERE, BTG_SHAPE_MESH, btgCollideSphereTriangle,     \
+      collide_sphere_triangles)                                                                               \
+    X(narrowphase_mesh, BTG_PAIR_HULL_MESH, BTG_SHAPE_HULL, BTG_SHAPE_MESH, btgCollideHullTriangle,           \
+      collide_hull_triangles)                                                                                 \
+    X(narrowphase_mesh, BTG_PAIR_BOX_MESH, BTG_SHAPE_BOX, BTG_SHAPE_MESH, btgCollideHullTriangle,             \
+      collide_box_triangles)                                                                                  \
+    X(narrowphase_mesh, BTG_PAIR_SPHERE_HEIGHTFIELD, BTG_SHAPE_SPHERE, BTG_SHAPE_HEIGHTFIELD,                 \
+      btgCollideSphereTriangle, collide_sphere_heightfield)                                                   \
+    X(narrowphase_mesh, BTG_PAIR_HULL_HEIGHTFIELD, BTG_SHAPE_HULL, BTG_SHAPE_HEIGHTFIELD,                     \
+      btgCollideHullTriangle, collide_hull_heightfield)                                                       \
+    X(narrowphase_mesh, BTG_PAIR_BOX_HEIGHTFIELD, BTG_SHAPE_BOX, BTG_SHAPE_HEIGHTFIELD,                       \
+      btgCollideHullTriangle, collide_box_heightfield)
+
+/* The pairs of two convex shapes one routine call makes at once (the GJK program's kernels
+ * carry their persistent manifolds themselves), and the whole table, program by program in
+ * launch order. */
+#define BTG_PAIR_KINDS_CONVEX(X) BTG_PAIR_KINDS_NARROWPHASE(X) BTG_PAIR_KINDS_NARROWPHASE_SAT(X)
 #define BTG_PAIR_KINDS(X) \
-    BTG_PAIR_KINDS_NARROWPHASE(X) BTG_PAIR_KINDS_NARROWPHASE_SAT(X) BTG_PAIR_KINDS_NARROWPHASE_GJK(X)
+    BTG_PAIR_KINDS_CONVEX(X) BTG_PAIR_KINDS_NARROWPHASE_GJK(X) BTG_PAIR_KINDS_NARROWPHASE_MESH(X)
 
 /* Kind of a pair of shape kinds, in either order; BTG_PAIR_NONE when no row takes it. */
 #define BTG_PAIR_KIND_IF_ROW(program, kind, shapeA, shapeB, routine, kernel) \

@@ -31,7 +31,9 @@
 #define BTG_SHAPE_PLANE 2
 #define BTG_SHAPE_CONVEX 3
 #define BTG_SHAPE_BOX 4
-#define BTG_NUM_SHAPE_KINDS 5
+#define BTG_SHAPE_MESH 5 /* static or kinematic triangle mesh with a BVH (mesh.h) */
+#define BTG_SHAPE_HEIGHTFIELD 6 /* static or kinematic height grid (heightfield.h) */
+#define BTG_NUM_SHAPE_KINDS 7
 
 /* Support functions (BtgShape.convexType, shared/support.h). A hull row (BTG_SHAPE_HULL) has
  * BTG_CONVEX_HULL, or BTG_CONVEX_BOX for a btBoxShape, whose GJK core is the box shrunk by its
@@ -89,7 +91,8 @@ typedef struct {
     BtgFloat4 localAabbMax; /* m, margin included */
     BtgFloat4 param;        /* sphere: x radius m; plane: xyz unit normal, w constant m
                                (points p with n.p = w lie on it); box: xyz half extents, w its
-                               Bullet margin (m); hull: unused; convex: per convexType */
+                               Bullet margin (m); hull: unused; convex: per convexType; mesh: xyz the scaling of a
+                               btScaledBvhTriangleMeshShape (1 otherwise) */
     int type;               /* BTG_SHAPE_* */
     int firstVertex;        /* hull: rows in the vertex table (BtgFloat4, m, local frame) */
     int numVertices;
@@ -98,7 +101,8 @@ typedef struct {
     int firstEdge;          /* hull: unique edge directions (BtgFloat4, unit, local frame) */
     int numEdges;
     float margin;           /* m: distance added around the hull (0 for boxes, whose margin
-                               lies inside the extents as in Bullet); convex: around the core */
+                               lies inside the extents as in Bullet); convex: around the core; mesh: its
+                               triangles' margin (Bullet's concave getMargin) */
     float breakingThreshold; /* m: Bullet's contact breaking threshold of this shape
                                 (getContactBreakingThreshold, or the absolute one); a pair
                                 keeps points closer than the smaller of its two shapes' */
@@ -106,6 +110,11 @@ typedef struct {
     int upAxis;             /* capsule, cylinder, cone: 0, 1 or 2 (Bullet's X/Y/Z variants) */
     uint convexFlags;       /* BTG_CONVEX_FLAG_*: what Bullet's shape type decides beyond the
                                support function */
+    int mesh;               /* mesh: row in the mesh table (BtgMesh, mesh.h); heightfield: row in
+                               the heightfield table (BtgHeightfield, heightfield.h); else -1 */
+    int pad0;
+    int pad1;
+    int pad2;
 } BtgShape;
 
 /* A hull face: its outward plane and its vertex loop (counter-clockwise seen from outside). */
@@ -134,6 +143,8 @@ typedef struct {
  *           edge k of B's face, or edge k of A's face (& 0x7f); whichever hull is the reference,
  *           the same corner gets the same id (the pair is flipped when B is, as box3d does)
  *   EDGES   | edge direction of A & 0x7fff << 15 | of B & 0x7fff: hull–hull edge contact
+ * A point against a mesh or heightfield triangle has its triangle's key instead
+ * (btgTriangleKey in triangle_contacts.h): Bullet's per-point sub-shape key on the concave side.
  * BTG_FEATURE_UNKNOWN never matches (a point whose features are not known). */
 #define BTG_FEATURE_SINGLE 0x00000000u
 #define BTG_FEATURE_VERTEX 0x40000000u
@@ -281,10 +292,11 @@ typedef struct {
 #define BTG_STATUS_CONTACT_OVERFLOW 2u
 #define BTG_STATUS_NAN 4u
 #define BTG_STATUS_GRID_BARRIER_TIMEOUT 8u /* a one-launch solve gave up waiting: redo per color */
+#define BTG_STATUS_SUB_PAIR_OVERFLOW 16u   /* the midphase found more triangles than subPairs holds */
 
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(BtgBodyProps) == 112, "BtgBodyProps layout");
-static_assert(sizeof(BtgShape) == 96, "BtgShape layout");
+static_assert(sizeof(BtgShape) == 112, "BtgShape layout");
 static_assert(sizeof(BtgFace) == 32, "BtgFace layout");
 static_assert(sizeof(BtgPair) == 8, "BtgPair layout");
 static_assert(sizeof(BtgManifoldPoint) == 32, "BtgManifoldPoint layout");

@@ -6,6 +6,7 @@
 #include "shared/clip.h"
 #include "shared/polyhedral_contacts.h"
 #include "shared/simple_contacts.h"
+#include "shared/triangle_contacts.h"
 
 namespace btgpu::ref {
 
@@ -26,7 +27,8 @@ BtgManifold referenceContact(const BtgPair& pair, const BtgFloat4* pos, const Bt
     switch (pairKind(pair, props, t)) {
 #define BTGPU_REFERENCE_ROW(program, kind, shapeA, shapeB, routine, kernel) \
     case kind: return btgWithThreshold(routine(a, b, verts, faces, indices, edges, threshold), threshold);
-        BTG_PAIR_KINDS(BTGPU_REFERENCE_ROW)
+        BTG_PAIR_KINDS_CONVEX(BTGPU_REFERENCE_ROW)
+        BTG_PAIR_KINDS_NARROWPHASE_GJK(BTGPU_REFERENCE_ROW)
 #undef BTGPU_REFERENCE_ROW
     default: return btgEmptyManifold(pair.a, pair.b);
     }
@@ -40,6 +42,43 @@ std::vector<BtgManifold> referenceNarrowphase(const std::vector<BtgPair>& pairs,
     out.reserve(pairs.size());
     for (const BtgPair& p : pairs) out.push_back(referenceContact(p, pos, rot, props, t));
     return out;
+}
+
+BtgManifold referenceTriangleContact(const BtgSubPair& sp, const BtgPair* pairs, const BtgFloat4* pos,
+                                     const BtgFloat4* rot, const BtgBodyProps* props, const ShapeTablesView& t,
+                                     const MeshTablesView& mt)
+{
+    const BtgPair p = pairs[sp.pair];
+    BtgCollider a = btgLoadCollider(p.a, pos, rot, props, t.shapes);
+    BtgCollider b = btgLoadCollider(p.b, pos, rot, props, t.shapes);
+    const BtgFloat4 *verts = t.hullVertices, *edges = t.hullEdges;
+    const BtgFace* faces = t.hullFaces;
+    const int* indices = t.hullIndices;
+    const BtgMesh* meshes = mt.meshes;
+    const BtgBvhNode* nodes = mt.nodes;
+    const int* parts = mt.parts;
+    const BtgTriangle* triangles = mt.triangles;
+    const BtgFloat4* meshVerts = mt.vertices;
+    const BtgHeightfield* heightfields = mt.heightfields;
+    const float* heights = mt.heights;
+    switch (btgPairKind(a.shape.type, b.shape.type)) {
+#define BTGPU_REFERENCE_TRIANGLE_ROW(program, kind, shapeA, shapeB, routine, kernel) \
+    case kind: return btgTriangleManifold(a, b, sp, verts, faces, indices, edges, routine);
+        BTG_PAIR_KINDS_NARROWPHASE_MESH(BTGPU_REFERENCE_TRIANGLE_ROW)
+#undef BTGPU_REFERENCE_TRIANGLE_ROW
+    default: return btgEmptyManifold(p.a, p.b);
+    }
+}
+
+std::vector<BtgManifold> referenceMeshPair(const std::vector<BtgSubPair>& subPairs, const BtgPair* pairs,
+                                           const BtgFloat4* pos, const BtgFloat4* rot, const BtgBodyProps* props,
+                                           const ShapeTablesView& t, const MeshTablesView& m)
+{
+    std::vector<BtgManifold> region;
+    for (const BtgSubPair& sp : subPairs) region.push_back(referenceTriangleContact(sp, pairs, pos, rot, props, t, m));
+    if (region.empty()) return region;
+    region.resize(size_t(btgGatherMeshManifolds(region.data(), 0, int(region.size()))));
+    return region;
 }
 
 }  // namespace btgpu::ref

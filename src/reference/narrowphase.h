@@ -1,6 +1,7 @@
 // narrowphase.h (reference) — the narrowphase on the CPU, calling the same shared contact
 // routines as kernels/narrowphase.cl and narrowphase_sat.cl, for tests to compare against.
 #pragma once
+#include "reference/midphase.h"
 #include "shared/types.h"
 
 #include <vector>
@@ -27,5 +28,17 @@ BtgManifold referenceContact(const BtgPair& pair, const BtgFloat4* pos, const Bt
 std::vector<BtgManifold> referenceNarrowphase(const std::vector<BtgPair>& pairs, const BtgFloat4* pos,
                                               const BtgFloat4* rot, const BtgBodyProps* props,
                                               const ShapeTablesView& t);
+
+// One convex–mesh pair as the midphase and "narrowphase_mesh" make it: the manifold of each
+// of its sub-pairs by the kind's triangle routine, then gathered (btgGatherMeshManifolds);
+// returns the pair's manifolds (as many as pairManifolds' count, in order).
+std::vector<BtgManifold> referenceMeshPair(const std::vector<BtgSubPair>& subPairs, const BtgPair* pairs,
+                                           const BtgFloat4* pos, const BtgFloat4* rot, const BtgBodyProps* props,
+                                           const ShapeTablesView& t, const MeshTablesView& m);
+
+// The manifold of one sub-pair (before gathering), as the triangle kernels write it.
+BtgManifold referenceTriangleContact(const BtgSubPair& sp, const BtgPair* pairs, const BtgFloat4* pos,
+                                     const BtgFloat4* rot, const BtgBodyProps* props, const ShapeTablesView& t,
+                                     const MeshTablesView& m);
 
 }  // namespace btgpu::ref

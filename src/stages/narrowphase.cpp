@@ -17,6 +17,7 @@ void narrowphaseProgram(DeviceWorld& w, const PairKinds& kinds, const char* prog
 {
     if (std::strcmp(program, "narrowphase_gjk") == 0) return narrowphaseGjk(w, kinds);  // its own arguments
     if (!kinds.anyIn(program) || w.pairCapacity == 0) return;
+    if (std::strcmp(program, "narrowphase_mesh") == 0) return narrowphaseMesh(w, kinds);
     w.manifolds.reserveExact(w.ctx, w.pairCapacity);
     w.pairManifolds.reserveExact(w.ctx, w.pairCapacity);
     // A range's size is known on the device only: a fixed number of work-items strides over it,
@@ -34,9 +35,38 @@ void narrowphaseProgram(DeviceWorld& w, const PairKinds& kinds, const char* prog
     }
 }
 
+void narrowphaseMesh(DeviceWorld& w, const PairKinds& kinds)
+{
+    const char* program = "narrowphase_mesh";
+    if (!kinds.anyIn(program) || w.pairCapacity == 0) return;
+    cl::Context& ctx = w.ctx;
+    w.pairManifolds.reserveExact(ctx, w.pairCapacity);
+    const size_t units = size_t(std::max<cl_uint>(ctx.device().computeUnits, 1)) * 1024;
+    const cl_uint capacity = cl_uint(w.subPairCapacity), base = cl_uint(w.pairCapacity);
+    const cl_uint countSlots = cl_uint(w.pairCapacity + 1);
+    cl::Program& prog = ctx.program(program);
+    for (int r = 0; r < kNumPairKindRows; ++r) {
+        const PairKindRow& row = kPairKindRows[r];
+        if (!kinds.has(row.kind) || std::strcmp(row.program, program) != 0) continue;
+        cl::Launch(ctx, prog.kernel(row.kernel), &w.profiler)
+            .arg(w.subPairs).arg(w.counters).arg(capacity).arg(w.pairs).arg(w.pos).arg(w.rot).arg(w.props)
+            .arg(w.shapes).arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges)
+            .arg(w.meshes).arg(w.meshNodes).arg(w.meshParts).arg(w.meshTriangles).arg(w.meshVertices)
+            .arg(w.heightfields).arg(w.heightfieldHeights).arg(w.manifolds).arg(base)
+            .run(std::min(w.subPairCapacity, units));
+    }
+    cl::Launch(ctx, prog.kernel("gather_mesh_manifolds"), &w.profiler)
+        .arg(w.pairKindRanges).arg(w.pairOrder).arg(cl_int(w.pairKindsIndirect ? 1 : 0)).arg(w.pairs)
+        .arg(w.subPairOffsets).arg(countSlots).arg(capacity).arg(w.manifolds).arg(base).arg(w.pairManifolds)
+        .run(std::min(w.pairCapacity, units));
+}
+
 void narrowphase(DeviceWorld& w, const PairKinds& kinds)
 {
-    for (int p = 0; p < kNumNarrowphasePrograms; ++p) narrowphaseProgram(w, kinds, kNarrowphasePrograms[p].program);
+    for (int p = 0; p < kNumNarrowphasePrograms; ++p) {
+        if (std::strcmp(kNarrowphasePrograms[p].program, "narrowphase_mesh") == 0) narrowphaseMesh(w, kinds);
+        else narrowphaseProgram(w, kinds, kNarrowphasePrograms[p].program);
+    }
 }
 
 }  // namespace btgpu

@@ -17,6 +17,9 @@
 namespace btgpu {
 // One narrowphase stage: the kernels of `program` for the kinds in `kinds`.
 void narrowphaseProgram(DeviceWorld& w, const PairKinds& kinds, const char* program);
-// Every program, as the kinds ask.
+// The convex–triangle kernels of "narrowphase_mesh" over the midphase's sub-pairs, then each
+// mesh pair's manifolds gathered from its triangles' (pairManifolds: past the pair slots).
+void narrowphaseMesh(DeviceWorld& w, const PairKinds& kinds);
+// Every program, as the kinds ask (the mesh one needs the midphase run first).
 void narrowphase(DeviceWorld& w, const PairKinds& kinds);
 }

@@ -6,9 +6,11 @@
 #include "cl/buffer.h"
 #include "cl/launch.h"
 #include "shared/counters.h"
+#include "shared/concave.h"
 #include "shared/types.h"
 #include "world/broadphase_scratch.h"
 #include "world/solver_scratch.h"
+#include "stages/prims/scan.h"
 
 namespace btgpu {
 
@@ -23,6 +25,7 @@ enum Counter : int {
     kColorsUsed = BTG_COUNTER_COLORS_USED,        // colors the batching assigned in the last substep
     kLeftovers = BTG_COUNTER_LEFTOVERS,           // edges it left to the solver's serial pass
     kEdgeCount = BTG_COUNTER_EDGES,               // constraint-graph edges (contacts first, then other kinds)
+    kSubPairCount = BTG_COUNTER_SUB_PAIRS,        // midphase sub-pairs (may exceed subPairCapacity: overflow)
     kNumCounters = BTG_NUM_COUNTERS
 };
 
@@ -60,6 +63,18 @@ struct DeviceWorld {
     cl::DeviceArray<int> hullIndices;
     cl::DeviceArray<BtgFloat4> hullEdges;     // unit directions, shape-local
     int numShapes = 0;
+    // Triangle meshes (shared/mesh.h): one row per mesh however many bodies and scaled wrappers
+    // use it; Bullet's quantized BVH nodes, triangles as vertex rows, mesh-local vertices, and
+    // each part's first triangle. Sized by the meshes, no maximum.
+    cl::DeviceArray<BtgMesh> meshes;
+    cl::DeviceArray<BtgBvhNode> meshNodes;
+    cl::DeviceArray<BtgTriangle> meshTriangles;
+    cl::DeviceArray<BtgFloat4> meshVertices;
+    cl::DeviceArray<int> meshParts;
+    // Heightfields (shared/heightfield.h): the grid's parameters and the app's heights as
+    // floats; triangles are formed from them where the midphase finds them, never stored.
+    cl::DeviceArray<BtgHeightfield> heightfields;
+    cl::DeviceArray<float> heightfieldHeights;
 
     // --- broadphase ---
     cl::DeviceArray<int> largeBodies;  // rows flagged BTG_BODY_LARGE (planes excluded)
@@ -76,6 +91,16 @@ struct DeviceWorld {
     cl::DeviceArray<uint> pairKindRanges;  // BTG_KIND_RANGES_SIZE
     bool pairKindsIndirect = false;
     BroadphaseScratch broadphase;      // find_pairs' own temporaries
+
+    // --- midphase: (convex, triangle) sub-pairs of the convex–mesh pairs ---
+    // subPairOffsets (pairCapacity + 1): per mesh pair (its place in the mesh kinds' range) the
+    // first of its sub-pairs, the last entry the total. The triangles' manifolds lie in
+    // `manifolds` past the pair slots, at pairCapacity + sub-pair index (manifolds holds
+    // pairCapacity + subPairCapacity while the plan has meshes).
+    cl::DeviceArray<uint> subPairOffsets;
+    cl::DeviceArray<BtgSubPair> subPairs;
+    size_t subPairCapacity = 0;
+    ScanScratch subPairScan;
 
     // --- narrowphase and contacts ---
     // Manifold slots (today one per pair slot, at the pair's own index) and each pair's range of

@@ -16,9 +16,11 @@ const char* stageName(Stage stage)
         case Stage::UniformGrid: return "uniform_grid";
         case Stage::SortSweep: return "sort_sweep";
         case Stage::FindPairs: return "find_pairs";
+        case Stage::Midphase: return "midphase";
         case Stage::Narrowphase: return "narrowphase";
         case Stage::NarrowphaseSat: return "narrowphase_sat";
         case Stage::NarrowphaseGjk: return "narrowphase_gjk";
+        case Stage::NarrowphaseMesh: return "narrowphase_mesh";
         case Stage::ApplyForces: return "apply_forces";
         case Stage::ContactCache: return "contact_cache";
         case Stage::PrepareContacts: return "prepare_contacts";
@@ -35,7 +37,8 @@ const char* stageName(Stage stage)
 
 const NarrowphaseProgram kNarrowphasePrograms[] = {{"narrowphase", Stage::Narrowphase},
                                                    {"narrowphase_sat", Stage::NarrowphaseSat},
-                                                   {"narrowphase_gjk", Stage::NarrowphaseGjk}};
+                                                   {"narrowphase_gjk", Stage::NarrowphaseGjk},
+                                                   {"narrowphase_mesh", Stage::NarrowphaseMesh}};
 const int kNumNarrowphasePrograms = int(sizeof(kNarrowphasePrograms) / sizeof(kNarrowphasePrograms[0]));
 
 const char* narrowphaseProgramOf(Stage stage)
@@ -53,6 +56,7 @@ std::vector<Stage> Plan::substep() const
         s.push_back(Stage::UpdateAabbs);
         s.push_back(broadphase == Broadphase::SortAndSweep ? Stage::SortSweep : Stage::UniformGrid);
         s.push_back(Stage::FindPairs);
+        if (kinds.anyIn("narrowphase_mesh")) s.push_back(Stage::Midphase);
         for (int p = 0; p < kNumNarrowphasePrograms; ++p)
             if (kinds.anyIn(kNarrowphasePrograms[p].program)) s.push_back(kNarrowphasePrograms[p].stage);
     }

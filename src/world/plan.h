@@ -26,9 +26,11 @@ enum class Stage {
     UniformGrid,          // small bodies' pairs, by grid ...
     SortSweep,            // ... or by sort-and-sweep
     FindPairs,            // large and plane passes, pair sort
+    Midphase,             // convex–mesh pairs split into (convex, triangle) sub-pairs by BVH walk
     Narrowphase,          // the pair kinds of program "narrowphase" (no SAT)
     NarrowphaseSat,       // those of "narrowphase_sat" (hull-hull)
     NarrowphaseGjk,       // those of "narrowphase_gjk" (support-function convex shapes)
+    NarrowphaseMesh,      // those of "narrowphase_mesh" (convex against triangles)
     ApplyForces,          // gravity, app forces, gyroscopic term
     ContactCache,         // contact list and warm start
     PrepareContacts,

@@ -17,6 +17,7 @@ using scenes::spec::HullSpec;
 using scenes::spec::Scene;
 using scenes::spec::ShapeKind;
 using scenes::spec::dimsForCount;
+using scenes::spec::makeLandscape;
 using scenes::spec::makeMixed;
 using scenes::spec::makeStack;
 using scenes::spec::makeVoronoi;

@@ -28,10 +28,18 @@ void BtBodies::build(const Scene& scene, const Options& options, btDiscreteDynam
         auto key = b.shape == ShapeKind::Box      ? std::make_tuple(0, b.half[0], b.half[1], b.half[2])
                    : b.shape == ShapeKind::Sphere ? std::make_tuple(1, b.radius, 0.f, 0.f)
                    : b.shape == ShapeKind::Hull   ? std::make_tuple(2, float(b.hull), 0.f, 0.f)
+                   : b.shape == ShapeKind::Mesh   ? std::make_tuple(4, 0.f, 0.f, 0.f)
                                                   : std::make_tuple(3, 0.f, 0.f, 0.f);
         btCollisionShape*& shape = shared[key];
         if (!shape) {
-            if (b.shape == ShapeKind::Box) {
+            if (b.shape == ShapeKind::Mesh) {
+                // The scene's own arrays, read in place (BenchmarkDemo's way), 32-bit indices.
+                m_mesh = std::make_unique<btTriangleIndexVertexArray>(
+                    int(scene.meshIndices.size() / 3), const_cast<int*>(scene.meshIndices.data()), 3 * int(sizeof(int)),
+                    int(scene.meshVertices.size() / 3), const_cast<float*>(scene.meshVertices.data()),
+                    3 * int(sizeof(float)));
+                m_shapes.emplace_back(new btBvhTriangleMeshShape(m_mesh.get(), true));
+            } else if (b.shape == ShapeKind::Box) {
                 m_shapes.emplace_back(new btBoxShape(btVector3(b.half[0], b.half[1], b.half[2])));
             } else if (b.shape == ShapeKind::Sphere) {
                 m_shapes.emplace_back(new btSphereShape(b.radius));

@@ -29,6 +29,7 @@ public:
 
 private:
     btDiscreteDynamicsWorld* m_world = nullptr;
+    std::unique_ptr<btTriangleIndexVertexArray> m_mesh;  // before the shapes that point into it
     std::vector<std::unique_ptr<btCollisionShape>> m_shapes;
     std::vector<std::unique_ptr<btMotionState>> m_motionStates;
     std::vector<std::unique_ptr<btRigidBody>> m_bodies;

@@ -1,6 +1,7 @@
 // main.cpp — btgpu_bench: one scene, up to three simulators (btgpu, stock Bullet, Bullet3's
 // GPU pipeline) in the same run; a Markdown table on stdout, a CSV with --csv, progress on
 // stderr. --smoke is the short ctest run (label bench).
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -16,7 +17,9 @@ using namespace btgpu::bench;
 namespace {
 
 const char* kUsage =
-    "usage: btgpu_bench [--scene cubes|spheres|mixed|voronoi] [--n 1000|8000|32768|112500|1000000 | --dims NX NY NZ]\n"
+    "usage: btgpu_bench [--scene cubes|spheres|mixed|voronoi|landscape] [--n 1000|8000|32768|112500|1000000 | --dims NX NY NZ]\n"
+    "                   [--bodies N] [--quads Q]   (landscape: N bodies on a Q x Q-quad mesh; 1000, 100)\n"
+    "                   [--cells C]   (voronoi: C cells, default 90 as BenchmarkDemo's test 8)\n"
     "                   [--frames F] [--backends btgpu,bullet,b3gpu] [--csv PATH] [--budget-s S]\n"
     "                   [--no-sleep] [--no-aabb-sync] [--jacobi] [--b3-native-inertia] [--absolute-thresholds] [--smoke]\n"
     "  BTGPU_DEVICE=gpu|cpu|<name substring> picks the OpenCL device (btgpu and b3gpu alike).\n";
@@ -35,6 +38,7 @@ int main(int argc, char** argv)
     int dims[3] = {20, 20, 20};
     int frames = 300;
     int nCells = 90;
+    int landscapeCount = 1000, landscapeQuads = 100;
     double budgetS = 600;  // per backend: a slow backend stops early and says so
     bool smoke = false;
     Options options;
@@ -52,6 +56,8 @@ int main(int argc, char** argv)
             for (int& d : dims) d = std::atoi(next());
             if (dims[0] <= 0 || dims[1] <= 0 || dims[2] <= 0) usage("--dims needs three positive counts");
         } else if (a == "--frames") frames = std::atoi(next());
+        else if (a == "--bodies") landscapeCount = std::max(1, std::atoi(next()));
+        else if (a == "--quads") landscapeQuads = std::max(1, std::atoi(next()));
         else if (a == "--backends") backends = next();
         else if (a == "--csv") csvPath = next();
         else if (a == "--budget-s") budgetS = std::atof(next());
@@ -80,7 +86,8 @@ int main(int argc, char** argv)
     else if (sceneName == "spheres") scene = makeStack(dims[0], dims[1], dims[2], ShapeKind::Sphere);
     else if (sceneName == "mixed") scene = makeMixed();
     else if (sceneName == "voronoi") scene = makeVoronoi(nCells);
-    else usage("--scene must be cubes, spheres, mixed or voronoi");
+    else if (sceneName == "landscape") scene = makeLandscape(landscapeCount, landscapeQuads);
+    else usage("--scene must be cubes, spheres, mixed, voronoi or landscape");
 
     std::vector<RunResult> results;
     std::stringstream list(backends);

@@ -1,6 +1,11 @@
 // scene_specs.cpp — builds the large scenes described in scene_specs.h.
 #include "scene_specs.h"
 
+#include "mesh_scenes.h"
+
+#include <algorithm>
+#include <cmath>
+
 namespace btgpu::scenes::spec {
 
 namespace {
@@ -86,6 +91,43 @@ Scene makeMixed(std::uint32_t seed)
                 b.pos[0] = (x - 0.5f * (n - 1)) * pitch;
                 b.pos[1] = 60 + y * pitch;
                 b.pos[2] = (z - 0.5f * (n - 1)) * pitch;
+                s.bodies.push_back(b);
+            }
+    return s;
+}
+
+Scene makeLandscape(int count, int quads)
+{
+    Scene s;
+    s.name = "landscape " + std::to_string(count) + " on " + std::to_string(2 * quads * quads) + " triangles";
+    const float cell = 200.0f / float(quads), half = 100.0f;
+    for (int i = 0; i <= quads; ++i)
+        for (int j = 0; j <= quads; ++j) {
+            float x = -half + cell * float(i), z = -half + cell * float(j);
+            s.meshVertices.insert(s.meshVertices.end(), {x, scenes::landscapeHeight(x, z), z});
+        }
+    for (int i = 0; i < quads; ++i)
+        for (int j = 0; j < quads; ++j) {
+            int a = i * (quads + 1) + j, b = a + 1, c = a + quads + 1, d = c + 1;
+            s.meshIndices.insert(s.meshIndices.end(), {a, b, d, a, d, c});
+        }
+    BodySpec ground;
+    ground.shape = ShapeKind::Mesh;
+    s.bodies.push_back(ground);
+    const int side = std::max(1, int(std::ceil(std::sqrt(double(count) / 4.0))));
+    const float pitch = std::min(1.6f, 190.0f / float(side));
+    int made = 0;
+    for (int layer = 0; made < count; ++layer)
+        for (int i = 0; i < side && made < count; ++i)
+            for (int j = 0; j < side && made < count; ++j, ++made) {
+                BodySpec b;
+                b.shape = made % 2 ? ShapeKind::Sphere : ShapeKind::Box;
+                b.half[0] = b.half[1] = b.half[2] = 0.5f;
+                b.radius = 0.5f;
+                b.mass = 1;
+                b.pos[0] = -0.5f * pitch * float(side) + pitch * float(i);
+                b.pos[2] = -0.5f * pitch * float(side) + pitch * float(j);
+                b.pos[1] = scenes::landscapeHeight(b.pos[0], b.pos[2]) + 3.0f + 1.6f * float(layer);
                 s.bodies.push_back(b);
             }
     return s;

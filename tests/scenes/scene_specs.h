@@ -9,7 +9,7 @@
 
 namespace btgpu::scenes::spec {
 
-enum class ShapeKind { Box, Sphere, Hull, Plane };
+enum class ShapeKind { Box, Sphere, Hull, Plane, Mesh };  // Mesh: the scene's triangle mesh (static only)
 
 // A convex hull's points (local frame, m), as an app passes them to btConvexHullShape.
 struct HullSpec {
@@ -33,6 +33,9 @@ struct Scene {
     std::string name;                // e.g. "cubes 10x10x10"
     std::vector<BodySpec> bodies;
     std::vector<HullSpec> hulls;     // shapes of the Hull bodies
+    // The one triangle mesh of ShapeKind::Mesh bodies: xyz per vertex (m), three per triangle.
+    std::vector<float> meshVertices;
+    std::vector<int> meshIndices;
     float gravity[3] = {0, -10, 0};  // m/s^2
     float dt = 1.0f / 60.0f;         // s, one substep per frame
     int iterations = 10;             // solver iterations
@@ -48,6 +51,9 @@ Scene makeMixed(std::uint32_t seed = 12345u);
 // volume, friction 0.6, released 3.5 m up over a ground plane; 20 solver iterations. The demo also
 // sets erp 0.8 and a global CFM, which btgpu does not serve: left at Bullet's defaults here.
 Scene makeVoronoi(int cells = 90);
+// Bench 5 on a rolling landscape mesh of quads x quads cells 200 m across (2 quads^2 triangles,
+// the heights of landscapeHeight in mesh_scenes.h): `count` boxes and spheres dropped over it.
+Scene makeLandscape(int count, int quads);
 // Sizes named by --n: 1000, 8000, 32768, 112500, 1000000; false if n is not one of them.
 bool dimsForCount(long n, int dims[3]);
 

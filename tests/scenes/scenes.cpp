@@ -2,6 +2,7 @@
 // scene builders, the catalog by name, and the measures the tests and demos compare.
 #include "scenes/scenes.h"
 #include "scenes/convex_scenes.h"
+#include "scenes/mesh_scenes.h"
 #include "scenes/scene_specs.h"
 
 #include <map>
@@ -317,6 +318,12 @@ const std::vector<SceneEntry>& catalog()
          [](WorldKind k, const Config& c) { return cubes(k, 4, 4, 4, c); }},
         {"spheres", "4x4x4 lattice of spheres (spheres:NXxNYxNZ for other sizes)",
          [](WorldKind k, const Config& c) { return spheres(k, 4, 4, 4, c); }},
+        {"rest_on_mesh", "a box and a sphere at rest on a flat two-part triangle mesh", restOnMesh},
+        {"drop_on_mesh", "100 boxes and spheres dropped apart onto a flat triangle mesh", dropOnMesh},
+        {"landscape", "bench 5: boxes, spheres and hulls on a rolling triangle-mesh landscape (1,000)",
+         [](WorldKind k, const Config& c) { return landscape(k, c, 1000); }},
+        {"landscape_1m", "1,000 bodies on a 1,000,000-triangle landscape",
+         [](WorldKind k, const Config& c) { return landscape(k, c, 1000, 708); }},
     };
     return entries;
 }

@@ -52,6 +52,13 @@ public:
         m_shapes.emplace_back(shape);
         return shape;
     }
+    // Anything a shape points into (a mesh's vertex arrays), kept until the shapes are gone.
+    template <class T>
+    T* ownData(T* data)
+    {
+        m_data.emplace_back(std::shared_ptr<T>(data));
+        return data;
+    }
 
     // Adds a body to the world; the scene owns it and its btDefaultMotionState. Mass 0 makes
     // it static (as in Bullet).
@@ -87,6 +94,7 @@ private:
     std::unique_ptr<btCollisionDispatcher> m_dispatcher;
     std::unique_ptr<btBroadphaseInterface> m_broadphase;
     std::unique_ptr<btSequentialImpulseConstraintSolver> m_solver;
+    std::vector<std::shared_ptr<void>> m_data;  // destroyed after the shapes that use it
     std::vector<std::unique_ptr<btCollisionShape>> m_shapes;
     std::unique_ptr<btDiscreteDynamicsWorld> m_world;
     btGpuDynamicsWorld* m_gpuWorld = nullptr;  // m_world, when it is a btGpuDynamicsWorld

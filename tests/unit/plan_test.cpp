@@ -187,3 +187,33 @@ TEST(Plan, KindsComeFromTheTable)
         EXPECT_FALSE(derivePlan(in).plan.kinds.any()) << row.kernel << ": nothing can move";
     }
 }
+
+TEST(Plan, MeshesBringTheMidphaseAndNothingElseDoes)
+{
+    PlanInput in;
+    in.bodies = {body(BTG_SHAPE_BOX, 100, false), body(BTG_SHAPE_BOX, 1, true), body(BTG_SHAPE_SPHERE, 1, true)};
+    Plan plain = derivePlan(in).plan;
+    EXPECT_FALSE(has(plain.substep(), Stage::Midphase));
+    EXPECT_FALSE(has(plain.substep(), Stage::NarrowphaseMesh));
+    EXPECT_FALSE(plain.kinds.anyIn("narrowphase_mesh"));
+    // A static mesh ground under a box and a sphere: both mesh kinds, the midphase right after
+    // the pairs and the triangles' narrowphase after the convex programs.
+    in.bodies.push_back(body(BTG_SHAPE_MESH, 200, false));
+    Plan mesh = derivePlan(in).plan;
+    EXPECT_TRUE(mesh.kinds.has(BTG_PAIR_SPHERE_MESH));
+    EXPECT_TRUE(mesh.kinds.has(BTG_PAIR_BOX_MESH));
+    const std::vector<Stage> s = mesh.substep();
+    auto at = [&](Stage st) { return std::find(s.begin(), s.end(), st) - s.begin(); };
+    ASSERT_TRUE(has(s, Stage::Midphase));
+    ASSERT_TRUE(has(s, Stage::NarrowphaseMesh));
+    EXPECT_EQ(at(Stage::Midphase), at(Stage::FindPairs) + 1);
+    EXPECT_GT(at(Stage::NarrowphaseMesh), at(Stage::Narrowphase));
+    EXPECT_GT(at(Stage::NarrowphaseMesh), at(Stage::NarrowphaseSat));
+    EXPECT_LT(at(Stage::NarrowphaseMesh), at(Stage::ContactCache));
+    // Only spheres on the mesh: no hull–mesh kind, and two static meshes meet nothing.
+    in.bodies = {body(BTG_SHAPE_MESH, 200, false), body(BTG_SHAPE_MESH, 200, false), body(BTG_SHAPE_SPHERE, 1, true)};
+    Plan spheres = derivePlan(in).plan;
+    EXPECT_TRUE(spheres.kinds.has(BTG_PAIR_SPHERE_MESH));
+    EXPECT_FALSE(spheres.kinds.has(BTG_PAIR_HULL_MESH));
+    EXPECT_TRUE(has(spheres.substep(), Stage::Midphase));
+}

@@ -1,0 +1,58 @@
+/* concave.h — what the midphase and the triangle kernels do with either concave kind: the walk
+ * of one convex–concave pair (the BVH of a mesh, the cells of a heightfield) and the triangle a
+ * sub-pair names, in the concave body's frame. */
+#ifndef BTG_CONCAVE_H
+#define BTG_CONCAVE_H
+#include "heightfield.h"
+#include "mesh.h"
+
+/* The concave tables every midphase and triangle kernel takes (rows of the shared tables). */
+#define BTG_CONCAVE_TABLES                                                                                   \
+    BTG_CONST_GLOBAL BtgMesh *meshes, BTG_CONST_GLOBAL BtgBvhNode *nodes, BTG_CONST_GLOBAL int *parts,       \
+        BTG_CONST_GLOBAL BtgTriangle *triangles, BTG_CONST_GLOBAL BtgFloat4 *meshVerts,                      \
+        BTG_CONST_GLOBAL BtgHeightfield *heightfields, BTG_CONST_GLOBAL float *heights
+#define BTG_CONCAVE_TABLE_ARGS meshes, nodes, parts, triangles, meshVerts, heightfields, heights
+
+static inline int btgIsConcave(int type) { return type == BTG_SHAPE_MESH || type == BTG_SHAPE_HEIGHTFIELD; }
+
+/* The midphase of one broadphase pair: 0 unless exactly one side is concave and the other a
+ * convex; else the convex's box (btgMidphaseBox with the pair's threshold) walked through the
+ * mesh's BVH or over the heightfield's cells. */
+static inline uint btgMidphasePair(BtgPair p, int slot, BTG_CONST_GLOBAL BtgFloat4* pos, BTG_CONST_GLOBAL BtgFloat4* rot,
+                                   BTG_CONST_GLOBAL BtgBodyProps* props, BTG_CONST_GLOBAL BtgShape* shapes,
+                                   BTG_CONCAVE_TABLES, BTG_GLOBAL BtgSubPair* out, uint first, uint capacity)
+{
+    (void)triangles;
+    (void)meshVerts;
+    BtgShape sa = shapes[props[p.a].shape], sb = shapes[props[p.b].shape];
+    int concaveIsA = btgIsConcave(sa.type);
+    BtgShape cs = concaveIsA ? sb : sa, ms = concaveIsA ? sa : sb;
+    if (!btgIsConcave(ms.type) || btgIsConcave(cs.type) || cs.type == BTG_SHAPE_PLANE) return 0u;
+    int c = concaveIsA ? p.b : p.a, mb = concaveIsA ? p.a : p.b;
+    float t = sa.breakingThreshold < sb.breakingThreshold ? sa.breakingThreshold : sb.breakingThreshold;
+    BtgAabb box = btgMidphaseBox(pos[c], rot[c], cs, pos[mb], rot[mb], ms, t);
+    if (ms.type == BTG_SHAPE_HEIGHTFIELD)
+        return btgHeightfieldWalk(heightfields[ms.mesh], heights, box, slot, out, first, capacity);
+    BtgMesh m = meshes[ms.mesh];
+    return btgMidphaseWalk(m, nodes, parts, btgQuantizeBox(m, box), slot, out, first, capacity);
+}
+
+/* The triangle of sub-pair sp of concave shape `concave`, in its body's frame. */
+typedef struct {
+    BtgFloat4 v[3]; /* m, the concave body's frame */
+} BtgTriangleVerts;
+
+static inline BtgTriangleVerts btgConcaveTriangle(BtgShape concave, BtgSubPair sp, BTG_CONCAVE_TABLES)
+{
+    (void)meshes;
+    (void)nodes;
+    (void)parts;
+    BtgTriangleVerts v;
+    if (concave.type == BTG_SHAPE_HEIGHTFIELD)
+        btgHeightfieldTriangle(heightfields[concave.mesh], heights, sp.partId >> 1, sp.index, sp.partId & 1, v.v);
+    else
+        btgTriangleVertices(concave, triangles[sp.triangle], meshVerts, v.v);
+    return v;
+}
+
+#endif
