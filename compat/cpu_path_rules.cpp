@@ -3,6 +3,8 @@
 // compute something else with it and the GPU path does not follow it. Settings that change
 // nothing for a world of rigid bodies without joints stay on the GPU path; each says why below.
 #include "cpu_path_rules.h"
+
+#include "joint_rows.h"
 #include "subclass_rules.h"
 
 #include "btgpu/Config.h"
@@ -141,7 +143,8 @@ const char* shapeTypeName(int type)
 
 std::string structureReason(const btDiscreteDynamicsWorld& world, int numActions, ShapeTables* shapes)
 {
-    if (world.getNumConstraints() > 0) return "constraints (addConstraint) are not on the GPU path yet";
+    std::string joints = jointsStructureReason(world);
+    if (!joints.empty()) return joints;
     if (numActions > 0) return "actions (addAction, vehicles, characters) are not on the GPU path yet";
     const btCollisionObjectArray& objs = world.getCollisionObjectArray();
     shapes->beginReferences();
@@ -167,6 +170,12 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
 {
     std::string subclass = subclassReason(world);
     if (!subclass.empty()) return subclass;
+    // Joints are projected Gauss-Seidel rows solved with the contacts; the Jacobi solver takes
+    // contacts only.
+    if (world.getNumConstraints() > 0 && config.solver == SolverKind::JacobiMassSplitting)
+        return "joints with Config::solver = JacobiMassSplitting (joints are solved by the batched PGS solver only)";
+    std::string joints = jointsStepReason(world);
+    if (!joints.empty()) return joints;
     // The GPU path is btSequentialImpulseConstraintSolver's projected Gauss-Seidel; any other
     // solver (MLCP, NNCG, the multithreaded one, a subclass) computes something else.
     btConstraintSolver* solver = world.getConstraintSolver();

@@ -3,6 +3,7 @@
  * them, and a float expression whose value differs when a*b+c is contracted into an fma. */
 #include "shared/types.h"
 #include "shared/math.h"
+#include "shared/joint_rows.h"
 
 __kernel void probe_layout(__global int* out, float a, float b, float c)
 {
@@ -18,6 +19,9 @@ __kernel void probe_layout(__global int* out, float a, float b, float c)
     out[9] = (int)sizeof(BtgEdge);
     out[10] = (int)sizeof(BtgManifoldPoint);
     out[11] = (int)sizeof(BtgManifoldRange);
+    out[12] = (int)sizeof(BtgJoint);
+    out[13] = (int)sizeof(BtgJointRow);
+    out[14] = (int)sizeof(BtgJointState);
     float r = a * b + c; /* with contraction this is fma(a, b, c): a different float */
     out[7] = as_int(r);
 }

@@ -11,6 +11,7 @@
 #include "stages/integrate.h"
 #include "stages/narrowphase.h"
 #include "stages/prepare_contacts.h"
+#include "stages/prepare_joints.h"
 #include "stages/solve_constraints.h"
 #include "stages/solve_jacobi.h"
 #include "stages/update_aabbs.h"
@@ -38,6 +39,8 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::ApplyForces: applyForces(w, p.dt); break;
         case Stage::ContactCache: buildContacts(w, p); break;
         case Stage::PrepareContacts: prepareContacts(w, p); break;
+        case Stage::PrepareJoints: prepareJoints(w, s.joints); break;
+        case Stage::FinishJoints: finishJoints(w, s.joints); break;
         case Stage::ColorConstraints: colorConstraints(w, s.maxColors); break;
         case Stage::SolveConstraints: solveConstraints(w, p, s.iterations, w.numColors); break;
         case Stage::SolveJacobi: solveJacobi(w, p, s.iterations); break;
@@ -92,6 +95,7 @@ void takeSnapshot(DeviceWorld& w, Snapshot& s)
     s.linVel.copyFrom(w.ctx, w.linVel, n);
     s.angVel.copyFrom(w.ctx, w.angVel, n);
     s.counters.copyFrom(w.ctx, w.counters, kNumCounters);
+    if (w.numJoints > 0) s.jointState.copyFrom(w.ctx, w.jointState, size_t(w.numJoints));
 }
 
 void restoreSnapshot(DeviceWorld& w, Snapshot& s)
@@ -106,6 +110,7 @@ void restoreSnapshot(DeviceWorld& w, Snapshot& s)
         w.contactCache.copyRangeFrom(w.ctx, w.contactCacheAtCall, m);
     }
     w.counters.copyFrom(w.ctx, s.counters, kNumCounters);
+    if (w.numJoints > 0) w.jointState.copyFrom(w.ctx, s.jointState, size_t(w.numJoints));
 }
 
 namespace {

@@ -50,6 +50,27 @@ constexpr double kSinkDepth = 0.02;          // m
 constexpr double kPushedPosition = 0.1;      // m
 // Motion-state transforms with substeps and interpolation (no contacts): as free fall.
 constexpr double kInterpolatedTransform = 1e-4;  // m, and per matrix element of the basis
+
+// --- joints (tests/regression/joints_test.cpp) ---------------------------------------------
+// The bounds: a pendulum's period within 1 % of stock's; a 20-link chain's stretch
+// within 5 % of stock's plus 1 mm.
+constexpr double kPendulumPeriodRel = 0.01;
+constexpr double kChainStretchRel = 0.05;
+constexpr double kChainStretchAbs = 1e-3;   // m
+// Against physics, with the joint's rows converged (100 iterations): the period within 1 % of
+// the physical pendulum's series (measured 0.25 % on both engines), the arm within 5 mm of its
+// length through the swing (measured 1.7 mm; ERP 0.2 corrects the drift).
+constexpr double kPendulumPhysicsRel = 0.01;
+constexpr double kJointDrift = 5e-3;        // m
+// A chain at rest: links hang with no speed to speak of (mm/s).
+constexpr double kChainStillSpeed = 5e-3;   // m/s
+// One joint without contacts: the same rows as stock in another float order; the bob stays
+// within 1 mm of stock's and its impulses within 1 %.
+constexpr double kJointPosition = 1e-3;     // m
+constexpr double kJointImpulseRel = 0.01;
+// A pair falls asleep within this many steps of stock's (the GPU island timer takes the
+// least of the pair's timers, stock's the island's; settling differs by a step or two).
+constexpr double kSleepStepSlack = 10;
 }  // namespace btgpu::tol
 
 // --- stability suite (tests/stability/): both engines judged by the same bounds -------------

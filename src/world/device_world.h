@@ -6,6 +6,7 @@
 #include "cl/buffer.h"
 #include "cl/launch.h"
 #include "shared/counters.h"
+#include "shared/joint_rows.h"
 #include "shared/types.h"
 #include "world/broadphase_scratch.h"
 #include "world/solver_scratch.h"
@@ -108,6 +109,16 @@ struct DeviceWorld {
     // step is then redone with per-round launches). On forces it (tests).
     enum class Resident { Auto, Off, On };
     Resident resident = Resident::Auto;
+
+    // --- joints (issue 11): the app's joints, their rows and what the solve leaves of them ---
+    // Edge contacts + j of the constraint graph is joint j; joint j's rows are
+    // jointRows[joints[j].firstRow, + max rows of its type). Without joints each holds one
+    // placeholder element (kernels take a bound buffer).
+    cl::DeviceArray<BtgJoint> joints;
+    cl::DeviceArray<BtgJointState> jointState;
+    cl::DeviceArray<BtgJointRow> jointRows;
+    int numJoints = 0;
+    int jointIterations = 0;  // the largest of the joints' iteration counts
 
     // --- sync_in staging (kept across calls: a quiet step allocates nothing) ---
     cl::DeviceArray<int> stagingRows;

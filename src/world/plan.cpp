@@ -21,6 +21,8 @@ const char* stageName(Stage stage)
         case Stage::ApplyForces: return "apply_forces";
         case Stage::ContactCache: return "contact_cache";
         case Stage::PrepareContacts: return "prepare_contacts";
+        case Stage::PrepareJoints: return "prepare_joints";
+        case Stage::FinishJoints: return "finish_joints";
         case Stage::ColorConstraints: return "color_constraints";
         case Stage::SolveConstraints: return "solve_constraints";
         case Stage::SolveJacobi: return "solve_jacobi";
@@ -54,12 +56,16 @@ std::vector<Stage> Plan::substep() const
             if (kinds.anyIn(kNarrowphasePrograms[p].program)) s.push_back(kNarrowphasePrograms[p].stage);
     }
     s.push_back(Stage::ApplyForces);
-    if (collide) {
-        s.insert(s.end(), {Stage::ContactCache, Stage::PrepareContacts});
-        if (solver == SolverKind::JacobiMassSplitting) s.push_back(Stage::SolveJacobi);
+    if (collide || hasJoints) {
+        if (collide) s.insert(s.end(), {Stage::ContactCache, Stage::PrepareContacts});
+        // Joints are PGS rows: the Jacobi solver takes contacts only (the CPU-path rules send a
+        // Jacobi world with joints away).
+        if (hasJoints) s.push_back(Stage::PrepareJoints);
+        if (solver == SolverKind::JacobiMassSplitting && !hasJoints) s.push_back(Stage::SolveJacobi);
         else s.insert(s.end(), {Stage::ColorConstraints, Stage::SolveConstraints});
+        if (hasJoints) s.push_back(Stage::FinishJoints);
         // Before the bodies move: the cache keys use A's rotation as the contacts were built.
-        s.push_back(Stage::StoreContactCache);
+        if (collide) s.push_back(Stage::StoreContactCache);
     }
     s.insert(s.end(), {Stage::IntegrateTransforms, Stage::UpdateActivation});
     return s;
@@ -97,6 +103,7 @@ DerivedPlan derivePlan(const PlanInput& in)
     DerivedPlan d;
     Plan& plan = d.plan;
     plan.solver = in.solver;
+    plan.hasJoints = in.numJoints > 0;
     // Per shape kind: bodies, and bodies that can move.
     int count[BTG_NUM_SHAPE_KINDS] = {}, moving[BTG_NUM_SHAPE_KINDS] = {};
     std::vector<float> sizes;

@@ -31,9 +31,11 @@ enum class Stage {
     ApplyForces,          // gravity, app forces, gyroscopic term
     ContactCache,         // contact list and warm start
     PrepareContacts,
+    PrepareJoints,        // joint rows and edges (scenes with joints only)
     ColorConstraints,
     SolveConstraints,
     SolveJacobi,
+    FinishJoints,         // applied impulses, feedback, breaks
     StoreContactCache,
     IntegrateTransforms,
     UpdateActivation,
@@ -56,6 +58,7 @@ struct Plan {
     bool hasLarge = false;     // bodies outside the uniform grid
     bool hasPlanes = false;
     bool gyroscopic = false;   // some body asks for the implicit gyroscopic term
+    bool hasJoints = false;    // the app added joints (served ones: the rules send the rest away)
     SolverKind solver = SolverKind::BatchedPgs;  // Config::solver: which solve stages run
     Broadphase broadphase = Broadphase::UniformGrid;
     float cellSize = 1.0f;     // m: uniform grid cell, >= the largest small body's AABB extent
@@ -77,6 +80,7 @@ struct PlanBody {
 };
 struct PlanInput {
     std::vector<PlanBody> bodies;  // by row
+    int numJoints = 0;             // joints on the device
     SolverKind solver = SolverKind::BatchedPgs;
     float largeBodyFactor = 4.0f;     // Config::largeBodyFactor
     float contactThreshold = 0.02f;   // m, Config::contactThreshold (AABB growth)

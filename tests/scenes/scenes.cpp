@@ -44,6 +44,9 @@ Scene::~Scene()
 {
     // Bodies leave the world before anything they point at is deleted; the world goes before
     // the solver, broadphase, dispatcher and configuration it was built on (member order).
+    // Joints leave first: they point at the bodies.
+    for (auto it = m_joints.rbegin(); it != m_joints.rend(); ++it) m_world->removeConstraint(it->get());
+    m_joints.clear();
     for (auto it = m_bodies.rbegin(); it != m_bodies.rend(); ++it) {
         m_world->removeRigidBody(*it);
         delete (*it)->getMotionState();

@@ -1,0 +1,180 @@
+// joint_rows.cpp — btTypedConstraint → BtgJoint, the per-step comparison and upload of the
+// joint table, and the write-back of applied impulses, feedback and breaks.
+#include "joint_rows.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <typeinfo>
+#include <unordered_set>
+
+#include <cxxabi.h>
+
+namespace btgpu {
+
+namespace {
+
+std::string typeName(const std::type_info& t)
+{
+    int status = 0;
+    char* name = abi::__cxa_demangle(t.name(), nullptr, nullptr, &status);
+    std::string out = status == 0 && name ? name : t.name();
+    std::free(name);
+    return out;
+}
+
+BtgFloat4 vec4(const btVector3& v) { return btgMake4(v.x(), v.y(), v.z(), 0.0f); }
+
+int bodyRow(const btRigidBody& b, const RowMap& rows)
+{
+    if (&b == &btTypedConstraint::getFixedBody()) return BTG_JOINT_FIXED_BODY;
+    return rows.rowOf(&b);
+}
+
+bool served(const btTypedConstraint& c)
+{
+    if (typeid(c) == typeid(btPoint2PointConstraint))
+        return !static_cast<const btPoint2PointConstraint&>(c).m_useSolveConstraintObsolete;
+    return false;
+}
+
+}  // namespace
+
+std::string jointsStructureReason(const btDiscreteDynamicsWorld& world)
+{
+    if (world.getNumConstraints() == 0) return "";
+    std::unordered_set<const btCollisionObject*> inWorld;
+    const btCollisionObjectArray& objs = world.getCollisionObjectArray();
+    for (int i = 0; i < objs.size(); ++i) inWorld.insert(objs[i]);
+    const btRigidBody* fixed = &btTypedConstraint::getFixedBody();
+    for (int i = 0; i < world.getNumConstraints(); ++i) {
+        const btTypedConstraint* c = world.getConstraint(i);
+        if (&c->getRigidBodyA() != fixed && !inWorld.count(&c->getRigidBodyA()))
+            return "joint " + std::to_string(i) + " links a body that is not in the world (its body A)";
+        if (&c->getRigidBodyB() != fixed && !inWorld.count(&c->getRigidBodyB()))
+            return "joint " + std::to_string(i) + " links a body that is not in the world (its body B)";
+        const std::type_info& t = typeid(*c);
+        if (t == typeid(btPoint2PointConstraint)) {
+            if (static_cast<const btPoint2PointConstraint*>(c)->m_useSolveConstraintObsolete)
+                return "joint " + std::to_string(i) +
+                       " (btPoint2PointConstraint) uses Bullet's obsolete solve (m_useSolveConstraintObsolete)";
+            continue;
+        }
+        return "joint " + std::to_string(i) + " of type " + typeName(t) +
+               " is not on the GPU path (served: btPoint2PointConstraint, exact type)";
+    }
+    return "";
+}
+
+std::string jointsStepReason(const btDiscreteDynamicsWorld& world)
+{
+    if (world.getNumConstraints() == 0) return "";
+    const btRigidBody& fixed = btTypedConstraint::getFixedBody();
+    const btTransform& t = fixed.getCenterOfMassTransform();
+    if (!(t.getOrigin() == btVector3(0, 0, 0)) || !(t.getBasis() == btMatrix3x3::getIdentity()) ||
+        fixed.getInvMass() != btScalar(0) || !(fixed.getLinearVelocity() == btVector3(0, 0, 0)) ||
+        !(fixed.getAngularVelocity() == btVector3(0, 0, 0)))
+        return "Bullet's shared fixed body (btTypedConstraint::getFixedBody) was moved or given mass";
+    return "";
+}
+
+bool jointRow(const btTypedConstraint& c, const RowMap& rows, int numIterations, BtgJoint* out)
+{
+    if (!served(c)) return false;
+    BtgJoint j;
+    std::memset(&j, 0, sizeof(j));
+    j.bodyA = bodyRow(c.getRigidBodyA(), rows);
+    j.bodyB = bodyRow(c.getRigidBodyB(), rows);
+    j.flags = (c.isEnabled() ? BTG_JOINT_ENABLED : 0u) | (c.getJointFeedback() ? BTG_JOINT_FEEDBACK : 0u);
+    j.iterations = c.getOverrideNumSolverIterations() > 0 ? c.getOverrideNumSolverIterations() : numIterations;
+    j.breakingThreshold = c.getBreakingImpulseThreshold();
+    if (typeid(c) == typeid(btPoint2PointConstraint)) {
+        const auto& p = static_cast<const btPoint2PointConstraint&>(c);
+        j.type = BTG_JOINT_POINT2POINT;
+        j.pivotA = vec4(p.getPivotInA());
+        j.pivotB = vec4(p.getPivotInB());
+        const int flags = const_cast<btPoint2PointConstraint&>(p).getFlags();
+        if (flags & BT_P2P_FLAGS_ERP) {
+            j.flags |= BTG_JOINT_OWN_ERP;
+            j.erp = p.getParam(BT_CONSTRAINT_ERP, -1);
+        }
+        if (flags & BT_P2P_FLAGS_CFM) {
+            j.flags |= BTG_JOINT_OWN_CFM;
+            j.cfm = p.getParam(BT_CONSTRAINT_CFM, -1);
+        }
+        j.damping = p.m_setting.m_damping;
+        j.impulseClamp = p.m_setting.m_impulseClamp;
+    }
+    *out = j;
+    return true;
+}
+
+void JointSync::upload(btDiscreteDynamicsWorld& world, const RowMap& rows, DeviceWorld& w)
+{
+    const int n = world.getNumConstraints();
+    const int numIterations = world.getSolverInfo().m_numIterations;
+    std::vector<BtgJoint> table(static_cast<size_t>(n));
+    m_constraints.resize(size_t(n));
+    int nextRow = 0, iterations = 0;
+    for (int i = 0; i < n; ++i) {
+        btTypedConstraint* c = world.getConstraint(i);
+        m_constraints[size_t(i)] = c;
+        jointRow(*c, rows, numIterations, &table[size_t(i)]);
+        table[size_t(i)].firstRow = nextRow;
+        nextRow += btgJointMaxRows(table[size_t(i)].type);
+        iterations = std::max(iterations, table[size_t(i)].iterations);
+    }
+    w.numJoints = n;
+    w.jointIterations = iterations;
+    if (n == 0) {
+        m_uploaded.clear();
+        m_state.clear();
+        return;
+    }
+    const bool resized = m_uploaded.size() != table.size();
+    bool changed = resized;
+    m_state.resize(size_t(n));
+    for (size_t i = 0; i < table.size(); ++i) {
+        if (!resized && std::memcmp(&table[i], &m_uploaded[i], sizeof(BtgJoint)) == 0) continue;
+        changed = true;
+        std::memset(&m_state[i], 0, sizeof(BtgJointState));  // starts unbroken
+        if (!resized) m_state[i].appliedImpulse = m_constraints[i]->getAppliedImpulse();
+    }
+    if (resized)
+        for (size_t i = 0; i < table.size(); ++i) {
+            std::memset(&m_state[i], 0, sizeof(BtgJointState));
+            m_state[i].appliedImpulse = m_constraints[i]->getAppliedImpulse();
+        }
+    if (!changed) return;
+    w.joints.upload(w.ctx, table);
+    w.jointState.upload(w.ctx, m_state);
+    w.jointRows.reserveExact(w.ctx, size_t(std::max(nextRow, 1)));
+    m_uploaded = table;
+}
+
+void JointSync::writeBack(DeviceWorld& w)
+{
+    const size_t n = m_uploaded.size();
+    if (n == 0) return;
+    w.jointState.download(w.ctx, m_state.data(), n);
+    for (size_t i = 0; i < n; ++i) {
+        btTypedConstraint* c = m_constraints[i];
+        const BtgJointState& s = m_state[i];
+        c->internalSetAppliedImpulse(s.appliedImpulse);
+        if (btJointFeedback* fb = c->getJointFeedback()) {
+            if (m_uploaded[i].flags & BTG_JOINT_FEEDBACK) {
+                fb->m_appliedForceBodyA = btVector3(s.forceA.x, s.forceA.y, s.forceA.z);
+                fb->m_appliedTorqueBodyA = btVector3(s.torqueA.x, s.torqueA.y, s.torqueA.z);
+                fb->m_appliedForceBodyB = btVector3(s.forceB.x, s.forceB.y, s.forceB.z);
+                fb->m_appliedTorqueBodyB = btVector3(s.torqueB.x, s.torqueB.y, s.torqueB.z);
+            }
+        }
+        if (s.broken && c->isEnabled()) {
+            // As stock's writeBackJoints; the device keeps it broken until the app changes it.
+            c->setEnabled(false);
+            m_uploaded[i].flags &= ~BTG_JOINT_ENABLED;
+        }
+    }
+}
+
+}  // namespace btgpu

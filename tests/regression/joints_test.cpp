@@ -1,0 +1,281 @@
+// joints_test.cpp — btPoint2PointConstraint on the GPU path against stock Bullet in the same
+// process (the btgpu world asserted on the GPU path after every step): a pendulum's period, a
+// hanging chain's stretch (and with more joint iterations), a breaking threshold breaking on
+// stock's step, applied impulse and joint feedback, setEnabled and a moved pivot between steps,
+// a jointed pair falling asleep and waking as one, and the joints that keep the CPU path.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <BulletDynamics/ConstraintSolver/btGearConstraint.h>
+
+#include "scenes/joint_scenes.h"
+#include "side_by_side.h"
+
+using namespace btgpu;
+using namespace btgpu::test;
+
+namespace {
+
+bool has(const Report& r, const std::string& stage)
+{
+    return std::find(r.stages.begin(), r.stages.end(), stage) != r.stages.end();
+}
+
+// Steps both worlds, asserting the GPU path after each step.
+#define STEP_ON_GPU(s, n)                                                                       \
+    for (int step_ = 0; step_ < (n); ++step_) {                                                 \
+        (s).step();                                                                             \
+        ASSERT_TRUE((s).onGpu()) << "step " << step_ << ": " << (s).gpu->report()->cpuPathReason; \
+    }
+
+// Times (s) at which the bob crosses x = 0 moving towards -x, linearly interpolated.
+struct Crossings {
+    std::vector<double> t;
+    double lastX = 0.0;
+    void add(double time, double x, double dt)
+    {
+        if (lastX > 0.0 && x <= 0.0) t.push_back(time - dt * x / (x - lastX));
+        lastX = x;
+    }
+    double period() const { return t.size() < 2 ? 0.0 : (t.back() - t.front()) / double(t.size() - 1); }
+};
+
+}  // namespace
+
+TEST(Joints, PendulumPeriodMatchesStock)
+{
+    // At Bullet's 10 iterations the bob's three world-axis rows (one stiff along the arm, two
+    // that mostly spin the light sphere) are far from converged: stock's own period is 9 %
+    // longer than physics and its arm stretches 4 cm. Against stock there; against physics with
+    // 100 joint iterations (setOverrideNumSolverIterations), where stock converges too.
+    for (int override : {0, 100}) {
+        SCOPED_TRACE(override);
+        SideBySide s([](WorldKind k, const Config& c) { return scenes::pendulum(k, c, 30.0); });
+        s.both([&](Scene& sc) { sc.joint(0)->setOverrideNumSolverIterations(override); });
+        Crossings stock, gpu;
+        stock.lastX = gpu.lastX = s.stock->body(0)->getWorldTransform().getOrigin().x();
+        double gpuArm = 0.0, stockArm = 0.0;  // largest error of the arm's length
+        const btVector3 pivot(0, btScalar(scenes::kPendulumPivotY), 0);
+        for (int i = 0; i < 600; ++i) {  // 10 s: about 5 periods
+            s.step();
+            ASSERT_TRUE(s.onGpu()) << "step " << i << ": " << s.gpu->report()->cpuPathReason;
+            const double t = (i + 1) * double(kStep);
+            const btVector3 ps = s.stock->body(0)->getWorldTransform().getOrigin();
+            const btVector3 pg = s.gpu->body(0)->getWorldTransform().getOrigin();
+            stock.add(t, ps.x(), kStep);
+            gpu.add(t, pg.x(), kStep);
+            stockArm = std::max(stockArm, std::fabs((ps - pivot).length() - scenes::kPendulumLength));
+            gpuArm = std::max(gpuArm, std::fabs((pg - pivot).length() - scenes::kPendulumLength));
+        }
+        std::printf("pendulum, %d joint iterations: period stock %.4f s, btgpu %.4f s; arm error stock %.4f m, "
+                    "btgpu %.4f m\n",
+                    override ? override : 10, stock.period(), gpu.period(), stockArm, gpuArm);
+        const Report& r = *s.gpu->report();
+        EXPECT_TRUE(has(r, "prepare_joints"));
+        EXPECT_TRUE(has(r, "finish_joints"));
+        EXPECT_TRUE(has(r, "solve_constraints"));
+        EXPECT_FALSE(has(r, "narrowphase"));  // one body, no contacts: no collision stages
+        ASSERT_GE(stock.t.size(), 4u);
+        ASSERT_EQ(gpu.t.size(), stock.t.size());
+        EXPECT_NEAR(gpu.period(), stock.period(), tol::kPendulumPeriodRel * stock.period());
+        EXPECT_NEAR(gpuArm, stockArm, tol::kJointPosition + 0.05 * stockArm);
+        if (!override) continue;
+        // Physics: a physical pendulum (a sphere of radius 0.1 on a 1 m arm) at 30 degrees,
+        // T = 2 pi sqrt(I / (m g L)) (1 + theta^2 / 16), g = 10.
+        const double theta = 30.0 * M_PI / 180.0;
+        const double inertia = 1.0 + 0.4 * 0.1 * 0.1;
+        const double physical = 2.0 * M_PI * std::sqrt(inertia / 10.0) * (1.0 + theta * theta / 16.0);
+        EXPECT_NEAR(gpu.period(), physical, tol::kPendulumPhysicsRel * physical);
+        EXPECT_LT(gpuArm, tol::kJointDrift);
+    }
+}
+
+TEST(Joints, HangingChainStretchMatchesStock)
+{
+    for (int override : {0, 40}) {
+        SCOPED_TRACE(override ? "override 40 iterations" : "default iterations");
+        SideBySide s([](WorldKind k, const Config& c) { return scenes::chain(k, c, 20); });
+        if (override) s.both([&](Scene& sc) {
+            for (int j = 0; j < sc.numJoints(); ++j) sc.joint(j)->setOverrideNumSolverIterations(override);
+        });
+        const int last = 21;  // bodies: ground, anchor, 20 links
+        const double start = s.stockY(last);
+        STEP_ON_GPU(s, 180);
+        const double stockStretch = start - s.stockY(last), gpuStretch = start - s.gpuY(last);
+        std::printf("chain of 20, joint iterations %d: stretch stock %.5f m, btgpu %.5f m\n", override ? override : 10,
+                    stockStretch, gpuStretch);
+        EXPECT_GT(stockStretch, 0.0);
+        EXPECT_NEAR(gpuStretch, stockStretch, tol::kChainStretchRel * stockStretch + tol::kChainStretchAbs);
+        // Hanging still: no link swings or stretches further.
+        for (int i = 2; i <= last; ++i) {
+            EXPECT_LT(s.gpu->body(i)->getLinearVelocity().length(), tol::kChainStillSpeed) << "link " << i;
+            EXPECT_LT(std::fabs(s.gpu->body(i)->getWorldTransform().getOrigin().x()), 1e-4) << "link " << i;
+        }
+        EXPECT_TRUE(has(*s.gpu->report(), "prepare_joints"));
+        EXPECT_TRUE(has(*s.gpu->report(), "narrowphase"));  // the ground: contacts and joints together
+    }
+}
+
+TEST(Joints, MoreJointIterationsStretchLess)
+{
+    // setOverrideNumSolverIterations above m_numIterations makes Bullet iterate the joints
+    // longer: the chain stretches less, on both.
+    double stretch[2] = {0, 0};
+    for (int k = 0; k < 2; ++k) {
+        ScenePtr gpu = scenes::chain(WorldKind::Gpu, Config(), 20);
+        for (int j = 0; j < gpu->numJoints(); ++j) gpu->joint(j)->setOverrideNumSolverIterations(k ? 60 : 0);
+        const double start = gpu->body(21)->getWorldTransform().getOrigin().y();
+        for (int i = 0; i < 120; ++i) {
+            gpu->step();
+            ASSERT_TRUE(gpu->gpuWorld()->isGpuPath());
+        }
+        stretch[k] = start - gpu->body(21)->getWorldTransform().getOrigin().y();
+    }
+    EXPECT_LT(stretch[1], 0.5 * stretch[0]);
+}
+
+TEST(Joints, BreakingThresholdBreaksOnStocksStep)
+{
+    for (double threshold : {0.3, 0.45, 5.0}) {
+        SCOPED_TRACE(threshold);
+        SideBySide s([=](WorldKind k, const Config& c) { return scenes::breakingPendulum(k, c, threshold); });
+        int stockBreak = -1, gpuBreak = -1;
+        for (int i = 0; i < 90 && (stockBreak < 0 || gpuBreak < 0); ++i) {
+            s.step();
+            ASSERT_TRUE(s.onGpu()) << s.gpu->report()->cpuPathReason;
+            if (stockBreak < 0 && !s.stock->joint(0)->isEnabled()) stockBreak = i;
+            if (gpuBreak < 0 && !s.gpu->joint(0)->isEnabled()) gpuBreak = i;
+        }
+        EXPECT_EQ(gpuBreak, stockBreak);
+        std::printf("breaking threshold %.2f N s: breaks at step %d on stock, %d on btgpu\n", threshold, stockBreak,
+                    gpuBreak);
+        if (threshold > 1.0) EXPECT_EQ(stockBreak, -1);  // holds: the scene's load is below it
+        else EXPECT_GE(stockBreak, 0);
+        // After the break the bob flies free on both.
+        s.step(10);
+        EXPECT_LT(s.distance(0), tol::kJointPosition);
+    }
+}
+
+TEST(Joints, AppliedImpulseAndFeedbackMatchStock)
+{
+    SideBySide s([](WorldKind k, const Config& c) { return scenes::pendulum(k, c, 60.0); });
+    btJointFeedback fbStock, fbGpu;
+    s.stock->joint(0)->setJointFeedback(&fbStock);
+    s.gpu->joint(0)->setJointFeedback(&fbGpu);
+    s.stock->joint(0)->enableFeedback(true);
+    s.gpu->joint(0)->enableFeedback(true);
+    double maxForce = 0.0;
+    for (int i = 0; i < 120; ++i) {
+        s.step();
+        ASSERT_TRUE(s.onGpu());
+        const double applied = s.stock->joint(0)->getAppliedImpulse();
+        EXPECT_NEAR(s.gpu->joint(0)->getAppliedImpulse(), applied, tol::kJointImpulseRel * std::fabs(applied) + 1e-4)
+            << "step " << i;
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_NEAR(fbGpu.m_appliedForceBodyA[k], fbStock.m_appliedForceBodyA[k],
+                        tol::kJointImpulseRel * fbStock.m_appliedForceBodyA.length() + 1e-2)
+                << "step " << i;
+            EXPECT_NEAR(fbGpu.m_appliedTorqueBodyA[k], fbStock.m_appliedTorqueBodyA[k],
+                        tol::kJointImpulseRel * fbStock.m_appliedTorqueBodyA.length() + 1e-2)
+                << "step " << i;
+            EXPECT_NEAR(fbGpu.m_appliedForceBodyB[k], fbStock.m_appliedForceBodyB[k],
+                        tol::kJointImpulseRel * fbStock.m_appliedForceBodyB.length() + 1e-2)
+                << "step " << i;
+        }
+        maxForce = std::max(maxForce, double(fbStock.m_appliedForceBodyA.length()));
+        EXPECT_LT(s.distance(0), tol::kJointPosition) << "step " << i;
+    }
+    // The arm carries tension: m g at rest, more through the swing.
+    EXPECT_GT(maxForce, 10.0);
+}
+
+TEST(Joints, EnabledAndPivotChangesBetweenStepsTakeEffect)
+{
+    SideBySide s([](WorldKind k, const Config& c) { return scenes::pendulum(k, c, 30.0); });
+    STEP_ON_GPU(s, 20);
+    s.both([](Scene& sc) { sc.joint(0)->setEnabled(false); });
+    const double before = s.stockY(0);
+    STEP_ON_GPU(s, 30);  // falls free: at least g t^2 / 2 = 1.25 m in 0.5 s
+    EXPECT_LT(s.stockY(0), before - 1.2);
+    EXPECT_LT(s.distance(0), tol::kJointPosition);
+    // Back on, with the world pivot moved to where the bob is now plus 0.5 m up: it hangs there.
+    s.both([](Scene& sc) {
+        auto* p = static_cast<btPoint2PointConstraint*>(sc.joint(0));
+        p->setPivotA(btVector3(0, 0.5f, 0));
+        p->setPivotB(sc.body(0)->getWorldTransform().getOrigin() + btVector3(0, 0.5f, 0));
+        p->setParam(BT_CONSTRAINT_ERP, 0.8f);
+        sc.joint(0)->setEnabled(true);
+    });
+    STEP_ON_GPU(s, 60);
+    EXPECT_LT(s.distance(0), tol::kJointPosition);
+    EXPECT_TRUE(s.gpu->joint(0)->isEnabled());
+}
+
+TEST(Joints, JointedPairSleepsAndWakesAsOne)
+{
+    SideBySide s(scenes::jointedPair);
+    int stockAsleep = -1, gpuAsleep = -1;
+    for (int i = 0; i < 600 && (stockAsleep < 0 || gpuAsleep < 0); ++i) {
+        s.step();
+        ASSERT_TRUE(s.onGpu()) << s.gpu->report()->cpuPathReason;
+        // The two bodies of the pair change state in the same step (one island).
+        EXPECT_EQ(s.gpu->body(1)->isActive(), s.gpu->body(2)->isActive()) << "step " << i;
+        if (stockAsleep < 0 && !s.stock->body(1)->isActive()) stockAsleep = i;
+        if (gpuAsleep < 0 && !s.gpu->body(1)->isActive()) gpuAsleep = i;
+    }
+    ASSERT_GE(stockAsleep, 0);
+    ASSERT_GE(gpuAsleep, 0);
+    EXPECT_NEAR(gpuAsleep, stockAsleep, tol::kSleepStepSlack);
+    EXPECT_LT(s.distance(1), tol::kRestHeight);
+    EXPECT_LT(s.distance(2), tol::kRestHeight);
+    // Waking one wakes the other through the joint.
+    s.both([](Scene& sc) {
+        sc.body(1)->activate();
+        sc.body(1)->applyCentralImpulse(btVector3(0, 2, 0));
+    });
+    s.step();
+    s.step();
+    EXPECT_TRUE(s.stock->body(2)->isActive());
+    EXPECT_TRUE(s.gpu->body(2)->isActive());
+}
+
+TEST(Joints, UnservedJointsKeepTheCpuPathNamingThem)
+{
+    struct AppJoint : btPoint2PointConstraint {
+        using btPoint2PointConstraint::btPoint2PointConstraint;
+    };
+    {
+        ScenePtr s = scenes::pendulum(WorldKind::Gpu);
+        s->addJoint(new AppJoint(*s->body(0), btVector3(0, 1, 0)));
+        s->step();
+        EXPECT_FALSE(s->gpuWorld()->isGpuPath());
+        EXPECT_NE(s->report()->cpuPathReason.find("AppJoint"), std::string::npos) << s->report()->cpuPathReason;
+    }
+    {
+        ScenePtr s = scenes::chain(WorldKind::Gpu, Config(), 2);
+        s->addJoint(new btGearConstraint(*s->body(2), *s->body(3), btVector3(0, 1, 0), btVector3(0, 1, 0)));
+        s->step();
+        EXPECT_FALSE(s->gpuWorld()->isGpuPath());
+        EXPECT_NE(s->report()->cpuPathReason.find("btGearConstraint"), std::string::npos) << s->report()->cpuPathReason;
+    }
+    {
+        Config c;
+        c.solver = SolverKind::JacobiMassSplitting;
+        ScenePtr s = scenes::pendulum(WorldKind::Gpu, c);
+        s->step();
+        EXPECT_FALSE(s->gpuWorld()->isGpuPath());
+        EXPECT_NE(s->report()->cpuPathReason.find("Jacobi"), std::string::npos) << s->report()->cpuPathReason;
+    }
+}
+
+TEST(Joints, ScenesWithoutJointsBuildNoJointStage)
+{
+    ScenePtr s = scenes::basicDemo(WorldKind::Gpu);
+    s->step();
+    EXPECT_FALSE(has(*s->report(), "prepare_joints"));
+    EXPECT_FALSE(has(*s->report(), "finish_joints"));
+}

@@ -1,0 +1,63 @@
+// joint_scenes.cpp — the joint scenes of joint_scenes.h.
+#include "scenes/joint_scenes.h"
+
+#include <cmath>
+
+namespace btgpu::scenes {
+
+namespace {
+btVector3 bobStart(double degrees)
+{
+    const double a = degrees * M_PI / 180.0;
+    return btVector3(btScalar(kPendulumLength * std::sin(a)), btScalar(kPendulumPivotY - kPendulumLength * std::cos(a)),
+                     0);
+}
+}  // namespace
+
+ScenePtr pendulum(WorldKind kind, const Config& config, double degrees)
+{
+    auto s = std::make_unique<Scene>(kind, config, "pendulum");
+    const btVector3 start = bobStart(degrees);
+    btRigidBody* bob = s->addBody(s->sphereShape(0.1f), 1.0f, start);
+    bob->setActivationState(DISABLE_DEACTIVATION);
+    // The pivot in the bob's frame, and the fixed body's world pivot.
+    s->addJoint(new btPoint2PointConstraint(*bob, btVector3(0, btScalar(kPendulumPivotY), 0) - start));
+    return s;
+}
+
+ScenePtr chain(WorldKind kind, const Config& config, int links)
+{
+    auto s = std::make_unique<Scene>(kind, config, "chain");
+    s->addBody(s->boxShape(btVector3(5, 0.5f, 5)), 0.0f, btVector3(0, -0.5f, 0));
+    btRigidBody* above = s->addBody(s->boxShape(btVector3(0.1f, 0.1f, 0.1f)), 0.0f, btVector3(0, btScalar(kChainAnchorY), 0));
+    btSphereShape* ball = s->sphereShape(0.05f);
+    const btScalar half = btScalar(kChainPitch / 2);
+    for (int i = 0; i < links; ++i) {
+        const btScalar y = btScalar(kChainAnchorY - kChainPitch * (i + 1));
+        btRigidBody* link = s->addBody(ball, 1.0f, btVector3(0, y, 0));
+        link->setActivationState(DISABLE_DEACTIVATION);
+        s->addJoint(new btPoint2PointConstraint(*above, *link, btVector3(0, -half, 0), btVector3(0, half, 0)));
+        above = link;
+    }
+    return s;
+}
+
+ScenePtr breakingPendulum(WorldKind kind, const Config& config, double threshold)
+{
+    ScenePtr s = pendulum(kind, config, 90.0);
+    s->joint(0)->setBreakingImpulseThreshold(btScalar(threshold));
+    return s;
+}
+
+ScenePtr jointedPair(WorldKind kind, const Config& config)
+{
+    auto s = std::make_unique<Scene>(kind, config, "jointed_pair");
+    s->addBody(s->boxShape(btVector3(10, 0.5f, 10)), 0.0f, btVector3(0, -0.5f, 0));
+    btBoxShape* box = s->boxShape(btVector3(0.5f, 0.5f, 0.5f));
+    btRigidBody* a = s->addBody(box, 1.0f, btVector3(-0.5f, 0.51f, 0));
+    btRigidBody* b = s->addBody(box, 1.0f, btVector3(0.5f, 0.51f, 0));
+    s->addJoint(new btPoint2PointConstraint(*a, *b, btVector3(0.5f, 0, 0), btVector3(-0.5f, 0, 0)));
+    return s;
+}
+
+}  // namespace btgpu::scenes
