@@ -31,11 +31,6 @@ namespace btgpu {
 
 namespace {
 
-// Protected members Bullet reads but offers no getter for, read through a pointer to member
-// taken inside a derived class (legal C++; nothing is ever constructed).
-struct CollisionObjectPeek : btCollisionObject {
-    static constexpr int btCollisionObject::*kCheckCollideWith = &CollisionObjectPeek::m_checkCollideWith;
-};
 constexpr int kTypes = MAX_BROADPHASE_COLLISION_TYPES;
 using CreateFuncTable = btCollisionAlgorithmCreateFunc* [kTypes][kTypes];
 struct DispatcherPeek : btCollisionDispatcher {
@@ -282,7 +277,9 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     // Flags left on the GPU path: CF_CHARACTER_OBJECT, CF_DISABLE_VISUALIZE_OBJECT,
     // CF_DISABLE_SPU_COLLISION_PROCESSING, CF_HAS_CUSTOM_DEBUG_RENDERING_COLOR and
     // CF_HAS_COLLISION_SOUND_TRIGGER are unread by 3.24's rigid-body pipeline;
-    // CF_CUSTOM_MATERIAL_CALLBACK does nothing without gContactAddedCallback.
+    // CF_CUSTOM_MATERIAL_CALLBACK does nothing without gContactAddedCallback. Collision-check
+    // exceptions (setIgnoreCollisionCheck, disableCollisionsBetweenLinkedBodies) are served by
+    // filter_pairs.
     const int flags = o->getCollisionFlags();
     if (!servedShapeType(o->getCollisionShape()->getShapeType()))
         return std::string("unsupported shape '") + o->getCollisionShape()->getName() + "'";
@@ -299,7 +296,6 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
         return "anisotropic friction (setAnisotropicFriction)";
     if (o->getContactProcessingThreshold() < btScalar(BT_LARGE_FLOAT))
         return "contact processing threshold (setContactProcessingThreshold)";
-    if (o->*CollisionObjectPeek::kCheckCollideWith) return "collision check exceptions (setIgnoreCollisionCheck)";
     const btRigidBody* rb = btRigidBody::upcast(o);
     if (!rb || rb->isStaticOrKinematicObject()) return "";
     // integrateTransforms sweeps a sphere of the swept radius (even radius 0) for a body moving

@@ -155,6 +155,7 @@ void GpuWorld::makePlan()
     }
     DerivedPlan d = derivePlan(in);
     m_plan = d.plan;
+    m_plan.hasIgnoredPairs = m_ignored.any();
     m_large.assign(m_rows.size(), false);
     for (int r : d.largeRows) m_large[size_t(r)] = true;
     DeviceWorld& w = *m_dev;
@@ -226,6 +227,7 @@ void GpuWorld::rebuild()
     m_mirror.assign(n, Mirror());
     syncIn(w, changedRows(true));
     m_joints.reset();
+    m_ignored.reset();
 }
 
 void GpuWorld::followRows()
@@ -653,6 +655,10 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             syncIn(*m_dev, changedRows(false));
             resetRows(*m_dev, takeWoken());
             m_joints.upload(m_world, m_rows, *m_dev);  // limits, pivots, enabled, ... as the app left them
+            if (m_ignored.update(m_rows, *m_dev)) {
+                m_plan.hasIgnoredPairs = m_ignored.any();
+                m_report.stages = m_plan.stages();
+            }
             Clock::time_point t1 = Clock::now();
             runOnDevice(perBatch, fixedTimeStep);
             m_joints.writeBack(*m_dev);  // applied impulses, feedback, breaks

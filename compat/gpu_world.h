@@ -5,6 +5,7 @@
 #pragma once
 #include "btgpu/btGpuDynamicsWorld.h"
 #include "cpu_path_guard.h"
+#include "ignored_pairs.h"
 #include "joint_rows.h"
 #include "row_map.h"
 #include "pipeline.h"
@@ -107,6 +108,7 @@ private:
     std::vector<char> m_woken;
     std::vector<int> takeWoken();
     JointSync m_joints;         // the joint table on the device and its write-back
+    IgnoredPairs m_ignored;     // collision-check exceptions (disableCollisionsBetweenLinkedBodies)
     Snapshot m_snapshot;
     BodyReadback m_readback;
     bool m_fusedWriteBack = false;

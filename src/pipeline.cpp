@@ -7,6 +7,7 @@
 
 #include "stages/color_constraints.h"
 #include "stages/contact_cache.h"
+#include "stages/filter_pairs.h"
 #include "stages/find_pairs.h"
 #include "stages/integrate.h"
 #include "stages/narrowphase.h"
@@ -36,6 +37,7 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::FindPairs: finishPairs(w, plan.kinds); break;
         case Stage::Narrowphase:
         case Stage::NarrowphaseSat: narrowphaseProgram(w, plan.kinds, narrowphaseProgramOf(stage)); break;
+        case Stage::FilterPairs: filterPairs(w); break;
         case Stage::ApplyForces: applyForces(w, p.dt); break;
         case Stage::ContactCache: buildContacts(w, p); break;
         case Stage::PrepareContacts: prepareContacts(w, p); break;

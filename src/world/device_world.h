@@ -119,6 +119,9 @@ struct DeviceWorld {
     cl::DeviceArray<BtgJointRow> jointRows;
     int numJoints = 0;
     int jointIterations = 0;  // the largest of the joints' iteration counts
+    // Pairs of rows (a < b, sorted) that ignore each other's collision check (filter_pairs).
+    cl::DeviceArray<BtgPair> ignoredPairs;
+    int numIgnoredPairs = 0;
 
     // --- sync_in staging (kept across calls: a quiet step allocates nothing) ---
     cl::DeviceArray<int> stagingRows;

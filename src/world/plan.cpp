@@ -18,6 +18,7 @@ const char* stageName(Stage stage)
         case Stage::FindPairs: return "find_pairs";
         case Stage::Narrowphase: return "narrowphase";
         case Stage::NarrowphaseSat: return "narrowphase_sat";
+        case Stage::FilterPairs: return "filter_pairs";
         case Stage::ApplyForces: return "apply_forces";
         case Stage::ContactCache: return "contact_cache";
         case Stage::PrepareContacts: return "prepare_contacts";
@@ -54,6 +55,7 @@ std::vector<Stage> Plan::substep() const
         s.push_back(Stage::FindPairs);
         for (int p = 0; p < kNumNarrowphasePrograms; ++p)
             if (kinds.anyIn(kNarrowphasePrograms[p].program)) s.push_back(kNarrowphasePrograms[p].stage);
+        if (hasIgnoredPairs) s.push_back(Stage::FilterPairs);
     }
     s.push_back(Stage::ApplyForces);
     if (collide || hasJoints) {

@@ -28,6 +28,7 @@ enum class Stage {
     FindPairs,            // large and plane passes, pair sort
     Narrowphase,          // the pair kinds of program "narrowphase" (no SAT)
     NarrowphaseSat,       // those of "narrowphase_sat" (hull-hull)
+    FilterPairs,          // pairs that ignore each other's collision check lose their contacts
     ApplyForces,          // gravity, app forces, gyroscopic term
     ContactCache,         // contact list and warm start
     PrepareContacts,
@@ -59,6 +60,7 @@ struct Plan {
     bool hasPlanes = false;
     bool gyroscopic = false;   // some body asks for the implicit gyroscopic term
     bool hasJoints = false;    // the app added joints (served ones: the rules send the rest away)
+    bool hasIgnoredPairs = false;  // objects ignore each other's collision check (filter_pairs)
     SolverKind solver = SolverKind::BatchedPgs;  // Config::solver: which solve stages run
     Broadphase broadphase = Broadphase::UniformGrid;
     float cellSize = 1.0f;     // m: uniform grid cell, >= the largest small body's AABB extent

@@ -279,3 +279,48 @@ TEST(Joints, ScenesWithoutJointsBuildNoJointStage)
     EXPECT_FALSE(has(*s->report(), "prepare_joints"));
     EXPECT_FALSE(has(*s->report(), "finish_joints"));
 }
+
+TEST(Joints, IgnoredCollisionChecksLeaveNoContacts)
+{
+    // setIgnoreCollisionCheck: the box falls through the ground on both.
+    SideBySide s(scenes::restingBox);
+    s.both([](Scene& sc) { sc.body(1)->setIgnoreCollisionCheck(sc.body(0), true); });
+    STEP_ON_GPU(s, 30);
+    EXPECT_LT(s.stockY(1), 0.0);
+    EXPECT_LT(s.distance(1), tol::kFreeFallPosition);
+    EXPECT_TRUE(has(*s.gpu->report(), "filter_pairs"));
+    // Taken back: the plan drops the stage.
+    s.both([](Scene& sc) { sc.body(1)->setIgnoreCollisionCheck(sc.body(0), false); });
+    STEP_ON_GPU(s, 1);
+    EXPECT_FALSE(has(*s.gpu->report(), "filter_pairs"));
+}
+
+TEST(Joints, DisableCollisionsBetweenLinkedBodies)
+{
+    // Two spheres (radius 0.3) overlapping by 0.2 m, joined at the midpoint, resting on the
+    // ground: with collisions between them disabled they stay put; with them enabled the contact
+    // pushes against the joint. Either way as on stock.
+    for (bool disable : {true, false}) {
+        SCOPED_TRACE(disable ? "disabled" : "enabled");
+        SideBySide s([=](WorldKind k, const Config& c) {
+            auto sc = std::make_unique<Scene>(k, c, "overlapping_pair");
+            sc->addBody(sc->boxShape(btVector3(5, 0.5f, 5)), 0.0f, btVector3(0, -0.5f, 0));
+            btSphereShape* ball = sc->sphereShape(0.3f);
+            btRigidBody* a = sc->addBody(ball, 1.0f, btVector3(-0.2f, 0.3f, 0));
+            btRigidBody* b = sc->addBody(ball, 1.0f, btVector3(0.2f, 0.3f, 0));
+            sc->addJoint(new btPoint2PointConstraint(*a, *b, btVector3(0.2f, 0, 0), btVector3(-0.2f, 0, 0)), disable);
+            return sc;
+        });
+        STEP_ON_GPU(s, 60);
+        auto gap = [](Scene& sc) {
+            return sc.body(2)->getWorldTransform().getOrigin().x() - sc.body(1)->getWorldTransform().getOrigin().x();
+        };
+        std::printf("overlapping jointed spheres, collisions %s: gap stock %.4f m, btgpu %.4f m\n",
+                    disable ? "disabled" : "enabled", gap(*s.stock), gap(*s.gpu));
+        EXPECT_LT(s.distance(1), disable ? tol::kRestHeight : tol::kJointContactFight);
+        EXPECT_LT(s.distance(2), disable ? tol::kRestHeight : tol::kJointContactFight);
+        if (disable) EXPECT_NEAR(gap(*s.gpu), 0.4, 1e-3);
+        else EXPECT_GT(std::fabs(gap(*s.stock) - 0.4), 1e-3);
+        EXPECT_EQ(has(*s.gpu->report(), "filter_pairs"), disable);
+    }
+}
