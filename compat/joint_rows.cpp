@@ -31,11 +31,43 @@ int bodyRow(const btRigidBody& b, const RowMap& rows)
     return rows.rowOf(&b);
 }
 
+// btHingeConstraint's private state that has no getter: the reference sign (fixed by the
+// constructor; setUseReferenceFrameA does not change it), the limit's centre, the setParam
+// values and the obsolete-solve flag. Read through member pointers named in an explicit
+// instantiation, where C++ does not check access (read only; nothing is written).
+template <class Tag, typename Tag::type Member>
+struct Reader {
+    friend typename Tag::type member(Tag) { return Member; }
+};
+#define BTGPU_PRIVATE_MEMBER(Name, Class, Type, Field)        \
+    struct Name {                                             \
+        using type = Type Class::*;                           \
+        friend type member(Name);                             \
+    };                                                        \
+    template struct Reader<Name, &Class::Field>
+BTGPU_PRIVATE_MEMBER(HingeReferenceSign, btHingeConstraint, btScalar, m_referenceSign);
+BTGPU_PRIVATE_MEMBER(HingeLimit, btHingeConstraint, btAngularLimit, m_limit);
+BTGPU_PRIVATE_MEMBER(HingeNormalCfm, btHingeConstraint, btScalar, m_normalCFM);
+BTGPU_PRIVATE_MEMBER(HingeNormalErp, btHingeConstraint, btScalar, m_normalERP);
+BTGPU_PRIVATE_MEMBER(HingeStopCfm, btHingeConstraint, btScalar, m_stopCFM);
+BTGPU_PRIVATE_MEMBER(HingeStopErp, btHingeConstraint, btScalar, m_stopERP);
+BTGPU_PRIVATE_MEMBER(HingeObsolete, btHingeConstraint, bool, m_useSolveConstraintObsolete);
+BTGPU_PRIVATE_MEMBER(LimitCenter, btAngularLimit, btScalar, m_center);
+#undef BTGPU_PRIVATE_MEMBER
+
 bool served(const btTypedConstraint& c)
 {
     if (typeid(c) == typeid(btPoint2PointConstraint))
         return !static_cast<const btPoint2PointConstraint&>(c).m_useSolveConstraintObsolete;
+    if (typeid(c) == typeid(btHingeConstraint))
+        return !(static_cast<const btHingeConstraint&>(c).*member(HingeObsolete()));
     return false;
+}
+
+void setFrame(const btTransform& t, BtgFloat4* origin, BtgFloat4* axes)
+{
+    *origin = vec4(t.getOrigin());
+    for (int c = 0; c < 3; ++c) axes[c] = vec4(t.getBasis().getColumn(c));
 }
 
 }  // namespace
@@ -54,14 +86,14 @@ std::string jointsStructureReason(const btDiscreteDynamicsWorld& world)
         if (&c->getRigidBodyB() != fixed && !inWorld.count(&c->getRigidBodyB()))
             return "joint " + std::to_string(i) + " links a body that is not in the world (its body B)";
         const std::type_info& t = typeid(*c);
-        if (t == typeid(btPoint2PointConstraint)) {
-            if (static_cast<const btPoint2PointConstraint*>(c)->m_useSolveConstraintObsolete)
-                return "joint " + std::to_string(i) +
-                       " (btPoint2PointConstraint) uses Bullet's obsolete solve (m_useSolveConstraintObsolete)";
+        if (t == typeid(btPoint2PointConstraint) || t == typeid(btHingeConstraint)) {
+            if (!served(*c))
+                return "joint " + std::to_string(i) + " (" + typeName(t) +
+                       ") uses Bullet's obsolete solve (m_useSolveConstraintObsolete)";
             continue;
         }
         return "joint " + std::to_string(i) + " of type " + typeName(t) +
-               " is not on the GPU path (served: btPoint2PointConstraint, exact type)";
+               " is not on the GPU path (served, by exact type: btPoint2PointConstraint, btHingeConstraint)";
     }
     return "";
 }
@@ -104,6 +136,31 @@ bool jointRow(const btTypedConstraint& c, const RowMap& rows, int numIterations,
         }
         j.damping = p.m_setting.m_damping;
         j.impulseClamp = p.m_setting.m_impulseClamp;
+    } else if (typeid(c) == typeid(btHingeConstraint)) {
+        auto& h = const_cast<btHingeConstraint&>(static_cast<const btHingeConstraint&>(c));
+        j.type = BTG_JOINT_HINGE;
+        setFrame(h.getAFrame(), &j.pivotA, j.axesA);
+        setFrame(h.getBFrame(), &j.pivotB, j.axesB);
+        const int flags = h.getFlags();
+        if (flags & BT_HINGE_FLAGS_ERP_NORM) j.flags |= BTG_JOINT_OWN_ERP;
+        if (flags & BT_HINGE_FLAGS_CFM_NORM) j.flags |= BTG_JOINT_OWN_CFM;
+        if (flags & BT_HINGE_FLAGS_ERP_STOP) j.flags |= BTG_JOINT_OWN_STOP_ERP;
+        if (flags & BT_HINGE_FLAGS_CFM_STOP) j.flags |= BTG_JOINT_OWN_STOP_CFM;
+        j.erp = h.*member(HingeNormalErp());
+        j.cfm = h.*member(HingeNormalCfm());
+        j.stopErp = h.*member(HingeStopErp());
+        j.stopCfm = h.*member(HingeStopCfm());
+        if (h.getAngularOnly()) j.flags |= BTG_JOINT_ANGULAR_ONLY;
+        if (h.getUseFrameOffset()) j.flags |= BTG_JOINT_FRAME_OFFSET;
+        if (h.getEnableAngularMotor()) j.flags |= BTG_JOINT_MOTOR;
+        j.motorVelocity = h.getMotorTargetVelocity();
+        j.motorMaxImpulse = h.getMaxMotorImpulse();
+        j.referenceSign = h.*member(HingeReferenceSign());
+        const btAngularLimit& limit = h.*member(HingeLimit());
+        j.limitHalfRange = limit.getHalfRange();
+        j.limitCenter = limit.*member(LimitCenter());
+        j.limitBias = limit.getBiasFactor();
+        j.limitRelaxation = limit.getRelaxationFactor();
     }
     *out = j;
     return true;

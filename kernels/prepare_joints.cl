@@ -3,7 +3,8 @@
  * and finish_joints (writeBackJoints: applied impulse, joint feedback, breaking).
  * Launch: one work-item per joint, both kernels.
  * prepare_joints  Reads joints, jointState, counters[kContactCount], props, invInertiaWorld,
- *                 pos, rot, linVel, angVel (after this substep's forces). Writes jointRows,
+ *                 pos, rot, linVel, angVel (after this substep's forces), angVel0 (before them: the
+ *                 hinge limit's bounce reads the rigid body's own). Writes jointRows,
  *                 jointState (rows built, applied impulse reset), edges[contacts + j],
  *                 counters[kEdgeCount] (= contacts + joints).
  * finish_joints   Reads joints, jointRows, props. Writes jointState (feedback, applied impulse,
@@ -11,16 +12,17 @@
 #include "shared/counters.h"
 #include "shared/types.h"
 #include "shared/math.h"
-#include "shared/joint_rows.h"
+#include "shared/joint_prepare.h"
 
 static BtgJointBody load_joint_body(int i, __global const BtgBodyProps* restrict props,
                                     __global const BtgFloat4* restrict invInertiaWorld,
                                     __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,
-                                    __global const BtgFloat4* restrict linVel, __global const BtgFloat4* restrict angVel)
+                                    __global const BtgFloat4* restrict linVel, __global const BtgFloat4* restrict angVel,
+                                    __global const BtgFloat4* restrict angVel0)
 {
     if (i < 0) return btgFixedJointBody();
     return btgMakeJointBody(props[i], invInertiaWorld[3 * i], invInertiaWorld[3 * i + 1], invInertiaWorld[3 * i + 2],
-                            pos[i], rot[i], linVel[i], angVel[i]);
+                            pos[i], rot[i], linVel[i], angVel[i], angVel0[i]);
 }
 
 __kernel void prepare_joints(__global const BtgJoint* restrict joints, __global BtgJointState* jointState,
@@ -28,15 +30,16 @@ __kernel void prepare_joints(__global const BtgJoint* restrict joints, __global 
                              __global const BtgBodyProps* restrict props,
                              __global const BtgFloat4* restrict invInertiaWorld, __global const BtgFloat4* restrict pos,
                              __global const BtgFloat4* restrict rot, __global const BtgFloat4* restrict linVel,
-                             __global const BtgFloat4* restrict angVel, __global BtgEdge* edges, BtgJointStepParams p)
+                             __global const BtgFloat4* restrict angVel, __global const BtgFloat4* restrict angVel0,
+                             __global BtgEdge* edges, BtgJointStepParams p)
 {
     int j = (int)get_global_id(0);
     const uint n = min(counters[BTG_COUNTER_CONTACTS], (uint)contactCapacity);
     if (j == 0) counters[BTG_COUNTER_EDGES] = n + (uint)p.numJoints;
     if (j >= p.numJoints) return;
     BtgJoint joint = joints[j];
-    BtgJointBody a = load_joint_body(joint.bodyA, props, invInertiaWorld, pos, rot, linVel, angVel);
-    BtgJointBody b = load_joint_body(joint.bodyB, props, invInertiaWorld, pos, rot, linVel, angVel);
+    BtgJointBody a = load_joint_body(joint.bodyA, props, invInertiaWorld, pos, rot, linVel, angVel, angVel0);
+    BtgJointBody b = load_joint_body(joint.bodyB, props, invInertiaWorld, pos, rot, linVel, angVel, angVel0);
     BtgJointState s = jointState[j];
     btgPrepareJoint(joint, &s, jointRows, a, b, p);
     jointState[j] = s;

@@ -13,25 +13,34 @@
 
 /* Joint types (BtgJoint.type), each an exact Bullet class. */
 #define BTG_JOINT_POINT2POINT 1
+#define BTG_JOINT_HINGE 2
 /* Rows one joint of each type may build (getInfo1's maximum): its slots in the row table. */
 #define BTG_JOINT_P2P_ROWS 3
+#define BTG_JOINT_HINGE_ROWS 6
 #define BTG_JOINT_MAX_ROWS 6
 
 /* BtgJoint.flags */
 #define BTG_JOINT_ENABLED 1u   /* btTypedConstraint::isEnabled() as the app left it */
 #define BTG_JOINT_FEEDBACK 2u  /* a btJointFeedback is attached (setJointFeedback) */
-#define BTG_JOINT_OWN_ERP 4u   /* BT_P2P_FLAGS_ERP: setParam(BT_CONSTRAINT_ERP) */
-#define BTG_JOINT_OWN_CFM 8u   /* BT_P2P_FLAGS_CFM: setParam(BT_CONSTRAINT_CFM) */
+#define BTG_JOINT_OWN_ERP 4u   /* setParam(BT_CONSTRAINT_ERP): BT_P2P_FLAGS_ERP, BT_HINGE_FLAGS_ERP_NORM */
+#define BTG_JOINT_OWN_CFM 8u   /* setParam(BT_CONSTRAINT_CFM): BT_P2P_FLAGS_CFM, BT_HINGE_FLAGS_CFM_NORM */
+#define BTG_JOINT_OWN_STOP_ERP 16u  /* setParam(BT_CONSTRAINT_STOP_ERP): BT_HINGE_FLAGS_ERP_STOP */
+#define BTG_JOINT_OWN_STOP_CFM 32u  /* setParam(BT_CONSTRAINT_STOP_CFM): BT_HINGE_FLAGS_CFM_STOP */
+#define BTG_JOINT_ANGULAR_ONLY 64u  /* hinge: setAngularOnly */
+#define BTG_JOINT_FRAME_OFFSET 128u /* hinge: setUseFrameOffset (Bullet's default: on) */
+#define BTG_JOINT_MOTOR 256u        /* hinge: enableAngularMotor */
 
 /* A body of a joint without a row: Bullet's shared fixed body (btTypedConstraint::getFixedBody),
  * static at the identity transform. */
 #define BTG_JOINT_FIXED_BODY -1
 
-/* One joint as the app set it up; rewritten only when the app changes it. Pivots are in the
- * bodies' centre-of-mass frames (Bullet's pivotInA/pivotInB). */
+/* One joint as the app set it up; rewritten only when the app changes it. Pivots and frames
+ * are in the bodies' centre-of-mass frames (Bullet's pivotInA/pivotInB, m_rbAFrame/m_rbBFrame). */
 typedef struct {
-    BtgFloat4 pivotA;         /* m, in A's frame; w: 0 */
+    BtgFloat4 pivotA;         /* m, in A's frame (a frame's origin); w: 0 */
     BtgFloat4 pivotB;         /* m, in B's frame; w: 0 */
+    BtgFloat4 axesA[3];       /* the joint frame's basis columns in A's frame (hinge: z is the axis) */
+    BtgFloat4 axesB[3];
     int type;                 /* BTG_JOINT_* */
     int bodyA;                /* body rows, or BTG_JOINT_FIXED_BODY */
     int bodyB;
@@ -44,7 +53,15 @@ typedef struct {
     float cfm;                /* setParam(BT_CONSTRAINT_CFM), read with BTG_JOINT_OWN_CFM */
     float damping;            /* btConstraintSetting::m_damping (p2p) */
     float impulseClamp;       /* N s, btConstraintSetting::m_impulseClamp; 0: none */
-    float pad0;
+    float stopErp;            /* setParam(BT_CONSTRAINT_STOP_ERP), read with BTG_JOINT_OWN_STOP_ERP */
+    float stopCfm;            /* setParam(BT_CONSTRAINT_STOP_CFM), read with BTG_JOINT_OWN_STOP_CFM */
+    float limitCenter;        /* rad, btAngularLimit's centre (hinge) */
+    float limitHalfRange;     /* rad; negative: no limit */
+    float limitBias;          /* btAngularLimit's bias factor */
+    float limitRelaxation;    /* btAngularLimit's relaxation factor (bounce) */
+    float motorVelocity;      /* rad/s, the hinge motor's target velocity */
+    float motorMaxImpulse;    /* N m s */
+    float referenceSign;      /* hinge: -1 with useReferenceFrameA as constructed, else 1 */
 } BtgJoint;
 
 /* One row of a joint in device memory (btSolverConstraint of the non-contact pool): the
@@ -88,7 +105,7 @@ typedef struct {
 } BtgJointStepParams;
 
 #ifndef __OPENCL_C_VERSION__
-static_assert(sizeof(BtgJoint) == 80, "BtgJoint layout");
+static_assert(sizeof(BtgJoint) == 208, "BtgJoint layout");
 static_assert(sizeof(BtgJointRow) == 112, "BtgJointRow layout");
 static_assert(sizeof(BtgJointState) == 80, "BtgJointState layout");
 static_assert(sizeof(BtgJointStepParams) == 32, "BtgJointStepParams layout");
@@ -96,7 +113,7 @@ static_assert(sizeof(BtgJointStepParams) == 32, "BtgJointStepParams layout");
 
 static inline int btgJointMaxRows(int type)
 {
-    return type == BTG_JOINT_POINT2POINT ? BTG_JOINT_P2P_ROWS : 0;
+    return type == BTG_JOINT_POINT2POINT ? BTG_JOINT_P2P_ROWS : (type == BTG_JOINT_HINGE ? BTG_JOINT_HINGE_ROWS : 0);
 }
 
 /* A joint's pose input: a body's centre-of-mass transform, its solver body and its velocity
@@ -106,6 +123,9 @@ typedef struct {
     BtgMat3 basis;
     BtgSolverBody body;
     BtgBodyVel vel;
+    BtgFloat4 angVel0;   /* rad/s before this substep's forces (btRigidBody::getAngularVelocity in getInfo2) */
+    float rbInvMass;     /* btRigidBody::getInvMass: 1/kg, 0 unless dynamic (asleep or not) */
+    float pad0, pad1, pad2;
 } BtgJointBody;
 
 static inline BtgJointBody btgFixedJointBody(void)
@@ -127,18 +147,24 @@ static inline BtgJointBody btgFixedJointBody(void)
     b.body.pad0 = 0;
     b.vel.lin = btgZero4();
     b.vel.ang = btgZero4();
+    b.angVel0 = btgZero4();
+    b.rbInvMass = 0.0f;
+    b.pad0 = b.pad1 = b.pad2 = 0.0f;
     return b;
 }
 
 /* A body row as a joint reads it: rot is its quaternion, i0..i2 its world inverse inertia rows. */
 static inline BtgJointBody btgMakeJointBody(BtgBodyProps p, BtgFloat4 i0, BtgFloat4 i1, BtgFloat4 i2, BtgFloat4 pos,
-                                            BtgFloat4 rot, BtgFloat4 lin, BtgFloat4 ang)
+                                            BtgFloat4 rot, BtgFloat4 lin, BtgFloat4 ang, BtgFloat4 ang0)
 {
     BtgJointBody b;
     b.pos = btgXyz(pos);
     b.basis = btgQuatToMat3(rot);
     b.body = btgMakeSolverBody(p, i0, i1, i2);
     b.vel = btgMakeBodyVel(b.body.moving, lin, ang);
+    b.angVel0 = b.body.moving ? btgXyz(ang0) : btgZero4();
+    b.rbInvMass = (p.flags & BTG_BODY_DYNAMIC) ? p.invMass : 0.0f;
+    b.pad0 = b.pad1 = b.pad2 = 0.0f;
     return b;
 }
 
@@ -187,7 +213,8 @@ static inline BtgJointInfoRow btgP2PInfoRow(BtgJoint j, BtgJointBody a, BtgJoint
     BtgFloat4 d = btgMake4(a2.x + b.pos.x - a1.x - a.pos.x, a2.y + b.pos.y - a1.y - a.pos.y, a2.z + b.pos.z - a1.z - a.pos.z,
                  0.0f);
     r.error = kk * btgLane(d, k);
-    r.cfm = (j.flags & BTG_JOINT_OWN_CFM) ? j.cfm : globalCfm;
+    /* convertJoint sets m_globalCfm on the joint's first row only (the rest start at 0). */
+    r.cfm = (j.flags & BTG_JOINT_OWN_CFM) ? j.cfm : (k == 0 ? globalCfm : 0.0f);
     r.lower = -INFINITY;
     r.upper = INFINITY;
     if (j.impulseClamp > 0.0f) {
@@ -258,25 +285,6 @@ static inline void btgJointRowSolve(BtgJointRow* r, BtgSolverBody a, BtgSolverBo
 static inline int btgJointActive(BtgJoint j, BtgJointState s, BtgJointBody a, BtgJointBody b)
 {
     return (j.flags & BTG_JOINT_ENABLED) != 0u && !s.broken && (a.body.dynamic || b.body.dynamic);
-}
-
-/* convertJoints for one joint: its applied impulse reset when its island is solved, and its
- * rows (getInfo1's count, getInfo2's rows finished by convertJoint) when it is active. */
-static inline void btgPrepareJoint(BtgJoint j, BtgJointState* s, BTG_GLOBAL BtgJointRow* rows, BtgJointBody a,
-                                   BtgJointBody b, BtgJointStepParams p)
-{
-    s->touched = (a.body.dynamic || b.body.dynamic) ? 1 : 0;
-    if (s->touched) s->appliedImpulse = 0.0f;
-    s->numRows = 0;
-    if (!btgJointActive(j, *s, a, b)) return;
-    const float fps = 1.0f / p.dt;
-    if (j.type == BTG_JOINT_POINT2POINT) {
-        /* btPoint2PointConstraint sets info->m_damping to its own setting. */
-        for (int k = 0; k < BTG_JOINT_P2P_ROWS; ++k)
-            rows[j.firstRow + k] =
-                btgFinishJointRow(btgP2PInfoRow(j, a, b, k, fps, p.erp, p.globalCfm), a, b, j.damping, j.breakingThreshold);
-        s->numRows = BTG_JOINT_P2P_ROWS;
-    }
 }
 
 /* writeBackJoints for one joint: feedback summed over its rows (each row's Jacobian times its

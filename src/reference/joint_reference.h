@@ -1,9 +1,9 @@
 // joint_reference.h — CPU references of the joint stages (prepare_joints, finish_joints) and of
-// the solve with joints. Each calls the same kernels/shared/joint_rows.h functions as its
+// the solve with joints. Each calls the same kernels/shared/joint_*.h functions as its
 // kernel, so rows match up to the device's sqrt/divide rounding.
 #pragma once
 #include "reference/contact_solver_reference.h"
-#include "shared/joint_rows.h"
+#include "shared/joint_prepare.h"
 
 #include <vector>
 

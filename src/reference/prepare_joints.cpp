@@ -1,5 +1,5 @@
 // prepare_joints.cpp — CPU reference of prepare_joints and finish_joints: each joint in index
-// order through the shared functions of joint_rows.h.
+// order through the shared functions of joint_prepare.h.
 #include "reference/joint_reference.h"
 
 namespace btgpu::ref {
@@ -10,7 +10,7 @@ BtgJointBody jointBody(const ContactBodies& bodies, int i)
     const size_t r = size_t(i);
     return btgMakeJointBody(bodies.props[r], bodies.invInertiaWorld[3 * r], bodies.invInertiaWorld[3 * r + 1],
                             bodies.invInertiaWorld[3 * r + 2], bodies.pos[r], bodies.rot[r], bodies.linVel[r],
-                            bodies.angVel[r]);
+                            bodies.angVel[r], bodies.angVel0[r]);
 }
 
 std::vector<BtgEdge> prepareJoints(JointTables& t, const ContactBodies& bodies, const BtgJointStepParams& params)

@@ -53,7 +53,9 @@ struct BulletBodies {
         rows.rot.push_back(btgMake4(r.x(), r.y(), r.z(), r.w()));
         rows.linVel.push_back(f4(v));
         rows.angVel.push_back(f4(w));
-        for (auto* col : {&rows.linVel0, &rows.angVel0, &rows.pushLin, &rows.pushAng}) col->push_back(btgZero4());
+        rows.linVel0.push_back(f4(v));
+        rows.angVel0.push_back(f4(w));  // no forces: the velocities before and after them agree
+        for (auto* col : {&rows.pushLin, &rows.pushAng}) col->push_back(btgZero4());
         const btMatrix3x3& I = b->getInvInertiaTensorWorld();
         for (int k = 0; k < 3; ++k) rows.invInertiaWorld.push_back(f4(I[k]));
         return b;
@@ -74,6 +76,42 @@ BtgJoint p2pRow(int a, int b, const btPoint2PointConstraint& c, int firstRow)
     j.pivotB = f4(c.getPivotInB());
     j.damping = c.m_setting.m_damping;
     j.impulseClamp = c.m_setting.m_impulseClamp;
+    return j;
+}
+
+// The device row of a hinge as compat/joint_rows.cpp builds it, from the hinge's getters and
+// what the test set (the private reference sign and limit are passed in).
+BtgJoint hingeRow(int a, int b, btHingeConstraint& h, int firstRow, float referenceSign, float low, float high,
+                  float bias, float relaxation)
+{
+    BtgJoint j{};
+    j.type = BTG_JOINT_HINGE;
+    j.bodyA = a;
+    j.bodyB = b;
+    j.flags = BTG_JOINT_ENABLED;
+    j.firstRow = firstRow;
+    j.iterations = 10;
+    j.breakingThreshold = h.getBreakingImpulseThreshold();
+    j.pivotA = f4(h.getAFrame().getOrigin());
+    j.pivotB = f4(h.getBFrame().getOrigin());
+    for (int c = 0; c < 3; ++c) {
+        j.axesA[c] = f4(h.getAFrame().getBasis().getColumn(c));
+        j.axesB[c] = f4(h.getBFrame().getBasis().getColumn(c));
+    }
+    if (h.getAngularOnly()) j.flags |= BTG_JOINT_ANGULAR_ONLY;
+    if (h.getUseFrameOffset()) j.flags |= BTG_JOINT_FRAME_OFFSET;
+    if (h.getEnableAngularMotor()) j.flags |= BTG_JOINT_MOTOR;
+    j.motorVelocity = h.getMotorTargetVelocity();
+    j.motorMaxImpulse = h.getMaxMotorImpulse();
+    j.referenceSign = referenceSign;
+    if (high >= low) {
+        j.limitHalfRange = (high - low) / 2.0f;
+        j.limitCenter = btNormalizeAngle(low + j.limitHalfRange);
+    } else {
+        j.limitHalfRange = -1.0f;
+    }
+    j.limitBias = bias;
+    j.limitRelaxation = relaxation;
     return j;
 }
 
@@ -244,6 +282,104 @@ TEST(PrepareJoints, Point2PointRowsMatchBulletAndReference)
     EXPECT_EQ(got.rows[3].lower, -0.03f);
     EXPECT_EQ(got.edges[2].bodyA, 1);
     EXPECT_EQ(got.edges[2].bodyB, 1);
+}
+
+TEST(PrepareJoints, HingeRowsMatchBulletAndReference)
+{
+    BulletBodies s;
+    btRigidBody* a = s.add(2.0f, btVector3(0.1f, 2.0f, -0.3f), btQuaternion(btVector3(1, 2, 3).normalized(), 0.7f),
+                           btVector3(0.5f, -1.0f, 0.2f), btVector3(0.3f, 0.1f, -2.0f));
+    btRigidBody* b = s.add(3.0f, btVector3(0.4f, 1.1f, 0.2f), btQuaternion(btVector3(-1, 0, 2).normalized(), 1.9f),
+                           btVector3(-0.2f, 0.4f, 0.0f), btVector3(1.0f, -0.5f, 0.25f));
+    const btVector3 pa(0.2f, -0.4f, 0.1f), pb(-0.1f, 0.5f, 0.0f), axA(0, 0, 1), axB = btVector3(1, 1, 0).normalized();
+    std::vector<std::unique_ptr<btHingeConstraint>> h;
+    struct Setup {
+        float sign = 1, low = 1, high = -1, bias = 0.3f, relaxation = 1.0f;
+        int bodyB = 1;
+    };
+    std::vector<Setup> setup;
+    auto add = [&](btHingeConstraint* c, Setup st) {
+        h.emplace_back(c);
+        setup.push_back(st);
+        return c;
+    };
+    add(new btHingeConstraint(*a, *b, pa, pb, axA, axB), {});  // plain, frame offset (Bullet's default)
+    Setup lim;
+    lim.low = -0.1f;
+    lim.high = 0.1f;
+    lim.bias = 0.5f;
+    lim.relaxation = 0.8f;
+    add(new btHingeConstraint(*a, *b, pa, pb, axA, axB), lim)->setLimit(-0.1f, 0.1f, 0.9f, 0.5f, 0.8f);
+    Setup wide;
+    wide.low = -3.0f;
+    wide.high = 3.0f;
+    add(new btHingeConstraint(*a, *b, pa, pb, axA, axB), wide)->setLimit(-3.0f, 3.0f);
+    h.back()->enableAngularMotor(true, 2.0f, 0.5f);
+    Setup fixedSetup = lim;
+    fixedSetup.bodyB = BTG_JOINT_FIXED_BODY;
+    add(new btHingeConstraint(*b, pb, axB), fixedSetup)->setLimit(-0.1f, 0.1f, 0.9f, 0.5f, 0.8f);
+    add(new btHingeConstraint(*a, *b, pa, pb, axA, axB), lim)->setLimit(-0.1f, 0.1f, 0.9f, 0.5f, 0.8f);
+    h.back()->setUseFrameOffset(false);
+    add(new btHingeConstraint(*a, *b, pa, pb, axA, axB), {})->setAngularOnly(true);
+    Setup refA = wide;
+    refA.sign = -1;
+    add(new btHingeConstraint(*a, *b, pa, pb, axA, axB, true), refA)->setLimit(-3.0f, 3.0f);
+    h.back()->enableAngularMotor(true, -1.5f, 0.2f);
+    Setup tuned = lim;
+    btHingeConstraint* t = add(new btHingeConstraint(*a, *b, pa, pb, axA, axB), tuned);
+    t->setLimit(-0.1f, 0.1f, 0.9f, 0.5f, 0.8f);
+    t->setParam(BT_CONSTRAINT_ERP, 0.4f);
+    t->setParam(BT_CONSTRAINT_STOP_ERP, 0.6f);
+    t->setParam(BT_CONSTRAINT_STOP_CFM, 0.05f);
+    t->setBreakingImpulseThreshold(0.2f);
+    Setup motorAtLimit = lim;
+    add(new btHingeConstraint(*a, *b, pa, pb, axA, axB), motorAtLimit)->setLimit(-0.1f, 0.1f, 0.9f, 0.5f, 0.8f);
+    h.back()->enableAngularMotor(true, 1.0f, 1.0f);
+    h.back()->setParam(BT_CONSTRAINT_CFM, 0.02f);
+
+    ref::JointTables tables;
+    for (size_t i = 0; i < h.size(); ++i) {
+        const Setup& st = setup[i];
+        const int bodyA = st.bodyB == BTG_JOINT_FIXED_BODY ? 1 : 0;
+        BtgJoint j = hingeRow(bodyA, st.bodyB, *h[i], int(6 * i), st.sign, st.low, st.high, st.bias, st.relaxation);
+        const int flags = h[i]->getFlags();
+        if (flags & BT_HINGE_FLAGS_ERP_NORM) j.flags |= BTG_JOINT_OWN_ERP, j.erp = h[i]->getParam(BT_CONSTRAINT_ERP, 5);
+        if (flags & BT_HINGE_FLAGS_CFM_NORM) j.flags |= BTG_JOINT_OWN_CFM, j.cfm = h[i]->getParam(BT_CONSTRAINT_CFM, 5);
+        if (flags & BT_HINGE_FLAGS_ERP_STOP)
+            j.flags |= BTG_JOINT_OWN_STOP_ERP, j.stopErp = h[i]->getParam(BT_CONSTRAINT_STOP_ERP, 5);
+        if (flags & BT_HINGE_FLAGS_CFM_STOP)
+            j.flags |= BTG_JOINT_OWN_STOP_CFM, j.stopCfm = h[i]->getParam(BT_CONSTRAINT_STOP_CFM, 5);
+        tables.joints.push_back(j);
+    }
+    tables.state.assign(h.size(), BtgJointState{});
+    tables.rows.assign(6 * h.size(), BtgJointRow{});
+    const BtgJointStepParams p = jointParams(int(h.size()));
+    ref::JointTables expect = tables;
+    ref::prepareJoints(expect, s.rows, p);
+    DeviceJoints got = runPrepare(s.rows, tables, p);
+    int withLimitRow = 0;
+    for (size_t j = 0; j < h.size(); ++j) {
+        std::vector<BulletRow> br = bulletRows(*h[j], p.dt, p.erp);
+        ASSERT_EQ(got.state[j].numRows, int(br.size())) << "joint " << j;
+        ASSERT_EQ(expect.state[j].numRows, int(br.size())) << "joint " << j;
+        withLimitRow += br.size() == 6;
+        for (size_t k = 0; k < br.size(); ++k) {
+            const BtgJointRow &g = got.rows[tables.joints[j].firstRow + k], &e = expect.rows[tables.joints[j].firstRow + k];
+            const std::string what = "hinge " + std::to_string(j) + " row " + std::to_string(k);
+            expectNear(g.mass, e.mass, what + " mass (ref)");
+            expectNear(g.target, e.target, what + " target (ref)");
+            expectNear3(g.jacobian.linear, br[k].linA, what + " linA");
+            expectNear3(-g.jacobian.linear, br[k].linB, what + " linB");
+            expectNear3(g.jacobian.angularA, br[k].angA, what + " angA");
+            expectNear3(g.jacobian.angularB, br[k].angB, what + " angB");
+            expectNear(g.mass, br[k].mass, what + " mass");
+            expectNear(g.target, br[k].target, what + " target");
+            expectNear(g.cfm, br[k].cfm, what + " cfm");
+            EXPECT_EQ(g.lower, br[k].lower) << what;
+            EXPECT_EQ(g.upper, br[k].upper) << what;
+        }
+    }
+    EXPECT_GE(withLimitRow, 5);  // limits hit, motors on: the sixth row is exercised
 }
 
 TEST(PrepareJoints, DisabledBrokenAndSleepingJointsBuildNoRows)
