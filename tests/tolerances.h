@@ -1,5 +1,6 @@
 // tolerances.h — every numeric bound the tests use, in one place, with its reason.
 #pragma once
+#include <cmath>
 
 namespace btgpu::tol {
 // Float stages against their CPU reference: same formulas, contraction off on both sides;
@@ -74,6 +75,10 @@ constexpr double kSleepStepSlack = 10;
 // Two bodies whose contact (20 cm deep) fights their joint: the outcome hangs on the solver's
 // contact order and split impulse, which the batched solve does not share with stock; 3 cm.
 constexpr double kJointContactFight = 0.03;  // m
+// The hinge bounds: a motor reaches its target speed within 2 % in 1 s; a door stops
+// within 1 degree of its limit (and of stock's angle).
+constexpr double kMotorSpeedRel = 0.02;
+constexpr double kHingeLimitAngle = M_PI / 180.0;  // rad
 }  // namespace btgpu::tol
 
 // --- stability suite (tests/stability/): both engines judged by the same bounds -------------

@@ -60,4 +60,16 @@ ScenePtr jointedPair(WorldKind kind, const Config& config)
     return s;
 }
 
+ScenePtr hingeDoor(WorldKind kind, const Config& config, double speed, double maxImpulse, double lower, double upper)
+{
+    auto s = std::make_unique<Scene>(kind, config, "hinge_door");
+    s->addBody(s->boxShape(btVector3(5, 0.5f, 5)), 0.0f, btVector3(0, -0.5f, 0));
+    btRigidBody* door = s->addBody(s->boxShape(btVector3(0.5f, 1.0f, 0.05f)), 5.0f, btVector3(0.5f, 1.05f, 0));
+    door->setActivationState(DISABLE_DEACTIVATION);
+    auto* hinge = s->addJoint(new btHingeConstraint(*door, btVector3(-0.5f, 0, 0), btVector3(0, 1, 0)));
+    if (upper >= lower) hinge->setLimit(btScalar(lower), btScalar(upper));
+    hinge->enableAngularMotor(true, btScalar(speed), btScalar(maxImpulse));
+    return s;
+}
+
 }  // namespace btgpu::scenes

@@ -28,4 +28,11 @@ ScenePtr breakingPendulum(WorldKind kind, const Config& config = Config(), doubl
 // at their touching faces' centre, released 1 cm above the ground: they land and fall asleep.
 ScenePtr jointedPair(WorldKind kind, const Config& config = Config());
 
+// A door (box of half extents 0.5, 1, 0.05; mass 5) hinged to Bullet's fixed body along the
+// vertical line x = 0, z = 0 at its edge (body 1; a ground box below, body 0), driven by its
+// angular motor at `speed` rad/s (max impulse `maxImpulse` N m s per step), limited to
+// [lower, upper] rad when upper >= lower.
+ScenePtr hingeDoor(WorldKind kind, const Config& config = Config(), double speed = 1.0, double maxImpulse = 0.5,
+                   double lower = 1.0, double upper = -1.0);
+
 }  // namespace btgpu::scenes
