@@ -53,6 +53,10 @@ BTGPU_PRIVATE_MEMBER(HingeStopCfm, btHingeConstraint, btScalar, m_stopCFM);
 BTGPU_PRIVATE_MEMBER(HingeStopErp, btHingeConstraint, btScalar, m_stopERP);
 BTGPU_PRIVATE_MEMBER(HingeObsolete, btHingeConstraint, bool, m_useSolveConstraintObsolete);
 BTGPU_PRIVATE_MEMBER(LimitCenter, btAngularLimit, btScalar, m_center);
+BTGPU_PRIVATE_MEMBER(ConeLinErp, btConeTwistConstraint, btScalar, m_linERP);
+BTGPU_PRIVATE_MEMBER(ConeLinCfm, btConeTwistConstraint, btScalar, m_linCFM);
+BTGPU_PRIVATE_MEMBER(ConeAngCfm, btConeTwistConstraint, btScalar, m_angCFM);
+BTGPU_PRIVATE_MEMBER(ConeObsolete, btConeTwistConstraint, bool, m_useSolveConstraintObsolete);
 #undef BTGPU_PRIVATE_MEMBER
 
 bool served(const btTypedConstraint& c)
@@ -61,6 +65,10 @@ bool served(const btTypedConstraint& c)
         return !static_cast<const btPoint2PointConstraint&>(c).m_useSolveConstraintObsolete;
     if (typeid(c) == typeid(btHingeConstraint))
         return !(static_cast<const btHingeConstraint&>(c).*member(HingeObsolete()));
+    if (typeid(c) == typeid(btConeTwistConstraint)) {
+        const auto& k = static_cast<const btConeTwistConstraint&>(c);
+        return !(k.*member(ConeObsolete())) && !k.isMotorEnabled();
+    }
     return false;
 }
 
@@ -86,14 +94,18 @@ std::string jointsStructureReason(const btDiscreteDynamicsWorld& world)
         if (&c->getRigidBodyB() != fixed && !inWorld.count(&c->getRigidBodyB()))
             return "joint " + std::to_string(i) + " links a body that is not in the world (its body B)";
         const std::type_info& t = typeid(*c);
-        if (t == typeid(btPoint2PointConstraint) || t == typeid(btHingeConstraint)) {
+        if (t == typeid(btConeTwistConstraint) && static_cast<const btConeTwistConstraint*>(c)->isMotorEnabled())
+            return "joint " + std::to_string(i) + " (btConeTwistConstraint) has its motor on (enableMotor): not on the GPU "
+                                                  "path yet";
+        if (t == typeid(btPoint2PointConstraint) || t == typeid(btHingeConstraint) || t == typeid(btConeTwistConstraint)) {
             if (!served(*c))
                 return "joint " + std::to_string(i) + " (" + typeName(t) +
                        ") uses Bullet's obsolete solve (m_useSolveConstraintObsolete)";
             continue;
         }
         return "joint " + std::to_string(i) + " of type " + typeName(t) +
-               " is not on the GPU path (served, by exact type: btPoint2PointConstraint, btHingeConstraint)";
+               " is not on the GPU path (served, by exact type: btPoint2PointConstraint, btHingeConstraint, "
+               "btConeTwistConstraint)";
     }
     return "";
 }
@@ -161,6 +173,28 @@ bool jointRow(const btTypedConstraint& c, const RowMap& rows, int numIterations,
         j.limitCenter = limit.*member(LimitCenter());
         j.limitBias = limit.getBiasFactor();
         j.limitRelaxation = limit.getRelaxationFactor();
+    } else if (typeid(c) == typeid(btConeTwistConstraint)) {
+        auto& k = const_cast<btConeTwistConstraint&>(static_cast<const btConeTwistConstraint&>(c));
+        j.type = BTG_JOINT_CONE_TWIST;
+        setFrame(k.getAFrame(), &j.pivotA, j.axesA);
+        setFrame(k.getBFrame(), &j.pivotB, j.axesB);
+        const btQuaternion qa = k.getAFrame().getRotation(), qb = k.getBFrame().getRotation();
+        j.frameRotA = btgMake4(qa.x(), qa.y(), qa.z(), qa.w());
+        j.frameRotB = btgMake4(qb.x(), qb.y(), qb.z(), qb.w());
+        const int flags = k.getFlags();
+        if (flags & BT_CONETWIST_FLAGS_LIN_ERP) j.flags |= BTG_JOINT_OWN_ERP;
+        if (flags & BT_CONETWIST_FLAGS_LIN_CFM) j.flags |= BTG_JOINT_OWN_CFM;
+        if (flags & BT_CONETWIST_FLAGS_ANG_CFM) j.flags |= BTG_JOINT_OWN_STOP_CFM;
+        j.erp = k.*member(ConeLinErp());
+        j.cfm = k.*member(ConeLinCfm());
+        j.stopCfm = k.*member(ConeAngCfm());
+        j.swingSpan1 = k.getSwingSpan1();
+        j.swingSpan2 = k.getSwingSpan2();
+        j.twistSpan = k.getTwistSpan();
+        j.limitSoftness = k.getLimitSoftness();
+        j.limitBias = k.getBiasFactor();
+        j.limitRelaxation = k.getRelaxationFactor();
+        j.fixThresh = k.getFixThresh();
     }
     *out = j;
     return true;

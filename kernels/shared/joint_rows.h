@@ -14,9 +14,11 @@
 /* Joint types (BtgJoint.type), each an exact Bullet class. */
 #define BTG_JOINT_POINT2POINT 1
 #define BTG_JOINT_HINGE 2
+#define BTG_JOINT_CONE_TWIST 3
 /* Rows one joint of each type may build (getInfo1's maximum): its slots in the row table. */
 #define BTG_JOINT_P2P_ROWS 3
 #define BTG_JOINT_HINGE_ROWS 6
+#define BTG_JOINT_CONE_TWIST_ROWS 6
 #define BTG_JOINT_MAX_ROWS 6
 
 /* BtgJoint.flags */
@@ -41,6 +43,8 @@ typedef struct {
     BtgFloat4 pivotB;         /* m, in B's frame; w: 0 */
     BtgFloat4 axesA[3];       /* the joint frame's basis columns in A's frame (hinge: z is the axis) */
     BtgFloat4 axesB[3];
+    BtgFloat4 frameRotA;      /* the joint frame's rotation in A's frame (m_rbAFrame.getRotation()) */
+    BtgFloat4 frameRotB;
     int type;                 /* BTG_JOINT_* */
     int bodyA;                /* body rows, or BTG_JOINT_FIXED_BODY */
     int bodyB;
@@ -62,6 +66,14 @@ typedef struct {
     float motorVelocity;      /* rad/s, the hinge motor's target velocity */
     float motorMaxImpulse;    /* N m s */
     float referenceSign;      /* hinge: -1 with useReferenceFrameA as constructed, else 1 */
+    float swingSpan1;         /* rad, cone-twist limits (setLimit) */
+    float swingSpan2;
+    float twistSpan;
+    float limitSoftness;      /* cone-twist: the limits act from softness x span */
+    float fixThresh;          /* cone-twist: spans below this lock the swing (m_fixThresh) */
+    float pad0;
+    float pad1;
+    float pad2;
 } BtgJoint;
 
 /* One row of a joint in device memory (btSolverConstraint of the non-contact pool): the
@@ -105,7 +117,7 @@ typedef struct {
 } BtgJointStepParams;
 
 #ifndef __OPENCL_C_VERSION__
-static_assert(sizeof(BtgJoint) == 208, "BtgJoint layout");
+static_assert(sizeof(BtgJoint) == 272, "BtgJoint layout");
 static_assert(sizeof(BtgJointRow) == 112, "BtgJointRow layout");
 static_assert(sizeof(BtgJointState) == 80, "BtgJointState layout");
 static_assert(sizeof(BtgJointStepParams) == 32, "BtgJointStepParams layout");
@@ -113,7 +125,10 @@ static_assert(sizeof(BtgJointStepParams) == 32, "BtgJointStepParams layout");
 
 static inline int btgJointMaxRows(int type)
 {
-    return type == BTG_JOINT_POINT2POINT ? BTG_JOINT_P2P_ROWS : (type == BTG_JOINT_HINGE ? BTG_JOINT_HINGE_ROWS : 0);
+    if (type == BTG_JOINT_POINT2POINT) return BTG_JOINT_P2P_ROWS;
+    if (type == BTG_JOINT_HINGE) return BTG_JOINT_HINGE_ROWS;
+    if (type == BTG_JOINT_CONE_TWIST) return BTG_JOINT_CONE_TWIST_ROWS;
+    return 0;
 }
 
 /* A joint's pose input: a body's centre-of-mass transform, its solver body and its velocity

@@ -382,6 +382,102 @@ TEST(PrepareJoints, HingeRowsMatchBulletAndReference)
     EXPECT_GE(withLimitRow, 5);  // limits hit, motors on: the sixth row is exercised
 }
 
+namespace {
+BtgJoint coneRow(int a, int b, btConeTwistConstraint& c, int firstRow)
+{
+    BtgJoint j{};
+    j.type = BTG_JOINT_CONE_TWIST;
+    j.bodyA = a;
+    j.bodyB = b;
+    j.flags = BTG_JOINT_ENABLED;
+    j.firstRow = firstRow;
+    j.iterations = 10;
+    j.breakingThreshold = c.getBreakingImpulseThreshold();
+    j.pivotA = f4(c.getAFrame().getOrigin());
+    j.pivotB = f4(c.getBFrame().getOrigin());
+    for (int k = 0; k < 3; ++k) {
+        j.axesA[k] = f4(c.getAFrame().getBasis().getColumn(k));
+        j.axesB[k] = f4(c.getBFrame().getBasis().getColumn(k));
+    }
+    const btQuaternion qa = c.getAFrame().getRotation(), qb = c.getBFrame().getRotation();
+    j.frameRotA = btgMake4(qa.x(), qa.y(), qa.z(), qa.w());
+    j.frameRotB = btgMake4(qb.x(), qb.y(), qb.z(), qb.w());
+    const int flags = c.getFlags();
+    if (flags & BT_CONETWIST_FLAGS_LIN_ERP) j.flags |= BTG_JOINT_OWN_ERP, j.erp = c.getParam(BT_CONSTRAINT_ERP, 0);
+    if (flags & BT_CONETWIST_FLAGS_LIN_CFM) j.flags |= BTG_JOINT_OWN_CFM, j.cfm = c.getParam(BT_CONSTRAINT_CFM, 0);
+    if (flags & BT_CONETWIST_FLAGS_ANG_CFM) j.flags |= BTG_JOINT_OWN_STOP_CFM, j.stopCfm = c.getParam(BT_CONSTRAINT_CFM, 3);
+    j.swingSpan1 = c.getSwingSpan1();
+    j.swingSpan2 = c.getSwingSpan2();
+    j.twistSpan = c.getTwistSpan();
+    j.limitSoftness = c.getLimitSoftness();
+    j.limitBias = c.getBiasFactor();
+    j.limitRelaxation = c.getRelaxationFactor();
+    j.fixThresh = c.getFixThresh();
+    return j;
+}
+}  // namespace
+
+TEST(PrepareJoints, ConeTwistRowsMatchBulletAndReference)
+{
+    BulletBodies s;
+    btRigidBody* a = s.add(2.0f, btVector3(0.1f, 2.0f, -0.3f), btQuaternion(btVector3(1, 2, 3).normalized(), 0.7f),
+                           btVector3(0.5f, -1.0f, 0.2f), btVector3(0.3f, 0.1f, -2.0f));
+    btRigidBody* b = s.add(3.0f, btVector3(0.4f, 1.1f, 0.2f), btQuaternion(btVector3(-1, 0, 2).normalized(), 1.9f),
+                           btVector3(-0.2f, 0.4f, 0.0f), btVector3(1.0f, -0.5f, 0.25f));
+    const btTransform fa(btQuaternion(btVector3(0, 0, 1), 0.3f), btVector3(0.2f, -0.4f, 0.1f));
+    const btTransform fb(btQuaternion(btVector3(0, 1, 0), -0.6f), btVector3(-0.1f, 0.5f, 0.0f));
+    std::vector<std::unique_ptr<btConeTwistConstraint>> c;
+    std::vector<int> bodyB;
+    auto add = [&](btConeTwistConstraint* k, int b2 = 1) {
+        c.emplace_back(k);
+        bodyB.push_back(b2);
+        return k;
+    };
+    add(new btConeTwistConstraint(*a, *b, fa, fb));  // no limits (Bullet's default spans)
+    add(new btConeTwistConstraint(*a, *b, fa, fb))->setLimit(0.5f, 0.3f, 0.4f);  // elliptic cone, twist
+    add(new btConeTwistConstraint(*a, *b, fa, fb))->setLimit(0.0f, 0.0f, 0.0f);  // locked: fixed swing rows
+    add(new btConeTwistConstraint(*a, *b, fa, fb))->setLimit(0.01f, 0.8f, 0.3f);  // hinge about y
+    add(new btConeTwistConstraint(*a, *b, fa, fb))->setLimit(0.8f, 0.01f, 0.3f);  // hinge about z
+    btConeTwistConstraint* tuned = add(new btConeTwistConstraint(*a, *b, fa, fb));
+    tuned->setLimit(0.4f, 0.6f, 0.2f, 0.8f, 0.5f, 0.9f);
+    tuned->setParam(BT_CONSTRAINT_ERP, 0.5f, 0);
+    tuned->setParam(BT_CONSTRAINT_CFM, 0.01f, 0);
+    tuned->setParam(BT_CONSTRAINT_CFM, 0.02f, 3);
+    add(new btConeTwistConstraint(*b, fb), BTG_JOINT_FIXED_BODY)->setLimit(0.3f, 0.3f, 0.1f);  // on the fixed body
+    ref::JointTables tables;
+    for (size_t i = 0; i < c.size(); ++i)
+        tables.joints.push_back(coneRow(bodyB[i] == BTG_JOINT_FIXED_BODY ? 1 : 0, bodyB[i], *c[i], int(6 * i)));
+    tables.state.assign(c.size(), BtgJointState{});
+    tables.rows.assign(6 * c.size(), BtgJointRow{});
+    const BtgJointStepParams p = jointParams(int(c.size()));
+    ref::JointTables expect = tables;
+    ref::prepareJoints(expect, s.rows, p);
+    DeviceJoints got = runPrepare(s.rows, tables, p);
+    int limitRows = 0;
+    for (size_t j = 0; j < c.size(); ++j) {
+        std::vector<BulletRow> br = bulletRows(*c[j], p.dt, p.erp);
+        ASSERT_EQ(got.state[j].numRows, int(br.size())) << "cone " << j;
+        ASSERT_EQ(expect.state[j].numRows, int(br.size())) << "cone " << j;
+        limitRows += int(br.size()) - 3;
+        for (size_t k = 0; k < br.size(); ++k) {
+            const BtgJointRow &g = got.rows[tables.joints[j].firstRow + k], &e = expect.rows[tables.joints[j].firstRow + k];
+            const std::string what = "cone " + std::to_string(j) + " row " + std::to_string(k);
+            expectNear(g.mass, e.mass, what + " mass (ref)");
+            expectNear(g.target, e.target, what + " target (ref)");
+            expectNear3(g.jacobian.linear, br[k].linA, what + " linA");
+            expectNear3(-g.jacobian.linear, br[k].linB, what + " linB");
+            expectNear3(g.jacobian.angularA, br[k].angA, what + " angA");
+            expectNear3(g.jacobian.angularB, br[k].angB, what + " angB");
+            expectNear(g.mass, br[k].mass, what + " mass");
+            expectNear(g.target, br[k].target, what + " target");
+            expectNear(g.cfm, br[k].cfm, what + " cfm");
+            EXPECT_EQ(g.lower, br[k].lower) << what;
+            EXPECT_EQ(g.upper, br[k].upper) << what;
+        }
+    }
+    EXPECT_GE(limitRows, 8);  // swing and twist rows of every kind were built
+}
+
 TEST(PrepareJoints, DisabledBrokenAndSleepingJointsBuildNoRows)
 {
     BulletBodies s;
