@@ -18,6 +18,7 @@ using scenes::spec::ShapeKind;
 using scenes::spec::dimsForCount;
 using scenes::spec::makeMixed;
 using scenes::spec::makeStack;
+using scenes::spec::makeRagdolls;
 
 struct Options {
     bool noSleep = false;           // disable Bullet's deactivation on every dynamic body

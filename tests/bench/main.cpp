@@ -16,7 +16,8 @@ using namespace btgpu::bench;
 namespace {
 
 const char* kUsage =
-    "usage: btgpu_bench [--scene cubes|spheres|mixed] [--n 1000|8000|32768|112500|1000000 | --dims NX NY NZ]\n"
+    "usage: btgpu_bench [--scene cubes|spheres|mixed|ragdolls] [--n 1000|8000|32768|112500|1000000 | --dims NX NY NZ]\n"
+    "                   [--ragdolls COUNT (ragdolls of 11 boxes and 10 joints; default 100)]\n"
     "                   [--frames F] [--backends btgpu,bullet,b3gpu] [--csv PATH] [--budget-s S]\n"
     "                   [--no-sleep] [--no-aabb-sync] [--jacobi] [--b3-native-inertia] [--absolute-thresholds] [--smoke]\n"
     "  BTGPU_DEVICE=gpu|cpu|<name substring> picks the OpenCL device (btgpu and b3gpu alike).\n";
@@ -34,6 +35,7 @@ int main(int argc, char** argv)
     std::string sceneName = "cubes", backends = "btgpu,bullet,b3gpu", csvPath;
     int dims[3] = {20, 20, 20};
     int frames = 300;
+    int ragdolls = 100;  // --scene ragdolls
     double budgetS = 600;  // per backend: a slow backend stops early and says so
     bool smoke = false;
     Options options;
@@ -50,7 +52,8 @@ int main(int argc, char** argv)
         } else if (a == "--dims") {
             for (int& d : dims) d = std::atoi(next());
             if (dims[0] <= 0 || dims[1] <= 0 || dims[2] <= 0) usage("--dims needs three positive counts");
-        } else if (a == "--frames") frames = std::atoi(next());
+        } else if (a == "--ragdolls") ragdolls = std::atoi(next());
+        else if (a == "--frames") frames = std::atoi(next());
         else if (a == "--backends") backends = next();
         else if (a == "--csv") csvPath = next();
         else if (a == "--budget-s") budgetS = std::atof(next());
@@ -78,7 +81,8 @@ int main(int argc, char** argv)
     if (sceneName == "cubes") scene = makeStack(dims[0], dims[1], dims[2], ShapeKind::Box);
     else if (sceneName == "spheres") scene = makeStack(dims[0], dims[1], dims[2], ShapeKind::Sphere);
     else if (sceneName == "mixed") scene = makeMixed();
-    else usage("--scene must be cubes, spheres or mixed");
+    else if (sceneName == "ragdolls") scene = makeRagdolls(ragdolls);
+    else usage("--scene must be cubes, spheres, mixed or ragdolls");
 
     std::vector<RunResult> results;
     std::stringstream list(backends);

@@ -382,3 +382,47 @@ TEST(Joints, HingePendulumWithABouncyLimitMatchesStock)
     EXPECT_LT(minAngle, -M_PI / 3 + 0.1);  // it reached the limit
     EXPECT_LT(maxDiff, tol::kHingeLimitAngle);
 }
+
+namespace {
+// World distance between a joint's two frame origins (0 when the joint holds).
+double pivotGap(btTypedConstraint* c)
+{
+    btTransform fa, fb;
+    if (auto* h = dynamic_cast<btHingeConstraint*>(c)) {
+        fa = h->getAFrame();
+        fb = h->getBFrame();
+    } else if (auto* k = dynamic_cast<btConeTwistConstraint*>(c)) {
+        fa = k->getAFrame();
+        fb = k->getBFrame();
+    } else {
+        return 0.0;
+    }
+    const btVector3 pa = c->getRigidBodyA().getCenterOfMassTransform() * fa.getOrigin();
+    const btVector3 pb = c->getRigidBodyB().getCenterOfMassTransform() * fb.getOrigin();
+    return (pa - pb).length();
+}
+}  // namespace
+
+TEST(Joints, RagdollsFallOntoTheGroundAsOnStock)
+{
+    SideBySide s([](WorldKind k, const Config& c) { return scenes::ragdolls(k, c, 4); });
+    double worstGap = 0.0, stockWorstGap = 0.0;
+    for (int i = 0; i < 180; ++i) {
+        s.step();
+        ASSERT_TRUE(s.onGpu()) << "step " << i << ": " << s.gpu->report()->cpuPathReason;
+        for (int j = 0; j < s.gpu->numJoints(); ++j) {
+            worstGap = std::max(worstGap, pivotGap(s.gpu->joint(j)));
+            stockWorstGap = std::max(stockWorstGap, pivotGap(s.stock->joint(j)));
+        }
+    }
+    const double stockMean = scenes::meanHeight(*s.stock), gpuMean = scenes::meanHeight(*s.gpu);
+    const scenes::StateDifference d = scenes::positionDifference(*s.stock, *s.gpu);
+    std::printf("4 ragdolls after 3 s: mean height stock %.4f, btgpu %.4f m; largest joint gap stock %.4f, btgpu %.4f m;"
+                " body distance to stock mean %.4f, max %.4f m\n",
+                stockMean, gpuMean, stockWorstGap, worstGap, d.meanPosition, d.maxPosition);
+    EXPECT_TRUE(scenes::allFinite(*s.gpu));
+    EXPECT_TRUE(has(*s.gpu->report(), "filter_pairs"));  // linked bodies do not collide
+    EXPECT_NEAR(gpuMean, stockMean, tol::kRagdollMeanHeight);
+    EXPECT_LT(worstGap, std::max(tol::kRagdollJointGap, 2.0 * stockWorstGap));
+    EXPECT_GT(scenes::lowestHeight(*s.gpu), -0.05);  // on the ground, not through it
+}

@@ -1,6 +1,8 @@
 // joint_scenes.cpp — the joint scenes of joint_scenes.h.
 #include "scenes/joint_scenes.h"
 
+#include "scenes/scene_specs.h"
+
 #include <cmath>
 
 namespace btgpu::scenes {
@@ -69,6 +71,35 @@ ScenePtr hingeDoor(WorldKind kind, const Config& config, double speed, double ma
     auto* hinge = s->addJoint(new btHingeConstraint(*door, btVector3(-0.5f, 0, 0), btVector3(0, 1, 0)));
     if (upper >= lower) hinge->setLimit(btScalar(lower), btScalar(upper));
     hinge->enableAngularMotor(true, btScalar(speed), btScalar(maxImpulse));
+    return s;
+}
+
+ScenePtr ragdolls(WorldKind kind, const Config& config, int count)
+{
+    auto s = std::make_unique<Scene>(kind, config, "ragdolls");
+    const spec::Scene data = spec::makeRagdolls(count);
+    std::vector<btRigidBody*> bodies;
+    for (const spec::BodySpec& b : data.bodies) {
+        btCollisionShape* shape = s->boxShape(btVector3(b.half[0], b.half[1], b.half[2]));
+        btTransform xf(btQuaternion(b.rot[0], b.rot[1], b.rot[2], b.rot[3]), btVector3(b.pos[0], b.pos[1], b.pos[2]));
+        btRigidBody* body = s->addBody(shape, b.mass, xf, Material{b.friction, b.restitution});
+        body->setDamping(b.linearDamping, b.angularDamping);
+        bodies.push_back(body);
+    }
+    auto frame = [](const float* f) {
+        return btTransform(btQuaternion(f[3], f[4], f[5], f[6]), btVector3(f[0], f[1], f[2]));
+    };
+    for (const spec::JointSpec& j : data.joints) {
+        btRigidBody& a = *bodies[size_t(j.a)];
+        btRigidBody& b = *bodies[size_t(j.b)];
+        if (j.kind == spec::JointSpec::Kind::Hinge) {
+            auto* h = s->addJoint(new btHingeConstraint(a, b, frame(j.frameA), frame(j.frameB)), true);
+            h->setLimit(j.limit[0], j.limit[1]);
+        } else {
+            auto* c = s->addJoint(new btConeTwistConstraint(a, b, frame(j.frameA), frame(j.frameB)), true);
+            c->setLimit(j.limit[0], j.limit[1], j.limit[2]);
+        }
+    }
     return s;
 }
 

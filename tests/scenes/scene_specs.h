@@ -16,14 +16,29 @@ struct BodySpec {
     float half[3] = {1, 1, 1};  // m, box half extents (Box)
     float radius = 1;           // m (Sphere)
     float mass = 0;             // kg; 0 = static
-    float pos[3] = {0, 0, 0};   // m, centre of mass; every body starts unrotated and at rest
+    float pos[3] = {0, 0, 0};   // m, centre of mass; every body starts at rest
+    float rot[4] = {0, 0, 0, 1};  // orientation quaternion (x, y, z, w); identity but in ragdolls
     float friction = 1;
     float restitution = 0;
+    float linearDamping = 0;
+    float angularDamping = 0;
+};
+
+// A joint between bodies a and b (indices into Scene::bodies), frames in the bodies' frames,
+// added with disableCollisionsBetweenLinkedBodies as Bullet's RagdollDemo adds them.
+struct JointSpec {
+    enum class Kind { Hinge, ConeTwist };
+    Kind kind = Kind::Hinge;
+    int a = 0, b = 0;
+    float frameA[7] = {0, 0, 0, 0, 0, 0, 1};  // origin (m), then rotation quaternion (x, y, z, w)
+    float frameB[7] = {0, 0, 0, 0, 0, 0, 1};
+    float limit[3] = {0, 0, 0};  // hinge: low, high (rad); cone-twist: swing span 1, 2, twist span
 };
 
 struct Scene {
     std::string name;                // e.g. "cubes 10x10x10"
     std::vector<BodySpec> bodies;
+    std::vector<JointSpec> joints;
     float gravity[3] = {0, -10, 0};  // m/s^2
     float dt = 1.0f / 60.0f;         // s, one substep per frame
     int iterations = 10;             // solver iterations
@@ -34,6 +49,10 @@ struct Scene {
 Scene makeStack(int nx, int ny, int nz, ShapeKind shape);
 // 32³ boxes of random half extents in [0.1, 2.5] over 16 static pillars (fixed seed).
 Scene makeMixed(std::uint32_t seed = 12345u);
+// `count` ragdolls (Bullet's RagdollDemo: 11 bodies, 5 hinges and 5 cone-twists; its capsules
+// are boxes of the same radius and length here) on a square grid 2 m apart over a ground box,
+// pelvis 1 m up: they fall and sprawl.
+Scene makeRagdolls(int count);
 // Sizes named by --n: 1000, 8000, 32768, 112500, 1000000; false if n is not one of them.
 bool dimsForCount(long n, int dims[3]);
 

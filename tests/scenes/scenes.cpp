@@ -1,6 +1,8 @@
 // scenes.cpp — Scene (owning every Bullet object, building stock or GPU worlds alike), the
 // scene builders, the catalog by name, and the measures the tests and demos compare.
 #include "scenes/scenes.h"
+
+#include "scenes/joint_scenes.h"
 #include "scenes/scene_specs.h"
 
 #include <map>
@@ -316,6 +318,10 @@ const std::vector<SceneEntry>& catalog()
          [](WorldKind k, const Config& c) { return cubes(k, 4, 4, 4, c); }},
         {"spheres", "4x4x4 lattice of spheres (spheres:NXxNYxNZ for other sizes)",
          [](WorldKind k, const Config& c) { return spheres(k, 4, 4, 4, c); }},
+        {"ragdolls", "4 ragdolls (boxes, hinges and cone-twists) dropping onto the ground",
+         [](WorldKind k, const Config& c) { return ragdolls(k, c, 4); }},
+        {"chain", "a chain of 20 point-to-point links hanging from a static anchor",
+         [](WorldKind k, const Config& c) { return chain(k, c, 20); }},
     };
     return entries;
 }
