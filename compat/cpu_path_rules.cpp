@@ -225,10 +225,11 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
     if (gContactBreakingThreshold != btScalar(0.02) && gContactBreakingThreshold != config.contactThreshold)
         return "gContactBreakingThreshold changed from 0.02 (set Config::contactThreshold to the same value)";
 
-    // btContactSolverInfo, against Bullet 3.24's defaults, exactly. Left alone, because
+    // btContactSolverInfo, against Bullet 3.24's defaults, exactly. m_erp and m_damping are
+    // read by the joints (BtgJointStepParams). Left alone, because
     // btSequentialImpulseConstraintSolver and btDiscreteDynamicsWorld never read them for rigid
-    // bodies without joints: m_tau, m_damping (joints), m_friction, m_restitution,
-    // m_maxErrorReduction, m_frictionCFM (manifold points carry their own), m_erp (joints),
+    // bodies: m_tau, m_friction, m_restitution,
+    // m_maxErrorReduction, m_frictionCFM (manifold points carry their own),
     // m_restingContactRestitutionThreshold ("unused as of 2.81"),
     // m_singleAxisRollingFrictionThreshold, the m_deformable_* fields, m_articulatedWarmstartingFactor,
     // m_jointFeedback*, m_reportSolverAnalytics, m_numNonContactInnerIterations (multibody and

@@ -426,3 +426,70 @@ TEST(Joints, RagdollsFallOntoTheGroundAsOnStock)
     EXPECT_LT(worstGap, std::max(tol::kRagdollJointGap, 2.0 * stockWorstGap));
     EXPECT_GT(scenes::lowestHeight(*s.gpu), -0.05);  // on the ground, not through it
 }
+
+TEST(Joints, SameRagdollSceneTwiceGivesSameHashes)
+{
+    ScenePtr a = scenes::ragdolls(WorldKind::Gpu, Config(), 4);
+    ScenePtr b = scenes::ragdolls(WorldKind::Gpu, Config(), 4);
+    for (int i = 0; i < 90; ++i) {
+        a->step();
+        b->step();
+        ASSERT_TRUE(a->gpuWorld()->isGpuPath());
+        ASSERT_EQ(a->gpuWorld()->stateHash(), b->gpuWorld()->stateHash()) << "step " << i;
+    }
+}
+
+TEST(Joints, BreaksInsideSubstepsOnStocksCall)
+{
+    // Two substeps a call: the break happens inside a call; stock and btgpu report it after
+    // the same call, and the bob flies on alike.
+    SideBySide s([](WorldKind k, const Config& c) { return scenes::breakingPendulum(k, c, 0.3); });
+    int stockBreak = -1, gpuBreak = -1;
+    for (int i = 0; i < 45; ++i) {
+        s.step(1, kStep * 2, 2, kStep);
+        ASSERT_TRUE(s.onGpu());
+        if (stockBreak < 0 && !s.stock->joint(0)->isEnabled()) stockBreak = i;
+        if (gpuBreak < 0 && !s.gpu->joint(0)->isEnabled()) gpuBreak = i;
+        EXPECT_LT(s.distance(0), tol::kJointPosition) << "call " << i;
+    }
+    EXPECT_GE(stockBreak, 0);
+    EXPECT_EQ(gpuBreak, stockBreak);
+}
+
+TEST(Joints, BobHangingFromAKinematicBodyFollowsIt)
+{
+    SideBySide s([](WorldKind k, const Config& c) {
+        auto sc = std::make_unique<Scene>(k, c, "kinematic_anchor");
+        btTransform at = btTransform::getIdentity();
+        at.setOrigin(btVector3(0, 5, 0));
+        btRigidBody* anchor = sc->addKinematic(sc->boxShape(btVector3(0.1f, 0.1f, 0.1f)), at);
+        btRigidBody* bob = sc->addBody(sc->sphereShape(0.1f), 1.0f, btVector3(0, 4, 0));
+        bob->setActivationState(DISABLE_DEACTIVATION);
+        sc->addJoint(new btPoint2PointConstraint(*anchor, *bob, btVector3(0, -0.5f, 0), btVector3(0, 0.5f, 0)));
+        sc->beforeStep = [anchor](Scene&, double t) {
+            btTransform x = btTransform::getIdentity();
+            x.setOrigin(btVector3(btScalar(std::min(t, 1.0)), 5, 0));  // 1 m/s along x for 1 s
+            anchor->getMotionState()->setWorldTransform(x);
+        };
+        return sc;
+    });
+    STEP_ON_GPU(s, 120);
+    EXPECT_GT(s.gpu->body(1)->getWorldTransform().getOrigin().x(), 0.5);  // dragged along
+    EXPECT_LT(s.distance(1), tol::kJointPosition * 10);
+}
+
+TEST(Joints, RemovingAJointMidRunLetsTheRestFall)
+{
+    SideBySide s([](WorldKind k, const Config& c) { return scenes::chain(k, c, 10); });
+    STEP_ON_GPU(s, 30);
+    s.both([](Scene& sc) { sc.world().removeConstraint(sc.joint(5)); });
+    STEP_ON_GPU(s, 30);
+    // Links below the removed joint (bodies 7..11) fall; those above hang. The chain's stretch
+    // before the removal (within kChainStretch* of stock's) travels with the falling links.
+    EXPECT_LT(s.stockY(11), scenes::kChainAnchorY - 0.2 * 10 - 1.0);
+    EXPECT_LT(s.gpuY(11), scenes::kChainAnchorY - 0.2 * 10 - 1.0);
+    for (int i = 2; i <= 11; ++i) EXPECT_LT(s.distance(i), 2.0 * tol::kChainStretchAbs) << "body " << i;
+    // The scene still owns the removed joint; put it back so it is removed once at the end.
+    s.both([](Scene& sc) { sc.world().addConstraint(sc.joint(5)); });
+    STEP_ON_GPU(s, 1);
+}
