@@ -2,6 +2,8 @@
 // joint table, and the write-back of applied impulses, feedback and breaks.
 #include "joint_rows.h"
 
+#include "parallel_rows.h"
+
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
@@ -206,14 +208,19 @@ void JointSync::upload(btDiscreteDynamicsWorld& world, const RowMap& rows, Devic
     const int numIterations = world.getSolverInfo().m_numIterations;
     std::vector<BtgJoint> table(static_cast<size_t>(n));
     m_constraints.resize(size_t(n));
+    // Every joint every step (the app may change any of them): built in parallel chunks.
+    forEachChunk(size_t(n), 4096, [&](size_t begin, size_t end, int) {
+        for (size_t i = begin; i < end; ++i) {
+            btTypedConstraint* c = world.getConstraint(int(i));
+            m_constraints[i] = c;
+            jointRow(*c, rows, numIterations, &table[i]);
+        }
+    });
     int nextRow = 0, iterations = 0;
-    for (int i = 0; i < n; ++i) {
-        btTypedConstraint* c = world.getConstraint(i);
-        m_constraints[size_t(i)] = c;
-        jointRow(*c, rows, numIterations, &table[size_t(i)]);
-        table[size_t(i)].firstRow = nextRow;
-        nextRow += btgJointMaxRows(table[size_t(i)].type);
-        iterations = std::max(iterations, table[size_t(i)].iterations);
+    for (BtgJoint& j : table) {
+        j.firstRow = nextRow;
+        nextRow += btgJointMaxRows(j.type);
+        iterations = std::max(iterations, j.iterations);
     }
     w.numJoints = n;
     w.jointIterations = iterations;
