@@ -243,9 +243,15 @@ void JointSync::upload(btDiscreteDynamicsWorld& world, const RowMap& rows, Devic
             std::memset(&m_state[i], 0, sizeof(BtgJointState));
             m_state[i].appliedImpulse = m_constraints[i]->getAppliedImpulse();
         }
+    m_anyFeedback = false;
+    for (const BtgJoint& j : table) m_anyFeedback = m_anyFeedback || (j.flags & BTG_JOINT_FEEDBACK);
     if (!changed) return;
     w.joints.upload(w.ctx, table);
     w.jointState.upload(w.ctx, m_state);
+    // The device keeps what it last wrote (a joint whose island sleeps keeps its feedback, as
+    // stock's); a joint new to the table starts at zero.
+    m_feedback.resize(size_t(n), BtgJointFeedback{});
+    w.jointFeedback.upload(w.ctx, m_feedback);
     w.jointRows.reserveExact(w.ctx, size_t(std::max(nextRow, 1)));
     m_uploaded = table;
 }
@@ -255,16 +261,18 @@ void JointSync::writeBack(DeviceWorld& w)
     const size_t n = m_uploaded.size();
     if (n == 0) return;
     w.jointState.download(w.ctx, m_state.data(), n);
+    if (m_anyFeedback) w.jointFeedback.download(w.ctx, m_feedback.data(), n);
     for (size_t i = 0; i < n; ++i) {
         btTypedConstraint* c = m_constraints[i];
         const BtgJointState& s = m_state[i];
         c->internalSetAppliedImpulse(s.appliedImpulse);
         if (btJointFeedback* fb = c->getJointFeedback()) {
             if (m_uploaded[i].flags & BTG_JOINT_FEEDBACK) {
-                fb->m_appliedForceBodyA = btVector3(s.forceA.x, s.forceA.y, s.forceA.z);
-                fb->m_appliedTorqueBodyA = btVector3(s.torqueA.x, s.torqueA.y, s.torqueA.z);
-                fb->m_appliedForceBodyB = btVector3(s.forceB.x, s.forceB.y, s.forceB.z);
-                fb->m_appliedTorqueBodyB = btVector3(s.torqueB.x, s.torqueB.y, s.torqueB.z);
+                const BtgJointFeedback& f = m_feedback[i];
+                fb->m_appliedForceBodyA = btVector3(f.forceA.x, f.forceA.y, f.forceA.z);
+                fb->m_appliedTorqueBodyA = btVector3(f.torqueA.x, f.torqueA.y, f.torqueA.z);
+                fb->m_appliedForceBodyB = btVector3(f.forceB.x, f.forceB.y, f.forceB.z);
+                fb->m_appliedTorqueBodyB = btVector3(f.torqueB.x, f.torqueB.y, f.torqueB.z);
             }
         }
         if (s.broken && c->isEnabled()) {

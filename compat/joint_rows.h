@@ -35,6 +35,8 @@ private:
     std::vector<btTypedConstraint*> m_constraints;  // as of the last upload, in world order
     std::vector<BtgJoint> m_uploaded;               // what the device holds
     std::vector<BtgJointState> m_state;             // the device's state as last read
+    std::vector<BtgJointFeedback> m_feedback;       // read only while some joint has feedback
+    bool m_anyFeedback = false;
 };
 
 // One constraint as the device row (firstRow left 0); false when its type is not served.

@@ -7,8 +7,8 @@
  *                 hinge limit's bounce reads the rigid body's own). Writes jointRows,
  *                 jointState (rows built, applied impulse reset), edges[contacts + j],
  *                 counters[kEdgeCount] (= contacts + joints).
- * finish_joints   Reads joints, jointRows, props. Writes jointState (feedback, applied impulse,
- *                 broken). */
+ * finish_joints   Reads joints, jointRows, props. Writes jointState (applied impulse, broken),
+ *                 jointFeedback (joints with a btJointFeedback). */
 #include "shared/counters.h"
 #include "shared/types.h"
 #include "shared/math.h"
@@ -47,8 +47,8 @@ __kernel void prepare_joints(__global const BtgJoint* restrict joints, __global 
 }
 
 __kernel void finish_joints(__global const BtgJoint* restrict joints, __global BtgJointState* jointState,
-                            __global const BtgJointRow* restrict jointRows, __global const BtgBodyProps* restrict props,
-                            BtgJointStepParams p)
+                            __global BtgJointFeedback* jointFeedback, __global const BtgJointRow* restrict jointRows,
+                            __global const BtgBodyProps* restrict props, BtgJointStepParams p)
 {
     int j = (int)get_global_id(0);
     if (j >= p.numJoints) return;
@@ -64,6 +64,8 @@ __kernel void finish_joints(__global const BtgJoint* restrict joints, __global B
         b.body.angFactor = btgXyz(props[joint.bodyB].angularFactor);
     }
     BtgJointState s = jointState[j];
-    btgFinishJoint(&s, joint, jointRows, a, b, p.dt);
+    BtgJointFeedback f = jointFeedback[j];
+    btgFinishJoint(&s, &f, joint, jointRows, a, b, p.dt);
     jointState[j] = s;
+    if (joint.flags & BTG_JOINT_FEEDBACK) jointFeedback[j] = f;
 }

@@ -22,6 +22,7 @@ __kernel void probe_layout(__global int* out, float a, float b, float c)
     out[12] = (int)sizeof(BtgJoint);
     out[13] = (int)sizeof(BtgJointRow);
     out[14] = (int)sizeof(BtgJointState);
+    out[15] = (int)sizeof(BtgJointFeedback);
     float r = a * b + c; /* with contraction this is fma(a, b, c): a different float */
     out[7] = as_int(r);
 }

@@ -90,19 +90,23 @@ typedef struct {
     int pad1;
 } BtgJointRow;
 
-/* What the device keeps of each joint and the host reads back (writeBackJoints' results of the
- * last substep; a break holds until the host has disabled the joint). */
+/* What the device keeps of each joint and the host reads back every call (writeBackJoints'
+ * results of the last substep; a break holds until the host has disabled the joint). */
 typedef struct {
-    BtgFloat4 forceA;   /* btJointFeedback::m_appliedForceBodyA, N; w: 0 */
-    BtgFloat4 torqueA;  /* m_appliedTorqueBodyA, N m */
-    BtgFloat4 forceB;
-    BtgFloat4 torqueB;
     float appliedImpulse; /* N s: internalSetAppliedImpulse (the last row's, as Bullet) */
     int numRows;          /* rows built this substep (getInfo1), 0 when disabled or broken */
     int broken;           /* 1: a row reached the breaking threshold (setEnabled(false) due) */
     int touched;          /* 1: in a solved island this substep (a body moved by the solver):
                              Bullet resets and writes back only the constraints it solves */
 } BtgJointState;
+
+/* btJointFeedback of a joint with BTG_JOINT_FEEDBACK (read back only while some joint has one). */
+typedef struct {
+    BtgFloat4 forceA;   /* m_appliedForceBodyA, N; w: 0 */
+    BtgFloat4 torqueA;  /* m_appliedTorqueBodyA, N m */
+    BtgFloat4 forceB;
+    BtgFloat4 torqueB;
+} BtgJointFeedback;
 
 /* Per-step solver settings the joints read (btContactSolverInfo), passed by value. */
 typedef struct {
@@ -119,7 +123,8 @@ typedef struct {
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(BtgJoint) == 272, "BtgJoint layout");
 static_assert(sizeof(BtgJointRow) == 112, "BtgJointRow layout");
-static_assert(sizeof(BtgJointState) == 80, "BtgJointState layout");
+static_assert(sizeof(BtgJointState) == 16, "BtgJointState layout");
+static_assert(sizeof(BtgJointFeedback) == 64, "BtgJointFeedback layout");
 static_assert(sizeof(BtgJointStepParams) == 32, "BtgJointStepParams layout");
 #endif
 
@@ -305,23 +310,23 @@ static inline int btgJointActive(BtgJoint j, BtgJointState s, BtgJointBody a, Bt
 /* writeBackJoints for one joint: feedback summed over its rows (each row's Jacobian times its
  * impulse, with the bodies' factors, per second), the applied impulse of its last row, and a
  * break when any row's impulse reached the threshold. */
-static inline void btgFinishJoint(BtgJointState* s, BtgJoint j, BTG_CONST_GLOBAL BtgJointRow* rows,
+static inline void btgFinishJoint(BtgJointState* s, BtgJointFeedback* f, BtgJoint j, BTG_CONST_GLOBAL BtgJointRow* rows,
                                   BtgJointBody a, BtgJointBody b, float dt)
 {
     if (!s->touched) return;
     if (j.flags & BTG_JOINT_FEEDBACK) {
-        s->forceA = btgZero4();
-        s->torqueA = btgZero4();
-        s->forceB = btgZero4();
-        s->torqueB = btgZero4();
+        f->forceA = btgZero4();
+        f->torqueA = btgZero4();
+        f->forceB = btgZero4();
+        f->torqueB = btgZero4();
     }
     for (int k = 0; k < s->numRows; ++k) {
         BtgJointRow r = rows[j.firstRow + k];
         if (j.flags & BTG_JOINT_FEEDBACK) {
-            s->forceA = s->forceA + r.jacobian.linear * r.impulse * a.body.linFactor / dt;
-            s->forceB = s->forceB + (-r.jacobian.linear) * r.impulse * b.body.linFactor / dt;
-            s->torqueA = s->torqueA + r.jacobian.angularA * a.body.angFactor * r.impulse / dt;
-            s->torqueB = s->torqueB + r.jacobian.angularB * b.body.angFactor * r.impulse / dt;
+            f->forceA = f->forceA + r.jacobian.linear * r.impulse * a.body.linFactor / dt;
+            f->forceB = f->forceB + (-r.jacobian.linear) * r.impulse * b.body.linFactor / dt;
+            f->torqueA = f->torqueA + r.jacobian.angularA * a.body.angFactor * r.impulse / dt;
+            f->torqueB = f->torqueB + r.jacobian.angularB * b.body.angFactor * r.impulse / dt;
         }
         s->appliedImpulse = r.impulse;
         if (btgAbs(r.impulse) >= j.breakingThreshold) s->broken = 1;

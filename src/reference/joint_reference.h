@@ -12,6 +12,7 @@ namespace btgpu::ref {
 struct JointTables {
     std::vector<BtgJoint> joints;
     std::vector<BtgJointState> state;
+    std::vector<BtgJointFeedback> feedback;  // per joint (finishJoints sizes it)
     std::vector<BtgJointRow> rows;
 };
 

@@ -27,9 +27,10 @@ std::vector<BtgEdge> prepareJoints(JointTables& t, const ContactBodies& bodies, 
 
 void finishJoints(JointTables& t, const ContactBodies& bodies, const BtgJointStepParams& params)
 {
+    t.feedback.resize(t.joints.size(), BtgJointFeedback{});
     for (size_t j = 0; j < t.joints.size(); ++j) {
         const BtgJoint& joint = t.joints[j];
-        btgFinishJoint(&t.state[j], joint, t.rows.data(), jointBody(bodies, joint.bodyA), jointBody(bodies, joint.bodyB),
+        btgFinishJoint(&t.state[j], &t.feedback[j], joint, t.rows.data(), jointBody(bodies, joint.bodyA), jointBody(bodies, joint.bodyB),
                        params.dt);
     }
 }

@@ -31,7 +31,8 @@ void finishJoints(DeviceWorld& w, const BtgJointStepParams& params)
 {
     if (w.numJoints <= 0) return;
     cl::Launch(w.ctx, w.ctx.program("prepare_joints").kernel("finish_joints"), &w.profiler)
-        .arg(w.joints).arg(w.jointState).arg(w.jointRows).arg(w.props).arg(params).run(size_t(w.numJoints));
+        .arg(w.joints).arg(w.jointState).arg(w.jointFeedback).arg(w.jointRows).arg(w.props).arg(params)
+        .run(size_t(w.numJoints));
 }
 
 }  // namespace btgpu

@@ -116,6 +116,7 @@ struct DeviceWorld {
     // placeholder element (kernels take a bound buffer).
     cl::DeviceArray<BtgJoint> joints;
     cl::DeviceArray<BtgJointState> jointState;
+    cl::DeviceArray<BtgJointFeedback> jointFeedback;  // per joint; written for joints with feedback
     cl::DeviceArray<BtgJointRow> jointRows;
     int numJoints = 0;
     int jointIterations = 0;  // the largest of the joints' iteration counts

@@ -525,6 +525,7 @@ SolveResult runSolveDevice(const test::StackScene& s, const ref::JointTables& t,
     w.joints.upload(w.ctx, t.joints);
     w.jointState.upload(w.ctx, t.state);
     w.jointRows.reserve(w.ctx, t.rows.size());
+    w.jointFeedback.reserve(w.ctx, t.joints.size());
     buildContacts(w, p);
     prepareContacts(w, p);
     prepareJoints(w, jp);
@@ -540,6 +541,7 @@ SolveResult runSolveDevice(const test::StackScene& s, const ref::JointTables& t,
     r.joints = t;
     r.joints.rows = w.jointRows.download(w.ctx, t.rows.size());
     r.joints.state = w.jointState.download(w.ctx, t.state.size());
+    r.joints.feedback = w.jointFeedback.download(w.ctx, t.state.size());
     const uint edges = w.counters.download(w.ctx, kNumCounters)[kEdgeCount];
     r.colors = w.edgeColor.download(w.ctx, edges);
     return r;
@@ -623,11 +625,11 @@ TEST(PrepareJoints, SolveWithContactsMatchesReference)
             const std::string what = "joint " + std::to_string(j);
             expectNear(d.joints.state[j].appliedImpulse, rt.state[j].appliedImpulse, what + " applied impulse");
             EXPECT_EQ(d.joints.state[j].broken, rt.state[j].broken) << what;
-            expectNear3(d.joints.state[j].forceA,
-                        btVector3(rt.state[j].forceA.x, rt.state[j].forceA.y, rt.state[j].forceA.z), what + " forceA");
-            expectNear3(d.joints.state[j].torqueB,
-                        btVector3(rt.state[j].torqueB.x, rt.state[j].torqueB.y, rt.state[j].torqueB.z),
-                        what + " torqueB");
+            const BtgJointFeedback &gf = d.joints.feedback[j], &ef = rt.feedback[j];
+            expectNear3(gf.forceA, btVector3(ef.forceA.x, ef.forceA.y, ef.forceA.z), what + " forceA");
+            expectNear3(gf.torqueA, btVector3(ef.torqueA.x, ef.torqueA.y, ef.torqueA.z), what + " torqueA");
+            expectNear3(gf.forceB, btVector3(ef.forceB.x, ef.forceB.y, ef.forceB.z), what + " forceB");
+            expectNear3(gf.torqueB, btVector3(ef.torqueB.x, ef.torqueB.y, ef.torqueB.z), what + " torqueB");
         }
     }
     // The scene exercises what it claims: the low threshold breaks its joint, the others hold,

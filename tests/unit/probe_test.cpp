@@ -14,11 +14,11 @@ TEST(Probe, LayoutAndNoContraction)
 {
     cl::Context& ctx = test::context();
     cl::DeviceArray<int> out;
-    out.reserve(ctx, 15);
+    out.reserve(ctx, 16);
     // Chosen so that fma(a, b, c) and round(round(a*b) + c) differ.
     float a = 1.0f + 1.0f / 4096.0f, b = 1.0f - 1.0f / 4096.0f, c = -1.0f;
     cl::Launch(ctx, ctx.program("probe").kernel("probe_layout")).arg(out).arg(a).arg(b).arg(c).run(1, 1);
-    std::vector<int> v = out.download(ctx, 15);
+    std::vector<int> v = out.download(ctx, 16);
     EXPECT_EQ(v[0], (int)sizeof(BtgBodyProps));
     EXPECT_EQ(v[1], (int)sizeof(BtgShape));
     EXPECT_EQ(v[2], (int)sizeof(BtgFace));
@@ -33,6 +33,7 @@ TEST(Probe, LayoutAndNoContraction)
     EXPECT_EQ(v[12], (int)sizeof(BtgJoint));
     EXPECT_EQ(v[13], (int)sizeof(BtgJointRow));
     EXPECT_EQ(v[14], (int)sizeof(BtgJointState));
+    EXPECT_EQ(v[15], (int)sizeof(BtgJointFeedback));
     volatile float va = a, vb = b, vc = c;
     float host = va * vb + vc;
     float dev;
