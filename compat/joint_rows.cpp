@@ -59,6 +59,13 @@ BTGPU_PRIVATE_MEMBER(ConeLinErp, btConeTwistConstraint, btScalar, m_linERP);
 BTGPU_PRIVATE_MEMBER(ConeLinCfm, btConeTwistConstraint, btScalar, m_linCFM);
 BTGPU_PRIVATE_MEMBER(ConeAngCfm, btConeTwistConstraint, btScalar, m_angCFM);
 BTGPU_PRIVATE_MEMBER(ConeObsolete, btConeTwistConstraint, bool, m_useSolveConstraintObsolete);
+BTGPU_PRIVATE_MEMBER(SliderObsolete, btSliderConstraint, bool, m_useSolveConstraintObsolete);
+BTGPU_PRIVATE_MEMBER(SliderCfmDirLin, btSliderConstraint, btScalar, m_cfmDirLin);
+BTGPU_PRIVATE_MEMBER(SliderCfmDirAng, btSliderConstraint, btScalar, m_cfmDirAng);
+BTGPU_PRIVATE_MEMBER(SliderCfmLimLin, btSliderConstraint, btScalar, m_cfmLimLin);
+BTGPU_PRIVATE_MEMBER(SliderCfmLimAng, btSliderConstraint, btScalar, m_cfmLimAng);
+BTGPU_PRIVATE_MEMBER(SliderCfmOrthoLin, btSliderConstraint, btScalar, m_cfmOrthoLin);
+BTGPU_PRIVATE_MEMBER(SliderCfmOrthoAng, btSliderConstraint, btScalar, m_cfmOrthoAng);
 #undef BTGPU_PRIVATE_MEMBER
 
 bool served(const btTypedConstraint& c)
@@ -71,6 +78,8 @@ bool served(const btTypedConstraint& c)
         const auto& k = static_cast<const btConeTwistConstraint&>(c);
         return !(k.*member(ConeObsolete())) && !k.isMotorEnabled();
     }
+    if (typeid(c) == typeid(btSliderConstraint))
+        return !(static_cast<const btSliderConstraint&>(c).*member(SliderObsolete()));
     return false;
 }
 
@@ -99,7 +108,8 @@ std::string jointsStructureReason(const btDiscreteDynamicsWorld& world)
         if (t == typeid(btConeTwistConstraint) && static_cast<const btConeTwistConstraint*>(c)->isMotorEnabled())
             return "joint " + std::to_string(i) + " (btConeTwistConstraint) has its motor on (enableMotor): not on the GPU "
                                                   "path yet";
-        if (t == typeid(btPoint2PointConstraint) || t == typeid(btHingeConstraint) || t == typeid(btConeTwistConstraint)) {
+        if (t == typeid(btPoint2PointConstraint) || t == typeid(btHingeConstraint) || t == typeid(btConeTwistConstraint) ||
+            t == typeid(btSliderConstraint)) {
             if (!served(*c))
                 return "joint " + std::to_string(i) + " (" + typeName(t) +
                        ") uses Bullet's obsolete solve (m_useSolveConstraintObsolete)";
@@ -107,7 +117,7 @@ std::string jointsStructureReason(const btDiscreteDynamicsWorld& world)
         }
         return "joint " + std::to_string(i) + " of type " + typeName(t) +
                " is not on the GPU path (served, by exact type: btPoint2PointConstraint, btHingeConstraint, "
-               "btConeTwistConstraint)";
+               "btConeTwistConstraint, btSliderConstraint)";
     }
     return "";
 }
@@ -197,6 +207,37 @@ bool jointRow(const btTypedConstraint& c, const RowMap& rows, int numIterations,
         j.limitBias = k.getBiasFactor();
         j.limitRelaxation = k.getRelaxationFactor();
         j.fixThresh = k.getFixThresh();
+    } else if (typeid(c) == typeid(btSliderConstraint)) {
+        auto& k = const_cast<btSliderConstraint&>(static_cast<const btSliderConstraint&>(c));
+        j.type = BTG_JOINT_SLIDER;
+        setFrame(k.getFrameOffsetA(), &j.pivotA, j.axesA);
+        setFrame(k.getFrameOffsetB(), &j.pivotB, j.axesB);
+        BtgSliderParams& sp = j.slider;
+        sp.lowerLin = k.getLowerLinLimit();
+        sp.upperLin = k.getUpperLinLimit();
+        sp.lowerAng = k.getLowerAngLimit();
+        sp.upperAng = k.getUpperAngLimit();
+        sp.softnessOrthoAng = k.getSoftnessOrthoAng();
+        sp.softnessOrthoLin = k.getSoftnessOrthoLin();
+        sp.softnessLimLin = k.getSoftnessLimLin();
+        sp.softnessLimAng = k.getSoftnessLimAng();
+        sp.dampingLimLin = k.getDampingLimLin();
+        sp.dampingLimAng = k.getDampingLimAng();
+        sp.cfmOrthoAng = k.*member(SliderCfmOrthoAng());
+        sp.cfmOrthoLin = k.*member(SliderCfmOrthoLin());
+        sp.cfmDirLin = k.*member(SliderCfmDirLin());
+        sp.cfmLimLin = k.*member(SliderCfmLimLin());
+        sp.cfmDirAng = k.*member(SliderCfmDirAng());
+        sp.cfmLimAng = k.*member(SliderCfmLimAng());
+        sp.linMotorVelocity = k.getTargetLinMotorVelocity();
+        sp.linMotorMaxForce = k.getMaxLinMotorForce();
+        sp.angMotorVelocity = k.getTargetAngMotorVelocity();
+        sp.angMotorMaxForce = k.getMaxAngMotorForce();
+        sp.flags = uint(k.getFlags());
+        sp.options = (k.getUseLinearReferenceFrameA() ? BTG_SLIDER_LINEAR_REFERENCE_A : 0u) |
+                     (k.getUseFrameOffset() ? BTG_SLIDER_FRAME_OFFSET : 0u) |
+                     (k.getPoweredLinMotor() ? BTG_SLIDER_LIN_MOTOR : 0u) |
+                     (k.getPoweredAngMotor() ? BTG_SLIDER_ANG_MOTOR : 0u);
     }
     *out = j;
     return true;

@@ -3,8 +3,8 @@
  * and finish_joints (writeBackJoints: applied impulse, joint feedback, breaking).
  * Launch: one work-item per joint, both kernels.
  * prepare_joints  Reads joints, jointState, counters[kContactCount], props, invInertiaWorld,
- *                 pos, rot, linVel, angVel (after this substep's forces), angVel0 (before them: the
- *                 hinge limit's bounce reads the rigid body's own). Writes jointRows,
+ *                 pos, rot, linVel, angVel (after this substep's forces), linVel0, angVel0 (before
+ *                 them: the limits' bounce reads the rigid body's own). Writes jointRows,
  *                 jointState (rows built, applied impulse reset), edges[contacts + j],
  *                 counters[kEdgeCount] (= contacts + joints).
  * finish_joints   Reads joints, jointRows, props. Writes jointState (applied impulse, broken),
@@ -18,11 +18,11 @@ static BtgJointBody load_joint_body(int i, __global const BtgBodyProps* restrict
                                     __global const BtgFloat4* restrict invInertiaWorld,
                                     __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,
                                     __global const BtgFloat4* restrict linVel, __global const BtgFloat4* restrict angVel,
-                                    __global const BtgFloat4* restrict angVel0)
+                                    __global const BtgFloat4* restrict linVel0, __global const BtgFloat4* restrict angVel0)
 {
     if (i < 0) return btgFixedJointBody();
     return btgMakeJointBody(props[i], invInertiaWorld[3 * i], invInertiaWorld[3 * i + 1], invInertiaWorld[3 * i + 2],
-                            pos[i], rot[i], linVel[i], angVel[i], angVel0[i]);
+                            pos[i], rot[i], linVel[i], angVel[i], linVel0[i], angVel0[i]);
 }
 
 __kernel void prepare_joints(__global const BtgJoint* restrict joints, __global BtgJointState* jointState,
@@ -30,7 +30,8 @@ __kernel void prepare_joints(__global const BtgJoint* restrict joints, __global 
                              __global const BtgBodyProps* restrict props,
                              __global const BtgFloat4* restrict invInertiaWorld, __global const BtgFloat4* restrict pos,
                              __global const BtgFloat4* restrict rot, __global const BtgFloat4* restrict linVel,
-                             __global const BtgFloat4* restrict angVel, __global const BtgFloat4* restrict angVel0,
+                             __global const BtgFloat4* restrict angVel, __global const BtgFloat4* restrict linVel0,
+                             __global const BtgFloat4* restrict angVel0,
                              __global BtgEdge* edges, BtgJointStepParams p)
 {
     int j = (int)get_global_id(0);
@@ -38,8 +39,8 @@ __kernel void prepare_joints(__global const BtgJoint* restrict joints, __global 
     if (j == 0) counters[BTG_COUNTER_EDGES] = n + (uint)p.numJoints;
     if (j >= p.numJoints) return;
     BtgJoint joint = joints[j];
-    BtgJointBody a = load_joint_body(joint.bodyA, props, invInertiaWorld, pos, rot, linVel, angVel, angVel0);
-    BtgJointBody b = load_joint_body(joint.bodyB, props, invInertiaWorld, pos, rot, linVel, angVel, angVel0);
+    BtgJointBody a = load_joint_body(joint.bodyA, props, invInertiaWorld, pos, rot, linVel, angVel, linVel0, angVel0);
+    BtgJointBody b = load_joint_body(joint.bodyB, props, invInertiaWorld, pos, rot, linVel, angVel, linVel0, angVel0);
     BtgJointState s = jointState[j];
     btgPrepareJoint(joint, &s, jointRows, a, b, p);
     jointState[j] = s;

@@ -79,6 +79,8 @@ constexpr double kJointContactFight = 0.03;  // m
 // within 1 degree of its limit (and of stock's angle).
 constexpr double kMotorSpeedRel = 0.02;
 constexpr double kHingeLimitAngle = M_PI / 180.0;  // rad
+// The slider bound: a slider driven into its limit stops within 1 mm of it.
+constexpr double kSliderLimit = 1e-3;  // m
 // Ragdolls landing in a heap are chaotic (which limb lands first decides the sprawl): their
 // mean centre height within 3 cm of stock's (measured 0.137 stock, 0.132 btgpu); no joint's
 // frames further apart at any step than 3 cm or twice stock's worst (at impact the 10

@@ -15,10 +15,12 @@
 #define BTG_JOINT_POINT2POINT 1
 #define BTG_JOINT_HINGE 2
 #define BTG_JOINT_CONE_TWIST 3
+#define BTG_JOINT_SLIDER 4
 /* Rows one joint of each type may build (getInfo1's maximum): its slots in the row table. */
 #define BTG_JOINT_P2P_ROWS 3
 #define BTG_JOINT_HINGE_ROWS 6
 #define BTG_JOINT_CONE_TWIST_ROWS 6
+#define BTG_JOINT_SLIDER_ROWS 6
 #define BTG_JOINT_MAX_ROWS 6
 
 /* BtgJoint.flags */
@@ -31,6 +33,27 @@
 #define BTG_JOINT_ANGULAR_ONLY 64u  /* hinge: setAngularOnly */
 #define BTG_JOINT_FRAME_OFFSET 128u /* hinge: setUseFrameOffset (Bullet's default: on) */
 #define BTG_JOINT_MOTOR 256u        /* hinge: enableAngularMotor */
+
+/* BtgSliderParams.options */
+#define BTG_SLIDER_LINEAR_REFERENCE_A 1u /* useLinearReferenceFrameA */
+#define BTG_SLIDER_FRAME_OFFSET 2u       /* setUseFrameOffset (Bullet's default: on) */
+#define BTG_SLIDER_LIN_MOTOR 4u          /* setPoweredLinMotor */
+#define BTG_SLIDER_ANG_MOTOR 8u          /* setPoweredAngMotor */
+
+/* btSliderConstraint's settings (getters and setParam values). */
+typedef struct {
+    float lowerLin, upperLin; /* m */
+    float lowerAng, upperAng; /* rad */
+    float softnessOrthoAng, softnessOrthoLin, softnessLimLin, softnessLimAng;
+    float dampingLimLin, dampingLimAng;
+    float cfmOrthoAng, cfmOrthoLin, cfmDirLin, cfmLimLin, cfmDirAng, cfmLimAng;
+    float linMotorVelocity, linMotorMaxForce; /* m/s, N */
+    float angMotorVelocity, angMotorMaxForce; /* rad/s, N m */
+    uint flags;   /* BT_SLIDER_FLAGS_* as Bullet numbers them */
+    uint options; /* BTG_SLIDER_* */
+    float pad0;
+    float pad1;
+} BtgSliderParams;
 
 /* A body of a joint without a row: Bullet's shared fixed body (btTypedConstraint::getFixedBody),
  * static at the identity transform. */
@@ -74,6 +97,7 @@ typedef struct {
     float pad0;
     float pad1;
     float pad2;
+    BtgSliderParams slider;   /* slider only */
 } BtgJoint;
 
 /* One row of a joint in device memory (btSolverConstraint of the non-contact pool): the
@@ -121,7 +145,8 @@ typedef struct {
 } BtgJointStepParams;
 
 #ifndef __OPENCL_C_VERSION__
-static_assert(sizeof(BtgJoint) == 272, "BtgJoint layout");
+static_assert(sizeof(BtgSliderParams) == 96, "BtgSliderParams layout");
+static_assert(sizeof(BtgJoint) == 368, "BtgJoint layout");
 static_assert(sizeof(BtgJointRow) == 112, "BtgJointRow layout");
 static_assert(sizeof(BtgJointState) == 16, "BtgJointState layout");
 static_assert(sizeof(BtgJointFeedback) == 64, "BtgJointFeedback layout");
@@ -133,6 +158,7 @@ static inline int btgJointMaxRows(int type)
     if (type == BTG_JOINT_POINT2POINT) return BTG_JOINT_P2P_ROWS;
     if (type == BTG_JOINT_HINGE) return BTG_JOINT_HINGE_ROWS;
     if (type == BTG_JOINT_CONE_TWIST) return BTG_JOINT_CONE_TWIST_ROWS;
+    if (type == BTG_JOINT_SLIDER) return BTG_JOINT_SLIDER_ROWS;
     return 0;
 }
 
@@ -143,6 +169,7 @@ typedef struct {
     BtgMat3 basis;
     BtgSolverBody body;
     BtgBodyVel vel;
+    BtgFloat4 linVel0;   /* m/s before this substep's forces (btRigidBody::getLinearVelocity in getInfo2) */
     BtgFloat4 angVel0;   /* rad/s before this substep's forces (btRigidBody::getAngularVelocity in getInfo2) */
     float rbInvMass;     /* btRigidBody::getInvMass: 1/kg, 0 unless dynamic (asleep or not) */
     float pad0, pad1, pad2;
@@ -167,6 +194,7 @@ static inline BtgJointBody btgFixedJointBody(void)
     b.body.pad0 = 0;
     b.vel.lin = btgZero4();
     b.vel.ang = btgZero4();
+    b.linVel0 = btgZero4();
     b.angVel0 = btgZero4();
     b.rbInvMass = 0.0f;
     b.pad0 = b.pad1 = b.pad2 = 0.0f;
@@ -175,13 +203,14 @@ static inline BtgJointBody btgFixedJointBody(void)
 
 /* A body row as a joint reads it: rot is its quaternion, i0..i2 its world inverse inertia rows. */
 static inline BtgJointBody btgMakeJointBody(BtgBodyProps p, BtgFloat4 i0, BtgFloat4 i1, BtgFloat4 i2, BtgFloat4 pos,
-                                            BtgFloat4 rot, BtgFloat4 lin, BtgFloat4 ang, BtgFloat4 ang0)
+                                            BtgFloat4 rot, BtgFloat4 lin, BtgFloat4 ang, BtgFloat4 lin0, BtgFloat4 ang0)
 {
     BtgJointBody b;
     b.pos = btgXyz(pos);
     b.basis = btgQuatToMat3(rot);
     b.body = btgMakeSolverBody(p, i0, i1, i2);
     b.vel = btgMakeBodyVel(b.body.moving, lin, ang);
+    b.linVel0 = b.body.moving ? btgXyz(lin0) : btgZero4();
     b.angVel0 = b.body.moving ? btgXyz(ang0) : btgZero4();
     b.rbInvMass = (p.flags & BTG_BODY_DYNAMIC) ? p.invMass : 0.0f;
     b.pad0 = b.pad1 = b.pad2 = 0.0f;

@@ -10,7 +10,7 @@ BtgJointBody jointBody(const ContactBodies& bodies, int i)
     const size_t r = size_t(i);
     return btgMakeJointBody(bodies.props[r], bodies.invInertiaWorld[3 * r], bodies.invInertiaWorld[3 * r + 1],
                             bodies.invInertiaWorld[3 * r + 2], bodies.pos[r], bodies.rot[r], bodies.linVel[r],
-                            bodies.angVel[r], bodies.angVel0[r]);
+                            bodies.angVel[r], bodies.linVel0[r], bodies.angVel0[r]);
 }
 
 std::vector<BtgEdge> prepareJoints(JointTables& t, const ContactBodies& bodies, const BtgJointStepParams& params)

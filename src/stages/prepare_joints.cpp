@@ -23,7 +23,7 @@ void prepareJoints(DeviceWorld& w, const BtgJointStepParams& params)
     }
     cl::Launch(w.ctx, w.ctx.program("prepare_joints").kernel("prepare_joints"), &w.profiler)
         .arg(w.joints).arg(w.jointState).arg(w.jointRows).arg(w.counters).arg(contactCapacity).arg(w.props)
-        .arg(w.invInertiaWorld).arg(w.pos).arg(w.rot).arg(w.linVel).arg(w.angVel).arg(w.angVel0).arg(w.edges).arg(params)
+        .arg(w.invInertiaWorld).arg(w.pos).arg(w.rot).arg(w.linVel).arg(w.angVel).arg(w.linVel0).arg(w.angVel0).arg(w.edges).arg(params)
         .run(size_t(w.numJoints));
 }
 

@@ -493,3 +493,29 @@ TEST(Joints, RemovingAJointMidRunLetsTheRestFall)
     s.both([](Scene& sc) { sc.world().addConstraint(sc.joint(5)); });
     STEP_ON_GPU(s, 1);
 }
+
+TEST(Joints, SliderMotorDrivesToItsLimit)
+{
+    // A box on a horizontal slider to the fixed body, limited to [-0.5, 0.5] m along x, its
+    // linear motor pushing at 1 m/s: it stops at the upper limit, as on stock.
+    SideBySide s([](WorldKind k, const Config& c) {
+        auto sc = std::make_unique<Scene>(k, c, "slider");
+        btRigidBody* box = sc->addBody(sc->boxShape(btVector3(0.2f, 0.2f, 0.2f)), 2.0f, btVector3(0, 2, 0));
+        box->setActivationState(DISABLE_DEACTIVATION);
+        auto* sl = sc->addJoint(new btSliderConstraint(*box, btTransform::getIdentity(), true));
+        sl->setLowerLinLimit(-0.5f);
+        sl->setUpperLinLimit(0.5f);
+        sl->setPoweredLinMotor(true);
+        sl->setTargetLinMotorVelocity(1.0f);
+        sl->setMaxLinMotorForce(50.0f);
+        return sc;
+    });
+    STEP_ON_GPU(s, 120);
+    const double stockX = s.stock->body(0)->getWorldTransform().getOrigin().x();
+    const double gpuX = s.gpu->body(0)->getWorldTransform().getOrigin().x();
+    std::printf("slider at its 0.5 m limit after 2 s: stock x %.5f, btgpu x %.5f m; btgpu y %.5f m\n", stockX, gpuX,
+                s.gpuY(0));
+    EXPECT_NEAR(gpuX, 0.5, tol::kSliderLimit);
+    EXPECT_NEAR(gpuX, stockX, tol::kSliderLimit);
+    EXPECT_NEAR(s.gpuY(0), s.stockY(0), tol::kSliderLimit);  // held up against gravity by the ortho rows
+}

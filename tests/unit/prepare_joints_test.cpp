@@ -478,6 +478,146 @@ TEST(PrepareJoints, ConeTwistRowsMatchBulletAndReference)
     EXPECT_GE(limitRows, 8);  // swing and twist rows of every kind were built
 }
 
+namespace {
+BtgJoint sliderRow(int a, int b, btSliderConstraint& c, int firstRow)
+{
+    BtgJoint j{};
+    j.type = BTG_JOINT_SLIDER;
+    j.bodyA = a;
+    j.bodyB = b;
+    j.flags = BTG_JOINT_ENABLED;
+    j.firstRow = firstRow;
+    j.iterations = 10;
+    j.breakingThreshold = c.getBreakingImpulseThreshold();
+    j.pivotA = f4(c.getFrameOffsetA().getOrigin());
+    j.pivotB = f4(c.getFrameOffsetB().getOrigin());
+    for (int k = 0; k < 3; ++k) {
+        j.axesA[k] = f4(c.getFrameOffsetA().getBasis().getColumn(k));
+        j.axesB[k] = f4(c.getFrameOffsetB().getBasis().getColumn(k));
+    }
+    BtgSliderParams& sp = j.slider;
+    sp.lowerLin = c.getLowerLinLimit();
+    sp.upperLin = c.getUpperLinLimit();
+    sp.lowerAng = c.getLowerAngLimit();
+    sp.upperAng = c.getUpperAngLimit();
+    sp.softnessOrthoAng = c.getSoftnessOrthoAng();
+    sp.softnessOrthoLin = c.getSoftnessOrthoLin();
+    sp.softnessLimLin = c.getSoftnessLimLin();
+    sp.softnessLimAng = c.getSoftnessLimAng();
+    sp.dampingLimLin = c.getDampingLimLin();
+    sp.dampingLimAng = c.getDampingLimAng();
+    sp.cfmDirLin = c.getParam(BT_CONSTRAINT_CFM, 0);
+    sp.cfmDirAng = c.getParam(BT_CONSTRAINT_CFM, 3);
+    sp.cfmLimLin = c.getParam(BT_CONSTRAINT_STOP_CFM, 0);
+    sp.cfmOrthoLin = c.getParam(BT_CONSTRAINT_STOP_CFM, 1);
+    sp.cfmLimAng = c.getParam(BT_CONSTRAINT_STOP_CFM, 3);
+    sp.cfmOrthoAng = c.getParam(BT_CONSTRAINT_STOP_CFM, 4);
+    sp.linMotorVelocity = c.getTargetLinMotorVelocity();
+    sp.linMotorMaxForce = c.getMaxLinMotorForce();
+    sp.angMotorVelocity = c.getTargetAngMotorVelocity();
+    sp.angMotorMaxForce = c.getMaxAngMotorForce();
+    sp.flags = uint(c.getFlags());
+    sp.options = (c.getUseLinearReferenceFrameA() ? BTG_SLIDER_LINEAR_REFERENCE_A : 0u) |
+                 (c.getUseFrameOffset() ? BTG_SLIDER_FRAME_OFFSET : 0u) |
+                 (c.getPoweredLinMotor() ? BTG_SLIDER_LIN_MOTOR : 0u) | (c.getPoweredAngMotor() ? BTG_SLIDER_ANG_MOTOR : 0u);
+    return j;
+}
+}  // namespace
+
+TEST(PrepareJoints, SliderRowsMatchBulletAndReference)
+{
+    BulletBodies s;
+    btRigidBody* a = s.add(2.0f, btVector3(0.1f, 2.0f, -0.3f), btQuaternion(btVector3(1, 2, 3).normalized(), 0.7f),
+                           btVector3(0.5f, -1.0f, 0.2f), btVector3(0.3f, 0.1f, -2.0f));
+    btRigidBody* b = s.add(3.0f, btVector3(0.4f, 1.1f, 0.2f), btQuaternion(btVector3(-1, 0, 2).normalized(), 1.9f),
+                           btVector3(-0.2f, 0.4f, 0.0f), btVector3(1.0f, -0.5f, 0.25f));
+    const btTransform fa(btQuaternion(btVector3(0, 0, 1), 0.3f), btVector3(0.2f, -0.4f, 0.1f));
+    const btTransform fb(btQuaternion(btVector3(0, 1, 0), -0.6f), btVector3(-0.1f, 0.5f, 0.0f));
+    std::vector<std::unique_ptr<btSliderConstraint>> c;
+    std::vector<int> bodyB;
+    auto add = [&](btSliderConstraint* k, int b2 = 1) {
+        c.emplace_back(k);
+        bodyB.push_back(b2);
+        return k;
+    };
+    add(new btSliderConstraint(*a, *b, fa, fb, true));  // Bullet's default limits (lin [1, -1]: free; ang 0)
+    btSliderConstraint* lim = add(new btSliderConstraint(*a, *b, fa, fb, true));
+    lim->setLowerLinLimit(-0.1f);
+    lim->setUpperLinLimit(0.1f);
+    lim->setLowerAngLimit(-0.2f);
+    lim->setUpperAngLimit(0.2f);
+    lim->setDampingLimLin(0.3f);  // bounce 0.7
+    lim->setDampingLimAng(0.5f);
+    btSliderConstraint* motor = add(new btSliderConstraint(*a, *b, fa, fb, false));
+    motor->setLowerLinLimit(-3.0f);
+    motor->setUpperLinLimit(3.0f);
+    motor->setLowerAngLimit(-3.0f);
+    motor->setUpperAngLimit(3.0f);
+    motor->setPoweredLinMotor(true);
+    motor->setTargetLinMotorVelocity(0.8f);
+    motor->setMaxLinMotorForce(20.0f);
+    motor->setPoweredAngMotor(true);
+    motor->setTargetAngMotorVelocity(-1.2f);
+    motor->setMaxAngMotorForce(5.0f);
+    btSliderConstraint* old = add(new btSliderConstraint(*a, *b, fa, fb, true));
+    old->setUseFrameOffset(false);
+    old->setLowerLinLimit(0.5f);
+    old->setUpperLinLimit(0.5f);  // locked
+    btSliderConstraint* tuned = add(new btSliderConstraint(*a, *b, fa, fb, true));
+    tuned->setLowerLinLimit(-0.1f);
+    tuned->setUpperLinLimit(0.1f);
+    tuned->setParam(BT_CONSTRAINT_STOP_ERP, 0.7f, 0);
+    tuned->setParam(BT_CONSTRAINT_STOP_ERP, 0.6f, 1);
+    tuned->setParam(BT_CONSTRAINT_STOP_ERP, 0.5f, 4);
+    tuned->setParam(BT_CONSTRAINT_STOP_CFM, 0.01f, 0);
+    tuned->setParam(BT_CONSTRAINT_STOP_CFM, 0.02f, 1);
+    tuned->setParam(BT_CONSTRAINT_STOP_CFM, 0.03f, 3);
+    tuned->setParam(BT_CONSTRAINT_STOP_CFM, 0.04f, 4);
+    // On the fixed body, built where body b stands (Bullet puts frame A at b's frame in world):
+    // the angle and offset start exactly at zero, so limits that exclude zero, not a locked
+    // range whose row appears or not with the last bit of rounding.
+    btSliderConstraint* fixed = add(new btSliderConstraint(*b, fb, true), BTG_JOINT_FIXED_BODY);
+    fixed->setLowerLinLimit(0.1f);
+    fixed->setUpperLinLimit(0.2f);
+    fixed->setLowerAngLimit(0.1f);
+    fixed->setUpperAngLimit(0.3f);
+    ref::JointTables tables;
+    for (size_t i = 0; i < c.size(); ++i)
+        tables.joints.push_back(sliderRow(bodyB[i] == BTG_JOINT_FIXED_BODY ? 1 : 0, bodyB[i], *c[i], int(6 * i)));
+    // Bullet's fixed-body constructor puts the fixed body as A: mirror it.
+    tables.joints.back().bodyA = BTG_JOINT_FIXED_BODY;
+    tables.joints.back().bodyB = 1;
+    tables.state.assign(c.size(), BtgJointState{});
+    tables.rows.assign(6 * c.size(), BtgJointRow{});
+    const BtgJointStepParams p = jointParams(int(c.size()));
+    ref::JointTables expect = tables;
+    ref::prepareJoints(expect, s.rows, p);
+    DeviceJoints got = runPrepare(s.rows, tables, p);
+    int extraRows = 0;
+    for (size_t j = 0; j < c.size(); ++j) {
+        std::vector<BulletRow> br = bulletRows(*c[j], p.dt, p.erp);
+        ASSERT_EQ(got.state[j].numRows, int(br.size())) << "slider " << j;
+        ASSERT_EQ(expect.state[j].numRows, int(br.size())) << "slider " << j;
+        extraRows += int(br.size()) - 4;
+        for (size_t k = 0; k < br.size(); ++k) {
+            const BtgJointRow &g = got.rows[tables.joints[j].firstRow + k], &e = expect.rows[tables.joints[j].firstRow + k];
+            const std::string what = "slider " + std::to_string(j) + " row " + std::to_string(k);
+            expectNear(g.mass, e.mass, what + " mass (ref)");
+            expectNear(g.target, e.target, what + " target (ref)");
+            expectNear3(g.jacobian.linear, br[k].linA, what + " linA");
+            expectNear3(-g.jacobian.linear, br[k].linB, what + " linB");
+            expectNear3(g.jacobian.angularA, br[k].angA, what + " angA");
+            expectNear3(g.jacobian.angularB, br[k].angB, what + " angB");
+            expectNear(g.mass, br[k].mass, what + " mass");
+            expectNear(g.target, br[k].target, what + " target");
+            expectNear(g.cfm, br[k].cfm, what + " cfm");
+            EXPECT_EQ(g.lower, br[k].lower) << what;
+            EXPECT_EQ(g.upper, br[k].upper) << what;
+        }
+    }
+    EXPECT_GE(extraRows, 6);  // limit and motor rows of both kinds were built
+}
+
 TEST(PrepareJoints, DisabledBrokenAndSleepingJointsBuildNoRows)
 {
     BulletBodies s;
