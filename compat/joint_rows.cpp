@@ -271,30 +271,40 @@ void JointSync::upload(btDiscreteDynamicsWorld& world, const RowMap& rows, Devic
         return;
     }
     const bool resized = m_uploaded.size() != table.size();
-    bool changed = resized;
     m_state.resize(size_t(n));
-    for (size_t i = 0; i < table.size(); ++i) {
-        if (!resized && std::memcmp(&table[i], &m_uploaded[i], sizeof(BtgJoint)) == 0) continue;
-        changed = true;
-        std::memset(&m_state[i], 0, sizeof(BtgJointState));  // starts unbroken
-        if (!resized) m_state[i].appliedImpulse = m_constraints[i]->getAppliedImpulse();
-    }
-    if (resized)
-        for (size_t i = 0; i < table.size(); ++i) {
+    // Compared in parallel chunks; each joint that changed starts unbroken on the device.
+    const size_t minPerThread = 4096;
+    std::vector<std::vector<size_t>> found(size_t(chunkCount(size_t(n), minPerThread)));
+    std::vector<char> anyFeedback(found.size(), 0);
+    forEachChunk(size_t(n), minPerThread, [&](size_t begin, size_t end, int chunk) {
+        for (size_t i = begin; i < end; ++i) {
+            if (table[i].flags & BTG_JOINT_FEEDBACK) anyFeedback[size_t(chunk)] = 1;
+            if (!resized && std::memcmp(&table[i], &m_uploaded[i], sizeof(BtgJoint)) == 0) continue;
+            found[size_t(chunk)].push_back(i);
             std::memset(&m_state[i], 0, sizeof(BtgJointState));
             m_state[i].appliedImpulse = m_constraints[i]->getAppliedImpulse();
         }
-    m_anyFeedback = false;
-    for (const BtgJoint& j : table) m_anyFeedback = m_anyFeedback || (j.flags & BTG_JOINT_FEEDBACK);
-    if (!changed) return;
-    w.joints.upload(w.ctx, table);
-    w.jointState.upload(w.ctx, m_state);
+    });
+    m_anyFeedback = std::find(anyFeedback.begin(), anyFeedback.end(), 1) != anyFeedback.end();
+    std::vector<size_t> changed;
+    for (const std::vector<size_t>& list : found) changed.insert(changed.end(), list.begin(), list.end());
+    if (changed.empty()) return;
     // The device keeps what it last wrote (a joint whose island sleeps keeps its feedback, as
     // stock's); a joint new to the table starts at zero.
     m_feedback.resize(size_t(n), BtgJointFeedback{});
-    w.jointFeedback.upload(w.ctx, m_feedback);
     w.jointRows.reserveExact(w.ctx, size_t(std::max(nextRow, 1)));
-    m_uploaded = table;
+    if (resized || changed.size() > size_t(n) / 8) {
+        w.joints.upload(w.ctx, table);
+        w.jointState.upload(w.ctx, m_state);
+        w.jointFeedback.upload(w.ctx, m_feedback);
+    } else {
+        // A few joints changed (a motor target set every step): only they travel.
+        for (size_t i : changed) {
+            w.joints.upload(w.ctx, &table[i], 1, i);
+            w.jointState.upload(w.ctx, &m_state[i], 1, i);
+        }
+    }
+    m_uploaded = std::move(table);
 }
 
 void JointSync::writeBack(DeviceWorld& w)
