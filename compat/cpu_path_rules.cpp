@@ -3,6 +3,8 @@
 // compute something else with it and the GPU path does not follow it. Settings that change
 // nothing for a world of rigid bodies without joints stay on the GPU path; each says why below.
 #include "cpu_path_rules.h"
+
+#include "joint_rows.h"
 #include "subclass_rules.h"
 
 #include "btgpu/Config.h"
@@ -31,11 +33,6 @@ namespace btgpu {
 
 namespace {
 
-// Protected members Bullet reads but offers no getter for, read through a pointer to member
-// taken inside a derived class (legal C++; nothing is ever constructed).
-struct CollisionObjectPeek : btCollisionObject {
-    static constexpr int btCollisionObject::*kCheckCollideWith = &CollisionObjectPeek::m_checkCollideWith;
-};
 constexpr int kTypes = MAX_BROADPHASE_COLLISION_TYPES;
 using CreateFuncTable = btCollisionAlgorithmCreateFunc* [kTypes][kTypes];
 struct DispatcherPeek : btCollisionDispatcher {
@@ -177,7 +174,8 @@ const char* shapeKindName(int kind)
 
 std::string structureReason(const btDiscreteDynamicsWorld& world, int numActions, ShapeTables* shapes)
 {
-    if (world.getNumConstraints() > 0) return "constraints (addConstraint) are not on the GPU path yet";
+    std::string joints = jointsStructureReason(world);
+    if (!joints.empty()) return joints;
     if (numActions > 0) return "actions (addAction, vehicles, characters) are not on the GPU path yet";
     const btCollisionObjectArray& objs = world.getCollisionObjectArray();
     shapes->beginReferences();
@@ -224,6 +222,12 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
 {
     std::string subclass = subclassReason(world);
     if (!subclass.empty()) return subclass;
+    // Joints are projected Gauss-Seidel rows solved with the contacts; the Jacobi solver takes
+    // contacts only.
+    if (world.getNumConstraints() > 0 && config.solver == SolverKind::JacobiMassSplitting)
+        return "joints with Config::solver = JacobiMassSplitting (joints are solved by the batched PGS solver only)";
+    std::string joints = jointsStepReason(world);
+    if (!joints.empty()) return joints;
     // The GPU path is btSequentialImpulseConstraintSolver's projected Gauss-Seidel; any other
     // solver (MLCP, NNCG, the multithreaded one, a subclass) computes something else.
     btConstraintSolver* solver = world.getConstraintSolver();
@@ -278,10 +282,11 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
     if (gContactBreakingThreshold != btScalar(0.02) && gContactBreakingThreshold != config.contactThreshold)
         return "gContactBreakingThreshold changed from 0.02 (set Config::contactThreshold to the same value)";
 
-    // btContactSolverInfo, against Bullet 3.24's defaults, exactly. Left alone, because
+    // btContactSolverInfo, against Bullet 3.24's defaults, exactly. m_erp and m_damping are
+    // read by the joints (BtgJointStepParams). Left alone, because
     // btSequentialImpulseConstraintSolver and btDiscreteDynamicsWorld never read them for rigid
-    // bodies without joints: m_tau, m_damping (joints), m_friction, m_restitution,
-    // m_maxErrorReduction, m_frictionCFM (manifold points carry their own), m_erp (joints),
+    // bodies: m_tau, m_friction, m_restitution,
+    // m_maxErrorReduction, m_frictionCFM (manifold points carry their own),
     // m_restingContactRestitutionThreshold ("unused as of 2.81"),
     // m_singleAxisRollingFrictionThreshold, the m_deformable_* fields, m_articulatedWarmstartingFactor,
     // m_jointFeedback*, m_reportSolverAnalytics, m_numNonContactInnerIterations (multibody and
@@ -332,7 +337,9 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     // Flags left on the GPU path: CF_CHARACTER_OBJECT, CF_DISABLE_VISUALIZE_OBJECT,
     // CF_DISABLE_SPU_COLLISION_PROCESSING, CF_HAS_CUSTOM_DEBUG_RENDERING_COLOR and
     // CF_HAS_COLLISION_SOUND_TRIGGER are unread by 3.24's rigid-body pipeline;
-    // CF_CUSTOM_MATERIAL_CALLBACK does nothing without gContactAddedCallback.
+    // CF_CUSTOM_MATERIAL_CALLBACK does nothing without gContactAddedCallback. Collision-check
+    // exceptions (setIgnoreCollisionCheck, disableCollisionsBetweenLinkedBodies) are served by
+    // filter_pairs.
     const int flags = o->getCollisionFlags();
     if (!servedShapeType(o->getCollisionShape()->getShapeType()))
         return std::string("unsupported shape '") + o->getCollisionShape()->getName() + "'";
@@ -349,7 +356,6 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
         return "anisotropic friction (setAnisotropicFriction)";
     if (o->getContactProcessingThreshold() < btScalar(BT_LARGE_FLOAT))
         return "contact processing threshold (setContactProcessingThreshold)";
-    if (o->*CollisionObjectPeek::kCheckCollideWith) return "collision check exceptions (setIgnoreCollisionCheck)";
     const btRigidBody* rb = btRigidBody::upcast(o);
     if (!rb || rb->isStaticOrKinematicObject()) return "";
     if (isMeshType(o->getCollisionShape()->getShapeType()))

@@ -134,6 +134,7 @@ void GpuWorld::makePlan()
     in.solver = m_config.solver;
     in.largeBodyFactor = m_config.largeBodyFactor;
     in.contactThreshold = m_config.contactThreshold;
+    in.numJoints = m_world.getNumConstraints();  // all served while on the GPU path
     in.bodies.reserve(m_rows.size());
     for (size_t r = 0; r < m_rows.size(); ++r) {
         const btCollisionObject* o = m_rows.at(r);
@@ -154,6 +155,7 @@ void GpuWorld::makePlan()
     }
     DerivedPlan d = derivePlan(in);
     m_plan = d.plan;
+    m_plan.hasIgnoredPairs = m_ignored.any();
     m_large.assign(m_rows.size(), false);
     for (int r : d.largeRows) m_large[size_t(r)] = true;
     DeviceWorld& w = *m_dev;
@@ -232,6 +234,8 @@ void GpuWorld::rebuild()
     w.islandTime.upload(w.ctx, never);
     m_mirror.assign(n, Mirror());
     syncIn(w, changedRows(true));
+    m_joints.reset();
+    m_ignored.reset();
 }
 
 void GpuWorld::followRows()
@@ -306,6 +310,7 @@ std::vector<BodyRowUpdate> GpuWorld::changedRows(bool all)
     const size_t minPerThread = 4096;
     const int chunks = chunkCount(n, minPerThread);
     std::vector<std::vector<BodyRowUpdate>> found(chunks);
+    m_woken.assign(n, 0);
     std::vector<std::vector<std::pair<size_t, std::string>>> newlyBad(chunks);
     forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
         for (size_t r = begin; r < end; ++r) {
@@ -331,6 +336,15 @@ std::vector<BodyRowUpdate> GpuWorld::changedRows(bool all)
     out.reserve(total);
     for (const auto& list : found) out.insert(out.end(), list.begin(), list.end());
     return out;
+}
+
+std::vector<int> GpuWorld::takeWoken()
+{
+    std::vector<int> rows;
+    for (size_t r = 0; r < m_woken.size(); ++r)
+        if (m_woken[r]) rows.push_back(int(r));
+    m_woken.clear();
+    return rows;
 }
 
 bool GpuWorld::compareRow(size_t r, bool all, BodyRowUpdate* u, std::string* newlyBad)
@@ -359,6 +373,8 @@ bool GpuWorld::compareRow(size_t r, bool all, BodyRowUpdate* u, std::string* new
                    !sameVec(force, m.force) || !sameVec(torque, m.torque);
     if (!changed) return false;
     if (excluded && !m.excluded) *newlyBad = bad;
+    if (!all && m.props.flags != 0xffffffffu && (m.props.flags & BTG_BODY_SLEEPING) && !(props.flags & BTG_BODY_SLEEPING))
+        m_woken[r] = 1;
     BodyState s = bodyState(o);
     u->row = int(r);
     u->pos = finiteOrZero(s.pos);
@@ -400,6 +416,13 @@ StepSettings GpuWorld::settings(int substeps, btScalar dt) const
     s.iterations = std::max(info.m_numIterations, 1);
     s.maxColors = std::max(m_config.maxColors, 2);
     s.solver = m_config.solver;
+    BtgJointStepParams& j = s.joints;
+    j = BtgJointStepParams{};
+    j.dt = dt;
+    j.erp = info.m_erp;
+    j.globalCfm = info.m_globalCfm;
+    j.damping = info.m_damping;
+    j.numJoints = m_dev->numJoints;
     return s;
 }
 
@@ -638,8 +661,15 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             m_world.getSolverInfo().m_timeStep = fixedTimeStep;
             Clock::time_point t0 = Clock::now();
             syncIn(*m_dev, changedRows(false));
+            resetRows(*m_dev, takeWoken());
+            m_joints.upload(m_world, m_rows, *m_dev);  // limits, pivots, enabled, ... as the app left them
+            if (m_ignored.update(m_rows, *m_dev)) {
+                m_plan.hasIgnoredPairs = m_ignored.any();
+                m_report.stages = m_plan.stages();
+            }
             Clock::time_point t1 = Clock::now();
             runOnDevice(perBatch, fixedTimeStep);
+            m_joints.writeBack(*m_dev);  // applied impulses, feedback, breaks
             Clock::time_point t2 = Clock::now();
             writeBack(m_readback, b == batches - 1);
             m_report.syncInMs += msBetween(t0, t1);
@@ -652,6 +682,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         // made bad is named now, as on the CPU path, not at the next call that steps.
         Clock::time_point t0 = Clock::now();
         syncIn(*m_dev, changedRows(false));
+        resetRows(*m_dev, takeWoken());
         m_report.syncInMs += msBetween(t0, Clock::now());
     }
     Clock::time_point t3 = Clock::now();

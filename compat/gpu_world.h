@@ -5,6 +5,8 @@
 #pragma once
 #include "btgpu/btGpuDynamicsWorld.h"
 #include "cpu_path_guard.h"
+#include "ignored_pairs.h"
+#include "joint_rows.h"
 #include "row_map.h"
 #include "pipeline.h"
 #include "shape_tables.h"
@@ -101,6 +103,12 @@ private:
     bool m_rowsStale = true;  // objects added or removed since the rows last followed them
     std::vector<Mirror> m_mirror;
     std::vector<bool> m_large;  // rows paired by brute force instead of the grid
+    // Per row, set by compareRow: the app woke this sleeping body (activate()), which restarts
+    // its deactivation timer in Bullet; the device's timers are reset to match.
+    std::vector<char> m_woken;
+    std::vector<int> takeWoken();
+    JointSync m_joints;         // the joint table on the device and its write-back
+    IgnoredPairs m_ignored;     // collision-check exceptions (disableCollisionsBetweenLinkedBodies)
     Snapshot m_snapshot;
     BodyReadback m_readback;
     bool m_fusedWriteBack = false;

@@ -35,6 +35,12 @@ public:
 
     size_t size() const { return m_rows.size(); }
     btCollisionObject* at(size_t r) const { return m_rows[r]; }  // nullptr: retired
+    // The row of an object in the world, -1 for one that is not.
+    int rowOf(const btCollisionObject* o) const
+    {
+        auto it = m_rowOf.find(o);
+        return it == m_rowOf.end() ? -1 : int(it->second);
+    }
     size_t live() const { return m_rows.size() - m_free.size() - m_retiring.size(); }
     size_t unused() const { return m_free.size() + m_retiring.size(); }
 

@@ -3,6 +3,7 @@
  * them, and a float expression whose value differs when a*b+c is contracted into an fma. */
 #include "shared/types.h"
 #include "shared/math.h"
+#include "shared/joint_rows.h"
 
 __kernel void probe_layout(__global int* out, float a, float b, float c)
 {
@@ -21,6 +22,10 @@ __kernel void probe_layout(__global int* out, float a, float b, float c)
     out[12] = (int)sizeof(BtgPersistentManifold);
     BtgShape shape;
     out[13] = (int)((char*)&shape.convexType - (char*)&shape);
+    out[14] = (int)sizeof(BtgJoint);
+    out[15] = (int)sizeof(BtgJointRow);
+    out[16] = (int)sizeof(BtgJointState);
+    out[17] = (int)sizeof(BtgJointFeedback);
     float r = a * b + c; /* with contraction this is fma(a, b, c): a different float */
     out[7] = as_int(r);
 }

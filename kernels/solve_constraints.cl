@@ -1,5 +1,8 @@
 /* solve_constraints.cl — Stage: solve (batched projected Gauss-Seidel over the colored
- * constraint graph, color by color; edge e below the contact count is contact e).
+ * constraint graph, color by color; edge e below the contact count is contact e, edge
+ * contacts + j is joint j). Each velocity iteration solves, as Bullet's solveSingleIteration,
+ * every joint row first (joint j while the iteration is below its own iteration count), then
+ * the contacts (while it is below m_numIterations); joints take no warm-start or push pass.
  * Launch: color_count / color_fill: one work-item per edge slot, sorting edge indices into
  * per-color ranges; solve_color_range: one work-item per slot of one color's range (no
  * dynamic body twice in a color, so no races); solve_resident: every pass and color in one
@@ -8,15 +11,21 @@
  * last one or higher (so a caller launching fewer colors than were assigned still solves all).
  * mode 0: apply warm-start impulses; 1: velocity iteration; 2: split-impulse iteration;
  * twoFriction: SOLVER_USE_2_FRICTION_DIRECTIONS (else the second friction rows are not read).
- * Reads counters[kEdgeCount, kColorsUsed, kLeftovers], edgeColor, props, invInertiaWorld,
- * contacts (a pass reads the fields of its rows only, see BtgContact). Writes contacts
- * (accumulated impulses), linVel, angVel (modes 0, 1) or pushLin, pushAng (mode 2), dynamic
- * bodies only. */
+ * Reads counters[kEdgeCount, kContactCount, kColorsUsed, kLeftovers], edgeColor, props,
+ * invInertiaWorld, contacts (a pass reads the fields of its rows only, see BtgContact),
+ * joints, jointState (rows built). Writes contacts and jointRows (accumulated impulses),
+ * linVel, angVel (modes 0, 1) or pushLin, pushAng (mode 2), dynamic bodies only. */
 #include "shared/types.h"
 #include "shared/math.h"
 #include "shared/contact_rows.h"
+#include "shared/joint_rows.h"
 #include "shared/counters.h"
 #include "shared/grid_barrier.h"
+
+/* The joint buffers every solve kernel takes (one-element placeholders without joints). */
+#define JOINT_ARGS __global const BtgJoint* restrict joints, __global const BtgJointState* restrict jointState, \
+                   __global BtgJointRow* jointRows, int numJoints
+#define JOINT_PASS joints, jointState, jointRows, numJoints
 
 
 static BtgSolverBody load_body(__global const BtgBodyProps* restrict props,
@@ -69,6 +78,60 @@ static int edge_count(__global const uint* restrict counters, int edgeCapacity)
     return (int)min(counters[BTG_COUNTER_EDGES], (uint)edgeCapacity);
 }
 
+/* Edges below this are contacts; the joints' follow (the contact slots are the edge slots
+ * less one per joint). */
+static int contact_edges(__global const uint* restrict counters, int edgeCapacity, int numJoints)
+{
+    return (int)min(counters[BTG_COUNTER_CONTACTS], (uint)(edgeCapacity - numJoints));
+}
+
+/* Joint j's rows, one Gauss-Seidel step each in row order (the rows of one joint share its two
+ * bodies, so one work-item takes them all). */
+static void solve_joint(int j, int iteration, JOINT_ARGS, __global const BtgBodyProps* restrict props,
+                        __global const BtgFloat4* restrict invInertiaWorld, BTG_SHARED __global BtgFloat4* lin,
+                        BTG_SHARED __global BtgFloat4* ang)
+{
+    BtgJoint joint = joints[j];
+    const int rows = jointState[j].numRows;
+    if (rows == 0 || iteration >= joint.iterations) return;
+    BtgSolverBody a = joint.bodyA >= 0 ? load_body(props, invInertiaWorld, joint.bodyA) : btgFixedJointBody().body;
+    BtgSolverBody b = joint.bodyB >= 0 ? load_body(props, invInertiaWorld, joint.bodyB) : btgFixedJointBody().body;
+    BtgFloat4 linA = btgZero4(), angA = btgZero4(), linB = btgZero4(), angB = btgZero4();
+    if (joint.bodyA >= 0) {
+        linA = lin[joint.bodyA];
+        angA = ang[joint.bodyA];
+    }
+    if (joint.bodyB >= 0) {
+        linB = lin[joint.bodyB];
+        angB = ang[joint.bodyB];
+    }
+    BtgBodyVel va = btgMakeBodyVel(a.moving, linA, angA);
+    BtgBodyVel vb = btgMakeBodyVel(b.moving, linB, angB);
+    for (int k = 0; k < rows; ++k) {
+        BtgJointRow r = jointRows[joint.firstRow + k];
+        btgJointRowSolve(&r, a, b, &va, &vb);
+        jointRows[joint.firstRow + k].impulse = r.impulse;
+    }
+    if (a.dynamic) {
+        lin[joint.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, linA.w);
+        ang[joint.bodyA] = btgMake4(va.ang.x, va.ang.y, va.ang.z, angA.w);
+    }
+    if (b.dynamic) {
+        lin[joint.bodyB] = btgMake4(vb.lin.x, vb.lin.y, vb.lin.z, linB.w);
+        ang[joint.bodyB] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, angB.w);
+    }
+}
+
+/* One edge of the phase: a joint edge (phase 1) or a contact (phase 0). */
+static void solve_phase_edge(int e, int phase, int contacts, int iteration, int mode, int twoFriction,
+                             __global BtgContact* contactRows, JOINT_ARGS, __global const BtgBodyProps* restrict props,
+                             __global const BtgFloat4* restrict invInertiaWorld, BTG_SHARED __global BtgFloat4* lin,
+                             BTG_SHARED __global BtgFloat4* ang)
+{
+    if (phase) solve_joint(e - contacts, iteration, JOINT_PASS, props, invInertiaWorld, lin, ang);
+    else solve_edge(e, mode, twoFriction, contactRows, props, invInertiaWorld, lin, ang);
+}
+
 /* Whether edge e has a split-impulse row (only contacts do: Bullet pushes contacts only). */
 static int edge_has_push(__global const BtgContact* restrict contacts, int e)
 {
@@ -79,15 +142,19 @@ __kernel void solve_color_serial(__global const int* restrict edgeColor, __globa
                                  __global const uint* restrict counters, int edgeCapacity,
                                  __global const BtgBodyProps* restrict props,
                                  __global const BtgFloat4* restrict invInertiaWorld, __global BtgFloat4* lin,
-                                 __global BtgFloat4* ang, int color, int mode, int twoFriction)
+                                 __global BtgFloat4* ang, int color, int mode, int twoFriction, JOINT_ARGS, int phase,
+                                 int iteration)
 {
     if (get_global_id(0) != 0) return;
     /* No leftovers from the batching and no color at or past this one (the usual case):
      * nothing to walk, and a GPU thread walking every edge is slow. */
     if (counters[BTG_COUNTER_LEFTOVERS] == 0u && counters[BTG_COUNTER_COLORS_USED] <= (uint)color) return;
     int n = edge_count(counters, edgeCapacity);
-    for (int i = 0; i < n; ++i)
-        if (edgeColor[i] >= color) solve_edge(i, mode, twoFriction, contacts, props, invInertiaWorld, lin, ang);
+    const int nc = contact_edges(counters, edgeCapacity, numJoints);
+    for (int i = phase ? nc : 0; i < (phase ? n : min(n, nc)); ++i)
+        if (edgeColor[i] >= color)
+            solve_phase_edge(i, phase, nc, iteration, mode, twoFriction, contacts, JOINT_PASS, props, invInertiaWorld,
+                             lin, ang);
 }
 
 /* Color ranges, so a color's launch touches only its own edges instead of reading every
@@ -102,20 +169,24 @@ __kernel void solve_color_serial(__global const int* restrict edgeColor, __globa
 
 __kernel void color_count(__global const int* restrict edgeColor, __global const BtgContact* restrict contacts,
                           __global const uint* restrict counters, int edgeCapacity, __global uint* colorCount,
-                          int numColors)
+                          int numColors, int numJoints)
 {
     int i = (int)get_global_id(0);
     if (i >= edge_count(counters, edgeCapacity)) return;
     int c = edgeColor[i];
     if (c < 0 || c >= numColors - 1) return;
+    if (i >= contact_edges(counters, edgeCapacity, numJoints)) {
+        atomic_inc(&colorCount[2 * (numColors + 1) + c]); /* list 2: the joints */
+        return;
+    }
     atomic_inc(&colorCount[c]);
     if (edge_has_push(contacts, i)) atomic_inc(&colorCount[numColors + 1 + c]);
 }
 
-__kernel void color_offsets(__global uint* colorCount, __global uint* colorStart, int numColors)
+__kernel void color_offsets(__global uint* colorCount, __global uint* colorStart, int numColors, int numLists)
 {
     if (get_global_id(0) != 0) return;
-    for (int list = 0; list < 2; ++list) {
+    for (int list = 0; list < numLists; ++list) {
         const int base = list * (numColors + 1);
         uint sum = 0u;
         for (int c = 0; c < numColors; ++c) {
@@ -130,12 +201,17 @@ __kernel void color_offsets(__global uint* colorCount, __global uint* colorStart
 __kernel void color_fill(__global const int* restrict edgeColor, __global const BtgContact* restrict contacts,
                          __global const uint* restrict counters, int edgeCapacity,
                          __global const uint* restrict colorStart, __global uint* colorCursor,
-                         __global int* colorOrder, int numColors, int orderStride)
+                         __global int* colorOrder, int numColors, int orderStride, int numJoints)
 {
     int i = (int)get_global_id(0);
     if (i >= edge_count(counters, edgeCapacity)) return;
     int c = edgeColor[i];
     if (c < 0 || c >= numColors - 1) return;
+    if (i >= contact_edges(counters, edgeCapacity, numJoints)) {
+        const int q = 2 * (numColors + 1) + c;
+        colorOrder[2 * orderStride + colorStart[q] + atomic_inc(&colorCursor[q])] = i;
+        return;
+    }
     colorOrder[colorStart[c] + atomic_inc(&colorCursor[c])] = i;
     if (edge_has_push(contacts, i)) {
         const int p = numColors + 1 + c;
@@ -143,20 +219,23 @@ __kernel void color_fill(__global const int* restrict edgeColor, __global const 
     }
 }
 
-/* solve_color_range: the color's range in list (mode == 2 ? 1 : 0), strided over however many
+/* solve_color_range: the color's range in list (phase 1: 2, the joints; else mode == 2 ? 1 : 0), strided over however many
  * work-items the host launched (it does not know the range's length; a launch over every
  * edge slot cost a CPU device hundreds of empty work-groups per color). */
 __kernel void solve_color_range(__global BtgContact* contacts, __global const uint* restrict colorStart,
                                 __global const int* restrict colorOrder, __global const BtgBodyProps* restrict props,
                                 __global const BtgFloat4* restrict invInertiaWorld, __global BtgFloat4* lin,
                                 __global BtgFloat4* ang, int color, int mode, int twoFriction, int numColors,
-                                int orderStride)
+                                int orderStride, __global const uint* restrict counters, int edgeCapacity, JOINT_ARGS,
+                                int phase, int iteration)
 {
-    const int list = mode == 2 ? 1 : 0;
+    const int list = phase ? 2 : (mode == 2 ? 1 : 0);
     const int begin = (int)colorStart[list * (numColors + 1) + color];
     const int end = (int)colorStart[list * (numColors + 1) + color + 1];
+    const int nc = phase ? contact_edges(counters, edgeCapacity, numJoints) : 0;
     for (int k = begin + (int)get_global_id(0); k < end; k += (int)get_global_size(0))
-        solve_edge(colorOrder[list * orderStride + k], mode, twoFriction, contacts, props, invInertiaWorld, lin, ang);
+        solve_phase_edge(colorOrder[list * orderStride + k], phase, nc, iteration, mode, twoFriction, contacts, JOINT_PASS,
+                         props, invInertiaWorld, lin, ang);
 }
 
 /* solve_resident: every pass and color in ONE launch over resident work-groups (GPUs), with a
@@ -174,39 +253,50 @@ __kernel void solve_resident(__global const int* restrict edgeColor, __global Bt
                              BTG_SHARED __global BtgFloat4* linVel, BTG_SHARED __global BtgFloat4* angVel,
                              BTG_SHARED __global BtgFloat4* pushLin, BTG_SHARED __global BtgFloat4* pushAng,
                              volatile __global BtgGridBarrier* bar, int numColors, int orderStride, int iterations,
-                             int splitImpulse, int twoFriction, int spinLimit)
+                             int splitImpulse, int twoFriction, int spinLimit, JOINT_ARGS, int jointIterations)
 {
     __local int quit;
     if (counters[BTG_COUNTER_STATUS] & BTG_STATUS_GRID_BARRIER_TIMEOUT) return;
     const int gid = (int)get_global_id(0), gsize = (int)get_global_size(0);
     const int n = edge_count(counters, edgeCapacity);
+    const int nc = contact_edges(counters, edgeCapacity, numJoints);
     const int last = numColors - 1;
     const int walkLast = counters[BTG_COUNTER_LEFTOVERS] != 0u || counters[BTG_COUNTER_COLORS_USED] > (uint)last;
-    const int passes = 1 + iterations + (splitImpulse ? iterations : 0);
+    /* Velocity iterations: the contacts' count, or more when a joint asks for more
+     * (setOverrideNumSolverIterations: Bullet iterates to the largest). */
+    const int velocity = max(iterations, numJoints > 0 ? jointIterations : 0);
+    const int passes = 1 + velocity + (splitImpulse ? iterations : 0);
     for (int pass = 0; pass < passes; ++pass) {
-        const int mode = pass == 0 ? BTG_PASS_WARM_START : (pass <= iterations ? BTG_PASS_VELOCITY : BTG_PASS_PUSH);
+        const int mode = pass == 0 ? BTG_PASS_WARM_START : (pass <= velocity ? BTG_PASS_VELOCITY : BTG_PASS_PUSH);
+        const int iteration = pass - 1;
         BTG_SHARED __global BtgFloat4* lin = mode == 2 ? pushLin : linVel;
         BTG_SHARED __global BtgFloat4* ang = mode == 2 ? pushAng : angVel;
-        const int list = mode == 2 ? 1 : 0; /* push passes: only contacts with a push target */
-        for (int color = 0; color < last; ++color) {
-            const int begin = (int)colorStart[list * (numColors + 1) + color];
-            const int end = (int)colorStart[list * (numColors + 1) + color + 1];
-            for (int k = begin + gid; k < end; k += gsize)
-                solve_edge(colorOrder[list * orderStride + k], mode, twoFriction, contacts, props, invInertiaWorld, lin,
-                           ang);
-            if (btgGridBarrier(bar, spinLimit, &quit)) {
-                if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
-                return;
+        /* Phase 1: the joints (velocity passes only), then phase 0: the contacts. */
+        for (int phase = (mode == BTG_PASS_VELOCITY && numJoints > 0) ? 1 : 0; phase >= 0; --phase) {
+            if (phase == 0 && mode == BTG_PASS_VELOCITY && iteration >= iterations) break;
+            /* push passes: only contacts with a push target */
+            const int list = phase ? 2 : (mode == 2 ? 1 : 0);
+            for (int color = 0; color < last; ++color) {
+                const int begin = (int)colorStart[list * (numColors + 1) + color];
+                const int end = (int)colorStart[list * (numColors + 1) + color + 1];
+                for (int k = begin + gid; k < end; k += gsize)
+                    solve_phase_edge(colorOrder[list * orderStride + k], phase, nc, iteration, mode, twoFriction, contacts,
+                                     JOINT_PASS, props, invInertiaWorld, lin, ang);
+                if (btgGridBarrier(bar, spinLimit, &quit)) {
+                    if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
+                    return;
+                }
             }
-        }
-        if (walkLast) {
-            if (gid == 0)
-                for (int i = 0; i < n; ++i)
-                    if (edgeColor[i] >= last)
-                        solve_edge(i, mode, twoFriction, contacts, props, invInertiaWorld, lin, ang);
-            if (btgGridBarrier(bar, spinLimit, &quit)) {
-                if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
-                return;
+            if (walkLast) {
+                if (gid == 0)
+                    for (int i = phase ? nc : 0; i < (phase ? n : min(n, nc)); ++i)
+                        if (edgeColor[i] >= last)
+                            solve_phase_edge(i, phase, nc, iteration, mode, twoFriction, contacts, JOINT_PASS, props,
+                                             invInertiaWorld, lin, ang);
+                if (btgGridBarrier(bar, spinLimit, &quit)) {
+                    if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
+                    return;
+                }
             }
         }
     }

@@ -2,9 +2,10 @@
  * own_timers      one work-item per body. Reads linVel, angVel, props. Writes sleepTime (own
  *                 timer), islandTime (min(own, island + dt)), wake (cleared).
  * island_min      one work-item per constraint-graph edge (contacts and any other kind).
- *                 Reads edges, counters[kEdgeCount], props, sleepTime, islandSrc.
+ *                 Reads edges, counters[kEdgeCount, kContactCount], props, sleepTime, islandSrc.
  *                 Writes islandDst (atomic_min over both bodies: deterministic, min is order-
- *                 free), wake (a sleeping body touched by a moving, non-slow body).
+ *                 free), wake (a sleeping body touched by a moving, non-slow body, or jointed
+ *                 to an awake one: the edges past the contacts are joints).
  * apply_sleep     one work-item per body. Reads islandTime, wake, sleepTime. Writes props.flags
  *                 (BTG_BODY_SLEEPING), linVel/angVel (zero when falling asleep), sleepState. */
 #include "shared/activation.h"
@@ -31,7 +32,8 @@ __kernel void own_timers(int n, __global const BtgFloat4* restrict linVel, __glo
 
 __kernel void island_min(__global const BtgEdge* restrict edges, __global const uint* restrict counters,
                          int capacity, __global const BtgBodyProps* restrict props, __global const float* restrict sleepTime,
-                         __global const uint* restrict islandSrc, __global uint* islandDst, __global uint* wake)
+                         __global const uint* restrict islandSrc, __global uint* islandDst, __global uint* wake,
+                         int numJoints)
 {
     int k = get_global_id(0);
     int count = (int)min(counters[BTG_COUNTER_EDGES], (uint)capacity);
@@ -41,6 +43,10 @@ __kernel void island_min(__global const BtgEdge* restrict edges, __global const 
     if (btgCanSleep(fa) && btgCanSleep(fb)) {
         atomic_min(&islandDst[c.bodyA], islandSrc[c.bodyB]);
         atomic_min(&islandDst[c.bodyB], islandSrc[c.bodyA]);
+    }
+    if (numJoints > 0 && k >= (int)min(counters[BTG_COUNTER_CONTACTS], (uint)(capacity - numJoints))) {
+        if (btgJointWakes(fa, fb)) wake[c.bodyB] = 1u;
+        if (btgJointWakes(fb, fa)) wake[c.bodyA] = 1u;
     }
     if (btgWakes(fa, fb, sleepTime[c.bodyA])) wake[c.bodyB] = 1u;
     if (btgWakes(fb, fa, sleepTime[c.bodyB])) wake[c.bodyA] = 1u;

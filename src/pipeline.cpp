@@ -7,12 +7,14 @@
 
 #include "stages/color_constraints.h"
 #include "stages/contact_cache.h"
+#include "stages/filter_pairs.h"
 #include "stages/find_pairs.h"
 #include "stages/integrate.h"
 #include "stages/midphase.h"
 #include "stages/narrowphase.h"
 #include "stages/narrowphase_gjk.h"
 #include "stages/prepare_contacts.h"
+#include "stages/prepare_joints.h"
 #include "stages/solve_constraints.h"
 #include "stages/solve_jacobi.h"
 #include "stages/update_aabbs.h"
@@ -40,9 +42,12 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::NarrowphaseSat:
         case Stage::NarrowphaseGjk: narrowphaseProgram(w, plan.kinds, narrowphaseProgramOf(stage)); break;
         case Stage::NarrowphaseMesh: narrowphaseMesh(w, plan.kinds); break;
+        case Stage::FilterPairs: filterPairs(w); break;
         case Stage::ApplyForces: applyForces(w, p.dt); break;
         case Stage::ContactCache: buildContacts(w, p); break;
         case Stage::PrepareContacts: prepareContacts(w, p); break;
+        case Stage::PrepareJoints: prepareJoints(w, s.joints); break;
+        case Stage::FinishJoints: finishJoints(w, s.joints); break;
         case Stage::ColorConstraints: colorConstraints(w, s.maxColors); break;
         case Stage::SolveConstraints: solveConstraints(w, p, s.iterations, w.numColors); break;
         case Stage::SolveJacobi: solveJacobi(w, p, s.iterations); break;
@@ -108,6 +113,7 @@ void takeSnapshot(DeviceWorld& w, Snapshot& s)
     s.linVel.copyFrom(w.ctx, w.linVel, n);
     s.angVel.copyFrom(w.ctx, w.angVel, n);
     s.counters.copyFrom(w.ctx, w.counters, kNumCounters);
+    if (w.numJoints > 0) s.jointState.copyFrom(w.ctx, w.jointState, size_t(w.numJoints));
 }
 
 void restoreSnapshot(DeviceWorld& w, Snapshot& s)
@@ -126,6 +132,7 @@ void restoreSnapshot(DeviceWorld& w, Snapshot& s)
         w.gjkCache.copyRangeFrom(w.ctx, w.gjkCacheAtCall, m);
     }
     w.counters.copyFrom(w.ctx, s.counters, kNumCounters);
+    if (w.numJoints > 0) w.jointState.copyFrom(w.ctx, s.jointState, size_t(w.numJoints));
 }
 
 namespace {

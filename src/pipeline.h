@@ -19,6 +19,7 @@ struct StepSettings {
     int iterations = 10;   // btContactSolverInfo::m_numIterations
     int maxColors = 24;    // BatchedPgs only
     SolverKind solver = SolverKind::BatchedPgs;  // must match the plan's
+    BtgJointStepParams joints{};  // the joints' solver settings (numJoints 0: none)
 };
 
 // Enqueues `s.substeps` substeps of the plan (the caller reads back once afterwards).
@@ -31,6 +32,7 @@ void runSubsteps(DeviceWorld& w, const Plan& plan, const StepSettings& s);
 struct Snapshot {
     cl::DeviceArray<BtgFloat4> pos, rot, linVel, angVel;
     cl::DeviceArray<uint> counters;
+    cl::DeviceArray<BtgJointState> jointState;  // breaks made by a call that is redone are undone
 };
 void takeSnapshot(DeviceWorld& w, Snapshot& s);
 void restoreSnapshot(DeviceWorld& w, Snapshot& s);

@@ -1,5 +1,6 @@
 // tolerances.h — every numeric bound the tests use, in one place, with its reason.
 #pragma once
+#include <cmath>
 
 namespace btgpu::tol {
 // Float stages against their CPU reference: same formulas, contraction off on both sides;
@@ -67,6 +68,46 @@ constexpr double kSinkDepth = 0.02;          // m
 constexpr double kPushedPosition = 0.1;      // m
 // Motion-state transforms with substeps and interpolation (no contacts): as free fall.
 constexpr double kInterpolatedTransform = 1e-4;  // m, and per matrix element of the basis
+
+// --- joints (tests/regression/joints_test.cpp) ---------------------------------------------
+// The bounds: a pendulum's period within 1 % of stock's; a 20-link chain's stretch
+// within 5 % of stock's plus 1 mm.
+constexpr double kPendulumPeriodRel = 0.01;
+constexpr double kChainStretchRel = 0.05;
+constexpr double kChainStretchAbs = 1e-3;   // m
+// Against physics, with the joint's rows converged (100 iterations): the period within 1 % of
+// the physical pendulum's series (measured 0.25 % on both engines), the arm within 5 mm of its
+// length through the swing (measured 1.7 mm; ERP 0.2 corrects the drift).
+constexpr double kPendulumPhysicsRel = 0.01;
+constexpr double kJointDrift = 5e-3;        // m
+// A chain at rest: links hang with no speed to speak of (mm/s).
+constexpr double kChainStillSpeed = 5e-3;   // m/s
+// One joint without contacts: the same rows as stock in another float order; the bob stays
+// within 1 mm of stock's and its impulses within 1 %.
+constexpr double kJointPosition = 1e-3;     // m
+constexpr double kJointImpulseRel = 0.01;
+// A pair falls asleep within this many steps of stock's (the GPU island timer takes the
+// least of the pair's timers, stock's the island's; settling differs by a step or two).
+constexpr double kSleepStepSlack = 10;
+// Two bodies whose contact (20 cm deep) fights their joint: the outcome hangs on the solver's
+// contact order and split impulse, which the batched solve does not share with stock; 3 cm.
+constexpr double kJointContactFight = 0.03;  // m
+// The hinge bounds: a motor reaches its target speed within 2 % in 1 s; a door stops
+// within 1 degree of its limit (and of stock's angle).
+constexpr double kMotorSpeedRel = 0.02;
+constexpr double kHingeLimitAngle = M_PI / 180.0;  // rad
+// The slider bound: a slider driven into its limit stops within 1 mm of it.
+constexpr double kSliderLimit = 1e-3;  // m
+// A stretched 20-link chain cut in the middle recoils, and a joint re-enabled 0.5 m off its
+// pivot snaps shut in a few steps; in those transients the batched solve and stock's serial
+// order part by up to 1.5 cm (measured; the same with the whole joint table uploaded).
+constexpr double kJointSnap = 0.03;  // m
+// Ragdolls landing in a heap are chaotic (which limb lands first decides the sprawl): their
+// mean centre height within 3 cm of stock's (measured 0.137 stock, 0.132 btgpu); no joint's
+// frames further apart at any step than 3 cm or twice stock's worst (at impact the 10
+// iterations let both stretch a joint 8.4 cm).
+constexpr double kRagdollMeanHeight = 0.03;  // m
+constexpr double kRagdollJointGap = 0.03;    // m
 }  // namespace btgpu::tol
 
 // --- stability suite (tests/stability/): both engines judged by the same bounds -------------

@@ -32,4 +32,14 @@ static inline int btgWakes(uint fa, uint fb, float ta)
     return btgCanSleep(fa) && ta == 0.0f;
 }
 
+/* Whether a joint from awake dynamic body a wakes the sleeping body b it links: stock unites a
+ * joint's two dynamic bodies into one island when either is active, and an island with an
+ * active body wakes whole, however slow that body is. Kinematic and static bodies merge no
+ * islands. */
+static inline int btgJointWakes(uint fa, uint fb)
+{
+    if (!(fb & BTG_BODY_SLEEPING) || (fb & BTG_BODY_EXCLUDED) || !(fb & BTG_BODY_DYNAMIC)) return 0;
+    return btgCanSleep(fa);
+}
+
 #endif

@@ -20,6 +20,9 @@ static inline float btgAbs(float x) { return fabs(x); }
 static inline float btgSin(float x) { return sin(x); }
 static inline float btgCos(float x) { return cos(x); }
 static inline float btgPow(float x, float y) { return pow(x, y); }
+static inline float btgAtan2(float y, float x) { return atan2(y, x); }
+static inline float btgAcos(float x) { return acos(x); }
+static inline float btgFmod(float x, float y) { return fmod(x, y); }
 static inline float btgMin(float a, float b) { return fmin(a, b); }
 static inline float btgMax(float a, float b) { return fmax(a, b); }
 static inline int btgIsFinite(float x) { return isfinite(x); }
@@ -53,6 +56,9 @@ static inline float btgAbs(float x) { return std::fabs(x); }
 static inline float btgSin(float x) { return std::sin(x); }
 static inline float btgCos(float x) { return std::cos(x); }
 static inline float btgPow(float x, float y) { return std::pow(x, y); }
+static inline float btgAtan2(float y, float x) { return std::atan2(y, x); }
+static inline float btgAcos(float x) { return std::acos(x); }
+static inline float btgFmod(float x, float y) { return std::fmod(x, y); }
 static inline float btgMin(float a, float b) { return std::fmin(a, b); }
 static inline float btgMax(float a, float b) { return std::fmax(a, b); }
 static inline int btgIsFinite(float x) { return std::isfinite(x) ? 1 : 0; }

@@ -1,7 +1,9 @@
 // solve_constraints.cpp — CPU reference of the solve stage: the same passes as the device
 // (warm start, velocity iterations, split-impulse iterations), colors in order and the edges
-// (contacts) of a color in index order, which is what the batched launches compute.
+// (contacts) of a color in index order, which is what the batched launches compute; with
+// joints, each velocity iteration walks the joints' edges (colors in order) before the contacts'.
 #include "reference/contact_solver_reference.h"
+#include "reference/joint_reference.h"
 
 #include <algorithm>
 
@@ -50,6 +52,82 @@ void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>&
     for (int it = 0; it < iterations; ++it) pass(BTG_PASS_VELOCITY);
     if (params.splitImpulse)
         for (int it = 0; it < iterations; ++it) pass(BTG_PASS_PUSH);
+}
+
+void solveConstraints(std::vector<BtgContact>& contacts, JointTables& t, const std::vector<int>& colors,
+                      ContactBodies& bodies, const BtgStepParams& params, int iterations, int jointIterations,
+                      int numColors)
+{
+    if (numColors < 1) numColors = 1;
+    if (params.splitImpulse) {
+        bodies.pushLin.assign(bodies.props.size(), btgZero4());
+        bodies.pushAng.assign(bodies.props.size(), btgZero4());
+    }
+    const size_t nc = contacts.size();
+    auto body = [&](int i) {
+        if (i < 0) return btgFixedJointBody().body;
+        return btgMakeSolverBody(bodies.props[i], bodies.invInertiaWorld[3 * i], bodies.invInertiaWorld[3 * i + 1],
+                                 bodies.invInertiaWorld[3 * i + 2]);
+    };
+    auto inColor = [&](size_t e, int color) {
+        return color == numColors - 1 ? colors[e] >= color : colors[e] == color;
+    };
+    auto contactPass = [&](int mode) {
+        std::vector<BtgFloat4>& lin = mode == BTG_PASS_PUSH ? bodies.pushLin : bodies.linVel;
+        std::vector<BtgFloat4>& ang = mode == BTG_PASS_PUSH ? bodies.pushAng : bodies.angVel;
+        for (int color = 0; color < numColors; ++color)
+            for (size_t e = 0; e < nc; ++e) {
+                if (!inColor(e, color)) continue;
+                BtgContact c = btgLoadContactRows(contacts.data(), int(e), mode, params.twoFrictionDirections);
+                BtgSolverBody a = body(c.bodyA), b = body(c.bodyB);
+                int movingA = mode == BTG_PASS_PUSH ? a.dynamic : a.moving, movingB = mode == BTG_PASS_PUSH ? b.dynamic : b.moving;
+                BtgBodyVel va = btgMakeBodyVel(movingA, lin[c.bodyA], ang[c.bodyA]);
+                BtgBodyVel vb = btgMakeBodyVel(movingB, lin[c.bodyB], ang[c.bodyB]);
+                if (mode == BTG_PASS_WARM_START) btgContactWarmStart(&c, a, b, &va, &vb, params.twoFrictionDirections);
+                else if (mode == BTG_PASS_VELOCITY) btgContactSolveVelocity(&c, a, b, &va, &vb, params.twoFrictionDirections);
+                else btgContactSolvePush(&c, a, b, &va, &vb);
+                if (a.dynamic) {
+                    lin[c.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, lin[c.bodyA].w);
+                    ang[c.bodyA] = btgMake4(va.ang.x, va.ang.y, va.ang.z, ang[c.bodyA].w);
+                }
+                if (b.dynamic) {
+                    lin[c.bodyB] = btgMake4(vb.lin.x, vb.lin.y, vb.lin.z, lin[c.bodyB].w);
+                    ang[c.bodyB] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, ang[c.bodyB].w);
+                }
+                btgStoreContactImpulses(contacts.data(), int(e), &c, mode, params.twoFrictionDirections);
+            }
+    };
+    auto jointPass = [&](int iteration) {
+        for (int color = 0; color < numColors; ++color)
+            for (size_t j = 0; j < t.joints.size(); ++j) {
+                if (!inColor(nc + j, color)) continue;
+                const BtgJoint& joint = t.joints[j];
+                if (t.state[j].numRows == 0 || iteration >= joint.iterations) continue;
+                BtgSolverBody a = body(joint.bodyA), b = body(joint.bodyB);
+                BtgFloat4 zero = btgZero4();
+                BtgBodyVel va = btgMakeBodyVel(a.moving, joint.bodyA >= 0 ? bodies.linVel[joint.bodyA] : zero,
+                                               joint.bodyA >= 0 ? bodies.angVel[joint.bodyA] : zero);
+                BtgBodyVel vb = btgMakeBodyVel(b.moving, joint.bodyB >= 0 ? bodies.linVel[joint.bodyB] : zero,
+                                               joint.bodyB >= 0 ? bodies.angVel[joint.bodyB] : zero);
+                for (int k = 0; k < t.state[j].numRows; ++k) btgJointRowSolve(&t.rows[joint.firstRow + k], a, b, &va, &vb);
+                if (a.dynamic) {
+                    bodies.linVel[joint.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, bodies.linVel[joint.bodyA].w);
+                    bodies.angVel[joint.bodyA] = btgMake4(va.ang.x, va.ang.y, va.ang.z, bodies.angVel[joint.bodyA].w);
+                }
+                if (b.dynamic) {
+                    bodies.linVel[joint.bodyB] = btgMake4(vb.lin.x, vb.lin.y, vb.lin.z, bodies.linVel[joint.bodyB].w);
+                    bodies.angVel[joint.bodyB] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, bodies.angVel[joint.bodyB].w);
+                }
+            }
+    };
+    contactPass(BTG_PASS_WARM_START);
+    const int velocity = std::max(iterations, t.joints.empty() ? 0 : jointIterations);
+    for (int it = 0; it < velocity; ++it) {
+        if (!t.joints.empty()) jointPass(it);
+        if (it < iterations) contactPass(BTG_PASS_VELOCITY);
+    }
+    if (params.splitImpulse)
+        for (int it = 0; it < iterations; ++it) contactPass(BTG_PASS_PUSH);
 }
 
 }  // namespace btgpu::ref

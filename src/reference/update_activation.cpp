@@ -24,7 +24,7 @@ uint asUint(float f)
 }  // namespace
 
 void updateActivation(ActivationState& s, const std::vector<BtgEdge>& edges, float dt, float deactivationTime,
-                      int rounds)
+                      int rounds, int firstJointEdge)
 {
     size_t n = s.props.size();
     std::vector<uint> wake(n, 0u);
@@ -42,8 +42,13 @@ void updateActivation(ActivationState& s, const std::vector<BtgEdge>& edges, flo
     if (deactivationTime <= 0.0f) rounds = 0;
     for (int r = 0; r < rounds; ++r) {
         std::vector<uint> dst = s.islandTime;
-        for (const BtgEdge& c : edges) {
+        for (size_t k = 0; k < edges.size(); ++k) {
+            const BtgEdge& c = edges[k];
             uint fa = s.props[c.bodyA].flags, fb = s.props[c.bodyB].flags;
+            if (firstJointEdge >= 0 && k >= size_t(firstJointEdge)) {
+                if (btgJointWakes(fa, fb)) wake[c.bodyB] = 1;
+                if (btgJointWakes(fb, fa)) wake[c.bodyA] = 1;
+            }
             if (btgCanSleep(fa) && btgCanSleep(fb)) {
                 dst[c.bodyA] = std::min(dst[c.bodyA], s.islandTime[c.bodyB]);
                 dst[c.bodyB] = std::min(dst[c.bodyB], s.islandTime[c.bodyA]);

@@ -16,7 +16,8 @@ struct ActivationState {
     std::vector<uint> sleepState;
 };
 
+// Edges from firstJointEdge on are joints' (-1: none).
 void updateActivation(ActivationState& s, const std::vector<BtgEdge>& edges, float dt, float deactivationTime,
-                      int rounds = 4);
+                      int rounds = 4, int firstJointEdge = -1);
 
 }  // namespace btgpu::reference

@@ -1,6 +1,6 @@
 // prepare_contacts.cpp — host launcher of the prepare stage: one work-item per contact slot;
 // the kernel stops at the device-side contact count. The constraint graph holds an edge slot
-// per contact slot (a joint kind will add its own).
+// per contact slot and one per joint.
 #include "stages/prepare_contacts.h"
 
 #include "cl/program.h"
@@ -12,7 +12,8 @@ namespace btgpu {
 void prepareContacts(DeviceWorld& w, const BtgStepParams& params)
 {
     int contactCapacity = int(std::min(w.contactCapacity, w.contacts.capacity()));
-    w.edgeCapacity = size_t(contactCapacity);
+    // The joints' edges follow the contacts' (prepare_joints writes them).
+    w.edgeCapacity = size_t(contactCapacity) + size_t(w.numJoints);
     w.edges.reserveExact(w.ctx, w.edgeCapacity);
     w.edgeColor.reserveExact(w.ctx, w.edgeCapacity);
     cl::Launch(w.ctx, w.ctx.program("prepare_contacts").kernel("prepare_contacts"), &w.profiler)

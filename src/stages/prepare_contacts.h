@@ -9,7 +9,7 @@
 // batching colors and the islands walk.
 // Reads contacts, counters, props, invInertiaWorld, linVel0, angVel0.
 // Writes contacts (combined friction, tangent1/2, row masses, normal and push targets),
-// edges[0, contacts), counters[kEdgeCount], w.edgeCapacity (= contact slots).
+// edges[0, contacts), counters[kEdgeCount], w.edgeCapacity (= contact slots + joints).
 #pragma once
 #include "world/device_world.h"
 

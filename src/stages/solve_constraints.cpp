@@ -1,6 +1,7 @@
 // solve_constraints.cpp — host launcher of the solve stage: warm start, `iterations` velocity
-// passes and (split impulse) `iterations` push passes, each one launch per color, the last
-// color on a single work-item. Zeroes pushLin/pushAng itself before the push passes.
+// passes (each the joints' colors, then the contacts'; more when a joint overrides its
+// iterations upwards) and (split impulse) `iterations` push passes, each one launch per color,
+// the last color on a single work-item. Zeroes pushLin/pushAng itself before the push passes.
 #include "stages/solve_constraints.h"
 
 #include "cl/program.h"
@@ -34,19 +35,29 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     const int twoFriction = params.twoFrictionDirections ? 1 : 0;
     // Edges sorted into per-color ranges once, so each color's launch reads only its own.
     SolverScratch& sc = w.solverScratch;
-    // Two lists (see color_count): every edge, and the contacts with a push target.
-    const size_t ranges = 2 * (size_t(numColors) + 1);
+    // Two lists (see color_count): the contacts, and the contacts with a push target; with
+    // joints a third, the joints' edges.
+    const int numJoints = w.numJoints;
+    const int numLists = numJoints > 0 ? 3 : 2;
+    const size_t ranges = size_t(numLists) * (size_t(numColors) + 1);
     const int orderStride = edgeCapacity;
     sc.colorCount.reserve(ctx, ranges);
     sc.colorStart.reserve(ctx, ranges);
-    sc.colorOrder.reserve(ctx, 2 * slots);
+    sc.colorOrder.reserve(ctx, size_t(numLists) * slots);
     sc.colorCount.zero(ctx, ranges);
+    // Bound buffers even without joints.
+    w.joints.reserve(ctx, 1);
+    w.jointState.reserve(ctx, 1);
+    w.jointRows.reserve(ctx, 1);
     cl::Launch(ctx, prog.kernel("color_count"), &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.counters)
-        .arg(edgeCapacity).arg(sc.colorCount).arg(numColors).run(slots);
+        .arg(edgeCapacity).arg(sc.colorCount).arg(numColors).arg(numJoints).run(slots);
     cl::Launch(ctx, prog.kernel("color_offsets"), &w.profiler).arg(sc.colorCount).arg(sc.colorStart).arg(numColors)
-        .run(1, 1);
+        .arg(numLists).run(1, 1);
     cl::Launch(ctx, prog.kernel("color_fill"), &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.counters)
-        .arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorCount).arg(sc.colorOrder).arg(numColors).arg(orderStride).run(slots);
+        .arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorCount).arg(sc.colorOrder).arg(numColors).arg(orderStride)
+        .arg(numJoints).run(slots);
+    // Velocity iterations: the contacts', or a joint's larger override.
+    const int velocityPasses = std::max(iterations, numJoints > 0 ? w.jointIterations : 0);
     // Every pass and color in one launch: on a GPU over one group per compute unit (each
     // contact is a chain of dependent loads, so more work-items in flight beat cheaper
     // barriers: H200, 1,000 cubes: 1.7 ms with 132 groups, 2.2 with 2; 112,500: 3.1 against
@@ -61,32 +72,39 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             .arg(sc.colorStart)
             .arg(sc.colorOrder).arg(w.props).arg(w.invInertiaWorld).arg(w.linVel).arg(w.angVel).arg(w.pushLin)
             .arg(w.pushAng).arg(gridBarrier(w)).arg(numColors).arg(orderStride).arg(iterations)
-            .arg(params.splitImpulse ? 1 : 0).arg(twoFriction).arg(kGridBarrierSpins).run(groups * group, group);
+            .arg(params.splitImpulse ? 1 : 0).arg(twoFriction).arg(kGridBarrierSpins).arg(w.joints).arg(w.jointState)
+            .arg(w.jointRows).arg(numJoints).arg(w.jointIterations).run(groups * group, group);
         return;
     }
     // Per-color launches stride over their range: a few work-groups per compute unit.
     const size_t rangeItems = std::min(slots, size_t(std::max<cl_uint>(ctx.device().computeUnits, 1)) * 256);
     cl_kernel parallel = prog.kernel("solve_color_range");
     cl_kernel serial = prog.kernel("solve_color_serial");
-    auto pass = [&](int mode, cl::DeviceArray<BtgFloat4>& lin, cl::DeviceArray<BtgFloat4>& ang) {
+    // phase 1: the joints' edges, 0: the contacts' (see solve_resident).
+    auto pass = [&](int mode, int phase, int iteration, cl::DeviceArray<BtgFloat4>& lin, cl::DeviceArray<BtgFloat4>& ang) {
         for (int color = 0; color < numColors; ++color) {
             // The last color holds the coloring's leftovers (usually none: the serial kernel
             // then returns at once).
             if (color == numColors - 1) {
                 cl::Launch(ctx, serial, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.counters)
                     .arg(edgeCapacity).arg(w.props)
-                    .arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(twoFriction).run(1, 1);
+                    .arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(twoFriction).arg(w.joints)
+                    .arg(w.jointState).arg(w.jointRows).arg(numJoints).arg(phase).arg(iteration).run(1, 1);
             } else {
                 cl::Launch(ctx, parallel, &w.profiler).arg(w.contacts).arg(sc.colorStart).arg(sc.colorOrder)
                     .arg(w.props).arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(twoFriction)
-                    .arg(numColors).arg(orderStride).run(rangeItems, 64);
+                    .arg(numColors).arg(orderStride).arg(w.counters).arg(edgeCapacity).arg(w.joints).arg(w.jointState)
+                    .arg(w.jointRows).arg(numJoints).arg(phase).arg(iteration).run(rangeItems, 64);
             }
         }
     };
-    pass(BTG_PASS_WARM_START, w.linVel, w.angVel);
-    for (int it = 0; it < iterations; ++it) pass(BTG_PASS_VELOCITY, w.linVel, w.angVel);
+    pass(BTG_PASS_WARM_START, 0, -1, w.linVel, w.angVel);
+    for (int it = 0; it < velocityPasses; ++it) {
+        if (numJoints > 0) pass(BTG_PASS_VELOCITY, 1, it, w.linVel, w.angVel);
+        if (it < iterations) pass(BTG_PASS_VELOCITY, 0, it, w.linVel, w.angVel);
+    }
     if (params.splitImpulse)
-        for (int it = 0; it < iterations; ++it) pass(BTG_PASS_PUSH, w.pushLin, w.pushAng);
+        for (int it = 0; it < iterations; ++it) pass(BTG_PASS_PUSH, 0, iterations + it, w.pushLin, w.pushAng);
 }
 
 }  // namespace btgpu

@@ -20,7 +20,7 @@ void updateActivation(DeviceWorld& w, float dt, float deactivationTime, int roun
         w.islandScratch.copyFrom(w.ctx, w.islandTime, size_t(n));
         cl::Launch(w.ctx, prog.kernel("island_min"), &w.profiler)
             .arg(w.edges).arg(w.counters).arg(capacity).arg(w.props).arg(w.sleepTime).arg(w.islandTime)
-            .arg(w.islandScratch).arg(w.wake)
+            .arg(w.islandScratch).arg(w.wake).arg(w.numJoints)
             .run(size_t(capacity));
         std::swap(w.islandTime, w.islandScratch);
     }

@@ -7,6 +7,7 @@
 #include "cl/launch.h"
 #include "shared/counters.h"
 #include "shared/concave.h"
+#include "shared/joint_rows.h"
 #include "shared/types.h"
 #include "world/broadphase_scratch.h"
 #include "world/solver_scratch.h"
@@ -140,6 +141,20 @@ struct DeviceWorld {
     // step is then redone with per-round launches). On forces it (tests).
     enum class Resident { Auto, Off, On };
     Resident resident = Resident::Auto;
+
+    // --- joints (issue 11): the app's joints, their rows and what the solve leaves of them ---
+    // Edge contacts + j of the constraint graph is joint j; joint j's rows are
+    // jointRows[joints[j].firstRow, + max rows of its type). Without joints each holds one
+    // placeholder element (kernels take a bound buffer).
+    cl::DeviceArray<BtgJoint> joints;
+    cl::DeviceArray<BtgJointState> jointState;
+    cl::DeviceArray<BtgJointFeedback> jointFeedback;  // per joint; written for joints with feedback
+    cl::DeviceArray<BtgJointRow> jointRows;
+    int numJoints = 0;
+    int jointIterations = 0;  // the largest of the joints' iteration counts
+    // Pairs of rows (a < b, sorted) that ignore each other's collision check (filter_pairs).
+    cl::DeviceArray<BtgPair> ignoredPairs;
+    int numIgnoredPairs = 0;
 
     // --- sync_in staging (kept across calls: a quiet step allocates nothing) ---
     cl::DeviceArray<int> stagingRows;

@@ -21,9 +21,12 @@ const char* stageName(Stage stage)
         case Stage::NarrowphaseSat: return "narrowphase_sat";
         case Stage::NarrowphaseGjk: return "narrowphase_gjk";
         case Stage::NarrowphaseMesh: return "narrowphase_mesh";
+        case Stage::FilterPairs: return "filter_pairs";
         case Stage::ApplyForces: return "apply_forces";
         case Stage::ContactCache: return "contact_cache";
         case Stage::PrepareContacts: return "prepare_contacts";
+        case Stage::PrepareJoints: return "prepare_joints";
+        case Stage::FinishJoints: return "finish_joints";
         case Stage::ColorConstraints: return "color_constraints";
         case Stage::SolveConstraints: return "solve_constraints";
         case Stage::SolveJacobi: return "solve_jacobi";
@@ -59,15 +62,22 @@ std::vector<Stage> Plan::substep() const
         if (kinds.anyIn("narrowphase_mesh")) s.push_back(Stage::Midphase);
         for (int p = 0; p < kNumNarrowphasePrograms; ++p)
             if (kinds.anyIn(kNarrowphasePrograms[p].program)) s.push_back(kNarrowphasePrograms[p].stage);
+        if (hasIgnoredPairs) s.push_back(Stage::FilterPairs);
     }
     s.push_back(Stage::ApplyForces);
-    if (collide) {
-        s.insert(s.end(), {Stage::ContactCache, Stage::PrepareContacts});
-        if (solver == SolverKind::JacobiMassSplitting) s.push_back(Stage::SolveJacobi);
+    if (collide || hasJoints) {
+        if (collide) s.insert(s.end(), {Stage::ContactCache, Stage::PrepareContacts});
+        // Joints are PGS rows: the Jacobi solver takes contacts only (the CPU-path rules send a
+        // Jacobi world with joints away).
+        if (hasJoints) s.push_back(Stage::PrepareJoints);
+        if (solver == SolverKind::JacobiMassSplitting && !hasJoints) s.push_back(Stage::SolveJacobi);
         else s.insert(s.end(), {Stage::ColorConstraints, Stage::SolveConstraints});
+        if (hasJoints) s.push_back(Stage::FinishJoints);
         // Before the bodies move: the cache keys use A's rotation as the contacts were built.
-        s.push_back(Stage::StoreContactCache);
-        if (kinds.anyIn("narrowphase_gjk")) s.push_back(Stage::StorePersistentManifolds);
+        if (collide) {
+            s.push_back(Stage::StoreContactCache);
+            if (kinds.anyIn("narrowphase_gjk")) s.push_back(Stage::StorePersistentManifolds);
+        }
     }
     s.insert(s.end(), {Stage::IntegrateTransforms, Stage::UpdateActivation});
     return s;
@@ -105,6 +115,7 @@ DerivedPlan derivePlan(const PlanInput& in)
     DerivedPlan d;
     Plan& plan = d.plan;
     plan.solver = in.solver;
+    plan.hasJoints = in.numJoints > 0;
     // Per shape kind: bodies, and bodies that can move.
     int count[BTG_NUM_SHAPE_KINDS] = {}, moving[BTG_NUM_SHAPE_KINDS] = {};
     std::vector<float> sizes;

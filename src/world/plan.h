@@ -31,12 +31,15 @@ enum class Stage {
     NarrowphaseSat,       // those of "narrowphase_sat" (hull-hull)
     NarrowphaseGjk,       // those of "narrowphase_gjk" (support-function convex shapes)
     NarrowphaseMesh,      // those of "narrowphase_mesh" (convex against triangles)
+    FilterPairs,          // pairs that ignore each other's collision check lose their contacts
     ApplyForces,          // gravity, app forces, gyroscopic term
     ContactCache,         // contact list and warm start
     PrepareContacts,
+    PrepareJoints,        // joint rows and edges (scenes with joints only)
     ColorConstraints,
     SolveConstraints,
     SolveJacobi,
+    FinishJoints,         // applied impulses, feedback, breaks
     StoreContactCache,
     StorePersistentManifolds,  // the GJK kinds' manifolds beside the cache
     IntegrateTransforms,
@@ -60,6 +63,8 @@ struct Plan {
     bool hasLarge = false;     // bodies outside the uniform grid
     bool hasPlanes = false;
     bool gyroscopic = false;   // some body asks for the implicit gyroscopic term
+    bool hasJoints = false;    // the app added joints (served ones: the rules send the rest away)
+    bool hasIgnoredPairs = false;  // objects ignore each other's collision check (filter_pairs)
     SolverKind solver = SolverKind::BatchedPgs;  // Config::solver: which solve stages run
     Broadphase broadphase = Broadphase::UniformGrid;
     float cellSize = 1.0f;     // m: uniform grid cell, >= the largest small body's AABB extent
@@ -81,6 +86,7 @@ struct PlanBody {
 };
 struct PlanInput {
     std::vector<PlanBody> bodies;  // by row
+    int numJoints = 0;             // joints on the device
     SolverKind solver = SolverKind::BatchedPgs;
     float largeBodyFactor = 4.0f;     // Config::largeBodyFactor
     float contactThreshold = 0.02f;   // m, Config::contactThreshold (AABB growth)

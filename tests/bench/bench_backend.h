@@ -21,6 +21,7 @@ using scenes::spec::makeLandscape;
 using scenes::spec::makeMixed;
 using scenes::spec::makeStack;
 using scenes::spec::makeVoronoi;
+using scenes::spec::makeRagdolls;
 
 struct Options {
     bool noSleep = false;           // disable Bullet's deactivation on every dynamic body

@@ -9,6 +9,7 @@ namespace btgpu::bench {
 BtBodies::~BtBodies()
 {
     if (!m_world) return;
+    for (auto it = m_joints.rbegin(); it != m_joints.rend(); ++it) m_world->removeConstraint(it->get());
     for (auto it = m_bodies.rbegin(); it != m_bodies.rend(); ++it) m_world->removeRigidBody(it->get());
 }
 
@@ -56,7 +57,7 @@ void BtBodies::build(const Scene& scene, const Options& options, btDiscreteDynam
         }
         btVector3 inertia(0, 0, 0);
         if (b.mass > 0) shape->calculateLocalInertia(b.mass, inertia);
-        btTransform xf(btQuaternion::getIdentity(), btVector3(b.pos[0], b.pos[1], b.pos[2]));
+        btTransform xf(btQuaternion(b.rot[0], b.rot[1], b.rot[2], b.rot[3]), btVector3(b.pos[0], b.pos[1], b.pos[2]));
         btMotionState* ms = nullptr;
         if (b.mass > 0) {
             m_motionStates.emplace_back(new btDefaultMotionState(xf));
@@ -66,9 +67,28 @@ void BtBodies::build(const Scene& scene, const Options& options, btDiscreteDynam
         ci.m_startWorldTransform = xf;
         ci.m_friction = b.friction;
         ci.m_restitution = b.restitution;
+        ci.m_linearDamping = b.linearDamping;
+        ci.m_angularDamping = b.angularDamping;
         m_bodies.emplace_back(new btRigidBody(ci));
         if (options.noSleep && b.mass > 0) m_bodies.back()->setActivationState(DISABLE_DEACTIVATION);
         world->addRigidBody(m_bodies.back().get());
+    }
+    auto frame = [](const float* f) {
+        return btTransform(btQuaternion(f[3], f[4], f[5], f[6]), btVector3(f[0], f[1], f[2]));
+    };
+    for (const scenes::spec::JointSpec& j : scene.joints) {
+        btRigidBody& a = *m_bodies[size_t(j.a)];
+        btRigidBody& b = *m_bodies[size_t(j.b)];
+        if (j.kind == scenes::spec::JointSpec::Kind::Hinge) {
+            auto* h = new btHingeConstraint(a, b, frame(j.frameA), frame(j.frameB));
+            h->setLimit(j.limit[0], j.limit[1]);
+            m_joints.emplace_back(h);
+        } else {
+            auto* c = new btConeTwistConstraint(a, b, frame(j.frameA), frame(j.frameB));
+            c->setLimit(j.limit[0], j.limit[1], j.limit[2]);
+            m_joints.emplace_back(c);
+        }
+        world->addConstraint(m_joints.back().get(), true);
     }
 }
 

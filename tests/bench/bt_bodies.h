@@ -1,6 +1,7 @@
 // bt_bodies.h — instantiates a bench Scene as Bullet rigid bodies (shapes shared per size,
 // a btDefaultMotionState per dynamic body) in any btDiscreteDynamicsWorld, and reads poses,
-// pairs and contacts back; shared by the stock Bullet and btgpu backends.
+// pairs and contacts back; shared by the stock Bullet and btgpu backends. Joints (ragdolls) are
+// added with disableCollisionsBetweenLinkedBodies.
 #pragma once
 #include <btBulletDynamicsCommon.h>
 
@@ -33,6 +34,7 @@ private:
     std::vector<std::unique_ptr<btCollisionShape>> m_shapes;
     std::vector<std::unique_ptr<btMotionState>> m_motionStates;
     std::vector<std::unique_ptr<btRigidBody>> m_bodies;
+    std::vector<std::unique_ptr<btTypedConstraint>> m_joints;
 };
 
 }  // namespace btgpu::bench

@@ -17,9 +17,10 @@ using namespace btgpu::bench;
 namespace {
 
 const char* kUsage =
-    "usage: btgpu_bench [--scene cubes|spheres|mixed|voronoi|landscape] [--n 1000|8000|32768|112500|1000000 | --dims NX NY NZ]\n"
+    "usage: btgpu_bench [--scene cubes|spheres|mixed|voronoi|landscape|ragdolls] [--n 1000|8000|32768|112500|1000000 | --dims NX NY NZ]\n"
     "                   [--bodies N] [--quads Q]   (landscape: N bodies on a Q x Q-quad mesh; 1000, 100)\n"
     "                   [--cells C]   (voronoi: C cells, default 90 as BenchmarkDemo's test 8)\n"
+    "                   [--ragdolls COUNT (ragdolls of 11 boxes and 10 joints; default 100)]\n"
     "                   [--frames F] [--backends btgpu,bullet,b3gpu] [--csv PATH] [--budget-s S]\n"
     "                   [--no-sleep] [--no-aabb-sync] [--jacobi] [--b3-native-inertia] [--absolute-thresholds] [--smoke]\n"
     "  BTGPU_DEVICE=gpu|cpu|<name substring> picks the OpenCL device (btgpu and b3gpu alike).\n";
@@ -39,6 +40,7 @@ int main(int argc, char** argv)
     int frames = 300;
     int nCells = 90;
     int landscapeCount = 1000, landscapeQuads = 100;
+    int ragdolls = 100;  // --scene ragdolls
     double budgetS = 600;  // per backend: a slow backend stops early and says so
     bool smoke = false;
     Options options;
@@ -55,7 +57,8 @@ int main(int argc, char** argv)
         } else if (a == "--dims") {
             for (int& d : dims) d = std::atoi(next());
             if (dims[0] <= 0 || dims[1] <= 0 || dims[2] <= 0) usage("--dims needs three positive counts");
-        } else if (a == "--frames") frames = std::atoi(next());
+        } else if (a == "--ragdolls") ragdolls = std::atoi(next());
+        else if (a == "--frames") frames = std::atoi(next());
         else if (a == "--bodies") landscapeCount = std::max(1, std::atoi(next()));
         else if (a == "--quads") landscapeQuads = std::max(1, std::atoi(next()));
         else if (a == "--backends") backends = next();
@@ -87,7 +90,8 @@ int main(int argc, char** argv)
     else if (sceneName == "mixed") scene = makeMixed();
     else if (sceneName == "voronoi") scene = makeVoronoi(nCells);
     else if (sceneName == "landscape") scene = makeLandscape(landscapeCount, landscapeQuads);
-    else usage("--scene must be cubes, spheres, mixed, voronoi or landscape");
+    else if (sceneName == "ragdolls") scene = makeRagdolls(ragdolls);
+    else usage("--scene must be cubes, spheres, mixed, voronoi, landscape or ragdolls");
 
     std::vector<RunResult> results;
     std::stringstream list(backends);

@@ -203,9 +203,6 @@ std::vector<Rule> rules()
         {"contact processing threshold", "contact processing threshold",
          [](Scene& s) { s.body(1)->setContactProcessingThreshold(0); },
          [](Scene& s) { s.body(1)->setContactProcessingThreshold(BT_LARGE_FLOAT); }},
-        {"ignore collision check", "setIgnoreCollisionCheck",
-         [](Scene& s) { s.body(1)->setIgnoreCollisionCheck(s.body(0), true); },
-         [](Scene& s) { s.body(1)->setIgnoreCollisionCheck(s.body(0), false); }},
         {"CCD", "continuous collision detection",
          [](Scene& s) {
              s.body(3)->setCcdMotionThreshold(btScalar(0.01));

@@ -146,4 +146,93 @@ bool dimsForCount(long n, int dims[3])
     return false;
 }
 
+namespace {
+
+// btMatrix3x3::setEulerZYX(0, yaw, roll)-style rotations of RagdollDemo, as quaternions: about
+// y by `y`, then about z by `z` (each demo frame uses one of them).
+void setQuat(float* q, float axisY, float axisZ)
+{
+    const float hy = 0.5f * axisY, hz = 0.5f * axisZ;
+    // q = qz * qy (EulerZYX with x = 0: R = Rz Ry)
+    const float cy = std::cos(hy), sy = std::sin(hy), cz = std::cos(hz), sz = std::sin(hz);
+    q[0] = -sz * sy;
+    q[1] = cz * sy;
+    q[2] = sz * cy;
+    q[3] = cz * cy;
+}
+
+JointSpec joint(JointSpec::Kind kind, int a, int b, float yA, float zA, float ax, float ay, float yB, float zB, float bx,
+                float by, float l0, float l1, float l2 = 0)
+{
+    JointSpec j;
+    j.kind = kind;
+    j.a = a;
+    j.b = b;
+    j.frameA[0] = ax;
+    j.frameA[1] = ay;
+    setQuat(j.frameA + 3, yA, zA);
+    j.frameB[0] = bx;
+    j.frameB[1] = by;
+    setQuat(j.frameB + 3, yB, zB);
+    j.limit[0] = l0;
+    j.limit[1] = l1;
+    j.limit[2] = l2;
+    return j;
+}
+
+}  // namespace
+
+Scene makeRagdolls(int count)
+{
+    const float pi = 3.14159265358979f, half = pi / 2, quarter = pi / 4;
+    Scene s;
+    s.name = "ragdolls " + std::to_string(count);
+    s.bodies.push_back(ground());
+    const int side = int(std::ceil(std::sqrt(double(count))));
+    // Capsule (radius, height) of each part, its centre and its roll about z, as RagdollDemo.
+    struct Part {
+        float radius, height, x, y, roll;
+    };
+    const Part parts[11] = {{0.15f, 0.20f, 0, 1.0f, 0},           {0.15f, 0.28f, 0, 1.2f, 0},
+                            {0.10f, 0.05f, 0, 1.6f, 0},           {0.07f, 0.45f, -0.18f, 0.65f, 0},
+                            {0.05f, 0.37f, -0.18f, 0.2f, 0},      {0.07f, 0.45f, 0.18f, 0.65f, 0},
+                            {0.05f, 0.37f, 0.18f, 0.2f, 0},       {0.05f, 0.33f, -0.35f, 1.45f, half},
+                            {0.04f, 0.25f, -0.7f, 1.45f, half},   {0.05f, 0.33f, 0.35f, 1.45f, -half},
+                            {0.04f, 0.25f, 0.7f, 1.45f, -half}};
+    using K = JointSpec::Kind;
+    for (int r = 0; r < count; ++r) {
+        const int base = int(s.bodies.size());
+        const float ox = 2.0f * float(r % side - side / 2), oz = 2.0f * float(r / side - side / 2);
+        for (const Part& p : parts) {
+            BodySpec b;
+            b.half[0] = b.half[2] = p.radius;
+            b.half[1] = 0.5f * p.height + p.radius;
+            b.mass = 1;
+            b.pos[0] = ox + p.x;
+            b.pos[1] = p.y + 0.1f;
+            b.pos[2] = oz;
+            setQuat(b.rot, 0, p.roll);
+            b.friction = 0.5f;
+            b.linearDamping = 0.05f;
+            b.angularDamping = 0.85f;
+            s.bodies.push_back(b);
+        }
+        // Pelvis 0, spine 1, head 2, left upper/lower leg 3/4, right 5/6, left upper/lower arm
+        // 7/8, right 9/10: RagdollDemo's frames and limits.
+        s.joints.push_back(joint(K::Hinge, base + 0, base + 1, half, 0, 0, 0.15f, half, 0, 0, -0.15f, -quarter, half));
+        s.joints.push_back(joint(K::ConeTwist, base + 1, base + 2, 0, half, 0, 0.30f, 0, half, 0, -0.14f, quarter, quarter, half));
+        s.joints.push_back(
+            joint(K::ConeTwist, base + 0, base + 3, 0, -quarter * 5, -0.18f, -0.10f, 0, -quarter * 5, 0, 0.225f, quarter, quarter, 0));
+        s.joints.push_back(joint(K::Hinge, base + 3, base + 4, half, 0, 0, -0.225f, half, 0, 0, 0.185f, 0, half));
+        s.joints.push_back(
+            joint(K::ConeTwist, base + 0, base + 5, 0, quarter, 0.18f, -0.10f, 0, quarter, 0, 0.225f, quarter, quarter, 0));
+        s.joints.push_back(joint(K::Hinge, base + 5, base + 6, half, 0, 0, -0.225f, half, 0, 0, 0.185f, 0, half));
+        s.joints.push_back(joint(K::ConeTwist, base + 1, base + 7, 0, pi, -0.2f, 0.15f, 0, half, 0, -0.18f, half, half, 0));
+        s.joints.push_back(joint(K::Hinge, base + 7, base + 8, half, 0, 0, 0.18f, half, 0, 0, -0.14f, 0, half));
+        s.joints.push_back(joint(K::ConeTwist, base + 1, base + 9, 0, 0, 0.2f, 0.15f, 0, half, 0, -0.18f, half, half, 0));
+        s.joints.push_back(joint(K::Hinge, base + 9, base + 10, half, 0, 0, 0.18f, half, 0, 0, -0.14f, 0, half));
+    }
+    return s;
+}
+
 }  // namespace btgpu::scenes::spec

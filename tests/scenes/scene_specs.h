@@ -24,9 +24,23 @@ struct BodySpec {
     float radius = 1;           // m (Sphere)
     int hull = -1;              // Hull: index in Scene::hulls (Plane: the plane y = pos[1], normal +y)
     float mass = 0;             // kg; 0 = static
-    float pos[3] = {0, 0, 0};   // m, centre of mass; every body starts unrotated and at rest
+    float pos[3] = {0, 0, 0};   // m, centre of mass; every body starts at rest
+    float rot[4] = {0, 0, 0, 1};  // orientation quaternion (x, y, z, w); identity but in ragdolls
     float friction = 1;
     float restitution = 0;
+    float linearDamping = 0;
+    float angularDamping = 0;
+};
+
+// A joint between bodies a and b (indices into Scene::bodies), frames in the bodies' frames,
+// added with disableCollisionsBetweenLinkedBodies as Bullet's RagdollDemo adds them.
+struct JointSpec {
+    enum class Kind { Hinge, ConeTwist };
+    Kind kind = Kind::Hinge;
+    int a = 0, b = 0;
+    float frameA[7] = {0, 0, 0, 0, 0, 0, 1};  // origin (m), then rotation quaternion (x, y, z, w)
+    float frameB[7] = {0, 0, 0, 0, 0, 0, 1};
+    float limit[3] = {0, 0, 0};  // hinge: low, high (rad); cone-twist: swing span 1, 2, twist span
 };
 
 struct Scene {
@@ -36,6 +50,7 @@ struct Scene {
     // The one triangle mesh of ShapeKind::Mesh bodies: xyz per vertex (m), three per triangle.
     std::vector<float> meshVertices;
     std::vector<int> meshIndices;
+    std::vector<JointSpec> joints;
     float gravity[3] = {0, -10, 0};  // m/s^2
     float dt = 1.0f / 60.0f;         // s, one substep per frame
     int iterations = 10;             // solver iterations
@@ -54,6 +69,10 @@ Scene makeVoronoi(int cells = 90);
 // Bench 5 on a rolling landscape mesh of quads x quads cells 200 m across (2 quads^2 triangles,
 // the heights of landscapeHeight in mesh_scenes.h): `count` boxes and spheres dropped over it.
 Scene makeLandscape(int count, int quads);
+// `count` ragdolls (Bullet's RagdollDemo: 11 bodies, 5 hinges and 5 cone-twists; its capsules
+// are boxes of the same radius and length here) on a square grid 2 m apart over a ground box,
+// pelvis 1 m up: they fall and sprawl.
+Scene makeRagdolls(int count);
 // Sizes named by --n: 1000, 8000, 32768, 112500, 1000000; false if n is not one of them.
 bool dimsForCount(long n, int dims[3]);
 

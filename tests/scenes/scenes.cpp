@@ -3,6 +3,7 @@
 #include "scenes/scenes.h"
 #include "scenes/convex_scenes.h"
 #include "scenes/mesh_scenes.h"
+#include "scenes/joint_scenes.h"
 #include "scenes/scene_specs.h"
 
 #include <map>
@@ -46,6 +47,9 @@ Scene::~Scene()
 {
     // Bodies leave the world before anything they point at is deleted; the world goes before
     // the solver, broadphase, dispatcher and configuration it was built on (member order).
+    // Joints leave first: they point at the bodies.
+    for (auto it = m_joints.rbegin(); it != m_joints.rend(); ++it) m_world->removeConstraint(it->get());
+    m_joints.clear();
     for (auto it = m_bodies.rbegin(); it != m_bodies.rend(); ++it) {
         m_world->removeRigidBody(*it);
         delete (*it)->getMotionState();
@@ -324,6 +328,10 @@ const std::vector<SceneEntry>& catalog()
          [](WorldKind k, const Config& c) { return landscape(k, c, 1000); }},
         {"landscape_1m", "1,000 bodies on a 1,000,000-triangle landscape",
          [](WorldKind k, const Config& c) { return landscape(k, c, 1000, 708); }},
+        {"ragdolls", "4 ragdolls (boxes, hinges and cone-twists) dropping onto the ground",
+         [](WorldKind k, const Config& c) { return ragdolls(k, c, 4); }},
+        {"chain", "a chain of 20 point-to-point links hanging from a static anchor",
+         [](WorldKind k, const Config& c) { return chain(k, c, 20); }},
     };
     return entries;
 }

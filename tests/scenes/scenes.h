@@ -71,6 +71,18 @@ public:
                               const Material& material = Material());
     // Removes the body from the world and deletes it (and its motion state).
     void removeBody(btRigidBody* body);
+    // Adds a joint to the world (addConstraint); the scene owns it and removes it before the
+    // bodies go.
+    template <class C>
+    C* addJoint(C* joint, bool disableCollisionsBetweenLinkedBodies = false)
+    {
+        m_joints.emplace_back(joint);
+        m_world->addConstraint(joint, disableCollisionsBetweenLinkedBodies);
+        return joint;
+    }
+    // Joints in the order the scene added them.
+    btTypedConstraint* joint(int i) const { return m_joints.at(static_cast<std::size_t>(i)).get(); }
+    int numJoints() const { return static_cast<int>(m_joints.size()); }
 
     // Bodies in the order the scene created them (removed ones left out): index i of two scenes
     // built by the same builder is the same body, whatever order the world keeps them in.
@@ -99,6 +111,7 @@ private:
     std::unique_ptr<btDiscreteDynamicsWorld> m_world;
     btGpuDynamicsWorld* m_gpuWorld = nullptr;  // m_world, when it is a btGpuDynamicsWorld
     std::vector<btRigidBody*> m_bodies;        // owned, with their motion states
+    std::vector<std::unique_ptr<btTypedConstraint>> m_joints;
     double m_time = 0.0;
     int m_steps = 0;
 };

@@ -120,6 +120,33 @@ TEST(Plan, NothingToCollideRunsOnlyTheIntegrator)
     EXPECT_EQ(d.plan.substep(), expected);
 }
 
+TEST(Plan, JointsAddTheirStagesAroundTheSolve)
+{
+    // A lone pendulum: nothing to collide, but joints to solve.
+    PlanInput in;
+    in.bodies = {body(BTG_SHAPE_SPHERE, 1, true)};
+    in.numJoints = 1;
+    const std::vector<Stage> alone = {Stage::Integrate,        Stage::ApplyForces,   Stage::PrepareJoints,
+                                      Stage::ColorConstraints, Stage::SolveConstraints, Stage::FinishJoints,
+                                      Stage::IntegrateTransforms, Stage::UpdateActivation};
+    EXPECT_EQ(derivePlan(in).plan.substep(), alone);
+    // With contacts: the joints' rows after the contacts', one batching and solve for both.
+    in.bodies = {body(BTG_SHAPE_BOX, 100, false), body(BTG_SHAPE_BOX, 1, true), body(BTG_SHAPE_BOX, 1, true)};
+    const std::vector<Stage> both = {
+        Stage::Integrate,     Stage::UpdateAabbs,      Stage::UniformGrid,      Stage::FindPairs,
+        Stage::NarrowphaseSat, Stage::ApplyForces,     Stage::ContactCache,     Stage::PrepareContacts,
+        Stage::PrepareJoints, Stage::ColorConstraints, Stage::SolveConstraints, Stage::FinishJoints,
+        Stage::StoreContactCache, Stage::IntegrateTransforms, Stage::UpdateActivation};
+    EXPECT_EQ(derivePlan(in).plan.substep(), both);
+    const std::vector<std::string> names = derivePlan(in).plan.stages();
+    EXPECT_NE(std::find(names.begin(), names.end(), "prepare_joints"), names.end());
+    // Joints are PGS rows: no Jacobi stage with joints (the CPU-path rules refuse the pair).
+    in.solver = SolverKind::JacobiMassSplitting;
+    EXPECT_FALSE(has(derivePlan(in).plan.substep(), Stage::SolveJacobi));
+    in.numJoints = 0;
+    EXPECT_FALSE(has(derivePlan(in).plan.substep(), Stage::PrepareJoints));
+}
+
 TEST(Plan, LargeBodiesLeaveTheGridAndTheCellFitsTheRest)
 {
     PlanInput in;

@@ -1,6 +1,7 @@
 // probe_test.cpp — the shared structs have the same layout on the device as on the host, and
 // the device does not contract a*b+c into an fma (kernels must round like the references).
 #include "cl/program.h"
+#include "shared/joint_rows.h"
 #include "shared/types.h"
 #include "test_device.h"
 
@@ -14,11 +15,11 @@ TEST(Probe, LayoutAndNoContraction)
 {
     cl::Context& ctx = test::context();
     cl::DeviceArray<int> out;
-    out.reserve(ctx, 14);
+    out.reserve(ctx, 18);
     // Chosen so that fma(a, b, c) and round(round(a*b) + c) differ.
     float a = 1.0f + 1.0f / 4096.0f, b = 1.0f - 1.0f / 4096.0f, c = -1.0f;
     cl::Launch(ctx, ctx.program("probe").kernel("probe_layout")).arg(out).arg(a).arg(b).arg(c).run(1, 1);
-    std::vector<int> v = out.download(ctx, 14);
+    std::vector<int> v = out.download(ctx, 18);
     EXPECT_EQ(v[0], (int)sizeof(BtgBodyProps));
     EXPECT_EQ(v[1], (int)sizeof(BtgShape));
     EXPECT_EQ(v[2], (int)sizeof(BtgFace));
@@ -32,6 +33,10 @@ TEST(Probe, LayoutAndNoContraction)
     EXPECT_EQ(v[11], (int)sizeof(BtgManifoldRange));
     EXPECT_EQ(v[12], (int)sizeof(BtgPersistentManifold));
     EXPECT_EQ(v[13], (int)offsetof(BtgShape, convexType));
+    EXPECT_EQ(v[14], (int)sizeof(BtgJoint));
+    EXPECT_EQ(v[15], (int)sizeof(BtgJointRow));
+    EXPECT_EQ(v[16], (int)sizeof(BtgJointState));
+    EXPECT_EQ(v[17], (int)sizeof(BtgJointFeedback));
     volatile float va = a, vb = b, vc = c;
     float host = va * vb + vc;
     float dev;

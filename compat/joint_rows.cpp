@@ -1,0 +1,337 @@
+// joint_rows.cpp — btTypedConstraint → BtgJoint, the per-step comparison and upload of the
+// joint table, and the write-back of applied impulses, feedback and breaks.
+#include "joint_rows.h"
+
+#include "parallel_rows.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <typeinfo>
+#include <unordered_set>
+
+#include <cxxabi.h>
+
+namespace btgpu {
+
+namespace {
+
+std::string typeName(const std::type_info& t)
+{
+    int status = 0;
+    char* name = abi::__cxa_demangle(t.name(), nullptr, nullptr, &status);
+    std::string out = status == 0 && name ? name : t.name();
+    std::free(name);
+    return out;
+}
+
+BtgFloat4 vec4(const btVector3& v) { return btgMake4(v.x(), v.y(), v.z(), 0.0f); }
+
+int bodyRow(const btRigidBody& b, const RowMap& rows)
+{
+    if (&b == &btTypedConstraint::getFixedBody()) return BTG_JOINT_FIXED_BODY;
+    return rows.rowOf(&b);
+}
+
+// btHingeConstraint's private state that has no getter: the reference sign (fixed by the
+// constructor; setUseReferenceFrameA does not change it), the limit's centre, the setParam
+// values and the obsolete-solve flag. Read through member pointers named in an explicit
+// instantiation, where C++ does not check access (read only; nothing is written).
+template <class Tag, typename Tag::type Member>
+struct Reader {
+    friend typename Tag::type member(Tag) { return Member; }
+};
+#define BTGPU_PRIVATE_MEMBER(Name, Class, Type, Field)        \
+    struct Name {                                             \
+        using type = Type Class::*;                           \
+        friend type member(Name);                             \
+    };                                                        \
+    template struct Reader<Name, &Class::Field>
+BTGPU_PRIVATE_MEMBER(HingeReferenceSign, btHingeConstraint, btScalar, m_referenceSign);
+BTGPU_PRIVATE_MEMBER(HingeLimit, btHingeConstraint, btAngularLimit, m_limit);
+BTGPU_PRIVATE_MEMBER(HingeNormalCfm, btHingeConstraint, btScalar, m_normalCFM);
+BTGPU_PRIVATE_MEMBER(HingeNormalErp, btHingeConstraint, btScalar, m_normalERP);
+BTGPU_PRIVATE_MEMBER(HingeStopCfm, btHingeConstraint, btScalar, m_stopCFM);
+BTGPU_PRIVATE_MEMBER(HingeStopErp, btHingeConstraint, btScalar, m_stopERP);
+BTGPU_PRIVATE_MEMBER(HingeObsolete, btHingeConstraint, bool, m_useSolveConstraintObsolete);
+BTGPU_PRIVATE_MEMBER(LimitCenter, btAngularLimit, btScalar, m_center);
+BTGPU_PRIVATE_MEMBER(ConeLinErp, btConeTwistConstraint, btScalar, m_linERP);
+BTGPU_PRIVATE_MEMBER(ConeLinCfm, btConeTwistConstraint, btScalar, m_linCFM);
+BTGPU_PRIVATE_MEMBER(ConeAngCfm, btConeTwistConstraint, btScalar, m_angCFM);
+BTGPU_PRIVATE_MEMBER(ConeObsolete, btConeTwistConstraint, bool, m_useSolveConstraintObsolete);
+BTGPU_PRIVATE_MEMBER(SliderObsolete, btSliderConstraint, bool, m_useSolveConstraintObsolete);
+BTGPU_PRIVATE_MEMBER(SliderCfmDirLin, btSliderConstraint, btScalar, m_cfmDirLin);
+BTGPU_PRIVATE_MEMBER(SliderCfmDirAng, btSliderConstraint, btScalar, m_cfmDirAng);
+BTGPU_PRIVATE_MEMBER(SliderCfmLimLin, btSliderConstraint, btScalar, m_cfmLimLin);
+BTGPU_PRIVATE_MEMBER(SliderCfmLimAng, btSliderConstraint, btScalar, m_cfmLimAng);
+BTGPU_PRIVATE_MEMBER(SliderCfmOrthoLin, btSliderConstraint, btScalar, m_cfmOrthoLin);
+BTGPU_PRIVATE_MEMBER(SliderCfmOrthoAng, btSliderConstraint, btScalar, m_cfmOrthoAng);
+#undef BTGPU_PRIVATE_MEMBER
+
+bool served(const btTypedConstraint& c)
+{
+    if (typeid(c) == typeid(btPoint2PointConstraint))
+        return !static_cast<const btPoint2PointConstraint&>(c).m_useSolveConstraintObsolete;
+    if (typeid(c) == typeid(btHingeConstraint))
+        return !(static_cast<const btHingeConstraint&>(c).*member(HingeObsolete()));
+    if (typeid(c) == typeid(btConeTwistConstraint)) {
+        const auto& k = static_cast<const btConeTwistConstraint&>(c);
+        return !(k.*member(ConeObsolete())) && !k.isMotorEnabled();
+    }
+    if (typeid(c) == typeid(btSliderConstraint))
+        return !(static_cast<const btSliderConstraint&>(c).*member(SliderObsolete()));
+    return false;
+}
+
+void setFrame(const btTransform& t, BtgFloat4* origin, BtgFloat4* axes)
+{
+    *origin = vec4(t.getOrigin());
+    for (int c = 0; c < 3; ++c) axes[c] = vec4(t.getBasis().getColumn(c));
+}
+
+}  // namespace
+
+std::string jointsStructureReason(const btDiscreteDynamicsWorld& world)
+{
+    if (world.getNumConstraints() == 0) return "";
+    std::unordered_set<const btCollisionObject*> inWorld;
+    const btCollisionObjectArray& objs = world.getCollisionObjectArray();
+    for (int i = 0; i < objs.size(); ++i) inWorld.insert(objs[i]);
+    const btRigidBody* fixed = &btTypedConstraint::getFixedBody();
+    for (int i = 0; i < world.getNumConstraints(); ++i) {
+        const btTypedConstraint* c = world.getConstraint(i);
+        if (&c->getRigidBodyA() != fixed && !inWorld.count(&c->getRigidBodyA()))
+            return "joint " + std::to_string(i) + " links a body that is not in the world (its body A)";
+        if (&c->getRigidBodyB() != fixed && !inWorld.count(&c->getRigidBodyB()))
+            return "joint " + std::to_string(i) + " links a body that is not in the world (its body B)";
+        const std::type_info& t = typeid(*c);
+        if (t == typeid(btConeTwistConstraint) && static_cast<const btConeTwistConstraint*>(c)->isMotorEnabled())
+            return "joint " + std::to_string(i) + " (btConeTwistConstraint) has its motor on (enableMotor): not on the GPU "
+                                                  "path yet";
+        if (t == typeid(btPoint2PointConstraint) || t == typeid(btHingeConstraint) || t == typeid(btConeTwistConstraint) ||
+            t == typeid(btSliderConstraint)) {
+            if (!served(*c))
+                return "joint " + std::to_string(i) + " (" + typeName(t) +
+                       ") uses Bullet's obsolete solve (m_useSolveConstraintObsolete)";
+            continue;
+        }
+        return "joint " + std::to_string(i) + " of type " + typeName(t) +
+               " is not on the GPU path (served, by exact type: btPoint2PointConstraint, btHingeConstraint, "
+               "btConeTwistConstraint, btSliderConstraint)";
+    }
+    return "";
+}
+
+std::string jointsStepReason(const btDiscreteDynamicsWorld& world)
+{
+    if (world.getNumConstraints() == 0) return "";
+    const btRigidBody& fixed = btTypedConstraint::getFixedBody();
+    const btTransform& t = fixed.getCenterOfMassTransform();
+    if (!(t.getOrigin() == btVector3(0, 0, 0)) || !(t.getBasis() == btMatrix3x3::getIdentity()) ||
+        fixed.getInvMass() != btScalar(0) || !(fixed.getLinearVelocity() == btVector3(0, 0, 0)) ||
+        !(fixed.getAngularVelocity() == btVector3(0, 0, 0)))
+        return "Bullet's shared fixed body (btTypedConstraint::getFixedBody) was moved or given mass";
+    return "";
+}
+
+bool jointRow(const btTypedConstraint& c, const RowMap& rows, int numIterations, BtgJoint* out)
+{
+    if (!served(c)) return false;
+    BtgJoint j;
+    std::memset(&j, 0, sizeof(j));
+    j.bodyA = bodyRow(c.getRigidBodyA(), rows);
+    j.bodyB = bodyRow(c.getRigidBodyB(), rows);
+    j.flags = (c.isEnabled() ? BTG_JOINT_ENABLED : 0u) | (c.getJointFeedback() ? BTG_JOINT_FEEDBACK : 0u);
+    j.iterations = c.getOverrideNumSolverIterations() > 0 ? c.getOverrideNumSolverIterations() : numIterations;
+    j.breakingThreshold = c.getBreakingImpulseThreshold();
+    if (typeid(c) == typeid(btPoint2PointConstraint)) {
+        const auto& p = static_cast<const btPoint2PointConstraint&>(c);
+        j.type = BTG_JOINT_POINT2POINT;
+        j.pivotA = vec4(p.getPivotInA());
+        j.pivotB = vec4(p.getPivotInB());
+        const int flags = const_cast<btPoint2PointConstraint&>(p).getFlags();
+        if (flags & BT_P2P_FLAGS_ERP) {
+            j.flags |= BTG_JOINT_OWN_ERP;
+            j.erp = p.getParam(BT_CONSTRAINT_ERP, -1);
+        }
+        if (flags & BT_P2P_FLAGS_CFM) {
+            j.flags |= BTG_JOINT_OWN_CFM;
+            j.cfm = p.getParam(BT_CONSTRAINT_CFM, -1);
+        }
+        j.damping = p.m_setting.m_damping;
+        j.impulseClamp = p.m_setting.m_impulseClamp;
+    } else if (typeid(c) == typeid(btHingeConstraint)) {
+        auto& h = const_cast<btHingeConstraint&>(static_cast<const btHingeConstraint&>(c));
+        j.type = BTG_JOINT_HINGE;
+        setFrame(h.getAFrame(), &j.pivotA, j.axesA);
+        setFrame(h.getBFrame(), &j.pivotB, j.axesB);
+        const int flags = h.getFlags();
+        if (flags & BT_HINGE_FLAGS_ERP_NORM) j.flags |= BTG_JOINT_OWN_ERP;
+        if (flags & BT_HINGE_FLAGS_CFM_NORM) j.flags |= BTG_JOINT_OWN_CFM;
+        if (flags & BT_HINGE_FLAGS_ERP_STOP) j.flags |= BTG_JOINT_OWN_STOP_ERP;
+        if (flags & BT_HINGE_FLAGS_CFM_STOP) j.flags |= BTG_JOINT_OWN_STOP_CFM;
+        j.erp = h.*member(HingeNormalErp());
+        j.cfm = h.*member(HingeNormalCfm());
+        j.stopErp = h.*member(HingeStopErp());
+        j.stopCfm = h.*member(HingeStopCfm());
+        if (h.getAngularOnly()) j.flags |= BTG_JOINT_ANGULAR_ONLY;
+        if (h.getUseFrameOffset()) j.flags |= BTG_JOINT_FRAME_OFFSET;
+        if (h.getEnableAngularMotor()) j.flags |= BTG_JOINT_MOTOR;
+        j.motorVelocity = h.getMotorTargetVelocity();
+        j.motorMaxImpulse = h.getMaxMotorImpulse();
+        j.referenceSign = h.*member(HingeReferenceSign());
+        const btAngularLimit& limit = h.*member(HingeLimit());
+        j.limitHalfRange = limit.getHalfRange();
+        j.limitCenter = limit.*member(LimitCenter());
+        j.limitBias = limit.getBiasFactor();
+        j.limitRelaxation = limit.getRelaxationFactor();
+    } else if (typeid(c) == typeid(btConeTwistConstraint)) {
+        auto& k = const_cast<btConeTwistConstraint&>(static_cast<const btConeTwistConstraint&>(c));
+        j.type = BTG_JOINT_CONE_TWIST;
+        setFrame(k.getAFrame(), &j.pivotA, j.axesA);
+        setFrame(k.getBFrame(), &j.pivotB, j.axesB);
+        const btQuaternion qa = k.getAFrame().getRotation(), qb = k.getBFrame().getRotation();
+        j.frameRotA = btgMake4(qa.x(), qa.y(), qa.z(), qa.w());
+        j.frameRotB = btgMake4(qb.x(), qb.y(), qb.z(), qb.w());
+        const int flags = k.getFlags();
+        if (flags & BT_CONETWIST_FLAGS_LIN_ERP) j.flags |= BTG_JOINT_OWN_ERP;
+        if (flags & BT_CONETWIST_FLAGS_LIN_CFM) j.flags |= BTG_JOINT_OWN_CFM;
+        if (flags & BT_CONETWIST_FLAGS_ANG_CFM) j.flags |= BTG_JOINT_OWN_STOP_CFM;
+        j.erp = k.*member(ConeLinErp());
+        j.cfm = k.*member(ConeLinCfm());
+        j.stopCfm = k.*member(ConeAngCfm());
+        j.swingSpan1 = k.getSwingSpan1();
+        j.swingSpan2 = k.getSwingSpan2();
+        j.twistSpan = k.getTwistSpan();
+        j.limitSoftness = k.getLimitSoftness();
+        j.limitBias = k.getBiasFactor();
+        j.limitRelaxation = k.getRelaxationFactor();
+        j.fixThresh = k.getFixThresh();
+    } else if (typeid(c) == typeid(btSliderConstraint)) {
+        auto& k = const_cast<btSliderConstraint&>(static_cast<const btSliderConstraint&>(c));
+        j.type = BTG_JOINT_SLIDER;
+        setFrame(k.getFrameOffsetA(), &j.pivotA, j.axesA);
+        setFrame(k.getFrameOffsetB(), &j.pivotB, j.axesB);
+        BtgSliderParams& sp = j.slider;
+        sp.lowerLin = k.getLowerLinLimit();
+        sp.upperLin = k.getUpperLinLimit();
+        sp.lowerAng = k.getLowerAngLimit();
+        sp.upperAng = k.getUpperAngLimit();
+        sp.softnessOrthoAng = k.getSoftnessOrthoAng();
+        sp.softnessOrthoLin = k.getSoftnessOrthoLin();
+        sp.softnessLimLin = k.getSoftnessLimLin();
+        sp.softnessLimAng = k.getSoftnessLimAng();
+        sp.dampingLimLin = k.getDampingLimLin();
+        sp.dampingLimAng = k.getDampingLimAng();
+        sp.cfmOrthoAng = k.*member(SliderCfmOrthoAng());
+        sp.cfmOrthoLin = k.*member(SliderCfmOrthoLin());
+        sp.cfmDirLin = k.*member(SliderCfmDirLin());
+        sp.cfmLimLin = k.*member(SliderCfmLimLin());
+        sp.cfmDirAng = k.*member(SliderCfmDirAng());
+        sp.cfmLimAng = k.*member(SliderCfmLimAng());
+        sp.linMotorVelocity = k.getTargetLinMotorVelocity();
+        sp.linMotorMaxForce = k.getMaxLinMotorForce();
+        sp.angMotorVelocity = k.getTargetAngMotorVelocity();
+        sp.angMotorMaxForce = k.getMaxAngMotorForce();
+        sp.flags = uint(k.getFlags());
+        sp.options = (k.getUseLinearReferenceFrameA() ? BTG_SLIDER_LINEAR_REFERENCE_A : 0u) |
+                     (k.getUseFrameOffset() ? BTG_SLIDER_FRAME_OFFSET : 0u) |
+                     (k.getPoweredLinMotor() ? BTG_SLIDER_LIN_MOTOR : 0u) |
+                     (k.getPoweredAngMotor() ? BTG_SLIDER_ANG_MOTOR : 0u);
+    }
+    *out = j;
+    return true;
+}
+
+void JointSync::upload(btDiscreteDynamicsWorld& world, const RowMap& rows, DeviceWorld& w)
+{
+    const int n = world.getNumConstraints();
+    const int numIterations = world.getSolverInfo().m_numIterations;
+    std::vector<BtgJoint> table(static_cast<size_t>(n));
+    m_constraints.resize(size_t(n));
+    // Every joint every step (the app may change any of them): built in parallel chunks.
+    forEachChunk(size_t(n), 4096, [&](size_t begin, size_t end, int) {
+        for (size_t i = begin; i < end; ++i) {
+            btTypedConstraint* c = world.getConstraint(int(i));
+            m_constraints[i] = c;
+            jointRow(*c, rows, numIterations, &table[i]);
+        }
+    });
+    int nextRow = 0, iterations = 0;
+    for (BtgJoint& j : table) {
+        j.firstRow = nextRow;
+        nextRow += btgJointMaxRows(j.type);
+        iterations = std::max(iterations, j.iterations);
+    }
+    w.numJoints = n;
+    w.jointIterations = iterations;
+    if (n == 0) {
+        m_uploaded.clear();
+        m_state.clear();
+        return;
+    }
+    const bool resized = m_uploaded.size() != table.size();
+    m_state.resize(size_t(n));
+    // Compared in parallel chunks; each joint that changed starts unbroken on the device.
+    const size_t minPerThread = 4096;
+    std::vector<std::vector<size_t>> found(size_t(chunkCount(size_t(n), minPerThread)));
+    std::vector<char> anyFeedback(found.size(), 0);
+    forEachChunk(size_t(n), minPerThread, [&](size_t begin, size_t end, int chunk) {
+        for (size_t i = begin; i < end; ++i) {
+            if (table[i].flags & BTG_JOINT_FEEDBACK) anyFeedback[size_t(chunk)] = 1;
+            if (!resized && std::memcmp(&table[i], &m_uploaded[i], sizeof(BtgJoint)) == 0) continue;
+            found[size_t(chunk)].push_back(i);
+            std::memset(&m_state[i], 0, sizeof(BtgJointState));
+            m_state[i].appliedImpulse = m_constraints[i]->getAppliedImpulse();
+        }
+    });
+    m_anyFeedback = std::find(anyFeedback.begin(), anyFeedback.end(), 1) != anyFeedback.end();
+    std::vector<size_t> changed;
+    for (const std::vector<size_t>& list : found) changed.insert(changed.end(), list.begin(), list.end());
+    if (changed.empty()) return;
+    // The device keeps what it last wrote (a joint whose island sleeps keeps its feedback, as
+    // stock's); a joint new to the table starts at zero.
+    m_feedback.resize(size_t(n), BtgJointFeedback{});
+    w.jointRows.reserveExact(w.ctx, size_t(std::max(nextRow, 1)));
+    if (resized || changed.size() > size_t(n) / 8) {
+        w.joints.upload(w.ctx, table);
+        w.jointState.upload(w.ctx, m_state);
+        w.jointFeedback.upload(w.ctx, m_feedback);
+    } else {
+        // A few joints changed (a motor target set every step): only they travel.
+        for (size_t i : changed) {
+            w.joints.upload(w.ctx, &table[i], 1, i);
+            w.jointState.upload(w.ctx, &m_state[i], 1, i);
+        }
+    }
+    m_uploaded = std::move(table);
+}
+
+void JointSync::writeBack(DeviceWorld& w)
+{
+    const size_t n = m_uploaded.size();
+    if (n == 0) return;
+    w.jointState.download(w.ctx, m_state.data(), n);
+    if (m_anyFeedback) w.jointFeedback.download(w.ctx, m_feedback.data(), n);
+    for (size_t i = 0; i < n; ++i) {
+        btTypedConstraint* c = m_constraints[i];
+        const BtgJointState& s = m_state[i];
+        c->internalSetAppliedImpulse(s.appliedImpulse);
+        if (btJointFeedback* fb = c->getJointFeedback()) {
+            if (m_uploaded[i].flags & BTG_JOINT_FEEDBACK) {
+                const BtgJointFeedback& f = m_feedback[i];
+                fb->m_appliedForceBodyA = btVector3(f.forceA.x, f.forceA.y, f.forceA.z);
+                fb->m_appliedTorqueBodyA = btVector3(f.torqueA.x, f.torqueA.y, f.torqueA.z);
+                fb->m_appliedForceBodyB = btVector3(f.forceB.x, f.forceB.y, f.forceB.z);
+                fb->m_appliedTorqueBodyB = btVector3(f.torqueB.x, f.torqueB.y, f.torqueB.z);
+            }
+        }
+        if (s.broken && c->isEnabled()) {
+            // As stock's writeBackJoints; the device keeps it broken until the app changes it.
+            c->setEnabled(false);
+            m_uploaded[i].flags &= ~BTG_JOINT_ENABLED;
+        }
+    }
+}
+
+}  // namespace btgpu

@@ -1,0 +1,106 @@
+// joint_scenes.cpp — the joint scenes of joint_scenes.h.
+#include "scenes/joint_scenes.h"
+
+#include "scenes/scene_specs.h"
+
+#include <cmath>
+
+namespace btgpu::scenes {
+
+namespace {
+btVector3 bobStart(double degrees)
+{
+    const double a = degrees * M_PI / 180.0;
+    return btVector3(btScalar(kPendulumLength * std::sin(a)), btScalar(kPendulumPivotY - kPendulumLength * std::cos(a)),
+                     0);
+}
+}  // namespace
+
+ScenePtr pendulum(WorldKind kind, const Config& config, double degrees)
+{
+    auto s = std::make_unique<Scene>(kind, config, "pendulum");
+    const btVector3 start = bobStart(degrees);
+    btRigidBody* bob = s->addBody(s->sphereShape(0.1f), 1.0f, start);
+    bob->setActivationState(DISABLE_DEACTIVATION);
+    // The pivot in the bob's frame, and the fixed body's world pivot.
+    s->addJoint(new btPoint2PointConstraint(*bob, btVector3(0, btScalar(kPendulumPivotY), 0) - start));
+    return s;
+}
+
+ScenePtr chain(WorldKind kind, const Config& config, int links)
+{
+    auto s = std::make_unique<Scene>(kind, config, "chain");
+    s->addBody(s->boxShape(btVector3(5, 0.5f, 5)), 0.0f, btVector3(0, -0.5f, 0));
+    btRigidBody* above = s->addBody(s->boxShape(btVector3(0.1f, 0.1f, 0.1f)), 0.0f, btVector3(0, btScalar(kChainAnchorY), 0));
+    btSphereShape* ball = s->sphereShape(0.05f);
+    const btScalar half = btScalar(kChainPitch / 2);
+    for (int i = 0; i < links; ++i) {
+        const btScalar y = btScalar(kChainAnchorY - kChainPitch * (i + 1));
+        btRigidBody* link = s->addBody(ball, 1.0f, btVector3(0, y, 0));
+        link->setActivationState(DISABLE_DEACTIVATION);
+        s->addJoint(new btPoint2PointConstraint(*above, *link, btVector3(0, -half, 0), btVector3(0, half, 0)));
+        above = link;
+    }
+    return s;
+}
+
+ScenePtr breakingPendulum(WorldKind kind, const Config& config, double threshold)
+{
+    ScenePtr s = pendulum(kind, config, 90.0);
+    s->joint(0)->setBreakingImpulseThreshold(btScalar(threshold));
+    return s;
+}
+
+ScenePtr jointedPair(WorldKind kind, const Config& config)
+{
+    auto s = std::make_unique<Scene>(kind, config, "jointed_pair");
+    s->addBody(s->boxShape(btVector3(10, 0.5f, 10)), 0.0f, btVector3(0, -0.5f, 0));
+    btBoxShape* box = s->boxShape(btVector3(0.5f, 0.5f, 0.5f));
+    btRigidBody* a = s->addBody(box, 1.0f, btVector3(-0.5f, 0.51f, 0));
+    btRigidBody* b = s->addBody(box, 1.0f, btVector3(0.5f, 0.51f, 0));
+    s->addJoint(new btPoint2PointConstraint(*a, *b, btVector3(0.5f, 0, 0), btVector3(-0.5f, 0, 0)));
+    return s;
+}
+
+ScenePtr hingeDoor(WorldKind kind, const Config& config, double speed, double maxImpulse, double lower, double upper)
+{
+    auto s = std::make_unique<Scene>(kind, config, "hinge_door");
+    s->addBody(s->boxShape(btVector3(5, 0.5f, 5)), 0.0f, btVector3(0, -0.5f, 0));
+    btRigidBody* door = s->addBody(s->boxShape(btVector3(0.5f, 1.0f, 0.05f)), 5.0f, btVector3(0.5f, 1.05f, 0));
+    door->setActivationState(DISABLE_DEACTIVATION);
+    auto* hinge = s->addJoint(new btHingeConstraint(*door, btVector3(-0.5f, 0, 0), btVector3(0, 1, 0)));
+    if (upper >= lower) hinge->setLimit(btScalar(lower), btScalar(upper));
+    hinge->enableAngularMotor(true, btScalar(speed), btScalar(maxImpulse));
+    return s;
+}
+
+ScenePtr ragdolls(WorldKind kind, const Config& config, int count)
+{
+    auto s = std::make_unique<Scene>(kind, config, "ragdolls");
+    const spec::Scene data = spec::makeRagdolls(count);
+    std::vector<btRigidBody*> bodies;
+    for (const spec::BodySpec& b : data.bodies) {
+        btCollisionShape* shape = s->boxShape(btVector3(b.half[0], b.half[1], b.half[2]));
+        btTransform xf(btQuaternion(b.rot[0], b.rot[1], b.rot[2], b.rot[3]), btVector3(b.pos[0], b.pos[1], b.pos[2]));
+        btRigidBody* body = s->addBody(shape, b.mass, xf, Material{b.friction, b.restitution});
+        body->setDamping(b.linearDamping, b.angularDamping);
+        bodies.push_back(body);
+    }
+    auto frame = [](const float* f) {
+        return btTransform(btQuaternion(f[3], f[4], f[5], f[6]), btVector3(f[0], f[1], f[2]));
+    };
+    for (const spec::JointSpec& j : data.joints) {
+        btRigidBody& a = *bodies[size_t(j.a)];
+        btRigidBody& b = *bodies[size_t(j.b)];
+        if (j.kind == spec::JointSpec::Kind::Hinge) {
+            auto* h = s->addJoint(new btHingeConstraint(a, b, frame(j.frameA), frame(j.frameB)), true);
+            h->setLimit(j.limit[0], j.limit[1]);
+        } else {
+            auto* c = s->addJoint(new btConeTwistConstraint(a, b, frame(j.frameA), frame(j.frameB)), true);
+            c->setLimit(j.limit[0], j.limit[1], j.limit[2]);
+        }
+    }
+    return s;
+}
+
+}  // namespace btgpu::scenes

@@ -1,0 +1,42 @@
+// joint_scenes.h — scenes with joints (issue 11), defined once for the tests, bench and demos:
+// a pendulum, a hanging chain, a breaking joint, a jointed pair that falls asleep.
+#pragma once
+#include "scenes/scenes.h"
+
+namespace btgpu::scenes {
+
+// A sphere bob (radius 0.1, mass 1) on a btPoint2PointConstraint to Bullet's fixed body at
+// (0, 5, 0), 1 m below the pivot, released at `degrees` from the vertical (in the x-y plane).
+// No ground: the plan has no contact stages.
+ScenePtr pendulum(WorldKind kind, const Config& config = Config(), double degrees = 30.0);
+constexpr double kPendulumLength = 1.0;  // m
+constexpr double kPendulumPivotY = 5.0;  // m
+
+// `links` spheres (radius 0.05, mass 1) hanging 0.2 m apart below a static anchor box at
+// y = 6 (body 1), each joined to the one above by a btPoint2PointConstraint at the midpoint;
+// a ground box (body 0) far below. Starts at rest, exactly unstretched.
+ScenePtr chain(WorldKind kind, const Config& config = Config(), int links = 20);
+constexpr double kChainPitch = 0.2;   // m between link centres
+constexpr double kChainAnchorY = 6.0;  // m, the anchor's centre (links start 0.2 below)
+
+// The pendulum released horizontally (90°), its joint given a breaking impulse threshold of
+// `threshold` N s: at the bottom of the swing the joint impulse per step is about
+// m (g + v^2 / L) dt = 3 m g dt (0.5 N s), so thresholds below that break during the swing.
+ScenePtr breakingPendulum(WorldKind kind, const Config& config = Config(), double threshold = 0.3);
+
+// Two unit boxes (mass 1) side by side on a ground box, joined by a btPoint2PointConstraint
+// at their touching faces' centre, released 1 cm above the ground: they land and fall asleep.
+ScenePtr jointedPair(WorldKind kind, const Config& config = Config());
+
+// A door (box of half extents 0.5, 1, 0.05; mass 5) hinged to Bullet's fixed body along the
+// vertical line x = 0, z = 0 at its edge (body 1; a ground box below, body 0), driven by its
+// angular motor at `speed` rad/s (max impulse `maxImpulse` N m s per step), limited to
+// [lower, upper] rad when upper >= lower.
+ScenePtr hingeDoor(WorldKind kind, const Config& config = Config(), double speed = 1.0, double maxImpulse = 0.5,
+                   double lower = 1.0, double upper = -1.0);
+
+// `count` ragdolls of scene_specs' makeRagdolls (11 boxes, 5 hinges, 5 cone-twists each, added
+// with disableCollisionsBetweenLinkedBodies) dropping onto a ground box; the benchmark's scene.
+ScenePtr ragdolls(WorldKind kind, const Config& config = Config(), int count = 4);
+
+}  // namespace btgpu::scenes
