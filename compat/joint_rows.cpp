@@ -162,6 +162,19 @@ std::string jointsStepReason(const btDiscreteDynamicsWorld& world)
         fixed.getInvMass() != btScalar(0) || !(fixed.getLinearVelocity() == btVector3(0, 0, 0)) ||
         !(fixed.getAngularVelocity() == btVector3(0, 0, 0)))
         return "Bullet's shared fixed body (btTypedConstraint::getFixedBody) was moved or given mass";
+    // Settings the app may turn on after adding the joint and that no row here builds: checked
+    // every step, so a joint is never uploaded half-described.
+    for (int i = 0; i < world.getNumConstraints(); ++i) {
+        const btTypedConstraint* c = world.getConstraint(i);
+        const std::type_info& t = typeid(*c);
+        if (isSixDof2(t)) {
+            const std::string why = sixDofReason(*c);
+            if (!why.empty()) return "joint " + std::to_string(i) + " (" + typeName(t) + ") " + why;
+        } else if (t == typeid(btConeTwistConstraint) && static_cast<const btConeTwistConstraint*>(c)->isMotorEnabled()) {
+            return "joint " + std::to_string(i) + " (btConeTwistConstraint) has its motor on (enableMotor): not on the "
+                                                  "GPU path yet";
+        }
+    }
     return "";
 }
 

@@ -99,6 +99,16 @@ TEST(SixDof, SpringsServosAndHinge2KeepTheCpuPathNamingWhy)
         EXPECT_NE(s->report()->cpuPathReason.find("servo on axis 5"), std::string::npos) << s->report()->cpuPathReason;
     }
     {
+        // Turned on between steps: the next step falls back (never a joint half uploaded).
+        ScenePtr s = scenes::sixDofMotors(WorldKind::Gpu);
+        for (int i = 0; i < 5; ++i) s->step();
+        EXPECT_TRUE(s->gpuWorld()->isGpuPath()) << s->report()->cpuPathReason;
+        static_cast<btGeneric6DofSpring2Constraint*>(s->joint(0))->enableSpring(3, true);
+        s->step();
+        EXPECT_FALSE(s->gpuWorld()->isGpuPath());
+        EXPECT_NE(s->report()->cpuPathReason.find("spring on axis 3"), std::string::npos) << s->report()->cpuPathReason;
+    }
+    {
         ScenePtr s = scenes::fixedBoxes(WorldKind::Gpu);
         btVector3 anchor(-1.8f, 0.7f, 0), up(0, 1, 0), x(1, 0, 0);
         s->addJoint(new btHinge2Constraint(*s->body(3), *s->body(4), anchor, up, x));
