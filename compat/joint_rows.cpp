@@ -3,6 +3,7 @@
 #include "joint_rows.h"
 
 #include "parallel_rows.h"
+#include "shared/sixdof_rows.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -66,10 +67,34 @@ BTGPU_PRIVATE_MEMBER(SliderCfmLimLin, btSliderConstraint, btScalar, m_cfmLimLin)
 BTGPU_PRIVATE_MEMBER(SliderCfmLimAng, btSliderConstraint, btScalar, m_cfmLimAng);
 BTGPU_PRIVATE_MEMBER(SliderCfmOrthoLin, btSliderConstraint, btScalar, m_cfmOrthoLin);
 BTGPU_PRIVATE_MEMBER(SliderCfmOrthoAng, btSliderConstraint, btScalar, m_cfmOrthoAng);
+BTGPU_PRIVATE_MEMBER(SixDofFlags, btGeneric6DofSpring2Constraint, int, m_flags);
 #undef BTGPU_PRIVATE_MEMBER
+
+bool isSixDof2(const std::type_info& t)
+{
+    return t == typeid(btGeneric6DofSpring2Constraint) || t == typeid(btFixedConstraint) ||
+           t == typeid(btHinge2Constraint);
+}
+
+// Why a 6-DoF spring2 joint is not served: springs and servos are not on the device yet.
+std::string sixDofReason(const btTypedConstraint& c)
+{
+    auto& k = const_cast<btGeneric6DofSpring2Constraint&>(static_cast<const btGeneric6DofSpring2Constraint&>(c));
+    const btTranslationalLimitMotor2* lin = k.getTranslationalLimitMotor();
+    for (int i = 0; i < 6; ++i) {
+        const bool spring = i < 3 ? lin->m_enableSpring[i] : k.getRotationalLimitMotor(i - 3)->m_enableSpring;
+        const bool servo = i < 3 ? lin->m_enableMotor[i] && lin->m_servoMotor[i]
+                                 : k.getRotationalLimitMotor(i - 3)->m_enableMotor &&
+                                       k.getRotationalLimitMotor(i - 3)->m_servoMotor;
+        if (spring) return "has a spring on axis " + std::to_string(i) + " (enableSpring): not on the GPU path yet";
+        if (servo) return "has a servo on axis " + std::to_string(i) + " (setServo): not on the GPU path yet";
+    }
+    return "";
+}
 
 bool served(const btTypedConstraint& c)
 {
+    if (isSixDof2(typeid(c))) return sixDofReason(c).empty();
     if (typeid(c) == typeid(btPoint2PointConstraint))
         return !static_cast<const btPoint2PointConstraint&>(c).m_useSolveConstraintObsolete;
     if (typeid(c) == typeid(btHingeConstraint))
@@ -108,6 +133,11 @@ std::string jointsStructureReason(const btDiscreteDynamicsWorld& world)
         if (t == typeid(btConeTwistConstraint) && static_cast<const btConeTwistConstraint*>(c)->isMotorEnabled())
             return "joint " + std::to_string(i) + " (btConeTwistConstraint) has its motor on (enableMotor): not on the GPU "
                                                   "path yet";
+        if (isSixDof2(t)) {
+            const std::string why = sixDofReason(*c);
+            if (!why.empty()) return "joint " + std::to_string(i) + " (" + typeName(t) + ") " + why;
+            continue;
+        }
         if (t == typeid(btPoint2PointConstraint) || t == typeid(btHingeConstraint) || t == typeid(btConeTwistConstraint) ||
             t == typeid(btSliderConstraint)) {
             if (!served(*c))
@@ -117,7 +147,8 @@ std::string jointsStructureReason(const btDiscreteDynamicsWorld& world)
         }
         return "joint " + std::to_string(i) + " of type " + typeName(t) +
                " is not on the GPU path (served, by exact type: btPoint2PointConstraint, btHingeConstraint, "
-               "btConeTwistConstraint, btSliderConstraint)";
+               "btConeTwistConstraint, btSliderConstraint, btGeneric6DofSpring2Constraint, btFixedConstraint, "
+               "btHinge2Constraint)";
     }
     return "";
 }
@@ -131,6 +162,19 @@ std::string jointsStepReason(const btDiscreteDynamicsWorld& world)
         fixed.getInvMass() != btScalar(0) || !(fixed.getLinearVelocity() == btVector3(0, 0, 0)) ||
         !(fixed.getAngularVelocity() == btVector3(0, 0, 0)))
         return "Bullet's shared fixed body (btTypedConstraint::getFixedBody) was moved or given mass";
+    // Settings the app may turn on after adding the joint and that no row here builds: checked
+    // every step, so a joint is never uploaded half-described.
+    for (int i = 0; i < world.getNumConstraints(); ++i) {
+        const btTypedConstraint* c = world.getConstraint(i);
+        const std::type_info& t = typeid(*c);
+        if (isSixDof2(t)) {
+            const std::string why = sixDofReason(*c);
+            if (!why.empty()) return "joint " + std::to_string(i) + " (" + typeName(t) + ") " + why;
+        } else if (t == typeid(btConeTwistConstraint) && static_cast<const btConeTwistConstraint*>(c)->isMotorEnabled()) {
+            return "joint " + std::to_string(i) + " (btConeTwistConstraint) has its motor on (enableMotor): not on the "
+                                                  "GPU path yet";
+        }
+    }
     return "";
 }
 
@@ -238,6 +282,44 @@ bool jointRow(const btTypedConstraint& c, const RowMap& rows, int numIterations,
                      (k.getUseFrameOffset() ? BTG_SLIDER_FRAME_OFFSET : 0u) |
                      (k.getPoweredLinMotor() ? BTG_SLIDER_LIN_MOTOR : 0u) |
                      (k.getPoweredAngMotor() ? BTG_SLIDER_ANG_MOTOR : 0u);
+    } else if (isSixDof2(typeid(c))) {
+        auto& k = const_cast<btGeneric6DofSpring2Constraint&>(static_cast<const btGeneric6DofSpring2Constraint&>(c));
+        j.type = BTG_JOINT_SIXDOF2;
+        setFrame(k.getFrameOffsetA(), &j.pivotA, j.axesA);
+        setFrame(k.getFrameOffsetB(), &j.pivotB, j.axesB);
+        const int flags = k.*member(SixDofFlags());
+        const btTranslationalLimitMotor2* lin = k.getTranslationalLimitMotor();
+        for (int i = 0; i < 6; ++i) {
+            BtgSixDofAxis& x = j.sixdof.axis[i];
+            x.flags = uint(flags >> (i * BT_6DOF_FLAGS_AXIS_SHIFT2)) & 15u;
+            if (i < 3) {
+                x.lo = lin->m_lowerLimit[i];
+                x.hi = lin->m_upperLimit[i];
+                x.bounce = lin->m_bounce[i];
+                x.stopErp = lin->m_stopERP[i];
+                x.stopCfm = lin->m_stopCFM[i];
+                x.motorErp = lin->m_motorERP[i];
+                x.motorCfm = lin->m_motorCFM[i];
+                x.targetVelocity = lin->m_targetVelocity[i];
+                x.maxMotorForce = lin->m_maxMotorForce[i];
+                x.motor = lin->m_enableMotor[i] ? 1u : 0u;
+            } else {
+                const btRotationalLimitMotor2* r = k.getRotationalLimitMotor(i - 3);
+                x.lo = r->m_loLimit;
+                x.hi = r->m_hiLimit;
+                x.bounce = r->m_bounce;
+                // Without the flag these are overwritten from info->erp/cfm[0] every getInfo2:
+                // stored only when the flag makes them the app's own (so the table stays put).
+                x.stopErp = (x.flags & 2u) ? r->m_stopERP : 0.0f;
+                x.stopCfm = (x.flags & 1u) ? r->m_stopCFM : 0.0f;
+                x.motorErp = (x.flags & 8u) ? r->m_motorERP : 0.0f;
+                x.motorCfm = (x.flags & 4u) ? r->m_motorCFM : 0.0f;
+                x.targetVelocity = r->m_targetVelocity;
+                x.maxMotorForce = r->m_maxMotorForce;
+                x.motor = r->m_enableMotor ? 1u : 0u;
+            }
+        }
+        j.sixdof.rotateOrder = int(k.getRotationOrder());
     }
     *out = j;
     return true;
@@ -260,7 +342,7 @@ void JointSync::upload(btDiscreteDynamicsWorld& world, const RowMap& rows, Devic
     int nextRow = 0, iterations = 0;
     for (BtgJoint& j : table) {
         j.firstRow = nextRow;
-        nextRow += btgJointMaxRows(j.type);
+        nextRow += j.type == BTG_JOINT_SIXDOF2 ? btgSixDofMaxRows(j.sixdof) : btgJointMaxRows(j.type);
         iterations = std::max(iterations, j.iterations);
     }
     w.numJoints = n;

@@ -16,12 +16,14 @@
 #define BTG_JOINT_HINGE 2
 #define BTG_JOINT_CONE_TWIST 3
 #define BTG_JOINT_SLIDER 4
+#define BTG_JOINT_SIXDOF2 5 /* btGeneric6DofSpring2Constraint, btFixedConstraint, btHinge2Constraint */
 /* Rows one joint of each type may build (getInfo1's maximum): its slots in the row table. */
 #define BTG_JOINT_P2P_ROWS 3
 #define BTG_JOINT_HINGE_ROWS 6
 #define BTG_JOINT_CONE_TWIST_ROWS 6
 #define BTG_JOINT_SLIDER_ROWS 6
 #define BTG_JOINT_MAX_ROWS 6
+#define BTG_JOINT_SIXDOF2_ROWS 18 /* per axis: two limit rows and a motor row */
 
 /* BtgJoint.flags */
 #define BTG_JOINT_ENABLED 1u   /* btTypedConstraint::isEnabled() as the app left it */
@@ -54,6 +56,26 @@ typedef struct {
     float pad0;
     float pad1;
 } BtgSliderParams;
+
+/* One axis of a btGeneric6DofSpring2Constraint (0..2 linear along frame A's axes, 3..5
+ * angular), as btTranslationalLimitMotor2 / btRotationalLimitMotor2 hold it. */
+typedef struct {
+    float lo, hi;            /* m or rad; lo > hi: free, lo == hi: locked */
+    float bounce;            /* m_bounce */
+    float stopErp, stopCfm;  /* read when flags has BT_6DOF_FLAGS_ERP_STOP2 / CFM_STOP2 */
+    float motorErp, motorCfm;/* read when flags has BT_6DOF_FLAGS_ERP_MOTO2 / CFM_MOTO2 */
+    float targetVelocity;    /* m/s or rad/s */
+    float maxMotorForce;     /* N or N m */
+    uint flags;              /* the axis's 4 bits of m_flags (BT_6DOF_FLAGS_*2) */
+    uint motor;              /* 1: m_enableMotor (servo and spring are not served) */
+    float pad0;
+} BtgSixDofAxis;
+
+typedef struct {
+    BtgSixDofAxis axis[6];
+    int rotateOrder;         /* RotateOrder: RO_XYZ 0 .. RO_ZYX 5 */
+    int pad0, pad1, pad2;
+} BtgSixDofParams;
 
 /* A body of a joint without a row: Bullet's shared fixed body (btTypedConstraint::getFixedBody),
  * static at the identity transform. */
@@ -98,6 +120,7 @@ typedef struct {
     float pad1;
     float pad2;
     BtgSliderParams slider;   /* slider only */
+    BtgSixDofParams sixdof;   /* 6-DoF spring2 only */
 } BtgJoint;
 
 /* One row of a joint in device memory (btSolverConstraint of the non-contact pool): the
@@ -146,7 +169,9 @@ typedef struct {
 
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(BtgSliderParams) == 96, "BtgSliderParams layout");
-static_assert(sizeof(BtgJoint) == 368, "BtgJoint layout");
+static_assert(sizeof(BtgSixDofAxis) == 48, "BtgSixDofAxis layout");
+static_assert(sizeof(BtgSixDofParams) == 304, "BtgSixDofParams layout");
+static_assert(sizeof(BtgJoint) == 672, "BtgJoint layout");
 static_assert(sizeof(BtgJointRow) == 112, "BtgJointRow layout");
 static_assert(sizeof(BtgJointState) == 16, "BtgJointState layout");
 static_assert(sizeof(BtgJointFeedback) == 64, "BtgJointFeedback layout");
@@ -159,6 +184,7 @@ static inline int btgJointMaxRows(int type)
     if (type == BTG_JOINT_HINGE) return BTG_JOINT_HINGE_ROWS;
     if (type == BTG_JOINT_CONE_TWIST) return BTG_JOINT_CONE_TWIST_ROWS;
     if (type == BTG_JOINT_SLIDER) return BTG_JOINT_SLIDER_ROWS;
+    if (type == BTG_JOINT_SIXDOF2) return BTG_JOINT_SIXDOF2_ROWS;
     return 0;
 }
 

@@ -22,6 +22,7 @@ static inline float btgCos(float x) { return cos(x); }
 static inline float btgPow(float x, float y) { return pow(x, y); }
 static inline float btgAtan2(float y, float x) { return atan2(y, x); }
 static inline float btgAcos(float x) { return acos(x); }
+static inline float btgAsin(float x) { return asin(x); }
 static inline float btgFmod(float x, float y) { return fmod(x, y); }
 static inline float btgMin(float a, float b) { return fmin(a, b); }
 static inline float btgMax(float a, float b) { return fmax(a, b); }
@@ -58,6 +59,7 @@ static inline float btgCos(float x) { return std::cos(x); }
 static inline float btgPow(float x, float y) { return std::pow(x, y); }
 static inline float btgAtan2(float y, float x) { return std::atan2(y, x); }
 static inline float btgAcos(float x) { return std::acos(x); }
+static inline float btgAsin(float x) { return std::asin(x); }
 static inline float btgFmod(float x, float y) { return std::fmod(x, y); }
 static inline float btgMin(float a, float b) { return std::fmin(a, b); }
 static inline float btgMax(float a, float b) { return std::fmax(a, b); }

@@ -103,4 +103,45 @@ ScenePtr ragdolls(WorldKind kind, const Config& config, int count)
     return s;
 }
 
+
+ScenePtr fixedBoxes(WorldKind kind, const Config& config)
+{
+    auto s = std::make_unique<Scene>(kind, config, "fixed_boxes");
+    s->addBody(s->boxShape(btVector3(5, 0.5f, 5)), 0.0f, btVector3(0, -0.5f, 0));
+    btBoxShape* cube = s->boxShape(btVector3(0.2f, 0.2f, 0.2f));
+    btRigidBody* anchor = s->addBody(cube, 0.0f, btVector3(0, 3, 0));
+    btRigidBody* arm = s->addBody(cube, 2.0f, btVector3(0.6f, 3, 0));
+    arm->setActivationState(DISABLE_DEACTIVATION);
+    s->addJoint(new btFixedConstraint(*anchor, *arm, btTransform(btQuaternion::getIdentity(), btVector3(0.3f, 0, 0)),
+                                      btTransform(btQuaternion::getIdentity(), btVector3(-0.3f, 0, 0))),
+                true);
+    btRigidBody* left = s->addBody(cube, 1.0f, btVector3(-2.0f, 0.7f, 0));
+    btRigidBody* right = s->addBody(cube, 3.0f, btVector3(-1.6f, 0.7f, 0));
+    left->setActivationState(DISABLE_DEACTIVATION);
+    right->setActivationState(DISABLE_DEACTIVATION);
+    s->addJoint(new btFixedConstraint(*left, *right, btTransform(btQuaternion::getIdentity(), btVector3(0.2f, 0, 0)),
+                                      btTransform(btQuaternion::getIdentity(), btVector3(-0.2f, 0, 0))),
+                true);
+    return s;
+}
+
+ScenePtr sixDofMotors(WorldKind kind, const Config& config, double spin, int order)
+{
+    auto s = std::make_unique<Scene>(kind, config, "sixdof_motors");
+    btRigidBody* box = s->addBody(s->boxShape(btVector3(0.3f, 0.1f, 0.2f)), 2.0f, btVector3(0, 2, 0));
+    box->setActivationState(DISABLE_DEACTIVATION);
+    auto* d = s->addJoint(new btGeneric6DofSpring2Constraint(*box, btTransform::getIdentity(), RotateOrder(order)));
+    d->setLinearLowerLimit(btVector3(-0.3f, 0, 0));
+    d->setLinearUpperLimit(btVector3(0.3f, 0, 0));
+    d->setAngularLowerLimit(btVector3(0, 0, 1));
+    d->setAngularUpperLimit(btVector3(0, 0, -1));
+    d->enableMotor(0, true);
+    d->setTargetVelocity(0, 0.5f);
+    d->setMaxMotorForce(0, 40.0f);
+    d->enableMotor(5, true);
+    d->setTargetVelocity(5, btScalar(spin));
+    d->setMaxMotorForce(5, 3.0f);
+    return s;
+}
+
 }  // namespace btgpu::scenes

@@ -39,4 +39,17 @@ ScenePtr hingeDoor(WorldKind kind, const Config& config = Config(), double speed
 // with disableCollisionsBetweenLinkedBodies) dropping onto a ground box; the benchmark's scene.
 ScenePtr ragdolls(WorldKind kind, const Config& config = Config(), int count = 4);
 
+// btFixedConstraint (a btGeneric6DofSpring2Constraint with every axis locked): a box
+// (half extents 0.2, mass 2; body 2) held 0.6 m beside a static anchor box at (0, 3, 0)
+// (body 1) by a joint at their midpoint, a cantilever under gravity; and two boxes (mass 1 and
+// 3; bodies 3 and 4) fixed side by side, released 0.5 m above the ground box (body 0).
+ScenePtr fixedBoxes(WorldKind kind, const Config& config = Config());
+
+// A btGeneric6DofSpring2Constraint from Bullet's fixed body to a box (half extents 0.3, 0.1,
+// 0.2; mass 2; at (0, 2, 0)) with mixed axes: linear x limited to [-0.3, 0.3] and driven by its
+// motor at 0.5 m/s (max 40 N), linear y and z locked, angular x and y locked, angular z free and
+// driven by its motor at `spin` rad/s (max 3 N m), in rotation order `order` (RotateOrder). The
+// motors move body B (the box) at -target against body A (the fixed body).
+ScenePtr sixDofMotors(WorldKind kind, const Config& config = Config(), double spin = 2.0, int order = 0);
+
 }  // namespace btgpu::scenes

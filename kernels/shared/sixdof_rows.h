@@ -1,0 +1,258 @@
+/* sixdof_rows.h — btGeneric6DofSpring2Constraint's rows as its getInfo1/getInfo2 build them
+ * (Bullet 3.24; also btFixedConstraint and btHinge2Constraint, which add no rows of their own):
+ * calculateTransforms (the six rotation orders' Euler angles and axes), the angular rows first
+ * in the order's sequence, then the linear rows; per axis the limit rows (locked: one, ranged:
+ * two one-sided rows with bounce) and the velocity motor row. Springs and servos fall back. */
+#ifndef BTG_SIXDOF_ROWS_H
+#define BTG_SIXDOF_ROWS_H
+#include "slider_rows.h"
+
+/* Rows one 6-DoF joint builds at most with its settings (its slots in the row table). */
+static inline int btgSixDofMaxRows(BtgSixDofParams p)
+{
+    int n = 0;
+    for (int i = 0; i < 6; ++i) {
+        BtgSixDofAxis x = p.axis[i];
+        n += x.lo < x.hi ? 2 : (x.lo == x.hi ? 1 : 0);
+        n += x.motor ? 1 : 0;
+    }
+    return n;
+}
+
+/* btRotationalLimitMotor2 / btTranslationalLimitMotor2::testLimitValue */
+typedef struct {
+    int limit;       /* 0 free, 3 locked, 4 ranged */
+    float error;     /* m_currentLimitError */
+    float errorHi;   /* m_currentLimitErrorHi (ranged only) */
+    float position;  /* m_currentPosition / m_currentLinearDiff */
+} BtgSixDofLimit;
+
+static inline BtgSixDofLimit btgSixDofTestLimit(BtgSixDofAxis x, float value)
+{
+    BtgSixDofLimit l;
+    l.position = value;
+    l.errorHi = 0.0f;
+    if (x.lo > x.hi) {
+        l.limit = 0;
+        l.error = 0.0f;
+    } else if (x.lo == x.hi) {
+        l.limit = 3;
+        l.error = value - x.lo;
+    } else {
+        l.limit = 4;
+        l.error = value - x.lo;
+        l.errorHi = value - x.hi;
+    }
+    return l;
+}
+
+/* matrixToEuler* of the relative frame; e(k) is btGetMatrixElem(rel, k) = rel[k % 3][k / 3]. */
+static inline BtgFloat4 btgSixDofEuler(int order, const float* e)
+{
+    const float h = 1.57079632679489661923f;
+    float x = 0.0f, y = 0.0f, z = 0.0f;
+    if (order == 0) { /* XYZ */
+        float fi = e[2];
+        if (fi < 1.0f) {
+            if (fi > -1.0f) { x = btgAtan2(-e[5], e[8]); y = btgAsin(e[2]); z = btgAtan2(-e[1], e[0]); }
+            else { x = -btgAtan2(e[3], e[4]); y = -h; }
+        } else { x = btgAtan2(e[3], e[4]); y = h; }
+    } else if (order == 1) { /* XZY */
+        float fi = e[1];
+        if (fi < 1.0f) {
+            if (fi > -1.0f) { x = btgAtan2(e[7], e[4]); y = btgAtan2(e[2], e[0]); z = btgAsin(-e[1]); }
+            else { x = -btgAtan2(-e[6], e[8]); z = h; }
+        } else { x = btgAtan2(-e[6], e[8]); z = -h; }
+    } else if (order == 2) { /* YXZ */
+        float fi = e[5];
+        if (fi < 1.0f) {
+            if (fi > -1.0f) { x = btgAsin(-e[5]); y = btgAtan2(e[2], e[8]); z = btgAtan2(e[3], e[4]); }
+            else { x = h; y = -btgAtan2(-e[1], e[0]); }
+        } else { x = -h; y = btgAtan2(-e[1], e[0]); }
+    } else if (order == 3) { /* YZX */
+        float fi = e[3];
+        if (fi < 1.0f) {
+            if (fi > -1.0f) { x = btgAtan2(-e[5], e[4]); y = btgAtan2(-e[6], e[0]); z = btgAsin(e[3]); }
+            else { y = -btgAtan2(e[7], e[8]); z = -h; }
+        } else { y = btgAtan2(e[7], e[8]); z = h; }
+    } else if (order == 4) { /* ZXY */
+        float fi = e[7];
+        if (fi < 1.0f) {
+            if (fi > -1.0f) { x = btgAsin(e[7]); y = btgAtan2(-e[6], e[8]); z = btgAtan2(-e[1], e[4]); }
+            else { x = -h; z = -btgAtan2(e[2], e[0]); }
+        } else { x = h; z = btgAtan2(e[2], e[0]); }
+    } else { /* ZYX */
+        float fi = e[6];
+        if (fi < 1.0f) {
+            if (fi > -1.0f) { x = btgAtan2(e[7], e[8]); y = btgAsin(-e[6]); z = btgAtan2(e[3], e[0]); }
+            else { y = h; z = -btgAtan2(e[1], e[2]); }
+        } else { y = -h; z = btgAtan2(-e[1], -e[2]); }
+    }
+    return btgMake4(x, y, z, 0.0f);
+}
+
+static inline BtgFloat4 btgNormalized3(BtgFloat4 v) { return v * (1.0f / btgSqrt(btgDot3(v, v))); }
+
+/* calculateJacobi plus get_limit_motor_info2 for one axis: rows appended at rows[*n]. */
+static inline void btgSixDofAxisRows(BtgSixDofAxis x, BtgSixDofLimit l, BtgFloat4 ax, int rotational, BtgFloat4 relA,
+                                     BtgFloat4 relB, float jScaleA, float jScaleB, float vel, float fps, float erp,
+                                     BtgJointInfoRow* rows, int* n)
+{
+    /* Unset values take info->cfm[0] as it stands now: row 0's cfm, which an earlier row may
+     * already have overwritten (Bullet reads it through the same pointer). */
+    const float cfm0 = rows[0].cfm;
+    const float stopCfm = (x.flags & 1u) ? x.stopCfm : cfm0;
+    const float stopErp = (x.flags & 2u) ? x.stopErp : erp;
+    const float motorCfm = (x.flags & 4u) ? x.motorCfm : cfm0;
+    const float motorErp = (x.flags & 8u) ? x.motorErp : erp;
+    const float sign = rotational ? -1.0f : 1.0f;
+    BtgJointInfoRow j;
+    j.linA = btgZero4();
+    j.linB = btgZero4();
+    if (rotational) {
+        j.angA = btgXyz(ax);
+        j.angB = -btgXyz(ax);
+    } else {
+        j.linA = btgXyz(ax);
+        j.linB = -btgXyz(ax);
+        j.angA = btgCross3(relA, ax) * jScaleA;
+        j.angB = -(btgCross3(relB, ax) * jScaleB);
+    }
+    if (l.limit == 4) {
+        BtgJointInfoRow r = j;
+        r.error = fps * stopErp * l.error * sign;
+        if (rotational) {
+            if (r.error - vel * stopErp > 0.0f) {
+                float b = -x.bounce * vel;
+                if (b > r.error) r.error = b;
+            }
+        } else if (r.error - vel * stopErp < 0.0f) {
+            float b = -x.bounce * vel;
+            if (b < r.error) r.error = b;
+        }
+        r.lower = rotational ? 0.0f : -INFINITY;
+        r.upper = rotational ? INFINITY : 0.0f;
+        r.cfm = stopCfm;
+        rows[(*n)++] = r;
+        r = j;
+        r.error = fps * stopErp * l.errorHi * sign;
+        if (rotational) {
+            if (r.error - vel * stopErp < 0.0f) {
+                float b = -x.bounce * vel;
+                if (b < r.error) r.error = b;
+            }
+        } else if (r.error - vel * stopErp > 0.0f) {
+            float b = -x.bounce * vel;
+            if (b > r.error) r.error = b;
+        }
+        r.lower = rotational ? -INFINITY : 0.0f;
+        r.upper = rotational ? 0.0f : INFINITY;
+        r.cfm = stopCfm;
+        rows[(*n)++] = r;
+    } else if (l.limit == 3) {
+        BtgJointInfoRow r = j;
+        r.error = fps * stopErp * l.error * sign;
+        r.lower = -INFINITY;
+        r.upper = INFINITY;
+        r.cfm = stopCfm;
+        rows[(*n)++] = r;
+    }
+    if (x.motor) {
+        BtgJointInfoRow r = j;
+        const float tagVel = rotational ? x.targetVelocity : -x.targetVelocity;
+        r.error = btgMotorFactor(l.position, x.lo, x.hi, tagVel, fps * motorErp) * x.targetVelocity;
+        r.lower = -x.maxMotorForce / fps;
+        r.upper = x.maxMotorForce / fps;
+        r.cfm = motorCfm;
+        rows[(*n)++] = r;
+    }
+}
+
+/* Whether an angular limit counts as violated for the linear rows' rotAllowed. */
+static inline int btgSixDofViolated(BtgSixDofLimit l)
+{
+    const float t = 1.0e-3f;
+    return l.limit == 1 || l.limit == 2 || (l.limit == 3 && (l.error < -t || l.error > t)) ||
+           (l.limit == 4 && (l.error < -t || l.errorHi > t));
+}
+
+/* getInfo1 and getInfo2 of a 6-DoF spring2 joint: rows[0, returned count). */
+static inline int btgSixDofInfoRows(BtgJoint j, BtgJointBody a, BtgJointBody b, float fps, float erp, float globalCfm,
+                                    BtgJointInfoRow* rows)
+{
+    const BtgSixDofParams p = j.sixdof;
+    rows[0] = btgEmptyInfoRow(globalCfm);
+    /* calculateTransforms */
+    BtgFloat4 colA[3], colB[3];
+    for (int c = 0; c < 3; ++c) {
+        colA[c] = btgFrameAxis(a, j.axesA[c]);
+        colB[c] = btgFrameAxis(b, j.axesB[c]);
+    }
+    const BtgFloat4 relA = btgMat3MulVec(a.basis, j.pivotA), relB = btgMat3MulVec(b.basis, j.pivotB);
+    const BtgFloat4 d = (relB + b.pos) - (relA + a.pos);
+    BtgSixDofLimit lin[3], ang[3];
+    for (int i = 0; i < 3; ++i) lin[i] = btgSixDofTestLimit(p.axis[i], btgDot3(colA[i], d));
+    float e[9];
+    for (int k = 0; k < 9; ++k) e[k] = btgDot3(colA[k % 3], colB[k / 3]);
+    const BtgFloat4 euler = btgSixDofEuler(p.rotateOrder, e);
+    BtgFloat4 axis[3];
+    const int o = p.rotateOrder;
+    if (o == 0) {
+        axis[1] = btgCross3(colA[2], colB[0]);
+        axis[0] = btgCross3(axis[1], colA[2]);
+        axis[2] = btgCross3(colB[0], axis[1]);
+    } else if (o == 1) {
+        axis[2] = btgCross3(colB[0], colA[1]);
+        axis[0] = btgCross3(colA[1], axis[2]);
+        axis[1] = btgCross3(axis[2], colB[0]);
+    } else if (o == 2) {
+        axis[0] = btgCross3(colB[1], colA[2]);
+        axis[1] = btgCross3(colA[2], axis[0]);
+        axis[2] = btgCross3(axis[0], colB[1]);
+    } else if (o == 3) {
+        axis[2] = btgCross3(colA[0], colB[1]);
+        axis[0] = btgCross3(colB[1], axis[2]);
+        axis[1] = btgCross3(axis[2], colA[0]);
+    } else if (o == 4) {
+        axis[0] = btgCross3(colA[1], colB[2]);
+        axis[1] = btgCross3(colB[2], axis[0]);
+        axis[2] = btgCross3(axis[0], colA[1]);
+    } else {
+        axis[1] = btgCross3(colB[2], colA[0]);
+        axis[0] = btgCross3(axis[1], colB[2]);
+        axis[2] = btgCross3(colA[0], axis[1]);
+    }
+    for (int i = 0; i < 3; ++i) {
+        axis[i] = btgNormalized3(axis[i]);
+        BtgSixDofAxis x = p.axis[3 + i];
+        ang[i] = btgSixDofTestLimit(x, btgAdjustAngleToLimits(btgLane(euler, i), x.lo, x.hi));
+    }
+    const float miA = a.rbInvMass, miB = b.rbInvMass;
+    const int hasStaticBody = (miA < BTG_FLT_EPSILON) || (miB < BTG_FLT_EPSILON);
+    const float miS = miA + miB;
+    const float factA = miS > 0.0f ? miB / miS : 0.5f;
+    const float factB = 1.0f - factA;
+    /* setAngularLimits, in the rotation order's sequence */
+    const int seq0[6] = {0, 0, 1, 1, 2, 2}, seq1[6] = {1, 2, 0, 2, 0, 1}, seq2[6] = {2, 1, 2, 0, 1, 0};
+    int n = 0;
+    for (int ii = 0; ii < 3; ++ii) {
+        const int i = ii == 0 ? seq0[o] : (ii == 1 ? seq1[o] : seq2[o]);
+        BtgSixDofAxis x = p.axis[3 + i];
+        if (!ang[i].limit && !x.motor) continue;
+        const float vel = btgDot3(a.angVel0, axis[i]) - btgDot3(b.angVel0, axis[i]);
+        btgSixDofAxisRows(x, ang[i], axis[i], 1, relA, relB, 1.0f, 1.0f, vel, fps, erp, rows, &n);
+    }
+    /* setLinearLimits */
+    for (int i = 0; i < 3; ++i) {
+        BtgSixDofAxis x = p.axis[i];
+        if (!lin[i].limit && !x.motor) continue;
+        const int rotAllowed = !(btgSixDofViolated(ang[(i + 1) % 3]) && btgSixDofViolated(ang[(i + 2) % 3]));
+        const int scale = hasStaticBody && !rotAllowed;
+        const float vel = btgDot3(a.linVel0, colA[i]) - btgDot3(b.linVel0, colA[i]);
+        btgSixDofAxisRows(x, lin[i], colA[i], 0, relA, relB, scale ? factA : 1.0f, scale ? factB : 1.0f, vel, fps, erp,
+                          rows, &n);
+    }
+    return n;
+}
+
+#endif
