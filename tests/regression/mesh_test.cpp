@@ -3,7 +3,7 @@
 // and a sphere at rest, 100 bodies dropped apart, a mesh shared by two ground bodies, a scaled
 // wrapper, vertices edited and the BVH refitted between steps, a kinematic mesh platform; the
 // same on a btHeightfieldTerrainShape (heights changed by the app between steps); a capsule, a
-// cylinder and a cone (GJK against each triangle) at rest on both grounds; and the cases that
+// cylinder, a cone and a plain hull (GJK against each triangle) at rest on both grounds; and the cases that
 // keep the CPU path, each with its reason.
 #include <gtest/gtest.h>
 
@@ -21,7 +21,7 @@ using namespace btgpu::test;
 
 namespace {
 
-constexpr double kConvexRollDrift = 0.06;  // m: see CapsuleCylinderAndCone...
+constexpr double kConvexRollDrift = 0.06;  // m: see CapsuleCylinderConeAndPlainHull...
 
 bool has(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
 
@@ -80,10 +80,10 @@ TEST(Mesh, BoxAndSphereRestOnAMeshGroundAsOnStock)
     EXPECT_NEAR(run.gpuY(2), 0.5, 0.01);
 }
 
-TEST(Mesh, CapsuleCylinderAndConeRestOnAMeshAndAHeightfieldAsOnStock)
+TEST(Mesh, CapsuleCylinderConeAndPlainHullRestOnAMeshAndAHeightfieldAsOnStock)
 {
-    // Support-function convex shapes against triangles (GJK per triangle, as stock's
-    // btConvexConcaveCollisionAlgorithm): rest heights within 1 mm of stock's on both grounds.
+    // Support-function convex shapes (a capsule, a cylinder, a cone, a hull without polyhedral
+    // features) against triangles: GJK per triangle, as stock's btConvexConcaveCollisionAlgorithm.
     for (auto make : {scenes::convexRestOnMesh, scenes::convexRestOnHeightfield}) {
         SideBySide run(make);
         SCOPED_TRACE(run.gpu->name());
@@ -92,7 +92,7 @@ TEST(Mesh, CapsuleCylinderAndConeRestOnAMeshAndAHeightfieldAsOnStock)
         // Rest heights within 1 mm of stock's. Sideways: a cylinder on its side rolls a little
         // on both (one GJK point a triangle; measured: btgpu 4.3 cm on the mesh, 0.2 cm on the
         // heightfield; stock 0.2 and 2.3 cm), so the drift bound is kConvexRollDrift.
-        for (int i = 1; i <= 3; ++i) {
+        for (int i = 1; i <= 4; ++i) {
             EXPECT_NEAR(run.gpuY(i), run.stockY(i), tol::kRestHeight) << "body " << i;
             EXPECT_LE(drift(*run.gpu, starts.gpu, i), kConvexRollDrift) << "body " << i;
         }

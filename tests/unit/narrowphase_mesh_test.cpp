@@ -3,8 +3,8 @@
 // against Bullet's own btConvexConcaveCollisionAlgorithm run in the test for the same pose
 // (SphereTriangleDetector for spheres; the polyhedral path, m_enableSatConvex with the box's
 // features, for boxes): the deepest point's normal within 1 degree and depth within 1 mm, and
-// on flat meshes the point count of stock's one manifold; capsules, cylinders and a cone (GJK
-// against each btTriangleShape) against stock the same way.
+// on flat meshes the point count of stock's one manifold; capsules, cylinders, a cone, a
+// multi-sphere and a plain hull (GJK against each btTriangleShape) against stock the same way.
 #include "../compat/shape_tables.h"
 #include "mesh_scene.h"
 #include "reference/midphase.h"
@@ -355,14 +355,17 @@ void compareConvexWithStock(const BulletMesh& mesh, const std::vector<ConvexCase
     MeshScene s;
     const int meshRow = s.addMesh(mesh.shape.get());
     s.body(meshRow, btgMake4(0, 0, 0, 0), kIdentity, BTG_BODY_STATIC);
-    ::btgpu::ShapeTables rows;  // the world's own rows of these shapes (no vertex rows: copied as is)
+    ::btgpu::ShapeTables rows;  // the world's own rows of these shapes
     for (const ConvexCase& c : cases) {
         std::string why;
         const int r = rows.add(c.shape, &why);
         ASSERT_GE(r, 0) << why;
         ASSERT_EQ(rows.shapes[size_t(r)].type, BTG_SHAPE_CONVEX);
-        ASSERT_EQ(rows.shapes[size_t(r)].numVertices, 0);
-        s.t.shapes.push_back(rows.shapes[size_t(r)]);
+        BtgShape copy = rows.shapes[size_t(r)];  // its vertex rows (multi-sphere, hull) moved along
+        const int first = copy.firstVertex;
+        copy.firstVertex = int(s.t.vertices.size());
+        for (int v = 0; v < copy.numVertices; ++v) s.t.vertices.push_back(rows.vertices[size_t(first + v)]);
+        s.t.shapes.push_back(copy);
         const int row = int(s.t.shapes.size()) - 1;
         s.pairs.push_back(BtgPair{0, s.body(row, c.pos, c.rot, BTG_BODY_DYNAMIC)});
     }
@@ -403,12 +406,18 @@ void compareConvexWithStock(const BulletMesh& mesh, const std::vector<ConvexCase
 
 }  // namespace
 
-TEST(NarrowphaseMesh, CapsuleAndCylinderAgainstTrianglesAsStock)
+TEST(NarrowphaseMesh, SupportShapesAgainstTrianglesAsStock)
 {
     auto flat = BulletMesh::terrain(8, 1.0f, true);
     btCapsuleShape capsule(0.3f, 1.0f);
     btCylinderShape cylinder(btVector3(0.3f, 0.5f, 0.3f));
     btConeShape cone(0.4f, 1.0f);
+    const btVector3 centres[2] = {btVector3(-0.3f, 0, 0), btVector3(0.3f, 0.1f, 0)};
+    const btScalar radii[2] = {0.25f, 0.2f};
+    btMultiSphereShape spheres(centres, radii, 2);
+    const btScalar corners[] = {-0.4f, -0.3f, -0.4f, 0.4f, -0.3f, -0.4f, -0.4f, -0.3f, 0.4f, 0.4f, -0.3f, 0.4f,
+                                -0.4f, 0.3f,  -0.4f, 0.4f, 0.3f,  -0.4f, -0.4f, 0.3f,  0.4f, 0.4f, 0.3f,  0.4f};
+    btConvexHullShape plainHull(corners, 8, 3 * sizeof(btScalar));  // no polyhedral features: GJK on stock
     const BtgFloat4 onSide = axisAngle(btgMake4(0, 0, 1, 0), 1.5707963f);
     const BtgFloat4 tilted = axisAngle(btgMake4(1, 0, 0.3f, 0), 0.6f);
     std::vector<ConvexCase> flatCases = {
@@ -419,6 +428,9 @@ TEST(NarrowphaseMesh, CapsuleAndCylinderAgainstTrianglesAsStock)
         {&cylinder, btgMake4(2.4f, 0.297f, 0.3f, 0), onSide, true, true},        // on its side
         {&cylinder, btgMake4(-0.5f, 0.55f, 2.2f, 0), tilted, true},        // on its rim
         {&cone, btgMake4(3.1f, 0.496f, -2.1f, 0), kIdentity, true, true},        // on its base
+        {&spheres, btgMake4(-3.1f, 0.246f, 1.9f, 0), kIdentity, true},     // a multi-sphere's lower sphere
+        {&plainHull, btgMake4(1.9f, 0.336f, 2.3f, 0), kIdentity, true, true},  // a plain hull flat
+        {&plainHull, btgMake4(-2.9f, 0.5f, -2.6f, 0), tilted, true},       // ... on an edge
         {&capsule, btgMake4(0.2f, 1.2f, -2.4f, 0), kIdentity, false},      // apart
     };
     compareConvexWithStock(*flat, flatCases);
