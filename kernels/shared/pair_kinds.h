@@ -40,10 +40,12 @@
 #define BTG_PAIR_SPHERE_HEIGHTFIELD 18
 #define BTG_PAIR_HULL_HEIGHTFIELD 19
 #define BTG_PAIR_BOX_HEIGHTFIELD 20
-#define BTG_NUM_PAIR_KINDS 21
+#define BTG_PAIR_CONVEX_MESH 21
+#define BTG_PAIR_CONVEX_HEIGHTFIELD 22
+#define BTG_NUM_PAIR_KINDS 23
 /* Convex against a concave shape (mesh or heightfield): the kinds the midphase walks. */
 #define BTG_FIRST_MESH_PAIR_KIND BTG_PAIR_SPHERE_MESH
-#define BTG_LAST_MESH_PAIR_KIND BTG_PAIR_BOX_HEIGHTFIELD
+#define BTG_LAST_MESH_PAIR_KIND BTG_PAIR_CONVEX_HEIGHTFIELD
 
 /* The pairs grouped by kind (find_pairs): kindOrder lists the pair slots ordered by (kind, a, b),
  * and kind k's pairs are kindOrder[kindRanges[BTG_KIND_RANGE_START(k)], kindRanges[BTG_KIND_RANGE_END(k)]). */
@@ -86,9 +88,10 @@
  * triangle) sub-pairs; a row's routine takes one of them (BTG_TRIANGLE_ROUTINE in
  * triangle_contacts.h: the convex, the mesh, the triangle's mesh-local vertices) and its
  * kernel strides over the sub-pairs of its kind. Boxes and hulls (a box's row holds its hull)
- * take the same routine; convex shapes known only by their support function have no triangle
- * routine yet, and a world where one could meet a concave shape falls back
- * (compat/cpu_path_rules.cpp: every pair of kinds present must have a row). */
+ * take the same routine; convex shapes known only by their support function take GJK against
+ * the triangle (btgCollideConvexTriangle: stock's one point per triangle per step). The mesh
+ * program rebuilds each pair's manifold every step from its triangles' points (it keeps none
+ * across steps), so these pairs hold this step's points only, not stock's accumulated ones. */
 #define BTG_PAIR_KINDS_NARROWPHASE_MESH(X)                                                                    \
     X(narrowphase_mesh, BTG_PAIR_SPHERE_MESH, BTG_SHAPE_SPHERE, BTG_SHAPE_MESH, btgCollideSphereTriangle,     \
       collide_sphere_triangles)                                                                               \
@@ -101,7 +104,11 @@
     X(narrowphase_mesh, BTG_PAIR_HULL_HEIGHTFIELD, BTG_SHAPE_HULL, BTG_SHAPE_HEIGHTFIELD,                     \
       btgCollideHullTriangle, collide_hull_heightfield)                                                       \
     X(narrowphase_mesh, BTG_PAIR_BOX_HEIGHTFIELD, BTG_SHAPE_BOX, BTG_SHAPE_HEIGHTFIELD,                       \
-      btgCollideHullTriangle, collide_box_heightfield)
+      btgCollideHullTriangle, collide_box_heightfield)                                                        \
+    X(narrowphase_mesh, BTG_PAIR_CONVEX_MESH, BTG_SHAPE_CONVEX, BTG_SHAPE_MESH, btgCollideConvexTriangle,     \
+      collide_convex_triangles)                                                                               \
+    X(narrowphase_mesh, BTG_PAIR_CONVEX_HEIGHTFIELD, BTG_SHAPE_CONVEX, BTG_SHAPE_HEIGHTFIELD,                 \
+      btgCollideConvexTriangle, collide_convex_heightfield)
 
 /* The pairs of two convex shapes one routine call makes at once (the GJK program's kernels
  * carry their persistent manifolds themselves), and the whole table, program by program in

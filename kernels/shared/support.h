@@ -99,6 +99,12 @@ static inline BtgFloat4 btgSupportCore(BtgShape s, BTG_CONST_GLOBAL BtgFloat4* v
         case BTG_CONVEX_CYLINDER: return btgCylinderSupport(s.param, s.upAxis, d);
         case BTG_CONVEX_CONE: return btgConeSupport(s.param.x, s.param.y, s.param.z, s.upAxis, d);
         case BTG_CONVEX_SPHERE: return btgZero4();
+        case BTG_CONVEX_TRIANGLE: {
+            /* btTriangleShape: the first vertex of the largest dot (btVector3::maxAxis on ties) */
+            const float d0 = btgDot3(d, s.localAabbMin), d1 = btgDot3(d, s.localAabbMax), d2 = btgDot3(d, s.param);
+            const int i = d0 < d1 ? (d1 < d2 ? 2 : 1) : (d0 < d2 ? 2 : 0);
+            return btgXyz(i == 0 ? s.localAabbMin : (i == 1 ? s.localAabbMax : s.param));
+        }
         case BTG_CONVEX_SPHERES: {
             /* btMultiSphereShape: centre * scaling + dir * scaling * radius - dir * margin */
             BtgFloat4 v = btgSupportDir(d, BTG_SUPPORT_EPSILON * BTG_SUPPORT_EPSILON, btgMake4(1.0f, 0.0f, 0.0f, 0.0f));

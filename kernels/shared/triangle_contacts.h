@@ -9,6 +9,7 @@
 #define BTG_TRIANGLE_CONTACTS_H
 #include "clip.h"
 #include "concave.h"
+#include "gjk.h"
 
 #define BTG_FLT_EPSILON 1.1920929e-07f /* Bullet's SIMD_EPSILON (float build) */
 
@@ -214,6 +215,35 @@ static inline BtgManifold btgCollideHullTriangle(BtgCollider h, BtgCollider mesh
         poly[kept++] = c;
     }
     if (kept > 0) btgReduceArray(poly, labels, kept, normal, &m);
+    return m;
+}
+
+/* A support-function convex c (A) against one triangle (B), as stock's
+ * btConvexConcaveCollisionAlgorithm runs it: btConvexConvexAlgorithm between the convex and a
+ * btTriangleShape in the mesh body's frame whose margin is the concave shape's, i.e. GJK on the
+ * cores (EPA when they overlap), one point per triangle. None of capsule, cylinder, cone,
+ * multi-sphere, convex mesh or featureless hull has polyhedral features, so stock clips nothing
+ * here (and the capsule closed forms take only capsule/sphere pairs). */
+static inline BtgCollider btgTriangleCollider(BtgCollider mesh, BtgTriangleVerts tri)
+{
+    BtgCollider t = mesh;
+    t.shape.type = BTG_SHAPE_CONVEX;
+    t.shape.convexType = BTG_CONVEX_TRIANGLE;
+    t.shape.convexFlags = 0u;
+    t.shape.localAabbMin = btgXyz(tri.v[0]);
+    t.shape.localAabbMax = btgXyz(tri.v[1]);
+    t.shape.param = btgXyz(tri.v[2]);
+    t.shape.numVertices = 0;
+    return t;
+}
+
+static inline BtgManifold btgCollideConvexTriangle(BtgCollider c, BtgCollider mesh, BtgTriangleVerts tri,
+                                                   BTG_SHAPE_TABLES, float threshold)
+{
+    BTG_UNUSED_SHAPE_TABLES;
+    BtgManifold m = btgEmptyManifold(c.body, mesh.body);
+    const BtgConvexPoint p = btgGjkPoint(c, btgTriangleCollider(mesh, tri), verts, threshold);
+    if (p.valid) btgAddPoint(&m, p.normal, p.pointB, p.distance, BTG_FEATURE_SINGLE);
     return m;
 }
 

@@ -46,6 +46,9 @@
 #define BTG_CONVEX_POINTS 5     /* vertex rows: scaled points (convex triangle mesh, scaled hull) */
 #define BTG_CONVEX_BOX 6        /* param.xyz half extents with margin, .w margin, m */
 #define BTG_CONVEX_SPHERE 7     /* a point core whose margin is the radius (a scaled sphere) */
+#define BTG_CONVEX_TRIANGLE 8   /* a mesh triangle as a shape value made per sub-pair, never a table row
+                                   (triangle_contacts.h): localAabbMin, localAabbMax, param its three
+                                   vertices in the mesh body's frame; margin the concave shape's */
 /* BtgShape.convexFlags */
 #define BTG_CONVEX_FLAG_CAPSULE 1u      /* a btCapsuleShape (Bullet's closed-form capsule pairs) */
 #define BTG_CONVEX_FLAG_SPHERE 2u       /* a btSphereShape (capsule-sphere closed form) */

@@ -85,6 +85,24 @@ void restBodies(Scene& scene)
     scene.addBody(scene.boxShape(btVector3(.5, .5, .5)), 1, btVector3(-2, btScalar(.6), btScalar(.3)));
     scene.addBody(scene.sphereShape(.5), 1, btVector3(2, btScalar(.6), btScalar(-.2)));
 }
+// A capsule and a cylinder on their sides, a cone upright and a box-like hull without polyhedral
+// features, 0.1 m above y = 0 (bodies 1..4).
+void convexRestBodies(Scene& scene)
+{
+    const btQuaternion side(btVector3(0, 0, 1), btScalar(SIMD_HALF_PI));
+    const btQuaternion sideX(btVector3(1, 0, 0), btScalar(SIMD_HALF_PI));
+    auto* capsule = scene.ownShape(new btCapsuleShape(btScalar(.3), btScalar(1.)));
+    auto* cylinder = scene.ownShape(new btCylinderShape(btVector3(btScalar(.3), btScalar(.5), btScalar(.3))));
+    auto* cone = scene.ownShape(new btConeShape(btScalar(.4), btScalar(1.)));
+    scene.addBody(capsule, 1, btTransform(side, btVector3(btScalar(-3.2), btScalar(.4), btScalar(.3))));
+    scene.addBody(cylinder, 1, btTransform(sideX, btVector3(btScalar(.3), btScalar(.4), btScalar(-.2))));
+    scene.addBody(cone, 1, btTransform(btQuaternion::getIdentity(), btVector3(btScalar(3.3), btScalar(.6), btScalar(.4))));
+    std::vector<btVector3> corners;  // a hull without polyhedral features: GJK on stock too
+    for (int i = 0; i < 8; ++i)
+        corners.emplace_back(i & 1 ? btScalar(.4) : btScalar(-.4), i & 2 ? btScalar(.3) : btScalar(-.3),
+                             i & 4 ? btScalar(.4) : btScalar(-.4));
+    scene.addBody(scene.hullShape(corners), 1, btVector3(btScalar(.6), btScalar(.45), btScalar(3.2)));
+}
 void dropBodies(Scene& scene)
 {
     btCollisionShape* box = scene.boxShape(btVector3(btScalar(.3), btScalar(.3), btScalar(.3)));
@@ -102,6 +120,22 @@ ScenePtr restOnHeightfield(WorldKind kind, const Config& config)
     auto scene = std::make_unique<Scene>(kind, config, "rest_on_heightfield");
     scene->addBody(flatHeightfield(*scene, 17), 0, btVector3(0, 0, 0));
     restBodies(*scene);
+    return scene;
+}
+
+ScenePtr convexRestOnHeightfield(WorldKind kind, const Config& config)
+{
+    auto scene = std::make_unique<Scene>(kind, config, "convex_rest_on_heightfield");
+    scene->addBody(flatHeightfield(*scene, 17), 0, btVector3(0, 0, 0));
+    convexRestBodies(*scene);
+    return scene;
+}
+
+ScenePtr convexRestOnMesh(WorldKind kind, const Config& config)
+{
+    auto scene = std::make_unique<Scene>(kind, config, "convex_rest_on_mesh");
+    scene->addBody(gridMesh(*scene, 16, 1.0f, true, true), 0, btVector3(0, 0, 0));
+    convexRestBodies(*scene);
     return scene;
 }
 

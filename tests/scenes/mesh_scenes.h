@@ -41,6 +41,12 @@ btHeightfieldTerrainShape* flatHeightfield(Scene& scene, int n, std::vector<floa
 // restOnMesh and dropOnMesh on a flat heightfield instead of the mesh.
 ScenePtr restOnHeightfield(WorldKind kind, const Config& config = Config());
 ScenePtr dropOnHeightfield(WorldKind kind, const Config& config = Config());
+// A capsule (radius 0.3, 1 m long) and a cylinder (half extents 0.3, 0.5, 0.3) on their sides
+// and a cone (radius 0.4, height 1) upright and a hull without polyhedral features (a box of
+// half extents 0.4, 0.3, 0.4 plus its margin), released 0.1 m above a flat two-part mesh
+// ground or a flat heightfield (bodies 1..4; body 0 the ground).
+ScenePtr convexRestOnMesh(WorldKind kind, const Config& config = Config());
+ScenePtr convexRestOnHeightfield(WorldKind kind, const Config& config = Config());
 // Bench 5's layout on a rolling mesh terrain of quads x quads cells (200 m across): boxes,
 // spheres and hulls dropped in a lattice of `count` bodies. 100 quads: 20,000 triangles; 708:
 // about 1,000,000.

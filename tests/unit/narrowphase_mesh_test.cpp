@@ -3,7 +3,9 @@
 // against Bullet's own btConvexConcaveCollisionAlgorithm run in the test for the same pose
 // (SphereTriangleDetector for spheres; the polyhedral path, m_enableSatConvex with the box's
 // features, for boxes): the deepest point's normal within 1 degree and depth within 1 mm, and
-// on flat meshes the point count of stock's one manifold.
+// on flat meshes the point count of stock's one manifold; capsules, cylinders, a cone, a
+// multi-sphere and a plain hull (GJK against each btTriangleShape) against stock the same way.
+#include "../compat/shape_tables.h"
 #include "mesh_scene.h"
 #include "reference/midphase.h"
 #include "shared/math.h"
@@ -334,4 +336,115 @@ TEST(NarrowphaseMesh, CurvedTerrainAgainstStock)
         cases.push_back({true, btgMake4(px, highest + 0.3f - sink(rng), pz, 0), kIdentity, false});
     }
     compareWithStock(*mesh, cases);
+}
+
+namespace {
+
+// Support-function convex shapes (BTG_SHAPE_CONVEX rows) against triangles: the device against
+// the reference, and the deepest point against stock's (GJK between the convex and each
+// btTriangleShape, one point a triangle, into the pair's one manifold): normal within 1 degree,
+// depth within 1 mm.
+struct ConvexCase {
+    btConvexShape* shape;
+    BtgFloat4 pos, rot;
+    bool touching;
+    bool flatContact = false;  // a line or a face on the mesh: no one deepest point
+};
+void compareConvexWithStock(const BulletMesh& mesh, const std::vector<ConvexCase>& cases)
+{
+    MeshScene s;
+    const int meshRow = s.addMesh(mesh.shape.get());
+    s.body(meshRow, btgMake4(0, 0, 0, 0), kIdentity, BTG_BODY_STATIC);
+    ::btgpu::ShapeTables rows;  // the world's own rows of these shapes
+    for (const ConvexCase& c : cases) {
+        std::string why;
+        const int r = rows.add(c.shape, &why);
+        ASSERT_GE(r, 0) << why;
+        ASSERT_EQ(rows.shapes[size_t(r)].type, BTG_SHAPE_CONVEX);
+        BtgShape copy = rows.shapes[size_t(r)];  // its vertex rows (multi-sphere, hull) moved along
+        const int first = copy.firstVertex;
+        copy.firstVertex = int(s.t.vertices.size());
+        for (int v = 0; v < copy.numVertices; ++v) s.t.vertices.push_back(rows.vertices[size_t(first + v)]);
+        s.t.shapes.push_back(copy);
+        const int row = int(s.t.shapes.size()) - 1;
+        s.pairs.push_back(BtgPair{0, s.body(row, c.pos, c.rot, BTG_BODY_DYNAMIC)});
+    }
+    std::vector<PairResult> dev = runDevice(s), ref = runReference(s);
+    for (size_t i = 0; i < cases.size(); ++i) {
+        SCOPED_TRACE("convex case " + std::to_string(i));
+        ASSERT_EQ(dev[i].manifolds.size(), ref[i].manifolds.size());
+        for (size_t m = 0; m < ref[i].manifolds.size(); ++m) expectSameManifold(dev[i].manifolds[m], ref[i].manifolds[m]);
+        std::vector<Point> stock = stockContact(cases[i].shape, xf(cases[i].pos, cases[i].rot), mesh.shape.get(),
+                                                btTransform::getIdentity());
+        std::vector<int> manifoldOf;
+        std::vector<Point> gpu = gpuContact(dev[i], &manifoldOf);
+        EXPECT_EQ(!stock.empty(), cases[i].touching) << "gpu points " << gpu.size();
+        if (stock.empty()) {
+            for (const Point& gp : gpu) EXPECT_GE(gp.distance, 0.0f);
+            continue;
+        }
+        ASSERT_FALSE(gpu.empty());
+        // Stock's deepest point has a GPU point of its normal and depth (one point a triangle on
+        // both; stock's manifold keeps, of two triangles' points closer than its breaking
+        // threshold, the last one's, the GPU each triangle's), and the GPU has none deeper.
+        // Where it lies is compared only off flat contacts: along a lying cylinder's line or a
+        // base's disc every point is deepest, and which one GJK ends on is its path's choice.
+        const Point &gd = gpu[size_t(deepest(gpu))], &sd = stock[size_t(deepest(stock))];
+        const float threshold = cases[i].shape->getContactBreakingThreshold(0.02f);
+        bool matched = false;
+        for (const Point& gp : gpu)
+            matched = matched || ((cases[i].flatContact || (gp.onMesh - sd.onMesh).length() < threshold) &&
+                                  gp.normal.dot(sd.normal) >= tol::kStockNormalDot &&
+                                  std::fabs(gp.distance - sd.distance) <= tol::kStockDepth);
+        EXPECT_TRUE(matched) << "stock's deepest (" << sd.onMesh.x() << ", " << sd.onMesh.y() << ", " << sd.onMesh.z()
+                             << ") d " << sd.distance << " n (" << sd.normal.x() << ", " << sd.normal.y() << ", "
+                             << sd.normal.z() << ") has no GPU match";
+        EXPECT_GE(gd.distance, sd.distance - tol::kStockDepth);
+        for (size_t k = 0; k < gpu.size(); ++k) EXPECT_LT(manifoldOf[k], int(dev[i].manifolds.size()));
+    }
+}
+
+}  // namespace
+
+TEST(NarrowphaseMesh, SupportShapesAgainstTrianglesAsStock)
+{
+    auto flat = BulletMesh::terrain(8, 1.0f, true);
+    btCapsuleShape capsule(0.3f, 1.0f);
+    btCylinderShape cylinder(btVector3(0.3f, 0.5f, 0.3f));
+    btConeShape cone(0.4f, 1.0f);
+    const btVector3 centres[2] = {btVector3(-0.3f, 0, 0), btVector3(0.3f, 0.1f, 0)};
+    const btScalar radii[2] = {0.25f, 0.2f};
+    btMultiSphereShape spheres(centres, radii, 2);
+    const btScalar corners[] = {-0.4f, -0.3f, -0.4f, 0.4f, -0.3f, -0.4f, -0.4f, -0.3f, 0.4f, 0.4f, -0.3f, 0.4f,
+                                -0.4f, 0.3f,  -0.4f, 0.4f, 0.3f,  -0.4f, -0.4f, 0.3f,  0.4f, 0.4f, 0.3f,  0.4f};
+    btConvexHullShape plainHull(corners, 8, 3 * sizeof(btScalar));  // no polyhedral features: GJK on stock
+    const BtgFloat4 onSide = axisAngle(btgMake4(0, 0, 1, 0), 1.5707963f);
+    const BtgFloat4 tilted = axisAngle(btgMake4(1, 0, 0.3f, 0), 0.6f);
+    std::vector<ConvexCase> flatCases = {
+        {&capsule, btgMake4(-2.3f, 0.795f, 0.4f, 0), kIdentity, true},     // upright on a cap
+        {&capsule, btgMake4(1.3f, 0.296f, -0.6f, 0), onSide, true, true},        // lying across triangles
+        {&capsule, btgMake4(0.6f, 0.62f, 1.1f, 0), tilted, true},          // tilted
+        {&cylinder, btgMake4(-1.4f, 0.496f, -1.2f, 0), kIdentity, true, true},   // on its base
+        {&cylinder, btgMake4(2.4f, 0.297f, 0.3f, 0), onSide, true, true},        // on its side
+        {&cylinder, btgMake4(-0.5f, 0.55f, 2.2f, 0), tilted, true},        // on its rim
+        {&cone, btgMake4(3.1f, 0.496f, -2.1f, 0), kIdentity, true, true},        // on its base
+        {&spheres, btgMake4(-3.1f, 0.246f, 1.9f, 0), kIdentity, true},     // a multi-sphere's lower sphere
+        {&plainHull, btgMake4(1.9f, 0.336f, 2.3f, 0), kIdentity, true, true},  // a plain hull flat
+        {&plainHull, btgMake4(-2.9f, 0.5f, -2.6f, 0), tilted, true},       // ... on an edge
+        {&capsule, btgMake4(0.2f, 1.2f, -2.4f, 0), kIdentity, false},      // apart
+    };
+    compareConvexWithStock(*flat, flatCases);
+    auto curved = BulletMesh::terrain(12, 0.5f, false);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> x(-4.5f, 4.5f), z(-2.0f, 2.0f), sink(0.001f, 0.008f);
+    std::vector<ConvexCase> curvedCases;
+    for (int i = 0; i < 16; ++i) {
+        const float px = x(rng), pz = z(rng);
+        // The shape's lowest point (an upright capsule's, a lying cylinder's line) `sink` below
+        // the surface under its centre: touching on the slope.
+        const float h = BulletMesh::height(px, pz);
+        if (i % 2 == 0) curvedCases.push_back({&cylinder, btgMake4(px, h + 0.3f - sink(rng), pz, 0), onSide, true});
+        else curvedCases.push_back({&capsule, btgMake4(px, h + 0.8f - sink(rng), pz, 0), kIdentity, true});
+    }
+    compareConvexWithStock(*curved, curvedCases);
 }
