@@ -209,5 +209,22 @@ inline DeviceJoints runPrepare(const ref::ContactBodies& b, const ref::JointTabl
     return d;
 }
 
+// One joint's row k on the device against the CPU reference's and Bullet's own getInfo2 row.
+inline void expectRowAsBullet(const BtgJointRow& g, const BtgJointRow& e, const BulletRow& b, const std::string& what)
+{
+    expectNear(g.mass, e.mass, what + " mass (ref)");
+    expectNear(g.target, e.target, what + " target (ref)");
+    expectNear(g.cfm, e.cfm, what + " cfm (ref)");
+    expectNear3(g.jacobian.linear, b.linA, what + " linA");
+    expectNear3(-g.jacobian.linear, b.linB, what + " linB");
+    expectNear3(g.jacobian.angularA, b.angA, what + " angA");
+    expectNear3(g.jacobian.angularB, b.angB, what + " angB");
+    expectNear(g.mass, b.mass, what + " mass");
+    expectNear(g.target, b.target, what + " target");
+    expectNear(g.cfm, b.cfm, what + " cfm");
+    EXPECT_EQ(g.lower, b.lower) << what;
+    EXPECT_EQ(g.upper, b.upper) << what;
+}
+
 }  // namespace jointtest
 }  // namespace btgpu

@@ -88,19 +88,7 @@ TEST(PrepareJoints, SixDofSpring2RowsMatchBulletAndReference)
         ASSERT_LE(int(br.size()), btgSixDofMaxRows(tables.joints[j].sixdof)) << "6dof " << j;
         for (size_t k = 0; k < br.size(); ++k) {
             const BtgJointRow &g = got.rows[tables.joints[j].firstRow + k], &e = expect.rows[tables.joints[j].firstRow + k];
-            const std::string what = "6dof " + std::to_string(j) + " row " + std::to_string(k);
-            expectNear(g.mass, e.mass, what + " mass (ref)");
-            expectNear(g.target, e.target, what + " target (ref)");
-            expectNear(g.cfm, e.cfm, what + " cfm (ref)");
-            expectNear3(g.jacobian.linear, br[k].linA, what + " linA");
-            expectNear3(-g.jacobian.linear, br[k].linB, what + " linB");
-            expectNear3(g.jacobian.angularA, br[k].angA, what + " angA");
-            expectNear3(g.jacobian.angularB, br[k].angB, what + " angB");
-            expectNear(g.mass, br[k].mass, what + " mass");
-            expectNear(g.target, br[k].target, what + " target");
-            expectNear(g.cfm, br[k].cfm, what + " cfm");
-            EXPECT_EQ(g.lower, br[k].lower) << what;
-            EXPECT_EQ(g.upper, br[k].upper) << what;
+            expectRowAsBullet(g, e, br[k], "6dof " + std::to_string(j) + " row " + std::to_string(k));
             // Unbounded sides arrive clamped to the breaking threshold (SIMD_INFINITY = FLT_MAX).
             const bool bigLo = std::fabs(br[k].lower) > 1e30f, bigHi = std::fabs(br[k].upper) > 1e30f;
             if (bigLo != bigHi) ++bounded;

@@ -174,18 +174,7 @@ TEST(PrepareJoints, HingeRowsMatchBulletAndReference)
         withLimitRow += br.size() == 6;
         for (size_t k = 0; k < br.size(); ++k) {
             const BtgJointRow &g = got.rows[tables.joints[j].firstRow + k], &e = expect.rows[tables.joints[j].firstRow + k];
-            const std::string what = "hinge " + std::to_string(j) + " row " + std::to_string(k);
-            expectNear(g.mass, e.mass, what + " mass (ref)");
-            expectNear(g.target, e.target, what + " target (ref)");
-            expectNear3(g.jacobian.linear, br[k].linA, what + " linA");
-            expectNear3(-g.jacobian.linear, br[k].linB, what + " linB");
-            expectNear3(g.jacobian.angularA, br[k].angA, what + " angA");
-            expectNear3(g.jacobian.angularB, br[k].angB, what + " angB");
-            expectNear(g.mass, br[k].mass, what + " mass");
-            expectNear(g.target, br[k].target, what + " target");
-            expectNear(g.cfm, br[k].cfm, what + " cfm");
-            EXPECT_EQ(g.lower, br[k].lower) << what;
-            EXPECT_EQ(g.upper, br[k].upper) << what;
+            expectRowAsBullet(g, e, br[k], "hinge " + std::to_string(j) + " row " + std::to_string(k));
         }
     }
     EXPECT_GE(withLimitRow, 5);  // limits hit, motors on: the sixth row is exercised
@@ -270,18 +259,7 @@ TEST(PrepareJoints, ConeTwistRowsMatchBulletAndReference)
         limitRows += int(br.size()) - 3;
         for (size_t k = 0; k < br.size(); ++k) {
             const BtgJointRow &g = got.rows[tables.joints[j].firstRow + k], &e = expect.rows[tables.joints[j].firstRow + k];
-            const std::string what = "cone " + std::to_string(j) + " row " + std::to_string(k);
-            expectNear(g.mass, e.mass, what + " mass (ref)");
-            expectNear(g.target, e.target, what + " target (ref)");
-            expectNear3(g.jacobian.linear, br[k].linA, what + " linA");
-            expectNear3(-g.jacobian.linear, br[k].linB, what + " linB");
-            expectNear3(g.jacobian.angularA, br[k].angA, what + " angA");
-            expectNear3(g.jacobian.angularB, br[k].angB, what + " angB");
-            expectNear(g.mass, br[k].mass, what + " mass");
-            expectNear(g.target, br[k].target, what + " target");
-            expectNear(g.cfm, br[k].cfm, what + " cfm");
-            EXPECT_EQ(g.lower, br[k].lower) << what;
-            EXPECT_EQ(g.upper, br[k].upper) << what;
+            expectRowAsBullet(g, e, br[k], "cone " + std::to_string(j) + " row " + std::to_string(k));
         }
     }
     EXPECT_GE(limitRows, 8);  // swing and twist rows of every kind were built
@@ -410,18 +388,7 @@ TEST(PrepareJoints, SliderRowsMatchBulletAndReference)
         extraRows += int(br.size()) - 4;
         for (size_t k = 0; k < br.size(); ++k) {
             const BtgJointRow &g = got.rows[tables.joints[j].firstRow + k], &e = expect.rows[tables.joints[j].firstRow + k];
-            const std::string what = "slider " + std::to_string(j) + " row " + std::to_string(k);
-            expectNear(g.mass, e.mass, what + " mass (ref)");
-            expectNear(g.target, e.target, what + " target (ref)");
-            expectNear3(g.jacobian.linear, br[k].linA, what + " linA");
-            expectNear3(-g.jacobian.linear, br[k].linB, what + " linB");
-            expectNear3(g.jacobian.angularA, br[k].angA, what + " angA");
-            expectNear3(g.jacobian.angularB, br[k].angB, what + " angB");
-            expectNear(g.mass, br[k].mass, what + " mass");
-            expectNear(g.target, br[k].target, what + " target");
-            expectNear(g.cfm, br[k].cfm, what + " cfm");
-            EXPECT_EQ(g.lower, br[k].lower) << what;
-            EXPECT_EQ(g.upper, br[k].upper) << what;
+            expectRowAsBullet(g, e, br[k], "slider " + std::to_string(j) + " row " + std::to_string(k));
         }
     }
     EXPECT_GE(extraRows, 6);  // limit and motor rows of both kinds were built
