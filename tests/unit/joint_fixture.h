@@ -57,7 +57,22 @@ struct BulletBodies {
         for (int k = 0; k < 3; ++k) rows.invInertiaWorld.push_back(f4(I[k]));
         return b;
     }
+    // The two moving bodies every row test joins: turned, moving and spinning arbitrarily.
+    btRigidBody* addBodyA()
+    {
+        return add(2.0f, btVector3(0.1f, 2.0f, -0.3f), btQuaternion(btVector3(1, 2, 3).normalized(), 0.7f),
+                   btVector3(0.5f, -1.0f, 0.2f), btVector3(0.3f, 0.1f, -2.0f));
+    }
+    btRigidBody* addBodyB()
+    {
+        return add(3.0f, btVector3(0.4f, 1.1f, 0.2f), btQuaternion(btVector3(-1, 0, 2).normalized(), 1.9f),
+                   btVector3(-0.2f, 0.4f, 0.0f), btVector3(1.0f, -0.5f, 0.25f));
+    }
 };
+
+// Joint frames in A's and B's body frames that the row tests share: neither at the centre nor aligned.
+inline btTransform frameInA() { return btTransform(btQuaternion(btVector3(0, 0, 1), 0.3f), btVector3(0.2f, -0.4f, 0.1f)); }
+inline btTransform frameInB() { return btTransform(btQuaternion(btVector3(0, 1, 0), -0.6f), btVector3(-0.1f, 0.5f, 0.0f)); }
 
 inline BtgJoint p2pRow(int a, int b, const btPoint2PointConstraint& c, int firstRow)
 {

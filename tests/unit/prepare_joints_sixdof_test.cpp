@@ -14,17 +14,14 @@ using namespace btgpu::jointtest;
 TEST(PrepareJoints, SixDofSpring2RowsMatchBulletAndReference)
 {
     BulletBodies s;
-    btRigidBody* a = s.add(2.0f, btVector3(0.1f, 2.0f, -0.3f), btQuaternion(btVector3(1, 2, 3).normalized(), 0.7f),
-                           btVector3(0.5f, -1.0f, 0.2f), btVector3(0.3f, 0.1f, -2.0f));
-    btRigidBody* b = s.add(3.0f, btVector3(0.4f, 1.1f, 0.2f), btQuaternion(btVector3(-1, 0, 2).normalized(), 1.9f),
-                           btVector3(-0.2f, 0.4f, 0.0f), btVector3(1.0f, -0.5f, 0.25f));
+    btRigidBody* a = s.addBodyA();
+    btRigidBody* b = s.addBodyB();
     btAlignedObjectArray<btCollisionObject*> objects;
     objects.push_back(a);
     objects.push_back(b);
     RowMap map;
     map.reset(objects);
-    const btTransform fa(btQuaternion(btVector3(0, 0, 1), 0.3f), btVector3(0.2f, -0.4f, 0.1f));
-    const btTransform fb(btQuaternion(btVector3(0, 1, 0), -0.6f), btVector3(-0.1f, 0.5f, 0.0f));
+    const btTransform fa = frameInA(), fb = frameInB();
     std::vector<std::unique_ptr<btGeneric6DofSpring2Constraint>> c;
     c.emplace_back(new btFixedConstraint(*a, *b, fa, fb));
     // Mixed axes with a motor, in every rotation order: x locked, y limited (hit), z free;

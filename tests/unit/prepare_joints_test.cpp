@@ -26,10 +26,8 @@ using namespace btgpu::jointtest;
 TEST(PrepareJoints, Point2PointRowsMatchBulletAndReference)
 {
     BulletBodies s;
-    btRigidBody* a = s.add(2.0f, btVector3(0.1f, 2.0f, -0.3f), btQuaternion(btVector3(1, 2, 3).normalized(), 0.7f),
-                           btVector3(0.5f, -1.0f, 0.2f), btVector3(0.3f, 0.1f, -2.0f));
-    btRigidBody* b = s.add(3.0f, btVector3(0.4f, 1.1f, 0.2f), btQuaternion(btVector3(-1, 0, 2).normalized(), 1.9f),
-                           btVector3(-0.2f, 0.4f, 0.0f), btVector3(1.0f, -0.5f, 0.25f));
+    btRigidBody* a = s.addBodyA();
+    btRigidBody* b = s.addBodyB();
     btRigidBody* ground = s.add(0.0f, btVector3(0, -1, 0), btQuaternion::getIdentity(), btVector3(0, 0, 0),
                                 btVector3(0, 0, 0));
     // A plain pair; one with its own ERP/CFM, clamp, damping and breaking threshold; one on the
@@ -96,10 +94,8 @@ TEST(PrepareJoints, Point2PointRowsMatchBulletAndReference)
 TEST(PrepareJoints, HingeRowsMatchBulletAndReference)
 {
     BulletBodies s;
-    btRigidBody* a = s.add(2.0f, btVector3(0.1f, 2.0f, -0.3f), btQuaternion(btVector3(1, 2, 3).normalized(), 0.7f),
-                           btVector3(0.5f, -1.0f, 0.2f), btVector3(0.3f, 0.1f, -2.0f));
-    btRigidBody* b = s.add(3.0f, btVector3(0.4f, 1.1f, 0.2f), btQuaternion(btVector3(-1, 0, 2).normalized(), 1.9f),
-                           btVector3(-0.2f, 0.4f, 0.0f), btVector3(1.0f, -0.5f, 0.25f));
+    btRigidBody* a = s.addBodyA();
+    btRigidBody* b = s.addBodyB();
     const btVector3 pa(0.2f, -0.4f, 0.1f), pb(-0.1f, 0.5f, 0.0f), axA(0, 0, 1), axB = btVector3(1, 1, 0).normalized();
     std::vector<std::unique_ptr<btHingeConstraint>> h;
     struct Setup {
@@ -218,12 +214,9 @@ BtgJoint coneRow(int a, int b, btConeTwistConstraint& c, int firstRow)
 TEST(PrepareJoints, ConeTwistRowsMatchBulletAndReference)
 {
     BulletBodies s;
-    btRigidBody* a = s.add(2.0f, btVector3(0.1f, 2.0f, -0.3f), btQuaternion(btVector3(1, 2, 3).normalized(), 0.7f),
-                           btVector3(0.5f, -1.0f, 0.2f), btVector3(0.3f, 0.1f, -2.0f));
-    btRigidBody* b = s.add(3.0f, btVector3(0.4f, 1.1f, 0.2f), btQuaternion(btVector3(-1, 0, 2).normalized(), 1.9f),
-                           btVector3(-0.2f, 0.4f, 0.0f), btVector3(1.0f, -0.5f, 0.25f));
-    const btTransform fa(btQuaternion(btVector3(0, 0, 1), 0.3f), btVector3(0.2f, -0.4f, 0.1f));
-    const btTransform fb(btQuaternion(btVector3(0, 1, 0), -0.6f), btVector3(-0.1f, 0.5f, 0.0f));
+    btRigidBody* a = s.addBodyA();
+    btRigidBody* b = s.addBodyB();
+    const btTransform fa = frameInA(), fb = frameInB();
     std::vector<std::unique_ptr<btConeTwistConstraint>> c;
     std::vector<int> bodyB;
     auto add = [&](btConeTwistConstraint* k, int b2 = 1) {
@@ -314,12 +307,9 @@ BtgJoint sliderRow(int a, int b, btSliderConstraint& c, int firstRow)
 TEST(PrepareJoints, SliderRowsMatchBulletAndReference)
 {
     BulletBodies s;
-    btRigidBody* a = s.add(2.0f, btVector3(0.1f, 2.0f, -0.3f), btQuaternion(btVector3(1, 2, 3).normalized(), 0.7f),
-                           btVector3(0.5f, -1.0f, 0.2f), btVector3(0.3f, 0.1f, -2.0f));
-    btRigidBody* b = s.add(3.0f, btVector3(0.4f, 1.1f, 0.2f), btQuaternion(btVector3(-1, 0, 2).normalized(), 1.9f),
-                           btVector3(-0.2f, 0.4f, 0.0f), btVector3(1.0f, -0.5f, 0.25f));
-    const btTransform fa(btQuaternion(btVector3(0, 0, 1), 0.3f), btVector3(0.2f, -0.4f, 0.1f));
-    const btTransform fb(btQuaternion(btVector3(0, 1, 0), -0.6f), btVector3(-0.1f, 0.5f, 0.0f));
+    btRigidBody* a = s.addBodyA();
+    btRigidBody* b = s.addBodyB();
+    const btTransform fa = frameInA(), fb = frameInB();
     std::vector<std::unique_ptr<btSliderConstraint>> c;
     std::vector<int> bodyB;
     auto add = [&](btSliderConstraint* k, int b2 = 1) {
