@@ -172,11 +172,10 @@ const char* shapeKindName(int kind)
 
 }  // namespace
 
-std::string structureReason(const btDiscreteDynamicsWorld& world, int numActions, ShapeTables* shapes)
+std::string structureReason(const btDiscreteDynamicsWorld& world, ShapeTables* shapes)
 {
     std::string joints = jointsStructureReason(world);
     if (!joints.empty()) return joints;
-    if (numActions > 0) return "actions (addAction, vehicles, characters) are not on the GPU path yet";
     const btCollisionObjectArray& objs = world.getCollisionObjectArray();
     shapes->beginReferences();
     bool featuredBox = false, plainBox = false;

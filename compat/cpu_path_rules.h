@@ -15,11 +15,11 @@ namespace btgpu {
 struct Config;
 struct ShapeTables;
 
-// The scene's make-up: constraints, actions, object kinds, shapes, and body settings fixed at
+// The scene's make-up: constraints, object kinds, shapes, and body settings fixed at
 // construction. Only changes when something is added or removed, so it is checked then.
 // Adds every body's shape to the GPU shape tables *shapes on the way, counting references
 // (a shape kind they cannot take is a reason).
-std::string structureReason(const btDiscreteDynamicsWorld& world, int numActions, ShapeTables* shapes);
+std::string structureReason(const btDiscreteDynamicsWorld& world, ShapeTables* shapes);
 
 // World-level settings an app may change between any two steps (solver, dispatcher and pair
 // cache types, global callbacks and thresholds, btContactSolverInfo, dispatch info): a handful

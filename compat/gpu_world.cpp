@@ -114,7 +114,7 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
         m_structureDirty = true;
     }
     if (m_structureDirty) {
-        m_structureReason = structureReason(m_world, m_world.m_actions.size(), &m_shapes);
+        m_structureReason = structureReason(m_world, &m_shapes);
         const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
         m_shapeOfObject.resize(size_t(objs.size()));
         for (int i = 0; i < objs.size(); ++i) m_shapeOfObject[size_t(i)] = objs[i]->getCollisionShape();
@@ -209,7 +209,7 @@ void GpuWorld::rebuild()
     // Shape rows nobody uses any more are dropped here, where every row is rebuilt anyway.
     if (m_shapes.unreferenced() > 0) {
         m_shapes.clear();
-        structureReason(m_world, m_world.m_actions.size(), &m_shapes);  // verdict known: empty
+        structureReason(m_world, &m_shapes);  // verdict known: empty
     }
     m_shapes.takeGrown();
     m_rows.reset(objs);
@@ -314,6 +314,9 @@ std::vector<BodyRowUpdate> GpuWorld::changedRows(bool all)
     std::vector<std::vector<std::pair<size_t, std::string>>> newlyBad(chunks);
     forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
         for (size_t r = begin; r < end; ++r) {
+            // Removed inside this call (by an action or a tick callback): the row follows at
+            // the next internal step; the object may be gone already.
+            if (!m_removed.empty() && m_removed.count(m_rows.at(r))) continue;
             BodyRowUpdate u;
             std::string bad;
             if (!compareRow(r, all, &u, &bad)) continue;
@@ -426,12 +429,14 @@ StepSettings GpuWorld::settings(int substeps, btScalar dt) const
     return s;
 }
 
-void GpuWorld::runOnDevice(int substeps, btScalar dt)
+void GpuWorld::runOnDevice(int substeps, btScalar dt, SubstepPart part)
 {
     DeviceWorld& w = *m_dev;
     // substeps * k stays an int: k is capped where the product would overflow.
     const int k = std::max(std::min(m_config.internalSubsteps, std::numeric_limits<int>::max() / std::max(substeps, 1)), 1);
-    const CallOutcome outcome = runCall(w, m_plan, settings(substeps * k, dt / btScalar(k)), m_snapshot, m_readback);
+    StepSettings s = settings(part == SubstepPart::ActivationOnly ? 1 : substeps * k, dt / btScalar(k));
+    s.lastPart = part;
+    const CallOutcome outcome = runCall(w, m_plan, s, m_snapshot, m_readback);
     for (const CallEvent& e : outcome.events)
         report({e.kind == CallEvent::Kind::Grew ? Issue::Kind::Overflow : Issue::Kind::Device, e.message});
     m_report.redoneSteps += outcome.redone;
@@ -457,6 +462,7 @@ void GpuWorld::writeBack(const BodyReadback& rb, bool last)
     forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
         for (size_t r = begin; r < end; ++r) {
             btCollisionObject* o = m_rows.at(r);
+            if (!m_removed.empty() && m_removed.count(o)) continue;  // removed inside this call
             btRigidBody* body = o ? btRigidBody::upcast(o) : nullptr;
             if (!body) continue;
             bool asleepNow = writeRow(r, body, rb, &bad[chunk]);
@@ -648,10 +654,18 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
     if (numSubSteps) {
         int clamped = numSubSteps > maxSubSteps ? maxSubSteps : numSubSteps;
         m_world.saveKinematicState(fixedTimeStep * clamped);
-        bool perSubstep = m_world.m_internalTickCallback || m_world.m_internalPreTickCallback;
+        const bool actions = m_world.m_actions.size() > 0;
+        bool perSubstep = m_world.m_internalTickCallback || m_world.m_internalPreTickCallback || actions;
         int batches = perSubstep ? clamped : 1;
         int perBatch = perSubstep ? 1 : clamped;
         for (int b = 0; b < batches; ++b) {
+            // An action or tick callback of the step before may have added or removed something
+            // or changed a setting the rules look at: the rows follow, or the rest of the call
+            // runs on the CPU path.
+            if (b > 0 && !followWithinCall(b, batches, fixedTimeStep)) {
+                *substepsDone = numSubSteps;
+                return finishCall(profiled, false);
+            }
             if (m_world.m_internalPreTickCallback) m_world.m_internalPreTickCallback(&m_world, fixedTimeStep);
             // What internalSingleStepSimulation sets for the app's callbacks and queries.
             btDispatcherInfo& dispatchInfo = m_world.getDispatchInfo();
@@ -668,8 +682,16 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
                 m_report.stages = m_plan.stages();
             }
             Clock::time_point t1 = Clock::now();
-            runOnDevice(perBatch, fixedTimeStep);
-            m_joints.writeBack(*m_dev);  // applied impulses, feedback, breaks
+            if (actions) {
+                runOnDevice(perBatch, fixedTimeStep, SubstepPart::BeforeActivation);
+                m_joints.writeBack(*m_dev);
+                writeBack(m_readback, false);
+                runActions(fixedTimeStep);
+                runOnDevice(1, fixedTimeStep, SubstepPart::ActivationOnly);
+            } else {
+                runOnDevice(perBatch, fixedTimeStep);
+                m_joints.writeBack(*m_dev);  // applied impulses, feedback, breaks
+            }
             Clock::time_point t2 = Clock::now();
             writeBack(m_readback, b == batches - 1);
             m_report.syncInMs += msBetween(t0, t1);
@@ -685,6 +707,12 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         resetRows(*m_dev, takeWoken());
         m_report.syncInMs += msBetween(t0, Clock::now());
     }
+    *substepsDone = numSubSteps;
+    return finishCall(profiled, true);
+}
+
+bool GpuWorld::finishCall(bool profiled, bool gpuPath)
+{
     Clock::time_point t3 = Clock::now();
     m_world.synchronizeMotionStates();
     m_world.clearForces();
@@ -698,9 +726,45 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
     m_report.builtPrograms = m_ctx->builtPrograms();
     m_report.buildSeconds = m_ctx->buildSeconds();
     m_report.deviceBytes = cl::bytesInUse(*m_ctx);
-    m_report.gpuPath = true;
-    *substepsDone = numSubSteps;
+    m_report.gpuPath = gpuPath;
+    // The call is done whichever path finished it: the caller must not run it again.
     return true;
+}
+
+void GpuWorld::runActions(btScalar dt)
+{
+    // Where Bullet runs updateActions: after integrateTransforms, before the deactivation. The
+    // broadphase AABBs enclose the bodies where this step put them, so the actions' ray and
+    // sweep tests find what stock's find (stock's AABBs span the step's predicted motion).
+    m_world.updateAabbs();
+    m_world.updateActions(dt);
+    // Velocities, impulses, forces and transforms the actions set, and bodies they woke. What
+    // they added or removed joins or leaves the rows at the next internal step (removed
+    // objects are skipped until then).
+    syncIn(*m_dev, changedRows(false));
+    resetRows(*m_dev, takeWoken());
+}
+
+bool GpuWorld::followWithinCall(int batch, int batches, btScalar fixedTimeStep)
+{
+    int bodyIndex = -1;
+    std::string why = cpuPathReason(&bodyIndex);
+    if (why.empty()) {
+        if (m_rowsStale) followRows();
+        return true;
+    }
+    // As a call that starts on the CPU path, but from this internal step on: Bullet's own
+    // internal steps (they run the pre-tick and tick callbacks), with the gravity stepSimulation
+    // applies before its loop (the GPU path keeps gravity on the device).
+    const std::string from = " (from internal step " + std::to_string(batch + 1) + " of " + std::to_string(batches) + ")";
+    std::cerr << "btgpu: running on the CPU path: " << why << from << "\n";
+    report({Issue::Kind::Fallback, why + from});
+    m_onCpuPath = true;
+    m_report.cpuPathReason = why + from;
+    m_needsRebuild = true;
+    m_world.applyGravity();
+    for (int b = batch; b < batches; ++b) m_world.internalSingleStepSimulation(fixedTimeStep);
+    return false;
 }
 
 std::uint64_t GpuWorld::stateHash() const

@@ -76,7 +76,15 @@ private:
     // One row against its mirror: true (and the update, and a reason when the row has just
     // turned bad) when the device must be told. Touches only row r: safe in parallel.
     bool compareRow(size_t r, bool all, BodyRowUpdate* u, std::string* newlyBad);
-    void runOnDevice(int substeps, btScalar dt);
+    void runOnDevice(int substeps, btScalar dt, SubstepPart part = SubstepPart::Whole);
+    // The app's actions (btActionInterface) between the two parts of an internal step, and
+    // what they changed up to the device.
+    void runActions(btScalar dt);
+    // Internal step `batch` of a call, after an action or callback added or removed
+    // something: false when the rest of the call ran on the CPU path.
+    bool followWithinCall(int batch, int batches, btScalar fixedTimeStep);
+    // synchronizeMotionStates, clearForces, the AABB sync and the report's totals.
+    bool finishCall(bool profiled, bool gpuPath);
     // Results into the btRigidBody objects; `last`: the call's final write-back, which may also
     // do synchronizeMotionStates' and clearForces' work in the same pass (see takeFusedWriteBack).
     void writeBack(const BodyReadback& rb, bool last);

@@ -63,11 +63,19 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
 }
 
 // The plan's stages in order; each names its launches in the profile.
-void runSubstep(DeviceWorld& w, const Plan& plan, const std::vector<Stage>& stages, const StepSettings& s)
+void runSubstep(DeviceWorld& w, const Plan& plan, const std::vector<Stage>& stages, const StepSettings& s,
+                SubstepPart part)
 {
+    if (part == SubstepPart::ActivationOnly) {
+        // The deactivation walks the graph the first part built: its counts stay.
+        w.profiler.stage = stageName(Stage::UpdateActivation);
+        runStage(Stage::UpdateActivation, w, plan, s);
+        return;
+    }
     fillCounters(w, kPairCount, 2, 0u);  // pair and contact counts
     fillCounters(w, kEdgeCount, 1, 0u);  // the constraint graph, rebuilt by the stages that add edges
     for (Stage stage : stages) {
+        if (part == SubstepPart::BeforeActivation && stage == Stage::UpdateActivation) continue;
         w.profiler.stage = stageName(stage);
         runStage(stage, w, plan, s);
     }
@@ -78,6 +86,10 @@ void runSubstep(DeviceWorld& w, const Plan& plan, const std::vector<Stage>& stag
 void runSubsteps(DeviceWorld& w, const Plan& plan, const StepSettings& s)
 {
     if (w.numBodies == 0) return;
+    if (s.lastPart == SubstepPart::ActivationOnly) {
+        runSubstep(w, plan, {}, s, SubstepPart::ActivationOnly);
+        return;
+    }
     // A redo starts from the cache as the call found it. One substep leaves the cache alone
     // when it overflows; of several, an early one may store it before a later one overflows,
     // so the call keeps a copy. Counted here, where every substep is known (Config::
@@ -96,7 +108,8 @@ void runSubsteps(DeviceWorld& w, const Plan& plan, const StepSettings& s)
         w.gjkCacheAtCall.release();
     }
     const std::vector<Stage> stages = plan.substep();
-    for (int i = 0; i < s.substeps; ++i) runSubstep(w, plan, stages, s);
+    for (int i = 0; i < s.substeps; ++i)
+        runSubstep(w, plan, stages, s, i == s.substeps - 1 ? s.lastPart : SubstepPart::Whole);
 }
 
 void resetStatus(DeviceWorld& w)

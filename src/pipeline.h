@@ -13,9 +13,17 @@
 
 namespace btgpu {
 
+// How much of the call's last substep runs: all of it; all but the deactivation, so that the
+// host can run the app's actions in between, as Bullet's internalSingleStepSimulation runs
+// updateActions after integrateTransforms and before updateActivationState; or only that
+// deactivation, the rest of a substep stopped before it (one substep, the counters and the
+// constraint graph as it left them).
+enum class SubstepPart { Whole, BeforeActivation, ActivationOnly };
+
 struct StepSettings {
     BtgStepParams params;  // dt is the fixed substep
     int substeps = 1;
+    SubstepPart lastPart = SubstepPart::Whole;
     int iterations = 10;   // btContactSolverInfo::m_numIterations
     int maxColors = 24;    // BatchedPgs only
     SolverKind solver = SolverKind::BatchedPgs;  // must match the plan's
