@@ -39,6 +39,7 @@ float lowestY(const Scene& scene, const BodySpec& b, const Pose& p)
         }
         return p.p[1] + lowest;
     }
+    if (b.shape == ShapeKind::Capsule) return p.p[1] - std::fabs(r11) * b.half[1] - b.radius;  // axis: local y
     return p.p[1] - (std::fabs(r10) * b.half[0] + std::fabs(r11) * b.half[1] + std::fabs(r12) * b.half[2]);
 }
 

@@ -30,6 +30,7 @@ void BtBodies::build(const Scene& scene, const Options& options, btDiscreteDynam
                    : b.shape == ShapeKind::Sphere ? std::make_tuple(1, b.radius, 0.f, 0.f)
                    : b.shape == ShapeKind::Hull   ? std::make_tuple(2, float(b.hull), 0.f, 0.f)
                    : b.shape == ShapeKind::Mesh   ? std::make_tuple(4, 0.f, 0.f, 0.f)
+                   : b.shape == ShapeKind::Capsule ? std::make_tuple(5, b.radius, b.half[1], 0.f)
                                                   : std::make_tuple(3, 0.f, 0.f, 0.f);
         btCollisionShape*& shape = shared[key];
         if (!shape) {
@@ -44,6 +45,8 @@ void BtBodies::build(const Scene& scene, const Options& options, btDiscreteDynam
                 m_shapes.emplace_back(new btBoxShape(btVector3(b.half[0], b.half[1], b.half[2])));
             } else if (b.shape == ShapeKind::Sphere) {
                 m_shapes.emplace_back(new btSphereShape(b.radius));
+            } else if (b.shape == ShapeKind::Capsule) {
+                m_shapes.emplace_back(new btCapsuleShape(b.radius, 2 * b.half[1]));
             } else if (b.shape == ShapeKind::Hull) {
                 const HullSpec& h = scene.hulls.at(size_t(b.hull));
                 auto* hull = new btConvexHullShape(h.points.data(), int(h.points.size() / 3), 3 * sizeof(float));

@@ -20,7 +20,7 @@ const char* kUsage =
     "usage: btgpu_bench [--scene cubes|spheres|mixed|voronoi|landscape|ragdolls] [--n 1000|8000|32768|112500|1000000 | --dims NX NY NZ]\n"
     "                   [--bodies N] [--quads Q]   (landscape: N bodies on a Q x Q-quad mesh; 1000, 100)\n"
     "                   [--cells C]   (voronoi: C cells, default 90 as BenchmarkDemo's test 8)\n"
-    "                   [--ragdolls COUNT (ragdolls of 11 boxes and 10 joints; default 100)]\n"
+    "                   [--ragdolls COUNT (ragdolls of 11 capsules and 10 joints; default 100)]\n"
     "                   [--frames F] [--backends btgpu,bullet,b3gpu] [--csv PATH] [--budget-s S]\n"
     "                   [--no-sleep] [--no-aabb-sync] [--jacobi] [--b3-native-inertia] [--absolute-thresholds] [--smoke]\n"
     "  BTGPU_DEVICE=gpu|cpu|<name substring> picks the OpenCL device (btgpu and b3gpu alike).\n";

@@ -80,7 +80,9 @@ ScenePtr ragdolls(WorldKind kind, const Config& config, int count)
     const spec::Scene data = spec::makeRagdolls(count);
     std::vector<btRigidBody*> bodies;
     for (const spec::BodySpec& b : data.bodies) {
-        btCollisionShape* shape = s->boxShape(btVector3(b.half[0], b.half[1], b.half[2]));
+        btCollisionShape* shape = b.shape == spec::ShapeKind::Capsule
+                                      ? static_cast<btCollisionShape*>(s->ownShape(new btCapsuleShape(b.radius, 2 * b.half[1])))
+                                      : s->boxShape(btVector3(b.half[0], b.half[1], b.half[2]));
         btTransform xf(btQuaternion(b.rot[0], b.rot[1], b.rot[2], b.rot[3]), btVector3(b.pos[0], b.pos[1], b.pos[2]));
         btRigidBody* body = s->addBody(shape, b.mass, xf, Material{b.friction, b.restitution});
         body->setDamping(b.linearDamping, b.angularDamping);

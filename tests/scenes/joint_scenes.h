@@ -35,7 +35,7 @@ ScenePtr jointedPair(WorldKind kind, const Config& config = Config());
 ScenePtr hingeDoor(WorldKind kind, const Config& config = Config(), double speed = 1.0, double maxImpulse = 0.5,
                    double lower = 1.0, double upper = -1.0);
 
-// `count` ragdolls of scene_specs' makeRagdolls (11 boxes, 5 hinges, 5 cone-twists each, added
+// `count` ragdolls of scene_specs' makeRagdolls (11 capsules, 5 hinges, 5 cone-twists each, added
 // with disableCollisionsBetweenLinkedBodies) dropping onto a ground box; the benchmark's scene.
 ScenePtr ragdolls(WorldKind kind, const Config& config = Config(), int count = 4);
 

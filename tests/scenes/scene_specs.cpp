@@ -205,8 +205,10 @@ Scene makeRagdolls(int count)
         const float ox = 2.0f * float(r % side - side / 2), oz = 2.0f * float(r / side - side / 2);
         for (const Part& p : parts) {
             BodySpec b;
+            b.shape = ShapeKind::Capsule;
+            b.radius = p.radius;
             b.half[0] = b.half[2] = p.radius;
-            b.half[1] = 0.5f * p.height + p.radius;
+            b.half[1] = 0.5f * p.height;
             b.mass = 1;
             b.pos[0] = ox + p.x;
             b.pos[1] = p.y + 0.1f;

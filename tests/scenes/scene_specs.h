@@ -9,7 +9,9 @@
 
 namespace btgpu::scenes::spec {
 
-enum class ShapeKind { Box, Sphere, Hull, Plane, Mesh };  // Mesh: the scene's triangle mesh (static only)
+// Mesh: the scene's triangle mesh (static only). Capsule: btCapsuleShape (Y axis) of `radius`
+// and cylinder half height half[1].
+enum class ShapeKind { Box, Sphere, Hull, Plane, Mesh, Capsule };
 
 // A convex hull's points (local frame, m), as an app passes them to btConvexHullShape.
 struct HullSpec {
@@ -21,7 +23,7 @@ struct HullSpec {
 struct BodySpec {
     ShapeKind shape = ShapeKind::Box;
     float half[3] = {1, 1, 1};  // m, box half extents (Box)
-    float radius = 1;           // m (Sphere)
+    float radius = 1;           // m (Sphere, Capsule)
     int hull = -1;              // Hull: index in Scene::hulls (Plane: the plane y = pos[1], normal +y)
     float mass = 0;             // kg; 0 = static
     float pos[3] = {0, 0, 0};   // m, centre of mass; every body starts at rest
@@ -69,9 +71,8 @@ Scene makeVoronoi(int cells = 90);
 // Bench 5 on a rolling landscape mesh of quads x quads cells 200 m across (2 quads^2 triangles,
 // the heights of landscapeHeight in mesh_scenes.h): `count` boxes and spheres dropped over it.
 Scene makeLandscape(int count, int quads);
-// `count` ragdolls (Bullet's RagdollDemo: 11 bodies, 5 hinges and 5 cone-twists; its capsules
-// are boxes of the same radius and length here) on a square grid 2 m apart over a ground box,
-// pelvis 1 m up: they fall and sprawl.
+// `count` ragdolls (Bullet's RagdollDemo: 11 capsules, 5 hinges and 5 cone-twists) on a square
+// grid 2 m apart over a ground box, pelvis 1 m up: they fall and sprawl.
 Scene makeRagdolls(int count);
 // Sizes named by --n: 1000, 8000, 32768, 112500, 1000000; false if n is not one of them.
 bool dimsForCount(long n, int dims[3]);
