@@ -1,0 +1,62 @@
+// demo_pictures.cpp — camera set-up and extras per demo (demo_pictures.h).
+#include "demo_pictures.h"
+
+#include <BulletDynamics/Vehicle/btRaycastVehicle.h>
+
+namespace btgpu::demos {
+
+render::Camera demoCamera(const Demo& demo, DemoWorld& world, int width, int height)
+{
+    render::Camera c;
+    c.width = width, c.height = height;
+    c.yawDegrees = demo.yawDegrees, c.pitchDegrees = demo.pitchDegrees;
+    btVector3 lo, hi;
+    if (demo.followFirstBody && world.scene->bodies().size() > 1) {
+        const btVector3 p = world.scene->body(1)->getWorldTransform().getOrigin();
+        c.frame(p - btVector3(4, 2, 4), p + btVector3(4, 2, 4));
+    } else if (render::sceneBounds(world.scene->world(), lo, hi)) {
+        c.frame(lo, hi);
+    }
+    c.distance *= demo.zoom;
+    return c;
+}
+
+void demoExtras(DemoWorld& world, const RayView& rays, std::vector<render::ExtraShape>& shapes,
+                std::vector<render::Line>& lines)
+{
+    if (world.vehicle) {
+        // One cylinder shape for all wheels (their axles along the wheel frame's x).
+        static btCylinderShapeX wheel(btVector3(0.2f, 0.5f, 0.5f));
+        for (int i = 0; i < world.vehicle->getNumWheels(); ++i) {
+            const btWheelInfo& w = world.vehicle->getWheelInfo(i);
+            shapes.push_back({&wheel, w.m_worldTransform, btVector3(0.12f, 0.12f, 0.12f)});
+        }
+    }
+    if (rays.fan && rays.fractions)
+        for (size_t i = 0; i < rays.fan->from.size() && i < rays.fractions->size(); i += 5) {
+            const btVector3& a = rays.fan->from[i];
+            const btVector3 b = a + (rays.fan->to[i] - a) * btScalar((*rays.fractions)[i]);
+            lines.push_back({a, b, btVector3(0.9f, 0.15f, 0.1f)});
+        }
+}
+
+bool DemoPictures::open(int width, int height, std::string* error)
+{
+    m_width = width, m_height = height;
+    return m_gl.open(width, height, error);
+}
+
+render::Image DemoPictures::render(const Demo& demo, DemoWorld& world, const RayView& rays)
+{
+    if (!m_framed || demo.followFirstBody) {
+        m_camera = demoCamera(demo, world, m_width, m_height);
+        m_framed = true;
+    }
+    std::vector<render::ExtraShape> shapes;
+    std::vector<render::Line> lines;
+    demoExtras(world, rays, shapes, lines);
+    m_renderer.draw(world.scene->world(), m_camera, shapes, lines);
+    return m_gl.read();
+}
+
+}  // namespace btgpu::demos

@@ -1,0 +1,146 @@
+// demo_run.cpp — the side-by-side run and its printout (demo_run.h).
+#include "demo_run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "btgpu/btGpuDynamicsWorld.h"
+#include "scenes/stock_chaos.h"
+
+namespace btgpu::demos {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double median(std::vector<double> v)
+{
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+template <class F>
+double timeMs(F&& f)
+{
+    const auto t0 = Clock::now();
+    f();
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+}  // namespace
+
+DemoResult runDemo(const Demo& demo, const RunOptions& options, const StepHook& hook)
+{
+    DemoResult r;
+    r.name = demo.name;
+    r.steps = options.steps > 0 ? options.steps : demo.steps;
+    DemoWorld stock = demo.make(scenes::WorldKind::Stock, options.config);
+    DemoWorld gpu = demo.make(scenes::WorldKind::Gpu, options.config);
+    DemoWorld nudged;
+    if (options.chaos) {
+        nudged = demo.make(scenes::WorldKind::Stock, options.config);
+        scenes::nudge(*nudged.scene, 1u, 1e-4);
+    }
+    r.bodies = int(stock.scene->bodies().size());
+    for (const btRigidBody* b : stock.scene->bodies()) r.dynamicBodies += !b->isStaticOrKinematicObject();
+
+    scenes::RayFan stockRays, gpuRays;
+    std::vector<double> stockHits, gpuHits;
+    std::vector<double> stockRayMs, gpuRayMs;
+    if (demo.rays) stockRays = gpuRays = scenes::benchmarkRays();
+    if (hook) hook(0, gpu, RayView{demo.rays ? &gpuRays : nullptr, nullptr});
+
+    std::vector<double> stockMs, gpuMs;
+    r.gpuEveryStep = true;
+    for (int i = 0; i < r.steps; ++i) {
+        stockMs.push_back(timeMs([&] { stock.scene->step(); }));
+        gpuMs.push_back(timeMs([&] { gpu.scene->step(); }));
+        if (nudged.scene) nudged.scene->step();
+        if (i == 0) r.firstGpuMs = gpuMs.back();
+        if (!gpu.scene->gpuWorld()->isGpuPath() && r.firstCpuStep < 0) {
+            r.gpuEveryStep = false;
+            r.firstCpuStep = i + 1;
+            r.cpuReason = gpu.scene->report()->cpuPathReason;
+        }
+        if (demo.rays) {
+            const double dt = 1.0 / 60.0;
+            stockRays.move(dt), gpuRays.move(dt);
+            stockRayMs.push_back(timeMs([&] { stockHits = scenes::castRays(stock.scene->world(), stockRays); }));
+            gpuRayMs.push_back(timeMs([&] { gpuHits = scenes::castRays(gpu.scene->world(), gpuRays); }));
+        }
+        if (hook) hook(i + 1, gpu, RayView{demo.rays ? &gpuRays : nullptr, demo.rays ? &gpuHits : nullptr});
+    }
+
+    const Report& report = *gpu.scene->report();
+    r.device = report.device;
+    r.buildSeconds = report.buildSeconds;
+    r.stockMs = median(stockMs);
+    r.gpuMs = median(std::vector<double>(gpuMs.begin() + (gpuMs.size() > 1 ? 1 : 0), gpuMs.end()));
+    const scenes::StateDifference d = scenes::positionDifference(*stock.scene, *gpu.scene);
+    r.meanDiff = d.meanPosition, r.maxDiff = d.maxPosition;
+    r.chaosMean = r.chaosMax = -1;
+    if (nudged.scene) {
+        const scenes::StateDifference c = scenes::positionDifference(*stock.scene, *nudged.scene);
+        r.chaosMean = c.meanPosition, r.chaosMax = c.maxPosition;
+    }
+    r.stockHeight = scenes::meanHeight(*stock.scene), r.gpuHeight = scenes::meanHeight(*gpu.scene);
+    r.finite = scenes::allFinite(*gpu.scene);
+    r.stateHash = gpu.scene->gpuWorld()->stateHash();
+    if (demo.rays) {
+        r.raysCast = int(stockHits.size());
+        for (size_t i = 0; i < stockHits.size() && i < gpuHits.size(); ++i) {
+            const double diff = std::fabs(stockHits[i] - gpuHits[i]);
+            r.rayMaxDiff = std::max(r.rayMaxDiff, diff);
+            r.raysDiffering += diff > 1e-3;
+        }
+        r.stockRayMs = median(stockRayMs), r.gpuRayMs = median(gpuRayMs);
+    }
+    return r;
+}
+
+void printResult(const DemoResult& r)
+{
+    std::printf("demo         %s: %d bodies (%d dynamic), %d steps of 1/60 s\n", r.name.c_str(), r.bodies, r.dynamicBodies,
+                r.steps);
+    std::printf("device       %s\n", r.device.empty() ? "(none)" : r.device.c_str());
+    if (r.gpuEveryStep)
+        std::printf("path         GPU on every step\n");
+    else
+        std::printf("path         CPU from step %d: %s\n", r.firstCpuStep, r.cpuReason.c_str());
+    std::printf("stock        %9.3f ms/step (median)\n", r.stockMs);
+    std::printf("btgpu        %9.3f ms/step (median); first step %.1f ms, program builds %.2f s\n", r.gpuMs, r.firstGpuMs,
+                r.buildSeconds);
+    std::printf("difference   btgpu vs stock: mean %.4f m, max %.4f m per dynamic body\n", r.meanDiff, r.maxDiff);
+    if (r.chaosMean >= 0) {
+        std::printf("chaos        stock vs stock nudged 0.1 mm: mean %.4f m, max %.4f m\n", r.chaosMean, r.chaosMax);
+        std::printf("divergence   %.2f (btgpu's mean difference / stock's own; about 1 or less: within stock's chaos)\n",
+                    r.meanDiff / std::max(r.chaosMean, 1e-6));
+    }
+    std::printf("mean height  stock %.3f m, btgpu %.3f m%s\n", r.stockHeight, r.gpuHeight, r.finite ? "" : " (NON-FINITE)");
+    if (r.raysCast)
+        std::printf("rays         %d a step: %d differ by > 0.1%% of the ray at the end (max %.4f); stock %.3f ms, btgpu %.3f ms per fan\n",
+                    r.raysCast, r.raysDiffering, r.rayMaxDiff, r.stockRayMs, r.gpuRayMs);
+    std::printf("state hash   %016llx\n", static_cast<unsigned long long>(r.stateHash));
+}
+
+std::string markdownHeader()
+{
+    return "| demo | bodies | steps | path | stock ms/step | btgpu ms/step | mean diff (m) | max diff (m) | stock chaos mean (m) | divergence |\n"
+           "| --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+}
+
+std::string markdownRow(const DemoResult& r)
+{
+    char buf[1024];
+    const std::string path = r.gpuEveryStep ? "GPU" : "CPU: " + r.cpuReason;
+    std::snprintf(buf, sizeof buf, "| %s | %d | %d | %s | %.2f | %.2f | %.4f | %.4f | %.4f | %.2f |\n", r.name.c_str(),
+                  r.bodies, r.steps, path.c_str(), r.stockMs, r.gpuMs, r.meanDiff, r.maxDiff, r.chaosMean,
+                  r.chaosMean >= 0 ? r.meanDiff / std::max(r.chaosMean, 1e-6) : 0.0);
+    return buf;
+}
+
+}  // namespace btgpu::demos
