@@ -40,9 +40,9 @@ const std::vector<Demo>& catalog()
         d.push_back({"raycast", "BenchmarkDemo 7: the landscape with 500 rays cast on it every step",
                      plain([](WorldKind k, const Config& c) { return scenes::landscape(k, c, 1000); }), 300, true, 35, 35, 1.0f});
         d.push_back({"voronoi", "BenchmarkDemo 8: a cube broken into 90 Voronoi pieces (convex hulls) dropped",
-                     plain([](WorldKind k, const Config& c) { return scenes::voronoiPieces(k, c); }), 300, false, 35, 25, 1.2f});
+                     plain([](WorldKind k, const Config& c) { return scenes::voronoiPieces(k, c); }), 300, false, 35, 25, 0.6f});
         d.push_back({"ragdoll", "RagdollDemo: 9 ragdolls of capsules, hinges and cone-twists",
-                     plain([](WorldKind k, const Config& c) { return scenes::capsuleRagdolls(k, c, 9); }), 300, false, 35, 25, 1.0f});
+                     plain([](WorldKind k, const Config& c) { return scenes::capsuleRagdolls(k, c, 9); }), 300, false, 35, 30, 0.75f});
         Demo vehicle{"vehicle", "VehicleDemo: a btRaycastVehicle driving over a heightfield into crates",
                      [](WorldKind k, const Config& c) {
                          DemoWorld w;

@@ -3,6 +3,9 @@
 
 #include <GL/gl.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace btgpu::render {
 
 namespace {
@@ -19,6 +22,38 @@ void drawMesh(const Mesh& m, const btTransform& t, const btVector3& colour)
     glNormalPointer(GL_FLOAT, 0, m.normals.data());
     glDrawArrays(GL_TRIANGLES, 0, GLsizei(m.positions.size() / 3));
     glPopMatrix();
+}
+
+// A light and a dark grey check in a 2 x 2 texture, mipmapped (far ground fades to their mean
+// instead of shimmering), laid on statics in world x and z by texture-coordinate generation.
+void checkerOn(unsigned& texture, float checkMetres)
+{
+    if (!texture) {
+        const GLubyte texels[2 * 2 * 3] = {255, 255, 255, 212, 212, 212, 212, 212, 212, 255, 255, 255};
+        glGenTextures(1, &texture);
+        glBindTexture(GL_TEXTURE_2D, texture);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        glTexParameteri(GL_TEXTURE_2D, GL_GENERATE_MIPMAP, GL_TRUE);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB, 2, 2, 0, GL_RGB, GL_UNSIGNED_BYTE, texels);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    }
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
+    // Planes given while the modelview holds only the view: they are world x and z.
+    const float s[4] = {0.5f / checkMetres, 0, 0, 0}, t[4] = {0, 0, 0.5f / checkMetres, 0};
+    glTexGeni(GL_S, GL_TEXTURE_GEN_MODE, GL_EYE_LINEAR);
+    glTexGeni(GL_T, GL_TEXTURE_GEN_MODE, GL_EYE_LINEAR);
+    glTexGenfv(GL_S, GL_EYE_PLANE, s);
+    glTexGenfv(GL_T, GL_EYE_PLANE, t);
+}
+
+void texturing(bool on)
+{
+    if (on) glEnable(GL_TEXTURE_2D), glEnable(GL_TEXTURE_GEN_S), glEnable(GL_TEXTURE_GEN_T);
+    else glDisable(GL_TEXTURE_2D), glDisable(GL_TEXTURE_GEN_S), glDisable(GL_TEXTURE_GEN_T);
 }
 
 }  // namespace
@@ -72,11 +107,15 @@ void WorldRenderer::draw(const btCollisionWorld& world, const Camera& camera, co
     glEnableClientState(GL_VERTEX_ARRAY);
     glEnableClientState(GL_NORMAL_ARRAY);
 
+    // Checks of a power of two metres, about a twelfth of the viewing distance.
+    checkerOn(m_checker, std::max(0.5f, std::exp2(std::round(std::log2(camera.distance / 12)))));
     const btCollisionObjectArray& objects = world.getCollisionObjectArray();
     for (int i = 0; i < objects.size(); ++i) {
         const btCollisionObject& o = *objects[i];
+        texturing(o.isStaticObject());
         drawMesh(mesh(*o.getCollisionShape()), o.getWorldTransform(), objectColour(o, i));
     }
+    texturing(false);
     for (const ExtraShape& e : extras)
         if (e.shape) drawMesh(mesh(*e.shape), e.transform, e.colour);
     glDisableClientState(GL_NORMAL_ARRAY);

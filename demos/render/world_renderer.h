@@ -24,6 +24,7 @@ constexpr float kBackground[3] = {0.80f, 0.87f, 0.95f};
 // The colour of statics (ground, terrain) and, cycling, of dynamic bodies by world index.
 btVector3 objectColour(const btCollisionObject& object, int worldIndex);
 
+// One renderer per OpenGL context (it keeps a texture there).
 class WorldRenderer {
 public:
     void draw(const btCollisionWorld& world, const Camera& camera, const std::vector<ExtraShape>& extras = {},
@@ -32,6 +33,7 @@ public:
 private:
     const Mesh& mesh(const btCollisionShape& shape);
     std::map<const btCollisionShape*, Mesh> m_meshes;  // shapes do not change while drawn
+    unsigned m_checker = 0;  // the ground's texture, in the context this renderer draws with
 };
 
 }  // namespace btgpu::render
