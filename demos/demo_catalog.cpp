@@ -53,7 +53,7 @@ const std::vector<Demo>& catalog()
         vehicle.followFirstBody = true;
         d.push_back(vehicle);
         d.push_back({"compound", "CompoundDemo: 24 compound bodies (tables, L-shapes, dumbbells) in a heap",
-                     plain([](WorldKind k, const Config& c) { return scenes::compoundPile(k, c); }), 300, false, 35, 20, 1.0f});
+                     plain([](WorldKind k, const Config& c) { return scenes::compoundPile(k, c); }), 300, false, 35, 25, 0.6f});
         return d;
     }();
     return demos;

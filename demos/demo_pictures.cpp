@@ -32,11 +32,13 @@ void demoExtras(DemoWorld& world, const RayView& rays, std::vector<render::Extra
             shapes.push_back({&wheel, w.m_worldTransform, btVector3(0.12f, 0.12f, 0.12f)});
         }
     }
+    // Every hit as a 1.5 m pin standing on the hit point; one ray in 25 drawn whole.
     if (rays.fan && rays.fractions)
-        for (size_t i = 0; i < rays.fan->from.size() && i < rays.fractions->size(); i += 5) {
+        for (size_t i = 0; i < rays.fan->from.size() && i < rays.fractions->size(); ++i) {
             const btVector3& a = rays.fan->from[i];
             const btVector3 b = a + (rays.fan->to[i] - a) * btScalar((*rays.fractions)[i]);
-            lines.push_back({a, b, btVector3(0.9f, 0.15f, 0.1f)});
+            if (i % 25 == 0) lines.push_back({a, b, btVector3(0.9f, 0.15f, 0.1f)});
+            if ((*rays.fractions)[i] < 1) lines.push_back({b, b + btVector3(0, 1.5f, 0), btVector3(0.9f, 0.1f, 0.1f)});
         }
 }
 

@@ -30,7 +30,7 @@ struct DemoResult {
     double stockHeight = 0, gpuHeight = 0;
     // Ray fan (raycast demo): rays whose hit fraction differs by more than 1e-3 (of the ray)
     // between the worlds at the last step, the largest difference, and ms per fan on each.
-    int raysCast = 0, raysDiffering = 0;
+    int raysCast = 0, raysDiffering = 0, chaosRaysDiffering = -1;  // the last: stock vs nudged stock
     double rayMaxDiff = 0, stockRayMs = 0, gpuRayMs = 0;
     std::uint64_t stateHash = 0;
     bool finite = true;

@@ -6,6 +6,8 @@
 #include <LinearMath/btConvexHullComputer.h>
 
 #include <cmath>
+#include <map>
+#include <tuple>
 
 namespace btgpu::render {
 
@@ -113,6 +115,22 @@ struct TriangleCollector : btTriangleCallback {
 
 void shapeInto(Mesh& m, const btCollisionShape& shape, const btTransform& to, float extent);
 
+// Terrain: each vertex gets the mean normal of the triangles meeting at its position where they
+// bend by less than about 45 degrees (rolling ground looks smooth, real edges stay sharp).
+void smoothCreases(Mesh& m)
+{
+    std::map<std::tuple<float, float, float>, btVector3> sum;
+    auto key = [&](size_t i) { return std::make_tuple(m.positions[i], m.positions[i + 1], m.positions[i + 2]); };
+    for (size_t i = 0; i < m.positions.size(); i += 3)
+        sum[key(i)] += btVector3(m.normals[i], m.normals[i + 1], m.normals[i + 2]);
+    for (size_t i = 0; i < m.positions.size(); i += 3) {
+        const btVector3 own(m.normals[i], m.normals[i + 1], m.normals[i + 2]);
+        const btVector3 mean = sum[key(i)].safeNormalize();
+        if (mean.dot(own) < 0.7f) continue;
+        m.normals[i] = mean.x(), m.normals[i + 1] = mean.y(), m.normals[i + 2] = mean.z();
+    }
+}
+
 void append(Mesh& m, const Mesh& part, const btTransform& to)
 {
     for (size_t i = 0; i < part.positions.size(); i += 3) {
@@ -194,6 +212,7 @@ void shapeInto(Mesh& out, const btCollisionShape& shape, const btTransform& to, 
             TriangleCollector collect;
             collect.mesh = &m;
             static_cast<const btConcaveShape&>(shape).processAllTriangles(&collect, lo, hi);
+            smoothCreases(m);
         } else if (shape.isConvex()) {
             // Multi-spheres, convex meshes, scaled shapes: the hull of the support points in
             // many directions (btShapeHull), margin included.

@@ -48,7 +48,7 @@ struct RayFan {
     double sweep = 1.0;  // +1 or -1
     void move(double dt);
 };
-RayFan benchmarkRays(int count = 500, double length = 150.0);
+RayFan benchmarkRays(int count = 500, double length = 24.0);
 // Casts every ray (closest hit); per ray the hit fraction (1 when nothing is hit).
 std::vector<double> castRays(const btCollisionWorld& world, const RayFan& rays);
 
