@@ -88,6 +88,19 @@ DemoResult runDemo(const Demo& demo, const RunOptions& options, const StepHook& 
         const scenes::StateDifference c = scenes::positionDifference(*stock.scene, *nudged.scene);
         r.chaosMean = c.meanPosition, r.chaosMax = c.maxPosition;
     }
+    if (options.worst > 0) {
+        for (size_t i = 0; i < stock.scene->bodies().size() && i < gpu.scene->bodies().size(); ++i) {
+            const btRigidBody* a = stock.scene->bodies()[i];
+            const btRigidBody* b = gpu.scene->bodies()[i];
+            if (a->isStaticOrKinematicObject()) continue;
+            const btVector3 pa = a->getWorldTransform().getOrigin(), pb = b->getWorldTransform().getOrigin();
+            r.worst.push_back({int(i), pa, pb, double((pa - pb).length())});
+        }
+        std::sort(r.worst.begin(), r.worst.end(), [](const BodyGap& x, const BodyGap& y) {
+            return x.distance != y.distance ? x.distance > y.distance : x.index < y.index;
+        });
+        if (int(r.worst.size()) > options.worst) r.worst.resize(size_t(options.worst));
+    }
     r.stockHeight = scenes::meanHeight(*stock.scene), r.gpuHeight = scenes::meanHeight(*gpu.scene);
     r.finite = scenes::allFinite(*gpu.scene);
     r.stateHash = gpu.scene->gpuWorld()->stateHash();
@@ -133,6 +146,9 @@ void printResult(const DemoResult& r)
         if (r.chaosRaysDiffering >= 0) std::printf(", %d on stock and nudged stock", r.chaosRaysDiffering);
         std::printf("\nray ms       stock %.3f, btgpu %.3f per fan (closest hit)\n", r.stockRayMs, r.gpuRayMs);
     }
+    for (const BodyGap& g : r.worst)
+        std::printf("body %-7d stock (%.3f, %.3f, %.3f)  btgpu (%.3f, %.3f, %.3f)  %.4f m apart\n", g.index, g.stock.x(),
+                    g.stock.y(), g.stock.z(), g.gpu.x(), g.gpu.y(), g.gpu.z(), g.distance);
     std::printf("state hash   %016llx\n", static_cast<unsigned long long>(r.stateHash));
 }
 

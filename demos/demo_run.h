@@ -15,6 +15,13 @@ struct RunOptions {
     int steps = 0;       // 0: the demo's default
     Config config;
     bool chaos = true;   // also run the nudged stock world
+    int worst = 0;       // list this many bodies that end farthest from stock
+};
+
+struct BodyGap {
+    int index = 0;                 // scene body index (Scene::bodies())
+    btVector3 stock, gpu;          // final centres
+    double distance = 0;           // m
 };
 
 struct DemoResult {
@@ -32,6 +39,7 @@ struct DemoResult {
     // between the worlds at the last step, the largest difference, and ms per fan on each.
     int raysCast = 0, raysDiffering = 0, chaosRaysDiffering = -1;  // the last: stock vs nudged stock
     double rayMaxDiff = 0, stockRayMs = 0, gpuRayMs = 0;
+    std::vector<BodyGap> worst;    // RunOptions::worst bodies, farthest first
     std::uint64_t stateHash = 0;
     bool finite = true;
 };

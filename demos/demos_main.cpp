@@ -24,11 +24,12 @@ namespace {
 void usage(FILE* out)
 {
     std::fprintf(out,
-                 "usage: btgpu_demos [--demo NAME|all] [--list] [--steps N] [--device gpu|cpu|<name>] [--no-chaos]\n"
+                 "usage: btgpu_demos [--demo NAME|all] [--list] [--steps N] [--device gpu|cpu|<name>] [--no-chaos] [--worst K]\n"
                  "                   [--png DIR [--every N]] [--still FILE] [--size WxH] [--window]\n"
                  "  --demo NAME   one of --list (default basic); all runs each and prints a Markdown table\n"
                  "  --steps N     steps of 1/60 s (default: the demo's, 300)\n"
                  "  --no-chaos    skip the third world (stock nudged by 0.1 mm) that measures stock's own chaos\n"
+                 "  --worst K     lists the K bodies that end farthest from stock (scene index, both centres)\n"
                  "  --png DIR     writes DIR/<demo>_<step>.png every N steps (default 30) and at the last, headless\n"
                  "  --still FILE  writes the last step's picture to FILE\n"
                  "  --size WxH    picture size (default 480x270)\n"
@@ -112,6 +113,7 @@ int main(int argc, char** argv)
         else if (a == "--steps" && hasValue) options.steps = std::max(1, std::atoi(argv[++i]));
         else if (a == "--device" && hasValue) options.config.device = argv[++i];
         else if (a == "--no-chaos") options.chaos = false;
+        else if (a == "--worst" && hasValue) options.worst = std::max(0, std::atoi(argv[++i]));
         else if (a == "--png" && hasValue) pictures.dir = argv[++i];
         else if (a == "--still" && hasValue) pictures.still = argv[++i];
         else if (a == "--every" && hasValue) pictures.every = std::max(1, std::atoi(argv[++i]));
