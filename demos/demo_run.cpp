@@ -160,11 +160,14 @@ std::string markdownHeader()
 
 std::string markdownRow(const DemoResult& r)
 {
-    char buf[1024];
+    char buf[1024], chaos[64] = "—", divergence[64] = "—";
     const std::string path = r.gpuEveryStep ? "GPU" : "CPU: " + r.cpuReason;
-    std::snprintf(buf, sizeof buf, "| %s | %d | %d | %s | %.2f | %.2f | %.4f | %.4f | %.4f | %.2f |\n", r.name.c_str(),
-                  r.bodies, r.steps, path.c_str(), r.stockMs, r.gpuMs, r.meanDiff, r.maxDiff, r.chaosMean,
-                  r.chaosMean >= 0 ? r.meanDiff / std::max(r.chaosMean, 1e-6) : 0.0);
+    if (r.chaosMean >= 0) {
+        std::snprintf(chaos, sizeof chaos, "%.4f", r.chaosMean);
+        std::snprintf(divergence, sizeof divergence, "%.2f", r.meanDiff / std::max(r.chaosMean, 1e-6));
+    }
+    std::snprintf(buf, sizeof buf, "| %s | %d | %d | %s | %.2f | %.2f | %.4f | %.4f | %s | %s |\n", r.name.c_str(), r.bodies,
+                  r.steps, path.c_str(), r.stockMs, r.gpuMs, r.meanDiff, r.maxDiff, chaos, divergence);
     return buf;
 }
 

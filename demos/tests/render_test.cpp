@@ -220,7 +220,8 @@ TEST(Demo, BasicRunsOnTheGpuPathAndPicturesIt)
 }
 
 // Every demo of btgpu_demos builds and steps; each is on the GPU path but the two whose features
-// the GPU path does not serve yet, which say why (actions; compound shapes, until they land).
+// the GPU path does not serve yet, which say why (actions and compound shapes, each being put on
+// the GPU elsewhere: either may then run on the GPU path).
 TEST(Demo, EachTakesThePathItShouldAndSaysWhy)
 {
     for (const demos::Demo& demo : demos::catalog()) {
@@ -231,8 +232,7 @@ TEST(Demo, EachTakesThePathItShouldAndSaysWhy)
         EXPECT_TRUE(r.finite) << demo.name;
         EXPECT_GT(r.dynamicBodies, 0) << demo.name;
         if (demo.name == "vehicle") {
-            EXPECT_FALSE(r.gpuEveryStep);
-            EXPECT_NE(r.cpuReason.find("actions"), std::string::npos) << r.cpuReason;
+            if (!r.gpuEveryStep) EXPECT_NE(r.cpuReason.find("actions"), std::string::npos) << r.cpuReason;
         } else if (demo.name == "compound") {
             if (!r.gpuEveryStep) EXPECT_NE(r.cpuReason.find("Compound"), std::string::npos) << r.cpuReason;
         } else {
