@@ -29,8 +29,8 @@ const std::vector<Demo>& catalog()
                      plain([](WorldKind k, const Config& c) { return scenes::benchPile(k, c); }), 300, false, 35, 20, 0.9f});
         d.push_back({"stacks", "BenchmarkDemo 2: 1,076 boxes in a pyramid, three walls and a round tower",
                      plain([](WorldKind k, const Config& c) { return scenes::benchStacks(k, c); }), 300, false, 15, 20, 0.8f});
-        d.push_back({"ragdolls", "BenchmarkDemo 3: 136 ragdolls (11 boxes, 5 hinges, 5 cone-twists each) falling",
-                     plain([](WorldKind k, const Config& c) { return scenes::ragdolls(k, c, 136); }), 300, false, 35, 30, 0.8f});
+        d.push_back({"ragdolls", "BenchmarkDemo 3: 136 ragdolls of capsules at scale 3.5 (5 hinges, 5 cone-twists each) in a stepped heap",
+                     plain([](WorldKind k, const Config& c) { return scenes::benchRagdolls(k, c); }), 300, false, 30, 35, 0.45f});
         d.push_back({"hulls", "BenchmarkDemo 4: 960 convex-hull barrels falling into a pile",
                      plain([](WorldKind k, const Config& c) { return scenes::benchHulls(k, c); }), 300, false, 35, 20, 0.9f});
         d.push_back({"mixed", "BenchmarkDemo 5: 1,000 boxes, spheres and capsules of three sizes",

@@ -175,6 +175,50 @@ ScenePtr capsuleRagdolls(WorldKind kind, const Config& config, int count)
     return s;
 }
 
+ScenePtr benchRagdolls(WorldKind kind, const Config& config, int rows)
+{
+    auto s = std::make_unique<Scene>(kind, config, "bench_ragdolls");
+    s->world().getSolverInfo().m_numIterations = 5;
+    s->addBody(s->boxShape(btVector3(250, 50, 250)), 0, btVector3(0, -50, 0));
+    const spec::Scene one = spec::makeRagdolls(1);  // ground, then one ragdoll's 11 parts at the origin
+    const btScalar scale = 3.5f;
+    std::vector<btCollisionShape*> shapes;
+    for (size_t i = 1; i < one.bodies.size(); ++i) {
+        const spec::BodySpec& b = one.bodies[i];
+        shapes.push_back(s->ownShape(new btCapsuleShape(scale * b.half[0], scale * 2 * (b.half[1] - b.half[0]))));
+    }
+    btVector3 pos(0, 1, 0);
+    for (int size = rows; size > 0; --size) {
+        const float offset = -float(size) * 6.0f * 0.5f;
+        for (int i = 0; i < size; ++i) {
+            pos.setX(offset + float(i) * 6.0f);
+            std::vector<btRigidBody*> parts(1, nullptr);  // index 0: the spec's ground, not used
+            for (size_t k = 1; k < one.bodies.size(); ++k) {
+                const spec::BodySpec& b = one.bodies[k];
+                btTransform t = pose(b.rot, b.pos);
+                t.setOrigin(pos + scale * t.getOrigin());
+                btRigidBody* body = s->addBody(shapes[k - 1], b.mass, t, Material{b.friction, b.restitution});
+                body->setDamping(b.linearDamping, b.angularDamping);
+                parts.push_back(body);
+            }
+            for (const spec::JointSpec& j : one.joints) {
+                btTransform fa = frame(j.frameA), fb = frame(j.frameB);
+                fa.setOrigin(scale * fa.getOrigin()), fb.setOrigin(scale * fb.getOrigin());
+                btRigidBody& a = *parts.at(size_t(j.a));
+                btRigidBody& b = *parts.at(size_t(j.b));
+                if (j.kind == spec::JointSpec::Kind::Hinge) {
+                    s->addJoint(new btHingeConstraint(a, b, fa, fb), true)->setLimit(j.limit[0], j.limit[1]);
+                } else {
+                    s->addJoint(new btConeTwistConstraint(a, b, fa, fb), true)->setLimit(j.limit[0], j.limit[1], j.limit[2]);
+                }
+            }
+        }
+        pos.setY(pos.y() + 7.0f);
+        pos.setZ(pos.z() - 2.0f);
+    }
+    return s;
+}
+
 ScenePtr compoundPile(WorldKind kind, const Config& config, int count)
 {
     auto s = std::make_unique<Scene>(kind, config, "compound");

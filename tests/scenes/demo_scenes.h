@@ -31,6 +31,11 @@ ScenePtr benchMixedShapes(WorldKind kind, const Config& config = Config(), int l
 // RagdollDemo: `count` ragdolls of real capsules (makeRagdolls' bodies and joints, each box
 // there a btCapsuleShape of the same radius and length here), 2 m apart, dropping.
 ScenePtr capsuleRagdolls(WorldKind kind, const Config& config = Config(), int count = 9);
+// BenchmarkDemo test 3: 136 RagdollDemo ragdolls of capsules at scale 3.5 in rows of 16, 15, ...,
+// 1 (6 m apart, each row 7 m higher and 2 m farther back), over BenchmarkDemo's ground box; the
+// joints' frames scaled with the bodies. (The `ragdolls` scene of joint_scenes.h, boxes on a grid,
+// is the benchmark's.)
+ScenePtr benchRagdolls(WorldKind kind, const Config& config = Config(), int rows = 16);
 // A few compound bodies (a table: top and four legs; an L of two boxes; a dumbbell of two
 // spheres on a box bar), `count` of them in a loose column over a ground box.
 ScenePtr compoundPile(WorldKind kind, const Config& config = Config(), int count = 24);
