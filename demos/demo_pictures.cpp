@@ -45,7 +45,9 @@ void demoExtras(DemoWorld& world, const RayView& rays, std::vector<render::Extra
 bool DemoPictures::open(int width, int height, std::string* error)
 {
     m_width = width, m_height = height;
-    return m_gl.open(width, height, error);
+    const bool ok = m_gl.open(width, height, error);
+    m_gl.release();  // render() makes it current when it draws
+    return ok;
 }
 
 render::Image DemoPictures::render(const Demo& demo, DemoWorld& world, const RayView& rays)
@@ -54,11 +56,14 @@ render::Image DemoPictures::render(const Demo& demo, DemoWorld& world, const Ray
         m_camera = demoCamera(demo, world, m_width, m_height);
         m_framed = true;
     }
+    m_gl.makeCurrent();
     std::vector<render::ExtraShape> shapes;
     std::vector<render::Line> lines;
     demoExtras(world, rays, shapes, lines);
     m_renderer.draw(world.scene->world(), m_camera, shapes, lines);
-    return m_gl.read();
+    render::Image image = m_gl.read();
+    m_gl.release();  // a window (--window with --png) makes its own context current next
+    return image;
 }
 
 }  // namespace btgpu::demos

@@ -45,7 +45,8 @@ struct Pictures {
 
 int runOne(const Demo& demo, const RunOptions& options, const Pictures& pictures, DemoResult& result)
 {
-    StepHook hook;
+    // Pictures and window each add a hook; both run when both are asked for.
+    std::vector<StepHook> hooks;
 #if BTGPU_HAVE_RENDER
     DemoPictures offscreen;
     const int steps = options.steps > 0 ? options.steps : demo.steps;
@@ -56,7 +57,7 @@ int runOne(const Demo& demo, const RunOptions& options, const Pictures& pictures
             return 1;
         }
         if (!pictures.dir.empty()) mkdir(pictures.dir.c_str(), 0755);
-        hook = [&](int step, DemoWorld& world, const RayView& rays) {
+        hooks.push_back([&](int step, DemoWorld& world, const RayView& rays) {
             const bool frame = !pictures.dir.empty() && (step % pictures.every == 0 || step == steps);
             const bool still = !pictures.still.empty() && step == steps;
             if (!frame && !still) return;
@@ -67,7 +68,7 @@ int runOne(const Demo& demo, const RunOptions& options, const Pictures& pictures
             if (frame && !render::writePng(pictures.dir + "/" + demo.name + name, image, &error))
                 std::fprintf(stderr, "btgpu_demos: %s\n", error.c_str());
             if (still && !render::writePng(pictures.still, image, &error)) std::fprintf(stderr, "btgpu_demos: %s\n", error.c_str());
-        };
+        });
     }
 #endif
 #if BTGPU_HAVE_GLFW
@@ -78,16 +79,21 @@ int runOne(const Demo& demo, const RunOptions& options, const Pictures& pictures
             std::fprintf(stderr, "btgpu_demos: no window: %s\n", error.c_str());
             return 1;
         }
-        hook = [&](int step, DemoWorld& world, const RayView& rays) {
+        hooks.push_back([&](int step, DemoWorld& world, const RayView& rays) {
             if (step == 0) window.setCamera(demoCamera(demo, world, pictures.width * 2, pictures.height * 2));
             if (demo.followFirstBody) window.follow(world.scene->body(1)->getWorldTransform().getOrigin());
             std::vector<render::ExtraShape> shapes;
             std::vector<render::Line> lines;
             demoExtras(world, rays, shapes, lines);
             window.draw(world.scene->world(), shapes, lines);
-        };
+        });
     }
 #endif
+    StepHook hook;
+    if (!hooks.empty())
+        hook = [&hooks](int step, DemoWorld& world, const RayView& rays) {
+            for (const StepHook& h : hooks) h(step, world, rays);
+        };
     result = runDemo(demo, options, hook);
     printResult(result);
     return 0;

@@ -36,12 +36,14 @@ bool GlfwWindow::open(int width, int height, const std::string& title, std::stri
     glfwSwapInterval(0);  // the simulation sets the pace
     glfwSetScrollCallback(m_window, onScroll);
     glfwGetCursorPos(m_window, &m_lastX, &m_lastY);
+    glfwMakeContextCurrent(nullptr);  // draw() makes it current when it draws
     return true;
 }
 
 bool GlfwWindow::draw(const btCollisionWorld& world, const std::vector<ExtraShape>& extras, const std::vector<Line>& lines)
 {
     if (m_closed || !m_window) return false;
+    glfwMakeContextCurrent(m_window);  // the headless pictures may have made theirs current
     glfwPollEvents();
     if (glfwWindowShouldClose(m_window) || glfwGetKey(m_window, GLFW_KEY_ESCAPE) == GLFW_PRESS) {
         m_closed = true;
@@ -69,6 +71,7 @@ bool GlfwWindow::draw(const btCollisionWorld& world, const std::vector<ExtraShap
     m_camera.width = std::max(1, m_camera.width), m_camera.height = std::max(1, m_camera.height);
     m_renderer.draw(world, m_camera, extras, lines);
     glfwSwapBuffers(m_window);
+    glfwMakeContextCurrent(nullptr);  // the headless pictures (--png) make theirs current next
     return true;
 }
 

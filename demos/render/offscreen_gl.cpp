@@ -81,6 +81,19 @@ bool OffscreenGl::open(int width, int height, std::string* error)
     return true;
 }
 
+void OffscreenGl::makeCurrent()
+{
+    if (m->context == EGL_NO_CONTEXT) return;
+    eglBindAPI(EGL_OPENGL_API);
+    eglMakeCurrent(m->display, EGL_NO_SURFACE, EGL_NO_SURFACE, m->context);
+    glBindFramebuffer(GL_FRAMEBUFFER, m->drawFbo);
+}
+
+void OffscreenGl::release()
+{
+    if (m->context != EGL_NO_CONTEXT) eglMakeCurrent(m->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+}
+
 Image OffscreenGl::read()
 {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, m->drawFbo);

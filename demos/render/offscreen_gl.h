@@ -18,6 +18,10 @@ public:
     // Makes a context current with a width x height framebuffer bound; false with `error`
     // naming what is missing (no EGL device, no desktop OpenGL, no framebuffer objects).
     bool open(int width, int height, std::string* error);
+    // Makes this context current again (after another one, a window's, was).
+    void makeCurrent();
+    // Leaves no context current in this thread (so a window's GLX context can be made current).
+    void release();
     // The picture drawn since the last read (resolved, rows top to bottom).
     Image read();
     std::string renderer() const;  // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
