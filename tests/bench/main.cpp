@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "bench_report.h"
+#include "scenes/benchmark_specs.h"
 #include "bench_run.h"
 
 using namespace btgpu::bench;
@@ -17,10 +18,11 @@ using namespace btgpu::bench;
 namespace {
 
 const char* kUsage =
-    "usage: btgpu_bench [--scene cubes|spheres|mixed|voronoi|landscape|ragdolls] [--n 1000|8000|32768|112500|1000000 | --dims NX NY NZ]\n"
+    "usage: btgpu_bench [--scene cubes|spheres|mixed|voronoi|landscape|ragdolls|pile|stacks|hulls] [--n 1000|8000|32768|112500|1000000 | --dims NX NY NZ]\n"
     "                   [--bodies N] [--quads Q]   (landscape: N bodies on a Q x Q-quad mesh; 1000, 100)\n"
     "                   [--cells C]   (voronoi: C cells, default 90 as BenchmarkDemo's test 8)\n"
     "                   [--ragdolls COUNT (ragdolls of 11 capsules and 10 joints; default 100)]\n"
+    "                   pile, stacks, hulls: BenchmarkDemo's tests 1, 2 and 4 (3,008 boxes, 1,076 boxes, 960 barrels)\n"
     "                   [--frames F] [--backends btgpu,bullet,b3gpu] [--csv PATH] [--budget-s S]\n"
     "                   [--no-sleep] [--no-aabb-sync] [--jacobi] [--b3-native-inertia] [--absolute-thresholds] [--smoke]\n"
     "  BTGPU_DEVICE=gpu|cpu|<name substring> picks the OpenCL device (btgpu and b3gpu alike).\n";
@@ -91,7 +93,10 @@ int main(int argc, char** argv)
     else if (sceneName == "voronoi") scene = makeVoronoi(nCells);
     else if (sceneName == "landscape") scene = makeLandscape(landscapeCount, landscapeQuads);
     else if (sceneName == "ragdolls") scene = makeRagdolls(ragdolls);
-    else usage("--scene must be cubes, spheres, mixed, voronoi, landscape or ragdolls");
+    else if (sceneName == "pile") scene = btgpu::scenes::spec::makeBenchPile();
+    else if (sceneName == "stacks") scene = btgpu::scenes::spec::makeBenchStacks();
+    else if (sceneName == "hulls") scene = btgpu::scenes::spec::makeBenchHulls();
+    else usage("--scene must be cubes, spheres, mixed, voronoi, landscape, ragdolls, pile, stacks or hulls");
 
     std::vector<RunResult> results;
     std::stringstream list(backends);
