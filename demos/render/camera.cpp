@@ -69,7 +69,7 @@ bool sceneBounds(const btCollisionWorld& world, btVector3& lo, btVector3& hi)
 {
     const btCollisionObjectArray& objects = world.getCollisionObjectArray();
     bool any = false;
-    btVector3 dlo, dhi;
+    btVector3 dlo(0, 0, 0), dhi(0, 0, 0);
     for (int i = 0; i < objects.size(); ++i) {
         const btCollisionObject* o = objects[i];
         if (o->isStaticOrKinematicObject()) continue;
