@@ -76,25 +76,16 @@ bool isSixDof2(const std::type_info& t)
            t == typeid(btHinge2Constraint);
 }
 
-// Why a 6-DoF spring2 joint is not served: springs and servos are not on the device yet.
-std::string sixDofReason(const btTypedConstraint& c)
+// A 6-DoF spring2 axis's motor, servo and spring switches as BtgSixDofAxis.mode.
+uint sixDofMode(bool motor, bool servo, bool spring, bool stiffLimited, bool dampLimited)
 {
-    auto& k = const_cast<btGeneric6DofSpring2Constraint&>(static_cast<const btGeneric6DofSpring2Constraint&>(c));
-    const btTranslationalLimitMotor2* lin = k.getTranslationalLimitMotor();
-    for (int i = 0; i < 6; ++i) {
-        const bool spring = i < 3 ? lin->m_enableSpring[i] : k.getRotationalLimitMotor(i - 3)->m_enableSpring;
-        const bool servo = i < 3 ? lin->m_enableMotor[i] && lin->m_servoMotor[i]
-                                 : k.getRotationalLimitMotor(i - 3)->m_enableMotor &&
-                                       k.getRotationalLimitMotor(i - 3)->m_servoMotor;
-        if (spring) return "has a spring on axis " + std::to_string(i) + " (enableSpring): not on the GPU path yet";
-        if (servo) return "has a servo on axis " + std::to_string(i) + " (setServo): not on the GPU path yet";
-    }
-    return "";
+    return (motor ? BTG_SIXDOF_MOTOR : 0u) | (servo ? BTG_SIXDOF_SERVO : 0u) | (spring ? BTG_SIXDOF_SPRING : 0u) |
+           (stiffLimited ? BTG_SIXDOF_STIFF_LIMITED : 0u) | (dampLimited ? BTG_SIXDOF_DAMP_LIMITED : 0u);
 }
 
 bool served(const btTypedConstraint& c)
 {
-    if (isSixDof2(typeid(c))) return sixDofReason(c).empty();
+    if (isSixDof2(typeid(c))) return true;
     if (typeid(c) == typeid(btPoint2PointConstraint))
         return !static_cast<const btPoint2PointConstraint&>(c).m_useSolveConstraintObsolete;
     if (typeid(c) == typeid(btHingeConstraint))
@@ -133,11 +124,7 @@ std::string jointsStructureReason(const btDiscreteDynamicsWorld& world)
         if (t == typeid(btConeTwistConstraint) && static_cast<const btConeTwistConstraint*>(c)->isMotorEnabled())
             return "joint " + std::to_string(i) + " (btConeTwistConstraint) has its motor on (enableMotor): not on the GPU "
                                                   "path yet";
-        if (isSixDof2(t)) {
-            const std::string why = sixDofReason(*c);
-            if (!why.empty()) return "joint " + std::to_string(i) + " (" + typeName(t) + ") " + why;
-            continue;
-        }
+        if (isSixDof2(t)) continue;
         if (t == typeid(btPoint2PointConstraint) || t == typeid(btHingeConstraint) || t == typeid(btConeTwistConstraint) ||
             t == typeid(btSliderConstraint)) {
             if (!served(*c))
@@ -167,10 +154,7 @@ std::string jointsStepReason(const btDiscreteDynamicsWorld& world)
     for (int i = 0; i < world.getNumConstraints(); ++i) {
         const btTypedConstraint* c = world.getConstraint(i);
         const std::type_info& t = typeid(*c);
-        if (isSixDof2(t)) {
-            const std::string why = sixDofReason(*c);
-            if (!why.empty()) return "joint " + std::to_string(i) + " (" + typeName(t) + ") " + why;
-        } else if (t == typeid(btConeTwistConstraint) && static_cast<const btConeTwistConstraint*>(c)->isMotorEnabled()) {
+        if (t == typeid(btConeTwistConstraint) && static_cast<const btConeTwistConstraint*>(c)->isMotorEnabled()) {
             return "joint " + std::to_string(i) + " (btConeTwistConstraint) has its motor on (enableMotor): not on the "
                                                   "GPU path yet";
         }
@@ -302,7 +286,12 @@ bool jointRow(const btTypedConstraint& c, const RowMap& rows, int numIterations,
                 x.motorCfm = lin->m_motorCFM[i];
                 x.targetVelocity = lin->m_targetVelocity[i];
                 x.maxMotorForce = lin->m_maxMotorForce[i];
-                x.motor = lin->m_enableMotor[i] ? 1u : 0u;
+                x.mode = sixDofMode(lin->m_enableMotor[i], lin->m_servoMotor[i], lin->m_enableSpring[i],
+                                    lin->m_springStiffnessLimited[i], lin->m_springDampingLimited[i]);
+                x.servoTarget = lin->m_servoTarget[i];
+                x.stiffness = lin->m_springStiffness[i];
+                x.damping = lin->m_springDamping[i];
+                x.equilibrium = lin->m_equilibriumPoint[i];
             } else {
                 const btRotationalLimitMotor2* r = k.getRotationalLimitMotor(i - 3);
                 x.lo = r->m_loLimit;
@@ -316,10 +305,16 @@ bool jointRow(const btTypedConstraint& c, const RowMap& rows, int numIterations,
                 x.motorCfm = (x.flags & 4u) ? r->m_motorCFM : 0.0f;
                 x.targetVelocity = r->m_targetVelocity;
                 x.maxMotorForce = r->m_maxMotorForce;
-                x.motor = r->m_enableMotor ? 1u : 0u;
+                x.mode = sixDofMode(r->m_enableMotor, r->m_servoMotor, r->m_enableSpring, r->m_springStiffnessLimited,
+                                    r->m_springDampingLimited);
+                x.servoTarget = r->m_servoTarget;
+                x.stiffness = r->m_springStiffness;
+                x.damping = r->m_springDamping;
+                x.equilibrium = r->m_equilibriumPoint;
             }
         }
         j.sixdof.rotateOrder = int(k.getRotationOrder());
+        j.sixdof.options = (flags & BT_6DOF_FLAGS_USE_INFINITE_ERROR) ? BTG_SIXDOF_INFINITE_ERROR : 0u;
     }
     *out = j;
     return true;

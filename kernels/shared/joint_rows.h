@@ -23,7 +23,7 @@
 #define BTG_JOINT_CONE_TWIST_ROWS 6
 #define BTG_JOINT_SLIDER_ROWS 6
 #define BTG_JOINT_MAX_ROWS 6
-#define BTG_JOINT_SIXDOF2_ROWS 18 /* per axis: two limit rows and a motor row */
+#define BTG_JOINT_SIXDOF2_ROWS 24 /* per axis: two limit rows, a motor (or servo) row, a spring row */
 
 /* BtgJoint.flags */
 #define BTG_JOINT_ENABLED 1u   /* btTypedConstraint::isEnabled() as the app left it */
@@ -67,14 +67,29 @@ typedef struct {
     float targetVelocity;    /* m/s or rad/s */
     float maxMotorForce;     /* N or N m */
     uint flags;              /* the axis's 4 bits of m_flags (BT_6DOF_FLAGS_*2) */
-    uint motor;              /* 1: m_enableMotor (servo and spring are not served) */
+    uint mode;               /* BTG_SIXDOF_* bits: motor, servo, spring and its limiting */
+    float servoTarget;       /* m or rad (setServoTarget, already wrapped by Bullet) */
+    float stiffness;         /* N/m or N m/rad (setStiffness) */
+    float damping;           /* N s/m or N m s/rad (setDamping) */
+    float equilibrium;       /* m or rad (setEquilibriumPoint) */
     float pad0;
 } BtgSixDofAxis;
+
+/* BtgSixDofAxis.mode */
+#define BTG_SIXDOF_MOTOR 1u           /* m_enableMotor */
+#define BTG_SIXDOF_SERVO 2u           /* m_servoMotor (a servo only with the motor on) */
+#define BTG_SIXDOF_SPRING 4u          /* m_enableSpring */
+#define BTG_SIXDOF_STIFF_LIMITED 8u   /* m_springStiffnessLimited (setStiffness's limitIfNeeded) */
+#define BTG_SIXDOF_DAMP_LIMITED 16u   /* m_springDampingLimited (setDamping's limitIfNeeded) */
+
+/* BtgSixDofParams.options */
+#define BTG_SIXDOF_INFINITE_ERROR 1u  /* m_flags has BT_6DOF_FLAGS_USE_INFINITE_ERROR */
 
 typedef struct {
     BtgSixDofAxis axis[6];
     int rotateOrder;         /* RotateOrder: RO_XYZ 0 .. RO_ZYX 5 */
-    int pad0, pad1, pad2;
+    uint options;            /* BTG_SIXDOF_INFINITE_ERROR */
+    int pad1, pad2;
 } BtgSixDofParams;
 
 /* A body of a joint without a row: Bullet's shared fixed body (btTypedConstraint::getFixedBody),
@@ -169,9 +184,9 @@ typedef struct {
 
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(BtgSliderParams) == 96, "BtgSliderParams layout");
-static_assert(sizeof(BtgSixDofAxis) == 48, "BtgSixDofAxis layout");
-static_assert(sizeof(BtgSixDofParams) == 304, "BtgSixDofParams layout");
-static_assert(sizeof(BtgJoint) == 672, "BtgJoint layout");
+static_assert(sizeof(BtgSixDofAxis) == 64, "BtgSixDofAxis layout");
+static_assert(sizeof(BtgSixDofParams) == 400, "BtgSixDofParams layout");
+static_assert(sizeof(BtgJoint) == 768, "BtgJoint layout");
 static_assert(sizeof(BtgJointRow) == 112, "BtgJointRow layout");
 static_assert(sizeof(BtgJointState) == 16, "BtgJointState layout");
 static_assert(sizeof(BtgJointFeedback) == 64, "BtgJointFeedback layout");

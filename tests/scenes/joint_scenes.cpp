@@ -144,4 +144,68 @@ ScenePtr sixDofMotors(WorldKind kind, const Config& config, double spin, int ord
     return s;
 }
 
+ScenePtr sixDofSprings(WorldKind kind, const Config& config, double linStiffness, double angStiffness, bool limited)
+{
+    auto s = std::make_unique<Scene>(kind, config, "sixdof_springs");
+    btBoxShape* shape = s->boxShape(btVector3(0.3f, 0.1f, 0.2f));
+    const btVector3 at[2] = {btVector3(0, 2, 0), btVector3(2, 2, 0)};
+    for (int k = 0; k < 2; ++k) {
+        btRigidBody* box = s->addBody(shape, 2.0f, at[k]);
+        box->setActivationState(DISABLE_DEACTIVATION);
+        auto* d = s->addJoint(new btGeneric6DofSpring2Constraint(btTypedConstraint::getFixedBody(), *box,
+                                                                 btTransform(btQuaternion::getIdentity(), at[k]),
+                                                                 btTransform::getIdentity()));
+        for (int axis = 0; axis < 6; ++axis) d->setLimit(axis, 0, 0);
+        const int axis = k == 0 ? 1 : 5;
+        d->setLimit(axis, 1, -1);  // free
+        d->enableSpring(axis, true);
+        d->setStiffness(axis, btScalar(k == 0 ? linStiffness : angStiffness), limited);
+        d->setDamping(axis, k == 0 ? 0.2f : 0.005f, limited);
+        d->setEquilibriumPoint(axis, k == 0 ? -0.3f : 0.8f);
+    }
+    return s;
+}
+
+ScenePtr sixDofServos(WorldKind kind, const Config& config, double angle)
+{
+    auto s = std::make_unique<Scene>(kind, config, "sixdof_servos");
+    btRigidBody* box = s->addBody(s->boxShape(btVector3(0.3f, 0.1f, 0.2f)), 2.0f, btVector3(0, 2, 0));
+    box->setActivationState(DISABLE_DEACTIVATION);
+    auto* d = s->addJoint(new btGeneric6DofSpring2Constraint(*box, btTransform::getIdentity()));
+    d->setLinearLowerLimit(btVector3(-0.5f, 0, 0));
+    d->setLinearUpperLimit(btVector3(0.5f, 0, 0));
+    d->setAngularLowerLimit(btVector3(0, 0, 1));
+    d->setAngularUpperLimit(btVector3(0, 0, -1));
+    d->enableMotor(0, true);
+    d->setServo(0, true);
+    d->setServoTarget(0, 0.2f);
+    d->setTargetVelocity(0, 0.5f);
+    d->setMaxMotorForce(0, 40.0f);
+    d->enableMotor(5, true);
+    d->setServo(5, true);
+    d->setServoTarget(5, btScalar(angle));
+    d->setTargetVelocity(5, 2.0f);
+    d->setMaxMotorForce(5, 3.0f);
+    return s;
+}
+
+ScenePtr hinge2Wheels(WorldKind kind, const Config& config)
+{
+    auto s = std::make_unique<Scene>(kind, config, "hinge2_wheels");
+    s->addBody(s->boxShape(btVector3(5, 0.5f, 5)), 0.0f, btVector3(0, -0.5f, 0));
+    const btScalar wheelY = 0.25f, chassisY = wheelY + 0.6f;
+    btRigidBody* chassis = s->addBody(s->boxShape(btVector3(1, 0.1f, 0.5f)), 4.0f, btVector3(0, chassisY, 0));
+    chassis->setActivationState(DISABLE_DEACTIVATION);
+    btSphereShape* wheel = s->sphereShape(0.25f);
+    for (int k = 0; k < 4; ++k) {
+        btVector3 at((k & 1) ? 0.8f : -0.8f, wheelY, (k & 2) ? 0.5f : -0.5f);
+        btRigidBody* w = s->addBody(wheel, 0.5f, at);
+        w->setActivationState(DISABLE_DEACTIVATION);
+        btVector3 up(0, 1, 0), axle(0, 0, 1);
+        auto* h = s->addJoint(new btHinge2Constraint(*chassis, *w, at, up, axle), true);
+        h->setDamping(2, 1.0f);  // the suspension's damper (as constructed: 0.01, rings for a minute)
+    }
+    return s;
+}
+
 }  // namespace btgpu::scenes

@@ -52,4 +52,26 @@ ScenePtr fixedBoxes(WorldKind kind, const Config& config = Config());
 // motors move body B (the box) at -target against body A (the fixed body).
 ScenePtr sixDofMotors(WorldKind kind, const Config& config = Config(), double spin = 2.0, int order = 0);
 
+// btGeneric6DofSpring2Constraint springs from Bullet's fixed body, every other axis locked:
+// body 0 a box (half extents 0.3, 0.1, 0.2; mass 2) at (0, 2, 0) on a linear y spring of
+// `linStiffness` N/m (damping 0.2 N s/m, equilibrium 0.3 m below its start: it falls into the
+// spring and bounces under gravity); body 1 the same box at (2, 2, 0) on an angular z spring
+// of `angStiffness` N m/rad (damping 0.005, equilibrium 0.8 rad: it starts 0.8 rad off), its
+// moment about z 1/15 kg m^2. `limited`: setStiffness/setDamping's limitIfNeeded.
+ScenePtr sixDofSprings(WorldKind kind, const Config& config = Config(), double linStiffness = 200.0,
+                       double angStiffness = 5.0, bool limited = true);
+
+// btGeneric6DofSpring2Constraint servos from Bullet's fixed body (box of sixDofMotors, at
+// (0, 2, 0)): linear x ranged [-0.5, 0.5] to servo target 0.2 m at 0.5 m/s (max 40 N), angular
+// z free to servo target `angle` rad at 2 rad/s (max 3 N m), the rest locked.
+ScenePtr sixDofServos(WorldKind kind, const Config& config = Config(), double angle = 1.0);
+
+// btHinge2Constraint suspensions as constructed (spring on its linear z, 4 pi^2 N/m; limits,
+// steering range) with a damper of 1 N s/m (setDamping(2, 1)): a chassis box (half extents 1,
+// 0.1, 0.5; mass 4; body 1) 0.6 m above four sphere wheels (radius 0.25, mass 0.5; bodies
+// 2..5) resting on a ground box (body 0) at (+-0.8, 0.25, +-0.5), each joined at its centre
+// (axis 1 up, axis 2 the axle along z); the chassis sinks onto its springs and settles (about
+// 0.25 m lower) without reaching the ground.
+ScenePtr hinge2Wheels(WorldKind kind, const Config& config = Config());
+
 }  // namespace btgpu::scenes
