@@ -3,7 +3,7 @@
 #include "joint_rows.h"
 
 #include "parallel_rows.h"
-#include "shared/sixdof_rows.h"
+#include "shared/generic6dof_rows.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -70,6 +70,15 @@ BTGPU_PRIVATE_MEMBER(SliderCfmOrthoAng, btSliderConstraint, btScalar, m_cfmOrtho
 BTGPU_PRIVATE_MEMBER(SixDofFlags, btGeneric6DofSpring2Constraint, int, m_flags);
 #undef BTGPU_PRIVATE_MEMBER
 
+// btGeneric6DofConstraint by exact type, and the two Bullet classes that derive from it and add
+// nothing to its rows but their construction (btUniversalConstraint) or their springs
+// (btGeneric6DofSpringConstraint).
+bool isGeneric6Dof(const std::type_info& t)
+{
+    return t == typeid(btGeneric6DofConstraint) || t == typeid(btUniversalConstraint) ||
+           t == typeid(btGeneric6DofSpringConstraint);
+}
+
 bool isSixDof2(const std::type_info& t)
 {
     return t == typeid(btGeneric6DofSpring2Constraint) || t == typeid(btFixedConstraint) ||
@@ -81,6 +90,13 @@ uint sixDofMode(bool motor, bool servo, bool spring, bool stiffLimited, bool dam
 {
     return (motor ? BTG_SIXDOF_MOTOR : 0u) | (servo ? BTG_SIXDOF_SERVO : 0u) | (spring ? BTG_SIXDOF_SPRING : 0u) |
            (stiffLimited ? BTG_SIXDOF_STIFF_LIMITED : 0u) | (dampLimited ? BTG_SIXDOF_DAMP_LIMITED : 0u);
+}
+
+// The exact types the GPU path takes (whether this one's settings are served is served()).
+bool isServedType(const std::type_info& t)
+{
+    return t == typeid(btPoint2PointConstraint) || t == typeid(btHingeConstraint) || t == typeid(btConeTwistConstraint) ||
+           t == typeid(btSliderConstraint) || isGeneric6Dof(t) || isSixDof2(t);
 }
 
 bool served(const btTypedConstraint& c)
@@ -96,6 +112,7 @@ bool served(const btTypedConstraint& c)
     }
     if (typeid(c) == typeid(btSliderConstraint))
         return !(static_cast<const btSliderConstraint&>(c).*member(SliderObsolete()));
+    if (isGeneric6Dof(typeid(c))) return !static_cast<const btGeneric6DofConstraint&>(c).m_useSolveConstraintObsolete;
     return false;
 }
 
@@ -103,6 +120,81 @@ void setFrame(const btTransform& t, BtgFloat4* origin, BtgFloat4* axes)
 {
     *origin = vec4(t.getOrigin());
     for (int c = 0; c < 3; ++c) axes[c] = vec4(t.getBasis().getColumn(c));
+}
+
+// A btGeneric6DofConstraint (or btUniversalConstraint, btGeneric6DofSpringConstraint) as the
+// device row: BtgSixDofAxis per axis with the getInfo2 fields (m_normalCFM as motorCfm). A
+// spring axis's motor target and force are left 0: the device computes them each substep from
+// the pose, as internalUpdateSprings does in getInfo2 (Bullet writes them into the constraint).
+void generic6DofRow(btGeneric6DofConstraint& k, BtgJoint* out)
+{
+    BtgJoint& j = *out;
+    j.type = BTG_JOINT_SIXDOF;
+    setFrame(k.getFrameOffsetA(), &j.pivotA, j.axesA);
+    setFrame(k.getFrameOffsetB(), &j.pivotB, j.axesB);
+    const int flags = k.getFlags();
+    const btTranslationalLimitMotor* lin = k.getTranslationalLimitMotor();
+    const auto* spring = typeid(k) == typeid(btGeneric6DofSpringConstraint)
+                             ? static_cast<const btGeneric6DofSpringConstraint*>(&k)
+                             : nullptr;
+    for (int i = 0; i < 6; ++i) {
+        BtgSixDofAxis& x = j.sixdof.axis[i];
+        x.flags = uint(flags >> (i * BT_6DOF_FLAGS_AXIS_SHIFT)) & 7u;
+        bool motor;
+        if (i < 3) {
+            x.lo = lin->m_lowerLimit[i];
+            x.hi = lin->m_upperLimit[i];
+            x.stopErp = lin->m_stopERP[i];
+            x.stopCfm = lin->m_stopCFM[i];
+            x.motorCfm = lin->m_normalCFM[i];
+            x.targetVelocity = lin->m_targetVelocity[i];
+            x.maxMotorForce = lin->m_maxMotorForce[i];
+            motor = lin->m_enableMotor[i];
+        } else {
+            const btRotationalLimitMotor* r = k.getRotationalLimitMotor(i - 3);
+            x.lo = r->m_loLimit;
+            x.hi = r->m_hiLimit;
+            x.bounce = r->m_bounce;
+            // Without the flag these are overwritten from info->erp/cfm[0] every getInfo2:
+            // stored only when the flag makes them the app's own (so the table stays put).
+            x.stopErp = (x.flags & BTG_G6DOF_ERP_STOP) ? r->m_stopERP : 0.0f;
+            x.stopCfm = (x.flags & BTG_G6DOF_CFM_STOP) ? r->m_stopCFM : 0.0f;
+            x.motorCfm = (x.flags & BTG_G6DOF_CFM_NORM) ? r->m_normalCFM : 0.0f;
+            x.targetVelocity = r->m_targetVelocity;
+            x.maxMotorForce = r->m_maxMotorForce;
+            motor = r->m_enableMotor;
+        }
+        x.mode = motor ? BTG_SIXDOF_MOTOR : 0u;
+        if (spring && spring->isSpringEnabled(i)) {
+            x.mode |= BTG_SIXDOF_SPRING;
+            x.stiffness = spring->getStiffness(i);
+            x.damping = spring->getDamping(i);
+            x.equilibrium = spring->getEquilibriumPoint(i);
+            x.targetVelocity = 0.0f;
+            x.maxMotorForce = 0.0f;
+        }
+    }
+    j.sixdof.options = k.getUseFrameOffset() ? BTG_SIXDOF_FRAME_OFFSET : 0u;
+}
+
+// What stock's getInfo1/getInfo2 leave in a btGeneric6DofSpringConstraint each step: its
+// calculated frames (calculateTransforms) and, from internalUpdateSprings, the spring axes'
+// motor target velocity and force, here from the poses the call starts from (stock: its last
+// substep's). Only these members change, as on stock; the device computes its own per substep.
+struct SpringAccess : btGeneric6DofSpringConstraint {
+    using btGeneric6DofSpringConstraint::internalUpdateSprings;
+};
+void mirrorSprings(btTypedConstraint& c, const btContactSolverInfo& info)
+{
+    if (typeid(c) != typeid(btGeneric6DofSpringConstraint) || info.m_timeStep <= 0) return;
+    auto& k = static_cast<btGeneric6DofSpringConstraint&>(c);
+    k.calculateTransforms();
+    btTypedConstraint::btConstraintInfo2 info2;
+    info2.fps = btScalar(1) / info.m_timeStep;
+    info2.m_numIterations = info.m_numIterations;
+    void (btGeneric6DofSpringConstraint::*update)(btTypedConstraint::btConstraintInfo2*) =
+        &SpringAccess::internalUpdateSprings;
+    (k.*update)(&info2);
 }
 
 }  // namespace
@@ -126,7 +218,7 @@ std::string jointsStructureReason(const btDiscreteDynamicsWorld& world)
                                                   "path yet";
         if (isSixDof2(t)) continue;
         if (t == typeid(btPoint2PointConstraint) || t == typeid(btHingeConstraint) || t == typeid(btConeTwistConstraint) ||
-            t == typeid(btSliderConstraint)) {
+            t == typeid(btSliderConstraint) || isGeneric6Dof(t)) {
             if (!served(*c))
                 return "joint " + std::to_string(i) + " (" + typeName(t) +
                        ") uses Bullet's obsolete solve (m_useSolveConstraintObsolete)";
@@ -134,8 +226,8 @@ std::string jointsStructureReason(const btDiscreteDynamicsWorld& world)
         }
         return "joint " + std::to_string(i) + " of type " + typeName(t) +
                " is not on the GPU path (served, by exact type: btPoint2PointConstraint, btHingeConstraint, "
-               "btConeTwistConstraint, btSliderConstraint, btGeneric6DofSpring2Constraint, btFixedConstraint, "
-               "btHinge2Constraint)";
+               "btConeTwistConstraint, btSliderConstraint, btGeneric6DofConstraint, btUniversalConstraint, "
+               "btGeneric6DofSpringConstraint, btGeneric6DofSpring2Constraint, btFixedConstraint, btHinge2Constraint)";
     }
     return "";
 }
@@ -158,6 +250,10 @@ std::string jointsStepReason(const btDiscreteDynamicsWorld& world)
             return "joint " + std::to_string(i) + " (btConeTwistConstraint) has its motor on (enableMotor): not on the "
                                                   "GPU path yet";
         }
+        // The obsolete solve switched on after the add (the structure check saw it off).
+        if (isServedType(t) && !served(*c))
+            return "joint " + std::to_string(i) + " (" + typeName(t) +
+                   ") uses Bullet's obsolete solve (m_useSolveConstraintObsolete)";
     }
     return "";
 }
@@ -266,6 +362,8 @@ bool jointRow(const btTypedConstraint& c, const RowMap& rows, int numIterations,
                      (k.getUseFrameOffset() ? BTG_SLIDER_FRAME_OFFSET : 0u) |
                      (k.getPoweredLinMotor() ? BTG_SLIDER_LIN_MOTOR : 0u) |
                      (k.getPoweredAngMotor() ? BTG_SLIDER_ANG_MOTOR : 0u);
+    } else if (isGeneric6Dof(typeid(c))) {
+        generic6DofRow(const_cast<btGeneric6DofConstraint&>(static_cast<const btGeneric6DofConstraint&>(c)), &j);
     } else if (isSixDof2(typeid(c))) {
         auto& k = const_cast<btGeneric6DofSpring2Constraint&>(static_cast<const btGeneric6DofSpring2Constraint&>(c));
         j.type = BTG_JOINT_SIXDOF2;
@@ -332,6 +430,7 @@ void JointSync::upload(btDiscreteDynamicsWorld& world, const RowMap& rows, Devic
             btTypedConstraint* c = world.getConstraint(int(i));
             m_constraints[i] = c;
             jointRow(*c, rows, numIterations, &table[i]);
+            mirrorSprings(*c, world.getSolverInfo());
         }
     });
     int nextRow = 0, iterations = 0;

@@ -17,6 +17,7 @@
 #define BTG_JOINT_CONE_TWIST 3
 #define BTG_JOINT_SLIDER 4
 #define BTG_JOINT_SIXDOF2 5 /* btGeneric6DofSpring2Constraint, btFixedConstraint, btHinge2Constraint */
+#define BTG_JOINT_SIXDOF 6  /* btGeneric6DofConstraint, btUniversalConstraint, btGeneric6DofSpringConstraint */
 /* Rows one joint of each type may build (getInfo1's maximum): its slots in the row table. */
 #define BTG_JOINT_P2P_ROWS 3
 #define BTG_JOINT_HINGE_ROWS 6
@@ -24,6 +25,7 @@
 #define BTG_JOINT_SLIDER_ROWS 6
 #define BTG_JOINT_MAX_ROWS 6
 #define BTG_JOINT_SIXDOF2_ROWS 24 /* per axis: two limit rows, a motor (or servo) row, a spring row */
+#define BTG_JOINT_SIXDOF_ROWS 6   /* one row per axis (limit and motor share it) */
 
 /* BtgJoint.flags */
 #define BTG_JOINT_ENABLED 1u   /* btTypedConstraint::isEnabled() as the app left it */
@@ -58,7 +60,10 @@ typedef struct {
 } BtgSliderParams;
 
 /* One axis of a btGeneric6DofSpring2Constraint (0..2 linear along frame A's axes, 3..5
- * angular), as btTranslationalLimitMotor2 / btRotationalLimitMotor2 hold it. */
+ * angular), as btTranslationalLimitMotor2 / btRotationalLimitMotor2 hold it; also one of a
+ * btGeneric6DofConstraint (btTranslationalLimitMotor / btRotationalLimitMotor: motorCfm is its
+ * m_normalCFM, flags its 3 bits of BT_6DOF_FLAGS_*, servoTarget unused; a
+ * btGeneric6DofSpringConstraint's springs in mode, stiffness, damping, equilibrium). */
 typedef struct {
     float lo, hi;            /* m or rad; lo > hi: free, lo == hi: locked */
     float bounce;            /* m_bounce */
@@ -178,7 +183,7 @@ typedef struct {
     float damping;   /* m_damping: getInfo2's info->m_damping (joints that do not set their own) */
     int numJoints;
     int firstContactSlot; /* unused by the joints: keeps the struct 16-byte sized */
-    int pad0;
+    int numIterations;    /* m_numIterations: getInfo2's info->m_numIterations (6-DoF springs) */
     int pad1;
 } BtgJointStepParams;
 
@@ -200,6 +205,7 @@ static inline int btgJointMaxRows(int type)
     if (type == BTG_JOINT_CONE_TWIST) return BTG_JOINT_CONE_TWIST_ROWS;
     if (type == BTG_JOINT_SLIDER) return BTG_JOINT_SLIDER_ROWS;
     if (type == BTG_JOINT_SIXDOF2) return BTG_JOINT_SIXDOF2_ROWS;
+    if (type == BTG_JOINT_SIXDOF) return BTG_JOINT_SIXDOF_ROWS;
     return 0;
 }
 

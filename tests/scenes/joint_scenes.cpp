@@ -208,4 +208,65 @@ ScenePtr hinge2Wheels(WorldKind kind, const Config& config)
     return s;
 }
 
+ScenePtr generic6DofMotors(WorldKind kind, const Config& config, double spin, bool frameOffset)
+{
+    auto s = std::make_unique<Scene>(kind, config, "generic6dof_motors");
+    btRigidBody* box = s->addBody(s->boxShape(btVector3(0.3f, 0.1f, 0.2f)), 2.0f, btVector3(0, 2, 0));
+    box->setActivationState(DISABLE_DEACTIVATION);
+    auto* d = s->addJoint(new btGeneric6DofConstraint(*box, btTransform::getIdentity(), true));
+    d->setUseFrameOffset(frameOffset);
+    d->setLinearLowerLimit(btVector3(-0.3f, 0, 0));
+    d->setLinearUpperLimit(btVector3(0.3f, 0, 0));
+    d->setAngularLowerLimit(btVector3(0, 0, 1));
+    d->setAngularUpperLimit(btVector3(0, 0, -1));
+    btTranslationalLimitMotor* lin = d->getTranslationalLimitMotor();
+    lin->m_enableMotor[0] = true;
+    lin->m_targetVelocity[0] = 0.5f;
+    lin->m_maxMotorForce[0] = 40.0f;
+    btRotationalLimitMotor* rot = d->getRotationalLimitMotor(2);
+    rot->m_enableMotor = true;
+    rot->m_targetVelocity = btScalar(spin);
+    rot->m_maxMotorForce = 3.0f;
+    return s;
+}
+
+ScenePtr universalPendulum(WorldKind kind, const Config& config)
+{
+    auto s = std::make_unique<Scene>(kind, config, "universal_pendulum");
+    btRigidBody* anchor = s->addBody(s->boxShape(btVector3(0.1f, 0.1f, 0.1f)), 0.0f, btVector3(0, 3, 0));
+    const btVector3 pivot(0, 2.9f, 0);
+    const btQuaternion turn = btQuaternion(btVector3(1, 0, 0), 0.5f) * btQuaternion(btVector3(0, 0, 1), 0.3f);
+    const btVector3 centre = pivot + quatRotate(turn, btVector3(0, -0.4f, 0));
+    btRigidBody* bob = s->addBody(s->boxShape(btVector3(0.1f, 0.4f, 0.1f)), 1.0f, btTransform(turn, centre));
+    bob->setActivationState(DISABLE_DEACTIVATION);
+    bob->setAngularVelocity(quatRotate(turn, btVector3(0, 2.0f, 0)));
+    btVector3 axis1(1, 0, 0), axis2(0, 0, 1);
+    s->addJoint(new btUniversalConstraint(*anchor, *bob, pivot, axis1, axis2), true);
+    return s;
+}
+
+ScenePtr generic6DofSprings(WorldKind kind, const Config& config, double linStiffness, double angStiffness,
+                            double damping)
+{
+    auto s = std::make_unique<Scene>(kind, config, "generic6dof_springs");
+    s->world().setGravity(btVector3(0, 0, 0));
+    btBoxShape* shape = s->boxShape(btVector3(0.3f, 0.1f, 0.2f));
+    const btVector3 at[2] = {btVector3(0, 2, 0), btVector3(2, 2, 0)};
+    for (int k = 0; k < 2; ++k) {
+        btRigidBody* box = s->addBody(shape, 2.0f, at[k]);
+        box->setActivationState(DISABLE_DEACTIVATION);
+        auto* d = s->addJoint(new btGeneric6DofSpringConstraint(btTypedConstraint::getFixedBody(), *box,
+                                                                btTransform(btQuaternion::getIdentity(), at[k]),
+                                                                btTransform::getIdentity(), true));
+        for (int axis = 0; axis < 6; ++axis) d->setLimit(axis, 0, 0);
+        const int axis = k == 0 ? 1 : 5;
+        d->setLimit(axis, 1, -1);  // free
+        d->enableSpring(axis, true);
+        d->setStiffness(axis, btScalar(k == 0 ? linStiffness : angStiffness));
+        d->setDamping(axis, btScalar(damping));
+        d->setEquilibriumPoint(axis, k == 0 ? -0.3f : 0.8f);
+    }
+    return s;
+}
+
 }  // namespace btgpu::scenes

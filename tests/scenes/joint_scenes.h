@@ -74,4 +74,24 @@ ScenePtr sixDofServos(WorldKind kind, const Config& config = Config(), double an
 // 0.25 m lower) without reaching the ground.
 ScenePtr hinge2Wheels(WorldKind kind, const Config& config = Config());
 
+// btGeneric6DofConstraint (the old one) from Bullet's fixed body to the box of sixDofMotors
+// (body 0, at (0, 2, 0)): linear x limited to [-0.3, 0.3] and driven by its motor at 0.5 m/s
+// (max 40 N), linear y and z locked, angular x and y locked, angular z free and driven at `spin`
+// rad/s (max 3 N m); `frameOffset`: setUseFrameOffset (Bullet's default on).
+ScenePtr generic6DofMotors(WorldKind kind, const Config& config = Config(), double spin = 2.0,
+                           bool frameOffset = true);
+
+// A btUniversalConstraint pendulum: a box (half extents 0.1, 0.4, 0.1; mass 1; body 1) hanging
+// from a static anchor box at (0, 3, 0) (body 0) by a universal joint at (0, 2.9, 0) with axis 1
+// along x and axis 2 along z, released turned 0.5 rad about x and 0.3 about z and spinning
+// about y (which the joint locks): it swings about both axes.
+ScenePtr universalPendulum(WorldKind kind, const Config& config = Config());
+
+// btGeneric6DofSpringConstraint springs from Bullet's fixed body, every other axis locked: body
+// 0 a box (sixDofSprings' box) at (0, 2, 0) on a linear y spring of `linStiffness` N/m, body 1
+// at (2, 2, 0) on an angular z spring of `angStiffness` N m/rad, both with setDamping
+// `damping` (1: none), equilibria 0.3 m below and 0.8 rad off the start; no gravity.
+ScenePtr generic6DofSprings(WorldKind kind, const Config& config = Config(), double linStiffness = 200.0,
+                            double angStiffness = 5.0, double damping = 1.0);
+
 }  // namespace btgpu::scenes

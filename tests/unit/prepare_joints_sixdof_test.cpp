@@ -11,55 +11,6 @@
 using namespace btgpu;
 using namespace btgpu::jointtest;
 
-namespace {
-
-// Counts of the rows seen: one-sided (bounded on one side), bounded on both (motors, servos, springs).
-struct RowKinds {
-    int bounded = 0, motors = 0, firstRows0 = 0;
-};
-
-// Each joint converted by compat's jointRow, prepared on the device and by the reference, and
-// every row compared with Bullet's own getInfo2 row for the same bodies.
-RowKinds expectRowsAsBullet(BulletBodies& s, const RowMap& map,
-                            std::vector<std::unique_ptr<btGeneric6DofSpring2Constraint>>& c)
-{
-    RowKinds kinds;
-    ref::JointTables tables;
-    int nextRow = 0;
-    for (auto& k : c) {
-        BtgJoint j;
-        EXPECT_TRUE(jointRow(*k, map, 10, &j));
-        EXPECT_EQ(j.type, BTG_JOINT_SIXDOF2);
-        j.firstRow = nextRow;
-        nextRow += btgSixDofMaxRows(j.sixdof);
-        tables.joints.push_back(j);
-    }
-    tables.state.assign(c.size(), BtgJointState{});
-    tables.rows.assign(size_t(nextRow), BtgJointRow{});
-    const BtgJointStepParams p = jointParams(int(c.size()));
-    ref::JointTables expect = tables;
-    ref::prepareJoints(expect, s.rows, p);
-    DeviceJoints got = runPrepare(s.rows, tables, p);
-    for (size_t j = 0; j < c.size(); ++j) {
-        std::vector<BulletRow> br = bulletRows(*c[j], p.dt, p.erp);
-        EXPECT_EQ(got.state[j].numRows, int(br.size())) << "6dof " << j;
-        EXPECT_EQ(expect.state[j].numRows, int(br.size())) << "6dof " << j;
-        EXPECT_LE(int(br.size()), btgSixDofMaxRows(tables.joints[j].sixdof)) << "6dof " << j;
-        if (got.state[j].numRows != int(br.size())) continue;
-        if (j == 0) kinds.firstRows0 = int(br.size());
-        for (size_t k = 0; k < br.size(); ++k) {
-            const BtgJointRow &g = got.rows[tables.joints[j].firstRow + k], &e = expect.rows[tables.joints[j].firstRow + k];
-            expectRowAsBullet(g, e, br[k], "6dof " + std::to_string(j) + " row " + std::to_string(k));
-            // Unbounded sides arrive clamped to the breaking threshold (SIMD_INFINITY).
-            const bool bigLo = std::fabs(br[k].lower) > 1e30f, bigHi = std::fabs(br[k].upper) > 1e30f;
-            if (bigLo != bigHi) ++kinds.bounded;
-            if (!bigLo && !bigHi) ++kinds.motors;
-        }
-    }
-    return kinds;
-}
-
-}  // namespace
 
 TEST(PrepareJoints, SixDofSpring2RowsMatchBulletAndReference)
 {
@@ -113,7 +64,7 @@ TEST(PrepareJoints, SixDofSpring2RowsMatchBulletAndReference)
     BtgJoint last;
     ASSERT_TRUE(jointRow(*c.back(), map, 10, &last));
     EXPECT_EQ(last.bodyA, BTG_JOINT_FIXED_BODY);
-    const RowKinds kinds = expectRowsAsBullet(s, map, c);
+    const RowKinds kinds = expectRowsAsBullet(s, map, c, BTG_JOINT_SIXDOF2);
     EXPECT_EQ(kinds.firstRows0, 6);      // a fixed joint: three angular, three linear rows
     EXPECT_GE(kinds.bounded, 6 * 6);     // one-sided rows of ranged axes were built
     EXPECT_GE(kinds.motors, 6 * 2 + 1);  // the motor rows
@@ -205,7 +156,7 @@ TEST(PrepareJoints, SixDofSpringAndServoRowsMatchBulletAndReference)
     // btHinge2Constraint as constructed, stretched off its suspension's rest length.
     btVector3 anchor = b->getWorldTransform().getOrigin() + btVector3(0.0f, 0.1f, 0.05f), axis1(0, 1, 0), axis2(1, 0, 0);
     c.emplace_back(new btHinge2Constraint(*a, *b, anchor, axis1, axis2));
-    const RowKinds kinds = expectRowsAsBullet(s, map, c);
+    const RowKinds kinds = expectRowsAsBullet(s, map, c, BTG_JOINT_SIXDOF2);
     EXPECT_GE(kinds.motors, 12 * 8);  // springs, servos and the motor: bounded on both sides
 }
 
