@@ -108,7 +108,7 @@ bool served(const btTypedConstraint& c)
         return !(static_cast<const btHingeConstraint&>(c).*member(HingeObsolete()));
     if (typeid(c) == typeid(btConeTwistConstraint)) {
         const auto& k = static_cast<const btConeTwistConstraint&>(c);
-        return !(k.*member(ConeObsolete())) && !k.isMotorEnabled();
+        return !(k.*member(ConeObsolete()));
     }
     if (typeid(c) == typeid(btSliderConstraint))
         return !(static_cast<const btSliderConstraint&>(c).*member(SliderObsolete()));
@@ -213,9 +213,6 @@ std::string jointsStructureReason(const btDiscreteDynamicsWorld& world)
         if (&c->getRigidBodyB() != fixed && !inWorld.count(&c->getRigidBodyB()))
             return "joint " + std::to_string(i) + " links a body that is not in the world (its body B)";
         const std::type_info& t = typeid(*c);
-        if (t == typeid(btConeTwistConstraint) && static_cast<const btConeTwistConstraint*>(c)->isMotorEnabled())
-            return "joint " + std::to_string(i) + " (btConeTwistConstraint) has its motor on (enableMotor): not on the GPU "
-                                                  "path yet";
         if (isSixDof2(t)) continue;
         if (t == typeid(btPoint2PointConstraint) || t == typeid(btHingeConstraint) || t == typeid(btConeTwistConstraint) ||
             t == typeid(btSliderConstraint) || isGeneric6Dof(t)) {
@@ -246,10 +243,6 @@ std::string jointsStepReason(const btDiscreteDynamicsWorld& world)
     for (int i = 0; i < world.getNumConstraints(); ++i) {
         const btTypedConstraint* c = world.getConstraint(i);
         const std::type_info& t = typeid(*c);
-        if (t == typeid(btConeTwistConstraint) && static_cast<const btConeTwistConstraint*>(c)->isMotorEnabled()) {
-            return "joint " + std::to_string(i) + " (btConeTwistConstraint) has its motor on (enableMotor): not on the "
-                                                  "GPU path yet";
-        }
         // The obsolete solve switched on after the add (the structure check saw it off).
         if (isServedType(t) && !served(*c))
             return "joint " + std::to_string(i) + " (" + typeName(t) +
@@ -331,6 +324,14 @@ bool jointRow(const btTypedConstraint& c, const RowMap& rows, int numIterations,
         j.limitBias = k.getBiasFactor();
         j.limitRelaxation = k.getRelaxationFactor();
         j.fixThresh = k.getFixThresh();
+        if (k.isMotorEnabled()) {
+            // getInfo2 reads the target as set (setMotorTarget* clamp it) and m_maxMotorImpulse
+            // raw, normalized or not; only the obsolete solve scales it.
+            j.flags |= BTG_JOINT_MOTOR;
+            const btQuaternion& t = k.getMotorTarget();
+            j.motorTarget = btgMake4(t.x(), t.y(), t.z(), t.w());
+            j.motorMaxImpulse = k.getMaxMotorImpulse();
+        }
     } else if (typeid(c) == typeid(btSliderConstraint)) {
         auto& k = const_cast<btSliderConstraint&>(static_cast<const btSliderConstraint&>(c));
         j.type = BTG_JOINT_SLIDER;

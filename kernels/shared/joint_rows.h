@@ -36,7 +36,7 @@
 #define BTG_JOINT_OWN_STOP_CFM 32u  /* setParam(BT_CONSTRAINT_STOP_CFM): BT_HINGE_FLAGS_CFM_STOP */
 #define BTG_JOINT_ANGULAR_ONLY 64u  /* hinge: setAngularOnly */
 #define BTG_JOINT_FRAME_OFFSET 128u /* hinge: setUseFrameOffset (Bullet's default: on) */
-#define BTG_JOINT_MOTOR 256u        /* hinge: enableAngularMotor */
+#define BTG_JOINT_MOTOR 256u        /* hinge: enableAngularMotor; cone-twist: enableMotor */
 
 /* BtgSliderParams.options */
 #define BTG_SLIDER_LINEAR_REFERENCE_A 1u /* useLinearReferenceFrameA */
@@ -110,6 +110,7 @@ typedef struct {
     BtgFloat4 axesB[3];
     BtgFloat4 frameRotA;      /* the joint frame's rotation in A's frame (m_rbAFrame.getRotation()) */
     BtgFloat4 frameRotB;
+    BtgFloat4 motorTarget;    /* cone-twist: m_qTarget (the motor's target rotation in constraint space) */
     int type;                 /* BTG_JOINT_* */
     int bodyA;                /* body rows, or BTG_JOINT_FIXED_BODY */
     int bodyB;
@@ -129,7 +130,7 @@ typedef struct {
     float limitBias;          /* btAngularLimit's bias factor */
     float limitRelaxation;    /* btAngularLimit's relaxation factor (bounce) */
     float motorVelocity;      /* rad/s, the hinge motor's target velocity */
-    float motorMaxImpulse;    /* N m s */
+    float motorMaxImpulse;    /* N m s (cone-twist: m_maxMotorImpulse, negative: unbounded) */
     float referenceSign;      /* hinge: -1 with useReferenceFrameA as constructed, else 1 */
     float swingSpan1;         /* rad, cone-twist limits (setLimit) */
     float swingSpan2;
@@ -191,7 +192,7 @@ typedef struct {
 static_assert(sizeof(BtgSliderParams) == 96, "BtgSliderParams layout");
 static_assert(sizeof(BtgSixDofAxis) == 64, "BtgSixDofAxis layout");
 static_assert(sizeof(BtgSixDofParams) == 400, "BtgSixDofParams layout");
-static_assert(sizeof(BtgJoint) == 768, "BtgJoint layout");
+static_assert(sizeof(BtgJoint) == 784, "BtgJoint layout");
 static_assert(sizeof(BtgJointRow) == 112, "BtgJointRow layout");
 static_assert(sizeof(BtgJointState) == 16, "BtgJointState layout");
 static_assert(sizeof(BtgJointFeedback) == 64, "BtgJointFeedback layout");

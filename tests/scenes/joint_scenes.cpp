@@ -269,4 +269,33 @@ ScenePtr generic6DofSprings(WorldKind kind, const Config& config, double linStif
     return s;
 }
 
+btQuaternion coneMotorTarget()
+{
+    return btQuaternion(btVector3(0, 0, 1), 0.4f) * btQuaternion(btVector3(1, 0, 0), 0.3f);
+}
+
+ScenePtr coneTwistMotor(WorldKind kind, const Config& config, int variant)
+{
+    auto s = std::make_unique<Scene>(kind, config, "cone_twist_motor");
+    s->world().setGravity(btVector3(0, 0, 0));
+    btRigidBody* anchor = s->addBody(s->boxShape(btVector3(0.1f, 0.1f, 0.1f)), 0.0f, btVector3(0, 3, 0));
+    btRigidBody* cube = s->addBody(s->boxShape(btVector3(0.2f, 0.2f, 0.2f)), 2.0f, btVector3(0, 2.7f, 0));
+    cube->setActivationState(DISABLE_DEACTIVATION);
+    const btQuaternion down(btVector3(0, 0, 1), btScalar(-M_PI / 2));  // frame x along -y
+    auto* c = s->addJoint(new btConeTwistConstraint(*anchor, *cube, btTransform(down, btVector3(0, -0.1f, 0)),
+                                                    btTransform(down, btVector3(0, 0.2f, 0))),
+                          true);
+    c->setLimit(0.8f, 0.8f, 0.5f);
+    if (variant == 1) {
+        c->setMaxMotorImpulseNormalized(0.02f);
+        c->setAngularOnly(true);
+        c->setDamping(0.2f);
+    } else {
+        c->setMaxMotorImpulse(0.02f);
+    }
+    c->setMotorTargetInConstraintSpace(coneMotorTarget());
+    c->enableMotor(true);
+    return s;
+}
+
 }  // namespace btgpu::scenes

@@ -94,4 +94,14 @@ ScenePtr universalPendulum(WorldKind kind, const Config& config = Config());
 ScenePtr generic6DofSprings(WorldKind kind, const Config& config = Config(), double linStiffness = 200.0,
                             double angStiffness = 5.0, double damping = 1.0);
 
+// A btConeTwistConstraint with its motor on, without gravity: a cube (half extent 0.2; mass 2;
+// body 1) below a static anchor box at (0, 3, 0) (body 0), joined at its top face, the joint
+// frames' twist axis x pointing down, limits setLimit(0.8, 0.8, 0.5), driven to
+// coneMotorTarget() (in constraint space: a swing of 0.4 rad about z and a twist of 0.3 rad)
+// with setMaxMotorImpulse(0.02) N m s; `variant` 1 sets setMaxMotorImpulseNormalized(0.02),
+// setAngularOnly and setDamping(0.2) instead, which 3.24's getInfo2 does not read (only the
+// obsolete solve does).
+ScenePtr coneTwistMotor(WorldKind kind, const Config& config = Config(), int variant = 0);
+btQuaternion coneMotorTarget();
+
 }  // namespace btgpu::scenes
