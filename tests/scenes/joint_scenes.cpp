@@ -298,4 +298,50 @@ ScenePtr coneTwistMotor(WorldKind kind, const Config& config, int variant)
     return s;
 }
 
+ScenePtr bench3Ragdolls(WorldKind kind, const Config& config, int rows)
+{
+    auto s = std::make_unique<Scene>(kind, config, "bench3_ragdolls");
+    s->world().getSolverInfo().m_numIterations = 5;
+    s->addBody(s->boxShape(btVector3(250, 50, 250)), 0.0f, btVector3(0, -50, 0));
+    const float scale = 3.5f;
+    spec::RagdollPart parts[11];
+    spec::JointSpec joints[10];
+    spec::ragdollLayout(scale, parts, joints);
+    btCapsuleShape* shapes[11];
+    for (int i = 0; i < 11; ++i) shapes[i] = s->ownShape(new btCapsuleShape(parts[i].radius, parts[i].height));
+    auto frame = [](const float* f) {
+        return btTransform(btQuaternion(f[3], f[4], f[5], f[6]), btVector3(f[0], f[1], f[2]));
+    };
+    btVector3 pos(0, 1, 0);
+    for (int size = rows; size > 0; --size) {
+        const float offset = -float(size) * 6.0f * 0.5f;
+        for (int i = 0; i < size; ++i) {
+            pos[0] = offset + float(i) * 6.0f;
+            btRigidBody* body[11];
+            for (int k = 0; k < 11; ++k) {
+                const spec::RagdollPart& p = parts[k];
+                const btTransform xf(btQuaternion(btVector3(0, 0, 1), p.roll), pos + btVector3(p.x, p.y, 0));
+                body[k] = s->addBody(shapes[k], 1.0f, xf);
+                body[k]->setDamping(0.05f, 0.85f);
+                body[k]->setDeactivationTime(0.8f);
+                body[k]->setSleepingThresholds(1.6f, 2.5f);
+            }
+            for (const spec::JointSpec& j : joints) {
+                btRigidBody& a = *body[j.a];
+                btRigidBody& b = *body[j.b];
+                if (j.kind == spec::JointSpec::Kind::Hinge) {
+                    auto* h = s->addJoint(new btHingeConstraint(a, b, frame(j.frameA), frame(j.frameB)), true);
+                    h->setLimit(j.limit[0], j.limit[1]);
+                } else {
+                    auto* c = s->addJoint(new btConeTwistConstraint(a, b, frame(j.frameA), frame(j.frameB)), true);
+                    c->setLimit(j.limit[0], j.limit[1], j.limit[2]);
+                }
+            }
+        }
+        pos[1] += 7.0f;
+        pos[2] -= 2.0f;
+    }
+    return s;
+}
+
 }  // namespace btgpu::scenes

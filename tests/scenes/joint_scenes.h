@@ -104,4 +104,13 @@ ScenePtr generic6DofSprings(WorldKind kind, const Config& config = Config(), dou
 ScenePtr coneTwistMotor(WorldKind kind, const Config& config = Config(), int variant = 0);
 btQuaternion coneMotorTarget();
 
+// Bullet's BenchmarkDemo test 3 (createTest3): RagdollDemo ragdolls at scale 3.5 made of
+// capsules (scene_specs' ragdollLayout), in a pyramid of `rows` rows (16: 136 ragdolls, 1,496
+// bodies, 1,360 joints): row r (0-based) holds rows - r ragdolls 6 m apart along x, centred,
+// at y = 1 + 7 r and z = -2 r; each part mass 1, damping 0.05 / 0.85, deactivation time 0.8,
+// sleeping thresholds 1.6 / 2.5; a ground box of half extents 250, 50, 250 at y = -50 (body 0);
+// 5 solver iterations. The demo also sets SOLVER_ENABLE_FRICTION_DIRECTION_CACHING, which
+// btgpu does not serve: left off here (on both worlds).
+ScenePtr bench3Ragdolls(WorldKind kind, const Config& config = Config(), int rows = 16);
+
 }  // namespace btgpu::scenes
