@@ -153,7 +153,10 @@ static inline void btgSixDofSpringRow(BtgSixDofAxis x, BtgSixDofLimit l, BtgFloa
         const BtgFloat4 tA = btgCross3(s.a.angVel0, s.relA), tB = btgCross3(s.b.angVel0, s.relB);
         vel = btgDot3(s.a.linVel0 + tA, ax) - btgDot3(s.b.linVel0 + tB, ax);
     }
-    const float miA = s.a.rbInvMass, miB = s.b.rbInvMass;
+    /* m_rbA.getInvMass(), as the solver sees the body: a body asleep while its partner moves
+     * (woken a step late here, where Bullet wakes the island first) counts as static, rather
+     * than meeting a zero world inertia of the sleeping body (inf / inf). */
+    const float miA = s.a.body.invMass, miB = s.b.body.invMass;
     float mA = 1.0f / miA, mB = 1.0f / miB;
     if (rotational) {
         const float rrA = btgDot3(s.relA, s.relA), rrB = btgDot3(s.relB, s.relB);

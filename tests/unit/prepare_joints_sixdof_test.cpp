@@ -197,3 +197,42 @@ TEST(PrepareJoints, SixDofSpringsServosAndHinge2AreServed)
     Derived derived(*a, *b, btTransform::getIdentity(), btTransform::getIdentity());
     EXPECT_FALSE(jointRow(derived, map, 10, &j));
 }
+
+// A rotational spring whose partner is asleep while the other body moves (btgpu wakes it a step
+// later than Bullet, which wakes the island first): the sleeping body counts as static for the
+// spring's mass, never a zero inertia (inf / inf), and the rows stay finite.
+TEST(PrepareJoints, SixDofSpringBesideASleepingBodyStaysFinite)
+{
+    BulletBodies s;
+    btRigidBody* a = s.addBodyA();
+    btRigidBody* b = s.addBodyB();
+    btAlignedObjectArray<btCollisionObject*> objects;
+    objects.push_back(a);
+    objects.push_back(b);
+    RowMap map;
+    map.reset(objects);
+    btGeneric6DofSpring2Constraint k(*a, *b, frameInA(), frameInB());
+    for (int axis = 0; axis < 6; ++axis) {
+        k.setLimit(axis, 1.0f, -1.0f);
+        k.enableSpring(axis, true);
+        k.setStiffness(axis, 50.0f);
+        k.setDamping(axis, 1.0f);
+    }
+    ref::JointTables tables;
+    BtgJoint j;
+    ASSERT_TRUE(jointRow(k, map, 10, &j));
+    tables.joints.push_back(j);
+    tables.state.assign(1, BtgJointState{});
+    tables.rows.assign(size_t(btgSixDofMaxRows(j.sixdof)), BtgJointRow{});
+    s.rows.props[1].flags |= BTG_BODY_SLEEPING;
+    const BtgJointStepParams p = jointParams(1);
+    ref::JointTables expect = tables;
+    ref::prepareJoints(expect, s.rows, p);
+    DeviceJoints got = runPrepare(s.rows, tables, p);
+    ASSERT_EQ(got.state[0].numRows, 6);
+    for (int r = 0; r < 6; ++r) {
+        EXPECT_TRUE(std::isfinite(got.rows[size_t(r)].target)) << r;
+        EXPECT_TRUE(std::isfinite(got.rows[size_t(r)].lower) && std::isfinite(got.rows[size_t(r)].upper)) << r;
+        EXPECT_EQ(got.rows[size_t(r)].target, expect.rows[size_t(r)].target) << r;
+    }
+}
