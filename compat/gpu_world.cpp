@@ -425,6 +425,7 @@ StepSettings GpuWorld::settings(int substeps, btScalar dt) const
     j.erp = info.m_erp;
     j.globalCfm = info.m_globalCfm;
     j.damping = info.m_damping;
+    j.numIterations = info.m_numIterations;
     j.numJoints = m_dev->numJoints;
     return s;
 }

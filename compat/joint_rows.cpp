@@ -3,7 +3,7 @@
 #include "joint_rows.h"
 
 #include "parallel_rows.h"
-#include "shared/sixdof_rows.h"
+#include "shared/generic6dof_rows.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -70,41 +70,49 @@ BTGPU_PRIVATE_MEMBER(SliderCfmOrthoAng, btSliderConstraint, btScalar, m_cfmOrtho
 BTGPU_PRIVATE_MEMBER(SixDofFlags, btGeneric6DofSpring2Constraint, int, m_flags);
 #undef BTGPU_PRIVATE_MEMBER
 
+// btGeneric6DofConstraint by exact type, and the two Bullet classes that derive from it and add
+// nothing to its rows but their construction (btUniversalConstraint) or their springs
+// (btGeneric6DofSpringConstraint).
+bool isGeneric6Dof(const std::type_info& t)
+{
+    return t == typeid(btGeneric6DofConstraint) || t == typeid(btUniversalConstraint) ||
+           t == typeid(btGeneric6DofSpringConstraint);
+}
+
 bool isSixDof2(const std::type_info& t)
 {
     return t == typeid(btGeneric6DofSpring2Constraint) || t == typeid(btFixedConstraint) ||
            t == typeid(btHinge2Constraint);
 }
 
-// Why a 6-DoF spring2 joint is not served: springs and servos are not on the device yet.
-std::string sixDofReason(const btTypedConstraint& c)
+// A 6-DoF spring2 axis's motor, servo and spring switches as BtgSixDofAxis.mode.
+uint sixDofMode(bool motor, bool servo, bool spring, bool stiffLimited, bool dampLimited)
 {
-    auto& k = const_cast<btGeneric6DofSpring2Constraint&>(static_cast<const btGeneric6DofSpring2Constraint&>(c));
-    const btTranslationalLimitMotor2* lin = k.getTranslationalLimitMotor();
-    for (int i = 0; i < 6; ++i) {
-        const bool spring = i < 3 ? lin->m_enableSpring[i] : k.getRotationalLimitMotor(i - 3)->m_enableSpring;
-        const bool servo = i < 3 ? lin->m_enableMotor[i] && lin->m_servoMotor[i]
-                                 : k.getRotationalLimitMotor(i - 3)->m_enableMotor &&
-                                       k.getRotationalLimitMotor(i - 3)->m_servoMotor;
-        if (spring) return "has a spring on axis " + std::to_string(i) + " (enableSpring): not on the GPU path yet";
-        if (servo) return "has a servo on axis " + std::to_string(i) + " (setServo): not on the GPU path yet";
-    }
-    return "";
+    return (motor ? BTG_SIXDOF_MOTOR : 0u) | (servo ? BTG_SIXDOF_SERVO : 0u) | (spring ? BTG_SIXDOF_SPRING : 0u) |
+           (stiffLimited ? BTG_SIXDOF_STIFF_LIMITED : 0u) | (dampLimited ? BTG_SIXDOF_DAMP_LIMITED : 0u);
+}
+
+// The exact types the GPU path takes (whether this one's settings are served is served()).
+bool isServedType(const std::type_info& t)
+{
+    return t == typeid(btPoint2PointConstraint) || t == typeid(btHingeConstraint) || t == typeid(btConeTwistConstraint) ||
+           t == typeid(btSliderConstraint) || isGeneric6Dof(t) || isSixDof2(t);
 }
 
 bool served(const btTypedConstraint& c)
 {
-    if (isSixDof2(typeid(c))) return sixDofReason(c).empty();
+    if (isSixDof2(typeid(c))) return true;
     if (typeid(c) == typeid(btPoint2PointConstraint))
         return !static_cast<const btPoint2PointConstraint&>(c).m_useSolveConstraintObsolete;
     if (typeid(c) == typeid(btHingeConstraint))
         return !(static_cast<const btHingeConstraint&>(c).*member(HingeObsolete()));
     if (typeid(c) == typeid(btConeTwistConstraint)) {
         const auto& k = static_cast<const btConeTwistConstraint&>(c);
-        return !(k.*member(ConeObsolete())) && !k.isMotorEnabled();
+        return !(k.*member(ConeObsolete()));
     }
     if (typeid(c) == typeid(btSliderConstraint))
         return !(static_cast<const btSliderConstraint&>(c).*member(SliderObsolete()));
+    if (isGeneric6Dof(typeid(c))) return !static_cast<const btGeneric6DofConstraint&>(c).m_useSolveConstraintObsolete;
     return false;
 }
 
@@ -112,6 +120,81 @@ void setFrame(const btTransform& t, BtgFloat4* origin, BtgFloat4* axes)
 {
     *origin = vec4(t.getOrigin());
     for (int c = 0; c < 3; ++c) axes[c] = vec4(t.getBasis().getColumn(c));
+}
+
+// A btGeneric6DofConstraint (or btUniversalConstraint, btGeneric6DofSpringConstraint) as the
+// device row: BtgSixDofAxis per axis with the getInfo2 fields (m_normalCFM as motorCfm). A
+// spring axis's motor target and force are left 0: the device computes them each substep from
+// the pose, as internalUpdateSprings does in getInfo2 (Bullet writes them into the constraint).
+void generic6DofRow(btGeneric6DofConstraint& k, BtgJoint* out)
+{
+    BtgJoint& j = *out;
+    j.type = BTG_JOINT_SIXDOF;
+    setFrame(k.getFrameOffsetA(), &j.pivotA, j.axesA);
+    setFrame(k.getFrameOffsetB(), &j.pivotB, j.axesB);
+    const int flags = k.getFlags();
+    const btTranslationalLimitMotor* lin = k.getTranslationalLimitMotor();
+    const auto* spring = typeid(k) == typeid(btGeneric6DofSpringConstraint)
+                             ? static_cast<const btGeneric6DofSpringConstraint*>(&k)
+                             : nullptr;
+    for (int i = 0; i < 6; ++i) {
+        BtgSixDofAxis& x = j.sixdof.axis[i];
+        x.flags = uint(flags >> (i * BT_6DOF_FLAGS_AXIS_SHIFT)) & 7u;
+        bool motor;
+        if (i < 3) {
+            x.lo = lin->m_lowerLimit[i];
+            x.hi = lin->m_upperLimit[i];
+            x.stopErp = lin->m_stopERP[i];
+            x.stopCfm = lin->m_stopCFM[i];
+            x.motorCfm = lin->m_normalCFM[i];
+            x.targetVelocity = lin->m_targetVelocity[i];
+            x.maxMotorForce = lin->m_maxMotorForce[i];
+            motor = lin->m_enableMotor[i];
+        } else {
+            const btRotationalLimitMotor* r = k.getRotationalLimitMotor(i - 3);
+            x.lo = r->m_loLimit;
+            x.hi = r->m_hiLimit;
+            x.bounce = r->m_bounce;
+            // Without the flag these are overwritten from info->erp/cfm[0] every getInfo2:
+            // stored only when the flag makes them the app's own (so the table stays put).
+            x.stopErp = (x.flags & BTG_G6DOF_ERP_STOP) ? r->m_stopERP : 0.0f;
+            x.stopCfm = (x.flags & BTG_G6DOF_CFM_STOP) ? r->m_stopCFM : 0.0f;
+            x.motorCfm = (x.flags & BTG_G6DOF_CFM_NORM) ? r->m_normalCFM : 0.0f;
+            x.targetVelocity = r->m_targetVelocity;
+            x.maxMotorForce = r->m_maxMotorForce;
+            motor = r->m_enableMotor;
+        }
+        x.mode = motor ? BTG_SIXDOF_MOTOR : 0u;
+        if (spring && spring->isSpringEnabled(i)) {
+            x.mode |= BTG_SIXDOF_SPRING;
+            x.stiffness = spring->getStiffness(i);
+            x.damping = spring->getDamping(i);
+            x.equilibrium = spring->getEquilibriumPoint(i);
+            x.targetVelocity = 0.0f;
+            x.maxMotorForce = 0.0f;
+        }
+    }
+    j.sixdof.options = k.getUseFrameOffset() ? BTG_SIXDOF_FRAME_OFFSET : 0u;
+}
+
+// What stock's getInfo1/getInfo2 leave in a btGeneric6DofSpringConstraint each step: its
+// calculated frames (calculateTransforms) and, from internalUpdateSprings, the spring axes'
+// motor target velocity and force, here from the poses the call starts from (stock: its last
+// substep's). Only these members change, as on stock; the device computes its own per substep.
+struct SpringAccess : btGeneric6DofSpringConstraint {
+    using btGeneric6DofSpringConstraint::internalUpdateSprings;
+};
+void mirrorSprings(btTypedConstraint& c, const btContactSolverInfo& info)
+{
+    if (typeid(c) != typeid(btGeneric6DofSpringConstraint) || info.m_timeStep <= 0) return;
+    auto& k = static_cast<btGeneric6DofSpringConstraint&>(c);
+    k.calculateTransforms();
+    btTypedConstraint::btConstraintInfo2 info2;
+    info2.fps = btScalar(1) / info.m_timeStep;
+    info2.m_numIterations = info.m_numIterations;
+    void (btGeneric6DofSpringConstraint::*update)(btTypedConstraint::btConstraintInfo2*) =
+        &SpringAccess::internalUpdateSprings;
+    (k.*update)(&info2);
 }
 
 }  // namespace
@@ -130,16 +213,9 @@ std::string jointsStructureReason(const btDiscreteDynamicsWorld& world)
         if (&c->getRigidBodyB() != fixed && !inWorld.count(&c->getRigidBodyB()))
             return "joint " + std::to_string(i) + " links a body that is not in the world (its body B)";
         const std::type_info& t = typeid(*c);
-        if (t == typeid(btConeTwistConstraint) && static_cast<const btConeTwistConstraint*>(c)->isMotorEnabled())
-            return "joint " + std::to_string(i) + " (btConeTwistConstraint) has its motor on (enableMotor): not on the GPU "
-                                                  "path yet";
-        if (isSixDof2(t)) {
-            const std::string why = sixDofReason(*c);
-            if (!why.empty()) return "joint " + std::to_string(i) + " (" + typeName(t) + ") " + why;
-            continue;
-        }
+        if (isSixDof2(t)) continue;
         if (t == typeid(btPoint2PointConstraint) || t == typeid(btHingeConstraint) || t == typeid(btConeTwistConstraint) ||
-            t == typeid(btSliderConstraint)) {
+            t == typeid(btSliderConstraint) || isGeneric6Dof(t)) {
             if (!served(*c))
                 return "joint " + std::to_string(i) + " (" + typeName(t) +
                        ") uses Bullet's obsolete solve (m_useSolveConstraintObsolete)";
@@ -147,8 +223,8 @@ std::string jointsStructureReason(const btDiscreteDynamicsWorld& world)
         }
         return "joint " + std::to_string(i) + " of type " + typeName(t) +
                " is not on the GPU path (served, by exact type: btPoint2PointConstraint, btHingeConstraint, "
-               "btConeTwistConstraint, btSliderConstraint, btGeneric6DofSpring2Constraint, btFixedConstraint, "
-               "btHinge2Constraint)";
+               "btConeTwistConstraint, btSliderConstraint, btGeneric6DofConstraint, btUniversalConstraint, "
+               "btGeneric6DofSpringConstraint, btGeneric6DofSpring2Constraint, btFixedConstraint, btHinge2Constraint)";
     }
     return "";
 }
@@ -167,13 +243,10 @@ std::string jointsStepReason(const btDiscreteDynamicsWorld& world)
     for (int i = 0; i < world.getNumConstraints(); ++i) {
         const btTypedConstraint* c = world.getConstraint(i);
         const std::type_info& t = typeid(*c);
-        if (isSixDof2(t)) {
-            const std::string why = sixDofReason(*c);
-            if (!why.empty()) return "joint " + std::to_string(i) + " (" + typeName(t) + ") " + why;
-        } else if (t == typeid(btConeTwistConstraint) && static_cast<const btConeTwistConstraint*>(c)->isMotorEnabled()) {
-            return "joint " + std::to_string(i) + " (btConeTwistConstraint) has its motor on (enableMotor): not on the "
-                                                  "GPU path yet";
-        }
+        // The obsolete solve switched on after the add (the structure check saw it off).
+        if (isServedType(t) && !served(*c))
+            return "joint " + std::to_string(i) + " (" + typeName(t) +
+                   ") uses Bullet's obsolete solve (m_useSolveConstraintObsolete)";
     }
     return "";
 }
@@ -251,6 +324,14 @@ bool jointRow(const btTypedConstraint& c, const RowMap& rows, int numIterations,
         j.limitBias = k.getBiasFactor();
         j.limitRelaxation = k.getRelaxationFactor();
         j.fixThresh = k.getFixThresh();
+        if (k.isMotorEnabled()) {
+            // getInfo2 reads the target as set (setMotorTarget* clamp it) and m_maxMotorImpulse
+            // raw, normalized or not; only the obsolete solve scales it.
+            j.flags |= BTG_JOINT_MOTOR;
+            const btQuaternion& t = k.getMotorTarget();
+            j.motorTarget = btgMake4(t.x(), t.y(), t.z(), t.w());
+            j.motorMaxImpulse = k.getMaxMotorImpulse();
+        }
     } else if (typeid(c) == typeid(btSliderConstraint)) {
         auto& k = const_cast<btSliderConstraint&>(static_cast<const btSliderConstraint&>(c));
         j.type = BTG_JOINT_SLIDER;
@@ -282,6 +363,8 @@ bool jointRow(const btTypedConstraint& c, const RowMap& rows, int numIterations,
                      (k.getUseFrameOffset() ? BTG_SLIDER_FRAME_OFFSET : 0u) |
                      (k.getPoweredLinMotor() ? BTG_SLIDER_LIN_MOTOR : 0u) |
                      (k.getPoweredAngMotor() ? BTG_SLIDER_ANG_MOTOR : 0u);
+    } else if (isGeneric6Dof(typeid(c))) {
+        generic6DofRow(const_cast<btGeneric6DofConstraint&>(static_cast<const btGeneric6DofConstraint&>(c)), &j);
     } else if (isSixDof2(typeid(c))) {
         auto& k = const_cast<btGeneric6DofSpring2Constraint&>(static_cast<const btGeneric6DofSpring2Constraint&>(c));
         j.type = BTG_JOINT_SIXDOF2;
@@ -302,7 +385,12 @@ bool jointRow(const btTypedConstraint& c, const RowMap& rows, int numIterations,
                 x.motorCfm = lin->m_motorCFM[i];
                 x.targetVelocity = lin->m_targetVelocity[i];
                 x.maxMotorForce = lin->m_maxMotorForce[i];
-                x.motor = lin->m_enableMotor[i] ? 1u : 0u;
+                x.mode = sixDofMode(lin->m_enableMotor[i], lin->m_servoMotor[i], lin->m_enableSpring[i],
+                                    lin->m_springStiffnessLimited[i], lin->m_springDampingLimited[i]);
+                x.servoTarget = lin->m_servoTarget[i];
+                x.stiffness = lin->m_springStiffness[i];
+                x.damping = lin->m_springDamping[i];
+                x.equilibrium = lin->m_equilibriumPoint[i];
             } else {
                 const btRotationalLimitMotor2* r = k.getRotationalLimitMotor(i - 3);
                 x.lo = r->m_loLimit;
@@ -316,10 +404,16 @@ bool jointRow(const btTypedConstraint& c, const RowMap& rows, int numIterations,
                 x.motorCfm = (x.flags & 4u) ? r->m_motorCFM : 0.0f;
                 x.targetVelocity = r->m_targetVelocity;
                 x.maxMotorForce = r->m_maxMotorForce;
-                x.motor = r->m_enableMotor ? 1u : 0u;
+                x.mode = sixDofMode(r->m_enableMotor, r->m_servoMotor, r->m_enableSpring, r->m_springStiffnessLimited,
+                                    r->m_springDampingLimited);
+                x.servoTarget = r->m_servoTarget;
+                x.stiffness = r->m_springStiffness;
+                x.damping = r->m_springDamping;
+                x.equilibrium = r->m_equilibriumPoint;
             }
         }
         j.sixdof.rotateOrder = int(k.getRotationOrder());
+        j.sixdof.options = (flags & BT_6DOF_FLAGS_USE_INFINITE_ERROR) ? BTG_SIXDOF_INFINITE_ERROR : 0u;
     }
     *out = j;
     return true;
@@ -337,6 +431,7 @@ void JointSync::upload(btDiscreteDynamicsWorld& world, const RowMap& rows, Devic
             btTypedConstraint* c = world.getConstraint(int(i));
             m_constraints[i] = c;
             jointRow(*c, rows, numIterations, &table[i]);
+            mirrorSprings(*c, world.getSolverInfo());
         }
     });
     int nextRow = 0, iterations = 0;

@@ -19,7 +19,7 @@ namespace btgpu {
 // joint on a body that is not in the world. Checked when something is added or removed.
 std::string jointsStructureReason(const btDiscreteDynamicsWorld& world);
 // Per step: Bullet's shared fixed body moved or given mass by the app; a setting turned on
-// after the add that no row here builds (6-DoF spring2 springs and servos, the cone-twist motor).
+// after the add that no row here builds (the obsolete solve switched on).
 std::string jointsStepReason(const btDiscreteDynamicsWorld& world);
 
 class JointSync {

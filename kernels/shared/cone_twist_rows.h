@@ -1,7 +1,9 @@
 /* cone_twist_rows.h — btConeTwistConstraint's rows as its getInfo1/getInfo2 build them (Bullet
- * 3.24, motor off): calcAngleInfo2's split of the relative rotation into cone and twist
+ * 3.24): calcAngleInfo2's split of the relative rotation into cone and twist
  * (computeConeLimitInfo, the ellipse normal, computeTwistLimitInfo, or the locked swing of
- * spans below the fix threshold), then three point rows and the swing and twist limit rows.
+ * spans below the fix threshold), or with the motor on the rotation from the motor target as
+ * the one swing row (bounded by m_maxMotorImpulse), then three point rows and the swing and
+ * twist limit rows. m_angularOnly and m_damping are read only by the obsolete solve.
  * Quaternions follow btQuaternion's formulas, and a body's rotation is taken from its basis as
  * btMatrix3x3::getRotation does (Bullet reads transA.getRotation()). */
 #ifndef BTG_CONE_TWIST_ROWS_H
@@ -87,6 +89,40 @@ typedef struct {
     int solveTwist;
 } BtgConeAngles;
 
+/* calcAngleInfo2 with the motor on: the rotation still to go to the target, trB * target *
+ * trA^-1, as the swing row's axis and correction (no twist row). */
+static inline BtgConeAngles btgConeTwistMotorAngles(BtgJoint j, BtgJointBody a, BtgJointBody b, BtgConeAngles r)
+{
+    BtgFloat4 colA[3], colB[3], pcol[3];
+    for (int c = 0; c < 3; ++c) {
+        colA[c] = btgFrameAxis(a, j.axesA[c]);
+        colB[c] = btgFrameAxis(b, j.axesB[c]);
+    }
+    /* btMatrix3x3::setRotation of the target */
+    const BtgFloat4 q = j.motorTarget;
+    const float d = q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w, s = 2.0f / d;
+    const float xs = q.x * s, ys = q.y * s, zs = q.z * s;
+    const float wx = q.w * xs, wy = q.w * ys, wz = q.w * zs;
+    const float xx = q.x * xs, xy = q.x * ys, xz = q.x * zs;
+    const float yy = q.y * ys, yz = q.y * zs, zz = q.z * zs;
+    const float t[3][3] = {{1.0f - (yy + zz), xy - wz, xz + wy},
+                           {xy + wz, 1.0f - (xx + zz), yz - wx},
+                           {xz - wy, yz + wx, 1.0f - (xx + yy)}};
+    /* (trB basis * target) columns, then times trA's basis transposed */
+    for (int c = 0; c < 3; ++c) pcol[c] = colB[0] * t[0][c] + colB[1] * t[1][c] + colB[2] * t[2][c];
+    BtgMat3 m;
+    m.r0 = colA[0] * pcol[0].x + colA[1] * pcol[1].x + colA[2] * pcol[2].x;
+    m.r1 = colA[0] * pcol[0].y + colA[1] * pcol[1].y + colA[2] * pcol[2].y;
+    m.r2 = colA[0] * pcol[0].z + colA[1] * pcol[1].z + colA[2] * pcol[2].z;
+    const BtgFloat4 qd = btgMat3ToQuat(m);
+    const BtgFloat4 axis = btgMake4(qd.x, qd.y, qd.z, 0.0f);
+    if (btgFuzzyZero(btgDot3(axis, axis))) return r;
+    r.swingAxis = btgNormalizeBt3(axis);
+    r.swingCorrection = btgQuatAngle(qd);
+    if (!btgFuzzyZero(r.swingCorrection)) r.solveSwing = 1;
+    return r;
+}
+
 static inline BtgConeAngles btgConeTwistAngles(BtgJoint j, BtgJointBody a, BtgJointBody b)
 {
     BtgConeAngles r;
@@ -96,6 +132,7 @@ static inline BtgConeAngles btgConeTwistAngles(BtgJoint j, BtgJointBody a, BtgJo
     r.twistCorrection = 0.0f;
     r.solveSwing = 0;
     r.solveTwist = 0;
+    if (j.flags & BTG_JOINT_MOTOR) return btgConeTwistMotorAngles(j, a, b, r);
     BtgFloat4 qA = btgQuatMul(btgMat3ToQuat(a.basis), j.frameRotA);
     BtgFloat4 qB = btgQuatMul(btgMat3ToQuat(b.basis), j.frameRotB);
     BtgFloat4 qAB = btgQuatMul(btgQuatConj(qB), qA);
@@ -237,7 +274,7 @@ static inline int btgConeTwistInfoRows(BtgJoint j, BtgJointBody a, BtgJointBody 
             rows[n].error = fps * j.limitBias * ang.swingCorrection;
             if (j.flags & BTG_JOINT_OWN_STOP_CFM) rows[n].cfm = j.stopCfm;
             rows[n].lower = 0.0f;
-            rows[n].upper = INFINITY;
+            rows[n].upper = ((j.flags & BTG_JOINT_MOTOR) && j.motorMaxImpulse >= 0.0f) ? j.motorMaxImpulse : INFINITY;
             n += 1;
         }
     }

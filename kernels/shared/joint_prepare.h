@@ -1,6 +1,6 @@
 /* joint_prepare.h — convertJoints for one joint of any served type: which rows it builds this
  * substep and each row finished for the solver (joint_rows.h, hinge_rows.h,
- * cone_twist_rows.h, slider_rows.h, sixdof_rows.h). */
+ * cone_twist_rows.h, slider_rows.h, sixdof_rows.h, generic6dof_rows.h). */
 #ifndef BTG_JOINT_PREPARE_H
 #define BTG_JOINT_PREPARE_H
 #include "joint_rows.h"
@@ -8,6 +8,7 @@
 #include "cone_twist_rows.h"
 #include "slider_rows.h"
 #include "sixdof_rows.h"
+#include "generic6dof_rows.h"
 
 /* Its applied impulse reset when its island is solved, and its rows (getInfo1's count,
  * getInfo2's rows finished by convertJoint) when it is active. */
@@ -35,6 +36,12 @@ static inline void btgPrepareJoint(BtgJoint j, BtgJointState* s, BTG_GLOBAL BtgJ
         BtgJointInfoRow info[BTG_JOINT_MAX_ROWS];
         const int n = j.type == BTG_JOINT_SLIDER ? btgSliderInfoRows(j, a, b, fps, p.erp, p.globalCfm, info)
                                                  : btgConeTwistInfoRows(j, a, b, fps, p.erp, p.globalCfm, info);
+        for (int k = 0; k < n; ++k)
+            rows[j.firstRow + k] = btgFinishJointRow(info[k], a, b, p.damping, j.breakingThreshold);
+        s->numRows = n;
+    } else if (j.type == BTG_JOINT_SIXDOF) {
+        BtgJointInfoRow info[BTG_JOINT_SIXDOF_ROWS];
+        const int n = btgG6DofInfoRows(j, a, b, fps, p.erp, p.globalCfm, p.numIterations, info);
         for (int k = 0; k < n; ++k)
             rows[j.firstRow + k] = btgFinishJointRow(info[k], a, b, p.damping, j.breakingThreshold);
         s->numRows = n;

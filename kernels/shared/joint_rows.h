@@ -17,13 +17,15 @@
 #define BTG_JOINT_CONE_TWIST 3
 #define BTG_JOINT_SLIDER 4
 #define BTG_JOINT_SIXDOF2 5 /* btGeneric6DofSpring2Constraint, btFixedConstraint, btHinge2Constraint */
+#define BTG_JOINT_SIXDOF 6  /* btGeneric6DofConstraint, btUniversalConstraint, btGeneric6DofSpringConstraint */
 /* Rows one joint of each type may build (getInfo1's maximum): its slots in the row table. */
 #define BTG_JOINT_P2P_ROWS 3
 #define BTG_JOINT_HINGE_ROWS 6
 #define BTG_JOINT_CONE_TWIST_ROWS 6
 #define BTG_JOINT_SLIDER_ROWS 6
 #define BTG_JOINT_MAX_ROWS 6
-#define BTG_JOINT_SIXDOF2_ROWS 18 /* per axis: two limit rows and a motor row */
+#define BTG_JOINT_SIXDOF2_ROWS 24 /* per axis: two limit rows, a motor (or servo) row, a spring row */
+#define BTG_JOINT_SIXDOF_ROWS 6   /* one row per axis (limit and motor share it) */
 
 /* BtgJoint.flags */
 #define BTG_JOINT_ENABLED 1u   /* btTypedConstraint::isEnabled() as the app left it */
@@ -34,7 +36,7 @@
 #define BTG_JOINT_OWN_STOP_CFM 32u  /* setParam(BT_CONSTRAINT_STOP_CFM): BT_HINGE_FLAGS_CFM_STOP */
 #define BTG_JOINT_ANGULAR_ONLY 64u  /* hinge: setAngularOnly */
 #define BTG_JOINT_FRAME_OFFSET 128u /* hinge: setUseFrameOffset (Bullet's default: on) */
-#define BTG_JOINT_MOTOR 256u        /* hinge: enableAngularMotor */
+#define BTG_JOINT_MOTOR 256u        /* hinge: enableAngularMotor; cone-twist: enableMotor */
 
 /* BtgSliderParams.options */
 #define BTG_SLIDER_LINEAR_REFERENCE_A 1u /* useLinearReferenceFrameA */
@@ -58,7 +60,10 @@ typedef struct {
 } BtgSliderParams;
 
 /* One axis of a btGeneric6DofSpring2Constraint (0..2 linear along frame A's axes, 3..5
- * angular), as btTranslationalLimitMotor2 / btRotationalLimitMotor2 hold it. */
+ * angular), as btTranslationalLimitMotor2 / btRotationalLimitMotor2 hold it; also one of a
+ * btGeneric6DofConstraint (btTranslationalLimitMotor / btRotationalLimitMotor: motorCfm is its
+ * m_normalCFM, flags its 3 bits of BT_6DOF_FLAGS_*, servoTarget unused; a
+ * btGeneric6DofSpringConstraint's springs in mode, stiffness, damping, equilibrium). */
 typedef struct {
     float lo, hi;            /* m or rad; lo > hi: free, lo == hi: locked */
     float bounce;            /* m_bounce */
@@ -67,14 +72,29 @@ typedef struct {
     float targetVelocity;    /* m/s or rad/s */
     float maxMotorForce;     /* N or N m */
     uint flags;              /* the axis's 4 bits of m_flags (BT_6DOF_FLAGS_*2) */
-    uint motor;              /* 1: m_enableMotor (servo and spring are not served) */
+    uint mode;               /* BTG_SIXDOF_* bits: motor, servo, spring and its limiting */
+    float servoTarget;       /* m or rad (setServoTarget, already wrapped by Bullet) */
+    float stiffness;         /* N/m or N m/rad (setStiffness) */
+    float damping;           /* N s/m or N m s/rad (setDamping) */
+    float equilibrium;       /* m or rad (setEquilibriumPoint) */
     float pad0;
 } BtgSixDofAxis;
+
+/* BtgSixDofAxis.mode */
+#define BTG_SIXDOF_MOTOR 1u           /* m_enableMotor */
+#define BTG_SIXDOF_SERVO 2u           /* m_servoMotor (a servo only with the motor on) */
+#define BTG_SIXDOF_SPRING 4u          /* m_enableSpring */
+#define BTG_SIXDOF_STIFF_LIMITED 8u   /* m_springStiffnessLimited (setStiffness's limitIfNeeded) */
+#define BTG_SIXDOF_DAMP_LIMITED 16u   /* m_springDampingLimited (setDamping's limitIfNeeded) */
+
+/* BtgSixDofParams.options */
+#define BTG_SIXDOF_INFINITE_ERROR 1u  /* m_flags has BT_6DOF_FLAGS_USE_INFINITE_ERROR */
 
 typedef struct {
     BtgSixDofAxis axis[6];
     int rotateOrder;         /* RotateOrder: RO_XYZ 0 .. RO_ZYX 5 */
-    int pad0, pad1, pad2;
+    uint options;            /* BTG_SIXDOF_INFINITE_ERROR */
+    int pad1, pad2;
 } BtgSixDofParams;
 
 /* A body of a joint without a row: Bullet's shared fixed body (btTypedConstraint::getFixedBody),
@@ -90,6 +110,7 @@ typedef struct {
     BtgFloat4 axesB[3];
     BtgFloat4 frameRotA;      /* the joint frame's rotation in A's frame (m_rbAFrame.getRotation()) */
     BtgFloat4 frameRotB;
+    BtgFloat4 motorTarget;    /* cone-twist: m_qTarget (the motor's target rotation in constraint space) */
     int type;                 /* BTG_JOINT_* */
     int bodyA;                /* body rows, or BTG_JOINT_FIXED_BODY */
     int bodyB;
@@ -109,7 +130,7 @@ typedef struct {
     float limitBias;          /* btAngularLimit's bias factor */
     float limitRelaxation;    /* btAngularLimit's relaxation factor (bounce) */
     float motorVelocity;      /* rad/s, the hinge motor's target velocity */
-    float motorMaxImpulse;    /* N m s */
+    float motorMaxImpulse;    /* N m s (cone-twist: m_maxMotorImpulse, negative: unbounded) */
     float referenceSign;      /* hinge: -1 with useReferenceFrameA as constructed, else 1 */
     float swingSpan1;         /* rad, cone-twist limits (setLimit) */
     float swingSpan2;
@@ -163,15 +184,15 @@ typedef struct {
     float damping;   /* m_damping: getInfo2's info->m_damping (joints that do not set their own) */
     int numJoints;
     int firstContactSlot; /* unused by the joints: keeps the struct 16-byte sized */
-    int pad0;
+    int numIterations;    /* m_numIterations: getInfo2's info->m_numIterations (6-DoF springs) */
     int pad1;
 } BtgJointStepParams;
 
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(BtgSliderParams) == 96, "BtgSliderParams layout");
-static_assert(sizeof(BtgSixDofAxis) == 48, "BtgSixDofAxis layout");
-static_assert(sizeof(BtgSixDofParams) == 304, "BtgSixDofParams layout");
-static_assert(sizeof(BtgJoint) == 672, "BtgJoint layout");
+static_assert(sizeof(BtgSixDofAxis) == 64, "BtgSixDofAxis layout");
+static_assert(sizeof(BtgSixDofParams) == 400, "BtgSixDofParams layout");
+static_assert(sizeof(BtgJoint) == 784, "BtgJoint layout");
 static_assert(sizeof(BtgJointRow) == 112, "BtgJointRow layout");
 static_assert(sizeof(BtgJointState) == 16, "BtgJointState layout");
 static_assert(sizeof(BtgJointFeedback) == 64, "BtgJointFeedback layout");
@@ -185,6 +206,7 @@ static inline int btgJointMaxRows(int type)
     if (type == BTG_JOINT_CONE_TWIST) return BTG_JOINT_CONE_TWIST_ROWS;
     if (type == BTG_JOINT_SLIDER) return BTG_JOINT_SLIDER_ROWS;
     if (type == BTG_JOINT_SIXDOF2) return BTG_JOINT_SIXDOF2_ROWS;
+    if (type == BTG_JOINT_SIXDOF) return BTG_JOINT_SIXDOF_ROWS;
     return 0;
 }
 

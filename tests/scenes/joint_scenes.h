@@ -52,4 +52,65 @@ ScenePtr fixedBoxes(WorldKind kind, const Config& config = Config());
 // motors move body B (the box) at -target against body A (the fixed body).
 ScenePtr sixDofMotors(WorldKind kind, const Config& config = Config(), double spin = 2.0, int order = 0);
 
+// btGeneric6DofSpring2Constraint springs from Bullet's fixed body, every other axis locked:
+// body 0 a box (half extents 0.3, 0.1, 0.2; mass 2) at (0, 2, 0) on a linear y spring of
+// `linStiffness` N/m (damping 0.2 N s/m, equilibrium 0.3 m below its start: it falls into the
+// spring and bounces under gravity); body 1 the same box at (2, 2, 0) on an angular z spring
+// of `angStiffness` N m/rad (damping 0.005, equilibrium 0.8 rad: it starts 0.8 rad off), its
+// moment about z 1/15 kg m^2. `limited`: setStiffness/setDamping's limitIfNeeded.
+ScenePtr sixDofSprings(WorldKind kind, const Config& config = Config(), double linStiffness = 200.0,
+                       double angStiffness = 5.0, bool limited = true);
+
+// btGeneric6DofSpring2Constraint servos from Bullet's fixed body (box of sixDofMotors, at
+// (0, 2, 0)): linear x ranged [-0.5, 0.5] to servo target 0.2 m at 0.5 m/s (max 40 N), angular
+// z free to servo target `angle` rad at 2 rad/s (max 3 N m), the rest locked.
+ScenePtr sixDofServos(WorldKind kind, const Config& config = Config(), double angle = 1.0);
+
+// btHinge2Constraint suspensions as constructed (spring on its linear z, 4 pi^2 N/m; limits,
+// steering range) with a damper of 1 N s/m (setDamping(2, 1)): a chassis box (half extents 1,
+// 0.1, 0.5; mass 4; body 1) 0.6 m above four sphere wheels (radius 0.25, mass 0.5; bodies
+// 2..5) resting on a ground box (body 0) at (+-0.8, 0.25, +-0.5), each joined at its centre
+// (axis 1 up, axis 2 the axle along z); the chassis sinks onto its springs and settles (about
+// 0.25 m lower) without reaching the ground.
+ScenePtr hinge2Wheels(WorldKind kind, const Config& config = Config());
+
+// btGeneric6DofConstraint (the old one) from Bullet's fixed body to the box of sixDofMotors
+// (body 0, at (0, 2, 0)): linear x limited to [-0.3, 0.3] and driven by its motor at 0.5 m/s
+// (max 40 N), linear y and z locked, angular x and y locked, angular z free and driven at `spin`
+// rad/s (max 3 N m); `frameOffset`: setUseFrameOffset (Bullet's default on).
+ScenePtr generic6DofMotors(WorldKind kind, const Config& config = Config(), double spin = 2.0,
+                           bool frameOffset = true);
+
+// A btUniversalConstraint pendulum: a box (half extents 0.1, 0.4, 0.1; mass 1; body 1) hanging
+// from a static anchor box at (0, 3, 0) (body 0) by a universal joint at (0, 2.9, 0) with axis 1
+// along x and axis 2 along z, released turned 0.5 rad about x and 0.3 about z and spinning
+// about y (which the joint locks): it swings about both axes.
+ScenePtr universalPendulum(WorldKind kind, const Config& config = Config());
+
+// btGeneric6DofSpringConstraint springs from Bullet's fixed body, every other axis locked: body
+// 0 a box (sixDofSprings' box) at (0, 2, 0) on a linear y spring of `linStiffness` N/m, body 1
+// at (2, 2, 0) on an angular z spring of `angStiffness` N m/rad, both with setDamping
+// `damping` (1: none), equilibria 0.3 m below and 0.8 rad off the start; no gravity.
+ScenePtr generic6DofSprings(WorldKind kind, const Config& config = Config(), double linStiffness = 200.0,
+                            double angStiffness = 5.0, double damping = 1.0);
+
+// A btConeTwistConstraint with its motor on, without gravity: a cube (half extent 0.2; mass 2;
+// body 1) below a static anchor box at (0, 3, 0) (body 0), joined at its top face, the joint
+// frames' twist axis x pointing down, limits setLimit(0.8, 0.8, 0.5), driven to
+// coneMotorTarget() (in constraint space: a swing of 0.4 rad about z and a twist of 0.3 rad)
+// with setMaxMotorImpulse(0.02) N m s; `variant` 1 sets setMaxMotorImpulseNormalized(0.02),
+// setAngularOnly and setDamping(0.2) instead, which 3.24's getInfo2 does not read (only the
+// obsolete solve does).
+ScenePtr coneTwistMotor(WorldKind kind, const Config& config = Config(), int variant = 0);
+btQuaternion coneMotorTarget();
+
+// Bullet's BenchmarkDemo test 3 (createTest3): RagdollDemo ragdolls at scale 3.5 made of
+// capsules (scene_specs' ragdollLayout), in a pyramid of `rows` rows (16: 136 ragdolls, 1,496
+// bodies, 1,360 joints): row r (0-based) holds rows - r ragdolls 6 m apart along x, centred,
+// at y = 1 + 7 r and z = -2 r; each part mass 1, damping 0.05 / 0.85, deactivation time 0.8,
+// sleeping thresholds 1.6 / 2.5; a ground box of half extents 250, 50, 250 at y = -50 (body 0);
+// 5 solver iterations. The demo also sets SOLVER_ENABLE_FRICTION_DIRECTION_CACHING, which
+// btgpu does not serve: left off here (on both worlds).
+ScenePtr bench3Ragdolls(WorldKind kind, const Config& config = Config(), int rows = 16);
+
 }  // namespace btgpu::scenes

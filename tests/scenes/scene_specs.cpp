@@ -182,28 +182,53 @@ JointSpec joint(JointSpec::Kind kind, int a, int b, float yA, float zA, float ax
 
 }  // namespace
 
-Scene makeRagdolls(int count)
+void ragdollLayout(float scale, RagdollPart parts[11], JointSpec joints[10])
 {
     const float pi = 3.14159265358979f, half = pi / 2, quarter = pi / 4;
+    // Capsule (radius, height) of each part, its centre and its roll about z, as RagdollDemo.
+    const RagdollPart unit[11] = {{0.15f, 0.20f, 0, 1.0f, 0},           {0.15f, 0.28f, 0, 1.2f, 0},
+                                  {0.10f, 0.05f, 0, 1.6f, 0},           {0.07f, 0.45f, -0.18f, 0.65f, 0},
+                                  {0.05f, 0.37f, -0.18f, 0.2f, 0},      {0.07f, 0.45f, 0.18f, 0.65f, 0},
+                                  {0.05f, 0.37f, 0.18f, 0.2f, 0},       {0.05f, 0.33f, -0.35f, 1.45f, half},
+                                  {0.04f, 0.25f, -0.7f, 1.45f, half},   {0.05f, 0.33f, 0.35f, 1.45f, -half},
+                                  {0.04f, 0.25f, 0.7f, 1.45f, -half}};
+    for (int i = 0; i < 11; ++i) {
+        parts[i] = unit[i];
+        parts[i].radius *= scale;
+        parts[i].height *= scale;
+        parts[i].x *= scale;
+        parts[i].y *= scale;
+    }
+    using K = JointSpec::Kind;
+    const float k = scale;
+    // Pelvis 0, spine 1, head 2, left upper/lower leg 3/4, right 5/6, left upper/lower arm
+    // 7/8, right 9/10: RagdollDemo's frames and limits.
+    joints[0] = joint(K::Hinge, 0, 1, half, 0, 0, 0.15f * k, half, 0, 0, -0.15f * k, -quarter, half);
+    joints[1] = joint(K::ConeTwist, 1, 2, 0, half, 0, 0.30f * k, 0, half, 0, -0.14f * k, quarter, quarter, half);
+    joints[2] = joint(K::ConeTwist, 0, 3, 0, -quarter * 5, -0.18f * k, -0.10f * k, 0, -quarter * 5, 0, 0.225f * k, quarter,
+                      quarter, 0);
+    joints[3] = joint(K::Hinge, 3, 4, half, 0, 0, -0.225f * k, half, 0, 0, 0.185f * k, 0, half);
+    joints[4] = joint(K::ConeTwist, 0, 5, 0, quarter, 0.18f * k, -0.10f * k, 0, quarter, 0, 0.225f * k, quarter, quarter, 0);
+    joints[5] = joint(K::Hinge, 5, 6, half, 0, 0, -0.225f * k, half, 0, 0, 0.185f * k, 0, half);
+    joints[6] = joint(K::ConeTwist, 1, 7, 0, pi, -0.2f * k, 0.15f * k, 0, half, 0, -0.18f * k, half, half, 0);
+    joints[7] = joint(K::Hinge, 7, 8, half, 0, 0, 0.18f * k, half, 0, 0, -0.14f * k, 0, half);
+    joints[8] = joint(K::ConeTwist, 1, 9, 0, 0, 0.2f * k, 0.15f * k, 0, half, 0, -0.18f * k, half, half, 0);
+    joints[9] = joint(K::Hinge, 9, 10, half, 0, 0, 0.18f * k, half, 0, 0, -0.14f * k, 0, half);
+}
+
+Scene makeRagdolls(int count)
+{
     Scene s;
     s.name = "ragdolls " + std::to_string(count);
     s.bodies.push_back(ground());
     const int side = int(std::ceil(std::sqrt(double(count))));
-    // Capsule (radius, height) of each part, its centre and its roll about z, as RagdollDemo.
-    struct Part {
-        float radius, height, x, y, roll;
-    };
-    const Part parts[11] = {{0.15f, 0.20f, 0, 1.0f, 0},           {0.15f, 0.28f, 0, 1.2f, 0},
-                            {0.10f, 0.05f, 0, 1.6f, 0},           {0.07f, 0.45f, -0.18f, 0.65f, 0},
-                            {0.05f, 0.37f, -0.18f, 0.2f, 0},      {0.07f, 0.45f, 0.18f, 0.65f, 0},
-                            {0.05f, 0.37f, 0.18f, 0.2f, 0},       {0.05f, 0.33f, -0.35f, 1.45f, half},
-                            {0.04f, 0.25f, -0.7f, 1.45f, half},   {0.05f, 0.33f, 0.35f, 1.45f, -half},
-                            {0.04f, 0.25f, 0.7f, 1.45f, -half}};
-    using K = JointSpec::Kind;
+    RagdollPart parts[11];
+    JointSpec joints[10];
+    ragdollLayout(1.0f, parts, joints);
     for (int r = 0; r < count; ++r) {
         const int base = int(s.bodies.size());
         const float ox = 2.0f * float(r % side - side / 2), oz = 2.0f * float(r / side - side / 2);
-        for (const Part& p : parts) {
+        for (const RagdollPart& p : parts) {
             BodySpec b;
             b.shape = ShapeKind::Capsule;
             b.radius = p.radius;
@@ -219,20 +244,11 @@ Scene makeRagdolls(int count)
             b.angularDamping = 0.85f;
             s.bodies.push_back(b);
         }
-        // Pelvis 0, spine 1, head 2, left upper/lower leg 3/4, right 5/6, left upper/lower arm
-        // 7/8, right 9/10: RagdollDemo's frames and limits.
-        s.joints.push_back(joint(K::Hinge, base + 0, base + 1, half, 0, 0, 0.15f, half, 0, 0, -0.15f, -quarter, half));
-        s.joints.push_back(joint(K::ConeTwist, base + 1, base + 2, 0, half, 0, 0.30f, 0, half, 0, -0.14f, quarter, quarter, half));
-        s.joints.push_back(
-            joint(K::ConeTwist, base + 0, base + 3, 0, -quarter * 5, -0.18f, -0.10f, 0, -quarter * 5, 0, 0.225f, quarter, quarter, 0));
-        s.joints.push_back(joint(K::Hinge, base + 3, base + 4, half, 0, 0, -0.225f, half, 0, 0, 0.185f, 0, half));
-        s.joints.push_back(
-            joint(K::ConeTwist, base + 0, base + 5, 0, quarter, 0.18f, -0.10f, 0, quarter, 0, 0.225f, quarter, quarter, 0));
-        s.joints.push_back(joint(K::Hinge, base + 5, base + 6, half, 0, 0, -0.225f, half, 0, 0, 0.185f, 0, half));
-        s.joints.push_back(joint(K::ConeTwist, base + 1, base + 7, 0, pi, -0.2f, 0.15f, 0, half, 0, -0.18f, half, half, 0));
-        s.joints.push_back(joint(K::Hinge, base + 7, base + 8, half, 0, 0, 0.18f, half, 0, 0, -0.14f, 0, half));
-        s.joints.push_back(joint(K::ConeTwist, base + 1, base + 9, 0, 0, 0.2f, 0.15f, 0, half, 0, -0.18f, half, half, 0));
-        s.joints.push_back(joint(K::Hinge, base + 9, base + 10, half, 0, 0, 0.18f, half, 0, 0, -0.14f, 0, half));
+        for (JointSpec j : joints) {
+            j.a += base;
+            j.b += base;
+            s.joints.push_back(j);
+        }
     }
     return s;
 }

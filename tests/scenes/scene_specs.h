@@ -71,6 +71,13 @@ Scene makeVoronoi(int cells = 90);
 // Bench 5 on a rolling landscape mesh of quads x quads cells 200 m across (2 quads^2 triangles,
 // the heights of landscapeHeight in mesh_scenes.h): `count` boxes and spheres dropped over it.
 Scene makeLandscape(int count, int quads);
+// One RagdollDemo ragdoll at `scale` (BenchmarkDemo's bench 3 uses 3.5): each part's capsule
+// (radius, height: the cylinder's length), its centre in the ragdoll's frame and its roll about
+// z; its 10 joints between parts 0..10 (frames in the parts' frames, limits).
+struct RagdollPart {
+    float radius, height, x, y, roll;
+};
+void ragdollLayout(float scale, RagdollPart parts[11], JointSpec joints[10]);
 // `count` ragdolls (Bullet's RagdollDemo: 11 capsules, 5 hinges and 5 cone-twists) on a square
 // grid 2 m apart over a ground box, pelvis 1 m up: they fall and sprawl.
 Scene makeRagdolls(int count);

@@ -2,6 +2,8 @@
 // Bullet's own getInfo1/getInfo2 rows finished as convertJoint does, the stage run on the
 // device, and the stage tolerances (tests/tolerances.h) as comparisons.
 #pragma once
+#include "../../compat/joint_rows.h"
+#include "../../compat/row_map.h"
 #include "contact_fixture.h"
 #include "reference/joint_reference.h"
 #include "stages/prepare_joints.h"
@@ -135,6 +137,7 @@ inline BtgJointStepParams jointParams(int n)
     p.globalCfm = 0.0f;
     p.damping = 1.0f;
     p.numJoints = n;
+    p.numIterations = 10;  // bulletRows' info2.m_numIterations
     return p;
 }
 
@@ -191,6 +194,10 @@ inline std::vector<BulletRow> bulletRows(btTypedConstraint& c, float dt, float e
 
 inline void expectNear(float got, float want, const std::string& what)
 {
+    if (std::fabs(want) > 1e30f) {  // a spring's USE_INFINITE_ERROR target (SIMD_INFINITY, plus J v0)
+        EXPECT_NEAR(got / want, 1.0f, 1e-6f) << what;
+        return;
+    }
     EXPECT_NEAR(got, want, tol::kStageAbs + tol::kStageRel * std::fabs(want)) << what;
 }
 inline void expectNear3(BtgFloat4 got, const btVector3& want, const std::string& what)
@@ -237,9 +244,62 @@ inline void expectRowAsBullet(const BtgJointRow& g, const BtgJointRow& e, const 
     expectNear(g.mass, b.mass, what + " mass");
     expectNear(g.target, b.target, what + " target");
     expectNear(g.cfm, b.cfm, what + " cfm");
-    EXPECT_EQ(g.lower, b.lower) << what;
-    EXPECT_EQ(g.upper, b.upper) << what;
+    // Unbounded sides are exact; the others (0, a motor's force per step, a spring's step of
+    // force from the pose) within the stage tolerance.
+    if (std::fabs(b.lower) > 1e30f) EXPECT_EQ(g.lower, b.lower) << what;
+    else expectNear(g.lower, b.lower, what + " lower");
+    if (std::fabs(b.upper) > 1e30f) EXPECT_EQ(g.upper, b.upper) << what;
+    else expectNear(g.upper, b.upper, what + " upper");
 }
+
+// Counts of the rows seen: one-sided (bounded on one side), bounded on both (motors, servos, springs).
+struct RowKinds {
+    int bounded = 0, motors = 0, firstRows0 = 0;
+};
+
+// Each 6-DoF joint (of device type `type`) converted by compat's jointRow, prepared on the
+// device and by the reference, and every row compared with Bullet's own getInfo2 row for the
+// same bodies.
+template <class C>
+RowKinds expectRowsAsBullet(BulletBodies& s, const RowMap& map, std::vector<std::unique_ptr<C>>& c, int type)
+{
+    RowKinds kinds;
+    ref::JointTables tables;
+    int nextRow = 0;
+    for (auto& k : c) {
+        BtgJoint j;
+        EXPECT_TRUE(jointRow(*k, map, 10, &j));
+        EXPECT_EQ(j.type, type);
+        j.firstRow = nextRow;
+        nextRow += type == BTG_JOINT_SIXDOF2 ? btgSixDofMaxRows(j.sixdof) : btgJointMaxRows(type);
+        tables.joints.push_back(j);
+    }
+    tables.state.assign(c.size(), BtgJointState{});
+    tables.rows.assign(size_t(nextRow), BtgJointRow{});
+    const BtgJointStepParams p = jointParams(int(c.size()));
+    ref::JointTables expect = tables;
+    ref::prepareJoints(expect, s.rows, p);
+    DeviceJoints got = runPrepare(s.rows, tables, p);
+    for (size_t j = 0; j < c.size(); ++j) {
+        std::vector<BulletRow> br = bulletRows(*c[j], p.dt, p.erp);
+        EXPECT_EQ(got.state[j].numRows, int(br.size())) << "6dof " << j;
+        EXPECT_EQ(expect.state[j].numRows, int(br.size())) << "6dof " << j;
+        EXPECT_LE(int(br.size()), type == BTG_JOINT_SIXDOF2 ? btgSixDofMaxRows(tables.joints[j].sixdof) : btgJointMaxRows(type))
+            << "6dof " << j;
+        if (got.state[j].numRows != int(br.size())) continue;
+        if (j == 0) kinds.firstRows0 = int(br.size());
+        for (size_t k = 0; k < br.size(); ++k) {
+            const BtgJointRow &g = got.rows[tables.joints[j].firstRow + k], &e = expect.rows[tables.joints[j].firstRow + k];
+            expectRowAsBullet(g, e, br[k], "6dof " + std::to_string(j) + " row " + std::to_string(k));
+            // Unbounded sides arrive clamped to the breaking threshold (SIMD_INFINITY).
+            const bool bigLo = std::fabs(br[k].lower) > 1e30f, bigHi = std::fabs(br[k].upper) > 1e30f;
+            if (bigLo != bigHi) ++kinds.bounded;
+            if (!bigLo && !bigHi) ++kinds.motors;
+        }
+    }
+    return kinds;
+}
+
 
 }  // namespace jointtest
 }  // namespace btgpu
