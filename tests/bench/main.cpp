@@ -17,8 +17,9 @@ using namespace btgpu::bench;
 namespace {
 
 const char* kUsage =
-    "usage: btgpu_bench [--scene cubes|spheres|mixed|voronoi|landscape|ragdolls] [--n 1000|8000|32768|112500|1000000 | --dims NX NY NZ]\n"
-    "                   [--bodies N] [--quads Q]   (landscape: N bodies on a Q x Q-quad mesh; 1000, 100)\n"
+    "usage: btgpu_bench [--scene cubes|spheres|mixed|voronoi|landscape|ragdolls|compounds] [--n 1000|8000|32768|112500|1000000 | --dims NX NY NZ]\n"
+    "                   [--bodies N] [--quads Q]   (landscape: N bodies on a Q x Q-quad mesh; 1000, 100;\n"
+    "                                               compounds: N tables and dumbbells, default 1000)\n"
     "                   [--cells C]   (voronoi: C cells, default 90 as BenchmarkDemo's test 8)\n"
     "                   [--ragdolls COUNT (ragdolls of 11 boxes and 10 joints; default 100)]\n"
     "                   [--frames F] [--backends btgpu,bullet,b3gpu] [--csv PATH] [--budget-s S]\n"
@@ -39,7 +40,7 @@ int main(int argc, char** argv)
     int dims[3] = {20, 20, 20};
     int frames = 300;
     int nCells = 90;
-    int landscapeCount = 1000, landscapeQuads = 100;
+    int landscapeCount = 1000, landscapeQuads = 100;  // --bodies is also the compounds' count
     int ragdolls = 100;  // --scene ragdolls
     double budgetS = 600;  // per backend: a slow backend stops early and says so
     bool smoke = false;
@@ -91,7 +92,8 @@ int main(int argc, char** argv)
     else if (sceneName == "voronoi") scene = makeVoronoi(nCells);
     else if (sceneName == "landscape") scene = makeLandscape(landscapeCount, landscapeQuads);
     else if (sceneName == "ragdolls") scene = makeRagdolls(ragdolls);
-    else usage("--scene must be cubes, spheres, mixed, voronoi, landscape or ragdolls");
+    else if (sceneName == "compounds") scene = makeCompounds(landscapeCount);
+    else usage("--scene must be cubes, spheres, mixed, voronoi, landscape, ragdolls or compounds");
 
     std::vector<RunResult> results;
     std::stringstream list(backends);

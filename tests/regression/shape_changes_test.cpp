@@ -18,7 +18,7 @@ std::vector<btVector3> cubePoints(float h)
 }
 
 // Two hull cubes falling onto each other on a ground box; `capsule` adds a compound holding a
-// capsule (a shape the GPU path does not take), sending the world to the CPU path.
+// compound of a capsule (nested compounds: not on the GPU path yet), sending the world to the CPU path.
 ScenePtr hulls(WorldKind kind, const Config& config, bool capsule)
 {
     auto scene = std::make_unique<Scene>(kind, config);
@@ -29,7 +29,9 @@ ScenePtr hulls(WorldKind kind, const Config& config, bool capsule)
     scene->addBody(hull, 1, t);
     if (capsule) {
         btCompoundShape* compound = scene->ownShape(new btCompoundShape());
-        compound->addChildShape(btTransform::getIdentity(), scene->ownShape(new btCapsuleShape(0.3f, 1.0f)));
+        btCompoundShape* inner = scene->ownShape(new btCompoundShape());
+        inner->addChildShape(btTransform::getIdentity(), scene->ownShape(new btCapsuleShape(0.3f, 1.0f)));
+        compound->addChildShape(btTransform::getIdentity(), inner);
         scene->addBody(compound, 1, btVector3(5, 1, 0));
     }
     return scene;

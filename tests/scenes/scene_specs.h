@@ -9,7 +9,8 @@
 
 namespace btgpu::scenes::spec {
 
-enum class ShapeKind { Box, Sphere, Hull, Plane, Mesh };  // Mesh: the scene's triangle mesh (static only)
+// Mesh: the scene's triangle mesh (static only); Compound: a btCompoundShape of Scene::compounds.
+enum class ShapeKind { Box, Sphere, Hull, Plane, Mesh, Compound };
 
 // A convex hull's points (local frame, m), as an app passes them to btConvexHullShape.
 struct HullSpec {
@@ -18,11 +19,29 @@ struct HullSpec {
     bool polyhedral = true;     // the app calls initializePolyhedralFeatures
 };
 
+// One child of a compound: a box or a sphere at its transform in the compound's frame.
+struct ChildSpec {
+    ShapeKind shape = ShapeKind::Box;
+    float half[3] = {1, 1, 1};    // m (Box)
+    float radius = 1;             // m (Sphere)
+    float pos[3] = {0, 0, 0};     // m
+    float rot[4] = {0, 0, 0, 1};  // quaternion (x, y, z, w)
+};
+struct CompoundSpec {
+    std::vector<ChildSpec> children;
+};
+// A table: a top box (half extents 0.6, 0.05, 0.4) at y = 0.35 on four legs (half extents 0.05,
+// 0.3, 0.05) at x = +-0.5, z = +-0.3; a dumbbell: spheres of radius 0.3 at x = +-0.5 on a bar
+// (half extents 0.5, 0.08, 0.08).
+CompoundSpec tableSpec();
+CompoundSpec dumbbellSpec();
+
 struct BodySpec {
     ShapeKind shape = ShapeKind::Box;
     float half[3] = {1, 1, 1};  // m, box half extents (Box)
     float radius = 1;           // m (Sphere)
     int hull = -1;              // Hull: index in Scene::hulls (Plane: the plane y = pos[1], normal +y)
+    int compound = -1;          // Compound: index in Scene::compounds
     float mass = 0;             // kg; 0 = static
     float pos[3] = {0, 0, 0};   // m, centre of mass; every body starts at rest
     float rot[4] = {0, 0, 0, 1};  // orientation quaternion (x, y, z, w); identity but in ragdolls
@@ -47,6 +66,7 @@ struct Scene {
     std::string name;                // e.g. "cubes 10x10x10"
     std::vector<BodySpec> bodies;
     std::vector<HullSpec> hulls;     // shapes of the Hull bodies
+    std::vector<CompoundSpec> compounds;  // shapes of the Compound bodies
     // The one triangle mesh of ShapeKind::Mesh bodies: xyz per vertex (m), three per triangle.
     std::vector<float> meshVertices;
     std::vector<int> meshIndices;
@@ -73,6 +93,10 @@ Scene makeLandscape(int count, int quads);
 // are boxes of the same radius and length here) on a square grid 2 m apart over a ground box,
 // pelvis 1 m up: they fall and sprawl.
 Scene makeRagdolls(int count);
+// `count` compound bodies, tables and dumbbells alternating (mass 1, friction 0.5) on a square
+// lattice 2 m apart (at most 10 x 10 a layer, layers 1.2 m apart), released from 1 m onto a
+// ground box of half extent 50 (top at y = 0).
+Scene makeCompounds(int count);
 // Sizes named by --n: 1000, 8000, 32768, 112500, 1000000; false if n is not one of them.
 bool dimsForCount(long n, int dims[3]);
 
