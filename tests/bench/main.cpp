@@ -1,6 +1,6 @@
 // main.cpp — btgpu_bench: one scene, up to three simulators (btgpu, stock Bullet, Bullet3's
 // GPU pipeline) in the same run; a Markdown table on stdout, a CSV with --csv, progress on
-// stderr. --smoke is the short ctest run (label bench).
+// stderr. --smoke is the short ctest run (label bench): cubes, then 100 compound tables and dumbbells.
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -30,6 +30,47 @@ const char* kUsage =
 {
     std::fprintf(stderr, "btgpu_bench: %s\n%s", why, kUsage);
     std::exit(2);
+}
+
+// Runs one scene on each backend in the list; a Markdown table on stdout, the CSV when a path
+// is given. Returns the failures: NaNs from a backend that ran, stock Bullet not running.
+int runScene(const Scene& scene, const std::string& backends, const Options& options, int frames, double budgetS,
+             const std::string& csvPath)
+{
+    std::vector<RunResult> results;
+    std::stringstream list(backends);
+    for (std::string name; std::getline(list, name, ',');) {
+        std::unique_ptr<Backend> b = name == "btgpu" ? makeBtgpuBackend()
+                                     : name == "bullet" ? makeBulletBackend()
+                                     : name == "b3gpu"  ? makeB3gpuBackend()
+                                                        : nullptr;
+        if (!b) usage(("unknown backend " + name).c_str());
+        std::fprintf(stderr, "btgpu_bench: %s on %s, %d frames...\n", name.c_str(), scene.name.c_str(), frames);
+        results.push_back(runBackend(*b, scene, options, frames, budgetS));
+        const RunResult& r = results.back();
+        if (r.ran)
+            std::fprintf(stderr, "  %s: %d frames, median %.3f ms, first frame %.2f s\n", name.c_str(), r.framesRun,
+                         r.totalMs.median, r.firstFrameS);
+        else
+            std::fprintf(stderr, "  %s: skipped: %s\n", name.c_str(), r.skipped.c_str());
+    }
+    writeMarkdown(std::cout, scene, frames, results);
+    if (!csvPath.empty()) {
+        std::ofstream csv(csvPath);
+        writeCsv(csv, scene, results);
+        if (!csv) {
+            std::fprintf(stderr, "btgpu_bench: cannot write %s\n", csvPath.c_str());
+            return 1;
+        }
+    }
+    // A backend that cannot run here (no device, btgpu off its GPU path) is skipped, not a
+    // failure; one that ran must not have produced NaNs, and stock Bullet must always run.
+    int failures = 0;
+    for (const RunResult& r : results) {
+        if (r.ran && r.nanBodies > 0) ++failures;
+        if (r.backend == "bullet" && !r.ran) ++failures;
+    }
+    return failures;
 }
 
 }  // namespace
@@ -95,39 +136,9 @@ int main(int argc, char** argv)
     else if (sceneName == "compounds") scene = makeCompounds(landscapeCount);
     else usage("--scene must be cubes, spheres, mixed, voronoi, landscape, ragdolls or compounds");
 
-    std::vector<RunResult> results;
-    std::stringstream list(backends);
-    for (std::string name; std::getline(list, name, ',');) {
-        std::unique_ptr<Backend> b = name == "btgpu" ? makeBtgpuBackend()
-                                     : name == "bullet" ? makeBulletBackend()
-                                     : name == "b3gpu"  ? makeB3gpuBackend()
-                                                        : nullptr;
-        if (!b) usage(("unknown backend " + name).c_str());
-        std::fprintf(stderr, "btgpu_bench: %s on %s, %d frames...\n", name.c_str(), scene.name.c_str(), frames);
-        results.push_back(runBackend(*b, scene, options, frames, budgetS));
-        const RunResult& r = results.back();
-        if (r.ran)
-            std::fprintf(stderr, "  %s: %d frames, median %.3f ms, first frame %.2f s\n", name.c_str(), r.framesRun,
-                         r.totalMs.median, r.firstFrameS);
-        else
-            std::fprintf(stderr, "  %s: skipped: %s\n", name.c_str(), r.skipped.c_str());
-    }
-
-    writeMarkdown(std::cout, scene, frames, results);
-    if (!csvPath.empty()) {
-        std::ofstream csv(csvPath);
-        writeCsv(csv, scene, results);
-        if (!csv) {
-            std::fprintf(stderr, "btgpu_bench: cannot write %s\n", csvPath.c_str());
-            return 1;
-        }
-    }
-    // A backend that cannot run here (no device, btgpu off its GPU path) is skipped, not a
-    // failure; one that ran must not have produced NaNs, and stock Bullet must always run.
-    int failures = 0;
-    for (const RunResult& r : results) {
-        if (r.ran && r.nanBodies > 0) ++failures;
-        if (r.backend == "bullet" && !r.ran) ++failures;
-    }
+    // The smoke run also drops 100 compound tables and dumbbells (in this process: its
+    // programs are built once).
+    int failures = runScene(scene, backends, options, frames, budgetS, csvPath);
+    if (smoke) failures += runScene(makeCompounds(100), backends, options, frames, budgetS, "");
     return failures ? 1 : 0;
 }
