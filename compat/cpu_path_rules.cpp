@@ -195,7 +195,7 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, int numActions
     const btCollisionObjectArray& objs = world.getCollisionObjectArray();
     shapes->beginReferences();
     bool featuredBox = false, plainBox = false;
-    int compounds = 0, dynamicCompounds = 0, treeless = 0;
+    int compounds = 0, dynamicCompounds = 0, apartFromCompounds = 0;
     unsigned presentKinds = 0, dynamicKinds = 0;  // bit per BTG_SHAPE_*
     for (int i = 0; i < objs.size(); ++i) {
         const btCollisionObject* o = objs[i];
@@ -211,10 +211,15 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, int numActions
         if (shape.type == BTG_SHAPE_COMPOUND) {
             if (!o->isStaticOrKinematicObject()) ++dynamicCompounds;
             ++compounds;
-            if (!static_cast<const btCompoundShape*>(o->getCollisionShape())->getDynamicAabbTree()) ++treeless;
+            if (!static_cast<const btCompoundShape*>(o->getCollisionShape())->getDynamicAabbTree()) ++apartFromCompounds;
             kindBit = 0;
-            for (int k = 0; k < shape.numChildren; ++k)
-                kindBit |= 1u << shapes->shapes[size_t(shapes->children[size_t(shape.firstChild + k)].shape)].type;
+            bool nested = false;
+            for (int k = 0; k < shape.numChildren; ++k) {
+                const BtgChild& leaf = shapes->children[size_t(shape.firstChild + k)];
+                kindBit |= 1u << shapes->shapes[size_t(leaf.shape)].type;
+                nested |= leaf.parent >= 0;
+            }
+            apartFromCompounds += nested;
         }
         presentKinds |= kindBit;
         // (a dynamic mesh or heightfield has its own rule, in bodiesReason)
@@ -236,9 +241,9 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, int numActions
         return "boxes with polyhedral features (initializePolyhedralFeatures) beside boxes without";
     // Two compounds meet by btCompoundCompoundCollisionAlgorithm's tree-tree walk, which
     // expand_compounds follows; without a tree on both stock nests btCompoundCollisionAlgorithm.
-    if (dynamicCompounds >= 1 && compounds >= 2 && treeless > 0)
-        return "a compound shape without a dynamic AABB tree (btCompoundShape(false)) meeting another compound is "
-               "not on the GPU path yet";
+    if (dynamicCompounds >= 1 && compounds >= 2 && apartFromCompounds > 0)
+        return "a compound shape without a dynamic AABB tree (btCompoundShape(false)) or with nested compounds "
+               "meeting another compound is not on the GPU path yet";
     // Every pair of shape kinds that can meet (a dynamic body against anything) needs a row of
     // the pair-kind table; one without would be a pair the GPU path silently never collides.
     for (int a = 0; a < BTG_NUM_SHAPE_KINDS; ++a)

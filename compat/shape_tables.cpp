@@ -131,39 +131,47 @@ bool ShapeTables::compoundRow(const btCompoundShape* compound, BtgShape& s, std:
     s.type = BTG_SHAPE_COMPOUND;
     s.margin = compound->getMargin();
     setLocalAabb(s, compound);  // btCompoundShape::getAabb: its local box plus its margin, turned
+    Flattened f;
+    if (!flatten(compound, btTransform::getIdentity(), -1, 0, "", f, whyNot, bad)) return false;
+    // Leaves first (the shape's range), then the nested compounds they name as parents.
+    const int base = int(children.size()), firstNode = base + int(f.leaves.size());
+    const bool nested = !f.nodes.empty();
+    for (size_t k = 0; k < f.leaves.size(); ++k) {
+        BtgChild& c = f.leaves[k];
+        if (c.parent >= 0) c.parent += firstNode;
+        // Bullet's child index names the leaf's manifolds; with nested compounds that index is
+        // not unique within the body, so the leaf's place among the body's leaves does.
+        if (nested) c.index = int(k);
+    }
+    for (BtgChild& c : f.nodes)
+        if (c.parent >= 0) c.parent += firstNode;
+    s.firstChild = base;
+    s.numChildren = int(f.leaves.size());
+    children.insert(children.end(), f.leaves.begin(), f.leaves.end());
+    children.insert(children.end(), f.nodes.begin(), f.nodes.end());
+    return true;
+}
+
+bool ShapeTables::flatten(const btCompoundShape* compound, const btTransform& toBody, int parent, int depth,
+                          const std::string& path, Flattened& f, std::string* whyNot, std::string* bad)
+{
     const bool tree = compound->getDynamicAabbTree() != nullptr;
-    std::vector<BtgChild> leaves;
     for (int i = 0; i < compound->getNumChildShapes(); ++i) {
         const btCollisionShape* child = compound->getChildShape(i);
-        const std::string which = "compound child " + std::to_string(i) + " ";
-        // Stock's inner btCompoundCollisionAlgorithm culls at each level by that level's AABBs,
-        // which a flattened leaf list does not repeat yet.
-        if (child->isCompound()) {
-            *whyNot = which + "is itself a compound (nested compounds are not on the GPU path yet)";
-            return false;
-        }
-        const int row = add(child, whyNot);
-        if (row < 0) {
-            *whyNot = which + "(" + child->getName() + "): " + *whyNot;
-            return false;
-        }
-        const int kind = shapes[size_t(row)].type;
-        if (kind == BTG_SHAPE_PLANE || kind == BTG_SHAPE_MESH || kind == BTG_SHAPE_HEIGHTFIELD) {
-            *whyNot = which + "is a " + child->getName() + " (concave or plane children are not on the GPU path yet)";
-            return false;
-        }
-        if (bad->empty() && !badReason[size_t(row)].empty()) *bad = which + badReason[size_t(row)];
+        const std::string which = "compound child " + path + std::to_string(i) + " ";
         const btTransform& t = compound->getChildTransform(i);
         const btQuaternion q = t.getRotation();
         if (bad->empty() && !(std::isfinite(t.getOrigin().length2()) && std::isfinite(q.length2())))
             *bad = which + "has a non-finite transform";
+        const btTransform composed = toBody * t;
+        const btQuaternion cq = composed.getRotation();
         BtgChild c{};
-        c.pos = f4(t.getOrigin());
-        c.rot = btgMake4(q.x(), q.y(), q.z(), q.w());
-        c.shape = row;
+        c.pos = f4(composed.getOrigin());
+        c.rot = btgMake4(cq.x(), cq.y(), cq.z(), cq.w());
         c.index = i;
+        c.parent = parent;
         c.useTree = tree ? 1 : 0;
-        // The leaf as stock's tree holds it (the box updateChildTransform or addChildShape left).
+        // The child as its holder's tree holds it (the box updateChildTransform or addChildShape left).
         const btDbvtNode* node = const_cast<btCompoundShape*>(compound)->getChildList()[i].m_node;
         if (node) {
             c.treeAabbMin = f4(node->volume.Mins());
@@ -171,11 +179,33 @@ bool ShapeTables::compoundRow(const btCompoundShape* compound, BtgShape& s, std:
         } else {
             c.useTree = 0;
         }
-        leaves.push_back(c);
+        if (child->isCompound() && (depth >= 7 || typeid(*child) != typeid(btCompoundShape))) {
+            *whyNot = which + "is a compound nested more than 8 deep or a subclass of btCompoundShape";
+            return false;
+        }
+        // A nested compound is a node with a row of its own (its box for the level's tests).
+        const int row = add(child, whyNot);
+        if (row < 0) {
+            *whyNot = which + "(" + child->getName() + "): " + *whyNot;
+            return false;
+        }
+        c.shape = row;
+        if (child->isCompound()) {
+            const int self = int(f.nodes.size());
+            f.nodes.push_back(c);
+            if (!flatten(static_cast<const btCompoundShape*>(child), composed, self, depth + 1,
+                         path + std::to_string(i) + ".", f, whyNot, bad))
+                return false;
+            continue;
+        }
+        const int kind = shapes[size_t(row)].type;
+        if (kind == BTG_SHAPE_PLANE || kind == BTG_SHAPE_MESH || kind == BTG_SHAPE_HEIGHTFIELD) {
+            *whyNot = which + "is a " + child->getName() + " (concave or plane children are not on the GPU path yet)";
+            return false;
+        }
+        if (bad->empty() && !badReason[size_t(row)].empty()) *bad = which + badReason[size_t(row)];
+        f.leaves.push_back(c);
     }
-    s.firstChild = int(children.size());
-    s.numChildren = int(leaves.size());
-    children.insert(children.end(), leaves.begin(), leaves.end());
     return true;
 }
 

@@ -16,6 +16,7 @@
 
 class btCollisionShape;
 class btCompoundShape;
+class btTransform;
 
 namespace btgpu {
 
@@ -68,6 +69,13 @@ private:
     // A compound's row: its leaves, each a row of its own, appended to `children`. False with
     // *whyNot when a child is not served; *bad names a child that keeps the compound's bodies out.
     bool compoundRow(const btCompoundShape* compound, BtgShape& s, std::string* whyNot, std::string* bad);
+    // The rows of one compound level into f, nested compounds recursed (parents are indices in
+    // f.nodes until compoundRow places them); toBody carries this level's frame into the body's.
+    struct Flattened {
+        std::vector<BtgChild> leaves, nodes;
+    };
+    bool flatten(const btCompoundShape* compound, const btTransform& toBody, int parent, int depth,
+                 const std::string& path, Flattened& f, std::string* whyNot, std::string* bad);
     struct CachedHull {
         std::uint64_t fingerprint;
         Polyhedron poly;

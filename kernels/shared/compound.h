@@ -1,10 +1,16 @@
 /* compound.h — compound shapes as collider rows: a pair side's shape and pose (a whole body, or
  * one leaf of its compound at body * leaf transform), and the expansion of a body pair that
  * holds a compound into its leaf pairs with stock btCompoundCollisionAlgorithm's culling (the
- * dynamic AABB tree's query in the compound's frame, then ProcessChildShape's world AABB test,
- * neither grown: m_closestPointDistanceThreshold is 0 in a dynamics step; two compounds as
- * btCompoundCompoundCollisionAlgorithm's tree-tree walk). Shared by
- * expand_compounds, every narrowphase kernel and their CPU references. */
+ * dynamic AABB tree's query in the compound's frame, then ProcessChildShape's world AABB test;
+ * two compounds as btCompoundCompoundCollisionAlgorithm's tree-tree walk). Shared by
+ * expand_compounds, every narrowphase kernel and their CPU references.
+ *
+ * One deviation: stock grows neither test (m_closestPointDistanceThreshold is 0 in a dynamics
+ * step) because its resting bodies sink a little, so their leaves' boxes overlap; btgpu's
+ * speculative contacts rest a body at zero separation, where an ungrown test drops the leaf
+ * pair every few steps and the body falls a step's worth onto it (measured: 2.8 mm for a
+ * table). Both tests are grown by the pair's breaking threshold here, as the midphase grows its
+ * box for the same reason: a leaf within the threshold gets its (speculative) points. */
 #ifndef BTG_COMPOUND_H
 #define BTG_COMPOUND_H
 #include "aabb.h"
@@ -82,6 +88,14 @@ static inline BtgManifold btgPairKeyManifold(BtgPair p, BTG_CHILD_TABLE)
 
 /* A body's world AABB as Bullet's getAabb gives it, not grown; a plane's is all of space
  * (btStaticPlaneShape::getAabb). */
+static inline BtgAabb btgGrown(BtgAabb a, float by)
+{
+    const BtgFloat4 g = btgMake4(by, by, by, 0.0f);
+    a.lo = a.lo - g;
+    a.hi = a.hi + g;
+    return a;
+}
+
 static inline BtgAabb btgStockAabb(BtgFloat4 pos, BtgFloat4 rot, BtgShape s)
 {
     if (s.type == BTG_SHAPE_PLANE) {
@@ -110,14 +124,15 @@ static inline BtgAabb btgTransformBox(BtgFloat4 lo, BtgFloat4 hi, BtgFloat4 pos,
     return out;
 }
 
-/* Two compounds (btCompoundCompoundCollisionAlgorithm, both with trees: the CPU-path rules send
- * the others away): leaf i of A and leaf j of B, in (i, j) order, when B's tree leaf carried
+/* Two compounds (btCompoundCompoundCollisionAlgorithm, both with trees and neither nested: the
+ * CPU-path rules send the others away): leaf i of A and leaf j of B, in (i, j) order, when B's tree leaf carried
  * into A's frame overlaps A's (MycollideTT's MyIntersect, A being stock's body 0: the lower
  * row, as the pair cache orders proxies by creation) and their world AABBs overlap. */
 static inline uint btgExpandCompoundCompound(BtgPair p, BtgShape sa, BtgShape sb, BTG_CONST_GLOBAL BtgFloat4* pos,
                                              BTG_CONST_GLOBAL BtgFloat4* rot, BTG_CONST_GLOBAL BtgShape* shapes,
                                              BTG_CHILD_TABLE, BTG_GLOBAL BtgPair* out, uint first, uint capacity)
 {
+    const float t = btgPairThreshold(sa, sb);
     const BtgFloat4 qa = rot[p.a], qb = rot[p.b];
     const BtgFloat4 relPos = btgQuatRotate(btgQuatConj(qa), btgXyz(pos[p.b] - pos[p.a]));
     const BtgFloat4 relRot = btgQuatMul(btgQuatConj(qa), qb);
@@ -126,11 +141,15 @@ static inline uint btgExpandCompoundCompound(BtgPair p, BtgShape sa, BtgShape sb
         const BtgChild ca = children[sa.firstChild + i];
         BtgFloat4 wpa, wqa;
         btgChildWorld(pos[p.a], qa, ca, &wpa, &wqa);
-        const BtgAabb boxA = btgStockAabb(wpa, wqa, shapes[ca.shape]);
+        const BtgAabb boxA = btgGrown(btgStockAabb(wpa, wqa, shapes[ca.shape]), t);
+        BtgAabb treeA;
+        treeA.lo = ca.treeAabbMin;
+        treeA.hi = ca.treeAabbMax;
+        treeA = btgGrown(treeA, t);
         for (int j = 0; j < sb.numChildren; ++j) {
             const BtgChild cb = children[sb.firstChild + j];
             const BtgAabb treeB = btgTransformBox(cb.treeAabbMin, cb.treeAabbMax, relPos, relRot);
-            if (!btgAabbOverlap(ca.treeAabbMin, ca.treeAabbMax, treeB.lo, treeB.hi)) continue;
+            if (!btgAabbOverlap(treeA.lo, treeA.hi, treeB.lo, treeB.hi)) continue;
             BtgFloat4 wpb, wqb;
             btgChildWorld(pos[p.b], qb, cb, &wpb, &wqb);
             const BtgAabb boxB = btgStockAabb(wpb, wqb, shapes[cb.shape]);
@@ -164,21 +183,42 @@ static inline uint btgExpandPair(BtgPair p, BTG_CONST_GLOBAL BtgFloat4* pos, BTG
         return btgExpandCompoundCompound(p, sa, sb, pos, rot, shapes, children, out, first, capacity);
     const int cb = compoundIsA ? p.a : p.b, ob = compoundIsA ? p.b : p.a;
     const BtgShape cs = compoundIsA ? sa : sb, os = compoundIsA ? sb : sa;
-    const BtgAabb other = btgStockAabb(pos[ob], rot[ob], os);
+    /* The other body's boxes grown by the pair's threshold (see the deviation above). */
+    const float t = btgPairThreshold(cs, os);
+    const BtgAabb other = btgGrown(btgStockAabb(pos[ob], rot[ob], os), t);
     /* The other body in the compound's frame, for the tree's query (otherInCompoundSpace). */
     const BtgFloat4 cq = rot[cb];
     const BtgFloat4 relPos = btgQuatRotate(btgQuatConj(cq), btgXyz(pos[ob] - pos[cb]));
     const BtgFloat4 relRot = btgQuatMul(btgQuatConj(cq), rot[ob]);
-    const BtgAabb otherLocal = btgStockAabb(relPos, relRot, os);
+    const BtgAabb otherLocal = btgGrown(btgStockAabb(relPos, relRot, os), t);
     uint n = 0u;
     for (int k = 0; k < cs.numChildren; ++k) {
         const int row = cs.firstChild + k;
-        const BtgChild c = children[row];
-        if (c.useTree && !btgAabbOverlap(c.treeAabbMin, c.treeAabbMax, otherLocal.lo, otherLocal.hi)) continue;
-        BtgFloat4 wp, wq;
-        btgChildWorld(pos[cb], cq, c, &wp, &wq);
-        const BtgAabb box = btgStockAabb(wp, wq, shapes[c.shape]);
-        if (!btgAabbOverlap(box.lo, box.hi, other.lo, other.hi)) continue;
+        /* The leaf and each nested compound above it: all their levels' tests pass. */
+        int keep = 1;
+        for (int r = row; r >= 0 && keep; r = children[r].parent) {
+            const BtgChild c = children[r];
+            if (c.useTree) {
+                BtgAabb inHolder = otherLocal;
+                if (c.parent >= 0) {
+                    /* The other body in the nested holder's frame. */
+                    const BtgChild h = children[c.parent];
+                    const BtgFloat4 hq = btgQuatMul(cq, h.rot);
+                    const BtgFloat4 hp = btgXyz(pos[cb]) + btgQuatRotate(cq, h.pos);
+                    inHolder = btgGrown(btgStockAabb(btgQuatRotate(btgQuatConj(hq), btgXyz(pos[ob] - hp)),
+                                                     btgQuatMul(btgQuatConj(hq), rot[ob]), os),
+                                        t);
+                }
+                keep = btgAabbOverlap(c.treeAabbMin, c.treeAabbMax, inHolder.lo, inHolder.hi);
+            }
+            if (keep) {
+                BtgFloat4 wp, wq;
+                btgChildWorld(pos[cb], cq, c, &wp, &wq);
+                const BtgAabb box = btgStockAabb(wp, wq, shapes[c.shape]);
+                keep = btgAabbOverlap(box.lo, box.hi, other.lo, other.hi);
+            }
+        }
+        if (!keep) continue;
         if (out && first + n < capacity) {
             BtgPair q = p;
             if (compoundIsA) q.childA = row + 1;

@@ -122,20 +122,23 @@ typedef struct {
     int pad2;
 } BtgShape;
 
-/* One leaf of a compound shape (a collider row): its shape row and its transform in the
- * compound body's frame (nested compounds composed). The compound-level AABB test of stock's
- * btCompoundCollisionAlgorithm reads the leaf's box in that frame (its dynamic AABB tree's
- * leaf). */
+/* One row of a compound's flattened tree (a collider row): a leaf (a convex shape), or a node
+ * (a nested compound) that its leaves name as their parent. Stock culls at every level
+ * (btCompoundCollisionAlgorithm within btCompoundCollisionAlgorithm), so a leaf pair is kept
+ * when every row from the leaf up passes its level's two tests: its box in its holder's frame
+ * (the holder's dynamic AABB tree leaf) and its world AABB. */
 typedef struct {
-    BtgFloat4 pos;          /* m, the leaf's origin in the body's frame; w 0 */
-    BtgFloat4 rot;          /* unit quaternion, leaf to body frame */
-    BtgFloat4 treeAabbMin;  /* m, the leaf's AABB in the top compound's frame, as its tree holds it */
+    BtgFloat4 pos;          /* m, the row's origin in the body's frame (levels composed); w 0 */
+    BtgFloat4 rot;          /* unit quaternion, row to body frame */
+    BtgFloat4 treeAabbMin;  /* m, the row's AABB in its holder's frame, as the holder's tree holds it */
     BtgFloat4 treeAabbMax;
-    int shape;              /* leaf's row in the shape table (never a compound) */
-    int index;              /* the child index Bullet names the leaf by (m_index0/1: its place in
-                               its own parent compound) */
-    int useTree;            /* 1: the top compound has a dynamic AABB tree (stock queries it first) */
-    int pad0;
+    int shape;              /* the row's shape row (a node's: its compound's) */
+    int index;              /* the key its manifolds carry (m_index0/1): Bullet's child index for a
+                               child of the body's compound; for a leaf of a nested compound its
+                               place among the body's leaves (Bullet's own index there, its place
+                               in its own compound, is not unique within the body) */
+    int useTree;            /* 1: its holder has a dynamic AABB tree (stock queries it first) */
+    int parent;             /* the holder's row when a nested compound holds it, else -1 */
 } BtgChild;
 
 /* A hull face: its outward plane and its vertex loop (counter-clockwise seen from outside). */
