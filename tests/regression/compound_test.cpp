@@ -96,6 +96,26 @@ TEST(Compound, TableStandsOnAMeshGroundAsOnStock)
     expectRestLikeStock(run, 1, 1);
 }
 
+TEST(Compound, TableStandsOnAHeightfieldAsOnStock)
+{
+    SideBySide run(scenes::tableOnHeightfield);
+    stepOnGpu(run, 120);
+    EXPECT_TRUE(has(run.gpu->report()->stages, "midphase"));
+    expectRestLikeStock(run, 1, 1);
+}
+
+// Cylinder wheels, a capsule axle and a cone: each leaf pair a GJK pair with its own persistent
+// manifold, gathering its points over steps as stock's child algorithms do.
+TEST(Compound, CartOfSupportShapesRestsAsOnStock)
+{
+    SideBySide run(scenes::convexCart);
+    stepOnGpu(run, 120);
+    EXPECT_TRUE(has(run.gpu->report()->stages, "narrowphase_gjk"));
+    EXPECT_NEAR(run.stockY(1), 0.3, 0.01);
+    EXPECT_NEAR(run.gpuY(1), run.stockY(1), tol::kRestHeight);
+    EXPECT_LT(run.distance(1), 0.01);
+}
+
 // A compound holding a table (turned a quarter about y and raised) and a box beside it: stock
 // culls at both levels, btgpu's flattened leaves pass both levels' tests.
 TEST(Compound, NestedCompoundStandsAsOnStock)

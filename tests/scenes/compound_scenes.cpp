@@ -6,6 +6,8 @@
 #include "scenes/mesh_scenes.h"
 #include "scenes/scene_specs.h"
 
+#include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
+
 #include <cmath>
 
 namespace btgpu::scenes {
@@ -54,6 +56,32 @@ ScenePtr tableOnMesh(WorldKind kind, const Config& config)
     auto scene = std::make_unique<Scene>(kind, config, "table_on_mesh");
     scene->addBody(gridMesh(*scene, 16, 1.0f, true, true), 0, btVector3(0, 0, 0));
     scene->addBody(tableShape(*scene), 1, btVector3(btScalar(.2), btScalar(kTableFootDepth + .01), btScalar(.1)));
+    return scene;
+}
+
+ScenePtr tableOnHeightfield(WorldKind kind, const Config& config)
+{
+    auto scene = std::make_unique<Scene>(kind, config, "table_on_heightfield");
+    scene->addBody(flatHeightfield(*scene, 17), 0, btVector3(0, 0, 0));
+    scene->addBody(tableShape(*scene), 1, btVector3(btScalar(.2), btScalar(kTableFootDepth + .01), btScalar(.1)));
+    return scene;
+}
+
+ScenePtr convexCart(WorldKind kind, const Config& config)
+{
+    auto scene = std::make_unique<Scene>(kind, config, "convex_cart");
+    boxGround(*scene);
+    auto* cart = scene->ownShape(new btCompoundShape());
+    btCollisionShape* wheel = scene->ownShape(new btCylinderShapeZ(btVector3(btScalar(.3), btScalar(.3), btScalar(.1))));
+    btTransform t = btTransform::getIdentity();
+    for (float x : {-.6f, .6f}) {
+        t.setOrigin(btVector3(x, 0, 0));
+        cart->addChildShape(t, wheel);
+    }
+    cart->addChildShape(btTransform::getIdentity(), scene->ownShape(new btCapsuleShapeX(btScalar(.05), btScalar(1.2))));
+    t.setOrigin(btVector3(0, btScalar(.3), 0));
+    cart->addChildShape(t, scene->ownShape(new btConeShape(btScalar(.2), btScalar(.4))));
+    scene->addBody(cart, 2, btVector3(0, btScalar(.31), 0));
     return scene;
 }
 

@@ -17,8 +17,13 @@ constexpr double kTableHeight = 0.7;     // m, feet to top
 // `count` tables stacked, each released 1 cm above the one below (the first 1 cm above a box
 // ground); bodies 1..count, body 0 the ground.
 ScenePtr tableStack(WorldKind kind, const Config& config = Config(), int count = 1);
-// A table 1 cm above a flat triangle-mesh ground (body 1; body 0 the mesh).
+// A table 1 cm above a flat triangle-mesh ground, or a flat heightfield (body 1; body 0 the ground).
 ScenePtr tableOnMesh(WorldKind kind, const Config& config = Config());
+ScenePtr tableOnHeightfield(WorldKind kind, const Config& config = Config());
+// A cart of support-function children (GJK leaves): two cylinders (radius 0.3, half width 0.1,
+// axes along z) at x = +-0.6 on a capsule axle (radius 0.05, along x), and a cone upright on top,
+// 1 cm above a box ground (body 1).
+ScenePtr convexCart(WorldKind kind, const Config& config = Config());
 // A dumbbell: spheres of radius 0.3 at x = +-0.5 on a bar (box half extents 0.5, 0.08, 0.08),
 // resting on a box ground and set rolling along +z at 1 m/s (body 1).
 ScenePtr dumbbellRolling(WorldKind kind, const Config& config = Config());
