@@ -3,7 +3,8 @@
 // leaf pairs against Bullet's own btCompoundCollisionAlgorithm run in the test for the same
 // pose: one manifold per processed child with points, each named by its child index, stock's
 // point count, every stock point matched by a GPU point within 1 degree and 1 mm (and children
-// stock culls by ungrown boxes, which btgpu's grown tests keep, hold only points apart).
+// stock culls by ungrown boxes, which btgpu's grown tests keep, hold only points apart); two
+// compounds against btCompoundCompoundCollisionAlgorithm by child pair.
 #include "../compat/shape_tables.h"
 #include "reference/expand_compounds.h"
 #include "reference/narrowphase.h"
@@ -358,6 +359,98 @@ void expectSameContacts(const CompoundScene& s, int compound, int other)
 }
 
 }  // namespace
+
+namespace {
+
+// Two compounds: stock's btCompoundCompoundCollisionAlgorithm against the leaf pairs' routines,
+// by (child of the lower row, child of the higher row).
+void expectSameCompoundCompoundContacts(const CompoundScene& s, int lo, int hi)
+{
+    static btDefaultCollisionConfiguration config;
+    static btCollisionDispatcher dispatcher(&config);
+    btCollisionObject a, b;
+    a.setCollisionShape(s.bulletShape[size_t(lo)]);
+    a.setWorldTransform(s.transform[size_t(lo)]);
+    b.setCollisionShape(s.bulletShape[size_t(hi)]);
+    b.setWorldTransform(s.transform[size_t(hi)]);
+    btCollisionObjectWrapper wa(nullptr, a.getCollisionShape(), &a, a.getWorldTransform(), -1, -1);
+    btCollisionObjectWrapper wb(nullptr, b.getCollisionShape(), &b, b.getWorldTransform(), -1, -1);
+    btCollisionAlgorithm* algo = dispatcher.findAlgorithm(&wa, &wb, nullptr, BT_CONTACT_POINT_ALGORITHMS);
+    btManifoldResult result(&wa, &wb);
+    btDispatcherInfo info;
+    algo->processCollision(&wa, &wb, info, &result);
+    std::map<std::pair<int, int>, std::vector<Point>> stock, gpu;
+    btManifoldArray manifolds;
+    algo->getAllContactManifolds(manifolds);
+    for (int m = 0; m < manifolds.size(); ++m) {
+        const btPersistentManifold* pm = manifolds[m];
+        const bool loIs0 = pm->getBody0() == &a;
+        for (int k = 0; k < pm->getNumContacts(); ++k) {
+            const btManifoldPoint& p = pm->getContactPoint(k);
+            const std::pair<int, int> key = loIs0 ? std::make_pair(p.m_index0, p.m_index1)
+                                                  : std::make_pair(p.m_index1, p.m_index0);
+            stock[key].push_back({loIs0 ? p.m_normalWorldOnB : -p.m_normalWorldOnB, p.getDistance()});
+        }
+    }
+    algo->~btCollisionAlgorithm();
+    dispatcher.freeCollisionAlgorithm(algo);
+    const std::vector<BtgPair> leaves = ref::referenceExpandCompounds(
+        {BtgPair{lo, hi, 0, 0}}, s.pos.data(), s.rot.data(), s.props.data(), s.tables.shapes.data(),
+        s.tables.children.data());
+    for (const BtgPair& p : leaves) {
+        EXPECT_TRUE(p.childA != BTG_WHOLE_BODY && p.childB != BTG_WHOLE_BODY);
+        const BtgManifold m = ref::referenceContact(p, s.pos.data(), s.rot.data(), s.props.data(), s.view());
+        for (int k = 0; k < m.numPoints; ++k) {
+            const BtgManifoldPoint& q = m.points[k];
+            // normal from B (hi) towards A (lo): stock's from the other (hi) towards lo's body 0
+            gpu[{m.indexA, m.indexB}].push_back({btVector3(q.nx, q.ny, q.nz), q.distance});
+        }
+    }
+    EXPECT_FALSE(stock.empty());
+    for (const auto& [key, points] : stock) {
+        SCOPED_TRACE("children " + std::to_string(key.first) + ", " + std::to_string(key.second));
+        auto it = gpu.find(key);
+        ASSERT_NE(it, gpu.end()) << "stock has a manifold for this child pair, the GPU none";
+        EXPECT_EQ(it->second.size(), points.size());
+        for (const Point& p : points) {
+            bool matched = false;
+            for (const Point& q : it->second)
+                matched |= p.normal.dot(q.normal) >= tol::kStockNormalDot &&
+                           std::fabs(p.distance - q.distance) <= tol::kStockDepth;
+            EXPECT_TRUE(matched) << "stock point of depth " << p.distance << " has no GPU match";
+        }
+    }
+    for (const auto& [key, points] : gpu)
+        if (!stock.count(key))
+            for (const Point& q : points) EXPECT_GT(q.distance, 0.0f) << "GPU child pair only";
+}
+
+}  // namespace
+
+// A table standing 2 mm into the top of another (legs on the top), one turned about y; and a
+// dumbbell lying 2 mm into a table's top.
+TEST(ExpandCompounds, CompoundPairsMatchBulletsCompoundCompoundAlgorithm)
+{
+    CompoundScene s;
+    const int lower = s.add(&s.table, pose(0, 0.3f, 0), BTG_BODY_DYNAMIC);
+    const int upper = s.add(&s.table, pose(0, 0.3f + 0.7f - 0.002f, 0), BTG_BODY_DYNAMIC);
+    const int turned = s.add(&s.table, pose(5, 0.3f, 0), BTG_BODY_DYNAMIC);
+    const int onTurned =
+        s.add(&s.table, pose(5, 0.3f + 0.7f - 0.002f, 0, btQuaternion(btVector3(0, 1, 0), btScalar(0.3))), BTG_BODY_DYNAMIC);
+    const int bell = s.add(&s.dumbbell, pose(0, 0.4f + 0.3f + 0.3f - 0.002f, 0.1f), BTG_BODY_DYNAMIC);
+    {
+        SCOPED_TRACE("table on a table");
+        expectSameCompoundCompoundContacts(s, lower, upper);
+    }
+    {
+        SCOPED_TRACE("turned table on a table");
+        expectSameCompoundCompoundContacts(s, turned, onTurned);
+    }
+    {
+        SCOPED_TRACE("dumbbell on a table");
+        expectSameCompoundCompoundContacts(s, lower, bell);
+    }
+}
 
 TEST(ExpandCompounds, ContactsMatchBulletsCompoundAlgorithm)
 {
