@@ -19,9 +19,6 @@ using namespace btgpu::test;
 
 namespace {
 
-// rad: a table top 1.2 m long tipped by this is 2.4 mm higher at one end than the other.
-constexpr double kTinyTilt = 2e-3;
-
 bool has(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
 
 // Steps both worlds, the btgpu one on the GPU path every step with expand_compounds in its plan.
@@ -52,8 +49,8 @@ void expectRestLikeStock(const SideBySide& run, int first, int last)
         EXPECT_NEAR(run.gpuY(i), run.stockY(i), tol::kRestHeight) << "body " << i;
         std::printf("body %d: rest height btgpu %.4f stock %.4f, tilt btgpu %.5f stock %.5f rad\n", i, run.gpuY(i),
                     run.stockY(i), tilt(*run.gpu, i), tilt(*run.stock, i));
-        EXPECT_LT(tilt(*run.gpu, i), kTinyTilt) << "body " << i;
-        EXPECT_LT(run.distance(i), 0.01) << "body " << i;
+        EXPECT_LT(tilt(*run.gpu, i), tol::kRestTilt) << "body " << i;
+        EXPECT_LT(run.distance(i), tol::kRestPlace) << "body " << i;
     }
 }
 
@@ -113,7 +110,7 @@ TEST(Compound, CartOfSupportShapesRestsAsOnStock)
     EXPECT_TRUE(has(run.gpu->report()->stages, "narrowphase_gjk"));
     EXPECT_NEAR(run.stockY(1), 0.3, 0.01);
     EXPECT_NEAR(run.gpuY(1), run.stockY(1), tol::kRestHeight);
-    EXPECT_LT(run.distance(1), 0.01);
+    EXPECT_LT(run.distance(1), tol::kRestPlace);
 }
 
 // A compound holding a table (turned a quarter about y and raised) and a box beside it: stock
@@ -173,7 +170,7 @@ TEST(Compound, ChildChangesBetweenStepsTakeEffect)
     stepOnGpu(run, 90);
     EXPECT_NEAR(run.stockY(1), 0.9, 0.01);
     EXPECT_NEAR(run.gpuY(1), run.stockY(1), tol::kRestHeight);
-    EXPECT_LT(run.distance(1), 0.01);
+    EXPECT_LT(run.distance(1), tol::kRestPlace);
     // And removed: the first box lands on the ground again.
     run.both([&](scenes::Scene& s) { compound(s)->removeChildShapeByIndex(1); });
     stepOnGpu(run, 90);
