@@ -113,6 +113,34 @@ TEST(Compound, CartOfSupportShapesRestsAsOnStock)
     EXPECT_LT(run.distance(1), tol::kRestPlace);
 }
 
+// A static compound ground (a 3 x 3 floor of box tiles, large enough for the large-body pass)
+// under a box, a sphere and a table: each lands on the tiles it overlaps, as on stock.
+TEST(Compound, BodiesRestOnAStaticCompoundFloorAsOnStock)
+{
+    SideBySide run([](WorldKind k, const Config& c) {
+        auto scene = std::make_unique<scenes::Scene>(k, c, "compound_floor");
+        auto* floor = scene->ownShape(new btCompoundShape());
+        btBoxShape* tile = scene->boxShape(btVector3(5, btScalar(.5), 5));
+        for (int i = 0; i < 9; ++i) {
+            btTransform t = btTransform::getIdentity();
+            t.setOrigin(btVector3(btScalar(10 * (i % 3 - 1)), 0, btScalar(10 * (i / 3 - 1))));
+            floor->addChildShape(t, tile);
+        }
+        scene->addBody(floor, 0, btVector3(0, btScalar(-.5), 0));
+        scene->addBody(scene->boxShape(btVector3(btScalar(.5), btScalar(.5), btScalar(.5))), 1, btVector3(5, 1, 0));
+        scene->addBody(scene->sphereShape(btScalar(.5)), 1, btVector3(-2, 1, 3));
+        scene->addBody(scenes::tableShape(*scene), 1, btVector3(0, btScalar(.35), btScalar(-7)));
+        return scene;
+    });
+    stepOnGpu(run, 120);
+    EXPECT_NEAR(run.stockY(1), 0.5, 0.01);  // the box across two tiles' edge
+    EXPECT_NEAR(run.stockY(3), scenes::kTableFootDepth, 0.01);
+    for (int i = 1; i <= 3; ++i) {
+        EXPECT_NEAR(run.gpuY(i), run.stockY(i), tol::kRestHeight) << "body " << i;
+        EXPECT_LT(run.distance(i), tol::kRestPlace) << "body " << i;
+    }
+}
+
 // A compound holding a table (turned a quarter about y and raised) and a box beside it: stock
 // culls at both levels, btgpu's flattened leaves pass both levels' tests.
 TEST(Compound, NestedCompoundStandsAsOnStock)
