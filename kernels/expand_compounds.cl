@@ -25,12 +25,16 @@ __kernel void expand_count(__global const BtgPair* restrict pairs, __global cons
         counts[i] = i < n ? btgExpandPair(pairs[i], pos, rot, props, shapes, children, 0, 0u, 0u) : 0u;
 }
 
+/* When the broadphase itself overflowed, only the pairs that fit were expanded: the total is
+ * scaled by found / stored, so the growth is sized for all of them in one redo. */
 __kernel void expand_total(__global const uint* restrict offsets, uint countSlots, __global uint* restrict counters)
 {
     if (get_global_id(0) != 0) return;
-    const uint total = offsets[countSlots - 1u];
-    counters[BTG_COUNTER_PAIRS] = total;
-    if (total > countSlots - 1u) counters[BTG_COUNTER_STATUS] |= BTG_STATUS_PAIR_OVERFLOW;
+    const uint capacity = countSlots - 1u, found = counters[BTG_COUNTER_PAIRS];
+    ulong total = (ulong)offsets[countSlots - 1u];
+    if (found > capacity && capacity > 0u) total = total * (ulong)found / (ulong)capacity;
+    counters[BTG_COUNTER_PAIRS] = (uint)min(total, (ulong)0xffffffffu);
+    if (total > (ulong)capacity) counters[BTG_COUNTER_STATUS] |= BTG_STATUS_PAIR_OVERFLOW;
 }
 
 /* Runs before expand_total: reads the broadphase's count, which expand_total then replaces. */

@@ -31,6 +31,7 @@ void expandCompounds(DeviceWorld& w, const PairKinds& kinds)
             .arg(w.pairs).arg(w.counters).arg(w.pos).arg(w.rot).arg(w.props).arg(w.shapes).arg(w.children)
             .arg(w.compoundOffsets).arg(countSlots).arg(w.compoundPairs)
             .run(items);
+        // After the write pass, which reads the broadphase's count that this replaces.
         cl::Launch(ctx, prog.kernel("expand_total"), &w.profiler).arg(w.compoundOffsets).arg(countSlots).arg(w.counters).run(1, 1);
         cl::Launch(ctx, prog.kernel("expand_copy"), &w.profiler)
             .arg(w.compoundPairs).arg(w.counters).arg(cl_uint(capacity)).arg(w.pairs).arg(w.pairManifolds)

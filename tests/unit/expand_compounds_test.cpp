@@ -134,7 +134,8 @@ struct DeviceResult {
     uint total = 0, status = 0;
 };
 
-DeviceResult runExpand(const CompoundScene& s, const std::vector<BtgPair>& pairs, size_t capacity)
+// found: the broadphase's count (more than capacity: it overflowed; 0: the pairs that fit).
+DeviceResult runExpand(const CompoundScene& s, const std::vector<BtgPair>& pairs, size_t capacity, uint found = 0)
 {
     cl::Context& ctx = test::context();
     DeviceWorld w(ctx);
@@ -152,7 +153,7 @@ DeviceResult runExpand(const CompoundScene& s, const std::vector<BtgPair>& pairs
     w.pairs.upload(ctx, padded);
     w.pairManifolds.reserveExact(ctx, capacity);
     std::vector<uint> counters(kNumCounters, 0);
-    counters[kPairCount] = uint(std::min(pairs.size(), capacity));
+    counters[kPairCount] = found ? found : uint(std::min(pairs.size(), capacity));
     w.counters.upload(ctx, counters);
     expandCompounds(w, PairKinds());
     DeviceResult r;
@@ -208,6 +209,15 @@ TEST(ExpandCompounds, OverflowCountsOnAndRaisesTheStatusBit)
     EXPECT_EQ(dev.total, ref.size());  // every leaf pair counted, for the growth
     for (size_t i = 0; i < dev.pairs.size(); ++i) EXPECT_EQ(dev.pairs[i].childA + dev.pairs[i].childB,
                                                             ref[i].childA + ref[i].childB);
+    // The broadphase overflowed too (it found twice what was stored): the total is scaled up
+    // so that one growth fits them all.
+    const std::vector<BtgPair> half(pairs.begin(), pairs.begin() + long(pairs.size() / 2));
+    const size_t halfLeaves = ref::referenceExpandCompounds(half, s.pos.data(), s.rot.data(), s.props.data(),
+                                                            s.tables.shapes.data(), s.tables.children.data())
+                                  .size();
+    const DeviceResult both = runExpand(s, half, half.size(), uint(2 * half.size()));
+    EXPECT_NE(both.status & BTG_STATUS_PAIR_OVERFLOW, 0u);
+    EXPECT_EQ(both.total, uint(2 * halfLeaves));
 }
 
 namespace {
