@@ -14,6 +14,7 @@
 #include "shared/pair_kinds.h"
 
 #include <btBulletDynamicsCommon.h>
+#include <BulletCollision/CollisionDispatch/btCompoundCollisionAlgorithm.h>
 #include <BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h>
 #include <BulletCollision/CollisionDispatch/btConvexPlaneCollisionAlgorithm.h>
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
@@ -91,7 +92,20 @@ bool servedShapeType(int type)
 {
     return type == BOX_SHAPE_PROXYTYPE || type == CONVEX_HULL_SHAPE_PROXYTYPE ||
            type == CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE || type == SPHERE_SHAPE_PROXYTYPE ||
-           type == STATIC_PLANE_PROXYTYPE || isSupportShapeType(type) || isMeshType(type);
+           type == STATIC_PLANE_PROXYTYPE || isSupportShapeType(type) || isMeshType(type) ||
+           type == COMPOUND_SHAPE_PROXYTYPE;
+}
+
+// Bit t for proxy type t of the shape and, for a compound, of its children (whose pairs run
+// through the algorithms registered for their own types).
+std::uint64_t shapeTypeBits(const btCollisionShape* shape, int depth = 0)
+{
+    std::uint64_t bits = std::uint64_t(1) << (shape->getShapeType() & 63);
+    if (shape->isCompound() && depth < 8) {
+        auto* c = static_cast<const btCompoundShape*>(shape);
+        for (int i = 0; i < c->getNumChildShapes(); ++i) bits |= shapeTypeBits(c->getChildShape(i), depth + 1);
+    }
+    return bits;
 }
 
 // What a world built the stock way would use: a btDefaultCollisionConfiguration with the
@@ -149,6 +163,7 @@ const char* shapeTypeName(int type)
         case SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE: return "scaled triangle mesh";
         case TERRAIN_SHAPE_PROXYTYPE: return "heightfield";
         case TRIANGLE_SHAPE_PROXYTYPE: return "triangle";
+        case COMPOUND_SHAPE_PROXYTYPE: return "compound";
         default: return "shape";
     }
 }
@@ -179,6 +194,7 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, ShapeTables* s
     const btCollisionObjectArray& objs = world.getCollisionObjectArray();
     shapes->beginReferences();
     bool featuredBox = false, plainBox = false;
+    int compounds = 0, dynamicCompounds = 0, apartFromCompounds = 0;
     unsigned presentKinds = 0, dynamicKinds = 0;  // bit per BTG_SHAPE_*
     for (int i = 0; i < objs.size(); ++i) {
         const btCollisionObject* o = objs[i];
@@ -188,7 +204,22 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, ShapeTables* s
         std::string why;
         const int row = shapes->add(o->getCollisionShape(), &why);
         if (row < 0) return "body " + std::to_string(i) + ": " + why;
-        const unsigned kindBit = 1u << shapes->shapes[size_t(row)].type;
+        const BtgShape& shape = shapes->shapes[size_t(row)];
+        unsigned kindBit = 1u << shape.type;
+        // A compound's pairs are its leaves' (expand_compounds): those kinds must have rows.
+        if (shape.type == BTG_SHAPE_COMPOUND) {
+            if (!o->isStaticOrKinematicObject()) ++dynamicCompounds;
+            ++compounds;
+            if (!static_cast<const btCompoundShape*>(o->getCollisionShape())->getDynamicAabbTree()) ++apartFromCompounds;
+            kindBit = 0;
+            bool nested = false;
+            for (int k = 0; k < shape.numChildren; ++k) {
+                const BtgChild& leaf = shapes->children[size_t(shape.firstChild + k)];
+                kindBit |= 1u << shapes->shapes[size_t(leaf.shape)].type;
+                nested |= leaf.parent >= 0;
+            }
+            apartFromCompounds += nested;
+        }
         presentKinds |= kindBit;
         // (a dynamic mesh or heightfield has its own rule, in bodiesReason)
         if (!o->isStaticOrKinematicObject() && !(kindBit & (1u << BTG_SHAPE_MESH | 1u << BTG_SHAPE_HEIGHTFIELD)))
@@ -207,6 +238,11 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, ShapeTables* s
     // the rest); against a box without features stock still runs btBoxBoxDetector.
     if (featuredBox && plainBox)
         return "boxes with polyhedral features (initializePolyhedralFeatures) beside boxes without";
+    // Two compounds meet by btCompoundCompoundCollisionAlgorithm's tree-tree walk, which
+    // expand_compounds follows; without a tree on both stock nests btCompoundCollisionAlgorithm.
+    if (dynamicCompounds >= 1 && compounds >= 2 && apartFromCompounds > 0)
+        return "a compound shape without a dynamic AABB tree (btCompoundShape(false)) or with nested compounds "
+               "meeting another compound is not on the GPU path yet";
     // Every pair of shape kinds that can meet (a dynamic body against anything) needs a row of
     // the pair-kind table; one without would be a pair the GPU path silently never collides.
     for (int a = 0; a < BTG_NUM_SHAPE_KINDS; ++a)
@@ -264,6 +300,8 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
     if (gContactEndedCallback) return "gContactEndedCallback is set";
     if (gContactProcessedCallback) return "gContactProcessedCallback is set";
     if (gContactDestroyedCallback) return "gContactDestroyedCallback is set";
+    // Read by btCompoundCollisionAlgorithm for every child it would collide.
+    if (gCompoundChildShapePairCallback) return "gCompoundChildShapePairCallback is set";
     // gContactAddedCallback only runs for bodies with CF_CUSTOM_MATERIAL_CALLBACK: a body rule.
     // The combiners run for every contact point; the GPU path multiplies friction (clamped to
     // ±10) and restitution, and has no rolling or spinning friction. The contact stiffness and
@@ -392,7 +430,7 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex)
                 f.why = std::move(why);
                 return;
             }
-            f.shapeTypes |= std::uint64_t(1) << (o->getCollisionShape()->getShapeType() & 63);
+            f.shapeTypes |= shapeTypeBits(o->getCollisionShape());
         }
     });
     std::uint64_t shapeTypes = 0;

@@ -146,6 +146,8 @@ void GpuWorld::makePlan()
         }
         const BtgShape& s = m_shapes.shapes[size_t(m_shapes.rowOf.at(o->getCollisionShape()))];
         b.shapeType = s.type;
+        for (int k = 0; k < s.numChildren && s.type == BTG_SHAPE_COMPOUND; ++k)
+            b.leafKinds |= 1u << m_shapes.shapes[size_t(m_shapes.children[size_t(s.firstChild + k)].shape)].type;
         b.size = s.type == BTG_SHAPE_PLANE ? 0.0f : 2.0f * boundingRadius(s);
         b.movable = !o->isStaticObject();
         b.dynamic = !o->isStaticOrKinematicObject();
@@ -191,6 +193,7 @@ void GpuWorld::uploadShapeTables(bool appended)
     uploadTable(w.hullFaces, m_shapes.faces);
     uploadTable(w.hullIndices, m_shapes.indices);
     uploadTable(w.hullEdges, m_shapes.edges);
+    uploadTable(w.children, m_shapes.children);
     const MeshTables& mesh = m_shapes.meshTables;
     uploadTable(w.meshes, mesh.meshes);
     uploadTable(w.meshNodes, mesh.nodes);

@@ -106,7 +106,7 @@ private:
     Plan m_plan;
     ShapeTables m_shapes;
     RowMap m_rows;
-    size_t m_uploadedShapeRows[12] = {};  // rows of each shape and mesh table on the device
+    size_t m_uploadedShapeRows[13] = {};  // rows of each shape and mesh table on the device
     std::unordered_set<const btCollisionObject*> m_removed;  // since the rows last followed the world
     bool m_rowsStale = true;  // objects added or removed since the rows last followed them
     std::vector<Mirror> m_mirror;

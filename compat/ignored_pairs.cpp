@@ -23,7 +23,7 @@ bool IgnoredPairs::update(const RowMap& rows, DeviceWorld& w)
             for (int k = 0; k < o->getNumObjectsWithoutCollision(); ++k) {
                 const int other = rows.rowOf(o->getObjectWithoutCollision(k));
                 if (other < 0 || other == int(r)) continue;  // not in the world: nothing to filter
-                BtgPair p;
+                BtgPair p{};
                 p.a = std::min(int(r), other);
                 p.b = std::max(int(r), other);
                 found[size_t(chunk)].push_back(p);

@@ -7,6 +7,7 @@
 #include "mesh_tables.h"
 
 #include <btBulletDynamicsCommon.h>
+#include <BulletCollision/BroadphaseCollision/btDbvt.h>
 #include <BulletCollision/CollisionShapes/btConvexPointCloudShape.h>
 #include <BulletCollision/CollisionShapes/btConvexTriangleMeshShape.h>
 #include <BulletCollision/CollisionShapes/btMultiSphereShape.h>
@@ -271,6 +272,36 @@ std::uint64_t shapeFingerprint(const btCollisionShape* shape)
             int features = m->getConvexPolyhedron() != nullptr;
             mix(&features, sizeof(features));
             forEachMeshVertex(m, mixVec);
+            break;
+        }
+        case COMPOUND_SHAPE_PROXYTYPE: {
+            // Its children (each one's own print, its transform and its tree leaf), the local
+            // AABB stock pairs it by, and the revision add/removeChildShape bump: any change
+            // between steps makes a new row, read again.
+            auto* c = static_cast<const btCompoundShape*>(shape);
+            int n = c->getNumChildShapes(), revision = c->getUpdateRevision();
+            int tree = c->getDynamicAabbTree() != nullptr;
+            mix(&n, sizeof(n));
+            mix(&revision, sizeof(revision));
+            mix(&tree, sizeof(tree));
+            btVector3 lo, hi;
+            c->getAabb(btTransform::getIdentity(), lo, hi);
+            mixVec(lo);
+            mixVec(hi);
+            for (int i = 0; i < n; ++i) {
+                const btCollisionShape* child = c->getChildShape(i);
+                mix(&child, sizeof(child));
+                std::uint64_t print = shapeFingerprint(child);
+                mix(&print, sizeof(print));
+                const btTransform& t = c->getChildTransform(i);
+                mixVec(t.getOrigin());
+                for (int r = 0; r < 3; ++r) mixVec(t.getBasis()[r]);
+                const btDbvtNode* node = const_cast<btCompoundShape*>(c)->getChildList()[i].m_node;
+                if (node) {
+                    mixVec(node->volume.Mins());
+                    mixVec(node->volume.Maxs());
+                }
+            }
             break;
         }
         case UNIFORM_SCALING_SHAPE_PROXYTYPE: {

@@ -9,11 +9,13 @@
 #include "shape_checks.h"
 
 #include <btBulletDynamicsCommon.h>
+#include <BulletCollision/BroadphaseCollision/btDbvt.h>
 #include <BulletCollision/CollisionShapes/btConvexPolyhedron.h>
 
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <typeinfo>
 
 namespace btgpu {
 
@@ -124,6 +126,89 @@ void appendBox(ShapeTables& t, BtgShape& s, const btVector3& h)
 
 }  // namespace
 
+bool ShapeTables::compoundRow(const btCompoundShape* compound, BtgShape& s, std::string* whyNot, std::string* bad)
+{
+    s.type = BTG_SHAPE_COMPOUND;
+    s.margin = compound->getMargin();
+    setLocalAabb(s, compound);  // btCompoundShape::getAabb: its local box plus its margin, turned
+    Flattened f;
+    if (!flatten(compound, btTransform::getIdentity(), -1, 0, "", f, whyNot, bad)) return false;
+    // Leaves first (the shape's range), then the nested compounds they name as parents.
+    const int base = int(children.size()), firstNode = base + int(f.leaves.size());
+    const bool nested = !f.nodes.empty();
+    for (size_t k = 0; k < f.leaves.size(); ++k) {
+        BtgChild& c = f.leaves[k];
+        if (c.parent >= 0) c.parent += firstNode;
+        // Bullet's child index names the leaf's manifolds; with nested compounds that index is
+        // not unique within the body, so the leaf's place among the body's leaves does.
+        if (nested) c.index = int(k);
+    }
+    for (BtgChild& c : f.nodes)
+        if (c.parent >= 0) c.parent += firstNode;
+    s.firstChild = base;
+    s.numChildren = int(f.leaves.size());
+    children.insert(children.end(), f.leaves.begin(), f.leaves.end());
+    children.insert(children.end(), f.nodes.begin(), f.nodes.end());
+    return true;
+}
+
+bool ShapeTables::flatten(const btCompoundShape* compound, const btTransform& toBody, int parent, int depth,
+                          const std::string& path, Flattened& f, std::string* whyNot, std::string* bad)
+{
+    const bool tree = compound->getDynamicAabbTree() != nullptr;
+    for (int i = 0; i < compound->getNumChildShapes(); ++i) {
+        const btCollisionShape* child = compound->getChildShape(i);
+        const std::string which = "compound child " + path + std::to_string(i) + " ";
+        const btTransform& t = compound->getChildTransform(i);
+        const btQuaternion q = t.getRotation();
+        if (bad->empty() && !(std::isfinite(t.getOrigin().length2()) && std::isfinite(q.length2())))
+            *bad = which + "has a non-finite transform";
+        const btTransform composed = toBody * t;
+        const btQuaternion cq = composed.getRotation();
+        BtgChild c{};
+        c.pos = f4(composed.getOrigin());
+        c.rot = btgMake4(cq.x(), cq.y(), cq.z(), cq.w());
+        c.index = i;
+        c.parent = parent;
+        c.useTree = tree ? 1 : 0;
+        // The child as its holder's tree holds it (the box updateChildTransform or addChildShape left).
+        const btDbvtNode* node = const_cast<btCompoundShape*>(compound)->getChildList()[i].m_node;
+        if (node) {
+            c.treeAabbMin = f4(node->volume.Mins());
+            c.treeAabbMax = f4(node->volume.Maxs());
+        } else {
+            c.useTree = 0;
+        }
+        if (child->isCompound() && (depth >= 7 || typeid(*child) != typeid(btCompoundShape))) {
+            *whyNot = which + "is a compound nested more than 8 deep or a subclass of btCompoundShape";
+            return false;
+        }
+        // A nested compound is a node with a row of its own (its box for the level's tests).
+        const int row = add(child, whyNot);
+        if (row < 0) {
+            *whyNot = which + "(" + child->getName() + "): " + *whyNot;
+            return false;
+        }
+        c.shape = row;
+        if (child->isCompound()) {
+            const int self = int(f.nodes.size());
+            f.nodes.push_back(c);
+            if (!flatten(static_cast<const btCompoundShape*>(child), composed, self, depth + 1,
+                         path + std::to_string(i) + ".", f, whyNot, bad))
+                return false;
+            continue;
+        }
+        const int kind = shapes[size_t(row)].type;
+        if (kind == BTG_SHAPE_PLANE || kind == BTG_SHAPE_MESH || kind == BTG_SHAPE_HEIGHTFIELD) {
+            *whyNot = which + "is a " + child->getName() + " (concave or plane children are not on the GPU path yet)";
+            return false;
+        }
+        if (bad->empty() && !badReason[size_t(row)].empty()) *bad = which + badReason[size_t(row)];
+        f.leaves.push_back(c);
+    }
+    return true;
+}
+
 int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
 {
     auto it = rowOf.find(shape);
@@ -133,6 +218,10 @@ int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
         // another shape at a reused address, or changed in place).
         if (references[row] > 0 || (!m_stale[row] && shapeFingerprint(shape) == fingerprint[row])) {
             ++references[row];
+            // A compound's leaves are in use as long as it is (their rows stay verified).
+            const BtgShape& s = shapes[row];
+            for (int k = 0; k < s.numChildren && s.type == BTG_SHAPE_COMPOUND; ++k)
+                ++references[size_t(children[size_t(s.firstChild + k)].shape)];
             return it->second;
         }
         rowOf.erase(it);  // the old row stays, unreferenced; a new one is built below
@@ -144,8 +233,8 @@ int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
     const btHeightfieldTerrainShape* heightfield = heightfieldOf(shape);
     const bool known = type == BOX_SHAPE_PROXYTYPE || type == SPHERE_SHAPE_PROXYTYPE || type == STATIC_PLANE_PROXYTYPE ||
                        type == CONVEX_HULL_SHAPE_PROXYTYPE || type == CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE ||
-                       isSupportShapeType(type) || mesh ||
-                       heightfield;
+                       isSupportShapeType(type) || mesh || heightfield ||
+                       (type == COMPOUND_SHAPE_PROXYTYPE && typeid(*shape) == typeid(btCompoundShape));
     s.mesh = -1;
     if (!known) {
         *whyNot = std::string("unsupported shape '") + shape->getName() + "'";
@@ -196,6 +285,10 @@ int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
                                                                                : btVector3(1, 1, 1);
         s.param = f4(scaling);
         setLocalAabb(s, shape);
+    } else if (type == COMPOUND_SHAPE_PROXYTYPE) {
+        std::string childBad;
+        if (!compoundRow(static_cast<const btCompoundShape*>(shape), s, whyNot, &childBad)) return -1;
+        if (bad.empty()) bad = childBad;
     } else if (heightfield) {
         // The heights are copied now; a change to the app's array changes the fingerprint and
         // the shape gets a new row, read again.

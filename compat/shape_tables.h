@@ -15,6 +15,8 @@
 #include <vector>
 
 class btCollisionShape;
+class btCompoundShape;
+class btTransform;
 
 namespace btgpu {
 
@@ -31,6 +33,7 @@ struct ShapeTables {
     std::vector<BtgFace> faces;
     std::vector<int> indices;
     std::vector<BtgFloat4> edges;
+    std::vector<BtgChild> children;  // compound leaves (BtgShape::firstChild, numChildren)
     MeshTables meshTables;  // the meshes of BTG_SHAPE_MESH rows (BtgShape::mesh), each once
     std::unordered_map<const btCollisionShape*, int> rowOf;
     std::vector<std::string> badReason;             // per row: "" or why its bodies are kept out
@@ -63,6 +66,16 @@ struct ShapeTables {
     void clear();
 
 private:
+    // A compound's row: its leaves, each a row of its own, appended to `children`. False with
+    // *whyNot when a child is not served; *bad names a child that keeps the compound's bodies out.
+    bool compoundRow(const btCompoundShape* compound, BtgShape& s, std::string* whyNot, std::string* bad);
+    // The rows of one compound level into f, nested compounds recursed (parents are indices in
+    // f.nodes until compoundRow places them); toBody carries this level's frame into the body's.
+    struct Flattened {
+        std::vector<BtgChild> leaves, nodes;
+    };
+    bool flatten(const btCompoundShape* compound, const btTransform& toBody, int parent, int depth,
+                 const std::string& path, Flattened& f, std::string* whyNot, std::string* bad);
     struct CachedHull {
         std::uint64_t fingerprint;
         Polyhedron poly;

@@ -16,6 +16,9 @@ __kernel void filter_ignored_pairs(__global const BtgPair* restrict ignored, int
     int k = (int)get_global_id(0);
     if (k >= numIgnored) return;
     const int n = (int)min(counters[BTG_COUNTER_PAIRS], (uint)pairCapacity);
-    int i = btgFindPair(pairs, n, ignored[k]);
-    if (i >= 0) pairManifolds[i].count = 0;
+    /* A compound's pair is several child pairs in a row, all with the same bodies. */
+    for (int i = btgFindPair(pairs, n, ignored[k]); i >= 0 && i < n && pairs[i].a == ignored[k].a &&
+                                                    pairs[i].b == ignored[k].b;
+         ++i)
+        pairManifolds[i].count = 0;
 }

@@ -5,12 +5,12 @@
  * (the order of manifolds, contacts and the cache), and the kind pass then groups their slots
  * into kindOrder, each kind's range found on the device (kindRanges).
  * Stage: broadphase. Launch: per kernel below (bodies, sorted grid entries, pair slots or kinds).
- * Reads: aabbMin, aabbMax, props, shapes, pos, rot, largeBodies, planeBodies.
+ * Reads: aabbMin, aabbMax, props, shapes, children (a leaf pair's kind), pos, rot, largeBodies, planeBodies.
  * Writes: pairs, pairManifolds (empty), kindOrder, kindRanges, counters[BTG_COUNTER_PAIRS] (all pairs found, even past
  * capacity), counters[BTG_COUNTER_STATUS] (BTG_STATUS_PAIR_OVERFLOW), and the scratch of
  * BroadphaseScratch. */
 #include "shared/broadphase.h"
-#include "shared/pair_kinds.h"
+#include "shared/compound.h"
 
 #define BTG_NO_KEY 0xffffffffu
 
@@ -175,7 +175,8 @@ __kernel void pairs_write(__global const BtgPair* restrict raw, __global const u
 /* Launch: one work-item per pair slot (capacity). The kind digit of the sort key, for the pairs
  * already in (a, b) order: key = the pair's kind (BTG_NO_KEY past the count), value = its slot. */
 __kernel void pair_kind_keys(__global const BtgPair* restrict pairs, __global const BtgBodyProps* restrict props,
-                             __global const BtgShape* restrict shapes, __global const uint* restrict counters,
+                             __global const BtgShape* restrict shapes, __global const BtgChild* restrict children,
+                             __global const uint* restrict counters,
                              __global uint* restrict keys, __global uint* restrict order, uint capacity)
 {
     uint k = get_global_id(0);
@@ -185,8 +186,7 @@ __kernel void pair_kind_keys(__global const BtgPair* restrict pairs, __global co
         keys[k] = BTG_NO_KEY;
         return;
     }
-    BtgPair p = pairs[k];
-    keys[k] = (uint)btgPairKind(shapes[props[p.a].shape].type, shapes[props[p.b].shape].type);
+    keys[k] = (uint)btgPairKindOf(pairs[k], props, shapes, children);
 }
 
 /* Launch: one work-item per pair kind (BTG_NUM_PAIR_KINDS). Kind k's [start, end) in the kind

@@ -7,7 +7,7 @@
  * Launch: midphase_count / midphase_write any number of work-items striding over the count
  * slots (pairCapacity + 1: the last one, always 0, ends up holding the total); midphase_total
  * one work-item.
- * Reads pairs, kindOrder, kindRanges (the mesh kinds' range), pos, rot, props, shapes, meshes,
+ * Reads pairs, kindOrder, kindRanges (the mesh kinds' range), pos, rot, props, shapes, children, meshes,
  * meshNodes, meshParts, heightfields, heightfieldHeights. Writes subPairCounts (counts, then offsets after the scan), subPairs,
  * counters[BTG_COUNTER_SUB_PAIRS] (every sub-pair found, even past capacity) and the status
  * bit BTG_STATUS_SUB_PAIR_OVERFLOW, on which the host grows subPairs and redoes the step. */
@@ -23,6 +23,7 @@ __kernel void midphase_count(__global const BtgPair* restrict pairs, __global co
                              __global const uint* restrict kindRanges, int indirect,
                              __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,
                              __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes,
+                             __global const BtgChild* restrict children,
                              __global const BtgMesh* restrict meshes, __global const BtgBvhNode* restrict nodes,
                              __global const int* restrict parts, __global const BtgTriangle* restrict triangles,
                              __global const BtgFloat4* restrict meshVerts,
@@ -35,7 +36,8 @@ __kernel void midphase_count(__global const BtgPair* restrict pairs, __global co
         uint c = 0u;
         if (start + i < end) {
             uint slot = midphase_slot(i, start, kindOrder, indirect);
-            c = btgMidphasePair(pairs[slot], (int)slot, pos, rot, props, shapes, BTG_CONCAVE_TABLE_ARGS, 0, 0u, 0u);
+            c = btgMidphasePair(pairs[slot], (int)slot, pos, rot, props, shapes, children, BTG_CONCAVE_TABLE_ARGS, 0, 0u,
+                                0u);
         }
         counts[i] = c;
     }
@@ -54,6 +56,7 @@ __kernel void midphase_write(__global const BtgPair* restrict pairs, __global co
                              __global const uint* restrict kindRanges, int indirect,
                              __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,
                              __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes,
+                             __global const BtgChild* restrict children,
                              __global const BtgMesh* restrict meshes, __global const BtgBvhNode* restrict nodes,
                              __global const int* restrict parts, __global const BtgTriangle* restrict triangles,
                              __global const BtgFloat4* restrict meshVerts,
@@ -67,7 +70,7 @@ __kernel void midphase_write(__global const BtgPair* restrict pairs, __global co
         uint first = offsets[i];
         if (offsets[i + 1u] == first || first >= capacity) continue;
         uint slot = midphase_slot(i, start, kindOrder, indirect);
-        btgMidphasePair(pairs[slot], (int)slot, pos, rot, props, shapes, BTG_CONCAVE_TABLE_ARGS, subPairs, first,
-                        capacity);
+        btgMidphasePair(pairs[slot], (int)slot, pos, rot, props, shapes, children, BTG_CONCAVE_TABLE_ARGS, subPairs,
+                        first, capacity);
     }
 }

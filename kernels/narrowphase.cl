@@ -6,6 +6,7 @@
  * written by exactly one kernel.
  * Reads pairs, kindOrder, kindRanges, pos, rot, props (shape), shapes, hullVertices/Faces/Indices.
  * Writes manifolds[slot] for the pair slots of the kernel's kind (numPoints 0 when apart). */
+#include "shared/compound.h"
 #include "shared/simple_contacts.h"
 
 BTG_PAIR_KINDS_NARROWPHASE(BTG_NARROWPHASE_KERNEL)

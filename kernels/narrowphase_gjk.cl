@@ -11,16 +11,18 @@
  * then gjkCache (in the warm-start cache's order). */
 #include "shared/contact_rows.h"
 #include "shared/polyhedral_contacts.h"
+#include "shared/compound.h"
 
 /* The manifold the pair kept last substep: found through the warm-start cache (the contacts in
  * pair order), whose entry j the GJK cache holds at j too. None when the pair had no points, or
  * the entry is another kind's (the pair's shapes changed). */
-static BtgPersistentManifold previous_manifold(BtgPair p, int kind, __global const uint* restrict counters,
+static BtgPersistentManifold previous_manifold(BtgPair p, int kind, __global const BtgChild* restrict children,
+                                               __global const uint* restrict counters,
                                                __global const BtgCachedContact* restrict cache, int cacheCapacity,
                                                __global const BtgPersistentManifold* restrict gjkCache,
                                                int gjkCapacity)
 {
-    BtgManifold key = btgEmptyManifold(p.a, p.b);
+    BtgManifold key = btgPairKeyManifold(p, children);
     const int prevCount = (int)min(counters[BTG_COUNTER_PREV_CONTACTS], (uint)min(cacheCapacity, gjkCapacity));
     const int j = btgFindPrevContact(cache, prevCount, key);
     if (j >= 0) {
@@ -37,6 +39,7 @@ static BtgPersistentManifold previous_manifold(BtgPair p, int kind, __global con
                          __global const uint* restrict kindRanges, int indirect,                                      \
                          __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,              \
                          __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes,       \
+                         __global const BtgChild* restrict children,                                                  \
                          __global const BtgFloat4* restrict verts, __global const BtgFace* restrict faces,            \
                          __global const int* restrict indices, __global const BtgFloat4* restrict edges,              \
                          __global const uint* restrict counters,                                                      \
@@ -50,19 +53,19 @@ static BtgPersistentManifold previous_manifold(BtgPair p, int kind, __global con
              i += (uint)get_global_size(0)) {                                                                        \
             const uint slot = indirect ? kindOrder[i] : i;                                                            \
             const BtgPair p = pairs[slot];                                                                            \
-            BtgCollider a = btgLoadCollider(p.a, pos, rot, props, shapes);                                            \
-            BtgCollider b = btgLoadCollider(p.b, pos, rot, props, shapes);                                            \
+            BtgCollider a = btgLoadPairCollider(p, 0, pos, rot, props, shapes, children);                             \
+            BtgCollider b = btgLoadPairCollider(p, 1, pos, rot, props, shapes, children);                             \
             const float t = btgPairThreshold(a.shape, b.shape);                                                       \
             BtgPersistentManifold pm = btgEmptyPersistent(p.a, p.b, kind);                                           \
             BtgManifold m = btgEmptyManifold(p.a, p.b);                                                               \
             if (btgPairKind(a.shape.type, b.shape.type) == (kind)) {                                                  \
                 float dist[BTG_MAX_POINTS];                                                                           \
                 BtgPersistentManifold prev =                                                                          \
-                    previous_manifold(p, kind, counters, cache, cacheCapacity, gjkCache, gjkCapacity);                \
+                    previous_manifold(p, kind, children, counters, cache, cacheCapacity, gjkCache, gjkCapacity);      \
                 pm = btgPairStep(prev, a, b, verts, faces, indices, edges, t, dist);                                  \
                 m = btgManifoldFromPersistent(pm, dist, b.pose);                                                      \
             }                                                                                                         \
-            m = btgWithThreshold(m, t);                                                                               \
+            m = btgWithChildKeys(btgWithThreshold(m, t), p, children);                                                \
             gjkPairState[slot] = pm;                                                                                  \
             manifolds[slot] = m;                                                                                      \
             pairManifolds[slot] = btgOneManifold((int)slot, m);                                                       \
@@ -78,7 +81,8 @@ __kernel void store_persistent_manifolds(__global const uint* restrict contactMa
                                          __global const BtgManifold* restrict manifolds,
                                          __global const uint* restrict counters, int contactCapacity,
                                          __global const BtgBodyProps* restrict props,
-                                         __global const BtgShape* restrict shapes,
+                                         __global const BtgShape* restrict shapes, __global const BtgPair* restrict pairs,
+                                         __global const BtgChild* restrict children,
                                          __global const BtgPersistentManifold* restrict gjkPairState, int pairCapacity,
                                          __global BtgPersistentManifold* restrict gjkCache, int gjkCapacity)
 {
@@ -89,9 +93,10 @@ __kernel void store_persistent_manifolds(__global const uint* restrict contactMa
     if (i >= n) return;
     const uint slot = contactManifolds[i];
     const BtgManifold m = manifolds[slot];
-    const int kind = btgPairKind(shapes[props[m.bodyA].shape].type, shapes[props[m.bodyB].shape].type);
     BtgPersistentManifold pm = btgEmptyPersistent(m.bodyA, m.bodyB, BTG_PAIR_NONE);
     if (slot < (uint)pairCapacity) {
+        /* the kind of the (leaf) pair in this slot, which wrote gjkPairState[slot] if a GJK kind */
+        const int kind = btgPairKindOf(pairs[slot], props, shapes, children);
         const BtgPersistentManifold s = gjkPairState[slot];
         if (s.kind == kind && s.bodyA == m.bodyA && s.bodyB == m.bodyB) pm = s;
     }

@@ -12,12 +12,14 @@
  * manifolds[slot] for each mesh pair. */
 #include "shared/counters.h"
 #include "shared/triangle_contacts.h"
+#include "shared/compound.h"
 
 #define BTG_TRIANGLE_KERNEL(program, kind, shapeA, shapeB, routine, kernel)                                        \
     __kernel void kernel(__global const BtgSubPair* restrict subPairs, __global const uint* restrict counters,      \
                          uint capacity, __global const BtgPair* restrict pairs,                                     \
                          __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,            \
                          __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes,     \
+                         __global const BtgChild* restrict children,                                                \
                          __global const BtgFloat4* restrict verts, __global const BtgFace* restrict faces,          \
                          __global const int* restrict indices, __global const BtgFloat4* restrict edges,            \
                          __global const BtgMesh* restrict meshes, __global const BtgBvhNode* restrict nodes,        \
@@ -30,10 +32,11 @@
         for (uint s = (uint)get_global_id(0); s < n; s += (uint)get_global_size(0)) {                               \
             const BtgSubPair sp = subPairs[s];                                                                      \
             const BtgPair p = pairs[sp.pair];                                                                       \
-            BtgCollider a = btgLoadCollider(p.a, pos, rot, props, shapes);                                          \
-            BtgCollider b = btgLoadCollider(p.b, pos, rot, props, shapes);                                          \
+            BtgCollider a = btgLoadPairCollider(p, 0, pos, rot, props, shapes, children);                           \
+            BtgCollider b = btgLoadPairCollider(p, 1, pos, rot, props, shapes, children);                           \
             if (btgPairKind(a.shape.type, b.shape.type) != (kind)) continue;                                       \
-            manifolds[base + s] = btgTriangleManifold(a, b, sp, verts, faces, indices, edges, routine);            \
+            manifolds[base + s] = btgWithChildKeys(btgTriangleManifold(a, b, sp, verts, faces, indices, edges, routine), \
+                                                   p, children);                                                    \
         }                                                                                                           \
     }
 

@@ -6,5 +6,6 @@
  * Reads pairs, kindOrder, kindRanges, pos, rot, props (shape), shapes, hullVertices/Faces/Indices/Edges.
  * Writes manifolds[slot] for every hull–hull pair slot (numPoints 0 when apart). */
 #include "shared/clip.h"
+#include "shared/compound.h"
 
 BTG_PAIR_KINDS_NARROWPHASE_SAT(BTG_NARROWPHASE_KERNEL)

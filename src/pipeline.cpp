@@ -7,6 +7,7 @@
 
 #include "stages/color_constraints.h"
 #include "stages/contact_cache.h"
+#include "stages/expand_compounds.h"
 #include "stages/filter_pairs.h"
 #include "stages/find_pairs.h"
 #include "stages/integrate.h"
@@ -36,7 +37,8 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::UpdateAabbs: updateAabbs(w, p.contactThreshold); break;
         case Stage::UniformGrid:
         case Stage::SortSweep: smallBodyPairs(w, plan.broadphase, plan.cellSize); break;
-        case Stage::FindPairs: finishPairs(w, plan.kinds); break;
+        case Stage::FindPairs: finishPairs(w, plan.kinds, !plan.hasCompounds); break;
+        case Stage::ExpandCompounds: expandCompounds(w, plan.kinds); break;
         case Stage::Midphase: midphase(w); break;
         case Stage::Narrowphase:
         case Stage::NarrowphaseSat:

@@ -98,6 +98,8 @@ static inline void btgAppendPair(__global BtgPair* restrict raw, volatile __glob
         BtgPair p;
         p.a = a < b ? a : b;
         p.b = a < b ? b : a;
+        p.childA = BTG_WHOLE_BODY;
+        p.childB = BTG_WHOLE_BODY;
         raw[slot] = p;
     }
 }

@@ -3,6 +3,7 @@
  * sub-pair names, in the concave body's frame. */
 #ifndef BTG_CONCAVE_H
 #define BTG_CONCAVE_H
+#include "compound.h"
 #include "heightfield.h"
 #include "mesh.h"
 
@@ -17,20 +18,25 @@ static inline int btgIsConcave(int type) { return type == BTG_SHAPE_MESH || type
 
 /* The midphase of one broadphase pair: 0 unless exactly one side is concave and the other a
  * convex; else the convex's box (btgMidphaseBox with the pair's threshold) walked through the
- * mesh's BVH or over the heightfield's cells. */
+ * mesh's BVH or over the heightfield's cells. The convex may be a compound's leaf, at its own
+ * pose. */
 static inline uint btgMidphasePair(BtgPair p, int slot, BTG_CONST_GLOBAL BtgFloat4* pos, BTG_CONST_GLOBAL BtgFloat4* rot,
                                    BTG_CONST_GLOBAL BtgBodyProps* props, BTG_CONST_GLOBAL BtgShape* shapes,
-                                   BTG_CONCAVE_TABLES, BTG_GLOBAL BtgSubPair* out, uint first, uint capacity)
+                                   BTG_CHILD_TABLE, BTG_CONCAVE_TABLES, BTG_GLOBAL BtgSubPair* out, uint first,
+                                   uint capacity)
 {
     (void)triangles;
     (void)meshVerts;
-    BtgShape sa = shapes[props[p.a].shape], sb = shapes[props[p.b].shape];
+    BtgShape sa = btgPairSideShape(p, 0, props, shapes, children), sb = btgPairSideShape(p, 1, props, shapes, children);
     int concaveIsA = btgIsConcave(sa.type);
     BtgShape cs = concaveIsA ? sb : sa, ms = concaveIsA ? sa : sb;
     if (!btgIsConcave(ms.type) || btgIsConcave(cs.type) || cs.type == BTG_SHAPE_PLANE) return 0u;
     int c = concaveIsA ? p.b : p.a, mb = concaveIsA ? p.a : p.b;
+    int child = concaveIsA ? p.childB : p.childA;
     float t = sa.breakingThreshold < sb.breakingThreshold ? sa.breakingThreshold : sb.breakingThreshold;
-    BtgAabb box = btgMidphaseBox(pos[c], rot[c], cs, pos[mb], rot[mb], ms, t);
+    BtgFloat4 cp = pos[c], cq = rot[c];
+    if (child != BTG_WHOLE_BODY) btgChildWorld(pos[c], rot[c], children[child - 1], &cp, &cq);
+    BtgAabb box = btgMidphaseBox(cp, cq, cs, pos[mb], rot[mb], ms, t);
     if (ms.type == BTG_SHAPE_HEIGHTFIELD)
         return btgHeightfieldWalk(heightfields[ms.mesh], heights, box, slot, out, first, capacity);
     BtgMesh m = meshes[ms.mesh];

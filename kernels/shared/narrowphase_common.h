@@ -162,6 +162,7 @@ static inline BtgManifoldRange btgOneManifold(int slot, BtgManifold m)
  * (find_pairs). Launch: as many work-items as the host likes (it cannot know the range's size
  * without a readback); they stride over the range, read from kindRanges on the device. The pair
  * in range slot i is pairs[kindOrder[i]] (indirect), or pairs[i] when the scene has this one kind
+ * (a side may be a compound's leaf: btgLoadPairCollider, compound.h, which the kernel file includes)
  * only (find_pairs then sorts nothing). A pair whose shapes are not this row's (a stale plan)
  * gets no points rather than another kind's routine. Writes manifolds[slot] of each pair in the
  * range (numPoints 0 when apart; manifolds stay in pair order) and pairManifolds[slot], the
@@ -171,6 +172,7 @@ static inline BtgManifoldRange btgOneManifold(int slot, BtgManifold m)
                          __global const uint* restrict kindRanges, int indirect,                                    \
                          __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,            \
                          __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes,     \
+                         __global const BtgChild* restrict children,                                                \
                          __global const BtgFloat4* restrict verts, __global const BtgFace* restrict faces,          \
                          __global const int* restrict indices, __global const BtgFloat4* restrict edges,            \
                          __global BtgManifold* restrict manifolds,                                                  \
@@ -181,12 +183,14 @@ static inline BtgManifoldRange btgOneManifold(int slot, BtgManifold m)
              i += (uint)get_global_size(0)) {                                                                      \
             const uint slot = indirect ? kindOrder[i] : i;                                                          \
             const BtgPair p = pairs[slot];                                                                          \
-            BtgCollider a = btgLoadCollider(p.a, pos, rot, props, shapes);                                          \
-            BtgCollider b = btgLoadCollider(p.b, pos, rot, props, shapes);                                          \
+            BtgCollider a = btgLoadPairCollider(p, 0, pos, rot, props, shapes, children);                           \
+            BtgCollider b = btgLoadPairCollider(p, 1, pos, rot, props, shapes, children);                           \
             const float t = btgPairThreshold(a.shape, b.shape);                                                     \
-            const BtgManifold m = btgPairKind(a.shape.type, b.shape.type) == (kind)                                 \
-                                      ? btgWithThreshold(routine(a, b, verts, faces, indices, edges, t), t)         \
-                                      : btgEmptyManifold(p.a, p.b);                                                 \
+            const BtgManifold m = btgWithChildKeys(                                                                 \
+                btgPairKind(a.shape.type, b.shape.type) == (kind)                                                   \
+                    ? btgWithThreshold(routine(a, b, verts, faces, indices, edges, t), t)                           \
+                    : btgEmptyManifold(p.a, p.b),                                                                   \
+                p, children);                                                                                       \
             manifolds[slot] = m;                                                                                    \
             pairManifolds[slot] = btgOneManifold((int)slot, m);                                                     \
         }                                                                                                           \

@@ -13,7 +13,7 @@ static inline int btgPairLess(BtgPair p, BtgPair q)
     return p.a < q.a || (p.a == q.a && p.b < q.b);
 }
 
-/* Index of pair q in pairs[0, n) (sorted by (a, b), no duplicates), -1 when absent. */
+/* Index of the first pair with q's bodies in pairs[0, n) (sorted by (a, b)), -1 when absent. */
 static inline int btgFindPair(BTG_CONST_GLOBAL BtgPair* pairs, int n, BtgPair q)
 {
     int lo = 0, hi = n;

@@ -33,7 +33,9 @@
 #define BTG_SHAPE_BOX 4
 #define BTG_SHAPE_MESH 5 /* static or kinematic triangle mesh with a BVH (mesh.h) */
 #define BTG_SHAPE_HEIGHTFIELD 6 /* static or kinematic height grid (heightfield.h) */
-#define BTG_NUM_SHAPE_KINDS 7
+#define BTG_SHAPE_COMPOUND 7 /* btCompoundShape: a range of child collider rows (compound.h); no
+                                pair kind takes it, expand_compounds turns its pairs into child pairs */
+#define BTG_NUM_SHAPE_KINDS 8
 
 /* Support functions (BtgShape.convexType, shared/support.h). A hull row (BTG_SHAPE_HULL) has
  * BTG_CONVEX_HULL, or BTG_CONVEX_BOX for a btBoxShape, whose GJK core is the box shrunk by its
@@ -115,10 +117,29 @@ typedef struct {
                                support function */
     int mesh;               /* mesh: row in the mesh table (BtgMesh, mesh.h); heightfield: row in
                                the heightfield table (BtgHeightfield, heightfield.h); else -1 */
-    int pad0;
-    int pad1;
+    int firstChild;         /* compound: its leaves' rows in the child table (BtgChild) ... */
+    int numChildren;        /* ... and how many (nested compounds flattened) */
     int pad2;
 } BtgShape;
+
+/* One row of a compound's flattened tree (a collider row): a leaf (a convex shape), or a node
+ * (a nested compound) that its leaves name as their parent. Stock culls at every level
+ * (btCompoundCollisionAlgorithm within btCompoundCollisionAlgorithm), so a leaf pair is kept
+ * when every row from the leaf up passes its level's two tests: its box in its holder's frame
+ * (the holder's dynamic AABB tree leaf) and its world AABB. */
+typedef struct {
+    BtgFloat4 pos;          /* m, the row's origin in the body's frame (levels composed); w 0 */
+    BtgFloat4 rot;          /* unit quaternion, row to body frame */
+    BtgFloat4 treeAabbMin;  /* m, the row's AABB in its holder's frame, as the holder's tree holds it */
+    BtgFloat4 treeAabbMax;
+    int shape;              /* the row's shape row (a node's: its compound's) */
+    int index;              /* the key its manifolds carry (m_index0/1): Bullet's child index for a
+                               child of the body's compound; for a leaf of a nested compound its
+                               place among the body's leaves (Bullet's own index there, its place
+                               in its own compound, is not unique within the body) */
+    int useTree;            /* 1: its holder has a dynamic AABB tree (stock queries it first) */
+    int parent;             /* the holder's row when a nested compound holds it, else -1 */
+} BtgChild;
 
 /* A hull face: its outward plane and its vertex loop (counter-clockwise seen from outside). */
 typedef struct {
@@ -129,11 +150,16 @@ typedef struct {
     int pad1;
 } BtgFace;
 
-/* A candidate pair from the broadphase: body rows, a < b. */
+/* A candidate pair from the broadphase: body rows, a < b; after expand_compounds a pair of
+ * colliders: childA/childB name the compound leaf of each side, 1 + its row in the child table,
+ * or BTG_WHOLE_BODY (0, so a zeroed pair is a whole-body pair) for the body's own shape. */
 typedef struct {
     int a;
     int b;
+    int childA;
+    int childB;
 } BtgPair;
+#define BTG_WHOLE_BODY 0
 
 /* Feature ids (BtgManifoldPoint.featureId): which features of the two shapes made a point, so
  * the warm start can follow it from step to step (box3d's featureId). Unique within a manifold
@@ -301,7 +327,8 @@ typedef struct {
 static_assert(sizeof(BtgBodyProps) == 112, "BtgBodyProps layout");
 static_assert(sizeof(BtgShape) == 112, "BtgShape layout");
 static_assert(sizeof(BtgFace) == 32, "BtgFace layout");
-static_assert(sizeof(BtgPair) == 8, "BtgPair layout");
+static_assert(sizeof(BtgPair) == 16, "BtgPair layout");
+static_assert(sizeof(BtgChild) == 80, "BtgChild layout");
 static_assert(sizeof(BtgManifoldPoint) == 32, "BtgManifoldPoint layout");
 static_assert(sizeof(BtgManifold) == 32 * BTG_MAX_POINTS + 32, "BtgManifold layout");
 static_assert(sizeof(BtgManifoldRange) == 8, "BtgManifoldRange layout");

@@ -9,8 +9,11 @@ void filterPairs(const std::vector<BtgPair>& ignored, const std::vector<BtgPair>
                  std::vector<BtgManifoldRange>& pairManifolds)
 {
     for (const BtgPair& q : ignored) {
-        int i = btgFindPair(pairs.data(), int(pairs.size()), q);
-        if (i >= 0) pairManifolds[size_t(i)].count = 0;
+        const int n = int(pairs.size());
+        for (int i = btgFindPair(pairs.data(), n, q); i >= 0 && i < n && pairs[size_t(i)].a == q.a &&
+                                                      pairs[size_t(i)].b == q.b;
+             ++i)
+            pairManifolds[size_t(i)].count = 0;
     }
 }
 

@@ -37,7 +37,7 @@ std::vector<BtgPair> findPairs(const std::vector<BtgFloat4>& aabbMin, const std:
             } else {
                 keep = btgAabbOverlap(aabbMin[size_t(a)], aabbMax[size_t(a)], aabbMin[size_t(b)], aabbMax[size_t(b)]);
             }
-            if (keep) out.push_back(BtgPair{a, b});
+            if (keep) out.push_back(BtgPair{a, b, BTG_WHOLE_BODY, BTG_WHOLE_BODY});
         }
     }
     return out;

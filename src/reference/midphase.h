@@ -22,6 +22,6 @@ struct MeshTablesView {
 // the kind-grouped pairs), each pair's triangles in the BVH walk's order.
 std::vector<BtgSubPair> referenceMidphase(const std::vector<int>& slots, const BtgPair* pairs, const BtgFloat4* pos,
                                           const BtgFloat4* rot, const BtgBodyProps* props, const BtgShape* shapes,
-                                          const MeshTablesView& m);
+                                          const MeshTablesView& m, const BtgChild* children = nullptr);
 
 }  // namespace btgpu::ref

@@ -4,6 +4,7 @@
 #include "reference/narrowphase.h"
 
 #include "shared/clip.h"
+#include "shared/compound.h"
 #include "shared/polyhedral_contacts.h"
 #include "shared/simple_contacts.h"
 #include "shared/triangle_contacts.h"
@@ -12,25 +13,27 @@ namespace btgpu::ref {
 
 int pairKind(const BtgPair& pair, const BtgBodyProps* props, const ShapeTablesView& t)
 {
-    return btgPairKind(t.shapes[props[pair.a].shape].type, t.shapes[props[pair.b].shape].type);
+    return btgPairKindOf(pair, props, t.shapes, t.children);
 }
 
 BtgManifold referenceContact(const BtgPair& pair, const BtgFloat4* pos, const BtgFloat4* rot,
                              const BtgBodyProps* props, const ShapeTablesView& t)
 {
-    BtgCollider a = btgLoadCollider(pair.a, pos, rot, props, t.shapes);
-    BtgCollider b = btgLoadCollider(pair.b, pos, rot, props, t.shapes);
+    BtgCollider a = btgLoadPairCollider(pair, 0, pos, rot, props, t.shapes, t.children);
+    BtgCollider b = btgLoadPairCollider(pair, 1, pos, rot, props, t.shapes, t.children);
     const float threshold = btgPairThreshold(a.shape, b.shape);
     const BtgFloat4 *verts = t.hullVertices, *edges = t.hullEdges;
     const BtgFace* faces = t.hullFaces;
     const int* indices = t.hullIndices;
     switch (pairKind(pair, props, t)) {
 #define BTGPU_REFERENCE_ROW(program, kind, shapeA, shapeB, routine, kernel) \
-    case kind: return btgWithThreshold(routine(a, b, verts, faces, indices, edges, threshold), threshold);
+    case kind:                                                              \
+        return btgWithChildKeys(btgWithThreshold(routine(a, b, verts, faces, indices, edges, threshold), threshold), \
+                                pair, t.children);
         BTG_PAIR_KINDS_CONVEX(BTGPU_REFERENCE_ROW)
         BTG_PAIR_KINDS_NARROWPHASE_GJK(BTGPU_REFERENCE_ROW)
 #undef BTGPU_REFERENCE_ROW
-    default: return btgEmptyManifold(pair.a, pair.b);
+    default: return btgWithChildKeys(btgEmptyManifold(pair.a, pair.b), pair, t.children);
     }
 }
 
@@ -49,8 +52,8 @@ BtgManifold referenceTriangleContact(const BtgSubPair& sp, const BtgPair* pairs,
                                      const MeshTablesView& mt)
 {
     const BtgPair p = pairs[sp.pair];
-    BtgCollider a = btgLoadCollider(p.a, pos, rot, props, t.shapes);
-    BtgCollider b = btgLoadCollider(p.b, pos, rot, props, t.shapes);
+    BtgCollider a = btgLoadPairCollider(p, 0, pos, rot, props, t.shapes, t.children);
+    BtgCollider b = btgLoadPairCollider(p, 1, pos, rot, props, t.shapes, t.children);
     const BtgFloat4 *verts = t.hullVertices, *edges = t.hullEdges;
     const BtgFace* faces = t.hullFaces;
     const int* indices = t.hullIndices;
@@ -63,7 +66,7 @@ BtgManifold referenceTriangleContact(const BtgSubPair& sp, const BtgPair* pairs,
     const float* heights = mt.heights;
     switch (btgPairKind(a.shape.type, b.shape.type)) {
 #define BTGPU_REFERENCE_TRIANGLE_ROW(program, kind, shapeA, shapeB, routine, kernel) \
-    case kind: return btgTriangleManifold(a, b, sp, verts, faces, indices, edges, routine);
+    case kind: return btgWithChildKeys(btgTriangleManifold(a, b, sp, verts, faces, indices, edges, routine), p, t.children);
         BTG_PAIR_KINDS_NARROWPHASE_MESH(BTGPU_REFERENCE_TRIANGLE_ROW)
 #undef BTGPU_REFERENCE_TRIANGLE_ROW
     default: return btgEmptyManifold(p.a, p.b);

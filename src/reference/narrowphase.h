@@ -15,6 +15,7 @@ struct ShapeTablesView {
     const BtgFace* hullFaces = nullptr;
     const int* hullIndices = nullptr;
     const BtgFloat4* hullEdges = nullptr;
+    const BtgChild* children = nullptr;  // compound leaves (pairs naming a leaf read them)
 };
 
 // BTG_PAIR_* kind of a pair (shared/pair_kinds.h).

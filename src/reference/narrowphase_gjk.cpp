@@ -2,6 +2,7 @@
 // the CPU (btgPairStep, btgManifoldFromPersistent), for tests.
 #include "reference/narrowphase_gjk.h"
 
+#include "shared/compound.h"
 #include "shared/polyhedral_contacts.h"
 
 namespace btgpu::ref {
@@ -13,8 +14,8 @@ GjkStep referenceGjkStep(const std::vector<BtgPair>& pairs, const BtgFloat4* pos
     GjkStep out;
     for (size_t i = 0; i < pairs.size(); ++i) {
         const BtgPair& p = pairs[i];
-        BtgCollider a = btgLoadCollider(p.a, pos, rot, props, t.shapes);
-        BtgCollider b = btgLoadCollider(p.b, pos, rot, props, t.shapes);
+        BtgCollider a = btgLoadPairCollider(p, 0, pos, rot, props, t.shapes, t.children);
+        BtgCollider b = btgLoadPairCollider(p, 1, pos, rot, props, t.shapes, t.children);
         const float threshold = btgPairThreshold(a.shape, b.shape);
         const int kind = btgPairKind(a.shape.type, b.shape.type);
         BtgPersistentManifold prev = i < previous.size() ? previous[i] : btgEmptyPersistent(p.a, p.b, kind);
@@ -23,7 +24,8 @@ GjkStep referenceGjkStep(const std::vector<BtgPair>& pairs, const BtgFloat4* pos
             btgPairStep(prev, a, b, t.hullVertices, t.hullFaces, t.hullIndices, t.hullEdges, threshold, dist);
         pm.kind = kind;
         out.states.push_back(pm);
-        out.manifolds.push_back(btgWithThreshold(btgManifoldFromPersistent(pm, dist, b.pose), threshold));
+        out.manifolds.push_back(
+            btgWithChildKeys(btgWithThreshold(btgManifoldFromPersistent(pm, dist, b.pose), threshold), p, t.children));
     }
     return out;
 }

@@ -55,7 +55,7 @@ std::vector<BtgPair> sortSweepPairs(const std::vector<BtgFloat4>& aabbMin, const
             if (!(btgAxisValue(aabbMin[size_t(j)], axis) <= reach)) break;
             if (!btgAabbOverlap(aabbMin[size_t(i)], aabbMax[size_t(i)], aabbMin[size_t(j)], aabbMax[size_t(j)])) continue;
             if (!btgPairAllowed(props[size_t(i)], props[size_t(j)])) continue;
-            out.push_back(BtgPair{std::min(i, j), std::max(i, j)});
+            out.push_back(BtgPair{std::min(i, j), std::max(i, j), BTG_WHOLE_BODY, BTG_WHOLE_BODY});
         }
     }
     std::sort(out.begin(), out.end(), [](const BtgPair& x, const BtgPair& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });

@@ -92,7 +92,8 @@ void groupPairsByKind(DeviceWorld& w, const PairKinds& kinds)
         s.pairKeys.reserve(ctx, capacity);
         w.pairOrder.reserve(ctx, capacity);
         cl::Launch(ctx, prog.kernel("pair_kind_keys"), &w.profiler)
-            .arg(w.pairs).arg(w.props).arg(w.shapes).arg(w.counters).arg(s.pairKeys).arg(w.pairOrder).arg(capacity)
+            .arg(w.pairs).arg(w.props).arg(w.shapes).arg(w.children).arg(w.counters).arg(s.pairKeys).arg(w.pairOrder)
+            .arg(capacity)
             .run(capacity);
         // The most significant digit of (kind, a, b): stable, so each kind keeps (a, b) order. Every
         // kind id fits (padding keys are all ones and sort last).
@@ -107,7 +108,7 @@ void groupPairsByKind(DeviceWorld& w, const PairKinds& kinds)
         .run(BTG_NUM_PAIR_KINDS, BTG_NUM_PAIR_KINDS);
 }
 
-void finishPairs(DeviceWorld& w, const PairKinds& kinds)
+void finishPairs(DeviceWorld& w, const PairKinds& kinds, bool group)
 {
     cl::Context& ctx = w.ctx;
     BroadphaseScratch& s = w.broadphase;
@@ -158,7 +159,7 @@ void finishPairs(DeviceWorld& w, const PairKinds& kinds)
         .arg(s.rawPairs).arg(w.pairOrder).arg(w.pairs.mem() ? w.pairs : s.rawPairs).arg(w.pairManifolds)
         .arg(w.counters).arg(capacity)
         .run(std::max<size_t>(capacity, 1));
-    if (kinds.any()) groupPairsByKind(w, kinds);
+    if (group && kinds.any()) groupPairsByKind(w, kinds);
 }
 
 void findPairs(DeviceWorld& w, const PairKinds& kinds, Broadphase broadphase, float cellSize)

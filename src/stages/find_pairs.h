@@ -22,13 +22,15 @@ namespace btgpu {
 // starts the pair count, then find_pairs (large and plane passes, sort, gather into pairs,
 // grouping by the plan's kinds).
 void smallBodyPairs(DeviceWorld& w, Broadphase broadphase, float cellSize);
-void finishPairs(DeviceWorld& w, const PairKinds& kinds);
+// group false: the pairs are left in (a, b) order only (expand_compounds groups them after it
+// has replaced the compound pairs by their leaves).
+void finishPairs(DeviceWorld& w, const PairKinds& kinds, bool group = true);
 // Both, in order.
 void findPairs(DeviceWorld& w, const PairKinds& kinds, Broadphase broadphase, float cellSize);
 // The last step of finishPairs, for `pairs` as they stand (tests upload their own): the pairs'
 // slots ordered by (kind, a, b) into pairOrder (stable radix pass on the kind: within a kind
 // the (a, b) order) and kind k's range into pairKindRanges[BTG_KIND_RANGE_*(k)], all on the
-// device. With a single kind in `kinds`, no sort: its range is every pair slot in place, the
+// device (a pair's kind is its two sides' shapes', a compound's leaf included). With a single kind in `kinds`, no sort: its range is every pair slot in place, the
 // others empty, and pairKindsIndirect is false.
 void groupPairsByKind(DeviceWorld& w, const PairKinds& kinds);
 }

@@ -27,7 +27,7 @@ void midphase(DeviceWorld& w)
     cl::Program& prog = ctx.program("midphase");
     cl::Launch(ctx, prog.kernel("midphase_count"), &w.profiler)
         .arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)
-        .arg(w.shapes).arg(w.meshes).arg(w.meshNodes).arg(w.meshParts).arg(w.meshTriangles).arg(w.meshVertices)
+        .arg(w.shapes).arg(w.children).arg(w.meshes).arg(w.meshNodes).arg(w.meshParts).arg(w.meshTriangles).arg(w.meshVertices)
         .arg(w.heightfields).arg(w.heightfieldHeights).arg(w.subPairOffsets).arg(countSlots)
         .run(items);
     exclusiveScan(ctx, &w.profiler, w.subPairOffsets, slots, w.subPairScan);
@@ -35,7 +35,7 @@ void midphase(DeviceWorld& w)
         .arg(w.subPairOffsets).arg(countSlots).arg(w.counters).arg(capacity).run(1, 1);
     cl::Launch(ctx, prog.kernel("midphase_write"), &w.profiler)
         .arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)
-        .arg(w.shapes).arg(w.meshes).arg(w.meshNodes).arg(w.meshParts).arg(w.meshTriangles).arg(w.meshVertices)
+        .arg(w.shapes).arg(w.children).arg(w.meshes).arg(w.meshNodes).arg(w.meshParts).arg(w.meshTriangles).arg(w.meshVertices)
         .arg(w.heightfields).arg(w.heightfieldHeights).arg(w.subPairOffsets).arg(countSlots)
         .arg(w.subPairs).arg(capacity)
         .run(items);

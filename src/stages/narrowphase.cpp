@@ -30,8 +30,8 @@ void narrowphaseProgram(DeviceWorld& w, const PairKinds& kinds, const char* prog
         if (!kinds.has(row.kind) || std::strcmp(row.program, program) != 0) continue;
         cl::Launch(w.ctx, prog.kernel(row.kernel), &w.profiler)
             .arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)
-            .arg(w.shapes).arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges).arg(w.manifolds)
-            .arg(w.pairManifolds).run(items);
+            .arg(w.shapes).arg(w.children).arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges)
+            .arg(w.manifolds).arg(w.pairManifolds).run(items);
     }
 }
 
@@ -50,7 +50,7 @@ void narrowphaseMesh(DeviceWorld& w, const PairKinds& kinds)
         if (!kinds.has(row.kind) || std::strcmp(row.program, program) != 0) continue;
         cl::Launch(ctx, prog.kernel(row.kernel), &w.profiler)
             .arg(w.subPairs).arg(w.counters).arg(capacity).arg(w.pairs).arg(w.pos).arg(w.rot).arg(w.props)
-            .arg(w.shapes).arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges)
+            .arg(w.shapes).arg(w.children).arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges)
             .arg(w.meshes).arg(w.meshNodes).arg(w.meshParts).arg(w.meshTriangles).arg(w.meshVertices)
             .arg(w.heightfields).arg(w.heightfieldHeights).arg(w.manifolds).arg(base)
             .run(std::min(w.subPairCapacity, units));

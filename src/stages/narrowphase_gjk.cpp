@@ -46,7 +46,8 @@ void narrowphaseGjk(DeviceWorld& w, const PairKinds& kinds)
         if (!kinds.has(row.kind) || std::strcmp(row.program, kProgram) != 0) continue;
         cl::Launch(w.ctx, prog.kernel(row.kernel), &w.profiler)
             .arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)
-            .arg(w.shapes).arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges).arg(w.counters).arg(w.contactCache).arg(cacheCapacity)
+            .arg(w.shapes).arg(w.children).arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges)
+            .arg(w.counters).arg(w.contactCache).arg(cacheCapacity)
             .arg(w.gjkCache).arg(gjkCapacity).arg(w.manifolds).arg(w.pairManifolds).arg(w.gjkPairState)
             .run(items);
     }
@@ -58,7 +59,7 @@ void storePersistentManifolds(DeviceWorld& w)
     const int contactCapacity = int(std::min({w.contactCapacity, w.contacts.capacity(), w.contactManifolds.capacity()}));
     cl::Launch(w.ctx, w.ctx.program(kProgram).kernel("store_persistent_manifolds"), &w.profiler)
         .arg(w.contactManifolds).arg(w.manifolds).arg(w.counters).arg(contactCapacity).arg(w.props).arg(w.shapes)
-        .arg(w.gjkPairState).arg(int(w.gjkPairState.capacity())).arg(w.gjkCache).arg(int(w.gjkCache.capacity()))
+        .arg(w.pairs).arg(w.children).arg(w.gjkPairState).arg(int(w.gjkPairState.capacity())).arg(w.gjkCache).arg(int(w.gjkCache.capacity()))
         .run(size_t(std::max(contactCapacity, 1)));
 }
 

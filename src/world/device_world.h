@@ -77,6 +77,10 @@ struct DeviceWorld {
     cl::DeviceArray<BtgHeightfield> heightfields;
     cl::DeviceArray<float> heightfieldHeights;
 
+    // Compound leaves (shared/compound.h): shape row and transform in the compound body's frame;
+    // a compound shape row names its range.
+    cl::DeviceArray<BtgChild> children;
+
     // --- broadphase ---
     cl::DeviceArray<int> largeBodies;  // rows flagged BTG_BODY_LARGE (planes excluded)
     int numLarge = 0;
@@ -92,6 +96,13 @@ struct DeviceWorld {
     cl::DeviceArray<uint> pairKindRanges;  // BTG_KIND_RANGES_SIZE
     bool pairKindsIndirect = false;
     BroadphaseScratch broadphase;      // find_pairs' own temporaries
+
+    // --- expand_compounds: each pair with a compound side becomes its leaf pairs ---
+    // compoundOffsets (pairCapacity + 1): per pair its first leaf pair, the last the total;
+    // compoundPairs the expanded list, copied back over `pairs`.
+    cl::DeviceArray<uint> compoundOffsets;
+    cl::DeviceArray<BtgPair> compoundPairs;
+    ScanScratch compoundScan;
 
     // --- midphase: (convex, triangle) sub-pairs of the convex–mesh pairs ---
     // subPairOffsets (pairCapacity + 1): per mesh pair (its place in the mesh kinds' range) the

@@ -16,6 +16,7 @@ const char* stageName(Stage stage)
         case Stage::UniformGrid: return "uniform_grid";
         case Stage::SortSweep: return "sort_sweep";
         case Stage::FindPairs: return "find_pairs";
+        case Stage::ExpandCompounds: return "expand_compounds";
         case Stage::Midphase: return "midphase";
         case Stage::Narrowphase: return "narrowphase";
         case Stage::NarrowphaseSat: return "narrowphase_sat";
@@ -59,6 +60,7 @@ std::vector<Stage> Plan::substep() const
         s.push_back(Stage::UpdateAabbs);
         s.push_back(broadphase == Broadphase::SortAndSweep ? Stage::SortSweep : Stage::UniformGrid);
         s.push_back(Stage::FindPairs);
+        if (hasCompounds) s.push_back(Stage::ExpandCompounds);
         if (kinds.anyIn("narrowphase_mesh")) s.push_back(Stage::Midphase);
         for (int p = 0; p < kNumNarrowphasePrograms; ++p)
             if (kinds.anyIn(kNarrowphasePrograms[p].program)) s.push_back(kNarrowphasePrograms[p].stage);
@@ -124,7 +126,15 @@ DerivedPlan derivePlan(const PlanInput& in)
         if (!b.live) continue;
         if (b.dynamic) plan.hasDynamic = true;
         if (b.gyroscopic) plan.gyroscopic = true;
-        if (b.shapeType >= 0 && b.shapeType < BTG_NUM_SHAPE_KINDS) {
+        if (b.shapeType == BTG_SHAPE_COMPOUND) {
+            // Its pairs are its leaves' pairs: each leaf kind counts as a body of that kind.
+            plan.hasCompounds = true;
+            for (int k = 0; k < BTG_NUM_SHAPE_KINDS; ++k)
+                if (b.leafKinds >> k & 1u) {
+                    ++count[k];
+                    moving[k] += b.movable;
+                }
+        } else if (b.shapeType >= 0 && b.shapeType < BTG_NUM_SHAPE_KINDS) {
             ++count[b.shapeType];
             moving[b.shapeType] += b.movable;
         }

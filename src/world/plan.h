@@ -26,6 +26,7 @@ enum class Stage {
     UniformGrid,          // small bodies' pairs, by grid ...
     SortSweep,            // ... or by sort-and-sweep
     FindPairs,            // large and plane passes, pair sort
+    ExpandCompounds,      // pairs with a compound side become their leaves' pairs (scenes with compounds only)
     Midphase,             // convex–mesh pairs split into (convex, triangle) sub-pairs by BVH walk
     Narrowphase,          // the pair kinds of program "narrowphase" (no SAT)
     NarrowphaseSat,       // those of "narrowphase_sat" (hull-hull)
@@ -65,6 +66,7 @@ struct Plan {
     bool gyroscopic = false;   // some body asks for the implicit gyroscopic term
     bool hasJoints = false;    // the app added joints (served ones: the rules send the rest away)
     bool hasIgnoredPairs = false;  // objects ignore each other's collision check (filter_pairs)
+    bool hasCompounds = false;     // compound bodies (expand_compounds)
     SolverKind solver = SolverKind::BatchedPgs;  // Config::solver: which solve stages run
     Broadphase broadphase = Broadphase::UniformGrid;
     float cellSize = 1.0f;     // m: uniform grid cell, >= the largest small body's AABB extent
@@ -78,6 +80,7 @@ struct Plan {
 // What the plan needs to know of one body row (compat/ reads it off Bullet's objects).
 struct PlanBody {
     int shapeType = 0;       // BTG_SHAPE_*
+    unsigned leafKinds = 0;  // a compound: bit per BTG_SHAPE_* of its leaves (they are its pairs' sides)
     float size = 0.0f;       // m: bounding diameter about the body origin (planes: 0)
     bool movable = false;    // not static (dynamic or kinematic)
     bool dynamic = false;    // moved by the solver

@@ -149,7 +149,7 @@ public:
         b3SetCustomLeaveProfileZoneFunc(leaveZone);
         for (const BodySpec& b : scene.bodies)
             if (b.shape != ShapeKind::Box && b.shape != ShapeKind::Sphere) {
-                *why = "this backend builds boxes and spheres only (the scene has hulls or planes)";
+                *why = "this backend builds boxes and spheres only (the scene has hulls, planes or compounds)";
                 return false;
             }
         m_dt = scene.dt;

@@ -22,6 +22,7 @@ using scenes::spec::makeMixed;
 using scenes::spec::makeStack;
 using scenes::spec::makeVoronoi;
 using scenes::spec::makeRagdolls;
+using scenes::spec::makeCompounds;
 
 struct Options {
     bool noSleep = false;           // disable Bullet's deactivation on every dynamic body

@@ -40,6 +40,23 @@ float lowestY(const Scene& scene, const BodySpec& b, const Pose& p)
         return p.p[1] + lowest;
     }
     if (b.shape == ShapeKind::Capsule) return p.p[1] - std::fabs(r11) * b.half[1] - b.radius;  // axis: local y
+    if (b.shape == ShapeKind::Compound) {
+        // The lowest of its children's lowest points (box corners, sphere bottoms).
+        float lowest = 0;
+        bool first = true;
+        for (const scenes::spec::ChildSpec& c : scene.compounds.at(size_t(b.compound)).children) {
+            const float cy = r10 * c.pos[0] + r11 * c.pos[1] + r12 * c.pos[2];
+            // A child's own rotation is identity in the bench's compounds; a rotated one is
+            // bounded by its largest half extent.
+            const bool turned = c.rot[3] != 1.0f;
+            const float reach = c.shape == ShapeKind::Sphere ? c.radius
+                                : turned ? std::sqrt(c.half[0] * c.half[0] + c.half[1] * c.half[1] + c.half[2] * c.half[2])
+                                         : std::fabs(r10) * c.half[0] + std::fabs(r11) * c.half[1] + std::fabs(r12) * c.half[2];
+            if (first || cy - reach < lowest) lowest = cy - reach;
+            first = false;
+        }
+        return p.p[1] + lowest;
+    }
     return p.p[1] - (std::fabs(r10) * b.half[0] + std::fabs(r11) * b.half[1] + std::fabs(r12) * b.half[2]);
 }
 

@@ -30,7 +30,8 @@ void BtBodies::build(const Scene& scene, const Options& options, btDiscreteDynam
                    : b.shape == ShapeKind::Sphere ? std::make_tuple(1, b.radius, 0.f, 0.f)
                    : b.shape == ShapeKind::Hull   ? std::make_tuple(2, float(b.hull), 0.f, 0.f)
                    : b.shape == ShapeKind::Mesh   ? std::make_tuple(4, 0.f, 0.f, 0.f)
-                   : b.shape == ShapeKind::Capsule ? std::make_tuple(5, b.radius, b.half[1], 0.f)
+                   : b.shape == ShapeKind::Capsule ? std::make_tuple(6, b.radius, b.half[1], 0.f)
+                   : b.shape == ShapeKind::Compound ? std::make_tuple(5, float(b.compound), 0.f, 0.f)
                                                   : std::make_tuple(3, 0.f, 0.f, 0.f);
         btCollisionShape*& shape = shared[key];
         if (!shape) {
@@ -41,6 +42,16 @@ void BtBodies::build(const Scene& scene, const Options& options, btDiscreteDynam
                     int(scene.meshVertices.size() / 3), const_cast<float*>(scene.meshVertices.data()),
                     3 * int(sizeof(float)));
                 m_shapes.emplace_back(new btBvhTriangleMeshShape(m_mesh.get(), true));
+            } else if (b.shape == ShapeKind::Compound) {
+                auto* compound = new btCompoundShape();
+                for (const scenes::spec::ChildSpec& c : scene.compounds.at(size_t(b.compound)).children) {
+                    if (c.shape == ShapeKind::Sphere) m_shapes.emplace_back(new btSphereShape(c.radius));
+                    else m_shapes.emplace_back(new btBoxShape(btVector3(c.half[0], c.half[1], c.half[2])));
+                    compound->addChildShape(btTransform(btQuaternion(c.rot[0], c.rot[1], c.rot[2], c.rot[3]),
+                                                        btVector3(c.pos[0], c.pos[1], c.pos[2])),
+                                            m_shapes.back().get());
+                }
+                m_shapes.emplace_back(compound);
             } else if (b.shape == ShapeKind::Box) {
                 m_shapes.emplace_back(new btBoxShape(btVector3(b.half[0], b.half[1], b.half[2])));
             } else if (b.shape == ShapeKind::Sphere) {

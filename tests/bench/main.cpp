@@ -1,6 +1,6 @@
 // main.cpp — btgpu_bench: one scene, up to three simulators (btgpu, stock Bullet, Bullet3's
 // GPU pipeline) in the same run; a Markdown table on stdout, a CSV with --csv, progress on
-// stderr. --smoke is the short ctest run (label bench).
+// stderr. --smoke is the short ctest run (label bench): cubes, then 100 compound tables and dumbbells.
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -18,8 +18,9 @@ using namespace btgpu::bench;
 namespace {
 
 const char* kUsage =
-    "usage: btgpu_bench [--scene cubes|spheres|mixed|voronoi|landscape|ragdolls|pile|stacks|hulls] [--n 1000|8000|32768|112500|1000000 | --dims NX NY NZ]\n"
-    "                   [--bodies N] [--quads Q]   (landscape: N bodies on a Q x Q-quad mesh; 1000, 100)\n"
+    "usage: btgpu_bench [--scene cubes|spheres|mixed|voronoi|landscape|ragdolls|pile|stacks|hulls|compounds] [--n 1000|8000|32768|112500|1000000 | --dims NX NY NZ]\n"
+    "                   [--bodies N] [--quads Q]   (landscape: N bodies on a Q x Q-quad mesh; 1000, 100;\n"
+    "                                               compounds: N tables and dumbbells, default 1000)\n"
     "                   [--cells C]   (voronoi: C cells, default 90 as BenchmarkDemo's test 8)\n"
     "                   [--ragdolls COUNT (ragdolls of 11 capsules and 10 joints; default 100)]\n"
     "                   pile, stacks, hulls: BenchmarkDemo's tests 1, 2 and 4 (3,008 boxes, 1,076 boxes, 960 barrels)\n"
@@ -33,6 +34,47 @@ const char* kUsage =
     std::exit(2);
 }
 
+// Runs one scene on each backend in the list; a Markdown table on stdout, the CSV when a path
+// is given. Returns the failures: NaNs from a backend that ran, stock Bullet not running.
+int runScene(const Scene& scene, const std::string& backends, const Options& options, int frames, double budgetS,
+             const std::string& csvPath)
+{
+    std::vector<RunResult> results;
+    std::stringstream list(backends);
+    for (std::string name; std::getline(list, name, ',');) {
+        std::unique_ptr<Backend> b = name == "btgpu" ? makeBtgpuBackend()
+                                     : name == "bullet" ? makeBulletBackend()
+                                     : name == "b3gpu"  ? makeB3gpuBackend()
+                                                        : nullptr;
+        if (!b) usage(("unknown backend " + name).c_str());
+        std::fprintf(stderr, "btgpu_bench: %s on %s, %d frames...\n", name.c_str(), scene.name.c_str(), frames);
+        results.push_back(runBackend(*b, scene, options, frames, budgetS));
+        const RunResult& r = results.back();
+        if (r.ran)
+            std::fprintf(stderr, "  %s: %d frames, median %.3f ms, first frame %.2f s\n", name.c_str(), r.framesRun,
+                         r.totalMs.median, r.firstFrameS);
+        else
+            std::fprintf(stderr, "  %s: skipped: %s\n", name.c_str(), r.skipped.c_str());
+    }
+    writeMarkdown(std::cout, scene, frames, results);
+    if (!csvPath.empty()) {
+        std::ofstream csv(csvPath);
+        writeCsv(csv, scene, results);
+        if (!csv) {
+            std::fprintf(stderr, "btgpu_bench: cannot write %s\n", csvPath.c_str());
+            return 1;
+        }
+    }
+    // A backend that cannot run here (no device, btgpu off its GPU path) is skipped, not a
+    // failure; one that ran must not have produced NaNs, and stock Bullet must always run.
+    int failures = 0;
+    for (const RunResult& r : results) {
+        if (r.ran && r.nanBodies > 0) ++failures;
+        if (r.backend == "bullet" && !r.ran) ++failures;
+    }
+    return failures;
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -41,7 +83,7 @@ int main(int argc, char** argv)
     int dims[3] = {20, 20, 20};
     int frames = 300;
     int nCells = 90;
-    int landscapeCount = 1000, landscapeQuads = 100;
+    int landscapeCount = 1000, landscapeQuads = 100;  // --bodies is also the compounds' count
     int ragdolls = 100;  // --scene ragdolls
     double budgetS = 600;  // per backend: a slow backend stops early and says so
     bool smoke = false;
@@ -96,41 +138,12 @@ int main(int argc, char** argv)
     else if (sceneName == "pile") scene = btgpu::scenes::spec::makeBenchPile();
     else if (sceneName == "stacks") scene = btgpu::scenes::spec::makeBenchStacks();
     else if (sceneName == "hulls") scene = btgpu::scenes::spec::makeBenchHulls();
-    else usage("--scene must be cubes, spheres, mixed, voronoi, landscape, ragdolls, pile, stacks or hulls");
+    else if (sceneName == "compounds") scene = makeCompounds(landscapeCount);
+    else usage("--scene must be cubes, spheres, mixed, voronoi, landscape, ragdolls, pile, stacks, hulls or compounds");
 
-    std::vector<RunResult> results;
-    std::stringstream list(backends);
-    for (std::string name; std::getline(list, name, ',');) {
-        std::unique_ptr<Backend> b = name == "btgpu" ? makeBtgpuBackend()
-                                     : name == "bullet" ? makeBulletBackend()
-                                     : name == "b3gpu"  ? makeB3gpuBackend()
-                                                        : nullptr;
-        if (!b) usage(("unknown backend " + name).c_str());
-        std::fprintf(stderr, "btgpu_bench: %s on %s, %d frames...\n", name.c_str(), scene.name.c_str(), frames);
-        results.push_back(runBackend(*b, scene, options, frames, budgetS));
-        const RunResult& r = results.back();
-        if (r.ran)
-            std::fprintf(stderr, "  %s: %d frames, median %.3f ms, first frame %.2f s\n", name.c_str(), r.framesRun,
-                         r.totalMs.median, r.firstFrameS);
-        else
-            std::fprintf(stderr, "  %s: skipped: %s\n", name.c_str(), r.skipped.c_str());
-    }
-
-    writeMarkdown(std::cout, scene, frames, results);
-    if (!csvPath.empty()) {
-        std::ofstream csv(csvPath);
-        writeCsv(csv, scene, results);
-        if (!csv) {
-            std::fprintf(stderr, "btgpu_bench: cannot write %s\n", csvPath.c_str());
-            return 1;
-        }
-    }
-    // A backend that cannot run here (no device, btgpu off its GPU path) is skipped, not a
-    // failure; one that ran must not have produced NaNs, and stock Bullet must always run.
-    int failures = 0;
-    for (const RunResult& r : results) {
-        if (r.ran && r.nanBodies > 0) ++failures;
-        if (r.backend == "bullet" && !r.ran) ++failures;
-    }
+    // The smoke run also drops 100 compound tables and dumbbells (in this process: its
+    // programs are built once).
+    int failures = runScene(scene, backends, options, frames, budgetS, csvPath);
+    if (smoke) failures += runScene(makeCompounds(100), backends, options, frames, budgetS, "");
     return failures ? 1 : 0;
 }

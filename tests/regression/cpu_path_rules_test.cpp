@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <BulletCollision/CollisionShapes/btConvexTriangleMeshShape.h>
+#include <BulletCollision/CollisionShapes/btMinkowskiSumShape.h>
 #include <BulletCollision/CollisionShapes/btTriangleMesh.h>
 
 #include <BulletDynamics/ConstraintSolver/btNNCGConstraintSolver.h>
@@ -95,8 +96,11 @@ std::vector<Rule> rules()
     static btMLCPSolver mlcp(&dantzig);
     static AcceptAll acceptAll;
     static btCapsuleShape capsule(.5, 1);
+    // A compound holding a shape the GPU path does not take (a Minkowski sum).
+    static btSphereShape ball(.2f);
+    static btMinkowskiSumShape sum(&capsule, &ball);
     static btCompoundShape compound;
-    if (compound.getNumChildShapes() == 0) compound.addChildShape(btTransform::getIdentity(), &capsule);
+    if (compound.getNumChildShapes() == 0) compound.addChildShape(btTransform::getIdentity(), &sum);
     // A convex triangle mesh the app gave polyhedral features: stock then clips it against
     // featured hulls, which the GPU path does not.
     static btTriangleMesh featuredMesh;
@@ -221,7 +225,7 @@ std::vector<Rule> rules()
         {"shape swapped for a convex mesh with polyhedral features", "polyhedral features",
          [](Scene& s) { s.body(2)->setCollisionShape(&featured); },
          [](Scene& s) { s.body(2)->setCollisionShape(s.body(1)->getCollisionShape()); }},
-        {"shape swapped for a compound", "unsupported shape",
+        {"shape swapped for a compound of an unserved shape", "unsupported shape",
          [](Scene& s) { s.body(2)->setCollisionShape(&compound); },
          [](Scene& s) { s.body(2)->setCollisionShape(s.body(1)->getCollisionShape()); }},
     };

@@ -3,6 +3,8 @@
 // followed when the app changes one in place between steps (setLocalScaling, setMargin).
 #include <gtest/gtest.h>
 
+#include <BulletCollision/CollisionShapes/btMinkowskiSumShape.h>
+
 #include "side_by_side.h"
 
 using namespace btgpu;
@@ -18,7 +20,8 @@ std::vector<btVector3> cubePoints(float h)
 }
 
 // Two hull cubes falling onto each other on a ground box; `capsule` adds a compound holding a
-// capsule (a shape the GPU path does not take), sending the world to the CPU path.
+// Minkowski sum of a capsule and a sphere (a shape the GPU path does not take), sending the
+// world to the CPU path.
 ScenePtr hulls(WorldKind kind, const Config& config, bool capsule)
 {
     auto scene = std::make_unique<Scene>(kind, config);
@@ -29,7 +32,9 @@ ScenePtr hulls(WorldKind kind, const Config& config, bool capsule)
     scene->addBody(hull, 1, t);
     if (capsule) {
         btCompoundShape* compound = scene->ownShape(new btCompoundShape());
-        compound->addChildShape(btTransform::getIdentity(), scene->ownShape(new btCapsuleShape(0.3f, 1.0f)));
+        btCollisionShape* sum = scene->ownShape(new btMinkowskiSumShape(
+            scene->ownShape(new btCapsuleShape(0.3f, 1.0f)), scene->ownShape(new btSphereShape(0.1f))));
+        compound->addChildShape(btTransform::getIdentity(), sum);
         scene->addBody(compound, 1, btVector3(5, 1, 0));
     }
     return scene;

@@ -253,4 +253,67 @@ Scene makeRagdolls(int count)
     return s;
 }
 
+namespace {
+ChildSpec boxChild(float hx, float hy, float hz, float x, float y, float z)
+{
+    ChildSpec c;
+    c.half[0] = hx;
+    c.half[1] = hy;
+    c.half[2] = hz;
+    c.pos[0] = x;
+    c.pos[1] = y;
+    c.pos[2] = z;
+    return c;
+}
+}  // namespace
+
+CompoundSpec tableSpec()
+{
+    CompoundSpec t;
+    t.children.push_back(boxChild(0.6f, 0.05f, 0.4f, 0, 0.35f, 0));
+    for (int i = 0; i < 4; ++i)
+        t.children.push_back(boxChild(0.05f, 0.3f, 0.05f, (i & 1) ? 0.5f : -0.5f, 0, (i & 2) ? 0.3f : -0.3f));
+    return t;
+}
+
+CompoundSpec dumbbellSpec()
+{
+    CompoundSpec d;
+    for (float x : {-0.5f, 0.5f}) {
+        ChildSpec ball;
+        ball.shape = ShapeKind::Sphere;
+        ball.radius = 0.3f;
+        ball.pos[0] = x;
+        d.children.push_back(ball);
+    }
+    d.children.push_back(boxChild(0.5f, 0.08f, 0.08f, 0, 0, 0));
+    return d;
+}
+
+Scene makeCompounds(int count)
+{
+    Scene s;
+    s.name = "compounds " + std::to_string(count);
+    s.compounds = {tableSpec(), dumbbellSpec()};
+    BodySpec ground;
+    ground.half[0] = ground.half[1] = ground.half[2] = 50;
+    ground.pos[1] = -50;
+    ground.friction = 0.5f;
+    s.bodies.push_back(ground);
+    const int side = std::max(1, std::min(10, int(std::ceil(std::sqrt(double(count))))));
+    for (int i = 0; i < count; ++i) {
+        const int layer = i / (side * side), cell = i % (side * side);
+        BodySpec b;
+        b.shape = ShapeKind::Compound;
+        b.compound = i % 2;
+        b.mass = 1;
+        b.friction = 0.5f;
+        b.pos[0] = 2.0f * (float(cell % side) - 0.5f * float(side - 1));
+        b.pos[1] = 1.0f + 1.2f * float(layer);
+        b.pos[2] = 2.0f * (float(cell / side) - 0.5f * float(side - 1));
+        s.bodies.push_back(b);
+    }
+    return s;
+}
+
 }  // namespace btgpu::scenes::spec

@@ -9,9 +9,9 @@
 
 namespace btgpu::scenes::spec {
 
-// Mesh: the scene's triangle mesh (static only). Capsule: btCapsuleShape (Y axis) of `radius`
-// and cylinder half height half[1].
-enum class ShapeKind { Box, Sphere, Hull, Plane, Mesh, Capsule };
+// Mesh: the scene's triangle mesh (static only); Compound: a btCompoundShape of Scene::compounds;
+// Capsule: a btCapsuleShape (Y axis) of `radius` and cylinder half height half[1].
+enum class ShapeKind { Box, Sphere, Hull, Plane, Mesh, Compound, Capsule };
 
 // A convex hull's points (local frame, m), as an app passes them to btConvexHullShape.
 struct HullSpec {
@@ -20,11 +20,29 @@ struct HullSpec {
     bool polyhedral = true;     // the app calls initializePolyhedralFeatures
 };
 
+// One child of a compound: a box or a sphere at its transform in the compound's frame.
+struct ChildSpec {
+    ShapeKind shape = ShapeKind::Box;
+    float half[3] = {1, 1, 1};    // m (Box)
+    float radius = 1;             // m (Sphere)
+    float pos[3] = {0, 0, 0};     // m
+    float rot[4] = {0, 0, 0, 1};  // quaternion (x, y, z, w)
+};
+struct CompoundSpec {
+    std::vector<ChildSpec> children;
+};
+// A table: a top box (half extents 0.6, 0.05, 0.4) at y = 0.35 on four legs (half extents 0.05,
+// 0.3, 0.05) at x = +-0.5, z = +-0.3; a dumbbell: spheres of radius 0.3 at x = +-0.5 on a bar
+// (half extents 0.5, 0.08, 0.08).
+CompoundSpec tableSpec();
+CompoundSpec dumbbellSpec();
+
 struct BodySpec {
     ShapeKind shape = ShapeKind::Box;
     float half[3] = {1, 1, 1};  // m, box half extents (Box)
     float radius = 1;           // m (Sphere, Capsule)
     int hull = -1;              // Hull: index in Scene::hulls (Plane: the plane y = pos[1], normal +y)
+    int compound = -1;          // Compound: index in Scene::compounds
     float mass = 0;             // kg; 0 = static
     float pos[3] = {0, 0, 0};   // m, centre of mass; every body starts at rest
     float rot[4] = {0, 0, 0, 1};  // orientation quaternion (x, y, z, w); identity but in ragdolls
@@ -49,6 +67,7 @@ struct Scene {
     std::string name;                // e.g. "cubes 10x10x10"
     std::vector<BodySpec> bodies;
     std::vector<HullSpec> hulls;     // shapes of the Hull bodies
+    std::vector<CompoundSpec> compounds;  // shapes of the Compound bodies
     // The one triangle mesh of ShapeKind::Mesh bodies: xyz per vertex (m), three per triangle.
     std::vector<float> meshVertices;
     std::vector<int> meshIndices;
@@ -81,6 +100,10 @@ void ragdollLayout(float scale, RagdollPart parts[11], JointSpec joints[10]);
 // `count` ragdolls (Bullet's RagdollDemo: 11 capsules, 5 hinges and 5 cone-twists) on a square
 // grid 2 m apart over a ground box, pelvis 1 m up: they fall and sprawl.
 Scene makeRagdolls(int count);
+// `count` compound bodies, tables and dumbbells alternating (mass 1, friction 0.5) on a square
+// lattice 2 m apart (at most 10 x 10 a layer, layers 1.2 m apart), released from 1 m onto a
+// ground box of half extent 50 (top at y = 0).
+Scene makeCompounds(int count);
 // Sizes named by --n: 1000, 8000, 32768, 112500, 1000000; false if n is not one of them.
 bool dimsForCount(long n, int dims[3]);
 

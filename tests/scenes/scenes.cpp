@@ -1,6 +1,7 @@
 // scenes.cpp — Scene (owning every Bullet object, building stock or GPU worlds alike), the
 // scene builders, the catalog by name, and the measures the tests and demos compare.
 #include "scenes/scenes.h"
+#include "scenes/compound_scenes.h"
 #include "scenes/convex_scenes.h"
 #include "scenes/mesh_scenes.h"
 #include "scenes/joint_scenes.h"
@@ -332,6 +333,10 @@ const std::vector<SceneEntry>& catalog()
          [](WorldKind k, const Config& c) { return ragdolls(k, c, 4); }},
         {"chain", "a chain of 20 point-to-point links hanging from a static anchor",
          [](WorldKind k, const Config& c) { return chain(k, c, 20); }},
+        {"compounds", "100 compound tables and dumbbells dropped onto a box ground",
+         [](WorldKind k, const Config& c) { return compoundDrop(k, c, 100); }},
+        {"table_stack", "3 compound tables (a top on four legs) stacked on a box ground",
+         [](WorldKind k, const Config& c) { return tableStack(k, c, 3); }},
     };
     return entries;
 }

@@ -244,3 +244,24 @@ TEST(Plan, MeshesBringTheMidphaseAndNothingElseDoes)
     EXPECT_FALSE(spheres.kinds.has(BTG_PAIR_HULL_MESH));
     EXPECT_TRUE(has(spheres.substep(), Stage::Midphase));
 }
+
+TEST(Plan, CompoundsBringExpandCompoundsAndTheirLeavesKinds)
+{
+    PlanInput in;
+    in.bodies = {body(BTG_SHAPE_BOX, 100, false), body(BTG_SHAPE_SPHERE, 1, true)};
+    EXPECT_FALSE(has(derivePlan(in).plan.substep(), Stage::ExpandCompounds));
+    // A dynamic compound of boxes and spheres on the ground box: its pairs are its leaves', so
+    // box-box and sphere-box are in the plan although no body's own shape gives box-box.
+    in.bodies = {body(BTG_SHAPE_BOX, 100, false), body(BTG_SHAPE_COMPOUND, 2, true)};
+    in.bodies[1].leafKinds = 1u << BTG_SHAPE_BOX | 1u << BTG_SHAPE_SPHERE;
+    const Plan p = derivePlan(in).plan;
+    EXPECT_TRUE(p.hasCompounds);
+    EXPECT_TRUE(p.kinds.has(BTG_PAIR_BOX_BOX));
+    EXPECT_TRUE(p.kinds.has(BTG_PAIR_SPHERE_BOX));
+    EXPECT_FALSE(p.kinds.has(BTG_PAIR_SPHERE_SPHERE));  // one compound's leaves never meet each other
+    const std::vector<Stage> s = p.substep();
+    auto at = [&](Stage st) { return std::find(s.begin(), s.end(), st) - s.begin(); };
+    ASSERT_TRUE(has(s, Stage::ExpandCompounds));
+    EXPECT_EQ(at(Stage::ExpandCompounds), at(Stage::FindPairs) + 1);
+    EXPECT_LT(at(Stage::ExpandCompounds), at(Stage::Narrowphase));
+}
