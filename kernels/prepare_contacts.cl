@@ -1,8 +1,9 @@
 /* prepare_contacts.cl — Stage: prepare (solver rows of each contact, setupContactConstraint,
  * and the contacts' edges of the constraint graph).
  * Launch: one work-item per contact slot (contactCapacity); early-out past the contact count.
- * Reads counters[kContactCount], props, invInertiaWorld, linVel0, angVel0, contacts.
- * Writes contacts (friction, tangent1/2, row masses, normalTarget, pushTarget, pushImpulse
+ * Reads counters[kContactCount], props, invInertiaWorld, linVel0, angVel0 (restitution), linVel,
+ * angVel (after this substep's forces: each point's friction direction), contacts.
+ * Writes contacts (friction, tangent plane and per-point friction directions, row masses, normalTarget, pushTarget, pushImpulse
  * zeroed; impulses of non-solvable contacts zeroed), edges[0, contacts) (edge i: contact i's
  * bodies), counters[kEdgeCount] (= the contacts; kinds that follow append to it). */
 #include "shared/counters.h"
@@ -15,6 +16,7 @@ __kernel void prepare_contacts(__global BtgContact* contacts, __global uint* cou
                                int contactCapacity, __global const BtgBodyProps* restrict props,
                                __global const BtgFloat4* restrict invInertiaWorld,
                                __global const BtgFloat4* restrict linVel0, __global const BtgFloat4* restrict angVel0,
+                               __global const BtgFloat4* restrict linVel, __global const BtgFloat4* restrict angVel,
                                __global BtgEdge* edges, BtgStepParams params)
 {
     uint i = (uint)get_global_id(0);
@@ -30,7 +32,9 @@ __kernel void prepare_contacts(__global BtgContact* contacts, __global uint* cou
                                         invInertiaWorld[3 * c.bodyB + 2]);
     BtgBodyVel a0 = btgMakeBodyVel(a.moving, linVel0[c.bodyA], angVel0[c.bodyA]);
     BtgBodyVel b0 = btgMakeBodyVel(b.moving, linVel0[c.bodyB], angVel0[c.bodyB]);
-    btgPrepareContact(&c, a, b, a0, b0, btgCombinedFriction(pa.friction, pb.friction),
+    BtgBodyVel a1 = btgMakeBodyVel(a.moving, linVel[c.bodyA], angVel[c.bodyA]);
+    BtgBodyVel b1 = btgMakeBodyVel(b.moving, linVel[c.bodyB], angVel[c.bodyB]);
+    btgPrepareContact(&c, a, b, a0, b0, a1, b1, btgCombinedFriction(pa.friction, pb.friction),
                       pa.restitution * pb.restitution, btgContactSolvable(pa.flags, pb.flags), params);
     contacts[i] = c;
 }

@@ -154,7 +154,7 @@ namespace {
 
 // Grows the pair and contact buffers from an overflowed call's full counts (the kernels count
 // past capacity). Contacts take what they need plus an eighth, pairs a quarter: the contact
-// list is the largest buffer (352 + 112 + 4 bytes a slot with its cache entry and manifold
+// list is the largest buffer (384 + 112 + 4 bytes a slot with its cache entry and manifold
 // slot, and an 8 + 4 byte graph edge), and every growth is at least 1.25x, so redos stay few.
 void grow(DeviceWorld& w, const BodyReadback& rb, bool pairOverflow, bool contactOverflow, bool subPairOverflow)
 {

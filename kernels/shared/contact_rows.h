@@ -55,9 +55,11 @@ static inline BtgContact btgContactFromManifold(BtgManifold m, BtgFloat4 posA, B
     c.normalTarget = btgZero4();
     c.normalImpulse = btgZero4();
     c.tangent1 = btgZero4();
+    c.tangent2 = btgZero4();
+    c.frictionCos = btgZero4();
+    c.frictionSin = btgZero4();
     c.friction1Mass = btgZero4();
     c.friction1Impulse = btgZero4();
-    c.tangent2 = btgZero4();
     c.friction2Mass = btgZero4();
     c.friction2Impulse = btgZero4();
     c.pushTarget = btgZero4();
@@ -223,33 +225,47 @@ static inline float btgCombinedFriction(float fa, float fb)
     return f;
 }
 
-/* Solver rows of one contact. a0/b0: velocities before this substep's forces (restitution).
+/* Point k's friction directions (see BtgContact): 1 along its slip, 2 across it in the plane. */
+static inline BtgFloat4 btgFrictionDir1(const BtgContact* c, int k)
+{
+    return c->tangent1 * btgLane(c->frictionCos, k) + c->tangent2 * btgLane(c->frictionSin, k);
+}
+static inline BtgFloat4 btgFrictionDir2(const BtgContact* c, int k)
+{
+    return c->tangent2 * btgLane(c->frictionCos, k) - c->tangent1 * btgLane(c->frictionSin, k);
+}
+
+/* Solver rows of one contact. a0/b0: velocities before this substep's forces (restitution);
+ * a1/b1: after them (the friction directions, as Bullet's getVelocityInLocalPointNoDelta).
  * Targets are velocities: the solver computes (target - J v) * mass against the live velocity,
  * which equals Bullet's rhs - J dv * mass with rhs = (target - J v_setup) * mass. */
 static inline void btgPrepareContact(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel a0, BtgBodyVel b0,
-                                     float friction, float restitution, int solvable, BtgStepParams p)
+                                     BtgBodyVel a1, BtgBodyVel b1, float friction, float restitution, int solvable,
+                                     BtgStepParams p)
 {
     BtgFloat4 n = btgXyz(c->normal);
     BtgFloat4 t1, t2;
     btgPlaneSpace(n, &t1, &t2);
-    /* Bullet's default friction: one row along the slip velocity (btPlaneSpace when there is
-     * none); a second, perpendicular row only with SOLVER_USE_2_FRICTION_DIRECTIONS. Bullet
-     * takes the slip per point; here one direction serves the manifold (its mean slip). */
-    BtgFloat4 slip = btgZero4();
-    for (int k = 0; k < c->numPoints; ++k) {
-        BtgFloat4 rA = btgXyz(c->rA[k]), rB = btgXyz(c->rB[k]);
-        BtgFloat4 v = (a0.lin + btgCross3(a0.ang, rA)) - (b0.lin + btgCross3(b0.ang, rB));
-        slip += v - n * btgDot3(v, n);
-    }
-    float slip2 = btgDot3(slip, slip);
-    if (slip2 > 1.1920929e-07f * (float)(c->numPoints * c->numPoints)) {
-        t1 = slip * (1.0f / btgSqrt(slip2));
-        t2 = btgNormalize3(btgCross3(t1, n));
-    }
     c->normal = n;
     c->friction = friction;
     c->tangent1 = btgXyz(t1);
     c->tangent2 = btgXyz(t2);
+    /* Bullet's default friction (convertContact): per point, one row along that point's slip
+     * velocity (btPlaneSpace1's p when it slips less than sqrt(SIMD_EPSILON)); a second,
+     * perpendicular row only with SOLVER_USE_2_FRICTION_DIRECTIONS. */
+    c->frictionCos = btgMake4(1.0f, 1.0f, 1.0f, 1.0f);
+    c->frictionSin = btgZero4();
+    for (int k = 0; k < c->numPoints; ++k) {
+        BtgFloat4 rA = btgXyz(c->rA[k]), rB = btgXyz(c->rB[k]);
+        BtgFloat4 v = (a1.lin + btgCross3(a1.ang, rA)) - (b1.lin + btgCross3(b1.ang, rB));
+        BtgFloat4 slip = v - n * btgDot3(v, n);
+        float slip2 = btgDot3(slip, slip);
+        if (slip2 > 1.1920929e-07f) {
+            BtgFloat4 d = slip * (1.0f / btgSqrt(slip2));
+            btgSetLane(&c->frictionCos, k, btgDot3(d, t1));
+            btgSetLane(&c->frictionSin, k, btgDot3(d, t2));
+        }
+    }
     c->normalMass = btgZero4();
     c->friction1Mass = btgZero4();
     c->friction2Mass = btgZero4();
@@ -260,10 +276,13 @@ static inline void btgPrepareContact(BtgContact* c, BtgSolverBody a, BtgSolverBo
         BtgFloat4 rB = btgXyz(c->rB[k]);
         float target = 0.0f, push = 0.0f;
         if (k < c->numPoints && solvable) {
+            const BtgFloat4 d1 = btgFrictionDir1(c, k);
             btgSetLane(&c->normalMass, k, btgPointRowMass(btgPointJacobian(n, rA, rB, a, b), rA, rB, a, b));
-            btgSetLane(&c->friction1Mass, k, btgPointRowMass(btgPointJacobian(t1, rA, rB, a, b), rA, rB, a, b));
-            if (p.twoFrictionDirections)
-                btgSetLane(&c->friction2Mass, k, btgPointRowMass(btgPointJacobian(t2, rA, rB, a, b), rA, rB, a, b));
+            btgSetLane(&c->friction1Mass, k, btgPointRowMass(btgPointJacobian(d1, rA, rB, a, b), rA, rB, a, b));
+            if (p.twoFrictionDirections) {
+                const BtgFloat4 d2 = btgFrictionDir2(c, k);
+                btgSetLane(&c->friction2Mass, k, btgPointRowMass(btgPointJacobian(d2, rA, rB, a, b), rA, rB, a, b));
+            }
             BtgFloat4 velA = a0.lin + btgCross3(a0.ang, rA);
             BtgFloat4 velB = b0.lin + btgCross3(b0.ang, rB);
             float penetration = btgLane(c->separation, k);
@@ -306,9 +325,11 @@ static inline BtgContact btgLoadContactRows(BTG_CONST_GLOBAL BtgContact* contact
     c.normalTarget = mode == BTG_PASS_VELOCITY ? contacts[i].normalTarget : btgZero4();
     c.normalImpulse = push ? btgZero4() : contacts[i].normalImpulse;
     c.tangent1 = push ? btgZero4() : contacts[i].tangent1;
+    c.tangent2 = push ? btgZero4() : contacts[i].tangent2;
+    c.frictionCos = push ? btgZero4() : contacts[i].frictionCos;
+    c.frictionSin = push ? btgZero4() : contacts[i].frictionSin;
     c.friction1Mass = push ? btgZero4() : contacts[i].friction1Mass;
     c.friction1Impulse = push ? btgZero4() : contacts[i].friction1Impulse;
-    c.tangent2 = second ? contacts[i].tangent2 : btgZero4();
     c.friction2Mass = second ? contacts[i].friction2Mass : btgZero4();
     c.friction2Impulse = second ? contacts[i].friction2Impulse : btgZero4();
     c.pushTarget = push ? contacts[i].pushTarget : btgZero4();
@@ -363,12 +384,14 @@ static inline void btgContactWarmStart(const BtgContact* c, BtgSolverBody a, Btg
         if (btgLane(c->normalMass, k) == 0.0f) continue;
         btgRowApply(btgPointJacobian(c->normal, rA, rB, a, b), a, b, va, vb, btgLane(c->normalImpulse, k));
         if (btgLane(c->friction1Mass, k) != 0.0f)
-            btgRowApply(btgPointJacobian(c->tangent1, rA, rB, a, b), a, b, va, vb, btgLane(c->friction1Impulse, k));
+            btgRowApply(btgPointJacobian(btgFrictionDir1(c, k), rA, rB, a, b), a, b, va, vb,
+                        btgLane(c->friction1Impulse, k));
         if (twoFriction && btgLane(c->friction2Mass, k) != 0.0f)
-            btgRowApply(btgPointJacobian(c->tangent2, rA, rB, a, b), a, b, va, vb, btgLane(c->friction2Impulse, k));
+            btgRowApply(btgPointJacobian(btgFrictionDir2(c, k), rA, rB, a, b), a, b, va, vb,
+                        btgLane(c->friction2Impulse, k));
     }
 }
-/* One velocity iteration: all normal rows, then the friction rows (tangent1, tangent2 per point)
+/* One velocity iteration: all normal rows, then the friction rows (directions 1 and 2 per point)
  * whose normal impulse is positive (solveSingleIteration). */
 static inline void btgContactSolveVelocity(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
                                            BtgBodyVel* vb, int twoFriction)
@@ -383,13 +406,13 @@ static inline void btgContactSolveVelocity(BtgContact* c, BtgSolverBody a, BtgSo
         if (!(btgLane(c->normalImpulse, k) > 0.0f)) continue;
         float m1 = btgLane(c->friction1Mass, k);
         if (m1 != 0.0f) {
-            BtgSolverRow r = btgContactFrictionRow(c, k, c->tangent1, m1, btgLane(c->friction1Impulse, k), a, b);
+            BtgSolverRow r = btgContactFrictionRow(c, k, btgFrictionDir1(c, k), m1, btgLane(c->friction1Impulse, k), a, b);
             btgRowSolve(&r, a, b, va, vb);
             btgSetLane(&c->friction1Impulse, k, r.impulse);
         }
         float m2 = twoFriction ? btgLane(c->friction2Mass, k) : 0.0f;
         if (m2 != 0.0f) {
-            BtgSolverRow r = btgContactFrictionRow(c, k, c->tangent2, m2, btgLane(c->friction2Impulse, k), a, b);
+            BtgSolverRow r = btgContactFrictionRow(c, k, btgFrictionDir2(c, k), m2, btgLane(c->friction2Impulse, k), a, b);
             btgRowSolve(&r, a, b, va, vb);
             btgSetLane(&c->friction2Impulse, k, r.impulse);
         }

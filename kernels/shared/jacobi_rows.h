@@ -28,9 +28,9 @@ static inline void btgContactSplitMasses(BtgContact* c, BtgSolverBody a, BtgSolv
         if (btgLane(c->normalMass, k) != 0.0f)
             btgSetLane(&c->normalMass, k, btgPointRowMass(btgPointJacobian(c->normal, rA, rB, a, b), rA, rB, a, b));
         if (btgLane(c->friction1Mass, k) != 0.0f)
-            btgSetLane(&c->friction1Mass, k, btgPointRowMass(btgPointJacobian(c->tangent1, rA, rB, a, b), rA, rB, a, b));
+            btgSetLane(&c->friction1Mass, k, btgPointRowMass(btgPointJacobian(btgFrictionDir1(c, k), rA, rB, a, b), rA, rB, a, b));
         if (btgLane(c->friction2Mass, k) != 0.0f)
-            btgSetLane(&c->friction2Mass, k, btgPointRowMass(btgPointJacobian(c->tangent2, rA, rB, a, b), rA, rB, a, b));
+            btgSetLane(&c->friction2Mass, k, btgPointRowMass(btgPointJacobian(btgFrictionDir2(c, k), rA, rB, a, b), rA, rB, a, b));
     }
 }
 

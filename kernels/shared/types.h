@@ -221,7 +221,8 @@ typedef struct {
 
 /* The solver rows of one contact manifold (the btSolverConstraint rows Bullet builds from one
  * btPersistentManifold), solved as BtgSolverRow (solver_rows.h). Point k has a normal row along
- * `normal`, friction rows along tangent1 (and tangent2 with two friction directions) bounded
+ * `normal`, a friction row along its own direction 1 (and direction 2 with two friction
+ * directions; btgFrictionDir1/2: Bullet sets a lateral friction direction per point) bounded
  * by friction * its normal impulse, and a split-impulse push row along `normal`; all act at
  * its lever arms rA[k], rB[k], and lane k of every per-point field is its rows' state.
  * A solver pass loads only its rows' fields (btgLoadContactRows), which lie in the order the
@@ -243,12 +244,14 @@ typedef struct {
     BtgFloat4 normalTarget;            /* per point: normal velocity the row drives to, m/s
                                           (restitution, position bias or speculative approach) */
     BtgFloat4 normalImpulse;           /* accumulated per point, N s, in [0, BTG_NORMAL_UPPER_LIMIT] */
-    BtgFloat4 tangent1;                /* friction direction 1, unit, perpendicular to normal; w: 0 */
+    BtgFloat4 tangent1;                /* the normal's tangent plane: unit p and q of btPlaneSpace1 */
+    BtgFloat4 tangent2;                /* (q = n x p); w: 0 */
+    BtgFloat4 frictionCos;             /* per point: friction direction 1 = cos p + sin q (Bullet's */
+    BtgFloat4 frictionSin;             /* m_lateralFrictionDir1); direction 2 = cos q - sin p */
     BtgFloat4 friction1Mass;           /* per point, kg; 0: no row */
-    BtgFloat4 friction1Impulse;        /* accumulated along tangent1 per point, N s */
-    BtgFloat4 tangent2;                /* friction direction 2; w: 0 */
+    BtgFloat4 friction1Impulse;        /* accumulated along direction 1 per point, N s */
     BtgFloat4 friction2Mass;           /* per point, kg; 0 unless two friction directions */
-    BtgFloat4 friction2Impulse;        /* accumulated along tangent2 per point, N s */
+    BtgFloat4 friction2Impulse;        /* accumulated along direction 2 per point, N s */
     BtgFloat4 pushTarget;              /* per point: split-impulse push velocity, m/s; 0: no push row */
     BtgFloat4 pushImpulse;             /* accumulated split (position) impulse per point, N s */
     BtgFloat4 separation;              /* per point: signed distance, m (negative: penetrating);
@@ -332,7 +335,7 @@ static_assert(sizeof(BtgChild) == 80, "BtgChild layout");
 static_assert(sizeof(BtgManifoldPoint) == 32, "BtgManifoldPoint layout");
 static_assert(sizeof(BtgManifold) == 32 * BTG_MAX_POINTS + 32, "BtgManifold layout");
 static_assert(sizeof(BtgManifoldRange) == 8, "BtgManifoldRange layout");
-static_assert(sizeof(BtgContact) == 16 + 16 * 21, "BtgContact layout");
+static_assert(sizeof(BtgContact) == 16 + 16 * 23, "BtgContact layout");
 static_assert(sizeof(BtgEdge) == 8, "BtgEdge layout");
 static_assert(sizeof(BtgCachedContact) == 16 * (BTG_MAX_POINTS + 2 * BTG_WARMSTART_FRICTION) + 4 * BTG_MAX_POINTS + 32,
               "BtgCachedContact layout");

@@ -22,7 +22,9 @@ std::vector<BtgEdge> prepareContacts(std::vector<BtgContact>& contacts, const Co
         BtgSolverBody a = solverBody(bodies, c.bodyA), b = solverBody(bodies, c.bodyB);
         BtgBodyVel a0 = btgMakeBodyVel(a.moving, bodies.linVel0[c.bodyA], bodies.angVel0[c.bodyA]);
         BtgBodyVel b0 = btgMakeBodyVel(b.moving, bodies.linVel0[c.bodyB], bodies.angVel0[c.bodyB]);
-        btgPrepareContact(&c, a, b, a0, b0, btgCombinedFriction(pa.friction, pb.friction),
+        BtgBodyVel a1 = btgMakeBodyVel(a.moving, bodies.linVel[c.bodyA], bodies.angVel[c.bodyA]);
+        BtgBodyVel b1 = btgMakeBodyVel(b.moving, bodies.linVel[c.bodyB], bodies.angVel[c.bodyB]);
+        btgPrepareContact(&c, a, b, a0, b0, a1, b1, btgCombinedFriction(pa.friction, pb.friction),
                           pa.restitution * pb.restitution, btgContactSolvable(pa.flags, pb.flags), params);
     }
     return edges;

@@ -18,7 +18,7 @@ void prepareContacts(DeviceWorld& w, const BtgStepParams& params)
     w.edgeColor.reserveExact(w.ctx, w.edgeCapacity);
     cl::Launch(w.ctx, w.ctx.program("prepare_contacts").kernel("prepare_contacts"), &w.profiler)
         .arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props).arg(w.invInertiaWorld)
-        .arg(w.linVel0).arg(w.angVel0).arg(w.edges).arg(params).run(size_t(contactCapacity));
+        .arg(w.linVel0).arg(w.angVel0).arg(w.linVel).arg(w.angVel).arg(w.edges).arg(params).run(size_t(contactCapacity));
 }
 
 }  // namespace btgpu

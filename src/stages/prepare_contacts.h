@@ -8,7 +8,7 @@
 // Each contact is also an edge of the constraint graph (edge i = contact i's bodies), which the
 // batching colors and the islands walk.
 // Reads contacts, counters, props, invInertiaWorld, linVel0, angVel0.
-// Writes contacts (combined friction, tangent1/2, row masses, normal and push targets),
+// Writes contacts (combined friction, per-point friction directions, row masses, normal and push targets),
 // edges[0, contacts), counters[kEdgeCount], w.edgeCapacity (= contact slots + joints).
 #pragma once
 #include "world/device_world.h"

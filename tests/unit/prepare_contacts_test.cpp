@@ -60,6 +60,8 @@ TEST(PrepareContacts, MatchesReference)
             expectNearRel(btgLane(g.normal, c), btgLane(e.normal, c), "normal", int(i));
             expectNearRel(btgLane(g.tangent1, c), btgLane(e.tangent1, c), "tangent1", int(i));
             expectNearRel(btgLane(g.tangent2, c), btgLane(e.tangent2, c), "tangent2", int(i));
+            expectNearRel(btgLane(g.frictionCos, c), btgLane(e.frictionCos, c), "frictionCos", int(i));
+            expectNearRel(btgLane(g.frictionSin, c), btgLane(e.frictionSin, c), "frictionSin", int(i));
             expectNearRel(btgLane(g.normalMass, c), btgLane(e.normalMass, c), "normalMass", int(i));
             expectNearRel(btgLane(g.friction1Mass, c), btgLane(e.friction1Mass, c), "friction1Mass", int(i));
             expectNearRel(btgLane(g.friction2Mass, c), btgLane(e.friction2Mass, c), "friction2Mass", int(i));
@@ -108,6 +110,40 @@ TEST(PrepareContacts, BulletTargets)
     EXPECT_NEAR(btgDot3(c[0].tangent1, c[0].normal), 0.0f, 1e-6f);
     EXPECT_NEAR(btgDot3(c[0].tangent2, c[0].normal), 0.0f, 1e-6f);
     EXPECT_NEAR(btgDot3(c[0].tangent1, c[0].tangent2), 0.0f, 1e-6f);
+}
+
+// Bullet's convertContact gives each point its own friction direction: along that point's slip
+// velocity taken after this substep's forces (getVelocityInLocalPointNoDelta), btPlaneSpace1's p
+// when it slips less than sqrt(SIMD_EPSILON). A box spinning about the normal slips a different
+// way at each corner; before the forces it was at rest (so the pre-force velocity would give p).
+TEST(PrepareContacts, FrictionDirectionPerPointAlongItsSlip)
+{
+    ref::ContactBodies b;
+    int ground = test::addBody(b, btgZero4(), 0.0f, btgZero4(), BTG_BODY_STATIC, 0.5f);
+    int box = test::addBody(b, btgMake4(0, 0.5f, 0, 0), 1.0f, btgMake4(6, 6, 6, 0), BTG_BODY_DYNAMIC, 0.5f);
+    int still = test::addBody(b, btgMake4(3, 0.5f, 0, 0), 1.0f, btgMake4(6, 6, 6, 0), BTG_BODY_DYNAMIC, 0.5f);
+    b.linVel0[box] = btgZero4();
+    b.angVel0[box] = btgZero4();
+    b.angVel[box] = btgMake4(0, 2, 0, 0);
+    b.linVel[box] = btgMake4(0, -0.1f, 0, 0);  // gravity's impulse: along the normal, no slip
+    BtgStepParams p = test::defaultParams(3);
+    std::vector<BtgManifold> ms = {test::boxOnPlane(box, ground, b.pos[box], 0.5f, -0.01f),
+                                   test::boxOnPlane(still, ground, b.pos[still], 0.5f, -0.01f)};
+    std::vector<BtgContact> c = runDevice(b, ms, p);
+    ASSERT_EQ(c.size(), 2u);
+    for (int k = 0; k < 4; ++k) {
+        const BtgFloat4 rA = btgXyz(c[0].rA[k]);
+        const BtgFloat4 slip = btgNormalize3(btgCross3(b.angVel[box], rA));
+        const BtgFloat4 d1 = btgFrictionDir1(&c[0], k), d2 = btgFrictionDir2(&c[0], k);
+        EXPECT_NEAR(btgDot3(d1, slip), 1.0f, 1e-5f) << "point " << k;
+        EXPECT_NEAR(btgDot3(d2, slip), 0.0f, 1e-5f) << "point " << k;
+        EXPECT_NEAR(btgDot3(d2, c[0].normal), 0.0f, 1e-6f) << "point " << k;
+        EXPECT_NEAR(btgDot3(d2, d2), 1.0f, 1e-5f) << "point " << k;
+        // No slip: btPlaneSpace1's p, for every point.
+        EXPECT_NEAR(btgDot3(btgFrictionDir1(&c[1], k), c[1].tangent1), 1.0f, 1e-6f) << "point " << k;
+    }
+    // The corners slip four different ways.
+    EXPECT_LT(btgDot3(btgFrictionDir1(&c[0], 0), btgFrictionDir1(&c[0], 2)), -0.99f);
 }
 
 TEST(PrepareContacts, RestitutionTwoToOne)

@@ -231,12 +231,12 @@ TEST(SolveConstraints, FrictionHoldsSlowSlideAndSaturatesOnFastOne)
         const BtgContact& c = d.contacts[0];
         BtgFloat4 total = btgZero4();
         for (int k = 0; k < 4; ++k) {
-            EXPECT_NEAR(pointVelocity(d.bodies, c, k, c.tangent1), 0.0f, 1e-3f) << "point " << k;
-            EXPECT_NEAR(pointVelocity(d.bodies, c, k, c.tangent2), 0.0f, 1e-3f) << "point " << k;
+            EXPECT_NEAR(pointVelocity(d.bodies, c, k, btgFrictionDir1(&c, k)), 0.0f, 1e-3f) << "point " << k;
+            EXPECT_NEAR(pointVelocity(d.bodies, c, k, btgFrictionDir2(&c, k)), 0.0f, 1e-3f) << "point " << k;
             float n = btgLane(c.normalImpulse, k);
             EXPECT_LE(std::fabs(btgLane(c.friction1Impulse, k)), mu * n + 1e-6f);
             EXPECT_LE(std::fabs(btgLane(c.friction2Impulse, k)), mu * n + 1e-6f);
-            total = total + c.tangent1 * btgLane(c.friction1Impulse, k) + c.tangent2 * btgLane(c.friction2Impulse, k);
+            total = total + btgFrictionDir1(&c, k) * btgLane(c.friction1Impulse, k) + btgFrictionDir2(&c, k) * btgLane(c.friction2Impulse, k);
         }
         EXPECT_NEAR(total.x, -0.02f, 1e-3f);
         EXPECT_NEAR(d.bodies.linVel[s.box].x, 0.0f, 1e-3f);
