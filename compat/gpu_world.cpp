@@ -449,7 +449,7 @@ void GpuWorld::runOnDevice(int substeps, btScalar dt, SubstepPart part)
     m_report.contacts = int(m_readback.counters[kContactCount]);
 }
 
-void GpuWorld::writeBack(const BodyReadback& rb, bool last)
+void GpuWorld::writeBack(const BodyReadback& rb, bool last, bool sleepRead)
 {
     // Rows are independent Bullet objects: written in parallel; what needs the world (issues,
     // motion states of bodies that fell asleep) is collected per chunk and done after, in order.
@@ -469,7 +469,7 @@ void GpuWorld::writeBack(const BodyReadback& rb, bool last)
             if (!m_removed.empty() && m_removed.count(o)) continue;  // removed inside this call
             btRigidBody* body = o ? btRigidBody::upcast(o) : nullptr;
             if (!body) continue;
-            bool asleepNow = writeRow(r, body, rb, &bad[chunk]);
+            bool asleepNow = writeRow(r, body, rb, sleepRead, &bad[chunk]);
             if (!fuse) {
                 if (asleepNow) fellAsleep[chunk].push_back(r);
                 continue;
@@ -502,13 +502,14 @@ void GpuWorld::writeBack(const BodyReadback& rb, bool last)
         for (size_t r : rows) m_world.synchronizeSingleMotionState(btRigidBody::upcast(m_rows.at(r)));
 }
 
-bool GpuWorld::writeRow(size_t r, btRigidBody* body, const BodyReadback& rb, std::vector<size_t>* bad)
+bool GpuWorld::writeRow(size_t r, btRigidBody* body, const BodyReadback& rb, bool sleepRead, std::vector<size_t>* bad)
 {
     Mirror& m = m_mirror[r];
     uint f = m.props.flags;
     if (!(f & BTG_BODY_DYNAMIC) || (f & BTG_BODY_EXCLUDED)) return false;
     bool wasAsleep = (f & BTG_BODY_SLEEPING) != 0;
-    bool asleep = rb.sleepState[r] != 0;
+    // Before the deactivation ran (actions in between) the sleep states are not this step's.
+    bool asleep = sleepRead ? rb.sleepState[r] != 0 : wasAsleep;
     if (wasAsleep && asleep) return false;  // nothing moved
     BtgFloat4 p = rb.pos[r], q = rb.rot[r], v = rb.linVel[r], a = rb.angVel[r];
     if (!btgIsFinite4(p) || !btgIsFinite4(q) || !btgIsFinite4(v) || !btgIsFinite4(a)) {
@@ -689,7 +690,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             if (actions) {
                 runOnDevice(perBatch, fixedTimeStep, SubstepPart::BeforeActivation);
                 m_joints.writeBack(*m_dev);
-                writeBack(m_readback, false);
+                writeBack(m_readback, false, false);
                 runActions(fixedTimeStep);
                 runOnDevice(1, fixedTimeStep, SubstepPart::ActivationOnly);
             } else {

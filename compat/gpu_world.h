@@ -87,9 +87,11 @@ private:
     bool finishCall(bool profiled, bool gpuPath);
     // Results into the btRigidBody objects; `last`: the call's final write-back, which may also
     // do synchronizeMotionStates' and clearForces' work in the same pass (see takeFusedWriteBack).
-    void writeBack(const BodyReadback& rb, bool last);
+    // sleepRead: rb's sleep states are this step's (false after a part stopped before the
+    // deactivation).
+    void writeBack(const BodyReadback& rb, bool last, bool sleepRead = true);
     // One row; true when the body fell asleep in this step. Touches only row r.
-    bool writeRow(size_t r, btRigidBody* body, const BodyReadback& rb, std::vector<size_t>* bad);
+    bool writeRow(size_t r, btRigidBody* body, const BodyReadback& rb, bool sleepRead, std::vector<size_t>* bad);
     StepSettings settings(int substeps, btScalar dt) const;
 
     btGpuDynamicsWorld& m_world;
