@@ -83,6 +83,12 @@ private:
     // Internal step `batch` of a call, after an action or callback added or removed
     // something: false when the rest of the call ran on the CPU path.
     bool followWithinCall(int batch, int batches, btScalar fixedTimeStep);
+    // Bullet's broadphase AABBs where the bodies are, without its pair tests (see the .cpp), and
+    // the pairs those left out, found before a CPU-path step.
+    btDbvtBroadphase* dbvtBroadphase() const;
+    void syncBroadphaseAabbs();
+    void completeBroadphasePairs();
+    bool m_broadphasePairsStale = false;
     // synchronizeMotionStates, clearForces, the AABB sync and the report's totals.
     bool finishCall(bool profiled, bool gpuPath);
     // Results into the btRigidBody objects; `last`: the call's final write-back, which may also

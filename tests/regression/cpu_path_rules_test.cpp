@@ -286,6 +286,44 @@ TEST(CpuPathRules, ComingBackAgreesWithStock)
     }
 }
 
+// Landed on the GPU path, then a rule sends the world to the CPU path: Bullet's own step must
+// find the boxes' pairs with the ground, which its broadphase did not test while the GPU path
+// moved them (its AABBs were kept current, its pair tests deferred). Resting boxes no longer
+// leave their fat broadphase volumes, so only a full pair update finds those pairs at once.
+TEST(CpuPathRules, GoingToTheCpuPathAfterLandingFindsTheGroundPairs)
+{
+    std::vector<Rule> all = rules();
+    const Rule& rule = *std::find_if(all.begin(), all.end(), [](const Rule& r) { return r.name == std::string("rolling friction"); });
+    // Released 4 m up: no broadphase pair with the ground when they are added.
+    auto make = [](WorldKind kind, const Config& config) {
+        auto scene = std::make_unique<Scene>(kind, config, "high_drop");
+        scene->addBody(scene->boxShape(btVector3(20, 1, 20)), 0, btVector3(0, -1, 0));
+        for (int b = 0; b < 3; ++b)
+            scene->addBody(scene->boxShape(btVector3(btScalar(.5), btScalar(.5), btScalar(.5))), 1,
+                           btVector3(btScalar(2 * b - 2), 4, 0));
+        return scene;
+    };
+    SideBySide s(make);
+    s.step(150);
+    ASSERT_TRUE(s.onGpu());
+    for (int b = 1; b <= 3; ++b) ASSERT_NEAR(s.gpuY(b), 0.5, 0.01) << "box " << b << " has not landed";
+    s.both(rule.set);
+    s.step(1);
+    EXPECT_FALSE(s.onGpu());
+    // Bullet's broadphase holds stock's pairs at once (left alone, its own stage migration would
+    // find them a few steps later, the boxes unsupported meanwhile).
+    EXPECT_EQ(s.gpu->world().getPairCache()->getNumOverlappingPairs(),
+              s.stock->world().getPairCache()->getNumOverlappingPairs());
+    EXPECT_EQ(s.gpu->world().getPairCache()->getNumOverlappingPairs(), 3);
+    s.step(59);
+    EXPECT_FALSE(s.onGpu());
+    for (int b = 1; b <= 3; ++b) {
+        EXPECT_NEAR(s.gpuY(b), 0.5, tol::kRestHeight + 0.01) << "box " << b << " is not resting on the ground";
+        // Landed on the GPU path: as far from stock as the landing left them.
+        EXPECT_LT(s.distance(b), 0.005) << "box " << b;
+    }
+}
+
 TEST(CpuPathRules, StructureRulesFallBackAndComeBack)
 {
     // Additional damping is set only through the construction info; removing the body clears it.
