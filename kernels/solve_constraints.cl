@@ -2,14 +2,17 @@
  * constraint graph, color by color; edge e below the contact count is contact e, edge
  * contacts + j is joint j). Each velocity iteration solves, as Bullet's solveSingleIteration,
  * every joint row first (joint j while the iteration is below its own iteration count), then
- * the contacts (while it is below m_numIterations); joints take no warm-start or push pass.
+ * the contacts (while it is below m_numIterations) in two sweeps: every contact's normal rows,
+ * then every friction row; joints take no warm-start or push pass.
  * Launch: color_count / color_fill: one work-item per edge slot, sorting edge indices into
  * per-color ranges; solve_color_range: one work-item per slot of one color's range (no
  * dynamic body twice in a color, so no races); solve_resident: every pass and color in one
  * launch (resident groups on GPUs, one group for small scenes on CPUs);
  * solve_color_serial: one work-item that walks, in index order, the edges whose color is the
  * last one or higher (so a caller launching fewer colors than were assigned still solves all).
- * mode 0: apply warm-start impulses; 1: velocity iteration; 2: split-impulse iteration;
+ * mode 0: apply warm-start impulses; 1: velocity iteration (both sweeps at once, unused by
+ * the host); 2: split-impulse iteration; 3, 4: a velocity iteration's normal sweep, then its
+ * friction sweep over every contact (counters.h);
  * twoFriction: SOLVER_USE_2_FRICTION_DIRECTIONS (else the second friction rows are not read).
  * Reads counters[kEdgeCount, kContactCount, kColorsUsed, kLeftovers], edgeColor, props,
  * invInertiaWorld, contacts (a pass reads the fields of its rows only, see BtgContact),
@@ -50,6 +53,8 @@ static void solve_contact(int i, int mode, int twoFriction, __global BtgContact*
     BtgBodyVel va = btgMakeBodyVel(movingA, linA, angA);
     BtgBodyVel vb = btgMakeBodyVel(movingB, linB, angB);
     if (mode == BTG_PASS_WARM_START) btgContactWarmStart(&c, a, b, &va, &vb, twoFriction);
+    else if (mode == BTG_PASS_NORMALS) btgContactSolveNormals(&c, a, b, &va, &vb);
+    else if (mode == BTG_PASS_FRICTION) btgContactSolveFriction(&c, a, b, &va, &vb, twoFriction);
     else if (mode == BTG_PASS_VELOCITY) btgContactSolveVelocity(&c, a, b, &va, &vb, twoFriction);
     else btgContactSolvePush(&c, a, b, &va, &vb);
     /* w of the velocity columns is not the solver's: keep it. */
@@ -271,31 +276,36 @@ __kernel void solve_resident(__global const int* restrict edgeColor, __global Bt
         const int iteration = pass - 1;
         BTG_SHARED __global BtgFloat4* lin = mode == 2 ? pushLin : linVel;
         BTG_SHARED __global BtgFloat4* ang = mode == 2 ? pushAng : angVel;
-        /* Phase 1: the joints (velocity passes only), then phase 0: the contacts. */
+        /* Phase 1: the joints (velocity passes only), then phase 0: the contacts, whose
+         * velocity pass is two sweeps (normals, then friction). */
         for (int phase = (mode == BTG_PASS_VELOCITY && numJoints > 0) ? 1 : 0; phase >= 0; --phase) {
             if (phase == 0 && mode == BTG_PASS_VELOCITY && iteration >= iterations) break;
             /* push passes: only contacts with a push target */
             const int list = phase ? 2 : (mode == 2 ? 1 : 0);
-            for (int color = 0; color < last; ++color) {
-                const int begin = (int)colorStart[list * (numColors + 1) + color];
-                const int end = (int)colorStart[list * (numColors + 1) + color + 1];
-                for (int k = begin + gid; k < end; k += gsize)
-                    solve_phase_edge(colorOrder[list * orderStride + k], phase, nc, iteration, mode, twoFriction, contacts,
-                                     JOINT_PASS, props, invInertiaWorld, lin, ang);
-                if (btgGridBarrier(bar, spinLimit, &quit)) {
-                    if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
-                    return;
+            const int sweeps = phase == 0 && mode == BTG_PASS_VELOCITY ? 2 : 1;
+            for (int sweep = 0; sweep < sweeps; ++sweep) {
+                const int m = sweeps == 2 ? (sweep == 0 ? BTG_PASS_NORMALS : BTG_PASS_FRICTION) : mode;
+                for (int color = 0; color < last; ++color) {
+                    const int begin = (int)colorStart[list * (numColors + 1) + color];
+                    const int end = (int)colorStart[list * (numColors + 1) + color + 1];
+                    for (int k = begin + gid; k < end; k += gsize)
+                        solve_phase_edge(colorOrder[list * orderStride + k], phase, nc, iteration, m, twoFriction,
+                                         contacts, JOINT_PASS, props, invInertiaWorld, lin, ang);
+                    if (btgGridBarrier(bar, spinLimit, &quit)) {
+                        if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
+                        return;
+                    }
                 }
-            }
-            if (walkLast) {
-                if (gid == 0)
-                    for (int i = phase ? nc : 0; i < (phase ? n : min(n, nc)); ++i)
-                        if (edgeColor[i] >= last)
-                            solve_phase_edge(i, phase, nc, iteration, mode, twoFriction, contacts, JOINT_PASS, props,
-                                             invInertiaWorld, lin, ang);
-                if (btgGridBarrier(bar, spinLimit, &quit)) {
-                    if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
-                    return;
+                if (walkLast) {
+                    if (gid == 0)
+                        for (int i = phase ? nc : 0; i < (phase ? n : min(n, nc)); ++i)
+                            if (edgeColor[i] >= last)
+                                solve_phase_edge(i, phase, nc, iteration, m, twoFriction, contacts, JOINT_PASS, props,
+                                                 invInertiaWorld, lin, ang);
+                    if (btgGridBarrier(bar, spinLimit, &quit)) {
+                        if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
+                        return;
+                    }
                 }
             }
         }

@@ -314,22 +314,26 @@ static inline BtgContact btgLoadContactRows(BTG_CONST_GLOBAL BtgContact* contact
     c.bodyA = contacts[i].bodyA;
     c.bodyB = contacts[i].bodyB;
     c.numPoints = contacts[i].numPoints;
-    c.friction = mode == BTG_PASS_VELOCITY ? contacts[i].friction : 0.0f;
+    /* a friction sweep needs no normal targets, a normal sweep no friction rows */
+    const int frictionRows = mode == BTG_PASS_VELOCITY || mode == BTG_PASS_FRICTION;
+    const int normalRows = mode == BTG_PASS_VELOCITY || mode == BTG_PASS_NORMALS;
+    c.friction = frictionRows ? contacts[i].friction : 0.0f;
     c.normal = contacts[i].normal;
     for (int k = 0; k < BTG_MAX_POINTS; ++k) {
         c.rA[k] = k < c.numPoints ? contacts[i].rA[k] : btgZero4();
         c.rB[k] = k < c.numPoints ? contacts[i].rB[k] : btgZero4();
     }
     c.normalMass = contacts[i].normalMass;
-    const int push = mode == BTG_PASS_PUSH, second = !push && twoFriction;
-    c.normalTarget = mode == BTG_PASS_VELOCITY ? contacts[i].normalTarget : btgZero4();
+    const int push = mode == BTG_PASS_PUSH, noFriction = push || mode == BTG_PASS_NORMALS;
+    const int second = !noFriction && twoFriction;
+    c.normalTarget = normalRows ? contacts[i].normalTarget : btgZero4();
     c.normalImpulse = push ? btgZero4() : contacts[i].normalImpulse;
-    c.tangent1 = push ? btgZero4() : contacts[i].tangent1;
-    c.tangent2 = push ? btgZero4() : contacts[i].tangent2;
-    c.frictionCos = push ? btgZero4() : contacts[i].frictionCos;
-    c.frictionSin = push ? btgZero4() : contacts[i].frictionSin;
-    c.friction1Mass = push ? btgZero4() : contacts[i].friction1Mass;
-    c.friction1Impulse = push ? btgZero4() : contacts[i].friction1Impulse;
+    c.tangent1 = noFriction ? btgZero4() : contacts[i].tangent1;
+    c.tangent2 = noFriction ? btgZero4() : contacts[i].tangent2;
+    c.frictionCos = noFriction ? btgZero4() : contacts[i].frictionCos;
+    c.frictionSin = noFriction ? btgZero4() : contacts[i].frictionSin;
+    c.friction1Mass = noFriction ? btgZero4() : contacts[i].friction1Mass;
+    c.friction1Impulse = noFriction ? btgZero4() : contacts[i].friction1Impulse;
     c.friction2Mass = second ? contacts[i].friction2Mass : btgZero4();
     c.friction2Impulse = second ? contacts[i].friction2Impulse : btgZero4();
     c.pushTarget = push ? contacts[i].pushTarget : btgZero4();
@@ -341,8 +345,8 @@ static inline BtgContact btgLoadContactRows(BTG_CONST_GLOBAL BtgContact* contact
 static inline void btgStoreContactImpulses(BTG_GLOBAL BtgContact* contacts, int i, const BtgContact* c, int mode,
                                            int twoFriction)
 {
-    if (mode == BTG_PASS_VELOCITY) {
-        contacts[i].normalImpulse = c->normalImpulse;
+    if (mode == BTG_PASS_VELOCITY || mode == BTG_PASS_NORMALS) contacts[i].normalImpulse = c->normalImpulse;
+    if (mode == BTG_PASS_VELOCITY || mode == BTG_PASS_FRICTION) {
         contacts[i].friction1Impulse = c->friction1Impulse;
         if (twoFriction) contacts[i].friction2Impulse = c->friction2Impulse;
     } else if (mode == BTG_PASS_PUSH) {
@@ -391,10 +395,8 @@ static inline void btgContactWarmStart(const BtgContact* c, BtgSolverBody a, Btg
                         btgLane(c->friction2Impulse, k));
     }
 }
-/* One velocity iteration: all normal rows, then the friction rows (directions 1 and 2 per point)
- * whose normal impulse is positive (solveSingleIteration). */
-static inline void btgContactSolveVelocity(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
-                                           BtgBodyVel* vb, int twoFriction)
+/* A velocity iteration's normal rows of one contact (BTG_PASS_NORMALS). */
+static inline void btgContactSolveNormals(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb)
 {
     for (int k = 0; k < c->numPoints; ++k) {
         if (btgLane(c->normalMass, k) == 0.0f) continue;
@@ -402,6 +404,12 @@ static inline void btgContactSolveVelocity(BtgContact* c, BtgSolverBody a, BtgSo
         btgRowSolve(&r, a, b, va, vb);
         btgSetLane(&c->normalImpulse, k, r.impulse);
     }
+}
+/* Its friction rows (directions 1 and 2 per point) whose normal impulse is positive
+ * (BTG_PASS_FRICTION). */
+static inline void btgContactSolveFriction(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
+                                           BtgBodyVel* vb, int twoFriction)
+{
     for (int k = 0; k < c->numPoints; ++k) {
         if (!(btgLane(c->normalImpulse, k) > 0.0f)) continue;
         float m1 = btgLane(c->friction1Mass, k);
@@ -417,6 +425,13 @@ static inline void btgContactSolveVelocity(BtgContact* c, BtgSolverBody a, BtgSo
             btgSetLane(&c->friction2Impulse, k, r.impulse);
         }
     }
+}
+/* Both for one contact (the Jacobi solver's velocity pass, which sweeps every contact once). */
+static inline void btgContactSolveVelocity(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
+                                           BtgBodyVel* vb, int twoFriction)
+{
+    btgContactSolveNormals(c, a, b, va, vb);
+    btgContactSolveFriction(c, a, b, va, vb, twoFriction);
 }
 /* Whether any of the contact's points has a push row (the push passes visit only such
  * contacts); read straight from the list, three fields. */

@@ -15,10 +15,16 @@
 #define BTG_NUM_COUNTERS 9
 
 /* Solver passes (solve_constraints, solve_jacobi): warm start, a velocity iteration, a
- * split-impulse push iteration. */
+ * split-impulse push iteration. The batched PGS sweeps a velocity iteration's contacts twice,
+ * as Bullet's solveSingleIteration does: every contact's normal rows, then every friction row
+ * (each bounded by its point's normal impulse of this iteration). Solving each contact's
+ * friction right after its own normals pushed the round tower of BenchmarkDemo's test 2
+ * outward (regression Stacking.BenchTowerStaysLikeStock). */
 #define BTG_PASS_WARM_START 0
 #define BTG_PASS_VELOCITY 1
 #define BTG_PASS_PUSH 2
+#define BTG_PASS_NORMALS 3
+#define BTG_PASS_FRICTION 4
 
 /* Pair sort keys (find_pairs' pair_sort_keys): (a, b) packed in one key, or two stable
  * passes: b (minor) first, then a. */

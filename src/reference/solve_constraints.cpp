@@ -1,7 +1,8 @@
 // solve_constraints.cpp — CPU reference of the solve stage: the same passes as the device
-// (warm start, velocity iterations, split-impulse iterations), colors in order and the edges
-// (contacts) of a color in index order, which is what the batched launches compute; with
-// joints, each velocity iteration walks the joints' edges (colors in order) before the contacts'.
+// (warm start, velocity iterations of a normal and a friction sweep, split-impulse iterations),
+// colors in order and the edges (contacts) of a color in index order, which is what the batched
+// launches compute; with joints, each velocity iteration walks the joints' edges (colors in
+// order) before the contacts'.
 #include "reference/contact_solver_reference.h"
 #include "reference/joint_reference.h"
 
@@ -35,7 +36,8 @@ void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>&
                 BtgBodyVel va = btgMakeBodyVel(movingA, lin[c.bodyA], ang[c.bodyA]);
                 BtgBodyVel vb = btgMakeBodyVel(movingB, lin[c.bodyB], ang[c.bodyB]);
                 if (mode == BTG_PASS_WARM_START) btgContactWarmStart(&c, a, b, &va, &vb, params.twoFrictionDirections);
-                else if (mode == BTG_PASS_VELOCITY) btgContactSolveVelocity(&c, a, b, &va, &vb, params.twoFrictionDirections);
+                else if (mode == BTG_PASS_NORMALS) btgContactSolveNormals(&c, a, b, &va, &vb);
+                else if (mode == BTG_PASS_FRICTION) btgContactSolveFriction(&c, a, b, &va, &vb, params.twoFrictionDirections);
                 else btgContactSolvePush(&c, a, b, &va, &vb);
                 if (a.dynamic) {
                     lin[c.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, lin[c.bodyA].w);
@@ -49,7 +51,10 @@ void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>&
             }
     };
     pass(BTG_PASS_WARM_START);
-    for (int it = 0; it < iterations; ++it) pass(BTG_PASS_VELOCITY);
+    for (int it = 0; it < iterations; ++it) {
+        pass(BTG_PASS_NORMALS);
+        pass(BTG_PASS_FRICTION);
+    }
     if (params.splitImpulse)
         for (int it = 0; it < iterations; ++it) pass(BTG_PASS_PUSH);
 }
@@ -84,7 +89,8 @@ void solveConstraints(std::vector<BtgContact>& contacts, JointTables& t, const s
                 BtgBodyVel va = btgMakeBodyVel(movingA, lin[c.bodyA], ang[c.bodyA]);
                 BtgBodyVel vb = btgMakeBodyVel(movingB, lin[c.bodyB], ang[c.bodyB]);
                 if (mode == BTG_PASS_WARM_START) btgContactWarmStart(&c, a, b, &va, &vb, params.twoFrictionDirections);
-                else if (mode == BTG_PASS_VELOCITY) btgContactSolveVelocity(&c, a, b, &va, &vb, params.twoFrictionDirections);
+                else if (mode == BTG_PASS_NORMALS) btgContactSolveNormals(&c, a, b, &va, &vb);
+                else if (mode == BTG_PASS_FRICTION) btgContactSolveFriction(&c, a, b, &va, &vb, params.twoFrictionDirections);
                 else btgContactSolvePush(&c, a, b, &va, &vb);
                 if (a.dynamic) {
                     lin[c.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, lin[c.bodyA].w);
@@ -124,7 +130,10 @@ void solveConstraints(std::vector<BtgContact>& contacts, JointTables& t, const s
     const int velocity = std::max(iterations, t.joints.empty() ? 0 : jointIterations);
     for (int it = 0; it < velocity; ++it) {
         if (!t.joints.empty()) jointPass(it);
-        if (it < iterations) contactPass(BTG_PASS_VELOCITY);
+        if (it < iterations) {
+            contactPass(BTG_PASS_NORMALS);
+            contactPass(BTG_PASS_FRICTION);
+        }
     }
     if (params.splitImpulse)
         for (int it = 0; it < iterations; ++it) contactPass(BTG_PASS_PUSH);

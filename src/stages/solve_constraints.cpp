@@ -101,7 +101,11 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     pass(BTG_PASS_WARM_START, 0, -1, w.linVel, w.angVel);
     for (int it = 0; it < velocityPasses; ++it) {
         if (numJoints > 0) pass(BTG_PASS_VELOCITY, 1, it, w.linVel, w.angVel);
-        if (it < iterations) pass(BTG_PASS_VELOCITY, 0, it, w.linVel, w.angVel);
+        if (it < iterations) {
+            // every contact's normal rows, then every friction row (counters.h)
+            pass(BTG_PASS_NORMALS, 0, it, w.linVel, w.angVel);
+            pass(BTG_PASS_FRICTION, 0, it, w.linVel, w.angVel);
+        }
     }
     if (params.splitImpulse)
         for (int it = 0; it < iterations; ++it) pass(BTG_PASS_PUSH, 0, iterations + it, w.pushLin, w.pushAng);

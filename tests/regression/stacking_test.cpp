@@ -1,9 +1,11 @@
-// stacking_test.cpp — many contacts at rest: a stack of 8 unit boxes that must not creep, and
-// Bullet's BasicDemo pile of 125 boxes against stock Bullet.
+// stacking_test.cpp — many contacts at rest: a stack of 8 unit boxes that must not creep,
+// Bullet's BasicDemo pile of 125 boxes and BenchmarkDemo's round tower against stock Bullet.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 
+#include "scenes/demo_scenes.h"
 #include "scenes/stock_chaos.h"
 #include "side_by_side.h"
 
@@ -48,5 +50,49 @@ TEST(Stacking, BasicDemoSettlesLikeStock)
     }
     // Box half extent 0.1: a centre lower than 0.1 - kSinkDepth has sunk into the ground.
     EXPECT_GE(scenes::lowestHeight(*gpu), 0.1 - tol::kSinkDepth);
+    EXPECT_TRUE(scenes::allFinite(*gpu));
+}
+
+namespace {
+
+// BenchmarkDemo test 2's round tower: each box's drift from the circle it started on (radius
+// 1.3 * 24 / pi about x = 25, z = 0), mean over all boxes and over the top ring.
+std::vector<double> towerDrift(const Scene& scene, int rings)
+{
+    const double start = 1.3 * 24.0 / 3.14159265358979;
+    double all = 0, top = 0;
+    for (int i = 1; i <= rings * 24; ++i) {
+        const btVector3 p = scene.body(i)->getWorldTransform().getOrigin();
+        const double drift = std::sqrt(double(p.x() - 25) * double(p.x() - 25) + double(p.z()) * double(p.z())) - start;
+        all += drift;
+        if (i > (rings - 1) * 24) top += drift;
+    }
+    return {all / (rings * 24), top / 24};
+}
+
+}  // namespace
+
+TEST(Stacking, BenchTowerStaysLikeStock)
+{
+    // BenchmarkDemo test 2's tower alone (8 rings of 24 unit boxes, 5 iterations), 5 s. Each box
+    // rests on two below it; solving each contact's friction right after its own normal rows
+    // (not after every contact's, as Bullet) pushed the rings outward, 35 mm on average.
+    const int rings = 8, steps = 300;
+    auto measure = [&](const Scene& scene) { return towerDrift(scene, rings); };
+    std::vector<scenes::ChaosBand> bands = scenes::stockChaos(
+        [&](WorldKind kind) { return scenes::benchTower(kind, Config(), rings); }, steps, measure,
+        {"mean radial drift", "top ring's radial drift"}, {tol::kChaosRadialFloor, tol::kChaosRadialFloor});
+    scenes::ScenePtr gpu = scenes::benchTower(WorldKind::Gpu, Config(), rings);
+    for (int i = 0; i < steps; ++i) {
+        gpu->step();
+        ASSERT_TRUE(gpu->gpuWorld()->isGpuPath()) << gpu->report()->cpuPathReason;
+    }
+    const std::vector<double> got = measure(*gpu);
+    for (size_t k = 0; k < bands.size(); ++k) {
+        std::printf("Bench tower %s: btgpu %.2f mm, stock %.2f +- %.2f mm\n", bands[k].name.c_str(), 1e3 * got[k],
+                    1e3 * bands[k].stockMean, 1e3 * bands[k].bound());
+        EXPECT_TRUE(bands[k].admits(got[k])) << bands[k].name << ": btgpu " << got[k] << ", stock mean "
+                                             << bands[k].stockMean << " +- " << bands[k].bound();
+    }
     EXPECT_TRUE(scenes::allFinite(*gpu));
 }

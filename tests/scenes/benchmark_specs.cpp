@@ -37,6 +37,27 @@ Scene benchScene(const std::string& name)
     return s;
 }
 
+// BenchmarkDemo's createTowerCircle at x = 25 into s: `rings` rings of 24 boxes on a circle of
+// radius 1.3 * 24 / pi, each box turned to face the centre, every other ring turned by half a box.
+void addBenchTower(Scene& s, int rings)
+{
+    const int around = 24;
+    const float half = 1.0f, pi = 3.14159265358979f, radius = 1.3f * float(around) * half / pi;
+    float y = half, angle = 0;
+    for (int r = 0; r < rings; ++r) {
+        for (int j = 0; j < around; ++j) {
+            // rotate(rotY, (0, y, radius)) for a rotation by `angle` about y.
+            BodySpec b = box(half, 1, 25 + radius * std::sin(angle), y, radius * std::cos(angle));
+            b.rot[1] = std::sin(0.5f * angle);
+            b.rot[3] = std::cos(0.5f * angle);
+            s.bodies.push_back(b);
+            angle += pi / (float(around) * 0.5f);
+        }
+        y += half * 2;
+        angle += pi / float(around);
+    }
+}
+
 }  // namespace
 
 Scene makeBenchPile(int layers, int size)
@@ -79,25 +100,14 @@ Scene makeBenchStacks()
             offset += half, y += half * 2;
         }
     }
-    // createTowerCircle at x = 25: 8 rings of 24 boxes on a circle of radius 1.3 * 24 / pi,
-    // each box turned to face the centre, every other ring turned by half a box.
-    {
-        const int rings = 8, around = 24;
-        const float pi = 3.14159265358979f, radius = 1.3f * float(around) * half / pi;
-        float y = half, angle = 0;
-        for (int r = 0; r < rings; ++r) {
-            for (int j = 0; j < around; ++j) {
-                // rotate(rotY, (0, y, radius)) for a rotation by `angle` about y.
-                BodySpec b = box(half, 1, 25 + radius * std::sin(angle), y, radius * std::cos(angle));
-                b.rot[1] = std::sin(0.5f * angle);
-                b.rot[3] = std::cos(0.5f * angle);
-                s.bodies.push_back(b);
-                angle += pi / (float(around) * 0.5f);
-            }
-            y += half * 2;
-            angle += pi / float(around);
-        }
-    }
+    addBenchTower(s, 8);
+    return s;
+}
+
+Scene makeBenchTower(int rings)
+{
+    Scene s = benchScene("bench tower " + std::to_string(rings));
+    addBenchTower(s, rings);
     return s;
 }
 

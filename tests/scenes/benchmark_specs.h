@@ -13,6 +13,9 @@ Scene makeBenchPile(int layers = 47, int size = 8);
 // Test 2: a 12-high square pyramid at x = -20, three 12-high walls at x = -2, 4, 10 and a round
 // tower of 8 rings of 24 boxes at x = 25 (1,076 unit boxes of half extent 1, mass 1).
 Scene makeBenchStacks();
+// Test 2's round tower alone: `rings` rings of 24 unit boxes (mass 1) on a circle of radius
+// 1.3 * 24 / pi about (25, y, 0), each facing the axis, every other ring turned by half a box.
+Scene makeBenchTower(int rings = 8);
 // Test 4: `layers` (15) layers of 8 x 8 barrels (a 40-point convex hull, 4 m tall, 3.6 m across
 // at its belly, polyhedral features on), mass 1, laid out as test 1 with cube size 1.5.
 Scene makeBenchHulls(int layers = 15);

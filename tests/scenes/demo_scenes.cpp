@@ -110,6 +110,11 @@ ScenePtr benchStacks(WorldKind kind, const Config& config)
     return fromSpec(kind, config, spec::makeBenchStacks(), "bench_stacks");
 }
 
+ScenePtr benchTower(WorldKind kind, const Config& config, int rings)
+{
+    return fromSpec(kind, config, spec::makeBenchTower(rings), "bench_tower");
+}
+
 ScenePtr benchHulls(WorldKind kind, const Config& config, int layers)
 {
     return fromSpec(kind, config, spec::makeBenchHulls(layers), "bench_hulls");

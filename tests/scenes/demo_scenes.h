@@ -21,6 +21,8 @@ ScenePtr fromSpec(WorldKind kind, const Config& config, const spec::Scene& data,
 ScenePtr benchPile(WorldKind kind, const Config& config = Config(), int layers = 47);
 ScenePtr benchStacks(WorldKind kind, const Config& config = Config());
 ScenePtr benchHulls(WorldKind kind, const Config& config = Config(), int layers = 15);
+// Test 2's round tower alone, `rings` (8) rings of 24 boxes (spec::makeBenchTower).
+ScenePtr benchTower(WorldKind kind, const Config& config = Config(), int rings = 8);
 ScenePtr voronoiPieces(WorldKind kind, const Config& config = Config(), int cells = 90);
 // BenchmarkDemo test 5's lattice: `layers` (10) layers of 10 x 10 bodies, each a box (half
 // extent 0.75, 1.5, 2.25), a sphere (radius 0.75, 1.5, 2.25) or a capsule (radius 0.5, 1, 1.5,
