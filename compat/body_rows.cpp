@@ -25,7 +25,9 @@ BtgBodyProps bodyProps(const btCollisionObject* obj, int shapeRow, const BtgShap
     if (!obj->hasContactResponse()) flags |= BTG_BODY_NO_RESPONSE;
     int state = obj->getActivationState();
     if (state == ISLAND_SLEEPING) flags |= BTG_BODY_SLEEPING;
-    if (state == DISABLE_SIMULATION || excluded) flags |= BTG_BODY_EXCLUDED;
+    // A ghost object is no row of the device's: its overlaps come from the host broadphase.
+    const bool ghost = obj->getInternalType() == btCollisionObject::CO_GHOST_OBJECT;
+    if (state == DISABLE_SIMULATION || excluded || ghost) flags |= BTG_BODY_EXCLUDED;
     if (state == DISABLE_DEACTIVATION || obj->isKinematicObject()) flags |= BTG_BODY_NEVER_SLEEP;
     if (shape.type == BTG_SHAPE_PLANE) flags = (flags & ~(BTG_BODY_DYNAMIC | BTG_BODY_KINEMATIC)) | BTG_BODY_STATIC;
     if (rb) {

@@ -199,11 +199,15 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, ShapeTables* s
     for (int i = 0; i < objs.size(); ++i) {
         const btCollisionObject* o = objs[i];
         int type = o->getInternalType();
-        if (type != btCollisionObject::CO_RIGID_BODY && type != btCollisionObject::CO_COLLISION_OBJECT)
-            return "collision object " + std::to_string(i) + " is not a rigid body (ghost, soft or other object)";
+        // Ghost objects take no part on the device (ghost_objects.h): only their overlaps, from
+        // Bullet's own broadphase run on the host.
+        const bool ghost = type == btCollisionObject::CO_GHOST_OBJECT;
+        if (type != btCollisionObject::CO_RIGID_BODY && type != btCollisionObject::CO_COLLISION_OBJECT && !ghost)
+            return "collision object " + std::to_string(i) + " is not a rigid body or ghost object (soft or other object)";
         std::string why;
         const int row = shapes->add(o->getCollisionShape(), &why);
         if (row < 0) return "body " + std::to_string(i) + ": " + why;
+        if (ghost) continue;  // its shape is never paired on the device
         const BtgShape& shape = shapes->shapes[size_t(row)];
         unsigned kindBit = 1u << shape.type;
         // A compound's pairs are its leaves' (expand_compounds): those kinds must have rows.

@@ -5,6 +5,7 @@
 
 #include "body_rows.h"
 #include "cpu_path_rules.h"
+#include "ghost_objects.h"
 #include "parallel_rows.h"
 #include "step_arguments.h"
 #include "shared/integrate.h"
@@ -118,12 +119,14 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
         const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
         m_shapeOfObject.resize(size_t(objs.size()));
         for (int i = 0; i < objs.size(); ++i) m_shapeOfObject[size_t(i)] = objs[i]->getCollisionShape();
+        m_ghosts = findGhosts(m_world);
         m_structureDirty = false;
         m_rowsStale = true;
     }
     if (!m_structureReason.empty()) return m_structureReason;
     std::string why = worldReason(m_world, m_config);
     if (why.empty()) why = bodiesReason(m_world, bodyIndex);
+    if (why.empty() && !m_ghosts.empty()) why = ghostReason(m_world, m_ghosts);
     return why;
 }
 
@@ -139,7 +142,7 @@ void GpuWorld::makePlan()
     for (size_t r = 0; r < m_rows.size(); ++r) {
         const btCollisionObject* o = m_rows.at(r);
         PlanBody b;
-        if (!o) {
+        if (!o || o->getInternalType() == btCollisionObject::CO_GHOST_OBJECT) {  // ghosts: ghost_objects.h
             b.live = false;
             in.bodies.push_back(b);
             continue;
@@ -649,6 +652,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
 
     m_dev->profiler.resetLaunchCount();
     m_report.syncInMs = m_report.deviceMs = m_report.writeBackMs = 0.0;
+    m_report.ghostBroadphaseMs = 0.0;
     const bool profiled = m_config.profile && (m_calls++ % std::max(m_config.profileEvery, 1)) == 0;
     m_dev->profiler.enabled = profiled;
     // Set before the substeps, as stock Bullet does: motion-state interpolation reads them.
@@ -659,7 +663,9 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         int clamped = numSubSteps > maxSubSteps ? maxSubSteps : numSubSteps;
         m_world.saveKinematicState(fixedTimeStep * clamped);
         const bool actions = m_world.m_actions.size() > 0;
-        bool perSubstep = m_world.m_internalTickCallback || m_world.m_internalPreTickCallback || actions;
+        // Ghosts: the host runs stock's broadphase update at each internal step's start.
+        const bool ghosts = !m_ghosts.empty();
+        bool perSubstep = m_world.m_internalTickCallback || m_world.m_internalPreTickCallback || actions || ghosts;
         int batches = perSubstep ? clamped : 1;
         int perBatch = perSubstep ? 1 : clamped;
         for (int b = 0; b < batches; ++b) {
@@ -678,6 +684,11 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             dispatchInfo.m_debugDraw = m_world.getDebugDrawer();
             m_world.getSolverInfo().m_timeStep = fixedTimeStep;
             Clock::time_point t0 = Clock::now();
+            if (!m_ghosts.empty()) {
+                const Clock::time_point g0 = Clock::now();
+                updateBroadphaseAsStock(m_world, fixedTimeStep);
+                m_report.ghostBroadphaseMs += msBetween(g0, Clock::now());
+            }
             syncIn(*m_dev, changedRows(false));
             resetRows(*m_dev, takeWoken());
             m_joints.upload(m_world, m_rows, *m_dev);  // limits, pivots, enabled, ... as the app left them
@@ -721,7 +732,9 @@ bool GpuWorld::finishCall(bool profiled, bool gpuPath)
     m_world.synchronizeMotionStates();
     m_world.clearForces();
     Clock::time_point t4 = Clock::now();
-    if (m_config.syncBroadphaseAabbs) m_world.updateAabbs();
+    // With ghosts the broadphase holds stock's AABBs already (set at the step's start): moving
+    // them here would add pairs, and ghost overlaps, stock does not have.
+    if (m_config.syncBroadphaseAabbs && m_ghosts.empty()) m_world.updateAabbs();
     m_report.writeBackMs += msBetween(t3, t4);
     m_report.aabbSyncMs = msBetween(t4, Clock::now());
     m_report.stageMs.clear();  // empty on calls that were not profiled
@@ -740,7 +753,8 @@ void GpuWorld::runActions(btScalar dt)
     // Where Bullet runs updateActions: after integrateTransforms, before the deactivation. The
     // broadphase AABBs enclose the bodies where this step put them, so the actions' ray and
     // sweep tests find what stock's find (stock's AABBs span the step's predicted motion).
-    m_world.updateAabbs();
+    // With ghosts the step's start set stock's own AABBs, predicted motion included.
+    if (m_ghosts.empty()) m_world.updateAabbs();
     m_world.updateActions(dt);
     // Velocities, impulses, forces and transforms the actions set, and bodies they woke. What
     // they added or removed joins or leaves the rows at the next internal step (removed
