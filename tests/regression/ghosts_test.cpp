@@ -177,3 +177,4 @@ TEST(Ghosts, CharacterGhostBesideADynamicBodyFallsBack)
     EXPECT_NE(why.find("ghost object 3 has contact response"), std::string::npos) << why;
     EXPECT_NE(why.find("dynamic body 4"), std::string::npos) << why;
 }
+
