@@ -25,9 +25,13 @@ BtgBodyProps bodyProps(const btCollisionObject* obj, int shapeRow, const BtgShap
     if (!obj->hasContactResponse()) flags |= BTG_BODY_NO_RESPONSE;
     int state = obj->getActivationState();
     if (state == ISLAND_SLEEPING) flags |= BTG_BODY_SLEEPING;
-    // A ghost object is no row of the device's: its overlaps come from the host broadphase.
+    // A ghost's overlaps come from the host broadphase (ghost_objects.h). One with contact
+    // response is Bullet's fixed body in the solver (zero velocity: a kinematic row without
+    // one), never asleep, waking what it touches; without, it takes no part on the device.
     const bool ghost = obj->getInternalType() == btCollisionObject::CO_GHOST_OBJECT;
-    if (state == DISABLE_SIMULATION || excluded || ghost) flags |= BTG_BODY_EXCLUDED;
+    if (ghost && obj->hasContactResponse())
+        flags = (flags & ~BTG_BODY_STATIC) | BTG_BODY_KINEMATIC | BTG_BODY_NEVER_SLEEP;
+    if (state == DISABLE_SIMULATION || excluded || (ghost && !obj->hasContactResponse())) flags |= BTG_BODY_EXCLUDED;
     if (state == DISABLE_DEACTIVATION || obj->isKinematicObject()) flags |= BTG_BODY_NEVER_SLEEP;
     if (shape.type == BTG_SHAPE_PLANE) flags = (flags & ~(BTG_BODY_DYNAMIC | BTG_BODY_KINEMATIC)) | BTG_BODY_STATIC;
     if (rb) {

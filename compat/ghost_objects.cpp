@@ -2,6 +2,8 @@
 // when one cannot be served, and stock's broadphase pair update at an internal step's start.
 #include "ghost_objects.h"
 
+#include "row_map.h"
+
 #include <btBulletDynamicsCommon.h>
 
 namespace btgpu {
@@ -17,25 +19,45 @@ std::vector<const btCollisionObject*> findGhosts(const btDiscreteDynamicsWorld& 
 
 std::string ghostReason(const btDiscreteDynamicsWorld& world, const std::vector<const btCollisionObject*>& ghosts)
 {
-    const btCollisionObject* responding = nullptr;
+    const btCollisionObject* fixedResponding = nullptr;
     for (const btCollisionObject* g : ghosts)
-        if (g->hasContactResponse()) {
-            responding = g;
+        if (g->hasContactResponse() && g->isStaticOrKinematicObject()) {
+            fixedResponding = g;
             break;
         }
-    if (!responding) return "";
-    // Stock solves such a ghost as a fixed body against the bodies it touches and unites it
-    // (never asleep) with them into one island over the broadphase pairs: neither is mirrored
-    // on the device yet. Without a dynamic body that responds to contacts it changes nothing.
+    if (!fixedResponding) return "";
     const btCollisionObjectArray& objs = world.getCollisionObjectArray();
     for (int i = 0; i < objs.size(); ++i) {
         const btRigidBody* rb = btRigidBody::upcast(objs[i]);
-        if (rb && !rb->isStaticOrKinematicObject() && rb->hasContactResponse())
-            return "ghost object " + std::to_string(objs.findLinearSearch(const_cast<btCollisionObject*>(responding))) +
-                   " has contact response (a character's ghost, no CF_NO_CONTACT_RESPONSE) and the world holds "
-                   "dynamic body " + std::to_string(i) + ": such a ghost is not served beside dynamic bodies";
+        if (rb && !rb->isStaticOrKinematicObject())
+            return "ghost object " + std::to_string(objs.findLinearSearch(const_cast<btCollisionObject*>(fixedResponding))) +
+                   " has contact response and CF_STATIC_OBJECT or CF_KINEMATIC_OBJECT, and the world holds dynamic body " +
+                   std::to_string(i) + ": such a ghost is not served beside dynamic bodies";
     }
     return "";
+}
+
+void heldAwakeByGhosts(btDiscreteDynamicsWorld& world, const RowMap& rows, std::vector<char>* held)
+{
+    held->assign(rows.size(), 0);
+    const btBroadphasePairArray& pairs = world.getPairCache()->getOverlappingPairArray();
+    for (int i = 0; i < pairs.size(); ++i) {
+        auto* a = static_cast<btCollisionObject*>(pairs[i].m_pProxy0->m_clientObject);
+        auto* b = static_cast<btCollisionObject*>(pairs[i].m_pProxy1->m_clientObject);
+        if (!a->mergesSimulationIslands() || !b->mergesSimulationIslands()) continue;
+        const bool ga = a->getInternalType() == btCollisionObject::CO_GHOST_OBJECT;
+        const bool gb = b->getInternalType() == btCollisionObject::CO_GHOST_OBJECT;
+        if (ga == gb) continue;  // a ghost with a ghost unites no body; body with body: the device's islands
+        btRigidBody* body = btRigidBody::upcast(ga ? b : a);
+        if (!body) continue;
+        const int r = rows.rowOf(body);
+        if (r < 0) continue;
+        (*held)[size_t(r)] = 1;
+        if (body->getActivationState() == ISLAND_SLEEPING) {
+            body->setActivationState(WANTS_DEACTIVATION);
+            body->setDeactivationTime(0);
+        }
+    }
 }
 
 void updateBroadphaseAsStock(btDiscreteDynamicsWorld& world, float dt)

@@ -11,13 +11,22 @@ class btDiscreteDynamicsWorld;
 
 namespace btgpu {
 
+class RowMap;
+
 // The world's ghost objects, in collision-object order (read when something is added or removed).
 std::vector<const btCollisionObject*> findGhosts(const btDiscreteDynamicsWorld& world);
 
-// Per step: a ghost with contact response (a character's ghost) is a fixed collider that merges
-// simulation islands in stock; the GPU path serves it only while no dynamic body with contact
-// response could meet it (none in the world), and names it otherwise.
+// Per step: a ghost with contact response flagged static or kinematic is a fixed collider that
+// merges no islands and wakes nothing in stock; the device's ghost row wakes what it touches, so
+// such a ghost is served only while no dynamic body is in the world, and named otherwise.
 std::string ghostReason(const btDiscreteDynamicsWorld& world, const std::vector<const btCollisionObject*>& ghosts);
+
+// After the broadphase update: per row, whether the body is in a broadphase pair with a ghost
+// that merges simulation islands (contact response, neither static nor kinematic) and merges
+// islands itself. Stock unites the two into an island the ghost (never deactivated) keeps awake,
+// and wakes the body if it slept; the row is held awake (BTG_BODY_NEVER_SLEEP) for this step, and
+// a sleeping body is woken here (WANTS_DEACTIVATION, as stock's island manager leaves it).
+void heldAwakeByGhosts(btDiscreteDynamicsWorld& world, const RowMap& rows, std::vector<char>* held);
 
 // Stock's broadphase work at the start of an internal step of dt: each dynamic body's
 // interpolation transform set to its predicted one (predictUnconstraintMotion, the velocities

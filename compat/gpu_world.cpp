@@ -114,12 +114,18 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
         m_shapes.absoluteThreshold = m_config.contactThreshold;
         m_structureDirty = true;
     }
+    // A ghost given or relieved of contact response changes what its shape meets on the device.
+    for (size_t g = 0; g < m_ghosts.size() && !m_structureDirty; ++g)
+        if (m_ghosts[g]->hasContactResponse() != bool(m_ghostResponds[g])) m_structureDirty = true;
     if (m_structureDirty) {
         m_structureReason = structureReason(m_world, &m_shapes);
         const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
         m_shapeOfObject.resize(size_t(objs.size()));
         for (int i = 0; i < objs.size(); ++i) m_shapeOfObject[size_t(i)] = objs[i]->getCollisionShape();
         m_ghosts = findGhosts(m_world);
+        m_ghostResponds.clear();
+        m_heldAwake.clear();
+        for (const btCollisionObject* g : m_ghosts) m_ghostResponds.push_back(g->hasContactResponse());
         m_structureDirty = false;
         m_rowsStale = true;
     }
@@ -142,7 +148,8 @@ void GpuWorld::makePlan()
     for (size_t r = 0; r < m_rows.size(); ++r) {
         const btCollisionObject* o = m_rows.at(r);
         PlanBody b;
-        if (!o || o->getInternalType() == btCollisionObject::CO_GHOST_OBJECT) {  // ghosts: ghost_objects.h
+        const bool ghost = o && o->getInternalType() == btCollisionObject::CO_GHOST_OBJECT;
+        if (!o || (ghost && !o->hasContactResponse())) {  // a trigger: no part on the device
             b.live = false;
             in.bodies.push_back(b);
             continue;
@@ -152,8 +159,8 @@ void GpuWorld::makePlan()
         for (int k = 0; k < s.numChildren && s.type == BTG_SHAPE_COMPOUND; ++k)
             b.leafKinds |= 1u << m_shapes.shapes[size_t(m_shapes.children[size_t(s.firstChild + k)].shape)].type;
         b.size = s.type == BTG_SHAPE_PLANE ? 0.0f : 2.0f * boundingRadius(s);
-        b.movable = !o->isStaticObject();
-        b.dynamic = !o->isStaticOrKinematicObject();
+        b.movable = !o->isStaticObject() || ghost;
+        b.dynamic = !o->isStaticOrKinematicObject() && !ghost;
         const btRigidBody* rb = btRigidBody::upcast(o);
         b.gyroscopic = rb && (rb->getFlags() & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);
         in.bodies.push_back(b);
@@ -372,6 +379,7 @@ bool GpuWorld::compareRow(size_t r, bool all, BodyRowUpdate* u, std::string* new
     bool excluded = !bad.empty();
     BtgBodyProps props = bodyProps(o, shapeRow, m_shapes.shapes[shapeRow], excluded);
     if (m_large[r]) props.flags |= BTG_BODY_LARGE;  // paired by the large pass, not the grid
+    if (r < m_heldAwake.size() && m_heldAwake[r]) props.flags |= BTG_BODY_NEVER_SLEEP;  // in a ghost's island
     const btRigidBody* rb = btRigidBody::upcast(o);
     btVector3 lin = rb ? rb->getLinearVelocity() : btVector3(0, 0, 0);
     btVector3 ang = rb ? rb->getAngularVelocity() : btVector3(0, 0, 0);
@@ -687,6 +695,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             if (!m_ghosts.empty()) {
                 const Clock::time_point g0 = Clock::now();
                 updateBroadphaseAsStock(m_world, fixedTimeStep);
+                heldAwakeByGhosts(m_world, m_rows, &m_heldAwake);
                 m_report.ghostBroadphaseMs += msBetween(g0, Clock::now());
             }
             syncIn(*m_dev, changedRows(false));

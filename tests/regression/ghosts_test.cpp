@@ -165,16 +165,58 @@ TEST(Ghosts, CharacterWalksIntoAStepAndAWallAsStock)
     EXPECT_LT((end - gEnd).length(), 0.01);
 }
 
-// A character's ghost (contact response) beside a dynamic body: stock solves the body against
-// it and keeps their island awake; not mirrored on the device, so the world falls back, naming
-// the ghost. Without the box the same scene runs on the GPU path (the test above).
-TEST(Ghosts, CharacterGhostBesideADynamicBodyFallsBack)
+// A character standing 3 s with a box against its capsule and one far off: stock unites the box
+// and the ghost (never deactivated) into one island over their broadphase pair, so the box never
+// sleeps; the far one does. Then it walks 1 s into the box, which its ghost pushes (a fixed body
+// in stock's solver). Both worlds alike every step.
+TEST(Ghosts, BodyAgainstACharacterStaysAwakeAsStock)
+{
+    auto stock = scenes::characterWalk(WorldKind::Stock, Config(), true);
+    auto gpu = scenes::characterWalk(WorldKind::Gpu, Config(), true);
+    bool farSlept = false;
+    double worstPushed = 0;
+    for (int i = 0; i < 240; ++i) {
+        const btVector3 walk = i < 180 ? btVector3(0, 0, 0) : btVector3(btScalar(0.02), 0, 0);
+        stock->character->setWalkDirection(walk);
+        gpu->character->setWalkDirection(walk);
+        stock->scene->step();
+        gpu->scene->step();
+        ASSERT_TRUE(gpu->scene->gpuWorld()->isGpuPath()) << "step " << i << ": " << gpu->scene->report()->cpuPathReason;
+        ASSERT_TRUE(stock->scene->body(3)->isActive()) << "step " << i;
+        ASSERT_TRUE(gpu->scene->body(3)->isActive()) << "step " << i;
+        const btVector3 s = stock->ghost()->getWorldTransform().getOrigin(), g = gpu->ghost()->getWorldTransform().getOrigin();
+        ASSERT_LT((s - g).length(), 0.01) << "step " << i;
+        // At rest to the millimetre; pushed, as boxes a kinematic body pushes.
+        for (int b = 3; b <= 4; ++b) {
+            const double d = (stock->scene->body(b)->getWorldTransform().getOrigin() - gpu->scene->body(b)->getWorldTransform().getOrigin()).length();
+            ASSERT_LT(d, i < 180 ? tol::kRestHeight : tol::kPushedPosition) << "step " << i << " body " << b;
+            if (i >= 180) worstPushed = std::max(worstPushed, d);
+        }
+        farSlept |= !gpu->scene->body(4)->isActive();
+    }
+    const double pushed = gpu->scene->body(3)->getWorldTransform().getOrigin().x() - 0.7;
+    std::printf("character and boxes: the box against it pushed %.3f m (stock %.3f m, at most %.4f m apart); far box "
+                "asleep %d/%d\n",
+                pushed, stock->scene->body(3)->getWorldTransform().getOrigin().x() - 0.7, worstPushed,
+                int(!stock->scene->body(4)->isActive()), int(!gpu->scene->body(4)->isActive()));
+    EXPECT_TRUE(farSlept);
+    EXPECT_FALSE(stock->scene->body(4)->isActive());
+    EXPECT_GT(pushed, 0.1);
+}
+
+// A ghost with contact response flagged static (CF_STATIC_OBJECT) beside a dynamic body: stock
+// solves the body against it but neither unites nor wakes; the device's ghost row wakes what it
+// touches, so the world falls back, naming both. Relieved of the flag it returns to the GPU path.
+TEST(Ghosts, StaticRespondingGhostBesideADynamicBodyFallsBack)
 {
     auto gpu = scenes::characterWalk(WorldKind::Gpu, Config(), true);
+    gpu->ghost()->setCollisionFlags(btCollisionObject::CF_CHARACTER_OBJECT | btCollisionObject::CF_STATIC_OBJECT);
     gpu->scene->step();
     EXPECT_FALSE(gpu->scene->gpuWorld()->isGpuPath());
     const std::string why = gpu->scene->report()->cpuPathReason;
-    EXPECT_NE(why.find("ghost object 3 has contact response"), std::string::npos) << why;
+    EXPECT_NE(why.find("ghost object 3 has contact response and CF_STATIC_OBJECT"), std::string::npos) << why;
     EXPECT_NE(why.find("dynamic body 4"), std::string::npos) << why;
+    gpu->ghost()->setCollisionFlags(btCollisionObject::CF_CHARACTER_OBJECT);
+    gpu->scene->step();
+    EXPECT_TRUE(gpu->scene->gpuWorld()->isGpuPath()) << gpu->scene->report()->cpuPathReason;
 }
-

@@ -57,7 +57,7 @@ std::unique_ptr<GhostScene> triggerFall(WorldKind kind, const Config& config, co
     return g;
 }
 
-std::unique_ptr<GhostScene> characterWalk(WorldKind kind, const Config& config, bool withBox)
+std::unique_ptr<GhostScene> characterWalk(WorldKind kind, const Config& config, bool withBoxes)
 {
     auto g = withGround(kind, config, "character_walk", 0);
     Scene& s = *g->scene;
@@ -73,7 +73,11 @@ std::unique_ptr<GhostScene> characterWalk(WorldKind kind, const Config& config, 
                                  btBroadphaseProxy::StaticFilter | btBroadphaseProxy::DefaultFilter);
     g->character = std::make_unique<btKinematicCharacterController>(ghost, capsule, btScalar(0.35), btVector3(0, 1, 0));
     s.world().addAction(g->character.get());
-    if (withBox) s.addBody(s.boxShape(btVector3(btScalar(0.4), btScalar(0.4), btScalar(0.4))), 1, btVector3(btScalar(0.7), btScalar(0.4), 0));
+    if (withBoxes) {
+        btCollisionShape* box = s.boxShape(btVector3(btScalar(0.4), btScalar(0.4), btScalar(0.4)));
+        s.addBody(box, 1, btVector3(btScalar(0.7), btScalar(0.4), 0));
+        s.addBody(box, 1, btVector3(5, btScalar(0.4), 0));
+    }
     return g;
 }
 

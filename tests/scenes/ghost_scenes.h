@@ -41,8 +41,8 @@ std::unique_ptr<GhostScene> triggerFall(WorldKind kind, const Config& config = C
 // Bullet's kinematic character (a capsule of radius 0.3 m and cylinder height 1 m on a
 // btPairCachingGhostObject with CF_CHARACTER_OBJECT, step height 0.35 m) dropped at the origin
 // onto a static 20 x 1 x 20 m half-extent box ground with its top at y = 0; a 0.3 m high step (static box, z from 1 to 5) and a wall (static box
-// 0.5 m thick at z = 8) ahead along +z. withBox adds a dynamic 0.4 m half-extent box resting
-// beside the character (a body the ghost meets).
-std::unique_ptr<GhostScene> characterWalk(WorldKind kind, const Config& config = Config(), bool withBox = false);
+// 0.5 m thick at z = 8) ahead along +z. withBoxes adds two dynamic 0.4 m half-extent boxes on
+// the ground: body 3 touching the capsule's side (at x = 0.7), body 4 far from it (x = 5).
+std::unique_ptr<GhostScene> characterWalk(WorldKind kind, const Config& config = Config(), bool withBoxes = false);
 
 }  // namespace btgpu::scenes
