@@ -17,26 +17,6 @@ std::vector<const btCollisionObject*> findGhosts(const btDiscreteDynamicsWorld& 
     return ghosts;
 }
 
-std::string ghostReason(const btDiscreteDynamicsWorld& world, const std::vector<const btCollisionObject*>& ghosts)
-{
-    const btCollisionObject* fixedResponding = nullptr;
-    for (const btCollisionObject* g : ghosts)
-        if (g->hasContactResponse() && g->isStaticOrKinematicObject()) {
-            fixedResponding = g;
-            break;
-        }
-    if (!fixedResponding) return "";
-    const btCollisionObjectArray& objs = world.getCollisionObjectArray();
-    for (int i = 0; i < objs.size(); ++i) {
-        const btRigidBody* rb = btRigidBody::upcast(objs[i]);
-        if (rb && !rb->isStaticOrKinematicObject())
-            return "ghost object " + std::to_string(objs.findLinearSearch(const_cast<btCollisionObject*>(fixedResponding))) +
-                   " has contact response and CF_STATIC_OBJECT or CF_KINEMATIC_OBJECT, and the world holds dynamic body " +
-                   std::to_string(i) + ": such a ghost is not served beside dynamic bodies";
-    }
-    return "";
-}
-
 void heldAwakeByGhosts(btDiscreteDynamicsWorld& world, const RowMap& rows, std::vector<char>* held)
 {
     held->assign(rows.size(), 0);

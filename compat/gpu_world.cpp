@@ -132,7 +132,6 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
     if (!m_structureReason.empty()) return m_structureReason;
     std::string why = worldReason(m_world, m_config);
     if (why.empty()) why = bodiesReason(m_world, bodyIndex);
-    if (why.empty() && !m_ghosts.empty()) why = ghostReason(m_world, m_ghosts);
     return why;
 }
 

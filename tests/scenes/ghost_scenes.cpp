@@ -81,4 +81,20 @@ std::unique_ptr<GhostScene> characterWalk(WorldKind kind, const Config& config, 
     return g;
 }
 
+std::unique_ptr<GhostScene> ghostPlatform(WorldKind kind, const Config& config)
+{
+    auto g = std::make_unique<GhostScene>();
+    g->pairCallback = std::make_unique<btGhostPairCallback>();
+    g->scene = std::make_unique<Scene>(kind, config, "ghost_platform");
+    Scene& s = *g->scene;
+    s.world().getBroadphase()->getOverlappingPairCache()->setInternalGhostPairCallback(g->pairCallback.get());
+    auto* platform = new btPairCachingGhostObject();
+    g->ghosts.emplace_back(platform);
+    platform->setCollisionShape(s.boxShape(btVector3(2, btScalar(0.25), 2)));
+    platform->setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, btScalar(-0.25), 0)));
+    s.world().addCollisionObject(platform);
+    s.addBody(s.boxShape(btVector3(btScalar(0.4), btScalar(0.4), btScalar(0.4))), 1, btVector3(btScalar(0.5), btScalar(1.4), btScalar(-0.3)));
+    return g;
+}
+
 }  // namespace btgpu::scenes

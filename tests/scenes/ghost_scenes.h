@@ -45,4 +45,9 @@ std::unique_ptr<GhostScene> triggerFall(WorldKind kind, const Config& config = C
 // the ground: body 3 touching the capsule's side (at x = 0.7), body 4 far from it (x = 5).
 std::unique_ptr<GhostScene> characterWalk(WorldKind kind, const Config& config = Config(), bool withBoxes = false);
 
+// A ghost object as btCollisionObject starts (CF_STATIC_OBJECT, contact response) used as a
+// platform: a 2 x 0.25 x 2 m half-extent box ghost with its top at y = 0, and a 0.4 m
+// half-extent box (body 0, the only rigid body) dropped onto it from 1 m, off centre.
+std::unique_ptr<GhostScene> ghostPlatform(WorldKind kind, const Config& config = Config());
+
 }  // namespace btgpu::scenes
