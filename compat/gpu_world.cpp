@@ -242,6 +242,9 @@ void GpuWorld::rebuild()
     counters[kNanBody] = 0xffffffffu;
     w.counters.upload(w.ctx, counters);
     w.sleepTime.zero(w.ctx, std::max<size_t>(n, 1));
+    // Read back before the first deactivation has run (with actions, the write-back between the
+    // step and its deactivation): a fresh buffer's garbage would put bodies to sleep.
+    w.sleepState.zero(w.ctx, std::max<size_t>(n, 1));
     std::vector<uint> never(std::max<size_t>(n, 1), 0x7f800000u);  // +inf: no island yet
     w.islandTime.upload(w.ctx, never);
     m_mirror.assign(n, Mirror());
