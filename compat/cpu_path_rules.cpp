@@ -199,16 +199,21 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, ShapeTables* s
     for (int i = 0; i < objs.size(); ++i) {
         const btCollisionObject* o = objs[i];
         int type = o->getInternalType();
-        if (type != btCollisionObject::CO_RIGID_BODY && type != btCollisionObject::CO_COLLISION_OBJECT)
-            return "collision object " + std::to_string(i) + " is not a rigid body (ghost, soft or other object)";
+        // A ghost without contact response takes no part on the device (ghost_objects.h): only
+        // its overlaps, from Bullet's own broadphase run on the host. One with is a fixed
+        // collider there: its shape meets the dynamic bodies.
+        const bool ghost = type == btCollisionObject::CO_GHOST_OBJECT;
+        if (type != btCollisionObject::CO_RIGID_BODY && type != btCollisionObject::CO_COLLISION_OBJECT && !ghost)
+            return "collision object " + std::to_string(i) + " is not a rigid body or ghost object (soft or other object)";
         std::string why;
         const int row = shapes->add(o->getCollisionShape(), &why);
         if (row < 0) return "body " + std::to_string(i) + ": " + why;
+        if (ghost && !o->hasContactResponse()) continue;  // its shape is never paired on the device
         const BtgShape& shape = shapes->shapes[size_t(row)];
         unsigned kindBit = 1u << shape.type;
         // A compound's pairs are its leaves' (expand_compounds): those kinds must have rows.
         if (shape.type == BTG_SHAPE_COMPOUND) {
-            if (!o->isStaticOrKinematicObject()) ++dynamicCompounds;
+            if (!o->isStaticOrKinematicObject() && !ghost) ++dynamicCompounds;
             ++compounds;
             if (!static_cast<const btCompoundShape*>(o->getCollisionShape())->getDynamicAabbTree()) ++apartFromCompounds;
             kindBit = 0;
@@ -222,7 +227,7 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, ShapeTables* s
         }
         presentKinds |= kindBit;
         // (a dynamic mesh or heightfield has its own rule, in bodiesReason)
-        if (!o->isStaticOrKinematicObject() && !(kindBit & (1u << BTG_SHAPE_MESH | 1u << BTG_SHAPE_HEIGHTFIELD)))
+        if (!o->isStaticOrKinematicObject() && !ghost && !(kindBit & (1u << BTG_SHAPE_MESH | 1u << BTG_SHAPE_HEIGHTFIELD)))
             dynamicKinds |= kindBit;
         if (o->getCollisionShape()->getShapeType() == BOX_SHAPE_PROXYTYPE)
             (static_cast<const btBoxShape*>(o->getCollisionShape())->getConvexPolyhedron() ? featuredBox : plainBox) = true;

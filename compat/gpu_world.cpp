@@ -5,6 +5,7 @@
 
 #include "body_rows.h"
 #include "cpu_path_rules.h"
+#include "ghost_objects.h"
 #include "parallel_rows.h"
 #include "step_arguments.h"
 #include "shared/integrate.h"
@@ -113,11 +114,18 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
         m_shapes.absoluteThreshold = m_config.contactThreshold;
         m_structureDirty = true;
     }
+    // A ghost given or relieved of contact response changes what its shape meets on the device.
+    for (size_t g = 0; g < m_ghosts.size() && !m_structureDirty; ++g)
+        if (m_ghosts[g]->hasContactResponse() != bool(m_ghostResponds[g])) m_structureDirty = true;
     if (m_structureDirty) {
         m_structureReason = structureReason(m_world, &m_shapes);
         const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
         m_shapeOfObject.resize(size_t(objs.size()));
         for (int i = 0; i < objs.size(); ++i) m_shapeOfObject[size_t(i)] = objs[i]->getCollisionShape();
+        m_ghosts = findGhosts(m_world);
+        m_ghostResponds.clear();
+        m_heldAwake.clear();
+        for (const btCollisionObject* g : m_ghosts) m_ghostResponds.push_back(g->hasContactResponse());
         m_structureDirty = false;
         m_rowsStale = true;
     }
@@ -139,7 +147,8 @@ void GpuWorld::makePlan()
     for (size_t r = 0; r < m_rows.size(); ++r) {
         const btCollisionObject* o = m_rows.at(r);
         PlanBody b;
-        if (!o) {
+        const bool ghost = o && o->getInternalType() == btCollisionObject::CO_GHOST_OBJECT;
+        if (!o || (ghost && !o->hasContactResponse())) {  // a trigger: no part on the device
             b.live = false;
             in.bodies.push_back(b);
             continue;
@@ -149,8 +158,8 @@ void GpuWorld::makePlan()
         for (int k = 0; k < s.numChildren && s.type == BTG_SHAPE_COMPOUND; ++k)
             b.leafKinds |= 1u << m_shapes.shapes[size_t(m_shapes.children[size_t(s.firstChild + k)].shape)].type;
         b.size = s.type == BTG_SHAPE_PLANE ? 0.0f : 2.0f * boundingRadius(s);
-        b.movable = !o->isStaticObject();
-        b.dynamic = !o->isStaticOrKinematicObject();
+        b.movable = !o->isStaticObject() || ghost;
+        b.dynamic = !o->isStaticOrKinematicObject() && !ghost;
         const btRigidBody* rb = btRigidBody::upcast(o);
         b.gyroscopic = rb && (rb->getFlags() & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);
         in.bodies.push_back(b);
@@ -233,6 +242,9 @@ void GpuWorld::rebuild()
     counters[kNanBody] = 0xffffffffu;
     w.counters.upload(w.ctx, counters);
     w.sleepTime.zero(w.ctx, std::max<size_t>(n, 1));
+    // Read back before the first deactivation has run (with actions, the write-back between the
+    // step and its deactivation): a fresh buffer's garbage would put bodies to sleep.
+    w.sleepState.zero(w.ctx, std::max<size_t>(n, 1));
     std::vector<uint> never(std::max<size_t>(n, 1), 0x7f800000u);  // +inf: no island yet
     w.islandTime.upload(w.ctx, never);
     m_mirror.assign(n, Mirror());
@@ -369,6 +381,7 @@ bool GpuWorld::compareRow(size_t r, bool all, BodyRowUpdate* u, std::string* new
     bool excluded = !bad.empty();
     BtgBodyProps props = bodyProps(o, shapeRow, m_shapes.shapes[shapeRow], excluded);
     if (m_large[r]) props.flags |= BTG_BODY_LARGE;  // paired by the large pass, not the grid
+    if (r < m_heldAwake.size() && m_heldAwake[r]) props.flags |= BTG_BODY_NEVER_SLEEP;  // in a ghost's island
     const btRigidBody* rb = btRigidBody::upcast(o);
     btVector3 lin = rb ? rb->getLinearVelocity() : btVector3(0, 0, 0);
     btVector3 ang = rb ? rb->getAngularVelocity() : btVector3(0, 0, 0);
@@ -651,6 +664,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
 
     m_dev->profiler.resetLaunchCount();
     m_report.syncInMs = m_report.deviceMs = m_report.writeBackMs = 0.0;
+    m_report.ghostBroadphaseMs = 0.0;
     const bool profiled = m_config.profile && (m_calls++ % std::max(m_config.profileEvery, 1)) == 0;
     m_dev->profiler.enabled = profiled;
     // Set before the substeps, as stock Bullet does: motion-state interpolation reads them.
@@ -661,7 +675,9 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         int clamped = numSubSteps > maxSubSteps ? maxSubSteps : numSubSteps;
         m_world.saveKinematicState(fixedTimeStep * clamped);
         const bool actions = m_world.m_actions.size() > 0;
-        bool perSubstep = m_world.m_internalTickCallback || m_world.m_internalPreTickCallback || actions;
+        // Ghosts: the host runs stock's broadphase update at each internal step's start.
+        const bool ghosts = !m_ghosts.empty();
+        bool perSubstep = m_world.m_internalTickCallback || m_world.m_internalPreTickCallback || actions || ghosts;
         int batches = perSubstep ? clamped : 1;
         int perBatch = perSubstep ? 1 : clamped;
         for (int b = 0; b < batches; ++b) {
@@ -680,6 +696,13 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             dispatchInfo.m_debugDraw = m_world.getDebugDrawer();
             m_world.getSolverInfo().m_timeStep = fixedTimeStep;
             Clock::time_point t0 = Clock::now();
+            if (!m_ghosts.empty()) {
+                const Clock::time_point g0 = Clock::now();
+                completeBroadphasePairs();  // after steps that synced without pair tests
+                updateBroadphaseAsStock(m_world, fixedTimeStep);
+                heldAwakeByGhosts(m_world, m_rows, &m_heldAwake);
+                m_report.ghostBroadphaseMs += msBetween(g0, Clock::now());
+            }
             syncIn(*m_dev, changedRows(false));
             resetRows(*m_dev, takeWoken());
             m_joints.upload(m_world, m_rows, *m_dev);  // limits, pivots, enabled, ... as the app left them
@@ -723,7 +746,9 @@ bool GpuWorld::finishCall(bool profiled, bool gpuPath)
     m_world.synchronizeMotionStates();
     m_world.clearForces();
     Clock::time_point t4 = Clock::now();
-    if (m_config.syncBroadphaseAabbs) syncBroadphaseAabbs();
+    // With ghosts the broadphase holds stock's AABBs already (set at the step's start): moving
+    // them here would add pairs, and ghost overlaps, stock does not have.
+    if (m_config.syncBroadphaseAabbs && m_ghosts.empty()) syncBroadphaseAabbs();
     m_report.writeBackMs += msBetween(t3, t4);
     m_report.aabbSyncMs = msBetween(t4, Clock::now());
     m_report.stageMs.clear();  // empty on calls that were not profiled
@@ -777,7 +802,8 @@ void GpuWorld::runActions(btScalar dt)
     // Where Bullet runs updateActions: after integrateTransforms, before the deactivation. The
     // broadphase AABBs enclose the bodies where this step put them, so the actions' ray and
     // sweep tests find what stock's find (stock's AABBs span the step's predicted motion).
-    syncBroadphaseAabbs();
+    // With ghosts the step's start set stock's own AABBs, predicted motion included.
+    if (m_ghosts.empty()) syncBroadphaseAabbs();
     m_world.updateActions(dt);
     // Velocities, impulses, forces and transforms the actions set, and bodies they woke. What
     // they added or removed joins or leaves the rows at the next internal step (removed

@@ -107,6 +107,9 @@ private:
     bool m_structureDirty = true;  // added or removed since the structure was last checked
     std::vector<const btCollisionShape*> m_shapeOfObject;  // per collision object, at that check
     std::string m_structureReason;  // that check's verdict, kept until the next add or remove
+    std::vector<const btCollisionObject*> m_ghosts;  // ghost objects, at that check (ghost_objects.h)
+    std::vector<char> m_ghostResponds;               // each one's hasContactResponse() then
+    std::vector<char> m_heldAwake;  // per row: in a broadphase pair with a ghost that merges islands
     bool m_needsRebuild = true;     // rows must be rebuilt (structure changed, or the CPU path ran)
     bool m_onCpuPath = false;
     float m_stepDt = 0.0f;  // the fixed step of the call being synced (the AABB overflow rule)

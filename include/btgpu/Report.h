@@ -39,6 +39,7 @@ struct Report {
     double deviceMs = 0.0;
     double writeBackMs = 0.0;
     double aabbSyncMs = 0.0;
+    double ghostBroadphaseMs = 0.0;   // with ghost objects: Bullet's broadphase pair update on the host (in syncInMs)
     std::size_t deviceBytes = 0;      // device memory held by this world
     int pairs = 0;                    // broadphase pairs, last substep
     int contacts = 0;                 // manifolds with points, last substep

@@ -8,6 +8,7 @@
 #include "side_by_side.h"
 
 #include <BulletCollision/CollisionDispatch/btGhostObject.h>
+#include <BulletCollision/CollisionShapes/btMinkowskiSumShape.h>
 
 #include <cmath>
 #include <functional>
@@ -142,14 +143,16 @@ TEST(Actions, ActionRemovesAndAddsBodies)
     s.gpu->world().removeAction(&gpuChange);
 }
 
-// An action that adds what the GPU path does not serve (a ghost object) in the first of a call's
+// An action that adds what the GPU path does not serve (a ghost object of a btMinkowskiSumShape)
+// in the first of a call's
 // four internal steps: the other three run on Bullet's own internal steps, the report says why,
 // and the bodies stay where stock puts them. With the ghost gone the GPU path returns.
 TEST(Actions, UnservedObjectAddedByAnActionMovesTheRestOfTheCallToTheCpuPath)
 {
     SideBySide s(scenes::dropRow);
     btGhostObject stockGhost, gpuGhost;
-    btSphereShape ghostShape(1);
+    btSphereShape ball(btScalar(0.5));
+    btMinkowskiSumShape ghostShape(&ball, &ball);
     stockGhost.setCollisionShape(&ghostShape);
     gpuGhost.setCollisionShape(&ghostShape);
     int stockCalls = 0, gpuCalls = 0;
