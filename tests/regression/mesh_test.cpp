@@ -14,6 +14,7 @@
 #include <cmath>
 
 #include "scenes/mesh_scenes.h"
+#include "scenes/stock_chaos.h"
 #include "side_by_side.h"
 
 using namespace btgpu;
@@ -359,4 +360,30 @@ TEST(Mesh, BoxSlidesDownAnInclinedMeshAsTheAnalyticSolution)
                 slid[0][0], slid[0][1], slid[1][0], slid[1][1]);
     EXPECT_NEAR(slid[1][1], analytic, 0.02 * analytic);
     EXPECT_NEAR(slid[1][1], slid[0][1], 0.01);  // a mesh slope acts as a box slope
+}
+
+// Bullet's bench 5 (a convex mix on the rolling mesh landscape), 200 bodies for 4 s, against
+// stock's own chaos on mean height, spread and kinetic energy.
+TEST(Mesh, LandscapeWithinStocksChaos)
+{
+    const int steps = 240;
+    auto measure = [](const scenes::Scene& s) {
+        const scenes::Aggregates a = scenes::aggregates(s);
+        return std::vector<double>{a.meanHeight, a.spread, a.kineticEnergy};
+    };
+    const auto bands = scenes::stockChaos([](WorldKind kind) { return scenes::landscape(kind, Config(), 200); }, steps,
+                                          measure, {"mean height", "spread", "kinetic energy"},
+                                          {tol::kChaosHeightFloor, tol::kChaosSpreadFloor, tol::kChaosEnergyFloor});
+    ScenePtr gpu = scenes::landscape(WorldKind::Gpu, Config(), 200);
+    for (int i = 0; i < steps; ++i) {
+        gpu->step();
+        ASSERT_TRUE(gpu->gpuWorld()->isGpuPath()) << "step " << i;
+    }
+    const std::vector<double> got = measure(*gpu);
+    for (size_t k = 0; k < bands.size(); ++k) {
+        std::printf("landscape %s: btgpu %.3f, stock %.3f +- %.3f\n", bands[k].name.c_str(), got[k], bands[k].stockMean,
+                    bands[k].bound());
+        EXPECT_TRUE(bands[k].admits(got[k])) << bands[k].name << ": btgpu " << got[k] << ", stock "
+                                             << bands[k].stockMean << " +- " << bands[k].bound();
+    }
 }
