@@ -48,6 +48,7 @@ GpuWorld::GpuWorld(btGpuDynamicsWorld& world, const Config& config) : m_config(c
 
 GpuWorld::~GpuWorld()
 {
+    m_manifolds.releaseAll(m_world.getDispatcher());
     m_readback.release();
     m_dev.reset();
     m_snapshot = Snapshot();
@@ -158,6 +159,7 @@ void GpuWorld::makePlan()
     DerivedPlan d = derivePlan(in);
     m_plan = d.plan;
     m_plan.hasIgnoredPairs = m_ignored.any();
+    m_plan.reportContacts = m_config.fillDispatcherManifolds;
     m_large.assign(m_rows.size(), false);
     for (int r : d.largeRows) m_large[size_t(r)] = true;
     DeviceWorld& w = *m_dev;
@@ -569,6 +571,7 @@ int GpuWorld::stepOnCpuPath(btScalar timeStep, int maxSubSteps, btScalar fixedTi
     } release{m_cpuGuard};
     // The GPU rows no longer hold what the bodies hold: resynced from scratch when it returns.
     m_needsRebuild = true;
+    leaveGpuPath();
     return m_world.baseStepSimulation(timeStep, maxSubSteps, fixedTimeStep);
 }
 
@@ -613,6 +616,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         return false;
     }
     if (m_needsRebuild) {
+        dropCpuPathManifolds();
         rebuild();
         m_needsRebuild = false;
     } else if (m_rowsStale) {
@@ -690,11 +694,13 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
                 runOnDevice(perBatch, fixedTimeStep, SubstepPart::BeforeActivation);
                 m_joints.writeBack(*m_dev);
                 writeBack(m_readback, false);
+                fillManifolds();  // the actions see this internal step's contacts
                 runActions(fixedTimeStep);
                 runOnDevice(1, fixedTimeStep, SubstepPart::ActivationOnly);
             } else {
                 runOnDevice(perBatch, fixedTimeStep);
                 m_joints.writeBack(*m_dev);  // applied impulses, feedback, breaks
+                fillManifolds();
             }
             Clock::time_point t2 = Clock::now();
             writeBack(m_readback, b == batches - 1);
@@ -735,6 +741,26 @@ bool GpuWorld::finishCall(bool profiled, bool gpuPath)
     return true;
 }
 
+void GpuWorld::fillManifolds()
+{
+    if (m_config.fillDispatcherManifolds) m_manifolds.fill(m_world.getDispatcher(), m_rows, m_readback, m_removed);
+}
+
+void GpuWorld::leaveGpuPath() { m_manifolds.releaseAll(m_world.getDispatcher()); }
+
+void GpuWorld::dropCpuPathManifolds()
+{
+    // The pair cache's algorithms (made by CPU-path steps, or by the app's own collision calls)
+    // hold manifolds of the bodies as they were then: freed, as stock frees them when a pair
+    // goes, so the dispatcher holds only the GPU path's. A later CPU-path step makes them anew.
+    btDispatcher* dispatcher = m_world.getDispatcher();
+    btOverlappingPairCache* cache = m_world.getBroadphase() ? m_world.getBroadphase()->getOverlappingPairCache() : nullptr;
+    if (!cache || !dispatcher) return;
+    btBroadphasePairArray& pairs = cache->getOverlappingPairArray();
+    for (int i = 0; i < pairs.size(); ++i)
+        if (pairs[i].m_algorithm) cache->cleanOverlappingPair(pairs[i], dispatcher);
+}
+
 void GpuWorld::runActions(btScalar dt)
 {
     // Where Bullet runs updateActions: after integrateTransforms, before the deactivation. The
@@ -766,6 +792,7 @@ bool GpuWorld::followWithinCall(int batch, int batches, btScalar fixedTimeStep)
     m_onCpuPath = true;
     m_report.cpuPathReason = why + from;
     m_needsRebuild = true;
+    leaveGpuPath();
     m_world.applyGravity();
     for (int b = batch; b < batches; ++b) m_world.internalSingleStepSimulation(fixedTimeStep);
     return false;

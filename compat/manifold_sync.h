@@ -1,0 +1,58 @@
+// manifold_sync.h — the app's own dispatcher holds, on the GPU path, the contact manifolds
+// stock Bullet's collision algorithms would hold: one btPersistentManifold per touching
+// (body, body) — per compound child pair, one per convex–mesh pair — taken from and given back
+// to the dispatcher's pool, filled from the device's contact reports (report_contacts).
+#pragma once
+#include "row_map.h"
+#include "stages/sync_bodies.h"
+
+#include <cstddef>
+#include <unordered_map>
+#include <unordered_set>
+
+class btCollisionObject;
+class btDispatcher;
+class btPersistentManifold;
+
+namespace btgpu {
+
+class ManifoldSync {
+public:
+    // Every manifold this call's reports name is created or refilled; those of pairs no longer
+    // touching are released, except where both bodies sleep (stock keeps those as they were).
+    // `removed`: objects that left inside this call (their rows still name them).
+    void fill(btDispatcher* dispatcher, const RowMap& rows, const BodyReadback& rb,
+              const std::unordered_set<const btCollisionObject*>& removed);
+    // All given back (the CPU path's algorithms make their own; the switch turned off; rebuild).
+    void releaseAll(btDispatcher* dispatcher);
+    // Those of an object leaving the world (stock: removeRigidBody → cleanProxyFromPairs).
+    void removed(btDispatcher* dispatcher, const btCollisionObject* object);
+    size_t size() const { return m_map.size(); }
+
+private:
+    struct Key {
+        const btCollisionObject* body0;
+        const btCollisionObject* body1;
+        int sub0, sub1;  // compound child of each side, -1 for the whole shape or a concave side
+        bool operator==(const Key& k) const
+        {
+            return body0 == k.body0 && body1 == k.body1 && sub0 == k.sub0 && sub1 == k.sub1;
+        }
+    };
+    struct KeyHash {
+        size_t operator()(const Key& k) const
+        {
+            size_t h = std::hash<const void*>()(k.body0) * 31 + std::hash<const void*>()(k.body1);
+            return h * 1000003u + size_t(k.sub0) * 131u + size_t(k.sub1);
+        }
+    };
+    struct Entry {
+        btPersistentManifold* manifold;
+        long stamp;  // the last fill that named it
+        unsigned ids[4];  // the feature id of each of its points (BTG_FEATURE_*)
+    };
+    std::unordered_map<Key, Entry, KeyHash> m_map;
+    long m_stamp = 0;
+};
+
+}  // namespace btgpu
