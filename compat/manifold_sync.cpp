@@ -5,8 +5,12 @@
 // friction and restitution as btManifoldResult, lifetimes followed across steps.
 #include "manifold_sync.h"
 
+#include "shared/mesh.h"
+
+#include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
 #include <btBulletCollisionCommon.h>
 
+#include <algorithm>
 #include <vector>
 
 namespace btgpu {
@@ -30,6 +34,26 @@ int proxyId(const btCollisionObject* o) { return o->getBroadphaseHandle() ? o->g
 int sideKey(const btCollisionObject* o, const btCollisionShape* leaf, int index)
 {
     return o->getCollisionShape()->isCompound() && !leaf->isConcave() ? index : -1;
+}
+
+struct HeightfieldPeek : btHeightfieldTerrainShape {
+    static constexpr int btHeightfieldTerrainShape::*kWidth = &HeightfieldPeek::m_heightStickWidth;
+};
+
+// A point on a concave side: its triangle's (part id, index) back from its feature id (the
+// triangle's key, btgTriangleKey), as Bullet's per-point m_partId / m_index of that side.
+void triangleOf(const btCollisionShape* concave, uint key, int* partId, int* index)
+{
+    if (key == BTG_FEATURE_UNKNOWN) return;
+    if (concave->getShapeType() == TERRAIN_SHAPE_PROXYTYPE) {
+        const int w = static_cast<const btHeightfieldTerrainShape*>(concave)->*HeightfieldPeek::kWidth;
+        const uint perRow = uint(std::max(2 * (w - 1), 1));
+        *index = int(key / perRow);
+        *partId = int(key % perRow);
+        return;
+    }
+    *partId = int((key & 0x7fffffffu) >> BTG_BVH_PART_SHIFT);
+    *index = int(key & BTG_BVH_TRIANGLE_MASK);
 }
 
 struct NewPoint {
@@ -59,11 +83,16 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
         const btCollisionShape* leafB = leafShape(oB, r.indexB);
         const bool concA = leafA->isConcave(), concB = leafB->isConcave();
         const int tA = leafA->getShapeType(), tB = leafB->getShapeType();
+        // The algorithm's order: convex–concave and convex–plane put the convex first, the
+        // sphere–box algorithm the sphere, a compound's child algorithms the child; else the
+        // pair cache's (the lower proxy id first).
+        const bool compA = oA->getCollisionShape()->isCompound(), compB = oB->getCollisionShape()->isCompound();
         bool swap;
         if (concA != concB) swap = concA;
         else if ((tA == SPHERE_SHAPE_PROXYTYPE) != (tB == SPHERE_SHAPE_PROXYTYPE) &&
                  (tA == BOX_SHAPE_PROXYTYPE || tB == BOX_SHAPE_PROXYTYPE))
-            swap = tA == BOX_SHAPE_PROXYTYPE;  // btSphereBoxCollisionAlgorithm: the sphere first
+            swap = tA == BOX_SHAPE_PROXYTYPE;
+        else if (compA != compB) swap = compB;
         else swap = proxyId(oA) > proxyId(oB);
         Key key = swap ? Key{oB, oA, sideKey(oB, leafB, r.indexB), sideKey(oA, leafA, r.indexA)}
                        : Key{oA, oB, sideKey(oA, leafA, r.indexA), sideKey(oB, leafB, r.indexB)};
@@ -84,6 +113,9 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
             const btVector3 d1(r.dir1[k].x, r.dir1[k].y, r.dir1[k].z);
             const btVector3 d2 = n.cross(d1);  // btgFrictionDir2
             // The impulses act on the report's A along +n, +d1, +d2; Bullet's on body0.
+            int partA = r.partIdA, indexA = r.indexA, partB = r.partIdB, indexB = r.indexB;
+            if (concA) triangleOf(leafA, r.featureId[k], &partA, &indexA);
+            if (concB) triangleOf(leafB, r.featureId[k], &partB, &indexB);
             btManifoldPoint p = swap ? btManifoldPoint(lB, lA, -n, d) : btManifoldPoint(lA, lB, n, d);
             p.m_positionWorldOnA = swap ? pB : pA;
             p.m_positionWorldOnB = swap ? pA : pB;
@@ -92,10 +124,10 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
             p.m_appliedImpulse = r.localA[k].w;
             p.m_appliedImpulseLateral1 = r.localB[k].w;
             p.m_appliedImpulseLateral2 = r.dir1[k].w;
-            p.m_partId0 = swap ? r.partIdB : r.partIdA;
-            p.m_index0 = swap ? r.indexB : r.indexA;
-            p.m_partId1 = swap ? r.partIdA : r.partIdB;
-            p.m_index1 = swap ? r.indexA : r.indexB;
+            p.m_partId0 = swap ? partB : partA;
+            p.m_index0 = swap ? indexB : indexA;
+            p.m_partId1 = swap ? partA : partB;
+            p.m_index1 = swap ? indexA : indexB;
             p.m_combinedFriction = btManifoldResult::calculateCombinedFriction(key.body0, key.body1);
             p.m_combinedRestitution = btManifoldResult::calculateCombinedRestitution(key.body0, key.body1);
             p.m_combinedRollingFriction = btManifoldResult::calculateCombinedRollingFriction(key.body0, key.body1);
