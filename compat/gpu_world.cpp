@@ -239,6 +239,11 @@ void GpuWorld::rebuild()
     w.islandTime.upload(w.ctx, never);
     m_mirror.assign(n, Mirror());
     syncIn(w, changedRows(true));
+    // The sleep state read back before a step's deactivation (the actions' part) is the app's
+    // until the device's deactivation writes it; left unwritten it was whatever the buffer held.
+    std::vector<uint> asleep(std::max<size_t>(n, 1), 0u);
+    for (size_t r = 0; r < n; ++r) asleep[r] = (m_mirror[r].props.flags & BTG_BODY_SLEEPING) ? 1u : 0u;
+    w.sleepState.upload(w.ctx, asleep);
     m_joints.reset();
     m_ignored.reset();
 }
@@ -700,10 +705,10 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             } else {
                 runOnDevice(perBatch, fixedTimeStep);
                 m_joints.writeBack(*m_dev);  // applied impulses, feedback, breaks
-                fillManifolds();
             }
             Clock::time_point t2 = Clock::now();
             writeBack(m_readback, b == batches - 1);
+            if (!actions) fillManifolds();  // before the tick callback, which may read them
             m_report.syncInMs += msBetween(t0, t1);
             m_report.deviceMs += msBetween(t1, t2);
             m_report.writeBackMs += msBetween(t2, Clock::now());
