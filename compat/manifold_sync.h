@@ -9,8 +9,10 @@
 #include <cstddef>
 #include <unordered_map>
 #include <unordered_set>
+#include <vector>
 
 class btCollisionObject;
+class btCollisionShape;
 class btDispatcher;
 class btPersistentManifold;
 
@@ -51,8 +53,31 @@ private:
         long stamp;  // the last fill that named it
         unsigned ids[4];  // the feature id of each of its points (BTG_FEATURE_*)
     };
+    // One report's manifold in Bullet's terms (orient: which side is body0, the key).
+    struct Side {
+        Key key;
+        bool valid;    // both bodies still in the world
+        bool swap;     // the report's B is Bullet's body0
+        bool spheres;  // sphere–sphere (stock clears that manifold every step)
+        const btCollisionShape* concaveA;  // the report's concave leaves (per-point triangles)
+        const btCollisionShape* concaveB;
+    };
+    // The reports [first, last) of one manifold.
+    struct Group {
+        std::pair<const Key, Entry>* entry;
+        size_t first, last;
+        bool spheres;
+    };
+    Side orient(const RowMap& rows, const BtgContactReport& r,
+                const std::unordered_set<const btCollisionObject*>& removed) const;
+    // One manifold's points from its reports (touches only that manifold: run in parallel).
+    void refill(const Group& g, const BtgContactReport* reports);
+
     std::unordered_map<Key, Entry, KeyHash> m_map;
     long m_stamp = 0;
+    std::vector<Side> m_sides;    // per report of the current fill
+    std::vector<Group> m_groups;
+    std::vector<BtgContactReport> m_scratch;
 };
 
 }  // namespace btgpu
