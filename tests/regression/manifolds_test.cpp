@@ -304,6 +304,41 @@ TEST(Manifolds, MeshPairsAsStock)
     }
 }
 
+// A box and a sphere on a flat 17 x 17 heightfield (1 m cells, centred): each point's
+// m_partId1 / 2 is its cell's column and m_index1 its row, as Bullet's processAllTriangles
+// numbers them (part 2x + t, index j), on both worlds.
+TEST(Manifolds, HeightfieldPointsNameTheirCell)
+{
+    SideBySide sb([](WorldKind k, const Config& c) { return scenes::restOnHeightfield(k, c); });
+    for (int step = 0; step < 60; ++step) {
+        sb.step();
+        ASSERT_TRUE(sb.onGpu()) << step;
+    }
+    // The manifolds by bodies (a heightfield's part id is the point's triangle, and the sphere
+    // rests on a cell edge, where either cell is right).
+    auto bodies = [](Scene& s) {
+        std::multiset<std::pair<int, int>> b;
+        for (const ManifoldKey& k : touchingKeys(s)) b.insert({std::get<0>(k), std::get<1>(k)});
+        return b;
+    };
+    EXPECT_EQ(bodies(*sb.gpu), bodies(*sb.stock));
+    for (Scene* w : {sb.stock.get(), sb.gpu.get()}) {
+        btDispatcher* d = w->world().getDispatcher();
+        int checked = 0;
+        for (int i = 0; i < d->getNumManifolds(); ++i) {
+            const btPersistentManifold* m = d->getManifoldByIndexInternal(i);
+            ASSERT_EQ(m->getBody1()->getCollisionShape()->getShapeType(), TERRAIN_SHAPE_PROXYTYPE);
+            for (int j = 0; j < m->getNumContacts(); ++j, ++checked) {
+                const btManifoldPoint& p = m->getContactPoint(j);
+                const double column = p.m_partId1 / 2, row = p.m_index1;
+                EXPECT_LE(std::fabs(p.m_positionWorldOnB.x() + 8 - (column + .5)), .501) << toString(w->kind());
+                EXPECT_LE(std::fabs(p.m_positionWorldOnB.z() + 8 - (row + .5)), .501) << toString(w->kind());
+            }
+        }
+        EXPECT_EQ(checked, 5);
+    }
+}
+
 // Config::fillDispatcherManifolds off: no report stage, and the dispatcher stays empty.
 TEST(Manifolds, SwitchOffLeavesTheDispatcherEmpty)
 {
