@@ -249,14 +249,17 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
 
     // Pairs that stopped touching: released, as stock's algorithm empties and the pair goes;
     // a pair of two sleeping (or static) bodies is not collided by stock: kept as it was.
-    for (auto it = m_map.begin(); it != m_map.end();) {
-        const Entry& e = it->second;
-        if (e.stamp == m_stamp || (!it->first.body0->isActive() && !it->first.body1->isActive())) {
-            ++it;
-            continue;
-        }
-        dispatcher->releaseManifold(e.manifold);
-        it = m_map.erase(it);
+    // Released from the dispatcher's last index down, so its array order does not depend on
+    // the map's (address-hashed) order.
+    std::vector<std::pair<int, Key>> stale;
+    for (const auto& [key, e] : m_map)
+        if (e.stamp != m_stamp && (key.body0->isActive() || key.body1->isActive()))
+            stale.push_back({e.manifold->m_index1a, key});
+    std::sort(stale.begin(), stale.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+    for (const auto& [index, key] : stale) {
+        auto it = m_map.find(key);
+        dispatcher->releaseManifold(it->second.manifold);
+        m_map.erase(it);
     }
 }
 
