@@ -1,6 +1,7 @@
 // manifold_sync.cpp — the device's contact reports as the app's btPersistentManifolds: Bullet's
-// body order (the algorithm's: a concave or plane side second, a sphere before a box, else the
-// broadphase pair's lower proxy id first), one manifold per compound child pair and per
+// body order (the algorithm's: a concave or plane side second, a sphere before a box, a
+// compound's child first, else the pair cache's lower proxy id first), one manifold per compound
+// child pair and per
 // convex–mesh pair (its triangles' points reduced to four as addManifoldPoint does), combined
 // friction and restitution as btManifoldResult, lifetimes followed across steps.
 #include "manifold_sync.h"
