@@ -49,6 +49,7 @@ GpuWorld::GpuWorld(btGpuDynamicsWorld& world, const Config& config) : m_config(c
 
 GpuWorld::~GpuWorld()
 {
+    m_manifolds.releaseAll(m_world.getDispatcher());
     m_readback.release();
     m_dev.reset();
     m_snapshot = Snapshot();
@@ -167,6 +168,7 @@ void GpuWorld::makePlan()
     DerivedPlan d = derivePlan(in);
     m_plan = d.plan;
     m_plan.hasIgnoredPairs = m_ignored.any();
+    m_plan.reportContacts = m_config.fillDispatcherManifolds;
     m_large.assign(m_rows.size(), false);
     for (int r : d.largeRows) m_large[size_t(r)] = true;
     DeviceWorld& w = *m_dev;
@@ -242,13 +244,15 @@ void GpuWorld::rebuild()
     counters[kNanBody] = 0xffffffffu;
     w.counters.upload(w.ctx, counters);
     w.sleepTime.zero(w.ctx, std::max<size_t>(n, 1));
-    // Read back before the first deactivation has run (with actions, the write-back between the
-    // step and its deactivation): a fresh buffer's garbage would put bodies to sleep.
-    w.sleepState.zero(w.ctx, std::max<size_t>(n, 1));
     std::vector<uint> never(std::max<size_t>(n, 1), 0x7f800000u);  // +inf: no island yet
     w.islandTime.upload(w.ctx, never);
     m_mirror.assign(n, Mirror());
     syncIn(w, changedRows(true));
+    // The sleep state read back before a step's deactivation (the actions' part) is the app's
+    // until the device's deactivation writes it; left unwritten it was whatever the buffer held.
+    std::vector<uint> asleep(std::max<size_t>(n, 1), 0u);
+    for (size_t r = 0; r < n; ++r) asleep[r] = (m_mirror[r].props.flags & BTG_BODY_SLEEPING) ? 1u : 0u;
+    w.sleepState.upload(w.ctx, asleep);
     m_joints.reset();
     m_ignored.reset();
 }
@@ -583,6 +587,7 @@ int GpuWorld::stepOnCpuPath(btScalar timeStep, int maxSubSteps, btScalar fixedTi
     } release{m_cpuGuard};
     // The GPU rows no longer hold what the bodies hold: resynced from scratch when it returns.
     m_needsRebuild = true;
+    leaveGpuPath();
     completeBroadphasePairs();
     return m_world.baseStepSimulation(timeStep, maxSubSteps, fixedTimeStep);
 }
@@ -628,6 +633,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         return false;
     }
     if (m_needsRebuild) {
+        dropCpuPathManifolds();
         rebuild();
         m_needsRebuild = false;
     } else if (m_rowsStale) {
@@ -715,6 +721,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
                 runOnDevice(perBatch, fixedTimeStep, SubstepPart::BeforeActivation);
                 m_joints.writeBack(*m_dev);
                 writeBack(m_readback, false, false);
+                fillManifolds();  // the actions see this internal step's contacts
                 runActions(fixedTimeStep);
                 runOnDevice(1, fixedTimeStep, SubstepPart::ActivationOnly);
             } else {
@@ -723,6 +730,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             }
             Clock::time_point t2 = Clock::now();
             writeBack(m_readback, b == batches - 1);
+            if (!actions) fillManifolds();  // before the tick callback, which may read them
             m_report.syncInMs += msBetween(t0, t1);
             m_report.deviceMs += msBetween(t1, t2);
             m_report.writeBackMs += msBetween(t2, Clock::now());
@@ -797,6 +805,26 @@ void GpuWorld::completeBroadphasePairs()
     m_broadphasePairsStale = false;
 }
 
+void GpuWorld::fillManifolds()
+{
+    if (m_config.fillDispatcherManifolds) m_manifolds.fill(m_world.getDispatcher(), m_rows, m_readback, m_removed);
+}
+
+void GpuWorld::leaveGpuPath() { m_manifolds.releaseAll(m_world.getDispatcher()); }
+
+void GpuWorld::dropCpuPathManifolds()
+{
+    // The pair cache's algorithms (made by CPU-path steps, or by the app's own collision calls)
+    // hold manifolds of the bodies as they were then: freed, as stock frees them when a pair
+    // goes, so the dispatcher holds only the GPU path's. A later CPU-path step makes them anew.
+    btDispatcher* dispatcher = m_world.getDispatcher();
+    btOverlappingPairCache* cache = m_world.getBroadphase() ? m_world.getBroadphase()->getOverlappingPairCache() : nullptr;
+    if (!cache || !dispatcher) return;
+    btBroadphasePairArray& pairs = cache->getOverlappingPairArray();
+    for (int i = 0; i < pairs.size(); ++i)
+        if (pairs[i].m_algorithm) cache->cleanOverlappingPair(pairs[i], dispatcher);
+}
+
 void GpuWorld::runActions(btScalar dt)
 {
     // Where Bullet runs updateActions: after integrateTransforms, before the deactivation. The
@@ -829,6 +857,7 @@ bool GpuWorld::followWithinCall(int batch, int batches, btScalar fixedTimeStep)
     m_onCpuPath = true;
     m_report.cpuPathReason = why + from;
     m_needsRebuild = true;
+    leaveGpuPath();
     completeBroadphasePairs();
     m_world.applyGravity();
     for (int b = batch; b < batches; ++b) m_world.internalSingleStepSimulation(fixedTimeStep);

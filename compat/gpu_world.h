@@ -7,6 +7,7 @@
 #include "cpu_path_guard.h"
 #include "ignored_pairs.h"
 #include "joint_rows.h"
+#include "manifold_sync.h"
 #include "row_map.h"
 #include "pipeline.h"
 #include "shape_tables.h"
@@ -37,7 +38,11 @@ public:
 
     void structureChanged() { m_structureDirty = true; }
     // An object left the world (called before Bullet forgets it; it may be deleted after).
-    void removed(const btCollisionObject* object) { m_removed.insert(object); }
+    void removed(const btCollisionObject* object)
+    {
+        m_removed.insert(object);
+        m_manifolds.removed(m_world.getDispatcher(), object);
+    }
     // An OpenCL failure during a step: reported once, and the world stays on the CPU path.
     void failDevice(const std::string& what);
     void report(Issue issue);
@@ -89,6 +94,14 @@ private:
     void syncBroadphaseAabbs();
     void completeBroadphasePairs();
     bool m_broadphasePairsStale = false;
+}
+
+    // The app's dispatcher manifolds from the readback just taken (Config::fillDispatcherManifolds).
+    void fillManifolds();
+    // The CPU path runs next: our manifolds go back to the dispatcher's pool (its algorithms
+    // make their own); coming back, the algorithms' go (ours replace them).
+    void leaveGpuPath();
+    void dropCpuPathManifolds();
     // synchronizeMotionStates, clearForces, the AABB sync and the report's totals.
     bool finishCall(bool profiled, bool gpuPath);
     // Results into the btRigidBody objects; `last`: the call's final write-back, which may also
@@ -126,6 +139,7 @@ private:
     // its deactivation timer in Bullet; the device's timers are reset to match.
     std::vector<char> m_woken;
     std::vector<int> takeWoken();
+    ManifoldSync m_manifolds;   // the app's dispatcher manifolds on the GPU path
     JointSync m_joints;         // the joint table on the device and its write-back
     IgnoredPairs m_ignored;     // collision-check exceptions (disableCollisionsBetweenLinkedBodies)
     Snapshot m_snapshot;

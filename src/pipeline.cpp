@@ -16,6 +16,7 @@
 #include "stages/narrowphase_gjk.h"
 #include "stages/prepare_contacts.h"
 #include "stages/prepare_joints.h"
+#include "stages/report_contacts.h"
 #include "stages/solve_constraints.h"
 #include "stages/solve_jacobi.h"
 #include "stages/update_aabbs.h"
@@ -59,6 +60,7 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
             if (!plan.kinds.anyIn("narrowphase_gjk")) w.gjkCacheCurrent = false;
             break;
         case Stage::StorePersistentManifolds: storePersistentManifolds(w); break;
+        case Stage::ReportContacts: reportContacts(w); break;
         case Stage::IntegrateTransforms: integrateTransforms(w, p.dt, p.splitTurnErp); break;
         case Stage::UpdateActivation: updateActivation(w, p.dt, p.deactivationTime); break;
     }
@@ -66,7 +68,7 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
 
 // The plan's stages in order; each names its launches in the profile.
 void runSubstep(DeviceWorld& w, const Plan& plan, const std::vector<Stage>& stages, const StepSettings& s,
-                SubstepPart part)
+                SubstepPart part, bool last)
 {
     if (part == SubstepPart::ActivationOnly) {
         // The deactivation walks the graph the first part built: its counts stay.
@@ -78,6 +80,7 @@ void runSubstep(DeviceWorld& w, const Plan& plan, const std::vector<Stage>& stag
     fillCounters(w, kEdgeCount, 1, 0u);  // the constraint graph, rebuilt by the stages that add edges
     for (Stage stage : stages) {
         if (part == SubstepPart::BeforeActivation && stage == Stage::UpdateActivation) continue;
+        if (stage == Stage::ReportContacts && !last) continue;  // the app sees the call's last substep
         w.profiler.stage = stageName(stage);
         runStage(stage, w, plan, s);
     }
@@ -89,7 +92,7 @@ void runSubsteps(DeviceWorld& w, const Plan& plan, const StepSettings& s)
 {
     if (w.numBodies == 0) return;
     if (s.lastPart == SubstepPart::ActivationOnly) {
-        runSubstep(w, plan, {}, s, SubstepPart::ActivationOnly);
+        runSubstep(w, plan, {}, s, SubstepPart::ActivationOnly, true);
         return;
     }
     // A redo starts from the cache as the call found it. One substep leaves the cache alone
@@ -111,7 +114,7 @@ void runSubsteps(DeviceWorld& w, const Plan& plan, const StepSettings& s)
     }
     const std::vector<Stage> stages = plan.substep();
     for (int i = 0; i < s.substeps; ++i)
-        runSubstep(w, plan, stages, s, i == s.substeps - 1 ? s.lastPart : SubstepPart::Whole);
+        runSubstep(w, plan, stages, s, i == s.substeps - 1 ? s.lastPart : SubstepPart::Whole, i == s.substeps - 1);
 }
 
 void resetStatus(DeviceWorld& w)

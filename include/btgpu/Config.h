@@ -27,6 +27,10 @@ struct Config {
     // Keep the CPU broadphase's AABBs current after each step so rayTest, convexSweepTest and
     // contactTest see the bodies where they are. Apps that never query may turn it off.
     bool syncBroadphaseAabbs = true;
+    // Keep the app's dispatcher holding the contact manifolds stock Bullet would
+    // (getNumManifolds, getManifoldByIndexInternal: points, impulses, lifetimes) after each
+    // step. Apps that never read contacts may turn it off: the dispatcher then holds none.
+    bool fillDispatcherManifolds = true;
     // Per-stage device times from OpenCL profiling events (Report::stageMs), taken on one
     // stepSimulation call in profileEvery (events cost host time on every launch).
     bool profile = false;

@@ -1,6 +1,8 @@
 // sync_bodies.cpp — column sizing, scatter of changed rows, readback.
 #include "stages/sync_bodies.h"
 
+#include <algorithm>
+
 namespace btgpu {
 
 void resizeBodies(DeviceWorld& w, int n)
@@ -79,7 +81,23 @@ void syncOut(DeviceWorld& w, BodyReadback& out)
     w.angVel.readAsync(w.ctx, out.angVel.data(), n);
     w.sleepState.readAsync(w.ctx, out.sleepState.data(), n);
     w.counters.readAsync(w.ctx, out.counters.data(), kNumCounters);
+    // The contact reports travel in the same round trip: as many as the last call had plus an
+    // eighth are read ahead; only a count past that costs a second read, of the rest.
+    out.contactsValid = w.contactReportsWritten;
+    size_t ahead = 0;
+    if (w.contactReportsWritten) {
+        const size_t last = size_t(std::max(w.lastContactCount, 0));
+        ahead = std::min(w.contactReports.capacity(), last + last / 8 + 64);
+        out.contacts.resize(w.ctx, w.contactReports.capacity());
+        w.contactReports.readAsync(w.ctx, out.contacts.data(), ahead);
+    }
     w.ctx.finish();
+    if (w.contactReportsWritten) {
+        const size_t count = std::min<size_t>(out.counters[kContactCount], w.contactReports.capacity());
+        if (count > ahead) w.contactReports.download(w.ctx, out.contacts.data() + ahead, count - ahead, ahead);
+        out.numContacts = count;
+        w.contactReportsWritten = false;
+    }
 }
 
 }  // namespace btgpu

@@ -29,6 +29,10 @@ struct BodyReadback {
     cl::PinnedArray<BtgFloat4> pos, rot, linVel, angVel;
     cl::PinnedArray<uint> sleepState;  // 1: asleep
     cl::PinnedArray<uint> counters;
+    // The call's contact reports (report_contacts), when that stage ran: contacts[0, numContacts).
+    cl::PinnedArray<BtgContactReport> contacts;
+    size_t numContacts = 0;
+    bool contactsValid = false;
     void release()
     {
         pos.release();
@@ -37,6 +41,9 @@ struct BodyReadback {
         angVel.release();
         sleepState.release();
         counters.release();
+        contacts.release();
+        numContacts = 0;
+        contactsValid = false;
     }
 };
 // Blocking readback of every row's state and the counters.

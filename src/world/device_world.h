@@ -7,6 +7,7 @@
 #include "cl/launch.h"
 #include "shared/counters.h"
 #include "shared/concave.h"
+#include "shared/contact_report.h"
 #include "shared/joint_rows.h"
 #include "shared/types.h"
 #include "world/broadphase_scratch.h"
@@ -122,6 +123,10 @@ struct DeviceWorld {
     cl::DeviceArray<BtgManifoldRange> pairManifolds;  // pairCapacity
     cl::DeviceArray<BtgContact> contacts;    // this step's, in pair order
     cl::DeviceArray<uint> contactManifolds;  // contactCapacity: the manifold slot of each contact
+    // The last substep's contacts packed for the app's dispatcher (stage report_contacts, only
+    // while Config::fillDispatcherManifolds): read back by syncOut when written since its last read.
+    cl::DeviceArray<BtgContactReport> contactReports;
+    bool contactReportsWritten = false;
     // The warm-start cache: the last substep's solved contacts, reduced to what matching and
     // warm start read (112 bytes against a contact's 352), in the same pair order.
     cl::DeviceArray<BtgCachedContact> contactCache;

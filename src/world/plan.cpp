@@ -33,6 +33,7 @@ const char* stageName(Stage stage)
         case Stage::SolveJacobi: return "solve_jacobi";
         case Stage::StoreContactCache: return "store_contact_cache";
         case Stage::StorePersistentManifolds: return "store_persistent_manifolds";
+        case Stage::ReportContacts: return "report_contacts";
         case Stage::IntegrateTransforms: return "integrate_transforms";
         case Stage::UpdateActivation: return "update_activation";
     }
@@ -79,6 +80,7 @@ std::vector<Stage> Plan::substep() const
         if (collide) {
             s.push_back(Stage::StoreContactCache);
             if (kinds.anyIn("narrowphase_gjk")) s.push_back(Stage::StorePersistentManifolds);
+            if (reportContacts) s.push_back(Stage::ReportContacts);
         }
     }
     s.insert(s.end(), {Stage::IntegrateTransforms, Stage::UpdateActivation});

@@ -43,6 +43,7 @@ enum class Stage {
     FinishJoints,         // applied impulses, feedback, breaks
     StoreContactCache,
     StorePersistentManifolds,  // the GJK kinds' manifolds beside the cache
+    ReportContacts,       // the contacts packed for the app's dispatcher (last substep of a call only)
     IntegrateTransforms,
     UpdateActivation,
 };
@@ -67,6 +68,7 @@ struct Plan {
     bool hasJoints = false;    // the app added joints (served ones: the rules send the rest away)
     bool hasIgnoredPairs = false;  // objects ignore each other's collision check (filter_pairs)
     bool hasCompounds = false;     // compound bodies (expand_compounds)
+    bool reportContacts = false;   // Config::fillDispatcherManifolds (report_contacts)
     SolverKind solver = SolverKind::BatchedPgs;  // Config::solver: which solve stages run
     Broadphase broadphase = Broadphase::UniformGrid;
     float cellSize = 1.0f;     // m: uniform grid cell, >= the largest small body's AABB extent

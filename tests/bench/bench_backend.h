@@ -26,6 +26,7 @@ using scenes::spec::makeCompounds;
 
 struct Options {
     bool noSleep = false;           // disable Bullet's deactivation on every dynamic body
+    bool noManifolds = false;       // btgpu: Config::fillDispatcherManifolds off (apps that never read contacts)
     bool noAabbSync = false;        // btgpu: Config::syncBroadphaseAabbs off (apps that never query)
     bool jacobi = false;            // btgpu: Config::solver = JacobiMassSplitting
     bool requireGpuPath = false;    // btgpu: skip (not fail) when the world is not on the GPU path

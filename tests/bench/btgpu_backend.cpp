@@ -37,6 +37,7 @@ public:
             n += std::string("; state hash ") + hash;
         }
         if (m_noAabbSync) n += "; Config::syncBroadphaseAabbs off";
+        if (m_noManifolds) n += "; Config::fillDispatcherManifolds off";
         if (m_jacobi) n += "; Jacobi with mass splitting";
         n += "; step column = sync-in of app changes + device substeps + readback (Report::syncInMs + deviceMs); "
              "write-back column = results into btRigidBody + motion states (Report::writeBackMs)";
@@ -54,6 +55,8 @@ public:
         config.profileEvery = 10;  // stage times from every 10th frame; the others run unprofiled
         config.syncBroadphaseAabbs = !options.noAabbSync;
         m_noAabbSync = options.noAabbSync;
+        config.fillDispatcherManifolds = !options.noManifolds;
+        m_noManifolds = options.noManifolds;
         if (options.jacobi) config.solver = btgpu::SolverKind::JacobiMassSplitting;
         m_jacobi = options.jacobi;
         m_world.reset(new btGpuDynamicsWorld(&m_infra.dispatcher, &m_infra.broadphase, &m_infra.solver, &m_infra.config,
@@ -106,6 +109,7 @@ private:
     int m_iterations = 10;
     bool m_requireGpu = false;
     bool m_noAabbSync = false;
+    bool m_noManifolds = false;
     bool m_jacobi = false;
 };
 

@@ -265,3 +265,25 @@ TEST(Plan, CompoundsBringExpandCompoundsAndTheirLeavesKinds)
     EXPECT_EQ(at(Stage::ExpandCompounds), at(Stage::FindPairs) + 1);
     EXPECT_LT(at(Stage::ExpandCompounds), at(Stage::Narrowphase));
 }
+
+// The contact report (Config::fillDispatcherManifolds): only when asked for and when anything
+// collides, after the cache store, before the bodies move.
+TEST(Plan, ContactReportOnlyWhenAskedBeforeTheBodiesMove)
+{
+    PlanInput in;
+    in.bodies = {body(BTG_SHAPE_BOX, 100, false), body(BTG_SHAPE_BOX, 1, true)};
+    Plan p = derivePlan(in).plan;
+    EXPECT_FALSE(has(p.substep(), Stage::ReportContacts));
+    p.reportContacts = true;
+    const std::vector<Stage> s = p.substep();
+    auto at = [&](Stage x) { return std::find(s.begin(), s.end(), x) - s.begin(); };
+    ASSERT_TRUE(has(s, Stage::ReportContacts));
+    EXPECT_EQ(at(Stage::ReportContacts), at(Stage::StoreContactCache) + 1);
+    EXPECT_LT(at(Stage::ReportContacts), at(Stage::IntegrateTransforms));
+    const std::vector<std::string> names = p.stages();
+    EXPECT_NE(std::find(names.begin(), names.end(), "report_contacts"), names.end());
+    in.bodies = {body(BTG_SHAPE_BOX, 1, true)};  // nothing to collide
+    Plan alone = derivePlan(in).plan;
+    alone.reportContacts = true;
+    EXPECT_FALSE(has(alone.substep(), Stage::ReportContacts));
+}

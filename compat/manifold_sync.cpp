@@ -1,0 +1,286 @@
+// manifold_sync.cpp — the device's contact reports as the app's btPersistentManifolds: Bullet's
+// body order (the algorithm's: a concave or plane side second, a sphere before a box, a
+// compound's child first, else the pair cache's lower proxy id first), one manifold per compound
+// child pair and per
+// convex–mesh pair (its triangles' points reduced to four as addManifoldPoint does), combined
+// friction and restitution as btManifoldResult, lifetimes followed across steps.
+#include "manifold_sync.h"
+
+#include "parallel_rows.h"
+#include "shared/mesh.h"
+
+#include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
+#include <btBulletCollisionCommon.h>
+
+#include <algorithm>
+#include <vector>
+
+namespace btgpu {
+
+namespace {
+
+const btCollisionShape* leafShape(const btCollisionObject* o, int index)
+{
+    const btCollisionShape* s = o->getCollisionShape();
+    if (s->isCompound()) {
+        const auto* c = static_cast<const btCompoundShape*>(s);
+        if (index >= 0 && index < c->getNumChildShapes()) return c->getChildShape(index);
+    }
+    return s;
+}
+
+int proxyId(const btCollisionObject* o) { return o->getBroadphaseHandle() ? o->getBroadphaseHandle()->m_uniqueId : 0; }
+
+// The manifold's side key: a compound's child; the whole shape (-1) for a convex or concave side
+// (stock keeps one manifold for all of a mesh's triangles).
+int sideKey(const btCollisionObject* o, const btCollisionShape* leaf, int index)
+{
+    return o->getCollisionShape()->isCompound() && !leaf->isConcave() ? index : -1;
+}
+
+struct HeightfieldPeek : btHeightfieldTerrainShape {
+    static constexpr int btHeightfieldTerrainShape::*kWidth = &HeightfieldPeek::m_heightStickWidth;
+};
+
+// A point on a concave side: its triangle's (part id, index) back from its feature id (the
+// triangle's key, btgTriangleKey), as Bullet's per-point m_partId / m_index of that side.
+void triangleOf(const btCollisionShape* concave, uint key, int* partId, int* index)
+{
+    if (key == BTG_FEATURE_UNKNOWN) return;
+    if (concave->getShapeType() == TERRAIN_SHAPE_PROXYTYPE) {
+        const int w = static_cast<const btHeightfieldTerrainShape*>(concave)->*HeightfieldPeek::kWidth;
+        const uint perRow = uint(std::max(2 * (w - 1), 1));
+        *index = int(key / perRow);
+        *partId = int(key % perRow);
+        return;
+    }
+    *partId = int((key & 0x7fffffffu) >> BTG_BVH_PART_SHIFT);
+    *index = int(key & BTG_BVH_TRIANGLE_MASK);
+}
+
+struct NewPoint {
+    btManifoldPoint point;
+    uint featureId;
+};
+
+}  // namespace
+
+ManifoldSync::Side ManifoldSync::orient(const RowMap& rows, const BtgContactReport& r,
+                                       const std::unordered_set<const btCollisionObject*>& removed) const
+{
+    Side out{};
+    if (r.bodyA < 0 || r.bodyB < 0 || size_t(r.bodyA) >= rows.size() || size_t(r.bodyB) >= rows.size()) return out;
+    const btCollisionObject* oA = rows.at(size_t(r.bodyA));
+    const btCollisionObject* oB = rows.at(size_t(r.bodyB));
+    if (!oA || !oB || (!removed.empty() && (removed.count(oA) || removed.count(oB)))) return out;
+    const btCollisionShape* leafA = leafShape(oA, r.indexA);
+    const btCollisionShape* leafB = leafShape(oB, r.indexB);
+    const bool concA = leafA->isConcave(), concB = leafB->isConcave();
+    const int tA = leafA->getShapeType(), tB = leafB->getShapeType();
+    // The algorithm's order: convex–concave and convex–plane put the convex first, the
+    // sphere–box algorithm the sphere, a compound's child algorithms the child; else the pair
+    // cache's (the lower proxy id first).
+    const bool compA = oA->getCollisionShape()->isCompound(), compB = oB->getCollisionShape()->isCompound();
+    bool swap;
+    if (concA != concB) swap = concA;
+    else if ((tA == SPHERE_SHAPE_PROXYTYPE) != (tB == SPHERE_SHAPE_PROXYTYPE) &&
+             (tA == BOX_SHAPE_PROXYTYPE || tB == BOX_SHAPE_PROXYTYPE))
+        swap = tA == BOX_SHAPE_PROXYTYPE;
+    else if (compA != compB) swap = compB;
+    else swap = proxyId(oA) > proxyId(oB);
+    out.valid = true;
+    out.swap = swap;
+    out.spheres = tA == SPHERE_SHAPE_PROXYTYPE && tB == SPHERE_SHAPE_PROXYTYPE;
+    out.concaveA = concA ? leafA : nullptr;
+    out.concaveB = concB ? leafB : nullptr;
+    out.key = swap ? Key{oB, oA, sideKey(oB, leafB, r.indexB), sideKey(oA, leafA, r.indexA)}
+                   : Key{oA, oB, sideKey(oA, leafA, r.indexA), sideKey(oB, leafB, r.indexB)};
+    return out;
+}
+
+void ManifoldSync::refill(const Group& g, const BtgContactReport* reports)
+{
+    NewPoint points[4 * BTG_MAX_POINTS];  // a convex–mesh pair's triangles: reduced as they come
+    std::vector<NewPoint> many;
+    int count = 0;
+    auto push = [&](const NewPoint& np) {
+        if (count < int(sizeof(points) / sizeof(points[0]))) points[count++] = np;
+        else many.push_back(np);
+    };
+    const Key& key = g.entry->first;
+    for (size_t i = g.first; i < g.last; ++i) {
+        const BtgContactReport& r = reports[i];
+        const Side& side = m_sides[i];
+        if (!side.valid) continue;
+        const bool swap = side.swap;
+        for (int k = 0; k < r.numPoints && k < BTG_MAX_POINTS; ++k) {
+            const btVector3 n(r.normal[k].x, r.normal[k].y, r.normal[k].z);
+            const btVector3 pB(r.pointB[k].x, r.pointB[k].y, r.pointB[k].z);
+            const float d = r.pointB[k].w;
+            const btVector3 pA = pB + n * d;
+            const btVector3 lA(r.localA[k].x, r.localA[k].y, r.localA[k].z);
+            const btVector3 lB(r.localB[k].x, r.localB[k].y, r.localB[k].z);
+            const btVector3 d1(r.dir1[k].x, r.dir1[k].y, r.dir1[k].z);
+            const btVector3 d2 = n.cross(d1);  // btgFrictionDir2
+            int partA = r.partIdA, indexA = r.indexA, partB = r.partIdB, indexB = r.indexB;
+            if (side.concaveA) triangleOf(side.concaveA, r.featureId[k], &partA, &indexA);
+            if (side.concaveB) triangleOf(side.concaveB, r.featureId[k], &partB, &indexB);
+            // The impulses act on the report's A along +n, +d1, +d2; Bullet's on body0.
+            NewPoint np{swap ? btManifoldPoint(lB, lA, -n, d) : btManifoldPoint(lA, lB, n, d), r.featureId[k]};
+            btManifoldPoint& p = np.point;
+            p.m_positionWorldOnA = swap ? pB : pA;
+            p.m_positionWorldOnB = swap ? pA : pB;
+            p.m_lateralFrictionDir1 = swap ? -d1 : d1;
+            p.m_lateralFrictionDir2 = swap ? -d2 : d2;
+            p.m_appliedImpulse = r.localA[k].w;
+            p.m_appliedImpulseLateral1 = r.localB[k].w;
+            p.m_appliedImpulseLateral2 = r.dir1[k].w;
+            p.m_partId0 = swap ? partB : partA;
+            p.m_index0 = swap ? indexB : indexA;
+            p.m_partId1 = swap ? partA : partB;
+            p.m_index1 = swap ? indexA : indexB;
+            p.m_combinedFriction = btManifoldResult::calculateCombinedFriction(key.body0, key.body1);
+            p.m_combinedRestitution = btManifoldResult::calculateCombinedRestitution(key.body0, key.body1);
+            p.m_combinedRollingFriction = btManifoldResult::calculateCombinedRollingFriction(key.body0, key.body1);
+            p.m_combinedSpinningFriction = btManifoldResult::calculateCombinedSpinningFriction(key.body0, key.body1);
+            push(np);
+        }
+    }
+    Entry& e = g.entry->second;
+    btPersistentManifold* m = e.manifold;
+    // Lifetimes: a point that continues an old one (same feature and sub-shape, else the
+    // nearest in A's frame within the breaking threshold, as getCacheEntry) counts on; a new one
+    // starts at 1, as stock's refreshContactPoints leaves a point added this step.
+    const int oldCount = m->getNumContacts();
+    btManifoldPoint old[MANIFOLD_CACHE_SIZE];
+    for (int j = 0; j < oldCount; ++j) old[j] = m->getContactPoint(j);
+    const btScalar thr2 = m->getContactBreakingThreshold() * m->getContactBreakingThreshold();
+    unsigned claimed = 0;
+    const int total = count + int(many.size());
+    auto at = [&](int i) -> NewPoint& { return i < count ? points[i] : many[size_t(i - count)]; };
+    for (int i = 0; i < total; ++i) {
+        NewPoint& np = at(i);
+        int match = -1;
+        for (int j = 0; j < oldCount && match < 0; ++j)
+            if (!((claimed >> j) & 1u) && np.featureId != BTG_FEATURE_UNKNOWN && e.ids[j] == np.featureId &&
+                old[j].m_index1 == np.point.m_index1 && old[j].m_partId1 == np.point.m_partId1 &&
+                old[j].m_index0 == np.point.m_index0 && (old[j].m_localPointA - np.point.m_localPointA).length2() < thr2)
+                match = j;
+        if (match < 0) {
+            btScalar best = thr2;
+            for (int j = 0; j < oldCount; ++j) {
+                const btScalar d2 = (old[j].m_localPointA - np.point.m_localPointA).length2();
+                if (!((claimed >> j) & 1u) && d2 < best) {
+                    best = d2;
+                    match = j;
+                }
+            }
+        }
+        if (match >= 0) claimed |= 1u << match;
+        np.point.m_lifeTime = g.spheres ? 0 : (match >= 0 ? old[match].m_lifeTime + 1 : 1);
+    }
+    m->clearManifold();
+    for (int i = 0; i < total; ++i) {
+        const int slot = m->addManifoldPoint(at(i).point);
+        if (slot >= 0 && slot < MANIFOLD_CACHE_SIZE) e.ids[slot] = at(i).featureId;
+    }
+}
+
+void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const BodyReadback& rb,
+                        const std::unordered_set<const btCollisionObject*>& removed)
+{
+    if (!dispatcher || !rb.contactsValid) return;
+    ++m_stamp;
+    // Each report's Bullet identity, in parallel (reads only).
+    const size_t n = rb.numContacts;
+    m_sides.resize(n);
+    forEachChunk(n, 2048, [&](size_t begin, size_t end, int) {
+        for (size_t i = begin; i < end; ++i) m_sides[i] = orient(rows, rb.contacts[i], removed);
+    });
+    // Reports are in pair order: a manifold's (a mesh pair's triangles, one compound child pair)
+    // are consecutive. Serially: the dispatcher's pool (getNewManifold is not thread-safe).
+    m_groups.clear();
+    bool duplicate = false;
+    for (size_t i = 0; i < n; ++i) {
+        const Side& side = m_sides[i];
+        if (!side.valid) continue;
+        if (!m_groups.empty() && m_groups.back().entry->first == side.key && m_groups.back().last == i) {
+            m_groups.back().last = i + 1;
+            continue;
+        }
+        auto it = m_map.find(side.key);
+        if (it == m_map.end())
+            it = m_map.emplace(side.key, Entry{dispatcher->getNewManifold(side.key.body0, side.key.body1), 0, {}}).first;
+        duplicate |= it->second.stamp == m_stamp;  // the same manifold again, not adjacent
+        it->second.stamp = m_stamp;
+        m_groups.push_back({&*it, i, i + 1, side.spheres});
+    }
+    if (duplicate) {
+        // Not seen in pair order, but kept right: one group per manifold, in report order.
+        std::unordered_map<const void*, size_t> firstOf;
+        std::vector<Group> merged;
+        std::vector<std::vector<size_t>> members;
+        for (const Group& g : m_groups) {
+            auto [it, fresh] = firstOf.emplace(g.entry->second.manifold, merged.size());
+            if (fresh) {
+                merged.push_back(g);
+                members.emplace_back();
+            }
+            for (size_t i = g.first; i < g.last; ++i) members[it->second].push_back(i);
+        }
+        // Reorder the reports' sides so that each manifold's are consecutive.
+        std::vector<Side> sides;
+        std::vector<BtgContactReport> reports;
+        for (size_t k = 0; k < merged.size(); ++k) {
+            merged[k].first = sides.size();
+            for (size_t i : members[k]) {
+                sides.push_back(m_sides[i]);
+                reports.push_back(rb.contacts[i]);
+            }
+            merged[k].last = sides.size();
+        }
+        m_sides.swap(sides);
+        m_scratch.swap(reports);
+        for (const Group& g : merged) refill(g, m_scratch.data());
+    } else {
+        forEachChunk(m_groups.size(), 512, [&](size_t begin, size_t end, int) {
+            for (size_t k = begin; k < end; ++k) refill(m_groups[k], rb.contacts.data());
+        });
+    }
+
+    // Pairs that stopped touching: released, as stock's algorithm empties and the pair goes;
+    // a pair of two sleeping (or static) bodies is not collided by stock: kept as it was.
+    // Released from the dispatcher's last index down, so its array order does not depend on
+    // the map's (address-hashed) order.
+    std::vector<std::pair<int, Key>> stale;
+    for (const auto& [key, e] : m_map)
+        if (e.stamp != m_stamp && (key.body0->isActive() || key.body1->isActive()))
+            stale.push_back({e.manifold->m_index1a, key});
+    std::sort(stale.begin(), stale.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+    for (const auto& [index, key] : stale) {
+        auto it = m_map.find(key);
+        dispatcher->releaseManifold(it->second.manifold);
+        m_map.erase(it);
+    }
+}
+
+void ManifoldSync::releaseAll(btDispatcher* dispatcher)
+{
+    if (dispatcher)
+        for (auto& [key, e] : m_map) dispatcher->releaseManifold(e.manifold);
+    m_map.clear();
+}
+
+void ManifoldSync::removed(btDispatcher* dispatcher, const btCollisionObject* object)
+{
+    for (auto it = m_map.begin(); it != m_map.end();) {
+        if (it->first.body0 != object && it->first.body1 != object) {
+            ++it;
+            continue;
+        }
+        if (dispatcher) dispatcher->releaseManifold(it->second.manifold);
+        it = m_map.erase(it);
+    }
+}
+
+}  // namespace btgpu

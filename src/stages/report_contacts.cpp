@@ -1,0 +1,23 @@
+// report_contacts.cpp — host launcher of the contact report: one work-item per contact slot
+// into contactReports (sized as the contact list), flagged for syncOut to read back.
+#include "stages/report_contacts.h"
+
+#include "cl/program.h"
+
+#include <algorithm>
+
+namespace btgpu {
+
+void reportContacts(DeviceWorld& w)
+{
+    cl::Context& ctx = w.ctx;
+    const int contactCapacity = int(std::min({w.contactCapacity, w.contacts.capacity(), w.contactManifolds.capacity()}));
+    w.contactReports.reserveExact(ctx, size_t(std::max(contactCapacity, 1)));
+    cl::Launch(ctx, ctx.program("report_contacts").kernel("report_contacts"), &w.profiler)
+        .arg(w.contacts).arg(w.contactManifolds).arg(w.manifolds).arg(w.counters).arg(contactCapacity).arg(w.pos)
+        .arg(w.rot).arg(w.contactReports)
+        .run(size_t(std::max(contactCapacity, 1)));
+    w.contactReportsWritten = true;
+}
+
+}  // namespace btgpu

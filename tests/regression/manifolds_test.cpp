@@ -1,0 +1,441 @@
+// manifolds_test.cpp — what the app's own dispatcher holds on the GPU path
+// (Config::fillDispatcherManifolds): manifold and point counts, applied impulses, lifetimes and
+// sub-shape keys against stock Bullet run in the same test; the switch off; a world that goes
+// to the CPU path and back; bodies removed.
+#include "scenes/compound_scenes.h"
+#include "scenes/mesh_scenes.h"
+#include "side_by_side.h"
+
+#include <btBulletDynamicsCommon.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <tuple>
+
+using namespace btgpu;
+using namespace btgpu::test;
+
+namespace {
+
+struct Counts {
+    int manifolds = 0;   // all the dispatcher holds
+    int touching = 0;    // with points
+    int points = 0;
+    int separated = 0;   // points with distance > 0
+};
+
+Counts counts(Scene& s)
+{
+    Counts c;
+    btDispatcher* d = s.world().getDispatcher();
+    c.manifolds = d->getNumManifolds();
+    for (int i = 0; i < c.manifolds; ++i) {
+        int n = d->getManifoldByIndexInternal(i)->getNumContacts();
+        c.touching += n > 0;
+        c.points += n;
+        for (int j = 0; j < n; ++j) c.separated += d->getManifoldByIndexInternal(i)->getContactPoint(j).getDistance() > 0;
+    }
+    return c;
+}
+
+int sceneIndex(const Scene& s, const btCollisionObject* o)
+{
+    const auto& b = s.bodies();
+    auto it = std::find(b.begin(), b.end(), o);
+    return it == b.end() ? -1 : int(it - b.begin());
+}
+
+// Every manifold's bodies are in the world and its points are finite.
+void expectConsistent(Scene& s)
+{
+    btDispatcher* d = s.world().getDispatcher();
+    const btCollisionObjectArray& objs = s.world().getCollisionObjectArray();
+    for (int i = 0; i < d->getNumManifolds(); ++i) {
+        const btPersistentManifold* m = d->getManifoldByIndexInternal(i);
+        EXPECT_GE(objs.findLinearSearch(const_cast<btCollisionObject*>(m->getBody0())), 0);
+        EXPECT_LT(objs.findLinearSearch(const_cast<btCollisionObject*>(m->getBody0())), objs.size());
+        EXPECT_LT(objs.findLinearSearch(const_cast<btCollisionObject*>(m->getBody1())), objs.size());
+        for (int j = 0; j < m->getNumContacts(); ++j) {
+            const btManifoldPoint& p = m->getContactPoint(j);
+            EXPECT_TRUE(std::isfinite(p.m_positionWorldOnB.x()) && std::isfinite(p.m_appliedImpulse));
+        }
+    }
+}
+
+// Manifolds with points, as stock's: (body0, body1) in Bullet's order by scene index, and the
+// sub-shape keys of the manifold's first point (compound child; a mesh side's part).
+using ManifoldKey = std::tuple<int, int, int, int>;
+std::multiset<ManifoldKey> touchingKeys(Scene& s)
+{
+    std::multiset<ManifoldKey> keys;
+    btDispatcher* d = s.world().getDispatcher();
+    for (int i = 0; i < d->getNumManifolds(); ++i) {
+        const btPersistentManifold* m = d->getManifoldByIndexInternal(i);
+        if (m->getNumContacts() == 0) continue;
+        const btManifoldPoint& p = m->getContactPoint(0);
+        keys.insert({sceneIndex(s, m->getBody0()), sceneIndex(s, m->getBody1()), p.m_index0, p.m_partId1});
+    }
+    return keys;
+}
+
+// The manifold between scene bodies a and b (either order), or nullptr.
+const btPersistentManifold* manifoldOf(Scene& s, int a, int b)
+{
+    btDispatcher* d = s.world().getDispatcher();
+    for (int i = 0; i < d->getNumManifolds(); ++i) {
+        const btPersistentManifold* m = d->getManifoldByIndexInternal(i);
+        int i0 = sceneIndex(s, m->getBody0()), i1 = sceneIndex(s, m->getBody1());
+        if ((i0 == a && i1 == b) || (i0 == b && i1 == a)) return m;
+    }
+    return nullptr;
+}
+
+double normalImpulse(const btPersistentManifold* m)
+{
+    double sum = 0;
+    for (int j = 0; m && j < m->getNumContacts(); ++j) sum += m->getContactPoint(j).m_appliedImpulse;
+    return sum;
+}
+
+bool hasStage(const Scene& s, const char* name)
+{
+    const auto& st = s.report()->stages;
+    return std::find(st.begin(), st.end(), name) != st.end();
+}
+
+void noopStarted(btPersistentManifold* const&) {}
+
+// True when world point p lies on triangle (part, index) of a mesh body's btTriangleMeshShape
+// (within tol of its plane, barycentric coordinates >= -tol / edge).
+bool onTriangle(const btCollisionObject* mesh, int part, int index, const btVector3& p, btScalar tol)
+{
+    const auto* shape = static_cast<const btTriangleMeshShape*>(mesh->getCollisionShape());
+    const btStridingMeshInterface* mi = shape->getMeshInterface();
+    if (part < 0 || part >= mi->getNumSubParts() || index < 0) return false;
+    const unsigned char *verts, *idx;
+    int numVerts, stride, istride, ntri;
+    PHY_ScalarType type, itype;
+    mi->getLockedReadOnlyVertexIndexBase(&verts, numVerts, type, stride, &idx, istride, ntri, itype, part);
+    if (index >= ntri) {
+        mi->unLockReadOnlyVertexBase(part);
+        return false;
+    }
+    btVector3 v[3];
+    for (int c = 0; c < 3; ++c) {
+        const unsigned char* ip = idx + size_t(index) * size_t(istride);
+        int vi = itype == PHY_SHORT ? int(reinterpret_cast<const unsigned short*>(ip)[c])
+                                    : int(reinterpret_cast<const unsigned int*>(ip)[c]);
+        const unsigned char* vp = verts + size_t(vi) * size_t(stride);
+        if (type == PHY_DOUBLE) {
+            const double* d = reinterpret_cast<const double*>(vp);
+            v[c] = btVector3(btScalar(d[0]), btScalar(d[1]), btScalar(d[2]));
+        } else {
+            const float* f = reinterpret_cast<const float*>(vp);
+            v[c] = btVector3(f[0], f[1], f[2]);
+        }
+        v[c] = mesh->getWorldTransform() * (v[c] * mi->getScaling());
+    }
+    mi->unLockReadOnlyVertexBase(part);
+    const btVector3 n = (v[1] - v[0]).cross(v[2] - v[0]);
+    const btScalar area2 = n.length();
+    if (std::fabs((p - v[0]).dot(n / area2)) > tol) return false;
+    for (int c = 0; c < 3; ++c) {
+        const btVector3 a = v[c], b = v[(c + 1) % 3];
+        const btScalar edge = (b - a).length();
+        if ((b - a).cross(p - a).dot(n / area2) / edge < -tol) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+// A pile of boxes (4x4x4 lattice dropped on a ground box): the manifolds with points and their
+// points, step by step against stock. The pile lands at slightly different moments on the two
+// worlds (counts differ by up to half while it lands), so the comparison starts once it is
+// down (step 40); measured there: at most 8.6% apart on a step (points, step 120: 605 against
+// 553), mean within 2%. Bound: 12% a step, 5% on the mean.
+TEST(Manifolds, BoxPileCountsAsStock)
+{
+    SideBySide sb([](WorldKind k, const Config& c) { return scenes::cubes(k, 4, 4, 4, c); });
+    double sumStockM = 0, sumGpuM = 0, sumStockP = 0, sumGpuP = 0;
+    for (int step = 0; step < 240; ++step) {
+        sb.step();
+        ASSERT_TRUE(sb.onGpu()) << step;
+        ASSERT_TRUE(hasStage(*sb.gpu, "report_contacts"));
+        expectConsistent(*sb.gpu);
+        const Counts a = counts(*sb.stock), b = counts(*sb.gpu);
+        EXPECT_EQ(b.manifolds, b.touching) << step;  // policy: only manifolds with points
+        if (step < 40) continue;
+        EXPECT_NEAR(b.touching, a.touching, 0.12 * a.touching) << step;
+        EXPECT_NEAR(b.points, a.points, 0.12 * a.points) << step;
+        sumStockM += a.touching;
+        sumGpuM += b.touching;
+        sumStockP += a.points;
+        sumGpuP += b.points;
+    }
+    EXPECT_GT(sumStockP, 200.0 * 500);
+    EXPECT_NEAR(sumGpuM, sumStockM, 0.05 * sumStockM);
+    EXPECT_NEAR(sumGpuP, sumStockP, 0.05 * sumStockP);
+}
+
+// A resting stack of 4 unit boxes (1 kg): each manifold's normal impulses add up to the weight
+// it carries times the step (level k from the top: k boxes), as on stock, within 5%; the
+// points are the 4 corners of each face on both.
+TEST(Manifolds, RestingStackImpulsesCarryTheWeight)
+{
+    SideBySide sb([](WorldKind k, const Config& c) { return scenes::boxStack(k, c, 4); });
+    for (int step = 0; step < 90; ++step) {
+        sb.step();
+        ASSERT_TRUE(sb.onGpu()) << step;
+        const Counts a = counts(*sb.stock), b = counts(*sb.gpu);
+        EXPECT_EQ(b.touching, a.touching) << step;
+        EXPECT_EQ(b.points, a.points) << step;
+    }
+    for (int level = 0; level < 4; ++level) {
+        const double carried = (4 - level) * 1.0 * 10.0 * double(kStep);
+        const btPersistentManifold* g = manifoldOf(*sb.gpu, level, level + 1);
+        const btPersistentManifold* s = manifoldOf(*sb.stock, level, level + 1);
+        ASSERT_TRUE(g && s) << level;
+        EXPECT_EQ(g->getNumContacts(), 4) << level;
+        EXPECT_NEAR(normalImpulse(g), carried, 0.05 * carried) << level;
+        EXPECT_NEAR(normalImpulse(s), carried, 0.05 * carried) << level;
+        // Bullet's order: the body added first is body0; the normal points from body1 to body0.
+        EXPECT_EQ(sceneIndex(*sb.gpu, g->getBody0()), sceneIndex(*sb.stock, s->getBody0())) << level;
+        EXPECT_GT(g->getContactPoint(0).m_normalWorldOnB.dot(s->getContactPoint(0).m_normalWorldOnB), 0.99) << level;
+        for (int j = 0; j < 4; ++j) {
+            const btManifoldPoint& p = g->getContactPoint(j);
+            EXPECT_FLOAT_EQ(p.m_combinedFriction, s->getContactPoint(0).m_combinedFriction);
+            EXPECT_FLOAT_EQ(p.m_combinedRestitution, s->getContactPoint(0).m_combinedRestitution);
+            EXPECT_EQ(p.m_partId0, -1);
+            EXPECT_EQ(p.m_index1, -1);
+            // The world points as the local ones say, at the bodies where the contact was built.
+            EXPECT_NEAR((p.m_positionWorldOnA - p.m_positionWorldOnB).dot(p.m_normalWorldOnB), p.getDistance(), 1e-5);
+        }
+    }
+}
+
+// Resting contacts keep their points: lifetimes count up by one a step, as stock's do.
+TEST(Manifolds, LifetimesGrowForRestingContacts)
+{
+    SideBySide sb([](WorldKind k, const Config& c) { return scenes::boxStack(k, c, 3); });
+    auto lifetimes = [](Scene& s) {
+        std::multiset<int> l;
+        btDispatcher* d = s.world().getDispatcher();
+        for (int i = 0; i < d->getNumManifolds(); ++i)
+            for (int j = 0; j < d->getManifoldByIndexInternal(i)->getNumContacts(); ++j)
+                l.insert(d->getManifoldByIndexInternal(i)->getContactPoint(j).getLifeTime());
+        return l;
+    };
+    sb.step(60);
+    ASSERT_TRUE(sb.onGpu());
+    std::multiset<int> before = lifetimes(*sb.gpu), stockBefore = lifetimes(*sb.stock);
+    ASSERT_EQ(before.size(), 12u);
+    for (int step = 0; step < 20; ++step) {
+        sb.step();
+        ASSERT_TRUE(sb.onGpu()) << step;
+    }
+    std::multiset<int> after = lifetimes(*sb.gpu), stockAfter = lifetimes(*sb.stock);
+    ASSERT_EQ(after.size(), 12u);
+    std::multiset<int> expected;
+    for (int l : before) expected.insert(l + 20);
+    EXPECT_EQ(after, expected);
+    EXPECT_GE(*before.begin(), 30);  // landed within the first half second, kept since
+    // Stock's age the same way.
+    std::multiset<int> stockExpected;
+    for (int l : stockBefore) stockExpected.insert(l + 20);
+    EXPECT_EQ(stockAfter, stockExpected);
+}
+
+// A compound (a table: top and four legs) on a box: one manifold per leg–ground child pair,
+// with the leg's child index as stock's m_index1, and the same on a stack of three tables.
+TEST(Manifolds, CompoundChildPairsAsStock)
+{
+    for (int tables : {1, 3}) {
+        SideBySide sb([tables](WorldKind k, const Config& c) { return scenes::tableStack(k, c, tables); });
+        for (int step = 0; step < 120; ++step) {
+            sb.step();
+            ASSERT_TRUE(sb.onGpu()) << step;
+            expectConsistent(*sb.gpu);
+        }
+        std::multiset<ManifoldKey> s = touchingKeys(*sb.stock), g = touchingKeys(*sb.gpu);
+        if (tables == 1) EXPECT_EQ(g, s);
+        // Stacked: a leg of stock's may lift off a table top for a while (11 against 12 measured).
+        for (const ManifoldKey& k : s) EXPECT_TRUE(g.count(k)) << std::get<0>(k) << " " << std::get<1>(k);
+        EXPECT_LE(g.size(), s.size() + 1);
+        EXPECT_EQ(g.size(), size_t(4 * tables));
+    }
+}
+
+// Convex bodies and a compound on a triangle mesh: one manifold per convex–mesh pair (per leg
+// for the compound), the convex body first, each point's m_partId1/m_index1 the triangle it
+// touches, as stock.
+TEST(Manifolds, MeshPairsAsStock)
+{
+    for (int scene = 0; scene < 2; ++scene) {
+        SideBySide sb([scene](WorldKind k, const Config& c) {
+            return scene == 0 ? scenes::restOnMesh(k, c) : scenes::tableOnMesh(k, c);
+        });
+        for (int step = 0; step < 60; ++step) {
+            sb.step();
+            ASSERT_TRUE(sb.onGpu()) << step;
+            expectConsistent(*sb.gpu);
+        }
+        EXPECT_EQ(touchingKeys(*sb.gpu), touchingKeys(*sb.stock)) << scene;
+        // Each point's m_partId1/m_index1 name a triangle the point lies on, on both worlds (a point
+        // on a triangle edge may name either of the two, so the triangles are not compared).
+        for (Scene* w : {sb.stock.get(), sb.gpu.get()}) {
+            btDispatcher* d = w->world().getDispatcher();
+            int checked = 0;
+            for (int i = 0; i < d->getNumManifolds(); ++i) {
+                const btPersistentManifold* m = d->getManifoldByIndexInternal(i);
+                EXPECT_TRUE(m->getBody1()->getCollisionShape()->isConcave());  // the convex side first
+                for (int j = 0; j < m->getNumContacts(); ++j, ++checked) {
+                    const btManifoldPoint& p = m->getContactPoint(j);
+                    EXPECT_TRUE(onTriangle(m->getBody1(), p.m_partId1, p.m_index1, p.m_positionWorldOnB, 1e-3f))
+                        << toString(w->kind()) << " " << p.m_partId1 << " " << p.m_index1;
+                    if (scene == 1) EXPECT_GE(p.m_index0, 1);  // a leg
+                    else EXPECT_EQ(p.m_index0, -1);
+                }
+            }
+            EXPECT_GE(checked, 5);  // a box (4) and a sphere (1); the table 14-16
+        }
+    }
+}
+
+// A box and a sphere on a flat 17 x 17 heightfield (1 m cells, centred): each point's
+// m_partId1 / 2 is its cell's column and m_index1 its row, as Bullet's processAllTriangles
+// numbers them (part 2x + t, index j), on both worlds.
+TEST(Manifolds, HeightfieldPointsNameTheirCell)
+{
+    SideBySide sb([](WorldKind k, const Config& c) { return scenes::restOnHeightfield(k, c); });
+    for (int step = 0; step < 60; ++step) {
+        sb.step();
+        ASSERT_TRUE(sb.onGpu()) << step;
+    }
+    // The manifolds by bodies (a heightfield's part id is the point's triangle, and the sphere
+    // rests on a cell edge, where either cell is right).
+    auto bodies = [](Scene& s) {
+        std::multiset<std::pair<int, int>> b;
+        for (const ManifoldKey& k : touchingKeys(s)) b.insert({std::get<0>(k), std::get<1>(k)});
+        return b;
+    };
+    EXPECT_EQ(bodies(*sb.gpu), bodies(*sb.stock));
+    for (Scene* w : {sb.stock.get(), sb.gpu.get()}) {
+        btDispatcher* d = w->world().getDispatcher();
+        int checked = 0;
+        for (int i = 0; i < d->getNumManifolds(); ++i) {
+            const btPersistentManifold* m = d->getManifoldByIndexInternal(i);
+            ASSERT_EQ(m->getBody1()->getCollisionShape()->getShapeType(), TERRAIN_SHAPE_PROXYTYPE);
+            for (int j = 0; j < m->getNumContacts(); ++j, ++checked) {
+                const btManifoldPoint& p = m->getContactPoint(j);
+                const double column = p.m_partId1 / 2, row = p.m_index1;
+                EXPECT_LE(std::fabs(p.m_positionWorldOnB.x() + 8 - (column + .5)), .501) << toString(w->kind());
+                EXPECT_LE(std::fabs(p.m_positionWorldOnB.z() + 8 - (row + .5)), .501) << toString(w->kind());
+            }
+        }
+        EXPECT_EQ(checked, 5);
+    }
+}
+
+// Config::fillDispatcherManifolds off: no report stage, and the dispatcher stays empty.
+TEST(Manifolds, SwitchOffLeavesTheDispatcherEmpty)
+{
+    Config off;
+    off.fillDispatcherManifolds = false;
+    SideBySide sb([](WorldKind k, const Config& c) { return scenes::boxStack(k, c, 4); }, off);
+    for (int step = 0; step < 40; ++step) {
+        sb.step();
+        ASSERT_TRUE(sb.onGpu()) << step;
+        EXPECT_FALSE(hasStage(*sb.gpu, "report_contacts"));
+        EXPECT_EQ(sb.gpu->world().getDispatcher()->getNumManifolds(), 0) << step;
+    }
+    EXPECT_EQ(counts(*sb.stock).touching, 4);
+}
+
+// To the CPU path (a contact callback set) and back: on the CPU path the dispatcher holds
+// stock's algorithms' manifolds only (ours given back), back on the GPU path ours only (the
+// algorithms' freed); counts as stock's throughout, every manifold's bodies in the world.
+TEST(Manifolds, CpuPathAndBackKeepTheDispatcherConsistent)
+{
+    SideBySide sb([](WorldKind k, const Config& c) { return scenes::boxStack(k, c, 4); });
+    auto same = [&](int step) {
+        const Counts a = counts(*sb.stock), b = counts(*sb.gpu);
+        EXPECT_EQ(b.touching, a.touching) << step;
+        EXPECT_EQ(b.points, a.points) << step;
+        expectConsistent(*sb.gpu);
+    };
+    for (int step = 0; step < 30; ++step) {
+        sb.step();
+        ASSERT_TRUE(sb.onGpu()) << step;
+        same(step);
+    }
+    gContactStartedCallback = noopStarted;
+    for (int step = 30; step < 40; ++step) {
+        sb.step();
+        EXPECT_FALSE(sb.onGpu()) << step;
+        if (step == 30) {
+            // The CPU path's first step makes its manifolds anew from the GPU path's resting pose
+            // (one box-box manifold measured with 3 points where stock's persistent one has 4).
+            EXPECT_EQ(counts(*sb.gpu).touching, counts(*sb.stock).touching);
+            EXPECT_NEAR(counts(*sb.gpu).points, counts(*sb.stock).points, 2);
+            expectConsistent(*sb.gpu);
+        } else {
+            same(step);
+        }
+        EXPECT_EQ(counts(*sb.gpu).manifolds, counts(*sb.stock).manifolds) << step;  // stock's own, empties too
+    }
+    gContactStartedCallback = nullptr;
+    for (int step = 40; step < 80; ++step) {
+        sb.step();
+        ASSERT_TRUE(sb.onGpu()) << step;
+        same(step);
+        EXPECT_EQ(counts(*sb.gpu).manifolds, counts(*sb.gpu).touching) << step;  // no stale ones left
+    }
+}
+
+// A body removed (the top of a stack, then a middle one): its manifolds go with it, as stock's
+// removeRigidBody frees them; the rest as stock.
+TEST(Manifolds, RemovedBodiesTakeTheirManifolds)
+{
+    SideBySide sb([](WorldKind k, const Config& c) { return scenes::boxStack(k, c, 4); });
+    sb.step(40);
+    ASSERT_TRUE(sb.onGpu());
+    for (int which : {4, 2}) {
+        sb.both([which](Scene& s) { s.removeBody(s.body(which)); });
+        EXPECT_EQ(counts(*sb.gpu).touching, counts(*sb.stock).touching);  // before any step
+        expectConsistent(*sb.gpu);
+        for (int step = 0; step < 30; ++step) {
+            sb.step();
+            ASSERT_TRUE(sb.onGpu()) << step;
+            expectConsistent(*sb.gpu);
+        }
+        EXPECT_EQ(counts(*sb.gpu).touching, counts(*sb.stock).touching) << which;
+        EXPECT_EQ(counts(*sb.gpu).points, counts(*sb.stock).points) << which;
+    }
+}
+
+// With an internal tick callback, the dispatcher is filled at every internal step: seen from
+// the callback, the counts are stock's at each of the 4 internal steps of a call.
+TEST(Manifolds, FilledAtEachInternalStepForTickCallbacks)
+{
+    SideBySide sb([](WorldKind k, const Config& c) { return scenes::boxStack(k, c, 3); });
+    static std::vector<int> seen[2];
+    seen[0].clear();
+    seen[1].clear();
+    auto tick = [](btDynamicsWorld* w, btScalar) {
+        int points = 0;
+        for (int i = 0; i < w->getDispatcher()->getNumManifolds(); ++i)
+            points += w->getDispatcher()->getManifoldByIndexInternal(i)->getNumContacts();
+        seen[w->getWorldUserInfo() ? 1 : 0].push_back(points);
+    };
+    sb.stock->world().setInternalTickCallback(tick, nullptr);
+    sb.gpu->world().setInternalTickCallback(tick, reinterpret_cast<void*>(1));
+    for (int call = 0; call < 10; ++call) {
+        sb.step(1, 4 * kStep, 4, kStep);
+        ASSERT_TRUE(sb.onGpu()) << call;
+    }
+    ASSERT_EQ(seen[0].size(), 40u);
+    EXPECT_EQ(seen[1], seen[0]);
+}
