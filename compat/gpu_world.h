@@ -94,8 +94,6 @@ private:
     void syncBroadphaseAabbs();
     void completeBroadphasePairs();
     bool m_broadphasePairsStale = false;
-}
-
     // The app's dispatcher manifolds from the readback just taken (Config::fillDispatcherManifolds).
     void fillManifolds();
     // The CPU path runs next: our manifolds go back to the dispatcher's pool (its algorithms
