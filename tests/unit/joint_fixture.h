@@ -30,6 +30,17 @@ struct BulletBodies {
     std::vector<std::unique_ptr<btRigidBody>> bodies;
     ref::ContactBodies rows;
 
+    // The rows compat's jointRow reads bodies a and b through: a then b.
+    static RowMap rowsOf(btRigidBody* a, btRigidBody* b)
+    {
+        btAlignedObjectArray<btCollisionObject*> objects;
+        objects.push_back(a);
+        objects.push_back(b);
+        RowMap map;
+        map.reset(objects);
+        return map;
+    }
+
     btRigidBody* add(btScalar mass, const btVector3& pos, const btQuaternion& q, const btVector3& v, const btVector3& w)
     {
         btVector3 inertia(0, 0, 0);

@@ -13,11 +13,7 @@ TEST(PrepareJoints, ConeTwistMotorRowsMatchBulletAndReference)
     BulletBodies s;
     btRigidBody* a = s.addBodyA();
     btRigidBody* b = s.addBodyB();
-    btAlignedObjectArray<btCollisionObject*> objects;
-    objects.push_back(a);
-    objects.push_back(b);
-    RowMap map;
-    map.reset(objects);
+    const RowMap map = s.rowsOf(a, b);
     const btTransform fa = frameInA(), fb = frameInB();
     const btQuaternion target(btVector3(0.3f, -1.0f, 0.5f).normalized(), 0.6f);
     std::vector<std::unique_ptr<btConeTwistConstraint>> c;

@@ -13,11 +13,7 @@ TEST(PrepareJoints, Generic6DofRowsMatchBulletAndReference)
     BulletBodies s;
     btRigidBody* a = s.addBodyA();
     btRigidBody* b = s.addBodyB();
-    btAlignedObjectArray<btCollisionObject*> objects;
-    objects.push_back(a);
-    objects.push_back(b);
-    RowMap map;
-    map.reset(objects);
+    const RowMap map = s.rowsOf(a, b);
     const btTransform fa = frameInA(), fb = frameInB();
     std::vector<std::unique_ptr<btGeneric6DofConstraint>> c;
     for (int offset = 0; offset < 2; ++offset) {
@@ -119,11 +115,7 @@ TEST(PrepareJoints, Generic6DofSubclassesAndObsoleteSolveAreNotServed)
     BulletBodies s;
     btRigidBody* a = s.add(2.0f, btVector3(0, 2, 0), btQuaternion::getIdentity(), btVector3(0, 0, 0), btVector3(0, 0, 0));
     btRigidBody* b = s.add(3.0f, btVector3(0, 1, 0), btQuaternion::getIdentity(), btVector3(0, 0, 0), btVector3(0, 0, 0));
-    btAlignedObjectArray<btCollisionObject*> objects;
-    objects.push_back(a);
-    objects.push_back(b);
-    RowMap map;
-    map.reset(objects);
+    const RowMap map = s.rowsOf(a, b);
     BtgJoint j;
     btGeneric6DofConstraint plain(*a, *b, btTransform::getIdentity(), btTransform::getIdentity(), true);
     EXPECT_TRUE(jointRow(plain, map, 10, &j));

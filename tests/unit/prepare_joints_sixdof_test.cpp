@@ -17,11 +17,7 @@ TEST(PrepareJoints, SixDofSpring2RowsMatchBulletAndReference)
     BulletBodies s;
     btRigidBody* a = s.addBodyA();
     btRigidBody* b = s.addBodyB();
-    btAlignedObjectArray<btCollisionObject*> objects;
-    objects.push_back(a);
-    objects.push_back(b);
-    RowMap map;
-    map.reset(objects);
+    const RowMap map = s.rowsOf(a, b);
     const btTransform fa = frameInA(), fb = frameInB();
     std::vector<std::unique_ptr<btGeneric6DofSpring2Constraint>> c;
     c.emplace_back(new btFixedConstraint(*a, *b, fa, fb));
@@ -78,11 +74,7 @@ TEST(PrepareJoints, SixDofSpringAndServoRowsMatchBulletAndReference)
     BulletBodies s;
     btRigidBody* a = s.addBodyA();
     btRigidBody* b = s.addBodyB();
-    btAlignedObjectArray<btCollisionObject*> objects;
-    objects.push_back(a);
-    objects.push_back(b);
-    RowMap map;
-    map.reset(objects);
+    const RowMap map = s.rowsOf(a, b);
     const btTransform fa = frameInA(), fb = frameInB();
     std::vector<std::unique_ptr<btGeneric6DofSpring2Constraint>> c;
     for (int order = 0; order < 6; ++order) {
@@ -167,11 +159,7 @@ TEST(PrepareJoints, SixDofSpringsServosAndHinge2AreServed)
     BulletBodies s;
     btRigidBody* a = s.add(2.0f, btVector3(0, 2, 0), btQuaternion::getIdentity(), btVector3(0, 0, 0), btVector3(0, 0, 0));
     btRigidBody* b = s.add(3.0f, btVector3(0, 1, 0), btQuaternion::getIdentity(), btVector3(0, 0, 0), btVector3(0, 0, 0));
-    btAlignedObjectArray<btCollisionObject*> objects;
-    objects.push_back(a);
-    objects.push_back(b);
-    RowMap map;
-    map.reset(objects);
+    const RowMap map = s.rowsOf(a, b);
     BtgJoint j;
     btGeneric6DofSpring2Constraint spring(*a, *b, btTransform::getIdentity(), btTransform::getIdentity());
     spring.enableSpring(1, true);
@@ -206,11 +194,7 @@ TEST(PrepareJoints, SixDofSpringBesideASleepingBodyStaysFinite)
     BulletBodies s;
     btRigidBody* a = s.addBodyA();
     btRigidBody* b = s.addBodyB();
-    btAlignedObjectArray<btCollisionObject*> objects;
-    objects.push_back(a);
-    objects.push_back(b);
-    RowMap map;
-    map.reset(objects);
+    const RowMap map = s.rowsOf(a, b);
     btGeneric6DofSpring2Constraint k(*a, *b, frameInA(), frameInB());
     for (int axis = 0; axis < 6; ++axis) {
         k.setLimit(axis, 1.0f, -1.0f);
