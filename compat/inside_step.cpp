@@ -1,0 +1,106 @@
+// inside_step.cpp — the host's part inside a GPU-path call, between or beside the device's:
+// Bullet's own broadphase kept where the bodies are (and its pairs completed before a CPU-path
+// step), the app's dispatcher manifolds, the app's actions between a step and its deactivation,
+// and following what an action or callback added, removed or changed inside a call.
+#include "gpu_world.h"
+
+#include <iostream>
+#include <typeinfo>
+
+namespace btgpu {
+
+btDbvtBroadphase* GpuWorld::dbvtBroadphase() const
+{
+    btBroadphaseInterface* bp = m_world.getBroadphase();
+    return bp && typeid(*bp) == typeid(btDbvtBroadphase) ? static_cast<btDbvtBroadphase*>(bp) : nullptr;
+}
+
+void GpuWorld::syncBroadphaseAabbs()
+{
+    // Bullet's dbvt broadphase, unless its collisions are deferred, tests each proxy setAabb
+    // moves against both of its trees and adds what it meets to the pair cache: the broadphase
+    // step of a CPU step, paid proxy by proxy (45 of 51 ms a step for 32,768 falling boxes),
+    // for pairs nothing on the GPU path reads and that only its pair update would remove. Only
+    // the AABBs are wanted here (ray and sweep tests), so those collisions wait, as the app's
+    // setting would let them wait, until the CPU path needs the pairs (completeBroadphasePairs).
+    btDbvtBroadphase* dbvt = dbvtBroadphase();
+    const bool deferred = dbvt && dbvt->m_deferedcollide;
+    if (dbvt) dbvt->m_deferedcollide = true;
+    m_world.updateAabbs();
+    if (dbvt) dbvt->m_deferedcollide = deferred;
+    if (dbvt && !deferred) m_broadphasePairsStale = true;
+}
+
+void GpuWorld::completeBroadphasePairs()
+{
+    // Before Bullet's own step after GPU steps: one deferred pair update finds every pair among
+    // the proxies that moved (tree against tree, the overlaps gone removed), so the pair cache
+    // is the one stock's broadphase would hold and its incremental updates go on from there.
+    btDbvtBroadphase* dbvt = dbvtBroadphase();
+    if (!dbvt || !m_broadphasePairsStale) return;
+    dbvt->m_deferedcollide = true;
+    dbvt->calculateOverlappingPairs(m_world.getDispatcher());
+    dbvt->m_deferedcollide = false;
+    m_broadphasePairsStale = false;
+}
+
+void GpuWorld::fillManifolds()
+{
+    if (m_config.fillDispatcherManifolds) m_manifolds.fill(m_world.getDispatcher(), m_rows, m_readback, m_removed);
+}
+
+void GpuWorld::leaveGpuPath() { m_manifolds.releaseAll(m_world.getDispatcher()); }
+
+void GpuWorld::dropCpuPathManifolds()
+{
+    // The pair cache's algorithms (made by CPU-path steps, or by the app's own collision calls)
+    // hold manifolds of the bodies as they were then: freed, as stock frees them when a pair
+    // goes, so the dispatcher holds only the GPU path's. A later CPU-path step makes them anew.
+    btDispatcher* dispatcher = m_world.getDispatcher();
+    btOverlappingPairCache* cache = m_world.getBroadphase() ? m_world.getBroadphase()->getOverlappingPairCache() : nullptr;
+    if (!cache || !dispatcher) return;
+    btBroadphasePairArray& pairs = cache->getOverlappingPairArray();
+    for (int i = 0; i < pairs.size(); ++i)
+        if (pairs[i].m_algorithm) cache->cleanOverlappingPair(pairs[i], dispatcher);
+}
+
+void GpuWorld::runActions(btScalar dt)
+{
+    // Where Bullet runs updateActions: after integrateTransforms, before the deactivation. The
+    // broadphase AABBs enclose the bodies where this step put them, so the actions' ray and
+    // sweep tests find what stock's find (stock's AABBs span the step's predicted motion).
+    // With ghosts the step's start set stock's own AABBs, predicted motion included.
+    if (m_ghosts.empty()) syncBroadphaseAabbs();
+    m_world.updateActions(dt);
+    // Velocities, impulses, forces and transforms the actions set, and bodies they woke. What
+    // they added or removed joins or leaves the rows at the next internal step (removed
+    // objects are skipped until then).
+    syncIn(*m_dev, changedRows(false));
+    resetRows(*m_dev, takeWoken());
+}
+
+bool GpuWorld::followWithinCall(int batch, int batches, btScalar fixedTimeStep)
+{
+    int bodyIndex = -1;
+    std::string why = cpuPathReason(&bodyIndex);
+    if (why.empty()) {
+        if (m_rowsStale) followRows();
+        return true;
+    }
+    // As a call that starts on the CPU path, but from this internal step on: Bullet's own
+    // internal steps (they run the pre-tick and tick callbacks), with the gravity stepSimulation
+    // applies before its loop (the GPU path keeps gravity on the device).
+    const std::string from = " (from internal step " + std::to_string(batch + 1) + " of " + std::to_string(batches) + ")";
+    std::cerr << "btgpu: running on the CPU path: " << why << from << "\n";
+    report({Issue::Kind::Fallback, why + from});
+    m_onCpuPath = true;
+    m_report.cpuPathReason = why + from;
+    m_needsRebuild = true;
+    leaveGpuPath();
+    completeBroadphasePairs();
+    m_world.applyGravity();
+    for (int b = batch; b < batches; ++b) m_world.internalSingleStepSimulation(fixedTimeStep);
+    return false;
+}
+
+}  // namespace btgpu
