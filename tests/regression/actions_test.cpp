@@ -171,6 +171,8 @@ TEST(Actions, UnservedObjectAddedByAnActionMovesTheRestOfTheCallToTheCpuPath)
         << s.gpu->report()->cpuPathReason;
     EXPECT_EQ(gpuCalls, stockCalls);
     for (int b = 1; b <= 3; ++b) EXPECT_LT(s.distance(b), tol::kRestHeight) << "body " << b;
+    // The GPU path's manifolds went back to the pool: the dispatcher holds Bullet's own, as stock's.
+    EXPECT_EQ(s.gpu->world().getDispatcher()->getNumManifolds(), s.stock->world().getDispatcher()->getNumManifolds());
     s.step(5, btScalar(4) / 60, 4, kStep);
     EXPECT_FALSE(s.onGpu());
     s.stock->world().removeCollisionObject(&stockGhost);
