@@ -191,37 +191,66 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
 {
     if (!dispatcher || !rb.contactsValid) return;
     ++m_stamp;
-    // Each report's Bullet identity, in parallel (reads only).
+    // Each report's Bullet identity and its map entry, in parallel: the lookups are the costly
+    // part (a random access each; 100,000+ manifolds at 32,768 cubes), and nothing inserts
+    // while they run.
     const size_t n = rb.numContacts;
     m_sides.resize(n);
     forEachChunk(n, 2048, [&](size_t begin, size_t end, int) {
-        for (size_t i = begin; i < end; ++i) m_sides[i] = orient(rows, rb.contacts[i], removed);
+        for (size_t i = begin; i < end; ++i) {
+            Side& side = m_sides[i];
+            side = orient(rows, rb.contacts[i], removed);
+            side.node = nullptr;
+            if (!side.valid) continue;
+            auto it = m_map.find(side.key);
+            if (it != m_map.end()) side.node = &*it;
+        }
     });
     // Reports are in pair order: a manifold's (a mesh pair's triangles, one compound child pair)
-    // are consecutive. Serially: the dispatcher's pool (getNewManifold is not thread-safe).
+    // are consecutive. Serially: the groups, and new manifolds from the dispatcher's pool
+    // (getNewManifold is not thread-safe); this pass reads the sides in order and touches the
+    // map only for keys it did not hold.
     m_groups.clear();
-    bool duplicate = false;
     for (size_t i = 0; i < n; ++i) {
-        const Side& side = m_sides[i];
+        Side& side = m_sides[i];
         if (!side.valid) continue;
-        if (!m_groups.empty() && m_groups.back().entry->first == side.key && m_groups.back().last == i) {
+        if (!m_groups.empty() && m_groups.back().last == i && m_groups.back().entry->first == side.key) {
             m_groups.back().last = i + 1;
             continue;
         }
-        auto it = m_map.find(side.key);
-        if (it == m_map.end())
-            it = m_map.emplace(side.key, Entry{dispatcher->getNewManifold(side.key.body0, side.key.body1), 0, {}}).first;
-        duplicate |= it->second.stamp == m_stamp;  // the same manifold again, not adjacent
-        it->second.stamp = m_stamp;
-        m_groups.push_back({&*it, i, i + 1, side.spheres});
+        Node* node = side.node;
+        if (!node) {
+            auto it = m_map.find(side.key);  // a new key seen earlier in this pass
+            if (it == m_map.end()) it = m_map.emplace(side.key, Entry{nullptr, 0, {}}).first;
+            node = &*it;
+        }
+        if (!node->second.manifold) {
+            // New, or revived after its body left (a new body at the freed address).
+            m_dead.erase(node);
+            node->second = Entry{dispatcher->getNewManifold(side.key.body0, side.key.body1), 0, {}};
+            m_byObject[side.key.body0].push_back(node);
+            if (side.key.body1 != side.key.body0) m_byObject[side.key.body1].push_back(node);
+        }
+        m_groups.push_back({node, i, i + 1, side.spheres});
     }
+    // Stamps in parallel; a manifold named by two groups (not adjacent: not seen in pair order)
+    // shows as a stamp already this fill's.
+    const size_t numGroups = m_groups.size();
+    std::vector<unsigned char> duplicateIn(size_t(chunkCount(numGroups, 2048)), 0);
+    forEachChunk(numGroups, 2048, [&](size_t begin, size_t end, int chunk) {
+        for (size_t k = begin; k < end; ++k)
+            if (__atomic_exchange_n(&m_groups[k].entry->second.stamp, m_stamp, __ATOMIC_RELAXED) == m_stamp)
+                duplicateIn[size_t(chunk)] = 1;
+    });
+    const bool duplicate = std::find(duplicateIn.begin(), duplicateIn.end(), 1) != duplicateIn.end();
+    m_nextLive.clear();
     if (duplicate) {
-        // Not seen in pair order, but kept right: one group per manifold, in report order.
+        // Kept right anyway: one group per manifold, in report order.
         std::unordered_map<const void*, size_t> firstOf;
         std::vector<Group> merged;
         std::vector<std::vector<size_t>> members;
         for (const Group& g : m_groups) {
-            auto [it, fresh] = firstOf.emplace(g.entry->second.manifold, merged.size());
+            auto [it, fresh] = firstOf.emplace(g.entry, merged.size());
             if (fresh) {
                 merged.push_back(g);
                 members.emplace_back();
@@ -241,45 +270,86 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
         }
         m_sides.swap(sides);
         m_scratch.swap(reports);
-        for (const Group& g : merged) refill(g, m_scratch.data());
+        for (const Group& g : merged) {
+            refill(g, m_scratch.data());
+            m_nextLive.push_back(g.entry);
+        }
     } else {
-        forEachChunk(m_groups.size(), 512, [&](size_t begin, size_t end, int) {
+        forEachChunk(numGroups, 512, [&](size_t begin, size_t end, int) {
             for (size_t k = begin; k < end; ++k) refill(m_groups[k], rb.contacts.data());
         });
+        for (const Group& g : m_groups) m_nextLive.push_back(g.entry);
     }
 
     // Pairs that stopped touching: released, as stock's algorithm empties and the pair goes;
-    // a pair of two sleeping (or static) bodies is not collided by stock: kept as it was.
+    // a pair of two sleeping (or static) bodies is not collided by stock: kept as it was. Only
+    // the last fill's entries can be stale; they are judged in parallel (random accesses).
+    m_staleFlag.assign(m_live.size(), 0);
+    forEachChunk(m_live.size(), 4096, [&](size_t begin, size_t end, int) {
+        for (size_t i = begin; i < end; ++i) {
+            Node* node = m_live[i];
+            if (m_dead.count(node) || node->second.stamp == m_stamp) continue;
+            m_staleFlag[i] = (node->first.body0->isActive() || node->first.body1->isActive()) ? 1 : 2;
+        }
+    });
     // Released from the dispatcher's last index down, so its array order does not depend on
     // the map's (address-hashed) order.
-    std::vector<std::pair<int, Key>> stale;
-    for (const auto& [key, e] : m_map)
-        if (e.stamp != m_stamp && (key.body0->isActive() || key.body1->isActive()))
-            stale.push_back({e.manifold->m_index1a, key});
-    std::sort(stale.begin(), stale.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
-    for (const auto& [index, key] : stale) {
-        auto it = m_map.find(key);
-        dispatcher->releaseManifold(it->second.manifold);
-        m_map.erase(it);
+    std::vector<std::pair<int, Node*>> stale;
+    for (size_t i = 0; i < m_live.size(); ++i) {
+        if (m_staleFlag[i] == 2) m_nextLive.push_back(m_live[i]);
+        if (m_staleFlag[i] == 1) stale.push_back({m_live[i]->second.manifold->m_index1a, m_live[i]});
     }
+    std::sort(stale.begin(), stale.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+    for (const auto& [index, node] : stale) {
+        dispatcher->releaseManifold(node->second.manifold);
+        forget(node);
+    }
+    // Nodes of bodies that left and were not found again: gone for good.
+    for (Node* node : m_dead) m_map.erase(node->first);
+    m_dead.clear();
+    m_live.swap(m_nextLive);
+}
+
+void ManifoldSync::forget(Node* node)
+{
+    for (const btCollisionObject* o : {node->first.body0, node->first.body1}) {
+        auto it = m_byObject.find(o);
+        if (it == m_byObject.end()) continue;
+        auto& list = it->second;
+        list.erase(std::remove(list.begin(), list.end(), node), list.end());
+        if (list.empty()) m_byObject.erase(it);
+    }
+    m_map.erase(node->first);
 }
 
 void ManifoldSync::releaseAll(btDispatcher* dispatcher)
 {
     if (dispatcher)
-        for (auto& [key, e] : m_map) dispatcher->releaseManifold(e.manifold);
+        for (auto& [key, e] : m_map)
+            if (e.manifold) dispatcher->releaseManifold(e.manifold);
     m_map.clear();
+    m_byObject.clear();
+    m_live.clear();
+    m_dead.clear();
 }
 
 void ManifoldSync::removed(btDispatcher* dispatcher, const btCollisionObject* object)
 {
-    for (auto it = m_map.begin(); it != m_map.end();) {
-        if (it->first.body0 != object && it->first.body1 != object) {
-            ++it;
-            continue;
+    // Released at once (the app may delete the object next); the nodes wait for the next fill.
+    auto it = m_byObject.find(object);
+    if (it == m_byObject.end()) return;
+    std::vector<Node*> nodes = std::move(it->second);
+    m_byObject.erase(it);
+    for (Node* node : nodes) {
+        const btCollisionObject* other = node->first.body0 == object ? node->first.body1 : node->first.body0;
+        auto o = m_byObject.find(other);
+        if (o != m_byObject.end()) {
+            o->second.erase(std::remove(o->second.begin(), o->second.end(), node), o->second.end());
+            if (o->second.empty()) m_byObject.erase(o);
         }
-        if (dispatcher) dispatcher->releaseManifold(it->second.manifold);
-        it = m_map.erase(it);
+        if (dispatcher && node->second.manifold) dispatcher->releaseManifold(node->second.manifold);
+        node->second.manifold = nullptr;
+        m_dead.insert(node);
     }
 }
 

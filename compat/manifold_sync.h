@@ -29,7 +29,7 @@ public:
     void releaseAll(btDispatcher* dispatcher);
     // Those of an object leaving the world (stock: removeRigidBody → cleanProxyFromPairs).
     void removed(btDispatcher* dispatcher, const btCollisionObject* object);
-    size_t size() const { return m_map.size(); }
+    size_t size() const { return m_map.size() - m_dead.size(); }
 
 private:
     struct Key {
@@ -50,12 +50,14 @@ private:
     };
     struct Entry {
         btPersistentManifold* manifold;
-        long stamp;  // the last fill that named it
+        long stamp;  // the last fill that named it (written by the parallel pass: atomically)
         unsigned ids[4];  // the feature id of each of its points (BTG_FEATURE_*)
     };
+    using Node = std::pair<const Key, Entry>;  // a map node: its address stays while it is in the map
     // One report's manifold in Bullet's terms (orient: which side is body0, the key).
     struct Side {
         Key key;
+        Node* node;    // the map's entry for key, null while it has none
         bool valid;    // both bodies still in the world
         bool swap;     // the report's B is Bullet's body0
         bool spheres;  // sphere–sphere (stock clears that manifold every step)
@@ -64,7 +66,7 @@ private:
     };
     // The reports [first, last) of one manifold.
     struct Group {
-        std::pair<const Key, Entry>* entry;
+        Node* entry;
         size_t first, last;
         bool spheres;
     };
@@ -73,7 +75,20 @@ private:
     // One manifold's points from its reports (touches only that manifold: run in parallel).
     void refill(const Group& g, const BtgContactReport* reports);
 
+    // Drops one map entry (and its place in m_byObject); the manifold is the caller's to release.
+    void forget(Node* node);
+
     std::unordered_map<Key, Entry, KeyHash> m_map;
+    // Every entry by each of its two bodies, so that removing a body costs its own manifolds,
+    // not a walk of the whole map (an app clearing a level removes thousands).
+    std::unordered_map<const btCollisionObject*, std::vector<Node*>> m_byObject;
+    // The entries the last fill named or kept: the only ones this fill can find stale.
+    std::vector<Node*> m_live;
+    std::vector<Node*> m_nextLive;
+    std::vector<unsigned char> m_staleFlag;
+    // Entries whose body left (manifold released at once, node kept until the next fill so that
+    // m_live never names a freed node); a key found again is revived with a new manifold.
+    std::unordered_set<Node*> m_dead;
     long m_stamp = 0;
     std::vector<Side> m_sides;    // per report of the current fill
     std::vector<Group> m_groups;

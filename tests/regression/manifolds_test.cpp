@@ -440,6 +440,47 @@ TEST(Manifolds, RemovedBodiesTakeTheirManifolds)
     }
 }
 
+// A body removed and a new one made at the same address before the next step (as an app's
+// pool allocator would): its pairs have the old manifolds' keys. The dispatcher holds stock's
+// manifolds, none naming the old body's state, with lifetimes counted from the new body's add.
+TEST(Manifolds, ABodyRemadeAtTheSameAddressGetsFreshManifolds)
+{
+    SideBySide sb([](WorldKind k, const Config& c) { return scenes::boxStack(k, c, 4); });
+    sb.step(40);
+    ASSERT_TRUE(sb.onGpu());
+    for (int round = 0; round < 3; ++round) {
+        sb.both([&](Scene& s) {
+            btRigidBody* b = s.body(2);
+            btMotionState* motion = b->getMotionState();
+            btCollisionShape* shape = b->getCollisionShape();
+            btTransform at = b->getWorldTransform();
+            at.getOrigin() += btVector3(0, btScalar(0.01), 0);
+            s.world().removeRigidBody(b);
+            b->~btRigidBody();
+            motion->setWorldTransform(at);
+            btVector3 inertia;
+            shape->calculateLocalInertia(1, inertia);
+            new (b) btRigidBody(btRigidBody::btRigidBodyConstructionInfo(1, motion, shape, inertia));
+            s.world().addRigidBody(b);
+        });
+        expectConsistent(*sb.gpu);
+        for (int step = 0; step < 20; ++step) {
+            sb.step();
+            ASSERT_TRUE(sb.onGpu()) << step;
+            expectConsistent(*sb.gpu);
+        }
+        const Counts g = counts(*sb.gpu), st = counts(*sb.stock);
+        EXPECT_EQ(g.touching, st.touching) << round;
+        EXPECT_EQ(g.points, st.points) << round;
+        btDispatcher* d = sb.gpu->world().getDispatcher();
+        for (int i = 0; i < d->getNumManifolds(); ++i) {
+            const btPersistentManifold* m = d->getManifoldByIndexInternal(i);
+            if (m->getBody0() != sb.gpu->body(2) && m->getBody1() != sb.gpu->body(2)) continue;
+            for (int j = 0; j < m->getNumContacts(); ++j) EXPECT_LE(m->getContactPoint(j).getLifeTime(), 21) << round;
+        }
+    }
+}
+
 // With an internal tick callback, the dispatcher is filled at every internal step: seen from
 // the callback, the counts are stock's at each of the 4 internal steps of a call.
 TEST(Manifolds, FilledAtEachInternalStepForTickCallbacks)
