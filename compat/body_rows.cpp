@@ -29,11 +29,13 @@ BtgBodyProps bodyProps(const btCollisionObject* obj, int shapeRow, const BtgShap
     // response is Bullet's fixed body in the solver: flagged static, a static row; otherwise
     // a kinematic row with zero velocity, never asleep and waking what it touches (stock's
     // kinematic objects wake what they touch; a ghost that merges islands keeps them awake,
-    // held further by heldAwakeByGhosts). Without contact response it takes no part here.
+    // held further by heldAwakeByGhosts). Without contact response (a trigger) it is a
+    // kinematic row that is never solved and wakes nothing: stock's dispatcher still collides
+    // it (a ghost is never deactivated) and the app reads those manifolds.
     const bool ghost = obj->getInternalType() == btCollisionObject::CO_GHOST_OBJECT;
-    if (ghost && obj->hasContactResponse() && (obj->isKinematicObject() || !obj->isStaticOrKinematicObject()))
+    if (ghost && (!obj->hasContactResponse() || obj->isKinematicObject() || !obj->isStaticOrKinematicObject()))
         flags = (flags & ~BTG_BODY_STATIC) | BTG_BODY_KINEMATIC | BTG_BODY_NEVER_SLEEP;
-    if (state == DISABLE_SIMULATION || excluded || (ghost && !obj->hasContactResponse())) flags |= BTG_BODY_EXCLUDED;
+    if (state == DISABLE_SIMULATION || excluded) flags |= BTG_BODY_EXCLUDED;
     if (state == DISABLE_DEACTIVATION || obj->isKinematicObject()) flags |= BTG_BODY_NEVER_SLEEP;
     if (shape.type == BTG_SHAPE_PLANE) flags = (flags & ~(BTG_BODY_DYNAMIC | BTG_BODY_KINEMATIC)) | BTG_BODY_STATIC;
     if (rb) {

@@ -149,7 +149,7 @@ void GpuWorld::makePlan()
         const btCollisionObject* o = m_rows.at(r);
         PlanBody b;
         const bool ghost = o && o->getInternalType() == btCollisionObject::CO_GHOST_OBJECT;
-        if (!o || (ghost && !o->hasContactResponse())) {  // a trigger: no part on the device
+        if (!o) {
             b.live = false;
             in.bodies.push_back(b);
             continue;
@@ -159,7 +159,8 @@ void GpuWorld::makePlan()
         for (int k = 0; k < s.numChildren && s.type == BTG_SHAPE_COMPOUND; ++k)
             b.leafKinds |= 1u << m_shapes.shapes[size_t(m_shapes.children[size_t(s.firstChild + k)].shape)].type;
         b.size = s.type == BTG_SHAPE_PLANE ? 0.0f : 2.0f * boundingRadius(s);
-        b.movable = !o->isStaticObject() || ghost;
+        // A kinematic body made with mass 0 keeps CF_STATIC_OBJECT beside CF_KINEMATIC_OBJECT.
+        b.movable = !o->isStaticObject() || o->isKinematicObject() || ghost;
         b.dynamic = !o->isStaticOrKinematicObject() && !ghost;
         const btRigidBody* rb = btRigidBody::upcast(o);
         b.gyroscopic = rb && (rb->getFlags() & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);

@@ -95,7 +95,7 @@ __kernel void large_pairs(__global const BtgFloat4* restrict aabbMin, __global c
     int i = (int)get_global_id(0);
     if (i >= numBodies) return;
     BtgBodyProps pi = props[i];
-    if ((pi.flags & (BTG_BODY_EXCLUDED | BTG_BODY_NO_RESPONSE)) || shapes[pi.shape].type == BTG_SHAPE_PLANE) return;
+    if ((pi.flags & BTG_BODY_EXCLUDED) || shapes[pi.shape].type == BTG_SHAPE_PLANE) return;
     int iLarge = (pi.flags & BTG_BODY_LARGE) != 0;
     BtgFloat4 iMin = aabbMin[i], iMax = aabbMax[i];
     for (int l = 0; l < numLarge; ++l) {
@@ -117,7 +117,7 @@ __kernel void plane_pairs(__global const BtgFloat4* restrict aabbMin, __global c
     int i = (int)get_global_id(0);
     if (i >= numBodies) return;
     BtgBodyProps pi = props[i];
-    if ((pi.flags & (BTG_BODY_EXCLUDED | BTG_BODY_NO_RESPONSE)) || shapes[pi.shape].type == BTG_SHAPE_PLANE) return;
+    if ((pi.flags & BTG_BODY_EXCLUDED) || shapes[pi.shape].type == BTG_SHAPE_PLANE) return;
     BtgFloat4 iMin = aabbMin[i], iMax = aabbMax[i];
     for (int l = 0; l < numPlanes; ++l) {
         int j = planeBodies[l];

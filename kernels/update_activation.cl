@@ -40,11 +40,14 @@ __kernel void island_min(__global const BtgEdge* restrict edges, __global const 
     if (k >= count) return;
     BtgEdge c = edges[k];
     uint fa = props[c.bodyA].flags, fb = props[c.bodyB].flags;
-    if (btgCanSleep(fa) && btgCanSleep(fb)) {
+    /* Joints unite any two dynamic bodies (stock's calculateSimulationIslands), contacts only
+     * bodies that respond. */
+    const int joint = numJoints > 0 && k >= (int)min(counters[BTG_COUNTER_CONTACTS], (uint)(capacity - numJoints));
+    if (joint ? btgCanSleep(fa) && btgCanSleep(fb) : btgMergesIslands(fa) && btgMergesIslands(fb)) {
         atomic_min(&islandDst[c.bodyA], islandSrc[c.bodyB]);
         atomic_min(&islandDst[c.bodyB], islandSrc[c.bodyA]);
     }
-    if (numJoints > 0 && k >= (int)min(counters[BTG_COUNTER_CONTACTS], (uint)(capacity - numJoints))) {
+    if (joint) {
         if (btgJointWakes(fa, fb)) wake[c.bodyB] = 1u;
         if (btgJointWakes(fb, fa)) wake[c.bodyA] = 1u;
     }

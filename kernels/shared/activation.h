@@ -15,6 +15,14 @@ static inline int btgCanSleep(uint flags)
     return (flags & BTG_BODY_DYNAMIC) && !(flags & (BTG_BODY_SLEEPING | BTG_BODY_EXCLUDED));
 }
 
+/* Bodies whose contacts unite islands (mergesSimulationIslands: not static, kinematic or
+ * CF_NO_CONTACT_RESPONSE). A no-response body's contacts neither unite nor wake: it sleeps by
+ * its own timer and touches nothing awake, as in stock. */
+static inline int btgMergesIslands(uint flags)
+{
+    return btgCanSleep(flags) && !(flags & BTG_BODY_NO_RESPONSE);
+}
+
 static inline float btgOwnTimer(float timer, BtgFloat4 v, BtgFloat4 w, BtgBodyProps p, float dt)
 {
     if (p.flags & BTG_BODY_NEVER_SLEEP) return 0.0f;
@@ -23,13 +31,15 @@ static inline float btgOwnTimer(float timer, BtgFloat4 v, BtgFloat4 w, BtgBodyPr
 }
 
 /* Whether body a (flags fa, own timer ta) wakes the sleeping body b it touches: a moving
- * dynamic body does (joining an active island), and so does any kinematic one (Bullet's
- * "kinematic objects don't merge islands, but wake up all connected objects"). */
+ * dynamic body does (joining an active island), and so does any kinematic one with contact
+ * response (Bullet's "kinematic objects don't merge islands, but wake up all connected
+ * objects"). Only dynamic bodies wake (activate() leaves static and kinematic ones), and a
+ * no-response body wakes nothing (it merges no island). */
 static inline int btgWakes(uint fa, uint fb, float ta)
 {
-    if (!(fb & BTG_BODY_SLEEPING) || (fb & BTG_BODY_EXCLUDED)) return 0;
+    if (!(fb & BTG_BODY_SLEEPING) || (fb & BTG_BODY_EXCLUDED) || !(fb & BTG_BODY_DYNAMIC)) return 0;
     if ((fa & BTG_BODY_KINEMATIC) && !(fa & (BTG_BODY_EXCLUDED | BTG_BODY_NO_RESPONSE))) return 1;
-    return btgCanSleep(fa) && ta == 0.0f;
+    return btgMergesIslands(fa) && !(fb & BTG_BODY_NO_RESPONSE) && ta == 0.0f;
 }
 
 /* Whether a joint from awake dynamic body a wakes the sleeping body b it links: stock unites a

@@ -24,16 +24,21 @@ static inline float btgFloor(float x) { return std::floor(x); }
  * an excluded row may have no shape (shape -1). */
 static inline int btgGridded(BtgBodyProps p, BTG_CONST_GLOBAL BtgShape* shapes)
 {
-    uint skip = BTG_BODY_LARGE | BTG_BODY_EXCLUDED | BTG_BODY_NO_RESPONSE;
+    uint skip = BTG_BODY_LARGE | BTG_BODY_EXCLUDED;
     return !(p.flags & skip) && shapes[p.shape].type != BTG_SHAPE_PLANE;
 }
 
+/* Bullet's dispatcher collides a pair the filter masks allow when either body is active
+ * (needsCollision), whether or not it responds (a CF_NO_CONTACT_RESPONSE trigger gets its
+ * manifold, unsolved). Active: an awake dynamic or kinematic body (stock's kinematic bodies
+ * sleep as dynamic ones do; static ones are added asleep). Default masks keep kinematic and
+ * static bodies apart; custom ones may ask for those pairs. */
 static inline int btgPairAllowed(BtgBodyProps a, BtgBodyProps b)
 {
-    uint bad = BTG_BODY_EXCLUDED | BTG_BODY_NO_RESPONSE;
-    if ((a.flags | b.flags) & bad) return 0;
-    int aActive = (a.flags & BTG_BODY_DYNAMIC) && !(a.flags & BTG_BODY_SLEEPING);
-    int bActive = (b.flags & BTG_BODY_DYNAMIC) && !(b.flags & BTG_BODY_SLEEPING);
+    if ((a.flags | b.flags) & BTG_BODY_EXCLUDED) return 0;
+    uint moving = BTG_BODY_DYNAMIC | BTG_BODY_KINEMATIC;
+    int aActive = (a.flags & moving) && !(a.flags & BTG_BODY_SLEEPING);
+    int bActive = (b.flags & moving) && !(b.flags & BTG_BODY_SLEEPING);
     /* A kinematic body reaching a sleeping one must be seen: it wakes it, as in Bullet. */
     int aWakes = (a.flags & BTG_BODY_KINEMATIC) && (b.flags & BTG_BODY_DYNAMIC) && (b.flags & BTG_BODY_SLEEPING);
     int bWakes = (b.flags & BTG_BODY_KINEMATIC) && (a.flags & BTG_BODY_DYNAMIC) && (a.flags & BTG_BODY_SLEEPING);

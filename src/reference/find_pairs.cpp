@@ -15,11 +15,11 @@ std::vector<BtgPair> findPairs(const std::vector<BtgFloat4>& aabbMin, const std:
     std::vector<BtgPair> out;
     const int n = int(props.size());
     auto isPlane = [&](int i) { return shapes[size_t(props[size_t(i)].shape)].type == BTG_SHAPE_PLANE; };
-    // Excluded and no-response rows never pair: dropping them first keeps sparse scenes with
-    // many rows (the two-pass pair sort needs > 65536) quick to check.
+    // Excluded rows never pair: dropping them first keeps sparse scenes with many rows (the
+    // two-pass pair sort needs > 65536) quick to check.
     std::vector<int> live;
     for (int i = 0; i < n; ++i)
-        if (!(props[size_t(i)].flags & (BTG_BODY_EXCLUDED | BTG_BODY_NO_RESPONSE))) live.push_back(i);
+        if (!(props[size_t(i)].flags & BTG_BODY_EXCLUDED)) live.push_back(i);
     for (size_t ia = 0; ia < live.size(); ++ia) {
         for (size_t ib = ia + 1; ib < live.size(); ++ib) {
             const int a = live[ia], b = live[ib];

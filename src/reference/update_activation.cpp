@@ -45,11 +45,13 @@ void updateActivation(ActivationState& s, const std::vector<BtgEdge>& edges, flo
         for (size_t k = 0; k < edges.size(); ++k) {
             const BtgEdge& c = edges[k];
             uint fa = s.props[c.bodyA].flags, fb = s.props[c.bodyB].flags;
-            if (firstJointEdge >= 0 && k >= size_t(firstJointEdge)) {
+            const bool joint = firstJointEdge >= 0 && k >= size_t(firstJointEdge);
+            if (joint) {
                 if (btgJointWakes(fa, fb)) wake[c.bodyB] = 1;
                 if (btgJointWakes(fb, fa)) wake[c.bodyA] = 1;
             }
-            if (btgCanSleep(fa) && btgCanSleep(fb)) {
+            // Joints unite any two dynamic bodies, contacts only bodies that respond.
+            if (joint ? btgCanSleep(fa) && btgCanSleep(fb) : btgMergesIslands(fa) && btgMergesIslands(fb)) {
                 dst[c.bodyA] = std::min(dst[c.bodyA], s.islandTime[c.bodyB]);
                 dst[c.bodyB] = std::min(dst[c.bodyB], s.islandTime[c.bodyA]);
             }
