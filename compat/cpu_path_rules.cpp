@@ -307,7 +307,8 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
     if (gContactDestroyedCallback) return "gContactDestroyedCallback is set";
     // Read by btCompoundCollisionAlgorithm for every child it would collide.
     if (gCompoundChildShapePairCallback) return "gCompoundChildShapePairCallback is set";
-    // gContactAddedCallback only runs for bodies with CF_CUSTOM_MATERIAL_CALLBACK: a body rule.
+    // gContactAddedCallback only runs for bodies with CF_CUSTOM_MATERIAL_CALLBACK: served, but for
+    // the cases contact_callbacks.h names.
     // The combiners run for every contact point; the GPU path multiplies friction (clamped to
     // ±10) and restitution, and has no rolling or spinning friction. The contact stiffness and
     // damping combiners only run for CF_HAS_CONTACT_STIFFNESS_DAMPING bodies, a body rule.
@@ -379,7 +380,8 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     // Flags left on the GPU path: CF_CHARACTER_OBJECT, CF_DISABLE_VISUALIZE_OBJECT,
     // CF_DISABLE_SPU_COLLISION_PROCESSING, CF_HAS_CUSTOM_DEBUG_RENDERING_COLOR and
     // CF_HAS_COLLISION_SOUND_TRIGGER are unread by 3.24's rigid-body pipeline;
-    // CF_CUSTOM_MATERIAL_CALLBACK does nothing without gContactAddedCallback. Collision-check
+    // CF_CUSTOM_MATERIAL_CALLBACK with gContactAddedCallback is served (contact_callbacks.h, whose
+    // unservedReason GpuWorld asks). Collision-check
     // exceptions (setIgnoreCollisionCheck, disableCollisionsBetweenLinkedBodies) are served by
     // filter_pairs.
     const int flags = o->getCollisionFlags();
@@ -388,8 +390,6 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     if (flags & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING)
         return "contact stiffness and damping (CF_HAS_CONTACT_STIFFNESS_DAMPING)";
     if (flags & btCollisionObject::CF_HAS_FRICTION_ANCHOR) return "friction anchors (CF_HAS_FRICTION_ANCHOR)";
-    if ((flags & btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK) && context.contactAddedCallback)
-        return "gContactAddedCallback with CF_CUSTOM_MATERIAL_CALLBACK";
     // Bullet combines these with the other body's friction: one body with them is enough.
     if (o->getRollingFriction() != btScalar(0)) return "rolling friction (setRollingFriction)";
     if (o->getSpinningFriction() != btScalar(0)) return "spinning friction (setSpinningFriction)";

@@ -119,6 +119,7 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
     for (size_t g = 0; g < m_ghosts.size() && !m_structureDirty; ++g)
         if (m_ghosts[g]->hasContactResponse() != bool(m_ghostResponds[g])) m_structureDirty = true;
     if (m_structureDirty) {
+        m_callbackReason.clear();
         m_structureReason = structureReason(m_world, &m_shapes);
         const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
         m_shapeOfObject.resize(size_t(objs.size()));
@@ -133,6 +134,10 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
     if (!m_structureReason.empty()) return m_structureReason;
     std::string why = worldReason(m_world, m_config);
     if (why.empty()) why = bodiesReason(m_world, bodyIndex);
+    if (why.empty() && ContactCallbacks::wanted(m_world)) {
+        if (!m_callbackReason.empty() && m_callbackReasonFor == gContactAddedCallback) return m_callbackReason;
+        why = ContactCallbacks::unservedReason(m_config, m_shapes);
+    }
     return why;
 }
 
@@ -169,6 +174,7 @@ void GpuWorld::makePlan()
     m_plan = d.plan;
     m_plan.hasIgnoredPairs = m_ignored.any();
     m_plan.reportContacts = m_config.fillDispatcherManifolds;
+    m_plan.contactCallbacks = ContactCallbacks::wanted(m_world);
     m_large.assign(m_rows.size(), false);
     for (int r : d.largeRows) m_large[size_t(r)] = true;
     DeviceWorld& w = *m_dev;
@@ -450,20 +456,22 @@ StepSettings GpuWorld::settings(int substeps, btScalar dt) const
     return s;
 }
 
-void GpuWorld::runOnDevice(int substeps, btScalar dt, SubstepPart part)
+bool GpuWorld::runOnDevice(int substeps, btScalar dt, SubstepPart part, const std::function<bool()>& betweenContacts)
 {
     DeviceWorld& w = *m_dev;
     // substeps * k stays an int: k is capped where the product would overflow.
     const int k = std::max(std::min(m_config.internalSubsteps, std::numeric_limits<int>::max() / std::max(substeps, 1)), 1);
     StepSettings s = settings(part == SubstepPart::ActivationOnly ? 1 : substeps * k, dt / btScalar(k));
     s.lastPart = part;
-    const CallOutcome outcome = runCall(w, m_plan, s, m_snapshot, m_readback);
+    const CallOutcome outcome = runCall(w, m_plan, s, m_snapshot, m_readback, betweenContacts);
     for (const CallEvent& e : outcome.events)
         report({e.kind == CallEvent::Kind::Grew ? Issue::Kind::Overflow : Issue::Kind::Device, e.message});
     m_report.redoneSteps += outcome.redone;
+    if (outcome.abandoned) return false;
     m_rows.stepped();
     m_report.pairs = int(std::min<size_t>(m_readback.counters[kPairCount], w.pairCapacity));
     m_report.contacts = int(m_readback.counters[kContactCount]);
+    return true;
 }
 
 void GpuWorld::writeBack(const BodyReadback& rb, bool last, bool sleepRead)
@@ -671,6 +679,8 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
     m_dev->profiler.resetLaunchCount();
     m_report.syncInMs = m_report.deviceMs = m_report.writeBackMs = 0.0;
     m_report.ghostBroadphaseMs = 0.0;
+    m_report.callbackMs = 0.0;
+    m_report.contactCallbacks = 0;
     const bool profiled = m_config.profile && (m_calls++ % std::max(m_config.profileEvery, 1)) == 0;
     m_dev->profiler.enabled = profiled;
     // Set before the substeps, as stock Bullet does: motion-state interpolation reads them.
@@ -683,7 +693,23 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         const bool actions = m_world.m_actions.size() > 0;
         // Ghosts: the host runs stock's broadphase update at each internal step's start.
         const bool ghosts = !m_ghosts.empty();
-        bool perSubstep = m_world.m_internalTickCallback || m_world.m_internalPreTickCallback || actions || ghosts;
+        // The app's contact callbacks: each internal step stops between its contacts and its solve.
+        const bool callbacks = ContactCallbacks::wanted(m_world);
+        if (callbacks != m_plan.contactCallbacks) {
+            m_plan.contactCallbacks = callbacks;
+            m_report.stages = m_plan.stages();
+        }
+        std::function<bool()> betweenContacts;
+        if (callbacks)
+            betweenContacts = [this] {
+                const Clock::time_point c0 = Clock::now();
+                const bool carried = m_callbacks.run(*m_dev, m_rows, m_removed);
+                m_report.callbackMs += msBetween(c0, Clock::now());
+                m_report.contactCallbacks += m_callbacks.calls();
+                return carried;
+            };
+        bool perSubstep = m_world.m_internalTickCallback || m_world.m_internalPreTickCallback || actions || ghosts ||
+                          callbacks;
         int batches = perSubstep ? clamped : 1;
         int perBatch = perSubstep ? 1 : clamped;
         for (int b = 0; b < batches; ++b) {
@@ -717,15 +743,24 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
                 m_report.stages = m_plan.stages();
             }
             Clock::time_point t1 = Clock::now();
+            // A change the callbacks made that the device cannot carry: this internal step and
+            // the rest of the call run on the CPU path (the callbacks are called again there).
+            auto abandoned = [&] {
+                m_callbackReason = m_callbacks.reason();
+                m_callbackReasonFor = gContactAddedCallback;
+                cpuPathFrom(b, batches, fixedTimeStep, m_callbackReason);
+                *substepsDone = numSubSteps;
+                return finishCall(profiled, false);
+            };
             if (actions) {
-                runOnDevice(perBatch, fixedTimeStep, SubstepPart::BeforeActivation);
+                if (!runOnDevice(perBatch, fixedTimeStep, SubstepPart::BeforeActivation, betweenContacts)) return abandoned();
                 m_joints.writeBack(*m_dev);
                 writeBack(m_readback, false, false);
                 fillManifolds();  // the actions see this internal step's contacts
                 runActions(fixedTimeStep);
                 runOnDevice(1, fixedTimeStep, SubstepPart::ActivationOnly);
             } else {
-                runOnDevice(perBatch, fixedTimeStep);
+                if (!runOnDevice(perBatch, fixedTimeStep, SubstepPart::Whole, betweenContacts)) return abandoned();
                 m_joints.writeBack(*m_dev);  // applied impulses, feedback, breaks
             }
             Clock::time_point t2 = Clock::now();

@@ -87,6 +87,12 @@ bool GpuWorld::followWithinCall(int batch, int batches, btScalar fixedTimeStep)
         if (m_rowsStale) followRows();
         return true;
     }
+    cpuPathFrom(batch, batches, fixedTimeStep, why);
+    return false;
+}
+
+void GpuWorld::cpuPathFrom(int batch, int batches, btScalar fixedTimeStep, const std::string& why)
+{
     // As a call that starts on the CPU path, but from this internal step on: Bullet's own
     // internal steps (they run the pre-tick and tick callbacks), with the gravity stepSimulation
     // applies before its loop (the GPU path keeps gravity on the device).
@@ -100,7 +106,6 @@ bool GpuWorld::followWithinCall(int batch, int batches, btScalar fixedTimeStep)
     completeBroadphasePairs();
     m_world.applyGravity();
     for (int b = batch; b < batches; ++b) m_world.internalSingleStepSimulation(fixedTimeStep);
-    return false;
 }
 
 }  // namespace btgpu

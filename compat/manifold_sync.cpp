@@ -42,9 +42,9 @@ struct HeightfieldPeek : btHeightfieldTerrainShape {
     static constexpr int btHeightfieldTerrainShape::*kWidth = &HeightfieldPeek::m_heightStickWidth;
 };
 
-// A point on a concave side: its triangle's (part id, index) back from its feature id (the
-// triangle's key, btgTriangleKey), as Bullet's per-point m_partId / m_index of that side.
-void triangleOf(const btCollisionShape* concave, uint key, int* partId, int* index)
+}  // namespace
+
+void triangleOfFeature(const btCollisionShape* concave, unsigned key, int* partId, int* index)
 {
     if (key == BTG_FEATURE_UNKNOWN) return;
     if (concave->getShapeType() == TERRAIN_SHAPE_PROXYTYPE) {
@@ -58,6 +58,8 @@ void triangleOf(const btCollisionShape* concave, uint key, int* partId, int* ind
     *index = int(key & BTG_BVH_TRIANGLE_MASK);
 }
 
+namespace {
+
 struct NewPoint {
     btManifoldPoint point;
     uint featureId;
@@ -65,16 +67,16 @@ struct NewPoint {
 
 }  // namespace
 
-ManifoldSync::Side ManifoldSync::orient(const RowMap& rows, const BtgContactReport& r,
-                                       const std::unordered_set<const btCollisionObject*>& removed) const
+ManifoldSync::Side ManifoldSync::orient(const RowMap& rows, int bodyA, int bodyB, int indexA, int indexB,
+                                       const std::unordered_set<const btCollisionObject*>& removed)
 {
     Side out{};
-    if (r.bodyA < 0 || r.bodyB < 0 || size_t(r.bodyA) >= rows.size() || size_t(r.bodyB) >= rows.size()) return out;
-    const btCollisionObject* oA = rows.at(size_t(r.bodyA));
-    const btCollisionObject* oB = rows.at(size_t(r.bodyB));
+    if (bodyA < 0 || bodyB < 0 || size_t(bodyA) >= rows.size() || size_t(bodyB) >= rows.size()) return out;
+    const btCollisionObject* oA = rows.at(size_t(bodyA));
+    const btCollisionObject* oB = rows.at(size_t(bodyB));
     if (!oA || !oB || (!removed.empty() && (removed.count(oA) || removed.count(oB)))) return out;
-    const btCollisionShape* leafA = leafShape(oA, r.indexA);
-    const btCollisionShape* leafB = leafShape(oB, r.indexB);
+    const btCollisionShape* leafA = leafShape(oA, indexA);
+    const btCollisionShape* leafB = leafShape(oB, indexB);
     const bool concA = leafA->isConcave(), concB = leafB->isConcave();
     const int tA = leafA->getShapeType(), tB = leafB->getShapeType();
     // The algorithm's order: convex–concave and convex–plane put the convex first, the
@@ -93,8 +95,8 @@ ManifoldSync::Side ManifoldSync::orient(const RowMap& rows, const BtgContactRepo
     out.spheres = tA == SPHERE_SHAPE_PROXYTYPE && tB == SPHERE_SHAPE_PROXYTYPE;
     out.concaveA = concA ? leafA : nullptr;
     out.concaveB = concB ? leafB : nullptr;
-    out.key = swap ? Key{oB, oA, sideKey(oB, leafB, r.indexB), sideKey(oA, leafA, r.indexA)}
-                   : Key{oA, oB, sideKey(oA, leafA, r.indexA), sideKey(oB, leafB, r.indexB)};
+    out.key = swap ? Key{oB, oA, sideKey(oB, leafB, indexB), sideKey(oA, leafA, indexA)}
+                   : Key{oA, oB, sideKey(oA, leafA, indexA), sideKey(oB, leafB, indexB)};
     return out;
 }
 
@@ -123,8 +125,8 @@ void ManifoldSync::refill(const Group& g, const BtgContactReport* reports)
             const btVector3 d1(r.dir1[k].x, r.dir1[k].y, r.dir1[k].z);
             const btVector3 d2 = n.cross(d1);  // btgFrictionDir2
             int partA = r.partIdA, indexA = r.indexA, partB = r.partIdB, indexB = r.indexB;
-            if (side.concaveA) triangleOf(side.concaveA, r.featureId[k], &partA, &indexA);
-            if (side.concaveB) triangleOf(side.concaveB, r.featureId[k], &partB, &indexB);
+            if (side.concaveA) triangleOfFeature(side.concaveA, r.featureId[k], &partA, &indexA);
+            if (side.concaveB) triangleOfFeature(side.concaveB, r.featureId[k], &partB, &indexB);
             // The impulses act on the report's A along +n, +d1, +d2; Bullet's on body0.
             NewPoint np{swap ? btManifoldPoint(lB, lA, -n, d) : btManifoldPoint(lA, lB, n, d), r.featureId[k]};
             btManifoldPoint& p = np.point;
@@ -195,7 +197,10 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
     const size_t n = rb.numContacts;
     m_sides.resize(n);
     forEachChunk(n, 2048, [&](size_t begin, size_t end, int) {
-        for (size_t i = begin; i < end; ++i) m_sides[i] = orient(rows, rb.contacts[i], removed);
+        for (size_t i = begin; i < end; ++i) {
+            const BtgContactReport& r = rb.contacts[i];
+            m_sides[i] = orient(rows, r.bodyA, r.bodyB, r.indexA, r.indexB, removed);
+        }
     });
     // Reports are in pair order: a manifold's (a mesh pair's triangles, one compound child pair)
     // are consecutive. Serially: the dispatcher's pool (getNewManifold is not thread-safe).

@@ -18,6 +18,10 @@ class btPersistentManifold;
 
 namespace btgpu {
 
+// A point on a concave side: its triangle's (part id, index) from its feature id (the
+// triangle's key, btgTriangleKey), as Bullet's per-point m_partId / m_index of that side.
+void triangleOfFeature(const btCollisionShape* concave, unsigned key, int* partId, int* index);
+
 class ManifoldSync {
 public:
     // Every manifold this call's reports name is created or refilled; those of pairs no longer
@@ -31,7 +35,6 @@ public:
     void removed(btDispatcher* dispatcher, const btCollisionObject* object);
     size_t size() const { return m_map.size(); }
 
-private:
     struct Key {
         const btCollisionObject* body0;
         const btCollisionObject* body1;
@@ -62,14 +65,17 @@ private:
         const btCollisionShape* concaveA;  // the report's concave leaves (per-point triangles)
         const btCollisionShape* concaveB;
     };
+    // One device manifold's sides (bodies and sub-shape keys as the device names them).
+    static Side orient(const RowMap& rows, int bodyA, int bodyB, int indexA, int indexB,
+                       const std::unordered_set<const btCollisionObject*>& removed);
+
+private:
     // The reports [first, last) of one manifold.
     struct Group {
         std::pair<const Key, Entry>* entry;
         size_t first, last;
         bool spheres;
     };
-    Side orient(const RowMap& rows, const BtgContactReport& r,
-                const std::unordered_set<const btCollisionObject*>& removed) const;
     // One manifold's points from its reports (touches only that manifold: run in parallel).
     void refill(const Group& g, const BtgContactReport* reports);
 

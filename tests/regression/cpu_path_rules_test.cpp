@@ -26,6 +26,12 @@ using namespace btgpu::test;
 
 namespace {
 
+std::map<const Scene*, btCollisionShape*>& savedShapes()
+{
+    static std::map<const Scene*, btCollisionShape*> saved;
+    return saved;
+}
+
 struct Rule {
     std::string name;
     std::string expect;  // a piece of cpuPathReason
@@ -183,16 +189,23 @@ std::vector<Rule> rules()
         flag("contact stiffness and damping", "CF_HAS_CONTACT_STIFFNESS_DAMPING",
              btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING),
         flag("friction anchor", "CF_HAS_FRICTION_ANCHOR", btCollisionObject::CF_HAS_FRICTION_ANCHOR),
-        {"custom material callback", "gContactAddedCallback",
+        // Served (callbacks_test.cpp) but beside a support-function shape (here body 2 made a
+        // capsule), whose device manifolds keep points across steps.
+        {"custom material callback beside a capsule", "gContactAddedCallback",
          [](Scene& s) {
              gContactAddedCallback = added;
              btRigidBody* b = s.body(1);
              b->setCollisionFlags(b->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+             savedShapes()[&s] = s.body(2)->getCollisionShape();
+             s.body(2)->setCollisionShape(&capsule);
+             s.world().updateSingleAabb(s.body(2));
          },
          [](Scene& s) {
              gContactAddedCallback = nullptr;
              btRigidBody* b = s.body(1);
              b->setCollisionFlags(b->getCollisionFlags() & ~btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+             s.body(2)->setCollisionShape(savedShapes().at(&s));
+             s.world().updateSingleAabb(s.body(2));
          }},
         {"rolling friction", "rolling friction", [](Scene& s) { s.body(2)->setRollingFriction(btScalar(0.1)); },
          [](Scene& s) { s.body(2)->setRollingFriction(0); }},

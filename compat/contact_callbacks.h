@@ -1,0 +1,47 @@
+// contact_callbacks.h — Bullet's gContactAddedCallback on the GPU path: for pairs with a
+// CF_CUSTOM_MATERIAL_CALLBACK body, each internal step stops after its contacts are found; the
+// host builds each point as btManifoldResult::addContactPoint would (Bullet's body order, local
+// and world points, combined coefficients, part ids), calls the app's callback with stock's
+// wrappers (a compound's child shape and transform, a mesh's btTriangleShape), and sends back
+// what it changed: friction, restitution, normal, points and distance, used by that step's solve.
+#pragma once
+#include "row_map.h"
+#include "shape_tables.h"
+#include "btgpu/Config.h"
+#include "stages/contact_callbacks.h"
+
+#include <string>
+#include <unordered_set>
+#include <vector>
+
+class btCollisionObject;
+class btDiscreteDynamicsWorld;
+
+namespace btgpu {
+
+class ContactCallbacks {
+public:
+    // True when the app's callback would run this step: gContactAddedCallback is set and a body
+    // of the world has CF_CUSTOM_MATERIAL_CALLBACK.
+    static bool wanted(const btDiscreteDynamicsWorld& world);
+    // Why the callback cannot be served on the GPU path while wanted ("" when it can): with
+    // Config::internalSubsteps > 1 stock's callback would be called once per device substep,
+    // more often than stock; support-function convex shapes keep their manifold points across
+    // steps on the device (narrowphase_gjk), so which points are added or replaced is not known.
+    static std::string unservedReason(const Config& config, const ShapeTables& shapes);
+    // The host's part between the contacts and the solve. False when a change the callback made
+    // cannot be carried by the device's contacts (reason() says which): the step must run on the
+    // CPU path instead.
+    bool run(DeviceWorld& w, const RowMap& rows, const std::unordered_set<const btCollisionObject*>& removed);
+    const std::string& reason() const { return m_reason; }
+    // Calls made in the last run (points passed to the callback).
+    long calls() const { return m_calls; }
+
+private:
+    std::string m_reason;
+    long m_calls = 0;
+    std::vector<GatheredManifold> m_changed;
+    std::vector<BtgContactMaterial> m_materials;
+};
+
+}  // namespace btgpu

@@ -1,0 +1,196 @@
+// callbacks_test.cpp — Bullet's contact callbacks on the GPU path against stock in the same
+// test: gContactAddedCallback on CF_CUSTOM_MATERIAL_CALLBACK bodies (a trampoline that gives its
+// contacts restitution, a floor that gives them its friction), called at every internal step
+// before the solve, and the cases still sent to the CPU path, each naming itself.
+#include "btgpu/btGpuDynamicsWorld.h"
+#include "scenes/callback_scenes.h"
+#include "side_by_side.h"
+
+#include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
+#include <btBulletDynamicsCommon.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <vector>
+
+using namespace btgpu;
+using namespace btgpu::test;
+
+namespace {
+
+// The app's callbacks are globals shared by both worlds: each test sets and clears them.
+struct Globals {
+    ~Globals() { gContactAddedCallback = nullptr; }
+};
+
+long g_calls = 0;
+int g_lastIndex0 = -2, g_lastPart0 = -2;
+bool bouncy(btManifoldPoint& cp, const btCollisionObjectWrapper* w0, int partId0, int index0,
+            const btCollisionObjectWrapper* w1, int, int)
+{
+    ++g_calls;
+    g_lastPart0 = partId0;
+    g_lastIndex0 = index0;
+    EXPECT_NE(w0->getCollisionObject(), w1->getCollisionObject());
+    cp.m_combinedRestitution = btScalar(0.8);
+    return true;
+}
+
+bool slippery(btManifoldPoint& cp, const btCollisionObjectWrapper*, int, int, const btCollisionObjectWrapper*, int, int)
+{
+    ++g_calls;
+    cp.m_combinedFriction = btScalar(0.2);
+    return true;
+}
+
+bool conveyor(btManifoldPoint& cp, const btCollisionObjectWrapper*, int, int, const btCollisionObjectWrapper*, int, int)
+{
+    cp.m_contactMotion1 = 1;
+    return true;
+}
+
+bool uneven(btManifoldPoint& cp, const btCollisionObjectWrapper*, int, int, const btCollisionObjectWrapper*, int, int)
+{
+    cp.m_combinedFriction = cp.m_localPointB.x() > 0 ? btScalar(0.1) : btScalar(0.9);
+    return true;
+}
+
+// The heights at which the ball turned back up (the apexes after each bounce).
+std::vector<double> apexes(const std::vector<double>& y)
+{
+    std::vector<double> out;
+    bool bounced = false;
+    for (size_t i = 1; i + 1 < y.size(); ++i) {
+        if (y[i] < y[i - 1] && y[i] < y[i + 1]) bounced = true;
+        if (bounced && y[i] > y[i - 1] && y[i] >= y[i + 1]) out.push_back(y[i]);
+    }
+    return out;
+}
+
+bool hasStage(const Scene& s, const char* name)
+{
+    const auto& st = s.report()->stages;
+    return std::find(st.begin(), st.end(), name) != st.end();
+}
+
+}  // namespace
+
+// A restitution-0 ball bounces on the trampoline only through the callback's restitution: its
+// apexes as stock's (within 5%), the callback called at every step of contact on both.
+TEST(Callbacks, TrampolineBouncesAsStock)
+{
+    Globals restore;
+    gContactAddedCallback = bouncy;
+    SideBySide sb([](WorldKind k, const Config& c) { return scenes::trampoline(k, c); });
+    std::vector<double> ys, yg;
+    long stockCalls = 0, gpuCalls = 0, reported = 0;
+    double callbackMs = 0;
+    for (int step = 0; step < 240; ++step) {
+        g_calls = 0;
+        sb.stock->step();
+        stockCalls += g_calls;
+        g_calls = 0;
+        sb.gpu->step();
+        gpuCalls += g_calls;
+        ASSERT_TRUE(sb.onGpu()) << step << " " << sb.gpu->report()->cpuPathReason;
+        ASSERT_TRUE(hasStage(*sb.gpu, "contact_materials"));
+        reported += sb.gpu->report()->contactCallbacks;
+        callbackMs += sb.gpu->report()->callbackMs;
+        ys.push_back(sb.stockY(1));
+        yg.push_back(sb.gpuY(1));
+        if (g_calls > 0) {
+            // Stock's order: the sphere is body0 (btSphereBoxCollisionAlgorithm), a whole shape.
+            EXPECT_EQ(g_lastPart0, -1);
+            EXPECT_EQ(g_lastIndex0, -1);
+        }
+    }
+    EXPECT_EQ(reported, gpuCalls);
+    const std::vector<double> a = apexes(ys), b = apexes(yg);
+    ASSERT_GE(a.size(), 3u);
+    ASSERT_GE(b.size(), 3u);
+    for (size_t i = 0; i < 3; ++i) {
+        EXPECT_GT(a[i], 0.9) << i;  // it does bounce (restitution 0 without the callback)
+        EXPECT_NEAR(b[i], a[i], 0.05 * (a[i] - 0.5)) << "apex " << i;  // height of the centre above rest
+    }
+    // One call a bounce (one point at the step of impact), on both.
+    EXPECT_GE(stockCalls, 3);
+    EXPECT_EQ(gpuCalls, stockCalls);
+    for (size_t i = 0; i < 3; ++i) std::printf("apex %zu: stock %.4f gpu %.4f\n", i, a[i], b[i]);
+    std::printf("calls: stock %ld gpu %ld; host part %.3f ms a step\n", stockCalls, gpuCalls, callbackMs / 240);
+}
+
+// Without the callback the same ball does not bounce: the test above can fail.
+TEST(Callbacks, TrampolineWithoutTheCallbackStays)
+{
+    ScenePtr gpu = scenes::trampoline(WorldKind::Gpu);
+    double highest = 0;
+    bool landed = false;
+    for (int step = 0; step < 120; ++step) {
+        gpu->step();
+        ASSERT_TRUE(gpu->gpuWorld()->isGpuPath());
+        EXPECT_FALSE(hasStage(*gpu, "contact_materials"));
+        const double y = gpu->body(1)->getWorldTransform().getOrigin().y();
+        if (y < 0.6) landed = true;
+        if (landed) highest = std::max(highest, y);
+    }
+    EXPECT_TRUE(landed);
+    EXPECT_LT(highest, 0.6);
+}
+
+// The callback's friction (0.2 for the floor's contacts, against 1 without) is the solve's:
+// the box slides as far as on stock (within 5%), about v^2 / (2 mu g) = 4 m.
+TEST(Callbacks, CustomFrictionSlidesAsStock)
+{
+    Globals restore;
+    gContactAddedCallback = slippery;
+    SideBySide sb([](WorldKind k, const Config& c) { return scenes::slidingBox(k, c); });
+    for (int step = 0; step < 180; ++step) {
+        sb.step();
+        ASSERT_TRUE(sb.onGpu()) << step << " " << sb.gpu->report()->cpuPathReason;
+    }
+    const double start = -10;
+    const double ds = sb.stock->body(1)->getWorldTransform().getOrigin().x() - start;
+    const double dg = sb.gpu->body(1)->getWorldTransform().getOrigin().x() - start;
+    std::printf("slid: stock %.4f m, gpu %.4f m\n", ds, dg);
+    EXPECT_GT(ds, 3.0);  // the callback's friction, not the bodies' (0.8 m)
+    EXPECT_NEAR(dg, ds, 0.05 * ds);
+}
+
+// What the GPU path still leaves to the CPU path, each naming itself in the report.
+TEST(Callbacks, UnservedCasesFallBackNamingThemselves)
+{
+    Globals restore;
+    gContactAddedCallback = bouncy;
+    {  // several device substeps per internal step: the callback would run more often than stock's
+        Config c;
+        c.internalSubsteps = 2;
+        ScenePtr gpu = scenes::trampoline(WorldKind::Gpu, c);
+        gpu->step();
+        EXPECT_FALSE(gpu->gpuWorld()->isGpuPath());
+        EXPECT_NE(gpu->report()->cpuPathReason.find("internalSubsteps"), std::string::npos)
+            << gpu->report()->cpuPathReason;
+    }
+    {  // a support-function shape beside a flagged body
+        ScenePtr gpu = scenes::trampoline(WorldKind::Gpu);
+        gpu->addBody(gpu->ownShape(new btCapsuleShape(.3f, 1)), 1, btVector3(5, 2, 0));
+        gpu->step();
+        EXPECT_FALSE(gpu->gpuWorld()->isGpuPath());
+        EXPECT_NE(gpu->report()->cpuPathReason.find("support-function"), std::string::npos)
+            << gpu->report()->cpuPathReason;
+    }
+    // A change the device's contact does not carry: found when the callback runs; that step
+    // and the next ones go to the CPU path, moving the bodies as stock.
+    for (auto callback : {conveyor, uneven}) {
+        gContactAddedCallback = callback;
+        SideBySide sb([](WorldKind k, const Config& c) { return scenes::slidingBox(k, c); });
+        sb.step(3);
+        EXPECT_FALSE(sb.onGpu());
+        const std::string why = sb.gpu->report()->cpuPathReason;
+        EXPECT_NE(why.find("gContactAddedCallback"), std::string::npos) << why;
+        EXPECT_NE(why.find(callback == conveyor ? "m_contactMotion" : "different friction"), std::string::npos) << why;
+        sb.step(30);
+        EXPECT_FALSE(sb.onGpu());
+        EXPECT_LT(sb.distance(1), 1e-4);
+    }
+}

@@ -1,0 +1,19 @@
+// callback_scenes.h — scenes for Bullet's contact callbacks (gContactAddedCallback and the
+// manifold events): a ball over a trampoline box (the box has CF_CUSTOM_MATERIAL_CALLBACK, the
+// app's callback gives its contacts their restitution) and a box sliding over a flagged floor
+// (the callback sets the friction). The callbacks themselves are the app's globals, set by the
+// test on both worlds alike.
+#pragma once
+#include "scenes/scenes.h"
+
+namespace btgpu::scenes {
+
+// Body 0: a static 3 x 0.25 x 3 m half-extent box with its top at y = 0 and
+// CF_CUSTOM_MATERIAL_CALLBACK; body 1: a ball (radius 0.5, mass 1, restitution 0, friction 0.5)
+// released at rest with its centre at y = dropHeight.
+ScenePtr trampoline(WorldKind kind, const Config& config = Config(), btScalar dropHeight = 3);
+// Body 0: a static 20 m half-extent box ground (top at y = 0) with CF_CUSTOM_MATERIAL_CALLBACK;
+// body 1: a 0.5 m half-extent box (mass 1, friction 1) resting on it, given 4 m/s along x.
+ScenePtr slidingBox(WorldKind kind, const Config& config = Config());
+
+}  // namespace btgpu::scenes
