@@ -50,7 +50,7 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::ApplyForces: applyForces(w, p.dt); break;
         case Stage::ContactCache: buildContacts(w, p); break;
         case Stage::PrepareContacts: prepareContacts(w, p); break;
-        case Stage::ContactMaterials: applyContactMaterials(w, p); break;
+        case Stage::ContactCallbacks: applyContactMaterials(w, p); break;
         case Stage::PrepareJoints: prepareJoints(w, s.joints); break;
         case Stage::FinishJoints: finishJoints(w, s.joints); break;
         case Stage::ColorConstraints: colorConstraints(w, s.maxColors); break;

@@ -13,6 +13,7 @@ namespace btgpu {
 std::vector<GatheredManifold> gatherCallbackManifolds(DeviceWorld& w)
 {
     cl::Context& ctx = w.ctx;
+    w.profiler.stage = "contact_callbacks";
     const int pairCapacity = int(std::min(w.pairCapacity, w.pairManifolds.capacity()));
     w.callbackCount.reserve(ctx, 1);
     if (w.callbackSlots.capacity() == 0) {
@@ -48,6 +49,7 @@ void sendCallbackChanges(DeviceWorld& w, const std::vector<GatheredManifold>& ch
                          const std::vector<BtgContactMaterial>& materials)
 {
     cl::Context& ctx = w.ctx;
+    w.profiler.stage = "contact_callbacks";
     if (!changed.empty()) {
         std::vector<uint> slots(changed.size());
         std::vector<BtgManifold> copies(changed.size());

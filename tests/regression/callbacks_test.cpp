@@ -94,7 +94,7 @@ TEST(Callbacks, TrampolineBouncesAsStock)
         sb.gpu->step();
         gpuCalls += g_calls;
         ASSERT_TRUE(sb.onGpu()) << step << " " << sb.gpu->report()->cpuPathReason;
-        ASSERT_TRUE(hasStage(*sb.gpu, "contact_materials"));
+        ASSERT_TRUE(hasStage(*sb.gpu, "contact_callbacks"));
         reported += sb.gpu->report()->contactCallbacks;
         callbackMs += sb.gpu->report()->callbackMs;
         ys.push_back(sb.stockY(1));
@@ -129,7 +129,7 @@ TEST(Callbacks, TrampolineWithoutTheCallbackStays)
     for (int step = 0; step < 120; ++step) {
         gpu->step();
         ASSERT_TRUE(gpu->gpuWorld()->isGpuPath());
-        EXPECT_FALSE(hasStage(*gpu, "contact_materials"));
+        EXPECT_FALSE(hasStage(*gpu, "contact_callbacks"));
         const double y = gpu->body(1)->getWorldTransform().getOrigin().y();
         if (y < 0.6) landed = true;
         if (landed) highest = std::max(highest, y);
