@@ -1,7 +1,7 @@
 // callback_scenes.h — scenes for Bullet's contact callbacks (gContactAddedCallback and the
 // manifold events): a ball over a trampoline box (the box has CF_CUSTOM_MATERIAL_CALLBACK, the
 // app's callback gives its contacts their restitution) and a box sliding over a flagged floor
-// (the callback sets the friction). The callbacks themselves are the app's globals, set by the
+// (the callback sets the friction), and a box sliding over a triangle mesh's internal edges. The callbacks themselves are the app's globals, set by the
 // test on both worlds alike.
 #pragma once
 #include "scenes/scenes.h"
@@ -15,5 +15,10 @@ ScenePtr trampoline(WorldKind kind, const Config& config = Config(), btScalar dr
 // Body 0: a static 20 m half-extent box ground (top at y = 0) with CF_CUSTOM_MATERIAL_CALLBACK;
 // body 1: a 0.5 m half-extent box (mass 1, friction 1) resting on it, given 4 m/s along x.
 ScenePtr slidingBox(WorldKind kind, const Config& config = Config());
+// Body 0: a static flat triangle-mesh ground (16 x 16 quads of 1 m, gridMesh) whose internal
+// edges Bullet's btGenerateInternalEdgeInfo has recorded, with CF_CUSTOM_MATERIAL_CALLBACK (an
+// app's callback calls btAdjustInternalEdgeContacts); body 1: a 0.5 m half-extent box resting on
+// it at x = -6, given 5 m/s along x, so it slides over many internal edges.
+ScenePtr edgeSlide(WorldKind kind, const Config& config = Config());
 
 }  // namespace btgpu::scenes
