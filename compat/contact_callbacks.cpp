@@ -94,7 +94,15 @@ const char* uncarriedChange(const btManifoldPoint& a, const btManifoldPoint& b)
 
 }  // namespace
 
-bool ContactCallbacks::wanted(const btDiscreteDynamicsWorld& world)
+bool ContactCallbacks::customCombiners()
+{
+    return gCalculateCombinedFrictionCallback != &btManifoldResult::calculateCombinedFriction ||
+           gCalculateCombinedRestitutionCallback != &btManifoldResult::calculateCombinedRestitution ||
+           gCalculateCombinedRollingFrictionCallback != &btManifoldResult::calculateCombinedRollingFriction ||
+           gCalculateCombinedSpinningFrictionCallback != &btManifoldResult::calculateCombinedSpinningFriction;
+}
+
+bool ContactCallbacks::customMaterials(const btDiscreteDynamicsWorld& world)
 {
     if (!gContactAddedCallback) return false;
     const btCollisionObjectArray& objs = world.getCollisionObjectArray();
@@ -103,16 +111,22 @@ bool ContactCallbacks::wanted(const btDiscreteDynamicsWorld& world)
     return false;
 }
 
-std::string ContactCallbacks::unservedReason(const Config& config, const ShapeTables& shapes)
+bool ContactCallbacks::wanted(const btDiscreteDynamicsWorld& world) { return customCombiners() || customMaterials(world); }
+
+std::string ContactCallbacks::unservedReason(const btDiscreteDynamicsWorld& world, const Config& config,
+                                             const ShapeTables& shapes)
 {
     if (config.internalSubsteps > 1)
-        return "gContactAddedCallback with CF_CUSTOM_MATERIAL_CALLBACK and Config::internalSubsteps > 1 (stock calls it "
-               "once per internal step)";
-    for (const BtgShape& s : shapes.shapes)
-        if (s.type == BTG_SHAPE_CONVEX)
-            return "gContactAddedCallback with CF_CUSTOM_MATERIAL_CALLBACK beside a support-function convex shape "
-                   "(capsule, cylinder, cone, ...: its contact points persist on the device, which are added is not "
-                   "known)";
+        return customMaterials(world) ? "gContactAddedCallback with CF_CUSTOM_MATERIAL_CALLBACK and Config::internalSubsteps "
+                                        "> 1 (stock calls it once per internal step)"
+                                      : "a custom friction or restitution combiner (gCalculateCombined*Callback) with "
+                                        "Config::internalSubsteps > 1 (stock calls it once per internal step)";
+    if (customMaterials(world))
+        for (const BtgShape& s : shapes.shapes)
+            if (s.type == BTG_SHAPE_CONVEX)
+                return "gContactAddedCallback with CF_CUSTOM_MATERIAL_CALLBACK beside a support-function convex shape "
+                       "(capsule, cylinder, cone, ...: its contact points persist on the device, which are added is not "
+                       "known)";
     return "";
 }
 
@@ -123,11 +137,14 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
     m_changed.clear();
     m_materials.clear();
     w.numMaterials = 0;
-    const std::vector<GatheredManifold> gathered = gatherCallbackManifolds(w);
+    // A custom combiner is evaluated for every point (stock: btManifoldResult::addContactPoint);
+    // the added callback only for pairs with a flagged body.
+    const bool combiners = customCombiners();
+    const std::vector<GatheredManifold> gathered = gatherCallbackManifolds(w, combiners);
     for (const GatheredManifold& g : gathered) {
         const BtgManifold& m = g.manifold;
         const ManifoldSync::Side side = ManifoldSync::orient(rows, m.bodyA, m.bodyB, m.indexA, m.indexB, removed);
-        if (!side.valid || !gContactAddedCallback) continue;
+        if (!side.valid) continue;
         const bool swap = side.swap;
         SideShape sA = sideShape(rows.at(size_t(m.bodyA)), m.indexA);
         SideShape sB = sideShape(rows.at(size_t(m.bodyB)), m.indexB);
@@ -185,10 +202,21 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
             cp.m_index1 = swap ? indexA : indexB;
             const btCollisionObjectWrapper wA(nullptr, sA.concave ? &triA : sA.shape, sA.object, sA.transform, partA, indexA);
             const btCollisionObjectWrapper wB(nullptr, sB.concave ? &triB : sB.shape, sB.object, sB.transform, partB, indexB);
+            // Rolling and spinning friction rows are not on the GPU path: a combiner that gives a
+            // pair some cannot be served (Bullet's own gives 0 unless a body has them, a body rule).
+            if (cp.m_combinedRollingFriction != 0 || cp.m_combinedSpinningFriction != 0) {
+                m_reason = "a rolling or spinning friction combiner (gCalculateCombinedRolling/SpinningFrictionCallback) "
+                           "gave a contact rolling or spinning friction, which the GPU path does not have";
+                return false;
+            }
             const btManifoldPoint before = cp;
-            gContactAddedCallback(cp, swap ? &wB : &wA, cp.m_partId0, cp.m_index0, swap ? &wA : &wB, cp.m_partId1,
-                                  cp.m_index1);
-            ++m_calls;
+            const bool flagged = gContactAddedCallback && ((o0->getCollisionFlags() | o1->getCollisionFlags()) &
+                                                           btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+            if (flagged) {
+                gContactAddedCallback(cp, swap ? &wB : &wA, cp.m_partId0, cp.m_index0, swap ? &wA : &wB, cp.m_partId1,
+                                      cp.m_index1);
+                ++m_calls;
+            }
             const char* uncarried = uncarriedChange(cp, before);
             if (*uncarried) {
                 m_reason = std::string("gContactAddedCallback changed ") + uncarried +
@@ -198,8 +226,8 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
             // Friction: the device's contact has one coefficient for its points.
             if (k == 0) material.friction = cp.m_combinedFriction;
             else if (cp.m_combinedFriction != material.friction) {
-                m_reason = "gContactAddedCallback set different friction on the points of one contact manifold (the "
-                           "GPU path's contact has one coefficient)";
+                m_reason = "gContactAddedCallback or the friction combiner set different friction on the points of one "
+                           "contact manifold (the GPU path's contact has one coefficient)";
                 return false;
             }
             btgSetLane(&material.restitution, k, cp.m_combinedRestitution);

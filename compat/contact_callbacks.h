@@ -21,14 +21,16 @@ namespace btgpu {
 
 class ContactCallbacks {
 public:
-    // True when the app's callback would run this step: gContactAddedCallback is set and a body
-    // of the world has CF_CUSTOM_MATERIAL_CALLBACK.
+    // The app's callbacks that run between a step's contacts and its solve: gContactAddedCallback
+    // while a body has CF_CUSTOM_MATERIAL_CALLBACK, and any custom gCalculateCombined*Callback.
+    static bool customMaterials(const btDiscreteDynamicsWorld& world);
+    static bool customCombiners();
     static bool wanted(const btDiscreteDynamicsWorld& world);
-    // Why the callback cannot be served on the GPU path while wanted ("" when it can): with
-    // Config::internalSubsteps > 1 stock's callback would be called once per device substep,
-    // more often than stock; support-function convex shapes keep their manifold points across
-    // steps on the device (narrowphase_gjk), so which points are added or replaced is not known.
-    static std::string unservedReason(const Config& config, const ShapeTables& shapes);
+    // Why they cannot be served on the GPU path while wanted ("" when they can): with
+    // Config::internalSubsteps > 1 they would be called once per device substep, more often than
+    // stock; support-function convex shapes keep their manifold points across steps on the device
+    // (narrowphase_gjk), so which points the added callback would see is not known.
+    static std::string unservedReason(const btDiscreteDynamicsWorld& world, const Config& config, const ShapeTables& shapes);
     // The host's part between the contacts and the solve. False when a change the callback made
     // cannot be carried by the device's contacts (reason() says which): the step must run on the
     // CPU path instead.

@@ -307,19 +307,11 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
     if (gContactDestroyedCallback) return "gContactDestroyedCallback is set";
     // Read by btCompoundCollisionAlgorithm for every child it would collide.
     if (gCompoundChildShapePairCallback) return "gCompoundChildShapePairCallback is set";
-    // gContactAddedCallback only runs for bodies with CF_CUSTOM_MATERIAL_CALLBACK: served, but for
-    // the cases contact_callbacks.h names.
-    // The combiners run for every contact point; the GPU path multiplies friction (clamped to
-    // ±10) and restitution, and has no rolling or spinning friction. The contact stiffness and
-    // damping combiners only run for CF_HAS_CONTACT_STIFFNESS_DAMPING bodies, a body rule.
-    if (gCalculateCombinedFrictionCallback != &btManifoldResult::calculateCombinedFriction)
-        return "gCalculateCombinedFrictionCallback is not Bullet's default";
-    if (gCalculateCombinedRestitutionCallback != &btManifoldResult::calculateCombinedRestitution)
-        return "gCalculateCombinedRestitutionCallback is not Bullet's default";
-    if (gCalculateCombinedRollingFrictionCallback != &btManifoldResult::calculateCombinedRollingFriction)
-        return "gCalculateCombinedRollingFrictionCallback is not Bullet's default";
-    if (gCalculateCombinedSpinningFrictionCallback != &btManifoldResult::calculateCombinedSpinningFriction)
-        return "gCalculateCombinedSpinningFrictionCallback is not Bullet's default";
+    // gContactAddedCallback only runs for bodies with CF_CUSTOM_MATERIAL_CALLBACK: served, as the
+    // friction, restitution, rolling and spinning combiners (each point's values computed on the
+    // host between the contacts and the solve), but for the cases contact_callbacks.h names.
+    // The contact stiffness and damping combiners only run for CF_HAS_CONTACT_STIFFNESS_DAMPING
+    // bodies, a body rule.
     // Bullet's breaking threshold is the GPU path's contact threshold; an app that changes both
     // alike keeps the GPU path, one that changes only Bullet's does not.
     if (gContactBreakingThreshold != btScalar(0.02) && gContactBreakingThreshold != config.contactThreshold)

@@ -136,7 +136,7 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
     if (why.empty()) why = bodiesReason(m_world, bodyIndex);
     if (why.empty() && ContactCallbacks::wanted(m_world)) {
         if (!m_callbackReason.empty() && m_callbackReasonFor == gContactAddedCallback) return m_callbackReason;
-        why = ContactCallbacks::unservedReason(m_config, m_shapes);
+        why = ContactCallbacks::unservedReason(m_world, m_config, m_shapes);
     }
     return why;
 }

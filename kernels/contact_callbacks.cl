@@ -1,7 +1,8 @@
 /* contact_callbacks.cl — Stage: contact_callbacks (gContactAddedCallback on the GPU path). A
  * substep stops after its contacts are found (the manifolds) and before the contact list; the
- * host reads the manifolds of pairs with a CF_CUSTOM_MATERIAL_CALLBACK body, runs the app's
- * callback on each point, writes back what it changed, and the substep goes on.
+ * host reads the manifolds of pairs with a CF_CUSTOM_MATERIAL_CALLBACK body (all of them with a
+ * custom combiner), runs the app's callbacks on each point, writes back what they changed, and
+ * the substep goes on.
  * Launch: gather_callback_manifolds one work-item per pair slot (pairCapacity);
  * scatter_callback_manifolds one per changed manifold; apply_contact_materials one per contact
  * slot (contactCapacity), right after prepare_contacts.
@@ -21,7 +22,7 @@ __kernel void gather_callback_manifolds(__global const BtgManifoldRange* restric
                                         __global const BtgBodyProps* restrict props,
                                         __global const uint* restrict counters, int pairCapacity,
                                         __global uint* gatherCount, __global uint* slots,
-                                        __global BtgManifold* copies, int capacity)
+                                        __global BtgManifold* copies, int capacity, int all)
 {
     uint i = (uint)get_global_id(0);
     uint n = min(counters[BTG_COUNTER_PAIRS], (uint)pairCapacity);
@@ -30,7 +31,7 @@ __kernel void gather_callback_manifolds(__global const BtgManifoldRange* restric
     for (int j = r.start; j < r.start + r.count; ++j) {
         BtgManifold m = manifolds[j];
         if (m.numPoints <= 0) continue;
-        if (!((props[m.bodyA].flags | props[m.bodyB].flags) & BTG_BODY_CUSTOM_MATERIAL)) continue;
+        if (!all && !((props[m.bodyA].flags | props[m.bodyB].flags) & BTG_BODY_CUSTOM_MATERIAL)) continue;
         uint k = atomic_inc(gatherCount);
         if (k >= (uint)capacity) continue;
         slots[k] = (uint)j;

@@ -7,7 +7,7 @@ namespace btgpu::ref {
 
 std::vector<uint> gatherCallbackManifolds(const std::vector<BtgManifoldRange>& pairManifolds, uint pairCount,
                                           const std::vector<BtgManifold>& manifolds,
-                                          const std::vector<BtgBodyProps>& props)
+                                          const std::vector<BtgBodyProps>& props, bool all)
 {
     std::vector<uint> slots;
     for (uint i = 0; i < pairCount && i < pairManifolds.size(); ++i) {
@@ -15,7 +15,7 @@ std::vector<uint> gatherCallbackManifolds(const std::vector<BtgManifoldRange>& p
         for (int j = r.start; j < r.start + r.count; ++j) {
             const BtgManifold& m = manifolds[size_t(j)];
             if (m.numPoints <= 0) continue;
-            if ((props[size_t(m.bodyA)].flags | props[size_t(m.bodyB)].flags) & BTG_BODY_CUSTOM_MATERIAL)
+            if (all || (props[size_t(m.bodyA)].flags | props[size_t(m.bodyB)].flags) & BTG_BODY_CUSTOM_MATERIAL)
                 slots.push_back(uint(j));
         }
     }

@@ -11,7 +11,7 @@ namespace btgpu::ref {
 // Slots of the manifolds with points, of the first pairCount pairs' ranges, with a flagged body.
 std::vector<uint> gatherCallbackManifolds(const std::vector<BtgManifoldRange>& pairManifolds, uint pairCount,
                                           const std::vector<BtgManifold>& manifolds,
-                                          const std::vector<BtgBodyProps>& props);
+                                          const std::vector<BtgBodyProps>& props, bool all = false);
 
 // Contacts [0, count) whose manifold slot has a material (materials sorted by slot), prepared again.
 void applyContactMaterials(std::vector<BtgContact>& contacts, const std::vector<uint>& contactManifolds, size_t count,

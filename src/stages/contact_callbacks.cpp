@@ -10,7 +10,7 @@
 
 namespace btgpu {
 
-std::vector<GatheredManifold> gatherCallbackManifolds(DeviceWorld& w)
+std::vector<GatheredManifold> gatherCallbackManifolds(DeviceWorld& w, bool all)
 {
     cl::Context& ctx = w.ctx;
     w.profiler.stage = "contact_callbacks";
@@ -26,7 +26,7 @@ std::vector<GatheredManifold> gatherCallbackManifolds(DeviceWorld& w)
         w.callbackCount.fill(ctx, 0u, 0, 1);
         cl::Launch(ctx, ctx.program("contact_callbacks").kernel("gather_callback_manifolds"), &w.profiler)
             .arg(w.pairManifolds).arg(w.manifolds).arg(w.props).arg(w.counters).arg(pairCapacity)
-            .arg(w.callbackCount).arg(w.callbackSlots).arg(w.callbackManifolds).arg(capacity)
+            .arg(w.callbackCount).arg(w.callbackSlots).arg(w.callbackManifolds).arg(capacity).arg(all ? 1 : 0)
             .run(size_t(std::max(pairCapacity, 1)));
         w.callbackCount.download(ctx, &count, 1);
         if (count <= uint(capacity)) break;

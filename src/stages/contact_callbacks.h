@@ -16,9 +16,9 @@ struct GatheredManifold {
     uint slot;
     BtgManifold manifold;
 };
-// The manifolds of pairs with a flagged body, sorted by slot (blocking: one round trip, a second
-// only when they outgrew the gather buffer).
-std::vector<GatheredManifold> gatherCallbackManifolds(DeviceWorld& w);
+// The manifolds of pairs with a flagged body (all: every manifold with points), sorted by slot
+// (blocking: one round trip, a second only when they outgrew the gather buffer).
+std::vector<GatheredManifold> gatherCallbackManifolds(DeviceWorld& w, bool all = false);
 // The manifolds the host changed back to their slots, and the materials (sorted by slot) for
 // applyContactMaterials; both enqueued, not waited for.
 void sendCallbackChanges(DeviceWorld& w, const std::vector<GatheredManifold>& changed,

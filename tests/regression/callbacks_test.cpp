@@ -8,6 +8,7 @@
 
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
 #include <BulletCollision/CollisionDispatch/btInternalEdgeUtility.h>
+#include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 #include <btBulletDynamicsCommon.h>
 #include <gtest/gtest.h>
 
@@ -56,6 +57,29 @@ bool uneven(btManifoldPoint& cp, const btCollisionObjectWrapper*, int, int, cons
     cp.m_combinedFriction = cp.m_localPointB.x() > 0 ? btScalar(0.1) : btScalar(0.9);
     return true;
 }
+
+// A friction combiner as apps write them (the smaller of the two, not Bullet's product), and a
+// rolling one that gives every contact rolling friction.
+long g_combined = 0;
+btScalar smallerFriction(const btCollisionObject* a, const btCollisionObject* b)
+{
+    ++g_combined;
+    return std::min(a->getFriction(), b->getFriction()) * btScalar(0.3);
+}
+btScalar bouncier(const btCollisionObject* a, const btCollisionObject* b)
+{
+    return std::max(a->getRestitution(), b->getRestitution());
+}
+btScalar rolling(const btCollisionObject*, const btCollisionObject*) { return btScalar(0.1); }
+
+struct Combiners {
+    ~Combiners()
+    {
+        gCalculateCombinedFrictionCallback = &btManifoldResult::calculateCombinedFriction;
+        gCalculateCombinedRestitutionCallback = &btManifoldResult::calculateCombinedRestitution;
+        gCalculateCombinedRollingFrictionCallback = &btManifoldResult::calculateCombinedRollingFriction;
+    }
+};
 
 // An app's internal-edge fix, as Bullet's demos write it: the mesh is body 1 (convex first).
 long g_triangleCalls = 0;
@@ -183,6 +207,18 @@ TEST(Callbacks, UnservedCasesFallBackNamingThemselves)
         EXPECT_NE(gpu->report()->cpuPathReason.find("internalSubsteps"), std::string::npos)
             << gpu->report()->cpuPathReason;
     }
+    {  // a combiner with several device substeps
+        gContactAddedCallback = nullptr;
+        Combiners undo;
+        gCalculateCombinedFrictionCallback = smallerFriction;
+        Config c;
+        c.internalSubsteps = 2;
+        ScenePtr gpu = scenes::slidingBox(WorldKind::Gpu, c);
+        gpu->step();
+        EXPECT_FALSE(gpu->gpuWorld()->isGpuPath());
+        EXPECT_NE(gpu->report()->cpuPathReason.find("combiner"), std::string::npos) << gpu->report()->cpuPathReason;
+        gContactAddedCallback = bouncy;
+    }
     {  // a support-function shape beside a flagged body
         ScenePtr gpu = scenes::trampoline(WorldKind::Gpu);
         gpu->addBody(gpu->ownShape(new btCapsuleShape(.3f, 1)), 1, btVector3(5, 2, 0));
@@ -244,4 +280,69 @@ TEST(Callbacks, InternalEdgeUtilityOnAMeshAsStock)
     EXPECT_GT(gpuCalls, 0);
     EXPECT_EQ(gpuTriangles, gpuCalls);  // every mesh point's wrapper is its triangle, as stock's
     EXPECT_EQ(stockTriangles, stockCalls);
+}
+
+// A custom friction combiner evaluated per point as stock (its value used by the solve): the
+// box slides as far as on stock (within 5%), 0.3 x min(1, 1) instead of 1 x 1; a restitution
+// combiner (the larger, not the product) makes the ball bounce on the trampoline as on stock.
+TEST(Callbacks, CombinersAsStock)
+{
+    Combiners restore;
+    gCalculateCombinedFrictionCallback = smallerFriction;
+    {
+        SideBySide sb([](WorldKind k, const Config& c) { return scenes::slidingBox(k, c); });
+        long stockCalls = 0, gpuCalls = 0;
+        for (int step = 0; step < 180; ++step) {
+            g_combined = 0;
+            sb.stock->step();
+            stockCalls += g_combined;
+            g_combined = 0;
+            sb.gpu->step();
+            gpuCalls += g_combined;
+            ASSERT_TRUE(sb.onGpu()) << step << " " << sb.gpu->report()->cpuPathReason;
+            ASSERT_TRUE(hasStage(*sb.gpu, "contact_callbacks"));
+        }
+        const double ds = sb.stock->body(1)->getWorldTransform().getOrigin().x() + 10;
+        const double dg = sb.gpu->body(1)->getWorldTransform().getOrigin().x() + 10;
+        std::printf("slid with the combiner: stock %.4f m, gpu %.4f m; calls stock %ld gpu %ld\n", ds, dg, stockCalls,
+                    gpuCalls);
+        EXPECT_GT(ds, 2.0);  // the combiner's 0.3, not the product's 1 (0.8 m)
+        EXPECT_NEAR(dg, ds, 0.05 * ds);
+        // Counts differ: stock evaluates it for the points its narrowphase adds in a step (428 in
+        // 180 steps here), the GPU for every device point of every step (720); a combiner that is
+        // a function of the two bodies gives both the same values.
+        EXPECT_GT(gpuCalls, 0);
+    }
+    gCalculateCombinedFrictionCallback = &btManifoldResult::calculateCombinedFriction;
+    gCalculateCombinedRestitutionCallback = bouncier;
+    {
+        SideBySide sb([](WorldKind k, const Config& c) {
+            ScenePtr s = scenes::trampoline(k, c);
+            s->body(0)->setRestitution(btScalar(0.7));
+            return s;
+        });
+        std::vector<double> ys, yg;
+        for (int step = 0; step < 200; ++step) {
+            sb.step();
+            ASSERT_TRUE(sb.onGpu()) << step << " " << sb.gpu->report()->cpuPathReason;
+            ys.push_back(sb.stockY(1));
+            yg.push_back(sb.gpuY(1));
+        }
+        const std::vector<double> a = apexes(ys), b = apexes(yg);
+        ASSERT_GE(a.size(), 2u);
+        ASSERT_GE(b.size(), 2u);
+        for (size_t i = 0; i < 2; ++i) {
+            EXPECT_GT(a[i], 0.9) << i;
+            EXPECT_NEAR(b[i], a[i], 0.05 * (a[i] - 0.5)) << "apex " << i;
+        }
+    }
+    // A rolling friction combiner that gives contacts rolling friction: not on the GPU path.
+    gCalculateCombinedRestitutionCallback = &btManifoldResult::calculateCombinedRestitution;
+    gCalculateCombinedRollingFrictionCallback = rolling;
+    SideBySide sb([](WorldKind k, const Config& c) { return scenes::slidingBox(k, c); });
+    sb.step(3);
+    EXPECT_FALSE(sb.onGpu());
+    EXPECT_NE(sb.gpu->report()->cpuPathReason.find("rolling"), std::string::npos) << sb.gpu->report()->cpuPathReason;
+    sb.step(20);
+    EXPECT_LT(sb.distance(1), 1e-4);
 }

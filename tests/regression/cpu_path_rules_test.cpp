@@ -50,10 +50,6 @@ bool added(btManifoldPoint&, const btCollisionObjectWrapper*, int, int, const bt
 {
     return true;
 }
-btScalar combined(const btCollisionObject* a, const btCollisionObject* b)
-{
-    return a->getFriction() * b->getFriction();
-}
 struct AcceptAll : btOverlapFilterCallback {
     bool needBroadphaseCollision(btBroadphaseProxy*, btBroadphaseProxy*) const override { return true; }
 };
@@ -142,14 +138,7 @@ std::vector<Rule> rules()
         global("gContactEndedCallback", "gContactEndedCallback", gContactEndedCallback, &ended),
         global("gContactProcessedCallback", "gContactProcessedCallback", gContactProcessedCallback, &processed),
         global("gContactDestroyedCallback", "gContactDestroyedCallback", gContactDestroyedCallback, &destroyed),
-        global("friction combiner", "gCalculateCombinedFrictionCallback", gCalculateCombinedFrictionCallback,
-               &combined),
-        global("restitution combiner", "gCalculateCombinedRestitutionCallback",
-               gCalculateCombinedRestitutionCallback, &combined),
-        global("rolling friction combiner", "gCalculateCombinedRollingFrictionCallback",
-               gCalculateCombinedRollingFrictionCallback, &combined),
-        global("spinning friction combiner", "gCalculateCombinedSpinningFrictionCallback",
-               gCalculateCombinedSpinningFrictionCallback, &combined),
+        // The combiners are served (callbacks_test.cpp), but for the cases it tests.
         global("contact breaking threshold", "gContactBreakingThreshold", gContactBreakingThreshold, btScalar(0.05)),
         solverInfo("m_sor", "m_sor", [](btContactSolverInfo& i) { i.m_sor = btScalar(0.9); }),
         solverInfo("m_globalCfm", "m_globalCfm", [](btContactSolverInfo& i) { i.m_globalCfm = btScalar(1e-4); }),
