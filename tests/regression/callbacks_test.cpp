@@ -346,3 +346,31 @@ TEST(Callbacks, CombinersAsStock)
     sb.step(20);
     EXPECT_LT(sb.distance(1), 1e-4);
 }
+
+// Two internal steps a stepSimulation call: the callback runs at each internal step, before its
+// solve, as stock's (the same bounces, the same calls).
+TEST(Callbacks, CalledAtEachInternalStep)
+{
+    Globals restore;
+    gContactAddedCallback = bouncy;
+    SideBySide sb([](WorldKind k, const Config& c) { return scenes::trampoline(k, c); });
+    std::vector<double> ys, yg;
+    long stockCalls = 0, gpuCalls = 0;
+    for (int call = 0; call < 120; ++call) {
+        g_calls = 0;
+        sb.stock->step(btScalar(1) / 30, 2, btScalar(1) / 60);
+        stockCalls += g_calls;
+        g_calls = 0;
+        sb.gpu->step(btScalar(1) / 30, 2, btScalar(1) / 60);
+        gpuCalls += g_calls;
+        ASSERT_TRUE(sb.onGpu()) << call << " " << sb.gpu->report()->cpuPathReason;
+        ys.push_back(sb.stockY(1));
+        yg.push_back(sb.gpuY(1));
+    }
+    const std::vector<double> a = apexes(ys), b = apexes(yg);
+    ASSERT_GE(a.size(), 3u);
+    ASSERT_GE(b.size(), 3u);
+    for (size_t i = 0; i < 3; ++i) EXPECT_NEAR(b[i], a[i], 0.05 * (a[i] - 0.5)) << "apex " << i;
+    EXPECT_GE(stockCalls, 3);
+    EXPECT_EQ(gpuCalls, stockCalls);
+}
