@@ -15,6 +15,7 @@
 #include <BulletCollision/CollisionShapes/btTriangleShape.h>
 #include <btBulletDynamicsCommon.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace btgpu {
@@ -111,12 +112,26 @@ bool ContactCallbacks::customMaterials(const btDiscreteDynamicsWorld& world)
     return false;
 }
 
-bool ContactCallbacks::wanted(const btDiscreteDynamicsWorld& world) { return customCombiners() || customMaterials(world); }
+bool ContactCallbacks::wanted(const btDiscreteDynamicsWorld& world)
+{
+    return customCombiners() || gContactProcessedCallback || customMaterials(world);
+}
+
+bool ContactCallbacks::events()
+{
+    return gContactStartedCallback || gContactEndedCallback || gContactProcessedCallback || gContactDestroyedCallback;
+}
 
 std::string ContactCallbacks::unservedReason(const btDiscreteDynamicsWorld& world, const Config& config,
                                              const ShapeTables& shapes)
 {
-    if (config.internalSubsteps > 1)
+    if (events() && config.internalSubsteps > 1)
+        return "contact callbacks (gContactStarted/Ended/Processed/DestroyedCallback) with Config::internalSubsteps > 1 "
+               "(stock calls them once per internal step)";
+    if (events() && !config.fillDispatcherManifolds)
+        return "contact callbacks (gContactStarted/Ended/Processed/DestroyedCallback) with "
+               "Config::fillDispatcherManifolds off (they are the dispatcher manifolds' events)";
+    if (config.internalSubsteps > 1 && (customMaterials(world) || customCombiners()))
         return customMaterials(world) ? "gContactAddedCallback with CF_CUSTOM_MATERIAL_CALLBACK and Config::internalSubsteps "
                                         "> 1 (stock calls it once per internal step)"
                                       : "a custom friction or restitution combiner (gCalculateCombined*Callback) with "
@@ -130,21 +145,26 @@ std::string ContactCallbacks::unservedReason(const btDiscreteDynamicsWorld& worl
     return "";
 }
 
-bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unordered_set<const btCollisionObject*>& removed)
+bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unordered_set<const btCollisionObject*>& removed,
+                           ManifoldSync& sync)
 {
     m_reason.clear();
     m_calls = 0;
     m_changed.clear();
     m_materials.clear();
     w.numMaterials = 0;
-    // A custom combiner is evaluated for every point (stock: btManifoldResult::addContactPoint);
+    // A custom combiner is evaluated for every point (stock: btManifoldResult::addContactPoint),
+    // the processed callback called for every point (btPersistentManifold::refreshContactPoints);
     // the added callback only for pairs with a flagged body.
-    const bool combiners = customCombiners();
-    const std::vector<GatheredManifold> gathered = gatherCallbackManifolds(w, combiners);
+    const bool all = customCombiners() || gContactProcessedCallback;
+    const std::vector<GatheredManifold> gathered = gatherCallbackManifolds(w, all);
     for (const GatheredManifold& g : gathered) {
         const BtgManifold& m = g.manifold;
         const ManifoldSync::Side side = ManifoldSync::orient(rows, m.bodyA, m.bodyB, m.indexA, m.indexB, removed);
         if (!side.valid) continue;
+        // Stock's dispatcher collides no pair of two inactive bodies (needsCollision): no points
+        // are added or refreshed there (the device keeps their contacts for the solve).
+        if (!rows.at(size_t(m.bodyA))->isActive() && !rows.at(size_t(m.bodyB))->isActive()) continue;
         const bool swap = side.swap;
         SideShape sA = sideShape(rows.at(size_t(m.bodyA)), m.indexA);
         SideShape sB = sideShape(rows.at(size_t(m.bodyB)), m.indexB);
@@ -154,21 +174,25 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
         const bool pairOrder = proxyId(o0) <= proxyId(o1);
         const btCollisionObject* c0 = pairOrder ? o0 : o1;
         const btCollisionObject* c1 = pairOrder ? o1 : o0;
+        const bool flagged = gContactAddedCallback && ((o0->getCollisionFlags() | o1->getCollisionFlags()) &
+                                                       btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
         // The device's own combination (prepare_contacts), to know what must be sent.
         const btScalar deviceFriction = btManifoldResult::calculateCombinedFriction(sA.object, sB.object);
         const btScalar deviceRestitution = sA.object->getRestitution() * sB.object->getRestitution();
-        BtgManifold out = m;
-        BtgContactMaterial material{};
-        material.slot = g.slot;
-        bool geometry = false, needMaterial = false;
-        for (int k = 0; k < m.numPoints && k < BTG_MAX_POINTS; ++k) {
+        const int n = std::min(m.numPoints, int(BTG_MAX_POINTS));
+        // Each point as addContactPoint makes it (with the user data of the app's point it
+        // continues, as replaceContactPoint keeps it), then the added callback on it.
+        btManifoldPoint cps[BTG_MAX_POINTS], initial[BTG_MAX_POINTS];
+        void* loaded[BTG_MAX_POINTS];
+        for (int k = 0; k < n; ++k) {
             const BtgManifoldPoint& p = m.points[k];
-            const btVector3 n(p.nx, p.ny, p.nz), pB(p.px, p.py, p.pz);
+            const btVector3 nrm(p.nx, p.ny, p.nz), pB(p.px, p.py, p.pz);
             const btScalar d = p.distance;
-            const btVector3 pA = pB + n * d;
-            const btVector3 normal = swap ? -n : n;
+            const btVector3 pA = pB + nrm * d;
+            const btVector3 normal = swap ? -nrm : nrm;
             const btVector3 onA = swap ? pB : pA, onB = swap ? pA : pB;
-            btManifoldPoint cp(o0->getWorldTransform().invXform(onA), o1->getWorldTransform().invXform(onB), normal, d);
+            btManifoldPoint& cp = cps[k];
+            cp = btManifoldPoint(o0->getWorldTransform().invXform(onA), o1->getWorldTransform().invXform(onB), normal, d);
             cp.m_positionWorldOnA = onA;
             cp.m_positionWorldOnB = onB;
             cp.m_combinedFriction = gCalculateCombinedFrictionCallback(c0, c1);
@@ -176,32 +200,6 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
             cp.m_combinedRollingFriction = gCalculateCombinedRollingFrictionCallback(c0, c1);
             cp.m_combinedSpinningFriction = gCalculateCombinedSpinningFrictionCallback(c0, c1);
             btPlaneSpace1(cp.m_normalWorldOnB, cp.m_lateralFrictionDir1, cp.m_lateralFrictionDir2);
-            int partA = m.partIdA, indexA = m.indexA, partB = m.partIdB, indexB = m.indexB;
-            // A concave side's wrapper holds the point's triangle, in the concave body's frame.
-            btTriangleShape triA(btVector3(0, 0, 0), btVector3(0, 0, 0), btVector3(0, 0, 0));
-            btTriangleShape triB(btVector3(0, 0, 0), btVector3(0, 0, 0), btVector3(0, 0, 0));
-            for (int s = 0; s < 2; ++s) {
-                SideShape& ss = s == 0 ? sA : sB;
-                if (!ss.concave) continue;
-                int& part = s == 0 ? partA : partB;
-                int& index = s == 0 ? indexA : indexB;
-                triangleOfFeature(ss.shape, p.featureId, &part, &index);
-                btVector3 v[3];
-                if (!findTriangle(ss.shape, ss.transform.invXform(s == 0 ? pA : pB), part, index, v)) {
-                    m_reason = std::string("gContactAddedCallback: a contact's triangle of '") + ss.shape->getName() +
-                               "' was not found for its wrapper";
-                    return false;
-                }
-                btTriangleShape& tri = s == 0 ? triA : triB;
-                tri = btTriangleShape(v[0], v[1], v[2]);
-                tri.setMargin(ss.shape->getMargin());
-            }
-            cp.m_partId0 = swap ? partB : partA;
-            cp.m_index0 = swap ? indexB : indexA;
-            cp.m_partId1 = swap ? partA : partB;
-            cp.m_index1 = swap ? indexA : indexB;
-            const btCollisionObjectWrapper wA(nullptr, sA.concave ? &triA : sA.shape, sA.object, sA.transform, partA, indexA);
-            const btCollisionObjectWrapper wB(nullptr, sB.concave ? &triB : sB.shape, sB.object, sB.transform, partB, indexB);
             // Rolling and spinning friction rows are not on the GPU path: a combiner that gives a
             // pair some cannot be served (Bullet's own gives 0 unless a body has them, a body rule).
             if (cp.m_combinedRollingFriction != 0 || cp.m_combinedSpinningFriction != 0) {
@@ -209,29 +207,73 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
                            "gave a contact rolling or spinning friction, which the GPU path does not have";
                 return false;
             }
-            const btManifoldPoint before = cp;
-            const bool flagged = gContactAddedCallback && ((o0->getCollisionFlags() | o1->getCollisionFlags()) &
-                                                           btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
-            if (flagged) {
-                gContactAddedCallback(cp, swap ? &wB : &wA, cp.m_partId0, cp.m_index0, swap ? &wA : &wB, cp.m_partId1,
-                                      cp.m_index1);
+            int partA = m.partIdA, indexA = m.indexA, partB = m.partIdB, indexB = m.indexB;
+            // A concave side's wrapper holds the point's triangle, in the concave body's frame.
+            btTriangleShape triA(btVector3(0, 0, 0), btVector3(0, 0, 0), btVector3(0, 0, 0));
+            btTriangleShape triB(btVector3(0, 0, 0), btVector3(0, 0, 0), btVector3(0, 0, 0));
+            for (int sd = 0; sd < 2; ++sd) {
+                SideShape& ss = sd == 0 ? sA : sB;
+                if (!ss.concave) continue;
+                int& part = sd == 0 ? partA : partB;
+                int& index = sd == 0 ? indexA : indexB;
+                triangleOfFeature(ss.shape, p.featureId, &part, &index);
+                if (!flagged) continue;
+                btVector3 v[3];
+                if (!findTriangle(ss.shape, ss.transform.invXform(sd == 0 ? pA : pB), part, index, v)) {
+                    m_reason = std::string("gContactAddedCallback: a contact's triangle of '") + ss.shape->getName() +
+                               "' was not found for its wrapper";
+                    return false;
+                }
+                btTriangleShape& tri = sd == 0 ? triA : triB;
+                tri = btTriangleShape(v[0], v[1], v[2]);
+                tri.setMargin(ss.shape->getMargin());
+            }
+            cp.m_partId0 = swap ? partB : partA;
+            cp.m_index0 = swap ? indexB : indexA;
+            cp.m_partId1 = swap ? partA : partB;
+            cp.m_index1 = swap ? indexA : indexB;
+            cp.m_userPersistentData =
+                sync.userDataOf(side, p.featureId, cp.m_index0, cp.m_partId1, cp.m_index1, cp.m_localPointA);
+            loaded[k] = cp.m_userPersistentData;
+            initial[k] = cp;
+            if (!flagged) continue;
+            const btCollisionObjectWrapper wA(nullptr, sA.concave ? &triA : sA.shape, sA.object, sA.transform, partA, indexA);
+            const btCollisionObjectWrapper wB(nullptr, sB.concave ? &triB : sB.shape, sB.object, sB.transform, partB, indexB);
+            gContactAddedCallback(cp, swap ? &wB : &wA, cp.m_partId0, cp.m_index0, swap ? &wA : &wB, cp.m_partId1,
+                                  cp.m_index1);
+            ++m_calls;
+        }
+        // The refresh's processed callback: every point, from the last down (refreshContactPoints).
+        if (gContactProcessedCallback)
+            for (int k = n - 1; k >= 0; --k) {
+                gContactProcessedCallback(cps[k], (void*)o0, (void*)o1);
                 ++m_calls;
             }
+        BtgManifold out = m;
+        BtgContactMaterial material{};
+        material.slot = g.slot;
+        bool geometry = false, needMaterial = false;
+        for (int k = 0; k < n; ++k) {
+            const btManifoldPoint& cp = cps[k];
+            const btManifoldPoint& before = initial[k];
             const char* uncarried = uncarriedChange(cp, before);
             if (*uncarried) {
-                m_reason = std::string("gContactAddedCallback changed ") + uncarried +
-                           " of a contact point, which the GPU path does not carry";
+                m_reason = std::string("a contact callback (gContactAddedCallback or gContactProcessedCallback) changed ") +
+                           uncarried + " of a contact point, which the GPU path does not carry";
                 return false;
             }
             // Friction: the device's contact has one coefficient for its points.
             if (k == 0) material.friction = cp.m_combinedFriction;
             else if (cp.m_combinedFriction != material.friction) {
-                m_reason = "gContactAddedCallback or the friction combiner set different friction on the points of one "
+                m_reason = "a contact callback or the friction combiner set different friction on the points of one "
                            "contact manifold (the GPU path's contact has one coefficient)";
                 return false;
             }
             btgSetLane(&material.restitution, k, cp.m_combinedRestitution);
             needMaterial |= cp.m_combinedFriction != deviceFriction || cp.m_combinedRestitution != deviceRestitution;
+            if (cp.m_userPersistentData || loaded[k] || flagged || all)
+                sync.setPointState({m.bodyA, m.bodyB, m.indexA, m.indexB, m.points[k].featureId, k},
+                                   {cp.m_userPersistentData, cp.m_combinedFriction, cp.m_combinedRestitution});
             if (sameVec(cp.m_normalWorldOnB, before.m_normalWorldOnB) &&
                 sameVec(cp.m_positionWorldOnA, before.m_positionWorldOnA) &&
                 sameVec(cp.m_positionWorldOnB, before.m_positionWorldOnB) && cp.m_distance1 == before.m_distance1)
@@ -241,7 +283,7 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
             const btVector3 implied = cp.m_positionWorldOnB + cp.m_normalWorldOnB * cp.m_distance1;
             const btScalar tol = btScalar(1e-5) * (1 + cp.m_positionWorldOnA.length());
             if ((implied - cp.m_positionWorldOnA).length() > tol || std::fabs(cp.m_normalWorldOnB.length() - 1) > 1e-4f) {
-                m_reason = "gContactAddedCallback moved a contact's points apart from its normal and distance "
+                m_reason = "a contact callback moved a contact's points apart from its normal and distance "
                            "(the GPU path keeps the point on B, the normal and the distance)";
                 return false;
             }
@@ -259,10 +301,10 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
         }
         if (geometry) {
             // The device's contact has one normal (its first point's): the points' must agree.
-            for (int k = 1; k < out.numPoints && k < BTG_MAX_POINTS; ++k) {
+            for (int k = 1; k < n; ++k) {
                 const BtgManifoldPoint &a = out.points[0], &b = out.points[k];
                 if (std::fabs(a.nx - b.nx) > 1e-5f || std::fabs(a.ny - b.ny) > 1e-5f || std::fabs(a.nz - b.nz) > 1e-5f) {
-                    m_reason = "gContactAddedCallback gave the points of one contact manifold different normals (the "
+                    m_reason = "a contact callback gave the points of one contact manifold different normals (the "
                                "GPU path's contact has one normal)";
                     return false;
                 }

@@ -5,6 +5,7 @@
 // wrappers (a compound's child shape and transform, a mesh's btTriangleShape), and sends back
 // what it changed: friction, restitution, normal, points and distance, used by that step's solve.
 #pragma once
+#include "manifold_sync.h"
 #include "row_map.h"
 #include "shape_tables.h"
 #include "btgpu/Config.h"
@@ -22,10 +23,13 @@ namespace btgpu {
 class ContactCallbacks {
 public:
     // The app's callbacks that run between a step's contacts and its solve: gContactAddedCallback
-    // while a body has CF_CUSTOM_MATERIAL_CALLBACK, and any custom gCalculateCombined*Callback.
+    // while a body has CF_CUSTOM_MATERIAL_CALLBACK, gContactProcessedCallback, and any custom
+    // gCalculateCombined*Callback. The manifold events (started, ended, destroyed) come from the
+    // dispatcher fill at each internal step (manifold_sync.h).
     static bool customMaterials(const btDiscreteDynamicsWorld& world);
     static bool customCombiners();
     static bool wanted(const btDiscreteDynamicsWorld& world);
+    static bool events();  // gContactStarted/Ended/Processed/DestroyedCallback
     // Why they cannot be served on the GPU path while wanted ("" when they can): with
     // Config::internalSubsteps > 1 they would be called once per device substep, more often than
     // stock; support-function convex shapes keep their manifold points across steps on the device
@@ -34,7 +38,10 @@ public:
     // The host's part between the contacts and the solve. False when a change the callback made
     // cannot be carried by the device's contacts (reason() says which): the step must run on the
     // CPU path instead.
-    bool run(DeviceWorld& w, const RowMap& rows, const std::unordered_set<const btCollisionObject*>& removed);
+    // The points' user data come from and go to `sync` (the app's manifolds): a point that
+    // continues one keeps its user data, what the callbacks set reaches the next fill.
+    bool run(DeviceWorld& w, const RowMap& rows, const std::unordered_set<const btCollisionObject*>& removed,
+             ManifoldSync& sync);
     const std::string& reason() const { return m_reason; }
     // Calls made in the last run (points passed to the callback).
     long calls() const { return m_calls; }

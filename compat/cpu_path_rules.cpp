@@ -300,11 +300,9 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
                " is not btHashedOverlappingPairCache or btSortedOverlappingPairCache";
     if (pairs->getOverlapFilterCallback()) return "overlap filter callback (setOverlapFilterCallback)";
 
-    // Contact events come from persistent manifolds, which the GPU path does not fill.
-    if (gContactStartedCallback) return "gContactStartedCallback is set";
-    if (gContactEndedCallback) return "gContactEndedCallback is set";
-    if (gContactProcessedCallback) return "gContactProcessedCallback is set";
-    if (gContactDestroyedCallback) return "gContactDestroyedCallback is set";
+    // Contact events (started, ended, processed, destroyed) are served: the dispatcher fill's at
+    // each internal step and the host's part before the solve (contact_callbacks.h, which names
+    // the cases still left to the CPU path).
     // Read by btCompoundCollisionAlgorithm for every child it would collide.
     if (gCompoundChildShapePairCallback) return "gCompoundChildShapePairCallback is set";
     // gContactAddedCallback only runs for bodies with CF_CUSTOM_MATERIAL_CALLBACK: served, as the

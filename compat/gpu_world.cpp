@@ -134,7 +134,7 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
     if (!m_structureReason.empty()) return m_structureReason;
     std::string why = worldReason(m_world, m_config);
     if (why.empty()) why = bodiesReason(m_world, bodyIndex);
-    if (why.empty() && ContactCallbacks::wanted(m_world)) {
+    if (why.empty() && (ContactCallbacks::wanted(m_world) || ContactCallbacks::events())) {
         if (!m_callbackReason.empty() && m_callbackReasonFor == gContactAddedCallback) return m_callbackReason;
         why = ContactCallbacks::unservedReason(m_world, m_config, m_shapes);
     }
@@ -703,13 +703,14 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         if (callbacks)
             betweenContacts = [this] {
                 const Clock::time_point c0 = Clock::now();
-                const bool carried = m_callbacks.run(*m_dev, m_rows, m_removed);
+                const bool carried = m_callbacks.run(*m_dev, m_rows, m_removed, m_manifolds);
                 m_report.callbackMs += msBetween(c0, Clock::now());
                 m_report.contactCallbacks += m_callbacks.calls();
                 return carried;
             };
+        // The manifold events are the fill's, at every internal step as stock's.
         bool perSubstep = m_world.m_internalTickCallback || m_world.m_internalPreTickCallback || actions || ghosts ||
-                          callbacks;
+                          callbacks || ContactCallbacks::events();
         int batches = perSubstep ? clamped : 1;
         int perBatch = perSubstep ? 1 : clamped;
         for (int b = 0; b < batches; ++b) {

@@ -63,6 +63,7 @@ namespace {
 struct NewPoint {
     btManifoldPoint point;
     uint featureId;
+    bool pending;  // its user data and coefficients came from the callbacks before the solve
 };
 
 }  // namespace
@@ -100,7 +101,35 @@ ManifoldSync::Side ManifoldSync::orient(const RowMap& rows, int bodyA, int bodyB
     return out;
 }
 
-void ManifoldSync::refill(const Group& g, const BtgContactReport* reports)
+void* ManifoldSync::userDataOf(const Side& side, unsigned featureId, int index0, int partId1, int index1,
+                               const btVector3& localA) const
+{
+    auto it = m_map.find(side.key);
+    if (it == m_map.end() || side.spheres) return nullptr;  // stock clears a sphere pair's manifold each step
+    const Entry& e = it->second;
+    const btPersistentManifold* m = e.manifold;
+    const btScalar thr2 = m->getContactBreakingThreshold() * m->getContactBreakingThreshold();
+    int match = -1;
+    for (int j = 0; j < m->getNumContacts() && match < 0; ++j) {
+        const btManifoldPoint& o = m->getContactPoint(j);
+        if (featureId != BTG_FEATURE_UNKNOWN && e.ids[j] == featureId && o.m_index1 == index1 && o.m_partId1 == partId1 &&
+            o.m_index0 == index0 && (o.m_localPointA - localA).length2() < thr2)
+            match = j;
+    }
+    if (match < 0) {
+        btScalar best = thr2;
+        for (int j = 0; j < m->getNumContacts(); ++j) {
+            const btScalar d2 = (m->getContactPoint(j).m_localPointA - localA).length2();
+            if (d2 < best) {
+                best = d2;
+                match = j;
+            }
+        }
+    }
+    return match >= 0 ? m->getContactPoint(match).m_userPersistentData : nullptr;
+}
+
+void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
 {
     NewPoint points[4 * BTG_MAX_POINTS];  // a convex–mesh pair's triangles: reduced as they come
     std::vector<NewPoint> many;
@@ -128,7 +157,7 @@ void ManifoldSync::refill(const Group& g, const BtgContactReport* reports)
             if (side.concaveA) triangleOfFeature(side.concaveA, r.featureId[k], &partA, &indexA);
             if (side.concaveB) triangleOfFeature(side.concaveB, r.featureId[k], &partB, &indexB);
             // The impulses act on the report's A along +n, +d1, +d2; Bullet's on body0.
-            NewPoint np{swap ? btManifoldPoint(lB, lA, -n, d) : btManifoldPoint(lA, lB, n, d), r.featureId[k]};
+            NewPoint np{swap ? btManifoldPoint(lB, lA, -n, d) : btManifoldPoint(lA, lB, n, d), r.featureId[k], false};
             btManifoldPoint& p = np.point;
             p.m_positionWorldOnA = swap ? pB : pA;
             p.m_positionWorldOnB = swap ? pA : pB;
@@ -145,6 +174,15 @@ void ManifoldSync::refill(const Group& g, const BtgContactReport* reports)
             p.m_combinedRestitution = btManifoldResult::calculateCombinedRestitution(key.body0, key.body1);
             p.m_combinedRollingFriction = btManifoldResult::calculateCombinedRollingFriction(key.body0, key.body1);
             p.m_combinedSpinningFriction = btManifoldResult::calculateCombinedSpinningFriction(key.body0, key.body1);
+            if (!m_pending.empty()) {
+                auto it = m_pending.find(PointKey{r.bodyA, r.bodyB, r.indexA, r.indexB, r.featureId[k], k});
+                if (it != m_pending.end()) {
+                    p.m_userPersistentData = it->second.userData;
+                    p.m_combinedFriction = it->second.friction;
+                    p.m_combinedRestitution = it->second.restitution;
+                    np.pending = true;
+                }
+            }
             push(np);
         }
     }
@@ -180,11 +218,57 @@ void ManifoldSync::refill(const Group& g, const BtgContactReport* reports)
         }
         if (match >= 0) claimed |= 1u << match;
         np.point.m_lifeTime = g.spheres ? 0 : (match >= 0 ? old[match].m_lifeTime + 1 : 1);
+        // A point that continues one keeps its user data (replaceContactPoint); stock clears a
+        // sphere pair's manifold every step, which drops it.
+        if (!np.pending) np.point.m_userPersistentData = match >= 0 && !g.spheres ? old[match].m_userPersistentData : nullptr;
     }
-    m->clearManifold();
+    // Emptied without Bullet's clearManifold, which would end the contact and destroy the
+    // points' user data (the callbacks for both are the fill's, serially: contactEvents); the
+    // points go in without their user data, so that a point the reduction drops takes none with
+    // it, and get it once placed.
+    g.before = oldCount;
+    for (int j = 0; j < oldCount; ++j) m->getContactPoint(j).m_userPersistentData = nullptr;
+    m->setNumContacts(0);
+    int owner[MANIFOLD_CACHE_SIZE] = {-1, -1, -1, -1};
     for (int i = 0; i < total; ++i) {
-        const int slot = m->addManifoldPoint(at(i).point);
-        if (slot >= 0 && slot < MANIFOLD_CACHE_SIZE) e.ids[slot] = at(i).featureId;
+        btManifoldPoint pt = at(i).point;
+        pt.m_userPersistentData = nullptr;
+        const int slot = m->addManifoldPoint(pt);
+        if (slot >= 0 && slot < MANIFOLD_CACHE_SIZE) {
+            e.ids[slot] = at(i).featureId;
+            owner[slot] = i;
+        }
+    }
+    for (int s = 0; s < m->getNumContacts(); ++s)
+        if (owner[s] >= 0) m->getContactPoint(s).m_userPersistentData = at(owner[s]).point.m_userPersistentData;
+    // User data no point holds any more: destroyed, as stock's point removal does.
+    g.dropped.clear();
+    auto held = [&](void* p) {
+        for (int s = 0; s < m->getNumContacts(); ++s)
+            if (m->getContactPoint(s).m_userPersistentData == p) return true;
+        return false;
+    };
+    for (int j = 0; j < oldCount; ++j)
+        if (old[j].m_userPersistentData && !held(old[j].m_userPersistentData)) g.dropped.push_back(old[j].m_userPersistentData);
+    for (int i = 0; i < total; ++i) {
+        void* p = at(i).point.m_userPersistentData;
+        if (p && !held(p) && std::find(g.dropped.begin(), g.dropped.end(), p) == g.dropped.end()) g.dropped.push_back(p);
+    }
+}
+
+void ManifoldSync::contactEvents()
+{
+    // Stock's order within a manifold's step: a sphere pair's manifold is cleared first (its
+    // contact ends), points are added (the contact starts with the first of an empty manifold),
+    // then the refresh removes the points that went (their user data destroyed).
+    for (Group& g : m_groups) {
+        btPersistentManifold* m = g.entry->second.manifold;
+        const bool restarted = g.spheres && g.before > 0 && !g.fresh;
+        if (restarted && gContactEndedCallback) gContactEndedCallback(m);
+        if ((g.fresh || restarted) && m->getNumContacts() > 0 && gContactStartedCallback) gContactStartedCallback(m);
+        if (gContactDestroyedCallback)
+            for (void* p : g.dropped) gContactDestroyedCallback(p);
+        g.dropped.clear();
     }
 }
 
@@ -214,11 +298,12 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
             continue;
         }
         auto it = m_map.find(side.key);
-        if (it == m_map.end())
+        const bool fresh = it == m_map.end();
+        if (fresh)
             it = m_map.emplace(side.key, Entry{dispatcher->getNewManifold(side.key.body0, side.key.body1), 0, {}}).first;
         duplicate |= it->second.stamp == m_stamp;  // the same manifold again, not adjacent
         it->second.stamp = m_stamp;
-        m_groups.push_back({&*it, i, i + 1, side.spheres});
+        m_groups.push_back({&*it, i, i + 1, side.spheres, fresh, 0, {}});
     }
     if (duplicate) {
         // Not seen in pair order, but kept right: one group per manifold, in report order.
@@ -226,10 +311,12 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
         std::vector<Group> merged;
         std::vector<std::vector<size_t>> members;
         for (const Group& g : m_groups) {
-            auto [it, fresh] = firstOf.emplace(g.entry->second.manifold, merged.size());
-            if (fresh) {
+            auto [it, first] = firstOf.emplace(g.entry->second.manifold, merged.size());
+            if (first) {
                 merged.push_back(g);
                 members.emplace_back();
+            } else {
+                merged[it->second].fresh |= g.fresh;
             }
             for (size_t i = g.first; i < g.last; ++i) members[it->second].push_back(i);
         }
@@ -246,12 +333,15 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
         }
         m_sides.swap(sides);
         m_scratch.swap(reports);
-        for (const Group& g : merged) refill(g, m_scratch.data());
+        m_groups.swap(merged);
+        for (Group& g : m_groups) refill(g, m_scratch.data());
     } else {
         forEachChunk(m_groups.size(), 512, [&](size_t begin, size_t end, int) {
             for (size_t k = begin; k < end; ++k) refill(m_groups[k], rb.contacts.data());
         });
     }
+    m_pending.clear();
+    contactEvents();
 
     // Pairs that stopped touching: released, as stock's algorithm empties and the pair goes;
     // a pair of two sleeping (or static) bodies is not collided by stock: kept as it was.
@@ -272,8 +362,18 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
 void ManifoldSync::releaseAll(btDispatcher* dispatcher)
 {
     if (dispatcher)
-        for (auto& [key, e] : m_map) dispatcher->releaseManifold(e.manifold);
+        for (auto& [key, e] : m_map) {
+            btPersistentManifold* m = e.manifold;
+            for (int j = 0; j < m->getNumContacts(); ++j) {
+                btManifoldPoint& p = m->getContactPoint(j);
+                if (p.m_userPersistentData && gContactDestroyedCallback) gContactDestroyedCallback(p.m_userPersistentData);
+                p.m_userPersistentData = nullptr;
+            }
+            m->setNumContacts(0);
+            dispatcher->releaseManifold(m);
+        }
     m_map.clear();
+    m_pending.clear();
 }
 
 void ManifoldSync::removed(btDispatcher* dispatcher, const btCollisionObject* object)
