@@ -125,6 +125,9 @@ bool ContactCallbacks::events()
 std::string ContactCallbacks::unservedReason(const btDiscreteDynamicsWorld& world, const Config& config,
                                              const ShapeTables& shapes)
 {
+    if (config.internalSubsteps > 1 && overlapFilter(const_cast<btDiscreteDynamicsWorld&>(world)))
+        return "overlap filter callback (setOverlapFilterCallback) with Config::internalSubsteps > 1 (Bullet's "
+               "broadphase asks it once per internal step)";
     if (events() && config.internalSubsteps > 1)
         return "contact callbacks (gContactStarted/Ended/Processed/DestroyedCallback) with Config::internalSubsteps > 1 "
                "(stock calls them once per internal step)";
@@ -143,6 +146,27 @@ std::string ContactCallbacks::unservedReason(const btDiscreteDynamicsWorld& worl
                        "(capsule, cylinder, cone, ...: its contact points persist on the device, which are added is not "
                        "known)";
     return "";
+}
+
+bool ContactCallbacks::overlapFilter(btDiscreteDynamicsWorld& world)
+{
+    btOverlappingPairCache* cache = world.getBroadphase() ? world.getBroadphase()->getOverlappingPairCache() : nullptr;
+    return cache && cache->getOverlapFilterCallback();
+}
+
+void ContactCallbacks::keepStockPairs(DeviceWorld& w, const RowMap& rows, btDiscreteDynamicsWorld& world)
+{
+    btOverlappingPairCache* cache = world.getBroadphase()->getOverlappingPairCache();
+    const std::vector<BtgPair> pairs = downloadPairs(w);
+    std::vector<uint> refused;
+    for (size_t i = 0; i < pairs.size(); ++i) {
+        btCollisionObject* a = pairs[i].a >= 0 && size_t(pairs[i].a) < rows.size() ? rows.at(size_t(pairs[i].a)) : nullptr;
+        btCollisionObject* b = pairs[i].b >= 0 && size_t(pairs[i].b) < rows.size() ? rows.at(size_t(pairs[i].b)) : nullptr;
+        btBroadphaseProxy* pa = a ? a->getBroadphaseHandle() : nullptr;
+        btBroadphaseProxy* pb = b ? b->getBroadphaseHandle() : nullptr;
+        if (!pa || !pb || !cache->findPair(pa, pb)) refused.push_back(uint(i));
+    }
+    clearPairRanges(w, refused);
 }
 
 bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unordered_set<const btCollisionObject*>& removed,

@@ -42,6 +42,11 @@ public:
     // continues one keeps its user data, what the callbacks set reaches the next fill.
     bool run(DeviceWorld& w, const RowMap& rows, const std::unordered_set<const btCollisionObject*>& removed,
              ManifoldSync& sync);
+    // An app's overlap filter callback: Bullet's broadphase, run on the host at the step's start
+    // (updateBroadphaseAsStock), asked it for each new pair as stock's does; the device's pairs
+    // its pair cache does not hold make no contact. True while the world has one.
+    static bool overlapFilter(btDiscreteDynamicsWorld& world);
+    void keepStockPairs(DeviceWorld& w, const RowMap& rows, btDiscreteDynamicsWorld& world);
     const std::string& reason() const { return m_reason; }
     // Calls made in the last run (points passed to the callback).
     long calls() const { return m_calls; }

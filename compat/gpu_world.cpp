@@ -134,7 +134,8 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
     if (!m_structureReason.empty()) return m_structureReason;
     std::string why = worldReason(m_world, m_config);
     if (why.empty()) why = bodiesReason(m_world, bodyIndex);
-    if (why.empty() && (ContactCallbacks::wanted(m_world) || ContactCallbacks::events())) {
+    if (why.empty() && (ContactCallbacks::wanted(m_world) || ContactCallbacks::events() ||
+                        ContactCallbacks::overlapFilter(m_world))) {
         if (!m_callbackReason.empty() && m_callbackReasonFor == gContactAddedCallback) return m_callbackReason;
         why = ContactCallbacks::unservedReason(m_world, m_config, m_shapes);
     }
@@ -392,6 +393,8 @@ bool GpuWorld::compareRow(size_t r, bool all, BodyRowUpdate* u, std::string* new
     BtgBodyProps props = bodyProps(o, shapeRow, m_shapes.shapes[shapeRow], excluded);
     if (m_large[r]) props.flags |= BTG_BODY_LARGE;  // paired by the large pass, not the grid
     if (r < m_heldAwake.size() && m_heldAwake[r]) props.flags |= BTG_BODY_NEVER_SLEEP;  // in a ghost's island
+    // With an app's overlap filter Bullet's pair cache decides the pairs, not group and mask.
+    if (m_overlapFilter) props.group = props.mask = -1;
     const btRigidBody* rb = btRigidBody::upcast(o);
     btVector3 lin = rb ? rb->getLinearVelocity() : btVector3(0, 0, 0);
     btVector3 ang = rb ? rb->getAngularVelocity() : btVector3(0, 0, 0);
@@ -613,6 +616,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
     }
     const Clock::time_point checkStart = Clock::now();
     m_stepDt = maxSubSteps ? fixedTimeStep : timeStep;
+    m_overlapFilter = ContactCallbacks::overlapFilter(m_world);
     // A body given another shape (setCollisionShape), or a shape the app changed in place
     // (setLocalScaling, setMargin, its points) since the tables were built: they are built
     // again, as for an added body. Swaps first: the app may have deleted a shape it swapped out,
@@ -694,16 +698,19 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         // Ghosts: the host runs stock's broadphase update at each internal step's start.
         const bool ghosts = !m_ghosts.empty();
         // The app's contact callbacks: each internal step stops between its contacts and its solve.
-        const bool callbacks = ContactCallbacks::wanted(m_world);
+        const bool filtered = m_overlapFilter;
+        const bool wantedCallbacks = ContactCallbacks::wanted(m_world);
+        const bool callbacks = wantedCallbacks || filtered;
         if (callbacks != m_plan.contactCallbacks) {
             m_plan.contactCallbacks = callbacks;
             m_report.stages = m_plan.stages();
         }
         std::function<bool()> betweenContacts;
         if (callbacks)
-            betweenContacts = [this] {
+            betweenContacts = [this, filtered, wantedCallbacks] {
                 const Clock::time_point c0 = Clock::now();
-                const bool carried = m_callbacks.run(*m_dev, m_rows, m_removed, m_manifolds);
+                if (filtered) m_callbacks.keepStockPairs(*m_dev, m_rows, m_world);
+                const bool carried = !wantedCallbacks || m_callbacks.run(*m_dev, m_rows, m_removed, m_manifolds);
                 m_report.callbackMs += msBetween(c0, Clock::now());
                 m_report.contactCallbacks += m_callbacks.calls();
                 return carried;
@@ -711,6 +718,9 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         // The manifold events are the fill's, at every internal step as stock's.
         bool perSubstep = m_world.m_internalTickCallback || m_world.m_internalPreTickCallback || actions || ghosts ||
                           callbacks || ContactCallbacks::events();
+        // Bullet's broadphase on the host at each internal step's start: for ghosts, and for an
+        // app's overlap filter (which stock's pair cache asks for each new pair).
+        const bool hostBroadphase = ghosts || filtered;
         int batches = perSubstep ? clamped : 1;
         int perBatch = perSubstep ? 1 : clamped;
         for (int b = 0; b < batches; ++b) {
@@ -729,11 +739,11 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             dispatchInfo.m_debugDraw = m_world.getDebugDrawer();
             m_world.getSolverInfo().m_timeStep = fixedTimeStep;
             Clock::time_point t0 = Clock::now();
-            if (!m_ghosts.empty()) {
+            if (hostBroadphase) {
                 const Clock::time_point g0 = Clock::now();
                 completeBroadphasePairs();  // after steps that synced without pair tests
                 updateBroadphaseAsStock(m_world, fixedTimeStep);
-                heldAwakeByGhosts(m_world, m_rows, &m_heldAwake);
+                if (!m_ghosts.empty()) heldAwakeByGhosts(m_world, m_rows, &m_heldAwake);
                 m_report.ghostBroadphaseMs += msBetween(g0, Clock::now());
             }
             syncIn(*m_dev, changedRows(false));
@@ -790,9 +800,9 @@ bool GpuWorld::finishCall(bool profiled, bool gpuPath)
     m_world.synchronizeMotionStates();
     m_world.clearForces();
     Clock::time_point t4 = Clock::now();
-    // With ghosts the broadphase holds stock's AABBs already (set at the step's start): moving
-    // them here would add pairs, and ghost overlaps, stock does not have.
-    if (m_config.syncBroadphaseAabbs && m_ghosts.empty()) syncBroadphaseAabbs();
+    // With ghosts (or an overlap filter) the broadphase holds stock's AABBs already (set at the
+    // step's start): moving them here would add pairs, and ghost overlaps, stock does not have.
+    if (m_config.syncBroadphaseAabbs && m_ghosts.empty() && !m_overlapFilter) syncBroadphaseAabbs();
     m_report.writeBackMs += msBetween(t3, t4);
     m_report.aabbSyncMs = msBetween(t4, Clock::now());
     m_report.stageMs.clear();  // empty on calls that were not profiled

@@ -147,6 +147,9 @@ private:
     // A change the callback made that the device cannot carry: the world stays on the CPU path
     // until something is added or removed or the callback is another.
     std::string m_callbackReason;
+    // An overlap filter callback is set: Bullet's broadphase runs on the host at each internal
+    // step and decides the pairs (the rows' group and mask then accept everything on the device).
+    bool m_overlapFilter = false;
     ContactAddedCallback m_callbackReasonFor = nullptr;
     JointSync m_joints;         // the joint table on the device and its write-back
     IgnoredPairs m_ignored;     // collision-check exceptions (disableCollisionsBetweenLinkedBodies)

@@ -3,6 +3,8 @@
  * host reads the manifolds of pairs with a CF_CUSTOM_MATERIAL_CALLBACK body (all of them with a
  * custom combiner), runs the app's callbacks on each point, writes back what they changed, and
  * the substep goes on.
+ * With an overlap filter callback the host first empties the ranges of the pairs Bullet's pair
+ * cache does not hold (clear_pair_ranges, one work-item per refused pair).
  * Launch: gather_callback_manifolds one work-item per pair slot (pairCapacity);
  * scatter_callback_manifolds one per changed manifold; apply_contact_materials one per contact
  * slot (contactCapacity), right after prepare_contacts.
@@ -74,4 +76,13 @@ __kernel void apply_contact_materials(__global BtgContact* contacts, __global co
     BtgBodyVel b1 = btgMakeBodyVel(b.moving, linVel[c.bodyB], angVel[c.bodyB]);
     btgApplyContactMaterial(&c, materials[found], a, b, a0, b0, a1, b1, btgContactSolvable(pa.flags, pb.flags), params);
     contacts[i] = c;
+}
+
+/* The pairs an app's overlap filter callback refused (Bullet's pair cache holds no such pair):
+ * their manifold ranges emptied, as filter_pairs does, so no contact is made of them. */
+__kernel void clear_pair_ranges(__global const uint* restrict refused, int n, __global BtgManifoldRange* pairManifolds)
+{
+    int i = (int)get_global_id(0);
+    if (i >= n) return;
+    pairManifolds[refused[i]].count = 0;
 }

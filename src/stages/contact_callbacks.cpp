@@ -68,6 +68,26 @@ void sendCallbackChanges(DeviceWorld& w, const std::vector<GatheredManifold>& ch
     if (!materials.empty()) w.contactMaterials.upload(ctx, materials);
 }
 
+std::vector<BtgPair> downloadPairs(DeviceWorld& w)
+{
+    uint count = 0;
+    w.counters.download(w.ctx, &count, 1, size_t(kPairCount));
+    const size_t n = std::min<size_t>(count, std::min(w.pairCapacity, w.pairs.capacity()));
+    std::vector<BtgPair> pairs(n);
+    w.pairs.download(w.ctx, pairs.data(), n);
+    return pairs;
+}
+
+void clearPairRanges(DeviceWorld& w, const std::vector<uint>& pairs)
+{
+    if (pairs.empty()) return;
+    cl::Context& ctx = w.ctx;
+    w.profiler.stage = "contact_callbacks";
+    w.callbackSlots.upload(ctx, pairs);
+    cl::Launch(ctx, ctx.program("contact_callbacks").kernel("clear_pair_ranges"), &w.profiler)
+        .arg(w.callbackSlots).arg(int(pairs.size())).arg(w.pairManifolds).run(pairs.size());
+}
+
 void applyContactMaterials(DeviceWorld& w, const BtgStepParams& p)
 {
     if (w.numMaterials <= 0) return;

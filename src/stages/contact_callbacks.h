@@ -23,6 +23,10 @@ std::vector<GatheredManifold> gatherCallbackManifolds(DeviceWorld& w, bool all =
 // applyContactMaterials; both enqueued, not waited for.
 void sendCallbackChanges(DeviceWorld& w, const std::vector<GatheredManifold>& changed,
                          const std::vector<BtgContactMaterial>& materials);
+// The substep's pairs (after expand_compounds: its collider pairs), blocking.
+std::vector<BtgPair> downloadPairs(DeviceWorld& w);
+// Pairs (indices into the pair list) that make no contact: their manifold ranges emptied.
+void clearPairRanges(DeviceWorld& w, const std::vector<uint>& pairs);
 // The substep's contacts whose manifold has a material prepared again with it (a no-op when the
 // host sent none); the materials are used once.
 void applyContactMaterials(DeviceWorld& w, const BtgStepParams& p);

@@ -46,9 +46,6 @@ bool added(btManifoldPoint&, const btCollisionObjectWrapper*, int, int, const bt
 {
     return true;
 }
-struct AcceptAll : btOverlapFilterCallback {
-    bool needBroadphaseCollision(btBroadphaseProxy*, btBroadphaseProxy*) const override { return true; }
-};
 struct SubclassSolver : btSequentialImpulseConstraintSolver {};
 
 btCollisionDispatcher& dispatcher(Scene& s) { return *static_cast<btCollisionDispatcher*>(s.world().getDispatcher()); }
@@ -92,7 +89,6 @@ std::vector<Rule> rules()
     static btNNCGConstraintSolver nncg;
     static btDantzigSolver dantzig;
     static btMLCPSolver mlcp(&dantzig);
-    static AcceptAll acceptAll;
     static btCapsuleShape capsule(.5, 1);
     // A compound holding a shape the GPU path does not take (a Minkowski sum).
     static btSphereShape ball(.2f);
@@ -127,9 +123,7 @@ std::vector<Rule> rules()
         solver("MLCP solver", &mlcp),
         {"near callback", "near callback", [](Scene& s) { dispatcher(s).setNearCallback(nearCallback); },
          [](Scene& s) { dispatcher(s).setNearCallback(btCollisionDispatcher::defaultNearCallback); }},
-        {"overlap filter callback", "overlap filter callback",
-         [](Scene& s) { s.world().getPairCache()->setOverlapFilterCallback(&acceptAll); },
-         [](Scene& s) { s.world().getPairCache()->setOverlapFilterCallback(nullptr); }},
+        // An overlap filter callback is served (callbacks_test.cpp).
         // The contact events are served (callbacks_test.cpp), but for the cases it tests.
         // The combiners are served (callbacks_test.cpp), but for the cases it tests.
         global("contact breaking threshold", "gContactBreakingThreshold", gContactBreakingThreshold, btScalar(0.05)),
@@ -262,7 +256,7 @@ TEST(CpuPathRules, ComingBackAgreesWithStock)
     // Set while the boxes fall: they land on the CPU path; set back, the GPU path must go on from
     // where the CPU path left every row (not from its own last upload) and stay with stock.
     std::vector<Rule> all = rules();
-    for (const char* name : {"rolling friction", "randomised order", "near callback", "overlap filter callback"}) {
+    for (const char* name : {"rolling friction", "randomised order", "near callback", "contact breaking threshold"}) {
         SCOPED_TRACE(name);
         const Rule& rule = *std::find_if(all.begin(), all.end(), [&](const Rule& r) { return r.name == name; });
         SideBySide s(scenes::dropRow);

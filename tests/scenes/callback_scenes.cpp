@@ -41,4 +41,14 @@ ScenePtr edgeSlide(WorldKind kind, const Config& config)
     return scene;
 }
 
+ScenePtr boxOverBox(WorldKind kind, const Config& config)
+{
+    auto scene = std::make_unique<Scene>(kind, config, "box_over_box");
+    scene->addBody(scene->boxShape(btVector3(20, 20, 20)), 0, btVector3(0, -20, 0));
+    btBoxShape* box = scene->boxShape(btVector3(.5, .5, .5));
+    scene->addBody(box, 1, btVector3(0, .5, 0))->setUserIndex(8);
+    scene->addBody(box, 1, btVector3(.2f, 3, 0))->setUserIndex(7);
+    return scene;
+}
+
 }  // namespace btgpu::scenes

@@ -20,5 +20,8 @@ ScenePtr slidingBox(WorldKind kind, const Config& config = Config());
 // app's callback calls btAdjustInternalEdgeContacts); body 1: a 0.5 m half-extent box resting on
 // it at x = -6, given 5 m/s along x, so it slides over many internal edges.
 ScenePtr edgeSlide(WorldKind kind, const Config& config = Config());
+// Body 0: the ground box; body 1: a 0.5 m half-extent box resting on it (user index 8); body 2:
+// the same box released 3 m above it (user index 7), for an overlap filter that refuses the pair.
+ScenePtr boxOverBox(WorldKind kind, const Config& config = Config());
 
 }  // namespace btgpu::scenes
