@@ -38,6 +38,9 @@ BtgBodyProps bodyProps(const btCollisionObject* obj, int shapeRow, const BtgShap
     if (state == DISABLE_SIMULATION || excluded) flags |= BTG_BODY_EXCLUDED;
     if (state == DISABLE_DEACTIVATION || obj->isKinematicObject()) flags |= BTG_BODY_NEVER_SLEEP;
     if (shape.type == BTG_SHAPE_PLANE) flags = (flags & ~(BTG_BODY_DYNAMIC | BTG_BODY_KINEMATIC)) | BTG_BODY_STATIC;
+    // Its manifolds go to the app's gContactAddedCallback before the solve (contact_callbacks.h).
+    if (gContactAddedCallback && (obj->getCollisionFlags() & btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK))
+        flags |= BTG_BODY_CUSTOM_MATERIAL;
     if (rb) {
         if (rb->getFlags() & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY) flags |= BTG_BODY_GYRO;
         p.invMass = (flags & BTG_BODY_DYNAMIC) ? rb->getInvMass() : 0.0f;

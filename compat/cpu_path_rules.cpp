@@ -298,27 +298,19 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
                    typeid(*pairs) != typeid(btSortedOverlappingPairCache)))
         return "overlapping pair cache " + (pairs ? typeName(typeid(*pairs)) : std::string("(none)")) +
                " is not btHashedOverlappingPairCache or btSortedOverlappingPairCache";
-    if (pairs->getOverlapFilterCallback()) return "overlap filter callback (setOverlapFilterCallback)";
+    // An overlap filter callback is served: Bullet's broadphase asks it on the host
+    // (contact_callbacks.h, which names the case still left to the CPU path).
 
-    // Contact events come from persistent manifolds, which the GPU path does not fill.
-    if (gContactStartedCallback) return "gContactStartedCallback is set";
-    if (gContactEndedCallback) return "gContactEndedCallback is set";
-    if (gContactProcessedCallback) return "gContactProcessedCallback is set";
-    if (gContactDestroyedCallback) return "gContactDestroyedCallback is set";
+    // Contact events (started, ended, processed, destroyed) are served: the dispatcher fill's at
+    // each internal step and the host's part before the solve (contact_callbacks.h, which names
+    // the cases still left to the CPU path).
     // Read by btCompoundCollisionAlgorithm for every child it would collide.
     if (gCompoundChildShapePairCallback) return "gCompoundChildShapePairCallback is set";
-    // gContactAddedCallback only runs for bodies with CF_CUSTOM_MATERIAL_CALLBACK: a body rule.
-    // The combiners run for every contact point; the GPU path multiplies friction (clamped to
-    // ±10) and restitution, and has no rolling or spinning friction. The contact stiffness and
-    // damping combiners only run for CF_HAS_CONTACT_STIFFNESS_DAMPING bodies, a body rule.
-    if (gCalculateCombinedFrictionCallback != &btManifoldResult::calculateCombinedFriction)
-        return "gCalculateCombinedFrictionCallback is not Bullet's default";
-    if (gCalculateCombinedRestitutionCallback != &btManifoldResult::calculateCombinedRestitution)
-        return "gCalculateCombinedRestitutionCallback is not Bullet's default";
-    if (gCalculateCombinedRollingFrictionCallback != &btManifoldResult::calculateCombinedRollingFriction)
-        return "gCalculateCombinedRollingFrictionCallback is not Bullet's default";
-    if (gCalculateCombinedSpinningFrictionCallback != &btManifoldResult::calculateCombinedSpinningFriction)
-        return "gCalculateCombinedSpinningFrictionCallback is not Bullet's default";
+    // gContactAddedCallback only runs for bodies with CF_CUSTOM_MATERIAL_CALLBACK: served, as the
+    // friction, restitution, rolling and spinning combiners (each point's values computed on the
+    // host between the contacts and the solve), but for the cases contact_callbacks.h names.
+    // The contact stiffness and damping combiners only run for CF_HAS_CONTACT_STIFFNESS_DAMPING
+    // bodies, a body rule.
     // Bullet's breaking threshold is the GPU path's contact threshold; an app that changes both
     // alike keeps the GPU path, one that changes only Bullet's does not.
     if (gContactBreakingThreshold != btScalar(0.02) && gContactBreakingThreshold != config.contactThreshold)
@@ -379,7 +371,8 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     // Flags left on the GPU path: CF_CHARACTER_OBJECT, CF_DISABLE_VISUALIZE_OBJECT,
     // CF_DISABLE_SPU_COLLISION_PROCESSING, CF_HAS_CUSTOM_DEBUG_RENDERING_COLOR and
     // CF_HAS_COLLISION_SOUND_TRIGGER are unread by 3.24's rigid-body pipeline;
-    // CF_CUSTOM_MATERIAL_CALLBACK does nothing without gContactAddedCallback. Collision-check
+    // CF_CUSTOM_MATERIAL_CALLBACK with gContactAddedCallback is served (contact_callbacks.h, whose
+    // unservedReason GpuWorld asks). Collision-check
     // exceptions (setIgnoreCollisionCheck, disableCollisionsBetweenLinkedBodies) are served by
     // filter_pairs.
     const int flags = o->getCollisionFlags();
@@ -388,8 +381,6 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     if (flags & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING)
         return "contact stiffness and damping (CF_HAS_CONTACT_STIFFNESS_DAMPING)";
     if (flags & btCollisionObject::CF_HAS_FRICTION_ANCHOR) return "friction anchors (CF_HAS_FRICTION_ANCHOR)";
-    if ((flags & btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK) && context.contactAddedCallback)
-        return "gContactAddedCallback with CF_CUSTOM_MATERIAL_CALLBACK";
     // Bullet combines these with the other body's friction: one body with them is enough.
     if (o->getRollingFriction() != btScalar(0)) return "rolling friction (setRollingFriction)";
     if (o->getSpinningFriction() != btScalar(0)) return "spinning friction (setSpinningFriction)";

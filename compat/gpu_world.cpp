@@ -119,6 +119,7 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
     for (size_t g = 0; g < m_ghosts.size() && !m_structureDirty; ++g)
         if (m_ghosts[g]->hasContactResponse() != bool(m_ghostResponds[g])) m_structureDirty = true;
     if (m_structureDirty) {
+        m_callbackReason.clear();
         m_structureReason = structureReason(m_world, &m_shapes);
         const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
         m_shapeOfObject.resize(size_t(objs.size()));
@@ -133,6 +134,11 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
     if (!m_structureReason.empty()) return m_structureReason;
     std::string why = worldReason(m_world, m_config);
     if (why.empty()) why = bodiesReason(m_world, bodyIndex);
+    if (why.empty() && (ContactCallbacks::wanted(m_world) || ContactCallbacks::events() ||
+                        ContactCallbacks::overlapFilter(m_world))) {
+        if (!m_callbackReason.empty() && m_callbackReasonFor == gContactAddedCallback) return m_callbackReason;
+        why = ContactCallbacks::unservedReason(m_world, m_config, m_shapes);
+    }
     return why;
 }
 
@@ -170,6 +176,7 @@ void GpuWorld::makePlan()
     m_plan = d.plan;
     m_plan.hasIgnoredPairs = m_ignored.any();
     m_plan.reportContacts = m_config.fillDispatcherManifolds;
+    m_plan.contactCallbacks = ContactCallbacks::wanted(m_world);
     m_large.assign(m_rows.size(), false);
     for (int r : d.largeRows) m_large[size_t(r)] = true;
     DeviceWorld& w = *m_dev;
@@ -387,6 +394,8 @@ bool GpuWorld::compareRow(size_t r, bool all, BodyRowUpdate* u, std::string* new
     BtgBodyProps props = bodyProps(o, shapeRow, m_shapes.shapes[shapeRow], excluded);
     if (m_large[r]) props.flags |= BTG_BODY_LARGE;  // paired by the large pass, not the grid
     if (r < m_heldAwake.size() && m_heldAwake[r]) props.flags |= BTG_BODY_NEVER_SLEEP;  // in a ghost's island
+    // With an app's overlap filter Bullet's pair cache decides the pairs, not group and mask.
+    if (m_overlapFilter) props.group = props.mask = -1;
     const btRigidBody* rb = btRigidBody::upcast(o);
     btVector3 lin = rb ? rb->getLinearVelocity() : btVector3(0, 0, 0);
     btVector3 ang = rb ? rb->getAngularVelocity() : btVector3(0, 0, 0);
@@ -451,20 +460,22 @@ StepSettings GpuWorld::settings(int substeps, btScalar dt) const
     return s;
 }
 
-void GpuWorld::runOnDevice(int substeps, btScalar dt, SubstepPart part)
+bool GpuWorld::runOnDevice(int substeps, btScalar dt, SubstepPart part, const std::function<bool()>& betweenContacts)
 {
     DeviceWorld& w = *m_dev;
     // substeps * k stays an int: k is capped where the product would overflow.
     const int k = std::max(std::min(m_config.internalSubsteps, std::numeric_limits<int>::max() / std::max(substeps, 1)), 1);
     StepSettings s = settings(part == SubstepPart::ActivationOnly ? 1 : substeps * k, dt / btScalar(k));
     s.lastPart = part;
-    const CallOutcome outcome = runCall(w, m_plan, s, m_snapshot, m_readback);
+    const CallOutcome outcome = runCall(w, m_plan, s, m_snapshot, m_readback, betweenContacts);
     for (const CallEvent& e : outcome.events)
         report({e.kind == CallEvent::Kind::Grew ? Issue::Kind::Overflow : Issue::Kind::Device, e.message});
     m_report.redoneSteps += outcome.redone;
+    if (outcome.abandoned) return false;
     m_rows.stepped();
     m_report.pairs = int(std::min<size_t>(m_readback.counters[kPairCount], w.pairCapacity));
     m_report.contacts = int(m_readback.counters[kContactCount]);
+    return true;
 }
 
 void GpuWorld::writeBack(const BodyReadback& rb, bool last, bool sleepRead)
@@ -606,6 +617,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
     }
     const Clock::time_point checkStart = Clock::now();
     m_stepDt = maxSubSteps ? fixedTimeStep : timeStep;
+    m_overlapFilter = ContactCallbacks::overlapFilter(m_world);
     // A body given another shape (setCollisionShape), or a shape the app changed in place
     // (setLocalScaling, setMargin, its points) since the tables were built: they are built
     // again, as for an added body. Swaps first: the app may have deleted a shape it swapped out,
@@ -672,6 +684,8 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
     m_dev->profiler.resetLaunchCount();
     m_report.syncInMs = m_report.deviceMs = m_report.writeBackMs = 0.0;
     m_report.ghostBroadphaseMs = 0.0;
+    m_report.callbackMs = 0.0;
+    m_report.contactCallbacks = 0;
     const bool profiled = m_config.profile && (m_calls++ % std::max(m_config.profileEvery, 1)) == 0;
     m_dev->profiler.enabled = profiled;
     // Set before the substeps, as stock Bullet does: motion-state interpolation reads them.
@@ -684,7 +698,30 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         const bool actions = m_world.m_actions.size() > 0;
         // Ghosts: the host runs stock's broadphase update at each internal step's start.
         const bool ghosts = !m_ghosts.empty();
-        bool perSubstep = m_world.m_internalTickCallback || m_world.m_internalPreTickCallback || actions || ghosts;
+        // The app's contact callbacks: each internal step stops between its contacts and its solve.
+        const bool filtered = m_overlapFilter;
+        const bool wantedCallbacks = ContactCallbacks::wanted(m_world);
+        const bool callbacks = wantedCallbacks || filtered;
+        if (callbacks != m_plan.contactCallbacks) {
+            m_plan.contactCallbacks = callbacks;
+            m_report.stages = m_plan.stages();
+        }
+        std::function<bool()> betweenContacts;
+        if (callbacks)
+            betweenContacts = [this, filtered, wantedCallbacks] {
+                const Clock::time_point c0 = Clock::now();
+                if (filtered) m_callbacks.keepStockPairs(*m_dev, m_rows, m_world);
+                const bool carried = !wantedCallbacks || m_callbacks.run(*m_dev, m_rows, m_removed, m_manifolds);
+                m_report.callbackMs += msBetween(c0, Clock::now());
+                m_report.contactCallbacks += m_callbacks.calls();
+                return carried;
+            };
+        // The manifold events are the fill's, at every internal step as stock's.
+        bool perSubstep = m_world.m_internalTickCallback || m_world.m_internalPreTickCallback || actions || ghosts ||
+                          callbacks || ContactCallbacks::events();
+        // Bullet's broadphase on the host at each internal step's start: for ghosts, and for an
+        // app's overlap filter (which stock's pair cache asks for each new pair).
+        const bool hostBroadphase = ghosts || filtered;
         int batches = perSubstep ? clamped : 1;
         int perBatch = perSubstep ? 1 : clamped;
         for (int b = 0; b < batches; ++b) {
@@ -703,11 +740,11 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             dispatchInfo.m_debugDraw = m_world.getDebugDrawer();
             m_world.getSolverInfo().m_timeStep = fixedTimeStep;
             Clock::time_point t0 = Clock::now();
-            if (!m_ghosts.empty()) {
+            if (hostBroadphase) {
                 const Clock::time_point g0 = Clock::now();
                 completeBroadphasePairs();  // after steps that synced without pair tests
                 updateBroadphaseAsStock(m_world, fixedTimeStep);
-                heldAwakeByGhosts(m_world, m_rows, &m_heldAwake);
+                if (!m_ghosts.empty()) heldAwakeByGhosts(m_world, m_rows, &m_heldAwake);
                 m_report.ghostBroadphaseMs += msBetween(g0, Clock::now());
             }
             syncIn(*m_dev, changedRows(false));
@@ -718,15 +755,24 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
                 m_report.stages = m_plan.stages();
             }
             Clock::time_point t1 = Clock::now();
+            // A change the callbacks made that the device cannot carry: this internal step and
+            // the rest of the call run on the CPU path (the callbacks are called again there).
+            auto abandoned = [&] {
+                m_callbackReason = m_callbacks.reason();
+                m_callbackReasonFor = gContactAddedCallback;
+                cpuPathFrom(b, batches, fixedTimeStep, m_callbackReason);
+                *substepsDone = numSubSteps;
+                return finishCall(profiled, false);
+            };
             if (actions) {
-                runOnDevice(perBatch, fixedTimeStep, SubstepPart::BeforeActivation);
+                if (!runOnDevice(perBatch, fixedTimeStep, SubstepPart::BeforeActivation, betweenContacts)) return abandoned();
                 m_joints.writeBack(*m_dev);
                 writeBack(m_readback, false, false);
                 fillManifolds();  // the actions see this internal step's contacts
                 runActions(fixedTimeStep);
                 runOnDevice(1, fixedTimeStep, SubstepPart::ActivationOnly);
             } else {
-                runOnDevice(perBatch, fixedTimeStep);
+                if (!runOnDevice(perBatch, fixedTimeStep, SubstepPart::Whole, betweenContacts)) return abandoned();
                 m_joints.writeBack(*m_dev);  // applied impulses, feedback, breaks
             }
             Clock::time_point t2 = Clock::now();
@@ -755,9 +801,9 @@ bool GpuWorld::finishCall(bool profiled, bool gpuPath)
     m_world.synchronizeMotionStates();
     m_world.clearForces();
     Clock::time_point t4 = Clock::now();
-    // With ghosts the broadphase holds stock's AABBs already (set at the step's start): moving
-    // them here would add pairs, and ghost overlaps, stock does not have.
-    if (m_config.syncBroadphaseAabbs && m_ghosts.empty()) syncBroadphaseAabbs();
+    // With ghosts (or an overlap filter) the broadphase holds stock's AABBs already (set at the
+    // step's start): moving them here would add pairs, and ghost overlaps, stock does not have.
+    if (m_config.syncBroadphaseAabbs && m_ghosts.empty() && !m_overlapFilter) syncBroadphaseAabbs();
     m_report.writeBackMs += msBetween(t3, t4);
     m_report.aabbSyncMs = msBetween(t4, Clock::now());
     m_report.stageMs.clear();  // empty on calls that were not profiled

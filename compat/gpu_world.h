@@ -4,6 +4,7 @@
 // with Bullet's time, kinematic, motion-state and force semantics around them.
 #pragma once
 #include "btgpu/btGpuDynamicsWorld.h"
+#include "contact_callbacks.h"
 #include "cpu_path_guard.h"
 #include "ignored_pairs.h"
 #include "joint_rows.h"
@@ -81,13 +82,17 @@ private:
     // One row against its mirror: true (and the update, and a reason when the row has just
     // turned bad) when the device must be told. Touches only row r: safe in parallel.
     bool compareRow(size_t r, bool all, BodyRowUpdate* u, std::string* newlyBad);
-    void runOnDevice(int substeps, btScalar dt, SubstepPart part = SubstepPart::Whole);
+    // False when `betweenContacts` (the app's contact callbacks) abandoned the call.
+    bool runOnDevice(int substeps, btScalar dt, SubstepPart part = SubstepPart::Whole,
+                     const std::function<bool()>& betweenContacts = {});
     // The app's actions (btActionInterface) between the two parts of an internal step, and
     // what they changed up to the device.
     void runActions(btScalar dt);
     // Internal step `batch` of a call, after an action or callback added or removed
     // something: false when the rest of the call ran on the CPU path.
     bool followWithinCall(int batch, int batches, btScalar fixedTimeStep);
+    // Internal steps [batch, batches) of this call on the CPU path, for `why`.
+    void cpuPathFrom(int batch, int batches, btScalar fixedTimeStep, const std::string& why);
     // Bullet's broadphase AABBs where the bodies are, without its pair tests (see the .cpp), and
     // the pairs those left out, found before a CPU-path step.
     btDbvtBroadphase* dbvtBroadphase() const;
@@ -138,6 +143,14 @@ private:
     std::vector<char> m_woken;
     std::vector<int> takeWoken();
     ManifoldSync m_manifolds;   // the app's dispatcher manifolds on the GPU path
+    ContactCallbacks m_callbacks;  // gContactAddedCallback between the contacts and the solve
+    // A change the callback made that the device cannot carry: the world stays on the CPU path
+    // until something is added or removed or the callback is another.
+    std::string m_callbackReason;
+    // An overlap filter callback is set: Bullet's broadphase runs on the host at each internal
+    // step and decides the pairs (the rows' group and mask then accept everything on the device).
+    bool m_overlapFilter = false;
+    ContactAddedCallback m_callbackReasonFor = nullptr;
     JointSync m_joints;         // the joint table on the device and its write-back
     IgnoredPairs m_ignored;     // collision-check exceptions (disableCollisionsBetweenLinkedBodies)
     Snapshot m_snapshot;

@@ -70,7 +70,7 @@ void GpuWorld::runActions(btScalar dt)
     // broadphase AABBs enclose the bodies where this step put them, so the actions' ray and
     // sweep tests find what stock's find (stock's AABBs span the step's predicted motion).
     // With ghosts the step's start set stock's own AABBs, predicted motion included.
-    if (m_ghosts.empty()) syncBroadphaseAabbs();
+    if (m_ghosts.empty() && !m_overlapFilter) syncBroadphaseAabbs();
     m_world.updateActions(dt);
     // Velocities, impulses, forces and transforms the actions set, and bodies they woke. What
     // they added or removed joins or leaves the rows at the next internal step (removed
@@ -87,6 +87,12 @@ bool GpuWorld::followWithinCall(int batch, int batches, btScalar fixedTimeStep)
         if (m_rowsStale) followRows();
         return true;
     }
+    cpuPathFrom(batch, batches, fixedTimeStep, why);
+    return false;
+}
+
+void GpuWorld::cpuPathFrom(int batch, int batches, btScalar fixedTimeStep, const std::string& why)
+{
     // As a call that starts on the CPU path, but from this internal step on: Bullet's own
     // internal steps (they run the pre-tick and tick callbacks), with the gravity stepSimulation
     // applies before its loop (the GPU path keeps gravity on the device).
@@ -100,7 +106,6 @@ bool GpuWorld::followWithinCall(int batch, int batches, btScalar fixedTimeStep)
     completeBroadphasePairs();
     m_world.applyGravity();
     for (int b = batch; b < batches; ++b) m_world.internalSingleStepSimulation(fixedTimeStep);
-    return false;
 }
 
 }  // namespace btgpu

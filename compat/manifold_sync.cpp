@@ -42,9 +42,9 @@ struct HeightfieldPeek : btHeightfieldTerrainShape {
     static constexpr int btHeightfieldTerrainShape::*kWidth = &HeightfieldPeek::m_heightStickWidth;
 };
 
-// A point on a concave side: its triangle's (part id, index) back from its feature id (the
-// triangle's key, btgTriangleKey), as Bullet's per-point m_partId / m_index of that side.
-void triangleOf(const btCollisionShape* concave, uint key, int* partId, int* index)
+}  // namespace
+
+void triangleOfFeature(const btCollisionShape* concave, unsigned key, int* partId, int* index)
 {
     if (key == BTG_FEATURE_UNKNOWN) return;
     if (concave->getShapeType() == TERRAIN_SHAPE_PROXYTYPE) {
@@ -58,23 +58,26 @@ void triangleOf(const btCollisionShape* concave, uint key, int* partId, int* ind
     *index = int(key & BTG_BVH_TRIANGLE_MASK);
 }
 
+namespace {
+
 struct NewPoint {
     btManifoldPoint point;
     uint featureId;
+    bool pending;  // its user data and coefficients came from the callbacks before the solve
 };
 
 }  // namespace
 
-ManifoldSync::Side ManifoldSync::orient(const RowMap& rows, const BtgContactReport& r,
-                                       const std::unordered_set<const btCollisionObject*>& removed) const
+ManifoldSync::Side ManifoldSync::orient(const RowMap& rows, int bodyA, int bodyB, int indexA, int indexB,
+                                       const std::unordered_set<const btCollisionObject*>& removed)
 {
     Side out{};
-    if (r.bodyA < 0 || r.bodyB < 0 || size_t(r.bodyA) >= rows.size() || size_t(r.bodyB) >= rows.size()) return out;
-    const btCollisionObject* oA = rows.at(size_t(r.bodyA));
-    const btCollisionObject* oB = rows.at(size_t(r.bodyB));
+    if (bodyA < 0 || bodyB < 0 || size_t(bodyA) >= rows.size() || size_t(bodyB) >= rows.size()) return out;
+    const btCollisionObject* oA = rows.at(size_t(bodyA));
+    const btCollisionObject* oB = rows.at(size_t(bodyB));
     if (!oA || !oB || (!removed.empty() && (removed.count(oA) || removed.count(oB)))) return out;
-    const btCollisionShape* leafA = leafShape(oA, r.indexA);
-    const btCollisionShape* leafB = leafShape(oB, r.indexB);
+    const btCollisionShape* leafA = leafShape(oA, indexA);
+    const btCollisionShape* leafB = leafShape(oB, indexB);
     const bool concA = leafA->isConcave(), concB = leafB->isConcave();
     const int tA = leafA->getShapeType(), tB = leafB->getShapeType();
     // The algorithm's order: convex–concave and convex–plane put the convex first, the
@@ -93,12 +96,40 @@ ManifoldSync::Side ManifoldSync::orient(const RowMap& rows, const BtgContactRepo
     out.spheres = tA == SPHERE_SHAPE_PROXYTYPE && tB == SPHERE_SHAPE_PROXYTYPE;
     out.concaveA = concA ? leafA : nullptr;
     out.concaveB = concB ? leafB : nullptr;
-    out.key = swap ? Key{oB, oA, sideKey(oB, leafB, r.indexB), sideKey(oA, leafA, r.indexA)}
-                   : Key{oA, oB, sideKey(oA, leafA, r.indexA), sideKey(oB, leafB, r.indexB)};
+    out.key = swap ? Key{oB, oA, sideKey(oB, leafB, indexB), sideKey(oA, leafA, indexA)}
+                   : Key{oA, oB, sideKey(oA, leafA, indexA), sideKey(oB, leafB, indexB)};
     return out;
 }
 
-void ManifoldSync::refill(const Group& g, const BtgContactReport* reports)
+void* ManifoldSync::userDataOf(const Side& side, unsigned featureId, int index0, int partId1, int index1,
+                               const btVector3& localA) const
+{
+    auto it = m_map.find(side.key);
+    if (it == m_map.end() || !it->second.manifold || side.spheres) return nullptr;  // none, or its body left  // stock clears a sphere pair's manifold each step
+    const Entry& e = it->second;
+    const btPersistentManifold* m = e.manifold;
+    const btScalar thr2 = m->getContactBreakingThreshold() * m->getContactBreakingThreshold();
+    int match = -1;
+    for (int j = 0; j < m->getNumContacts() && match < 0; ++j) {
+        const btManifoldPoint& o = m->getContactPoint(j);
+        if (featureId != BTG_FEATURE_UNKNOWN && e.ids[j] == featureId && o.m_index1 == index1 && o.m_partId1 == partId1 &&
+            o.m_index0 == index0 && (o.m_localPointA - localA).length2() < thr2)
+            match = j;
+    }
+    if (match < 0) {
+        btScalar best = thr2;
+        for (int j = 0; j < m->getNumContacts(); ++j) {
+            const btScalar d2 = (m->getContactPoint(j).m_localPointA - localA).length2();
+            if (d2 < best) {
+                best = d2;
+                match = j;
+            }
+        }
+    }
+    return match >= 0 ? m->getContactPoint(match).m_userPersistentData : nullptr;
+}
+
+void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
 {
     NewPoint points[4 * BTG_MAX_POINTS];  // a convex–mesh pair's triangles: reduced as they come
     std::vector<NewPoint> many;
@@ -123,10 +154,10 @@ void ManifoldSync::refill(const Group& g, const BtgContactReport* reports)
             const btVector3 d1(r.dir1[k].x, r.dir1[k].y, r.dir1[k].z);
             const btVector3 d2 = n.cross(d1);  // btgFrictionDir2
             int partA = r.partIdA, indexA = r.indexA, partB = r.partIdB, indexB = r.indexB;
-            if (side.concaveA) triangleOf(side.concaveA, r.featureId[k], &partA, &indexA);
-            if (side.concaveB) triangleOf(side.concaveB, r.featureId[k], &partB, &indexB);
+            if (side.concaveA) triangleOfFeature(side.concaveA, r.featureId[k], &partA, &indexA);
+            if (side.concaveB) triangleOfFeature(side.concaveB, r.featureId[k], &partB, &indexB);
             // The impulses act on the report's A along +n, +d1, +d2; Bullet's on body0.
-            NewPoint np{swap ? btManifoldPoint(lB, lA, -n, d) : btManifoldPoint(lA, lB, n, d), r.featureId[k]};
+            NewPoint np{swap ? btManifoldPoint(lB, lA, -n, d) : btManifoldPoint(lA, lB, n, d), r.featureId[k], false};
             btManifoldPoint& p = np.point;
             p.m_positionWorldOnA = swap ? pB : pA;
             p.m_positionWorldOnB = swap ? pA : pB;
@@ -143,6 +174,15 @@ void ManifoldSync::refill(const Group& g, const BtgContactReport* reports)
             p.m_combinedRestitution = btManifoldResult::calculateCombinedRestitution(key.body0, key.body1);
             p.m_combinedRollingFriction = btManifoldResult::calculateCombinedRollingFriction(key.body0, key.body1);
             p.m_combinedSpinningFriction = btManifoldResult::calculateCombinedSpinningFriction(key.body0, key.body1);
+            if (!m_pending.empty()) {
+                auto it = m_pending.find(PointKey{r.bodyA, r.bodyB, r.indexA, r.indexB, r.featureId[k], k});
+                if (it != m_pending.end()) {
+                    p.m_userPersistentData = it->second.userData;
+                    p.m_combinedFriction = it->second.friction;
+                    p.m_combinedRestitution = it->second.restitution;
+                    np.pending = true;
+                }
+            }
             push(np);
         }
     }
@@ -178,11 +218,57 @@ void ManifoldSync::refill(const Group& g, const BtgContactReport* reports)
         }
         if (match >= 0) claimed |= 1u << match;
         np.point.m_lifeTime = g.spheres ? 0 : (match >= 0 ? old[match].m_lifeTime + 1 : 1);
+        // A point that continues one keeps its user data (replaceContactPoint); stock clears a
+        // sphere pair's manifold every step, which drops it.
+        if (!np.pending) np.point.m_userPersistentData = match >= 0 && !g.spheres ? old[match].m_userPersistentData : nullptr;
     }
-    m->clearManifold();
+    // Emptied without Bullet's clearManifold, which would end the contact and destroy the
+    // points' user data (the callbacks for both are the fill's, serially: contactEvents); the
+    // points go in without their user data, so that a point the reduction drops takes none with
+    // it, and get it once placed.
+    g.before = oldCount;
+    for (int j = 0; j < oldCount; ++j) m->getContactPoint(j).m_userPersistentData = nullptr;
+    m->setNumContacts(0);
+    int owner[MANIFOLD_CACHE_SIZE] = {-1, -1, -1, -1};
     for (int i = 0; i < total; ++i) {
-        const int slot = m->addManifoldPoint(at(i).point);
-        if (slot >= 0 && slot < MANIFOLD_CACHE_SIZE) e.ids[slot] = at(i).featureId;
+        btManifoldPoint pt = at(i).point;
+        pt.m_userPersistentData = nullptr;
+        const int slot = m->addManifoldPoint(pt);
+        if (slot >= 0 && slot < MANIFOLD_CACHE_SIZE) {
+            e.ids[slot] = at(i).featureId;
+            owner[slot] = i;
+        }
+    }
+    for (int s = 0; s < m->getNumContacts(); ++s)
+        if (owner[s] >= 0) m->getContactPoint(s).m_userPersistentData = at(owner[s]).point.m_userPersistentData;
+    // User data no point holds any more: destroyed, as stock's point removal does.
+    g.dropped.clear();
+    auto held = [&](void* p) {
+        for (int s = 0; s < m->getNumContacts(); ++s)
+            if (m->getContactPoint(s).m_userPersistentData == p) return true;
+        return false;
+    };
+    for (int j = 0; j < oldCount; ++j)
+        if (old[j].m_userPersistentData && !held(old[j].m_userPersistentData)) g.dropped.push_back(old[j].m_userPersistentData);
+    for (int i = 0; i < total; ++i) {
+        void* p = at(i).point.m_userPersistentData;
+        if (p && !held(p) && std::find(g.dropped.begin(), g.dropped.end(), p) == g.dropped.end()) g.dropped.push_back(p);
+    }
+}
+
+void ManifoldSync::contactEvents()
+{
+    // Stock's order within a manifold's step: a sphere pair's manifold is cleared first (its
+    // contact ends), points are added (the contact starts with the first of an empty manifold),
+    // then the refresh removes the points that went (their user data destroyed).
+    for (Group& g : m_groups) {
+        btPersistentManifold* m = g.entry->second.manifold;
+        const bool restarted = g.spheres && g.before > 0 && !g.fresh;
+        if (restarted && gContactEndedCallback) gContactEndedCallback(m);
+        if ((g.fresh || restarted) && m->getNumContacts() > 0 && gContactStartedCallback) gContactStartedCallback(m);
+        if (gContactDestroyedCallback)
+            for (void* p : g.dropped) gContactDestroyedCallback(p);
+        g.dropped.clear();
     }
 }
 
@@ -199,7 +285,8 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
     forEachChunk(n, 2048, [&](size_t begin, size_t end, int) {
         for (size_t i = begin; i < end; ++i) {
             Side& side = m_sides[i];
-            side = orient(rows, rb.contacts[i], removed);
+            const BtgContactReport& r = rb.contacts[i];
+            side = orient(rows, r.bodyA, r.bodyB, r.indexA, r.indexB, removed);
             side.node = nullptr;
             if (!side.valid) continue;
             auto it = m_map.find(side.key);
@@ -224,14 +311,15 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
             if (it == m_map.end()) it = m_map.emplace(side.key, Entry{nullptr, 0, {}}).first;
             node = &*it;
         }
-        if (!node->second.manifold) {
+        const bool fresh = !node->second.manifold;
+        if (fresh) {
             // New, or revived after its body left (a new body at the freed address).
             m_dead.erase(node);
             node->second = Entry{dispatcher->getNewManifold(side.key.body0, side.key.body1), 0, {}};
             m_byObject[side.key.body0].push_back(node);
             if (side.key.body1 != side.key.body0) m_byObject[side.key.body1].push_back(node);
         }
-        m_groups.push_back({node, i, i + 1, side.spheres});
+        m_groups.push_back({node, i, i + 1, side.spheres, fresh, 0, {}});
     }
     // Stamps in parallel; a manifold named by two groups (not adjacent: not seen in pair order)
     // shows as a stamp already this fill's.
@@ -250,10 +338,12 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
         std::vector<Group> merged;
         std::vector<std::vector<size_t>> members;
         for (const Group& g : m_groups) {
-            auto [it, fresh] = firstOf.emplace(g.entry, merged.size());
-            if (fresh) {
+            auto [it, first] = firstOf.emplace(g.entry, merged.size());
+            if (first) {
                 merged.push_back(g);
                 members.emplace_back();
+            } else {
+                merged[it->second].fresh |= g.fresh;
             }
             for (size_t i = g.first; i < g.last; ++i) members[it->second].push_back(i);
         }
@@ -270,7 +360,8 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
         }
         m_sides.swap(sides);
         m_scratch.swap(reports);
-        for (const Group& g : merged) {
+        m_groups.swap(merged);
+        for (Group& g : m_groups) {
             refill(g, m_scratch.data());
             m_nextLive.push_back(g.entry);
         }
@@ -280,6 +371,8 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
         });
         for (const Group& g : m_groups) m_nextLive.push_back(g.entry);
     }
+    m_pending.clear();
+    contactEvents();
 
     // Pairs that stopped touching: released, as stock's algorithm empties and the pair goes;
     // a pair of two sleeping (or static) bodies is not collided by stock: kept as it was. Only
@@ -325,12 +418,22 @@ void ManifoldSync::forget(Node* node)
 void ManifoldSync::releaseAll(btDispatcher* dispatcher)
 {
     if (dispatcher)
-        for (auto& [key, e] : m_map)
-            if (e.manifold) dispatcher->releaseManifold(e.manifold);
+        for (auto& [key, e] : m_map) {
+            btPersistentManifold* m = e.manifold;
+            if (!m) continue;  // its body left: released then
+            for (int j = 0; j < m->getNumContacts(); ++j) {
+                btManifoldPoint& p = m->getContactPoint(j);
+                if (p.m_userPersistentData && gContactDestroyedCallback) gContactDestroyedCallback(p.m_userPersistentData);
+                p.m_userPersistentData = nullptr;
+            }
+            m->setNumContacts(0);
+            dispatcher->releaseManifold(m);
+        }
     m_map.clear();
     m_byObject.clear();
     m_live.clear();
     m_dead.clear();
+    m_pending.clear();
 }
 
 void ManifoldSync::removed(btDispatcher* dispatcher, const btCollisionObject* object)

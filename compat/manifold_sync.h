@@ -6,6 +6,8 @@
 #include "row_map.h"
 #include "stages/sync_bodies.h"
 
+#include <LinearMath/btVector3.h>
+
 #include <cstddef>
 #include <unordered_map>
 #include <unordered_set>
@@ -18,6 +20,10 @@ class btPersistentManifold;
 
 namespace btgpu {
 
+// A point on a concave side: its triangle's (part id, index) from its feature id (the
+// triangle's key, btgTriangleKey), as Bullet's per-point m_partId / m_index of that side.
+void triangleOfFeature(const btCollisionShape* concave, unsigned key, int* partId, int* index);
+
 class ManifoldSync {
 public:
     // Every manifold this call's reports name is created or refilled; those of pairs no longer
@@ -26,12 +32,42 @@ public:
     void fill(btDispatcher* dispatcher, const RowMap& rows, const BodyReadback& rb,
               const std::unordered_set<const btCollisionObject*>& removed);
     // All given back (the CPU path's algorithms make their own; the switch turned off; rebuild).
+    // Their contacts do not end for the app (no gContactEndedCallback: the CPU path's manifolds
+    // take them on); points' user data go to gContactDestroyedCallback, as they leave the app.
     void releaseAll(btDispatcher* dispatcher);
     // Those of an object leaving the world (stock: removeRigidBody → cleanProxyFromPairs).
     void removed(btDispatcher* dispatcher, const btCollisionObject* object);
     size_t size() const { return m_map.size() - m_dead.size(); }
 
-private:
+    // A device point as the app's callbacks saw it before the solve (contact_callbacks.cpp): its
+    // device manifold (bodies and sub-shape keys as the device names them), feature id and
+    // place; the next fill gives the manifold point made of it that user data.
+    struct PointKey {
+        int bodyA, bodyB, indexA, indexB;
+        unsigned featureId;
+        int k;
+        bool operator==(const PointKey& o) const
+        {
+            return bodyA == o.bodyA && bodyB == o.bodyB && indexA == o.indexA && indexB == o.indexB &&
+                   featureId == o.featureId && k == o.k;
+        }
+    };
+    struct PointKeyHash {
+        size_t operator()(const PointKey& p) const
+        {
+            size_t h = size_t(p.bodyA) * 1000003u + size_t(p.bodyB);
+            h = h * 131u + size_t(p.indexA) * 31u + size_t(p.indexB);
+            return (h * 1000003u + p.featureId) * 5u + size_t(p.k);
+        }
+    };
+    // What the callbacks left on a point before the solve: its user data and combined
+    // coefficients (those the solve used), given to the manifold point the next fill makes of it.
+    struct PointState {
+        void* userData;
+        btScalar friction, restitution;
+    };
+    void setPointState(const PointKey& point, const PointState& state) { m_pending[point] = state; }
+
     struct Key {
         const btCollisionObject* body0;
         const btCollisionObject* body1;
@@ -64,16 +100,29 @@ private:
         const btCollisionShape* concaveA;  // the report's concave leaves (per-point triangles)
         const btCollisionShape* concaveB;
     };
+    // One device manifold's sides (bodies and sub-shape keys as the device names them).
+    static Side orient(const RowMap& rows, int bodyA, int bodyB, int indexA, int indexB,
+                       const std::unordered_set<const btCollisionObject*>& removed);
+    // The user data of the app's manifold point that a point of this side's manifold continues
+    // (as the fill matches them: same feature and sub-shape, else the nearest in body0's frame
+    // within the breaking threshold), nullptr when none.
+    void* userDataOf(const Side& side, unsigned featureId, int index0, int partId1, int index1,
+                     const btVector3& localA) const;
+
+private:
     // The reports [first, last) of one manifold.
     struct Group {
         Node* entry;
         size_t first, last;
         bool spheres;
+        bool fresh;   // made by this fill: its contact starts (gContactStartedCallback)
+        int before;   // points it held before this fill
+        std::vector<void*> dropped;  // user data of its points that did not continue
     };
-    Side orient(const RowMap& rows, const BtgContactReport& r,
-                const std::unordered_set<const btCollisionObject*>& removed) const;
     // One manifold's points from its reports (touches only that manifold: run in parallel).
-    void refill(const Group& g, const BtgContactReport* reports);
+    void refill(Group& g, const BtgContactReport* reports);
+    // The app's manifold events of the groups just refilled, serially in group order.
+    void contactEvents();
 
     // Drops one map entry (and its place in m_byObject); the manifold is the caller's to release.
     void forget(Node* node);
@@ -93,6 +142,7 @@ private:
     std::vector<Side> m_sides;    // per report of the current fill
     std::vector<Group> m_groups;
     std::vector<BtgContactReport> m_scratch;
+    std::unordered_map<PointKey, PointState, PointKeyHash> m_pending;  // for the next fill
 };
 
 }  // namespace btgpu

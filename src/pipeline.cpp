@@ -7,6 +7,7 @@
 
 #include "stages/color_constraints.h"
 #include "stages/contact_cache.h"
+#include "stages/contact_callbacks.h"
 #include "stages/expand_compounds.h"
 #include "stages/filter_pairs.h"
 #include "stages/find_pairs.h"
@@ -49,6 +50,7 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::ApplyForces: applyForces(w, p.dt); break;
         case Stage::ContactCache: buildContacts(w, p); break;
         case Stage::PrepareContacts: prepareContacts(w, p); break;
+        case Stage::ContactCallbacks: applyContactMaterials(w, p); break;
         case Stage::PrepareJoints: prepareJoints(w, s.joints); break;
         case Stage::FinishJoints: finishJoints(w, s.joints); break;
         case Stage::ColorConstraints: colorConstraints(w, s.maxColors); break;
@@ -76,9 +78,19 @@ void runSubstep(DeviceWorld& w, const Plan& plan, const std::vector<Stage>& stag
         runStage(Stage::UpdateActivation, w, plan, s);
         return;
     }
-    fillCounters(w, kPairCount, 2, 0u);  // pair and contact counts
-    fillCounters(w, kEdgeCount, 1, 0u);  // the constraint graph, rebuilt by the stages that add edges
+    // The second half of a split substep goes on from the contact list with the counts the
+    // first half left.
+    bool running = s.split != ContactsSplit::FromContacts;
+    if (running) {
+        fillCounters(w, kPairCount, 2, 0u);  // pair and contact counts
+        fillCounters(w, kEdgeCount, 1, 0u);  // the constraint graph, rebuilt by the stages that add edges
+    }
     for (Stage stage : stages) {
+        if (stage == Stage::ContactCache) {
+            if (s.split == ContactsSplit::UntilContacts) return;
+            running = true;
+        }
+        if (!running) continue;
         if (part == SubstepPart::BeforeActivation && stage == Stage::UpdateActivation) continue;
         if (stage == Stage::ReportContacts && !last) continue;  // the app sees the call's last substep
         w.profiler.stage = stageName(stage);
@@ -183,15 +195,46 @@ void grow(DeviceWorld& w, const BodyReadback& rb, bool pairOverflow, bool contac
 
 }  // namespace
 
-CallOutcome runCall(DeviceWorld& w, const Plan& plan, const StepSettings& s, Snapshot& snapshot, BodyReadback& rb)
+namespace {
+
+// The first half of a split call: true when the host may step in (no buffer overflowed);
+// otherwise rb.counters hold the status and counts that overflowed.
+bool runUntilContacts(DeviceWorld& w, const Plan& plan, const StepSettings& s, BodyReadback& rb)
+{
+    StepSettings first = s;
+    first.split = ContactsSplit::UntilContacts;
+    runSubsteps(w, plan, first);
+    rb.counters.resize(w.ctx, kNumCounters);
+    w.counters.download(w.ctx, rb.counters.data(), kNumCounters);
+    const uint overflow = BTG_STATUS_PAIR_OVERFLOW | BTG_STATUS_CONTACT_OVERFLOW | BTG_STATUS_SUB_PAIR_OVERFLOW |
+                          BTG_STATUS_GRID_BARRIER_TIMEOUT;
+    return (rb.counters[kStatus] & overflow) == 0;
+}
+
+}  // namespace
+
+CallOutcome runCall(DeviceWorld& w, const Plan& plan, const StepSettings& s, Snapshot& snapshot, BodyReadback& rb,
+                    const std::function<bool()>& betweenContacts)
 {
     CallOutcome out;
     resetStatus(w);
     takeSnapshot(w, snapshot);
+    const bool split = betweenContacts && s.substeps == 1 && plan.kinds.any() && s.lastPart != SubstepPart::ActivationOnly;
     // Growth is geometric, so this settles after a few tries.
     for (int attempt = 0;; ++attempt) {
-        runSubsteps(w, plan, s);
-        syncOut(w, rb);
+        if (!split) {
+            runSubsteps(w, plan, s);
+            syncOut(w, rb);
+        } else if (runUntilContacts(w, plan, s, rb)) {
+            if (!betweenContacts()) {
+                out.abandoned = true;
+                return out;
+            }
+            StepSettings second = s;
+            second.split = ContactsSplit::FromContacts;
+            runSubsteps(w, plan, second);
+            syncOut(w, rb);
+        }
         const uint status = rb.counters[kStatus];
         const bool pairOverflow = status & BTG_STATUS_PAIR_OVERFLOW;
         const bool contactOverflow = status & BTG_STATUS_CONTACT_OVERFLOW;

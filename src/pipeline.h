@@ -8,6 +8,7 @@
 
 #include <btgpu/Config.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -20,10 +21,16 @@ namespace btgpu {
 // constraint graph as it left them).
 enum class SubstepPart { Whole, BeforeActivation, ActivationOnly };
 
+// Where the host steps in inside a substep for the app's contact callbacks
+// (compat/contact_callbacks.h): nowhere; the substep up to its contacts found (manifolds and
+// forces), stopped before the contact list; or the rest of it from the contact list on.
+enum class ContactsSplit { None, UntilContacts, FromContacts };
+
 struct StepSettings {
     BtgStepParams params;  // dt is the fixed substep
     int substeps = 1;
     SubstepPart lastPart = SubstepPart::Whole;
+    ContactsSplit split = ContactsSplit::None;  // of the call's one substep (substeps must be 1)
     int iterations = 10;   // btContactSolverInfo::m_numIterations
     int maxColors = 24;    // BatchedPgs only
     SolverKind solver = SolverKind::BatchedPgs;  // must match the plan's
@@ -58,12 +65,18 @@ struct CallEvent {
 struct CallOutcome {
     std::vector<CallEvent> events;
     int redone = 0;  // times the call was redone
+    bool abandoned = false;  // betweenContacts refused: the call stopped before its contact list
 };
 
 // One stepSimulation call's device work: s.substeps substeps of the plan and one readback
 // into rb. A buffer that overflowed grows and the call is redone from the snapshot, so no pair
 // or contact is ever dropped; a grid-barrier timeout turns the one-launch stages off for good
 // and redoes the call. Sets the next call's coloring rounds from this one's.
-CallOutcome runCall(DeviceWorld& w, const Plan& plan, const StepSettings& s, Snapshot& snapshot, BodyReadback& rb);
+// betweenContacts (a call of one substep whose plan collides): the substep stops once its
+// contacts are found, with no buffer overflowed so far, for the host (the app's contact
+// callbacks), and goes on when it returns true; false abandons the call (nothing read back: the
+// caller runs the step elsewhere). A redo after a later overflow asks it again.
+CallOutcome runCall(DeviceWorld& w, const Plan& plan, const StepSettings& s, Snapshot& snapshot, BodyReadback& rb,
+                    const std::function<bool()>& betweenContacts = {});
 
 }  // namespace btgpu

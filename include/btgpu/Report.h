@@ -40,6 +40,11 @@ struct Report {
     double writeBackMs = 0.0;
     double aabbSyncMs = 0.0;
     double ghostBroadphaseMs = 0.0;   // with ghost objects: Bullet's broadphase pair update on the host (in syncInMs)
+    // With gContactAddedCallback and a CF_CUSTOM_MATERIAL_CALLBACK body: the host's part inside
+    // each internal step (gather of the flagged pairs' manifolds, the callbacks, the changes sent
+    // back), in deviceMs; and the points the callback was called for in this call.
+    double callbackMs = 0.0;
+    long contactCallbacks = 0;
     std::size_t deviceBytes = 0;      // device memory held by this world
     int pairs = 0;                    // broadphase pairs, last substep
     int contacts = 0;                 // manifolds with points, last substep

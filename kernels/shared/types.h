@@ -16,6 +16,8 @@
 #define BTG_BODY_GYRO 64u        /* BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY */
 #define BTG_BODY_LARGE 128u      /* too big for the uniform grid: tested against every body */
 #define BTG_BODY_NEVER_SLEEP 256u /* DISABLE_DEACTIVATION, or a kinematic body */
+#define BTG_BODY_CUSTOM_MATERIAL 512u /* CF_CUSTOM_MATERIAL_CALLBACK while gContactAddedCallback is set: its
+                                         manifolds go to the host before the solve (contact_callbacks) */
 
 /* Shape kinds (BtgShape.type). Which pairs of them collide, and how, is the pair-kind table
  * (pair_kinds.h), which follows stock's choice of algorithm per pair: BOX is a btBoxShape (a

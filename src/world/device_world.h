@@ -7,6 +7,7 @@
 #include "cl/launch.h"
 #include "shared/counters.h"
 #include "shared/concave.h"
+#include "shared/contact_material.h"
 #include "shared/contact_report.h"
 #include "shared/joint_rows.h"
 #include "shared/types.h"
@@ -127,6 +128,16 @@ struct DeviceWorld {
     // while Config::fillDispatcherManifolds): read back by syncOut when written since its last read.
     cl::DeviceArray<BtgContactReport> contactReports;
     bool contactReportsWritten = false;
+    // The app's contact callbacks before the solve (stage contact_callbacks, only while a
+    // CF_CUSTOM_MATERIAL_CALLBACK body meets gContactAddedCallback): the flagged pairs' manifolds
+    // gathered for the host (slot, copy; count in callbackCount[0]), the ones it changed sent
+    // back, and the materials it set, applied right after prepare_contacts (numMaterials of them,
+    // reset once applied).
+    cl::DeviceArray<uint> callbackCount;
+    cl::DeviceArray<uint> callbackSlots;
+    cl::DeviceArray<BtgManifold> callbackManifolds;
+    cl::DeviceArray<BtgContactMaterial> contactMaterials;
+    int numMaterials = 0;
     // The warm-start cache: the last substep's solved contacts, reduced to what matching and
     // warm start read (112 bytes against a contact's 352), in the same pair order.
     cl::DeviceArray<BtgCachedContact> contactCache;

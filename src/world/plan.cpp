@@ -26,6 +26,7 @@ const char* stageName(Stage stage)
         case Stage::ApplyForces: return "apply_forces";
         case Stage::ContactCache: return "contact_cache";
         case Stage::PrepareContacts: return "prepare_contacts";
+        case Stage::ContactCallbacks: return "contact_callbacks";
         case Stage::PrepareJoints: return "prepare_joints";
         case Stage::FinishJoints: return "finish_joints";
         case Stage::ColorConstraints: return "color_constraints";
@@ -70,6 +71,7 @@ std::vector<Stage> Plan::substep() const
     s.push_back(Stage::ApplyForces);
     if (collide || hasJoints) {
         if (collide) s.insert(s.end(), {Stage::ContactCache, Stage::PrepareContacts});
+        if (collide && contactCallbacks) s.push_back(Stage::ContactCallbacks);
         // Joints are PGS rows: the Jacobi solver takes contacts only (the CPU-path rules send a
         // Jacobi world with joints away).
         if (hasJoints) s.push_back(Stage::PrepareJoints);

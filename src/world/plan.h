@@ -36,6 +36,7 @@ enum class Stage {
     ApplyForces,          // gravity, app forces, gyroscopic term
     ContactCache,         // contact list and warm start
     PrepareContacts,
+    ContactCallbacks,     // contacts prepared again with what the app's contact callbacks set (contact_callbacks)
     PrepareJoints,        // joint rows and edges (scenes with joints only)
     ColorConstraints,
     SolveConstraints,
@@ -69,6 +70,9 @@ struct Plan {
     bool hasIgnoredPairs = false;  // objects ignore each other's collision check (filter_pairs)
     bool hasCompounds = false;     // compound bodies (expand_compounds)
     bool reportContacts = false;   // Config::fillDispatcherManifolds (report_contacts)
+    // The app's gContactAddedCallback runs on the host between a substep's contacts and its
+    // contact list (a CF_CUSTOM_MATERIAL_CALLBACK body is in the scene): contact_callbacks runs.
+    bool contactCallbacks = false;
     SolverKind solver = SolverKind::BatchedPgs;  // Config::solver: which solve stages run
     Broadphase broadphase = Broadphase::UniformGrid;
     float cellSize = 1.0f;     // m: uniform grid cell, >= the largest small body's AABB extent

@@ -106,7 +106,12 @@ bool hasStage(const Scene& s, const char* name)
     return std::find(st.begin(), st.end(), name) != st.end();
 }
 
-void noopStarted(btPersistentManifold* const&) {}
+// A near callback of the app's own (stock's work through it): the GPU path leaves it to the CPU path.
+void nearDefault(btBroadphasePair& pair, btCollisionDispatcher& dispatcher, const btDispatcherInfo& info)
+{
+    btCollisionDispatcher::defaultNearCallback(pair, dispatcher, info);
+}
+void setNear(Scene& s, btNearCallback cb) { static_cast<btCollisionDispatcher*>(s.world().getDispatcher())->setNearCallback(cb); }
 
 // True when world point p lies on triangle (part, index) of a mesh body's btTriangleMeshShape
 // (within tol of its plane, barycentric coordinates >= -tol / edge).
@@ -378,7 +383,7 @@ TEST(Manifolds, SwitchOffLeavesTheDispatcherEmpty)
     EXPECT_EQ(counts(*sb.stock).touching, 4);
 }
 
-// To the CPU path (a contact callback set) and back: on the CPU path the dispatcher holds
+// To the CPU path (a near callback set) and back: on the CPU path the dispatcher holds
 // stock's algorithms' manifolds only (ours given back), back on the GPU path ours only (the
 // algorithms' freed); counts as stock's throughout, every manifold's bodies in the world.
 TEST(Manifolds, CpuPathAndBackKeepTheDispatcherConsistent)
@@ -395,7 +400,7 @@ TEST(Manifolds, CpuPathAndBackKeepTheDispatcherConsistent)
         ASSERT_TRUE(sb.onGpu()) << step;
         same(step);
     }
-    gContactStartedCallback = noopStarted;
+    sb.both([](Scene& s) { setNear(s, nearDefault); });
     for (int step = 30; step < 40; ++step) {
         sb.step();
         EXPECT_FALSE(sb.onGpu()) << step;
@@ -410,7 +415,7 @@ TEST(Manifolds, CpuPathAndBackKeepTheDispatcherConsistent)
         }
         EXPECT_EQ(counts(*sb.gpu).manifolds, counts(*sb.stock).manifolds) << step;  // stock's own, empties too
     }
-    gContactStartedCallback = nullptr;
+    sb.both([](Scene& s) { setNear(s, btCollisionDispatcher::defaultNearCallback); });
     for (int step = 40; step < 80; ++step) {
         sb.step();
         ASSERT_TRUE(sb.onGpu()) << step;

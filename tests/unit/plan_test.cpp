@@ -287,3 +287,21 @@ TEST(Plan, ContactReportOnlyWhenAskedBeforeTheBodiesMove)
     alone.reportContacts = true;
     EXPECT_FALSE(has(alone.substep(), Stage::ReportContacts));
 }
+
+TEST(Plan, ContactCallbacksRightAfterTheContactsArePrepared)
+{
+    PlanInput in;
+    in.bodies = {body(BTG_SHAPE_BOX, 100, false), body(BTG_SHAPE_BOX, 1, true)};
+    Plan p = derivePlan(in).plan;
+    EXPECT_FALSE(has(p.substep(), Stage::ContactCallbacks));
+    p.contactCallbacks = true;
+    const std::vector<Stage> s = p.substep();
+    auto at = [&](Stage x) { return std::find(s.begin(), s.end(), x) - s.begin(); };
+    ASSERT_TRUE(has(s, Stage::ContactCallbacks));
+    // The host's callbacks run between the contacts found and the contact list (runSubstep splits
+    // at ContactCache); their materials are applied to the prepared rows, before any solve.
+    EXPECT_EQ(at(Stage::ContactCallbacks), at(Stage::PrepareContacts) + 1);
+    EXPECT_LT(at(Stage::ApplyForces), at(Stage::ContactCache));
+    const std::vector<std::string> names = p.stages();
+    EXPECT_NE(std::find(names.begin(), names.end(), "contact_callbacks"), names.end());
+}

@@ -1,0 +1,88 @@
+/* contact_callbacks.cl — Stage: contact_callbacks (gContactAddedCallback on the GPU path). A
+ * substep stops after its contacts are found (the manifolds) and before the contact list; the
+ * host reads the manifolds of pairs with a CF_CUSTOM_MATERIAL_CALLBACK body (all of them with a
+ * custom combiner), runs the app's callbacks on each point, writes back what they changed, and
+ * the substep goes on.
+ * With an overlap filter callback the host first empties the ranges of the pairs Bullet's pair
+ * cache does not hold (clear_pair_ranges, one work-item per refused pair).
+ * Launch: gather_callback_manifolds one work-item per pair slot (pairCapacity);
+ * scatter_callback_manifolds one per changed manifold; apply_contact_materials one per contact
+ * slot (contactCapacity), right after prepare_contacts.
+ * Reads pairManifolds, manifolds, props (BTG_BODY_CUSTOM_MATERIAL), counters[kPairCount,
+ * kContactCount]; the changed manifolds and materials the host uploaded; for the materials
+ * prepare_contacts' inputs (props, invInertiaWorld, linVel0, angVel0, linVel, angVel).
+ * Writes gathered slots and copies (count in gatherCount[0], even past capacity); manifolds at
+ * the changed slots; the contacts whose manifold has a material (their rows prepared again). */
+#include "shared/counters.h"
+#include "shared/types.h"
+#include "shared/math.h"
+#include "shared/contact_rows.h"
+#include "shared/contact_material.h"
+
+__kernel void gather_callback_manifolds(__global const BtgManifoldRange* restrict pairManifolds,
+                                        __global const BtgManifold* restrict manifolds,
+                                        __global const BtgBodyProps* restrict props,
+                                        __global const uint* restrict counters, int pairCapacity,
+                                        __global uint* gatherCount, __global uint* slots,
+                                        __global BtgManifold* copies, int capacity, int all)
+{
+    uint i = (uint)get_global_id(0);
+    uint n = min(counters[BTG_COUNTER_PAIRS], (uint)pairCapacity);
+    if (i >= n) return;
+    BtgManifoldRange r = pairManifolds[i];
+    for (int j = r.start; j < r.start + r.count; ++j) {
+        BtgManifold m = manifolds[j];
+        if (m.numPoints <= 0) continue;
+        if (!all && !((props[m.bodyA].flags | props[m.bodyB].flags) & BTG_BODY_CUSTOM_MATERIAL)) continue;
+        uint k = atomic_inc(gatherCount);
+        if (k >= (uint)capacity) continue;
+        slots[k] = (uint)j;
+        copies[k] = m;
+    }
+}
+
+__kernel void scatter_callback_manifolds(__global const uint* restrict slots,
+                                         __global const BtgManifold* restrict changed, int n,
+                                         __global BtgManifold* manifolds)
+{
+    int i = (int)get_global_id(0);
+    if (i >= n) return;
+    manifolds[slots[i]] = changed[i];
+}
+
+__kernel void apply_contact_materials(__global BtgContact* contacts, __global const uint* restrict contactManifolds,
+                                      __global const uint* restrict counters, int contactCapacity,
+                                      __global const BtgContactMaterial* restrict materials, int numMaterials,
+                                      __global const BtgBodyProps* restrict props,
+                                      __global const BtgFloat4* restrict invInertiaWorld,
+                                      __global const BtgFloat4* restrict linVel0, __global const BtgFloat4* restrict angVel0,
+                                      __global const BtgFloat4* restrict linVel, __global const BtgFloat4* restrict angVel,
+                                      BtgStepParams params)
+{
+    uint i = (uint)get_global_id(0);
+    const uint n = min(counters[BTG_COUNTER_CONTACTS], (uint)contactCapacity);
+    if (i >= n) return;
+    const int found = btgFindMaterial(materials, numMaterials, contactManifolds[i]);
+    if (found < 0) return;
+    BtgContact c = contacts[i];
+    BtgBodyProps pa = props[c.bodyA], pb = props[c.bodyB];
+    BtgSolverBody a = btgMakeSolverBody(pa, invInertiaWorld[3 * c.bodyA], invInertiaWorld[3 * c.bodyA + 1],
+                                        invInertiaWorld[3 * c.bodyA + 2]);
+    BtgSolverBody b = btgMakeSolverBody(pb, invInertiaWorld[3 * c.bodyB], invInertiaWorld[3 * c.bodyB + 1],
+                                        invInertiaWorld[3 * c.bodyB + 2]);
+    BtgBodyVel a0 = btgMakeBodyVel(a.moving, linVel0[c.bodyA], angVel0[c.bodyA]);
+    BtgBodyVel b0 = btgMakeBodyVel(b.moving, linVel0[c.bodyB], angVel0[c.bodyB]);
+    BtgBodyVel a1 = btgMakeBodyVel(a.moving, linVel[c.bodyA], angVel[c.bodyA]);
+    BtgBodyVel b1 = btgMakeBodyVel(b.moving, linVel[c.bodyB], angVel[c.bodyB]);
+    btgApplyContactMaterial(&c, materials[found], a, b, a0, b0, a1, b1, btgContactSolvable(pa.flags, pb.flags), params);
+    contacts[i] = c;
+}
+
+/* The pairs an app's overlap filter callback refused (Bullet's pair cache holds no such pair):
+ * their manifold ranges emptied, as filter_pairs does, so no contact is made of them. */
+__kernel void clear_pair_ranges(__global const uint* restrict refused, int n, __global BtgManifoldRange* pairManifolds)
+{
+    int i = (int)get_global_id(0);
+    if (i >= n) return;
+    pairManifolds[refused[i]].count = 0;
+}
