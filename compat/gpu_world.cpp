@@ -754,6 +754,12 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
                 m_plan.hasIgnoredPairs = m_ignored.any();
                 m_report.stages = m_plan.stages();
             }
+            // The transforms this device call collides at, for the fill's refresh of old points
+            // (one device substep: the reports are of it).
+            if (m_config.fillDispatcherManifolds) {
+                if (perBatch * std::max(m_config.internalSubsteps, 1) == 1) m_manifolds.noteCollidedAt(m_rows);
+                else m_manifolds.forgetCollidedAt();
+            }
             Clock::time_point t1 = Clock::now();
             // A change the callbacks made that the device cannot carry: this internal step and
             // the rest of the call run on the CPU path (the callbacks are called again there).

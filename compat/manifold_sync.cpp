@@ -64,7 +64,13 @@ struct NewPoint {
     btManifoldPoint point;
     uint featureId;
     bool pending;  // its user data and coefficients came from the callbacks before the solve
+    int continues;  // the old point it continues, -1 for none
 };
+
+// Until a fill has placed its points, each carries its source in m_lifeTime: old point j as
+// kOldTag + j, new point i as kNewTag + i (Bullet's own calls move points between slots).
+constexpr int kOldTag = 1 << 20;
+constexpr int kNewTag = 1 << 21;
 
 }  // namespace
 
@@ -217,6 +223,7 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
             }
         }
         if (match >= 0) claimed |= 1u << match;
+        np.continues = match;
         np.point.m_lifeTime = g.spheres ? 0 : (match >= 0 ? old[match].m_lifeTime + 1 : 1);
         // A point that continues one keeps its user data (replaceContactPoint); stock clears a
         // sphere pair's manifold every step, which drops it.
@@ -228,15 +235,62 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
     // it, and get it once placed.
     g.before = oldCount;
     for (int j = 0; j < oldCount; ++j) m->getContactPoint(j).m_userPersistentData = nullptr;
+    unsigned oldIds[MANIFOLD_CACHE_SIZE];
+    for (int j = 0; j < MANIFOLD_CACHE_SIZE; ++j) oldIds[j] = e.ids[j];
+    // Stock's order inside the pair's collision: the detector's points go into the manifold as
+    // it holds them (a continued point replaces its old one in place, a new one is added,
+    // replacing by Bullet's reduction when four are held), then refreshContactPoints keeps the
+    // old points nothing replaced while they stay within the breaking threshold at the
+    // transforms the pair was collided at (a box tipping onto an edge of another still shows
+    // four points on stock). Such a point was not in the device's solve: its impulses are 0.
+    const bool retain = m_collidedAtValid && !g.spheres && total > 0 && g.row0 >= 0 && g.row1 >= 0 &&
+                        size_t(std::max(g.row0, g.row1)) < m_collidedAt.size();
     m->setNumContacts(0);
-    int owner[MANIFOLD_CACHE_SIZE] = {-1, -1, -1, -1};
+    if (retain)
+        for (int j = 0; j < oldCount; ++j) {
+            btManifoldPoint p = old[j];
+            p.m_userPersistentData = nullptr;
+            p.m_lifeTime = kOldTag + j;
+            m->addManifoldPoint(p);
+        }
     for (int i = 0; i < total; ++i) {
         btManifoldPoint pt = at(i).point;
         pt.m_userPersistentData = nullptr;
-        const int slot = m->addManifoldPoint(pt);
-        if (slot >= 0 && slot < MANIFOLD_CACHE_SIZE) {
-            e.ids[slot] = at(i).featureId;
-            owner[slot] = i;
+        pt.m_lifeTime = kNewTag + i;
+        int slot = -1;
+        for (int s = 0; retain && at(i).continues >= 0 && s < m->getNumContacts() && slot < 0; ++s)
+            if (m->getContactPoint(s).m_lifeTime == kOldTag + at(i).continues) slot = s;
+        if (slot >= 0) m->getContactPoint(slot) = pt;
+        else m->addManifoldPoint(pt);
+    }
+    if (retain) {
+        const btTransform& t0 = m_collidedAt[size_t(g.row0)];
+        const btTransform& t1 = m_collidedAt[size_t(g.row1)];
+        const btScalar breaking = m->getContactBreakingThreshold();
+        for (int s = m->getNumContacts() - 1; s >= 0; --s) {
+            btManifoldPoint& p = m->getContactPoint(s);
+            if (p.m_lifeTime >= kNewTag) continue;
+            p.m_positionWorldOnA = t0(p.m_localPointA);
+            p.m_positionWorldOnB = t1(p.m_localPointB);
+            p.m_distance1 = (p.m_positionWorldOnA - p.m_positionWorldOnB).dot(p.m_normalWorldOnB);
+            const btVector3 drift = p.m_positionWorldOnB - (p.m_positionWorldOnA - p.m_normalWorldOnB * p.m_distance1);
+            if (p.m_distance1 > breaking || drift.length2() > thr2) m->removeContactPoint(s);  // a new point stays: never emptied
+        }
+    }
+    int owner[MANIFOLD_CACHE_SIZE] = {-1, -1, -1, -1};
+    for (int s = 0; s < m->getNumContacts(); ++s) {
+        btManifoldPoint& p = m->getContactPoint(s);
+        if (p.m_lifeTime >= kNewTag) {
+            const int i = p.m_lifeTime - kNewTag;
+            owner[s] = i;
+            e.ids[s] = at(i).featureId;
+            p.m_lifeTime = at(i).point.m_lifeTime;
+        } else {
+            const int j = p.m_lifeTime - kOldTag;
+            e.ids[s] = oldIds[j];
+            p.m_lifeTime = old[j].m_lifeTime + 1;
+            p.m_appliedImpulse = p.m_appliedImpulseLateral1 = p.m_appliedImpulseLateral2 = 0;
+            p.m_userPersistentData = old[j].m_userPersistentData;
         }
     }
     for (int s = 0; s < m->getNumContacts(); ++s)
@@ -319,7 +373,9 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
             m_byObject[side.key.body0].push_back(node);
             if (side.key.body1 != side.key.body0) m_byObject[side.key.body1].push_back(node);
         }
-        m_groups.push_back({node, i, i + 1, side.spheres, fresh, 0, {}});
+        const BtgContactReport& r = rb.contacts[i];
+        m_groups.push_back({node, i, i + 1, side.swap ? r.bodyB : r.bodyA, side.swap ? r.bodyA : r.bodyB, side.spheres,
+                            fresh, 0, {}});
     }
     // Stamps in parallel; a manifold named by two groups (not adjacent: not seen in pair order)
     // shows as a stamp already this fill's.
@@ -401,6 +457,18 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
     for (Node* node : m_dead) m_map.erase(node->first);
     m_dead.clear();
     m_live.swap(m_nextLive);
+}
+
+void ManifoldSync::noteCollidedAt(const RowMap& rows)
+{
+    m_collidedAt.resize(rows.size());
+    forEachChunk(rows.size(), 4096, [&](size_t begin, size_t end, int) {
+        for (size_t r = begin; r < end; ++r) {
+            const btCollisionObject* o = rows.at(r);
+            m_collidedAt[r] = o ? o->getWorldTransform() : btTransform::getIdentity();
+        }
+    });
+    m_collidedAtValid = true;
 }
 
 void ManifoldSync::forget(Node* node)

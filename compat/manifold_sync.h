@@ -6,6 +6,7 @@
 #include "row_map.h"
 #include "stages/sync_bodies.h"
 
+#include <LinearMath/btTransform.h>
 #include <LinearMath/btVector3.h>
 
 #include <cstddef>
@@ -35,6 +36,13 @@ public:
     // Their contacts do not end for the app (no gContactEndedCallback: the CPU path's manifolds
     // take them on); points' user data go to gContactDestroyedCallback, as they leave the app.
     void releaseAll(btDispatcher* dispatcher);
+    // The transforms the device collides the next fill's pairs at: each row's, as the host holds
+    // them before a device call of one substep. Stock's refreshContactPoints keeps a manifold's
+    // old points its detector did not replace while they stay within the breaking threshold at
+    // those transforms; without them (a call of several device substeps: only the last one's
+    // contacts come back) the fill keeps only the device's points.
+    void noteCollidedAt(const RowMap& rows);
+    void forgetCollidedAt() { m_collidedAtValid = false; }
     // Those of an object leaving the world (stock: removeRigidBody → cleanProxyFromPairs).
     void removed(btDispatcher* dispatcher, const btCollisionObject* object);
     size_t size() const { return m_map.size() - m_dead.size(); }
@@ -114,6 +122,7 @@ private:
     struct Group {
         Node* entry;
         size_t first, last;
+        int row0, row1;  // the rows of Bullet's body0 and body1
         bool spheres;
         bool fresh;   // made by this fill: its contact starts (gContactStartedCallback)
         int before;   // points it held before this fill
@@ -128,6 +137,8 @@ private:
     void forget(Node* node);
 
     std::unordered_map<Key, Entry, KeyHash> m_map;
+    std::vector<btTransform> m_collidedAt;  // per row (noteCollidedAt)
+    bool m_collidedAtValid = false;
     // Every entry by each of its two bodies, so that removing a body costs its own manifolds,
     // not a walk of the whole map (an app clearing a level removes thousands).
     std::unordered_map<const btCollisionObject*, std::vector<Node*>> m_byObject;
