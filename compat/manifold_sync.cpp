@@ -450,6 +450,10 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
     }
     std::sort(stale.begin(), stale.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
     for (const auto& [index, node] : stale) {
+        if (keepsOldPoints(node, rows)) {
+            m_nextLive.push_back(node);
+            continue;
+        }
         dispatcher->releaseManifold(node->second.manifold);
         forget(node);
     }
@@ -457,6 +461,53 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
     for (Node* node : m_dead) m_map.erase(node->first);
     m_dead.clear();
     m_live.swap(m_nextLive);
+}
+
+bool ManifoldSync::keepsOldPoints(Node* node, const RowMap& rows)
+{
+    // Stock's algorithm for a pair its detector found nothing for this step still refreshes the
+    // manifold: the old points stay while within the breaking threshold at the transforms the
+    // pair was collided at, aged a step; the contact ends when the last goes (Bullet's
+    // removeContactPoint calls the app's destroyed and ended callbacks). A sphere pair's
+    // manifold is cleared every step instead.
+    if (!m_collidedAtValid) return false;
+    const Key& k = node->first;
+    if (leafShape(k.body0, k.sub0)->getShapeType() == SPHERE_SHAPE_PROXYTYPE &&
+        leafShape(k.body1, k.sub1)->getShapeType() == SPHERE_SHAPE_PROXYTYPE)
+        return false;
+    const int r0 = rows.rowOf(k.body0), r1 = rows.rowOf(k.body1);
+    if (r0 < 0 || r1 < 0 || size_t(std::max(r0, r1)) >= m_collidedAt.size()) return false;
+    btPersistentManifold* m = node->second.manifold;
+    Entry& e = node->second;
+    const btTransform& t0 = m_collidedAt[size_t(r0)];
+    const btTransform& t1 = m_collidedAt[size_t(r1)];
+    const btScalar breaking = m->getContactBreakingThreshold();
+    // Only while stock's broadphase would still hold the pair: the AABBs as its world expands
+    // them (the contact threshold) and, for a moving body, as its Dbvt leaf is fattened (0.05 m;
+    // stock's lazy removal of pairs that stopped overlapping is not followed).
+    btVector3 min0, max0, min1, max1;
+    k.body0->getCollisionShape()->getAabb(t0, min0, max0);
+    k.body1->getCollisionShape()->getAabb(t1, min1, max1);
+    const btScalar pad0 = breaking + (k.body0->isStaticObject() ? 0 : btScalar(0.05));
+    const btScalar pad1 = breaking + (k.body1->isStaticObject() ? 0 : btScalar(0.05));
+    if (!TestAabbAgainstAabb2(min0 - btVector3(pad0, pad0, pad0), max0 + btVector3(pad0, pad0, pad0),
+                              min1 - btVector3(pad1, pad1, pad1), max1 + btVector3(pad1, pad1, pad1)))
+        return false;
+    for (int s = m->getNumContacts() - 1; s >= 0; --s) {
+        btManifoldPoint& p = m->getContactPoint(s);
+        p.m_positionWorldOnA = t0(p.m_localPointA);
+        p.m_positionWorldOnB = t1(p.m_localPointB);
+        p.m_distance1 = (p.m_positionWorldOnA - p.m_positionWorldOnB).dot(p.m_normalWorldOnB);
+        p.m_lifeTime++;
+        p.m_appliedImpulse = p.m_appliedImpulseLateral1 = p.m_appliedImpulseLateral2 = 0;
+        const btVector3 drift = p.m_positionWorldOnB - (p.m_positionWorldOnA - p.m_normalWorldOnB * p.m_distance1);
+        if (p.m_distance1 > breaking || drift.length2() > breaking * breaking) {
+            const int last = m->getNumContacts() - 1;
+            if (s != last && last < MANIFOLD_CACHE_SIZE) e.ids[s] = e.ids[last];  // the last point moves into s
+            m->removeContactPoint(s);
+        }
+    }
+    return m->getNumContacts() > 0;
 }
 
 void ManifoldSync::noteCollidedAt(const RowMap& rows)

@@ -133,6 +133,9 @@ private:
     // The app's manifold events of the groups just refilled, serially in group order.
     void contactEvents();
 
+    // A manifold no report named while a body of it is awake: refreshed as stock's algorithm
+    // refreshes it; whether points remain (else the caller releases it).
+    bool keepsOldPoints(Node* node, const RowMap& rows);
     // Drops one map entry (and its place in m_byObject); the manifold is the caller's to release.
     void forget(Node* node);
 
