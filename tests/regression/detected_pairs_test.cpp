@@ -89,7 +89,7 @@ TEST(DetectedPairs, StaticTriggerIsInTheManifoldsAsStock)
         }
     }
     EXPECT_GT(withTrigger, 60);  // pair-steps of bodies inside the trigger
-    EXPECT_LE(t.stockOnly, 2 * 7) << "at most two trailing steps for each body leaving the trigger";
+    EXPECT_LE(t.stockOnly, 8) << "stock's trailing steps as bodies leave the trigger (measured 5)";
     EXPECT_LE(t.gpuOnly, 3) << "a box's entry a step early";
     for (int i = 2; i < 8; ++i) EXPECT_LT(sb.gpu->body(i)->getWorldTransform().getOrigin().y(), 0.5) << i;
     EXPECT_LT(sb.gpu->body(8)->getWorldTransform().getOrigin().y(), -5);
@@ -119,7 +119,7 @@ TEST(DetectedPairs, KinematicPairsWithCustomMasksAsStock)
     EXPECT_GT(kk, 40);  // btgpu collided the two kinematic boxes
     EXPECT_GT(ks, 60);  // and the kinematic sphere with the static box
     EXPECT_LE(t.gpuOnly, 2);
-    EXPECT_LE(t.stockOnly, 16) << "stock's trailing steps at the two exits";
+    EXPECT_LE(t.stockOnly, 13) << "stock's trailing steps at the two exits (measured 11)";
 }
 
 // The trigger ghost of ghost_scenes (CF_NO_CONTACT_RESPONSE, a btPairCachingGhostObject): stock's
@@ -144,5 +144,5 @@ TEST(DetectedPairs, TriggerGhostIsInTheManifoldsAsStock)
     }
     EXPECT_GT(withGhost, 50);
     EXPECT_LE(t.gpuOnly, 9) << "a box's entry a step early";
-    EXPECT_LE(t.stockOnly, 2 * 9);
+    EXPECT_LE(t.stockOnly, 8);  // measured 3
 }
