@@ -12,6 +12,7 @@
 #include "convex_rows.h"
 #include "shape_tables.h"
 #include "shared/pair_kinds.h"
+#include "shared/types.h"
 
 #include <btBulletDynamicsCommon.h>
 #include <BulletCollision/CollisionDispatch/btCompoundCollisionAlgorithm.h>
@@ -325,7 +326,9 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
         return "gContactBreakingThreshold changed from 0.02 (set Config::contactThreshold to the same value)";
 
     // btContactSolverInfo, against Bullet 3.24's defaults, exactly. m_erp and m_damping are
-    // read by the joints (BtgJointStepParams). Left alone, because
+    // read by the joints (BtgJointStepParams), m_globalCfm by the joints and the contacts'
+    // rows, m_sor by the contacts' normal and friction rows (setupContactConstraint's
+    // relaxation; the rolling rows and the joints ignore it). Left alone, because
     // btSequentialImpulseConstraintSolver and btDiscreteDynamicsWorld never read them for rigid
     // bodies: m_tau, m_friction, m_restitution,
     // m_maxErrorReduction, m_frictionCFM (manifold points carry their own),
@@ -344,15 +347,24 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
         return "btContactSolverInfo::m_leastSquaresResidualThreshold changed from 0 (early solver exit)";
     if (info.m_numIterations < 1)
         return "btContactSolverInfo::m_numIterations below 1 (Bullet then leaves contacts unsolved)";
-    // Mode bits: warm starting and two friction directions are followed; SOLVER_SIMD picks SSE
-    // versions of the same row solve; the rest are unread by 3.24's rigid-body solver.
-    const int notFollowed = SOLVER_RANDMIZE_ORDER | SOLVER_ENABLE_FRICTION_DIRECTION_CACHING |
-                            SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION |
-                            SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS;
+    // Mode bits: warm starting, two friction directions and velocity-independent friction
+    // directions (btPlaneSpace1's, always) are followed; SOLVER_SIMD picks SSE versions of the
+    // same row solve; the rest are unread by 3.24's rigid-body solver.
+    // SOLVER_ENABLE_FRICTION_DIRECTION_CACHING reuses a point's m_lateralFrictionDir1/2 once
+    // BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED is set, and 3.24 sets that flag only with
+    // SOLVER_USE_2_FRICTION_DIRECTIONS and SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION
+    // both on (convertContact), and then to btPlaneSpace1 of the point's normal. A point the
+    // narrowphase refreshes is replaced (replaceContactPoint copies the new point's flags,
+    // clearing it); one it keeps keeps its normal too. So the cached directions are the ones
+    // convertContact would compute again: caching changes nothing but through anisotropic
+    // friction (applied to the cached directions with the body's rotation at the point's first
+    // step), which falls back as a body rule. Tested: stock with and without the bit step for
+    // step alike (SolverFeatures.FrictionDirectionCachingIsStockNoOp).
+    const int notFollowed = SOLVER_RANDMIZE_ORDER | SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS;
     if ((info.m_solverMode ^ stock.m_solverMode) & notFollowed)
         return "btContactSolverInfo::m_solverMode " + std::to_string(info.m_solverMode) +
-               " sets bits the GPU path does not follow (randomised order, friction direction caching or "
-               "velocity-independent friction directions, interleaving)";
+               " sets bits the GPU path does not follow (SOLVER_RANDMIZE_ORDER: randomised row order, or "
+               "SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS)";
 
     // Dispatch info. m_useContinuous only matters for CCD bodies (a body rule); the CCD fields
     // (m_allowedCcdPenetration) likewise. m_useConvexConservativeDistanceUtil and its threshold
@@ -371,6 +383,7 @@ BodyRuleContext bodyRuleContext(btDiscreteDynamicsWorld& world)
     BodyRuleContext c;
     c.continuous = world.getDispatchInfo().m_useContinuous;
     c.contactAddedCallback = gContactAddedCallback != nullptr;
+    c.jacobi = false;
     return c;
 }
 
@@ -412,17 +425,19 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     return "";
 }
 
-std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex)
+std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool jacobi, unsigned* solverFlags)
 {
     *bodyIndex = -1;
     const btCollisionObjectArray& objs = world.getCollisionObjectArray();
-    const BodyRuleContext context = bodyRuleContext(world);
+    BodyRuleContext context = bodyRuleContext(world);
+    context.jacobi = jacobi;
     const size_t n = size_t(objs.size());
     const size_t minPerThread = 4096;
     struct Found {
         int index = -1;
         std::string why;
         std::uint64_t shapeTypes = 0;
+        unsigned solverFlags = 0;
     };
     std::vector<Found> found(chunkCount(n, minPerThread));
     forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
@@ -436,9 +451,13 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex)
                 return;
             }
             f.shapeTypes |= shapeTypeBits(o->getCollisionShape());
+            if (o->getRollingFriction() != btScalar(0)) f.solverFlags |= BTG_SOLVER_ROLLING_FRICTION;
+            if (o->getCollisionFlags() & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING)
+                f.solverFlags |= BTG_SOLVER_SOFT_CONTACTS;
         }
     });
     std::uint64_t shapeTypes = 0;
+    unsigned flags = 0;
     for (const Found& f : found) {
         if (f.index >= 0) {
             *bodyIndex = f.index;
@@ -446,7 +465,9 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex)
                    "): " + f.why;
         }
         shapeTypes |= f.shapeTypes;
+        flags |= f.solverFlags;
     }
+    if (solverFlags) *solverFlags = flags;
     return collisionAlgorithmReason(world, shapeTypes);
 }
 

@@ -132,7 +132,8 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
     }
     if (!m_structureReason.empty()) return m_structureReason;
     std::string why = worldReason(m_world, m_config);
-    if (why.empty()) why = bodiesReason(m_world, bodyIndex);
+    if (why.empty())
+        why = bodiesReason(m_world, bodyIndex, m_config.solver == SolverKind::JacobiMassSplitting, &m_solverFlags);
     return why;
 }
 
@@ -435,6 +436,11 @@ StepSettings GpuWorld::settings(int substeps, btScalar dt) const
     p.splitImpulse = info.m_splitImpulse ? 1 : 0;
     p.numBodies = m_dev->numBodies;
     p.twoFrictionDirections = (info.m_solverMode & SOLVER_USE_2_FRICTION_DIRECTIONS) ? 1 : 0;
+    p.solverFlags = m_solverFlags;
+    if (info.m_solverMode & SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION)
+        p.solverFlags |= BTG_SOLVER_VELOCITY_INDEPENDENT_FRICTION;
+    p.sor = info.m_sor;
+    p.globalCfm = info.m_globalCfm;
     s.substeps = substeps;
     s.iterations = std::max(info.m_numIterations, 1);
     s.maxColors = std::max(m_config.maxColors, 2);

@@ -153,12 +153,6 @@ std::vector<Rule> rules()
         solverInfo("no iterations", "m_numIterations", [](btContactSolverInfo& i) { i.m_numIterations = 0; }),
         solverInfo("randomised order", "m_solverMode",
                    [](btContactSolverInfo& i) { i.m_solverMode |= SOLVER_RANDMIZE_ORDER; }),
-        solverInfo("friction direction caching", "m_solverMode",
-                   [](btContactSolverInfo& i) { i.m_solverMode |= SOLVER_ENABLE_FRICTION_DIRECTION_CACHING; }),
-        solverInfo("velocity-independent friction", "m_solverMode",
-                   [](btContactSolverInfo& i) {
-                       i.m_solverMode |= SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION;
-                   }),
         solverInfo("interleaving", "m_solverMode",
                    [](btContactSolverInfo& i) {
                        i.m_solverMode |= SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS;

@@ -146,6 +146,36 @@ TEST(PrepareContacts, FrictionDirectionPerPointAlongItsSlip)
     EXPECT_LT(btgDot3(btgFrictionDir1(&c[0], 0), btgFrictionDir1(&c[0], 2)), -0.99f);
 }
 
+// SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION: btPlaneSpace1's p at every point
+// whatever its slip (the same spinning box), on the device and in the reference.
+TEST(PrepareContacts, VelocityIndependentFrictionAlongPlaneSpace)
+{
+    ref::ContactBodies b;
+    int ground = test::addBody(b, btgZero4(), 0.0f, btgZero4(), BTG_BODY_STATIC, 0.5f);
+    int box = test::addBody(b, btgMake4(0, 0.5f, 0, 0), 1.0f, btgMake4(6, 6, 6, 0), BTG_BODY_DYNAMIC, 0.5f);
+    b.angVel[box] = btgMake4(0, 2, 0, 0);
+    b.linVel[box] = btgMake4(1, -0.1f, 0.5f, 0);
+    BtgStepParams p = test::defaultParams(2);
+    p.solverFlags |= BTG_SOLVER_VELOCITY_INDEPENDENT_FRICTION;
+    p.twoFrictionDirections = 1;
+    std::vector<BtgManifold> ms = {test::boxOnPlane(box, ground, b.pos[box], 0.5f, -0.01f)};
+    std::vector<BtgContact> c = runDevice(b, ms, p);
+    std::vector<BtgContact> expect = ref::buildContacts(ms, 1, b, {}, p);
+    ref::prepareContacts(expect, b, p);
+    ASSERT_EQ(c.size(), 1u);
+    for (int k = 0; k < 4; ++k) {
+        EXPECT_EQ(btgLane(c[0].frictionCos, k), 1.0f) << "point " << k;
+        EXPECT_EQ(btgLane(c[0].frictionSin, k), 0.0f) << "point " << k;
+        EXPECT_EQ(btgLane(expect[0].frictionCos, k), 1.0f) << "point " << k;
+        expectNearRel(btgLane(c[0].friction1Mass, k), btgLane(expect[0].friction1Mass, k), "friction1Mass", k);
+        expectNearRel(btgLane(c[0].friction2Mass, k), btgLane(expect[0].friction2Mass, k), "friction2Mass", k);
+        EXPECT_GT(btgLane(c[0].friction2Mass, k), 0.0f);
+    }
+    // btPlaneSpace1 of (0, 1, 0): p = (-1, 0, 0), q = (0, 0, 1)
+    EXPECT_EQ(c[0].tangent1.x, -1.0f);
+    EXPECT_EQ(c[0].tangent2.z, 1.0f);
+}
+
 TEST(PrepareContacts, RestitutionTwoToOne)
 {
     // Sphere A (2 kg) falls at 2 m/s onto sphere B (1 kg) rising at 1 m/s; e = 1 * 0.5.
