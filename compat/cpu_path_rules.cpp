@@ -403,10 +403,11 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     if (flags & btCollisionObject::CF_HAS_FRICTION_ANCHOR) return "friction anchors (CF_HAS_FRICTION_ANCHOR)";
     if ((flags & btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK) && context.contactAddedCallback)
         return "gContactAddedCallback with CF_CUSTOM_MATERIAL_CALLBACK";
-    // Bullet combines these with the other body's friction: one body with them is enough.
-    if (o->getRollingFriction() != btScalar(0)) return "rolling friction (setRollingFriction)";
-    if (o->getSpinningFriction() != btScalar(0)) return "spinning friction (setSpinningFriction)";
-    // Anisotropic rolling friction only acts with rolling friction, which falls back above.
+    // Rolling and spinning friction are BtgRollingContact rows, solved in the PGS solver's
+    // rolling sweep; anisotropic rolling friction scales their axes (bodiesReason takes the
+    // case of two such bodies).
+    if (context.jacobi && (o->getRollingFriction() != btScalar(0) || o->getSpinningFriction() != btScalar(0)))
+        return "rolling or spinning friction with Config::solver = JacobiMassSplitting";
     if (o->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION))
         return "anisotropic friction (setAnisotropicFriction)";
     if (o->getContactProcessingThreshold() < btScalar(BT_LARGE_FLOAT))
@@ -438,6 +439,7 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
         std::string why;
         std::uint64_t shapeTypes = 0;
         unsigned solverFlags = 0;
+        int anisotropicRolling = 0;  // bodies with CF_ANISOTROPIC_ROLLING_FRICTION
     };
     std::vector<Found> found(chunkCount(n, minPerThread));
     forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
@@ -452,12 +454,14 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
             }
             f.shapeTypes |= shapeTypeBits(o->getCollisionShape());
             if (o->getRollingFriction() != btScalar(0)) f.solverFlags |= BTG_SOLVER_ROLLING_FRICTION;
+            f.anisotropicRolling += o->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_ROLLING_FRICTION);
             if (o->getCollisionFlags() & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING)
                 f.solverFlags |= BTG_SOLVER_SOFT_CONTACTS;
         }
     });
     std::uint64_t shapeTypes = 0;
     unsigned flags = 0;
+    int anisotropicRolling = 0;
     for (const Found& f : found) {
         if (f.index >= 0) {
             *bodyIndex = f.index;
@@ -466,7 +470,14 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
         }
         shapeTypes |= f.shapeTypes;
         flags |= f.solverFlags;
+        anisotropicRolling += f.anisotropicRolling;
     }
+    // convertContact scales a rolling axis by body 0's anisotropy, then body 1's: with both
+    // bodies of a pair anisotropic the result depends on which is Bullet's body 0 of the
+    // manifold, which the GPU path does not track. One such body in the world is served.
+    if (anisotropicRolling > 1 && (flags & BTG_SOLVER_ROLLING_FRICTION))
+        return "anisotropic rolling friction on more than one body (CF_ANISOTROPIC_ROLLING_FRICTION: the order "
+               "Bullet applies two bodies' in is its manifold's body order)";
     if (solverFlags) *solverFlags = flags;
     return collisionAlgorithmReason(world, shapeTypes);
 }

@@ -1,7 +1,7 @@
 /* prepare_contacts.cl — Stage: prepare (solver rows of each contact, setupContactConstraint,
  * and the contacts' edges of the constraint graph).
  * Launch: one work-item per contact slot (contactCapacity); early-out past the contact count.
- * Reads counters[kContactCount], props, invInertiaWorld, linVel0, angVel0 (restitution), linVel,
+ * Reads counters[kContactCount], props, invInertiaWorld, rot (anisotropic rolling friction), linVel0, angVel0 (restitution), linVel,
  * angVel (after this substep's forces: each point's friction direction), contacts.
  * Writes contacts (friction, tangent plane and per-point friction directions, row masses,
  * normalCfm, normalTarget, pushTarget, pushImpulse zeroed; impulses of non-solvable contacts
@@ -15,7 +15,7 @@
 
 __kernel void prepare_contacts(__global BtgContact* contacts, __global uint* counters,
                                int contactCapacity, __global const BtgBodyProps* restrict props,
-                               __global const BtgFloat4* restrict invInertiaWorld,
+                               __global const BtgFloat4* restrict invInertiaWorld, __global const BtgFloat4* restrict rot,
                                __global const BtgFloat4* restrict linVel0, __global const BtgFloat4* restrict angVel0,
                                __global const BtgFloat4* restrict linVel, __global const BtgFloat4* restrict angVel,
                                __global BtgEdge* edges, __global BtgRollingContact* rolling, BtgStepParams params)
@@ -39,5 +39,5 @@ __kernel void prepare_contacts(__global BtgContact* contacts, __global uint* cou
     const int solvable = btgContactSolvable(pa.flags, pb.flags);
     btgPrepareContact(&c, a, b, a0, b0, a1, b1, mat, solvable, params);
     contacts[i] = c;
-    if (params.solverFlags & BTG_SOLVER_ROLLING_FRICTION) rolling[i] = btgPrepareRolling(&c, a, b, mat, solvable);
+    if (params.solverFlags & BTG_SOLVER_ROLLING_FRICTION) rolling[i] = btgPrepareRolling(&c, a, b, mat, solvable, rot[c.bodyA], rot[c.bodyB], pa, pb);
 }

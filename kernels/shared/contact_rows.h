@@ -564,12 +564,24 @@ static inline BtgFloat4 btgNormalizeBullet(BtgFloat4 v)
     return v * (1.0f / btgSqrt(btgDot3(v, v)));
 }
 
+/* applyAnisotropicFriction: a body with the anisotropy `mode` (BTG_BODY_ANISOTROPIC*) scales
+ * dir per axis of its own frame (rot: its orientation). */
+static inline BtgFloat4 btgApplyAnisotropy(BtgFloat4 dir, BtgFloat4 rot, BtgBodyProps p, uint mode)
+{
+    if ((p.flags & mode) == 0u) return dir;
+    BtgMat3 m = btgQuatToMat3(rot);
+    BtgFloat4 inBody = btgMat3TMulVec(m, dir) * btgXyz(p.anisotropicFriction);
+    return btgMat3MulVec(m, inBody);
+}
+
 /* convertContact's rolling rows of a prepared contact c: only when the combined rolling
  * friction is positive (spinning friction alone adds no row in 3.24), and only while c is
  * solvable (its normal rows have mass). Impulses start at zero (Bullet never warm-starts
- * them). */
+ * them). The axes take A's anisotropic rolling friction, then B's (rotA, rotB, pa, pb: the
+ * bodies' orientations and rows). */
 static inline BtgRollingContact btgPrepareRolling(const BtgContact* c, BtgSolverBody a, BtgSolverBody b,
-                                                  BtgPairMaterial mat, int solvable)
+                                                  BtgPairMaterial mat, int solvable, BtgFloat4 rotA, BtgFloat4 rotB,
+                                                  BtgBodyProps pa, BtgBodyProps pb)
 {
     BtgRollingContact r;
     BtgFloat4 t1, t2;
@@ -589,7 +601,10 @@ static inline BtgRollingContact btgPrepareRolling(const BtgContact* c, BtgSolver
     r.roll2Mass = 0.0f;
     if (!(mat.rollingFriction > 0.0f) || !solvable || c->numPoints == 0) return r;
     r.spinMass = btgAngularRowMass(btgAngularJacobian(c->normal, a, b), a, b);
-    /* anisotropic rolling friction would scale the axes here; a row needs |axis| > 0.001 */
+    const uint mode = BTG_BODY_ANISOTROPIC_ROLLING;
+    r.rollAxis1 = btgApplyAnisotropy(btgApplyAnisotropy(r.rollAxis1, rotA, pa, mode), rotB, pb, mode);
+    r.rollAxis2 = btgApplyAnisotropy(btgApplyAnisotropy(r.rollAxis2, rotA, pa, mode), rotB, pb, mode);
+    /* a row needs |axis| > 0.001 */
     if (btgLength3(r.rollAxis1) > 0.001f) r.roll1Mass = btgAngularRowMass(btgAngularJacobian(r.rollAxis1, a, b), a, b);
     if (btgLength3(r.rollAxis2) > 0.001f) r.roll2Mass = btgAngularRowMass(btgAngularJacobian(r.rollAxis2, a, b), a, b);
     return r;

@@ -29,7 +29,7 @@ std::vector<BtgEdge> prepareContacts(std::vector<BtgContact>& contacts, const Co
         const int solvable = btgContactSolvable(pa.flags, pb.flags);
         btgPrepareContact(&c, a, b, a0, b0, a1, b1, mat, solvable, params);
         if (rolling && (params.solverFlags & BTG_SOLVER_ROLLING_FRICTION))
-            rolling->push_back(btgPrepareRolling(&c, a, b, mat, solvable));
+            rolling->push_back(btgPrepareRolling(&c, a, b, mat, solvable, bodies.rot[c.bodyA], bodies.rot[c.bodyB], pa, pb));
     }
     return edges;
 }

@@ -19,7 +19,7 @@ void prepareContacts(DeviceWorld& w, const BtgStepParams& params)
     // Rolling rows only for a scene with rolling friction (a placeholder element otherwise).
     w.rollingContacts.reserve(w.ctx, (params.solverFlags & BTG_SOLVER_ROLLING_FRICTION) ? size_t(std::max(contactCapacity, 1)) : 1);
     cl::Launch(w.ctx, w.ctx.program("prepare_contacts").kernel("prepare_contacts"), &w.profiler)
-        .arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props).arg(w.invInertiaWorld)
+        .arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props).arg(w.invInertiaWorld).arg(w.rot)
         .arg(w.linVel0).arg(w.angVel0).arg(w.linVel).arg(w.angVel).arg(w.edges).arg(w.rollingContacts).arg(params)
         .run(size_t(contactCapacity));
 }

@@ -10,14 +10,14 @@ btRigidBody* ground(Scene& scene, const Material& material = Material())
 }
 }  // namespace
 
-ScenePtr rollingSphere(WorldKind kind, const Config& config, btScalar rolling)
+ScenePtr rollingSphere(WorldKind kind, const Config& config, btScalar rolling, btScalar speed)
 {
     auto scene = std::make_unique<Scene>(kind, config, "rolling_sphere");
     ground(*scene);
     btRigidBody* ball = scene->addBody(scene->sphereShape(btScalar(0.5)), 1, btVector3(0, btScalar(0.5), 0));
     ball->setRollingFriction(rolling);
-    ball->setLinearVelocity(btVector3(3, 0, 0));
-    ball->setAngularVelocity(btVector3(0, 0, -6));
+    ball->setLinearVelocity(btVector3(speed, 0, 0));
+    ball->setAngularVelocity(btVector3(0, 0, -2 * speed));
     return scene;
 }
 

@@ -7,9 +7,9 @@
 
 namespace btgpu::scenes::features {
 
-// A sphere of radius 0.5, mass 1, rolling along +x at 3 m/s (angular velocity to match) on the
-// ground; rolling friction `rolling` on the sphere (the ground's friction 0.5 combines with it).
-ScenePtr rollingSphere(WorldKind kind, const Config& config, btScalar rolling = btScalar(0.05));
+// A sphere of radius 0.5, mass 1, rolling along +x at `speed` m/s (angular velocity to match) on
+// the ground; rolling friction `rolling` on the sphere (the ground's friction 0.5 combines with it).
+ScenePtr rollingSphere(WorldKind kind, const Config& config, btScalar rolling = btScalar(0.05), btScalar speed = 1);
 // A capsule (radius 0.3, half height 0.4) lying along z, rolling along +x at 2 m/s, rolling
 // friction 0.05: a two-point manifold.
 ScenePtr rollingCapsule(WorldKind kind, const Config& config);
