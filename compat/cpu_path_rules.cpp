@@ -340,8 +340,11 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
     // groups independent islands into one solve, which changes no island's result.
     const btContactSolverInfo& info = world.getSolverInfo();
     static const btContactSolverInfo stock;
-    if (info.m_sor != stock.m_sor) return "btContactSolverInfo::m_sor changed from 1 (contact relaxation)";
-    if (info.m_globalCfm != stock.m_globalCfm) return "btContactSolverInfo::m_globalCfm changed from 0";
+    const bool jacobi = config.solver == SolverKind::JacobiMassSplitting;
+    if (jacobi && info.m_sor != stock.m_sor)
+        return "btContactSolverInfo::m_sor changed from 1 with Config::solver = JacobiMassSplitting";
+    if (jacobi && info.m_globalCfm != stock.m_globalCfm)
+        return "btContactSolverInfo::m_globalCfm changed from 0 with Config::solver = JacobiMassSplitting";
     if (info.m_linearSlop != stock.m_linearSlop) return "btContactSolverInfo::m_linearSlop changed from 0";
     if (info.m_leastSquaresResidualThreshold != stock.m_leastSquaresResidualThreshold)
         return "btContactSolverInfo::m_leastSquaresResidualThreshold changed from 0 (early solver exit)";
@@ -398,8 +401,11 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     const int flags = o->getCollisionFlags();
     if (!servedShapeType(o->getCollisionShape()->getShapeType()))
         return std::string("unsupported shape '") + o->getCollisionShape()->getName() + "'";
-    if (flags & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING)
-        return "contact stiffness and damping (CF_HAS_CONTACT_STIFFNESS_DAMPING)";
+    // Contact stiffness and damping give the pair's points setupContactConstraint's erp and cfm
+    // (btgPrepareContact), served by the PGS solver.
+    if ((flags & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING) && context.jacobi)
+        return "contact stiffness and damping (CF_HAS_CONTACT_STIFFNESS_DAMPING) with Config::solver = "
+               "JacobiMassSplitting";
     if (flags & btCollisionObject::CF_HAS_FRICTION_ANCHOR) return "friction anchors (CF_HAS_FRICTION_ANCHOR)";
     if ((flags & btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK) && context.contactAddedCallback)
         return "gContactAddedCallback with CF_CUSTOM_MATERIAL_CALLBACK";

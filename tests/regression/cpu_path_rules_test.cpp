@@ -145,8 +145,6 @@ std::vector<Rule> rules()
         global("spinning friction combiner", "gCalculateCombinedSpinningFrictionCallback",
                gCalculateCombinedSpinningFrictionCallback, &combined),
         global("contact breaking threshold", "gContactBreakingThreshold", gContactBreakingThreshold, btScalar(0.05)),
-        solverInfo("m_sor", "m_sor", [](btContactSolverInfo& i) { i.m_sor = btScalar(0.9); }),
-        solverInfo("m_globalCfm", "m_globalCfm", [](btContactSolverInfo& i) { i.m_globalCfm = btScalar(1e-4); }),
         solverInfo("m_linearSlop", "m_linearSlop", [](btContactSolverInfo& i) { i.m_linearSlop = btScalar(0.01); }),
         solverInfo("m_leastSquaresResidualThreshold", "m_leastSquaresResidualThreshold",
                    [](btContactSolverInfo& i) { i.m_leastSquaresResidualThreshold = btScalar(1e-6); }),
@@ -174,8 +172,6 @@ std::vector<Rule> rules()
                  BOX_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE,
                  configuration(s).getCollisionAlgorithmCreateFunc(BOX_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE));
          }},
-        flag("contact stiffness and damping", "CF_HAS_CONTACT_STIFFNESS_DAMPING",
-             btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING),
         flag("friction anchor", "CF_HAS_FRICTION_ANCHOR", btCollisionObject::CF_HAS_FRICTION_ANCHOR),
         {"custom material callback", "gContactAddedCallback",
          [](Scene& s) {
@@ -276,6 +272,12 @@ TEST(CpuPathRules, JacobiSolverFallsBackForRowsItLacks)
         {"spinning friction", "rolling or spinning friction with Config::solver = JacobiMassSplitting",
          [](Scene& s) { s.body(1)->setSpinningFriction(btScalar(0.1)); },
          [](Scene& s) { s.body(1)->setSpinningFriction(0); }},
+        solverInfo("m_sor", "m_sor changed from 1 with Config::solver = JacobiMassSplitting",
+                   [](btContactSolverInfo& i) { i.m_sor = btScalar(0.9); }),
+        solverInfo("m_globalCfm", "m_globalCfm changed from 0 with Config::solver = JacobiMassSplitting",
+                   [](btContactSolverInfo& i) { i.m_globalCfm = btScalar(1e-4); }),
+        flag("contact stiffness and damping", "CF_HAS_CONTACT_STIFFNESS_DAMPING) with Config::solver = JacobiMassSplitting",
+             btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING),
     };
     for (const Rule& rule : jacobiRules) {
         SCOPED_TRACE(rule.name);
