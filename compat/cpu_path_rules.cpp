@@ -361,7 +361,7 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
     // clearing it); one it keeps keeps its normal too. So the cached directions are the ones
     // convertContact would compute again: caching changes nothing but through anisotropic
     // friction (applied to the cached directions with the body's rotation at the point's first
-    // step), which falls back as a body rule. Tested: stock with and without the bit step for
+    // step), which then falls back (bodiesReason). Tested: stock with and without the bit step for
     // step alike (SolverFeatures.FrictionDirectionCachingIsStockNoOp).
     const int notFollowed = SOLVER_RANDMIZE_ORDER | SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS;
     if ((info.m_solverMode ^ stock.m_solverMode) & notFollowed)
@@ -414,8 +414,10 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     // case of two such bodies).
     if (context.jacobi && (o->getRollingFriction() != btScalar(0) || o->getSpinningFriction() != btScalar(0)))
         return "rolling or spinning friction with Config::solver = JacobiMassSplitting";
-    if (o->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION))
-        return "anisotropic friction (setAnisotropicFriction)";
+    // Anisotropic friction scales the friction directions (BtgFrictionDirs); bodiesReason takes
+    // the cases that still fall back.
+    if (context.jacobi && o->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION))
+        return "anisotropic friction (setAnisotropicFriction) with Config::solver = JacobiMassSplitting";
     if (o->getContactProcessingThreshold() < btScalar(BT_LARGE_FLOAT))
         return "contact processing threshold (setContactProcessingThreshold)";
     const btRigidBody* rb = btRigidBody::upcast(o);
@@ -446,6 +448,7 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
         std::uint64_t shapeTypes = 0;
         unsigned solverFlags = 0;
         int anisotropicRolling = 0;  // bodies with CF_ANISOTROPIC_ROLLING_FRICTION
+        int anisotropic = 0;         // bodies with CF_ANISOTROPIC_FRICTION
     };
     std::vector<Found> found(chunkCount(n, minPerThread));
     forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
@@ -461,13 +464,17 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
             f.shapeTypes |= shapeTypeBits(o->getCollisionShape());
             if (o->getRollingFriction() != btScalar(0)) f.solverFlags |= BTG_SOLVER_ROLLING_FRICTION;
             f.anisotropicRolling += o->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_ROLLING_FRICTION);
+            if (o->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION)) {
+                ++f.anisotropic;
+                f.solverFlags |= BTG_SOLVER_ANISOTROPIC_FRICTION;
+            }
             if (o->getCollisionFlags() & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING)
                 f.solverFlags |= BTG_SOLVER_SOFT_CONTACTS;
         }
     });
     std::uint64_t shapeTypes = 0;
     unsigned flags = 0;
-    int anisotropicRolling = 0;
+    int anisotropicRolling = 0, anisotropic = 0;
     for (const Found& f : found) {
         if (f.index >= 0) {
             *bodyIndex = f.index;
@@ -477,6 +484,7 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
         shapeTypes |= f.shapeTypes;
         flags |= f.solverFlags;
         anisotropicRolling += f.anisotropicRolling;
+        anisotropic += f.anisotropic;
     }
     // convertContact scales a rolling axis by body 0's anisotropy, then body 1's: with both
     // bodies of a pair anisotropic the result depends on which is Bullet's body 0 of the
@@ -484,6 +492,16 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
     if (anisotropicRolling > 1 && (flags & BTG_SOLVER_ROLLING_FRICTION))
         return "anisotropic rolling friction on more than one body (CF_ANISOTROPIC_ROLLING_FRICTION: the order "
                "Bullet applies two bodies' in is its manifold's body order)";
+    if (anisotropic > 1)
+        return "anisotropic friction on more than one body (CF_ANISOTROPIC_FRICTION: the order Bullet applies two "
+               "bodies' in is its manifold's body order)";
+    // With these three bits convertContact keeps a point's directions from its first step,
+    // scaled by the body's orientation then (SOLVER_ENABLE_FRICTION_DIRECTION_CACHING, above).
+    const int caching = SOLVER_ENABLE_FRICTION_DIRECTION_CACHING | SOLVER_USE_2_FRICTION_DIRECTIONS |
+                        SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION;
+    if (anisotropic > 0 && (world.getSolverInfo().m_solverMode & caching) == caching)
+        return "anisotropic friction with friction direction caching, two friction directions and "
+               "velocity-independent directions (the cached directions keep the body's first orientation)";
     if (solverFlags) *solverFlags = flags;
     return collisionAlgorithmReason(world, shapeTypes);
 }

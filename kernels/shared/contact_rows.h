@@ -23,6 +23,7 @@
 #define BTG_ROWS_TWO_FRICTION 1
 #define BTG_ROWS_CFM 2     /* normalCfm: m_globalCfm or contact stiffness and damping */
 #define BTG_ROWS_ROLLING 4 /* BtgRollingContact rows (rolling and spinning friction) */
+#define BTG_ROWS_ANISOTROPIC 8 /* friction directions from BtgFrictionDirs (anisotropic friction) */
 
 /* The optional rows a step's solve reads. */
 static inline int btgRowFlags(BtgStepParams p)
@@ -30,6 +31,7 @@ static inline int btgRowFlags(BtgStepParams p)
     int rows = p.twoFrictionDirections ? BTG_ROWS_TWO_FRICTION : 0;
     if (p.globalCfm != 0.0f || (p.solverFlags & BTG_SOLVER_SOFT_CONTACTS) != 0u) rows |= BTG_ROWS_CFM;
     if ((p.solverFlags & BTG_SOLVER_ROLLING_FRICTION) != 0u) rows |= BTG_ROWS_ROLLING;
+    if ((p.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION) != 0u) rows |= BTG_ROWS_ANISOTROPIC;
     return rows;
 }
 
@@ -286,6 +288,15 @@ static inline BtgFloat4 btgFrictionDir2(const BtgContact* c, int k)
 {
     return c->tangent2 * btgLane(c->frictionCos, k) - c->tangent1 * btgLane(c->frictionSin, k);
 }
+/* The same, or the explicit directions of anisotropic friction where dirs is given. */
+static inline BtgFloat4 btgFrictionDir1Of(const BtgContact* c, const BtgFrictionDirs* dirs, int k)
+{
+    return dirs ? dirs->dir1[k] : btgFrictionDir1(c, k);
+}
+static inline BtgFloat4 btgFrictionDir2Of(const BtgContact* c, const BtgFrictionDirs* dirs, int k)
+{
+    return dirs ? dirs->dir2[k] : btgFrictionDir2(c, k);
+}
 
 /* Solver rows of one contact. a0/b0: velocities before this substep's forces (restitution);
  * a1/b1: after them (the friction directions, as Bullet's getVelocityInLocalPointNoDelta).
@@ -458,8 +469,8 @@ static inline BtgSolverRow btgContactPushRow(const BtgContact* c, int k, BtgSolv
 /* The setup-time warm start: accumulated impulses applied once before the iterations.
  * twoFriction: SOLVER_USE_2_FRICTION_DIRECTIONS (without it the second friction rows have no
  * mass, and are not read at all). */
-static inline void btgContactWarmStart(const BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
-                                       BtgBodyVel* vb, int rows)
+static inline void btgContactWarmStartDirs(const BtgContact* c, const BtgFrictionDirs* dirs, BtgSolverBody a,
+                                           BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb, int rows)
 {
     const int twoFriction = (rows & BTG_ROWS_TWO_FRICTION) != 0;
     for (int k = 0; k < c->numPoints; ++k) {
@@ -467,12 +478,17 @@ static inline void btgContactWarmStart(const BtgContact* c, BtgSolverBody a, Btg
         if (btgLane(c->normalMass, k) == 0.0f) continue;
         btgRowApply(btgPointJacobian(c->normal, rA, rB, a, b), a, b, va, vb, btgLane(c->normalImpulse, k));
         if (btgLane(c->friction1Mass, k) != 0.0f)
-            btgRowApply(btgPointJacobian(btgFrictionDir1(c, k), rA, rB, a, b), a, b, va, vb,
+            btgRowApply(btgPointJacobian(btgFrictionDir1Of(c, dirs, k), rA, rB, a, b), a, b, va, vb,
                         btgLane(c->friction1Impulse, k));
         if (twoFriction && btgLane(c->friction2Mass, k) != 0.0f)
-            btgRowApply(btgPointJacobian(btgFrictionDir2(c, k), rA, rB, a, b), a, b, va, vb,
+            btgRowApply(btgPointJacobian(btgFrictionDir2Of(c, dirs, k), rA, rB, a, b), a, b, va, vb,
                         btgLane(c->friction2Impulse, k));
     }
+}
+static inline void btgContactWarmStart(const BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
+                                       BtgBodyVel* vb, int rows)
+{
+    btgContactWarmStartDirs(c, 0, a, b, va, vb, rows);
 }
 /* A velocity iteration's normal rows of one contact (BTG_PASS_NORMALS). */
 static inline void btgContactSolveNormals(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb)
@@ -486,25 +502,32 @@ static inline void btgContactSolveNormals(BtgContact* c, BtgSolverBody a, BtgSol
 }
 /* Its friction rows (directions 1 and 2 per point) whose normal impulse is positive
  * (BTG_PASS_FRICTION). */
-static inline void btgContactSolveFriction(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
-                                           BtgBodyVel* vb, int rows)
+static inline void btgContactSolveFrictionDirs(BtgContact* c, const BtgFrictionDirs* dirs, BtgSolverBody a,
+                                               BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb, int rows)
 {
     const int twoFriction = (rows & BTG_ROWS_TWO_FRICTION) != 0;
     for (int k = 0; k < c->numPoints; ++k) {
         if (!(btgLane(c->normalImpulse, k) > 0.0f)) continue;
         float m1 = btgLane(c->friction1Mass, k);
         if (m1 != 0.0f) {
-            BtgSolverRow r = btgContactFrictionRow(c, k, btgFrictionDir1(c, k), m1, btgLane(c->friction1Impulse, k), a, b);
+            BtgSolverRow r =
+                btgContactFrictionRow(c, k, btgFrictionDir1Of(c, dirs, k), m1, btgLane(c->friction1Impulse, k), a, b);
             btgRowSolve(&r, a, b, va, vb);
             btgSetLane(&c->friction1Impulse, k, r.impulse);
         }
         float m2 = twoFriction ? btgLane(c->friction2Mass, k) : 0.0f;
         if (m2 != 0.0f) {
-            BtgSolverRow r = btgContactFrictionRow(c, k, btgFrictionDir2(c, k), m2, btgLane(c->friction2Impulse, k), a, b);
+            BtgSolverRow r =
+                btgContactFrictionRow(c, k, btgFrictionDir2Of(c, dirs, k), m2, btgLane(c->friction2Impulse, k), a, b);
             btgRowSolve(&r, a, b, va, vb);
             btgSetLane(&c->friction2Impulse, k, r.impulse);
         }
     }
+}
+static inline void btgContactSolveFriction(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
+                                           BtgBodyVel* vb, int rows)
+{
+    btgContactSolveFrictionDirs(c, 0, a, b, va, vb, rows);
 }
 /* Both for one contact (the Jacobi solver's velocity pass, which sweeps every contact once). */
 static inline void btgContactSolveVelocity(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
@@ -637,6 +660,44 @@ static inline void btgRollingSolve(BtgRollingContact* r, BtgFloat4 normal, BtgFl
                                                            btgLane(r->roll1Impulse, k), a, b, va, vb));
         btgSetLane(&r->roll2Impulse, k, btgRollingRowSolve(r->rollAxis2, r->roll2Mass, r->rollingFriction, n,
                                                            btgLane(r->roll2Impulse, k), a, b, va, vb));
+    }
+}
+
+/* ---- anisotropic friction (BtgFrictionDirs) ---- */
+
+/* convertContact's friction directions where a body has CF_ANISOTROPIC_FRICTION, after
+ * btgPrepareContact built c (its directions then are Bullet's before the scaling): direction 1
+ * scaled by A's anisotropy, then B's; with two directions, direction 2 is the scaled direction
+ * 1 crossed with the normal and normalised (along a slip), or btPlaneSpace1's q (no slip, or
+ * velocity-independent directions), each then scaled alike. The rows' masses follow the scaled
+ * directions (setupFrictionConstraint takes them as they are: the inverse mass term unscaled).
+ * rotA/rotB, pa/pb: the bodies' orientations and rows. */
+static inline void btgPrepareAnisotropicFriction(BtgContact* c, BtgFrictionDirs* dirs, BtgSolverBody a, BtgSolverBody b,
+                                                 BtgBodyVel a1, BtgBodyVel b1, BtgFloat4 rotA, BtgFloat4 rotB,
+                                                 BtgBodyProps pa, BtgBodyProps pb, int solvable, BtgStepParams p)
+{
+    const uint mode = BTG_BODY_ANISOTROPIC;
+    const BtgFloat4 n = btgXyz(c->normal);
+    for (int k = 0; k < BTG_MAX_POINTS; ++k) {
+        dirs->dir1[k] = btgZero4();
+        dirs->dir2[k] = btgZero4();
+        if (k >= c->numPoints) continue;
+        const BtgFloat4 rA = btgXyz(c->rA[k]), rB = btgXyz(c->rB[k]);
+        BtgFloat4 v = (a1.lin + btgCross3(a1.ang, rA)) - (b1.lin + btgCross3(b1.ang, rB));
+        BtgFloat4 slip = v - n * btgDot3(v, n);
+        const int alongSlip =
+            !(p.solverFlags & BTG_SOLVER_VELOCITY_INDEPENDENT_FRICTION) && btgDot3(slip, slip) > BTG_SIMD_EPSILON;
+        BtgFloat4 d1 = btgApplyAnisotropy(btgApplyAnisotropy(btgFrictionDir1(c, k), rotA, pa, mode), rotB, pb, mode);
+        BtgFloat4 d2 = alongSlip ? btgNormalizeBullet(btgCross3(d1, n)) : btgFrictionDir2(c, k);
+        d2 = btgApplyAnisotropy(btgApplyAnisotropy(d2, rotA, pa, mode), rotB, pb, mode);
+        dirs->dir1[k] = d1;
+        dirs->dir2[k] = d2;
+        if (!solvable) continue;
+        btgSetLane(&c->friction1Mass, k,
+                   btgPointRowMassRelaxed(btgPointJacobian(d1, rA, rB, a, b), rA, rB, a, b, p.sor, 0.0f));
+        if (p.twoFrictionDirections)
+            btgSetLane(&c->friction2Mass, k,
+                       btgPointRowMassRelaxed(btgPointJacobian(d2, rA, rB, a, b), rA, rB, a, b, p.sor, 0.0f));
     }
 }
 

@@ -292,6 +292,15 @@ typedef struct {
     float pad2;
 } BtgRollingContact;
 
+/* Each point's friction directions when anisotropic friction scales them
+ * (applyAnisotropicFriction: neither unit nor in the tangent plane any more, so not expressible
+ * as BtgContact's frictionCos/Sin); only with BTG_SOLVER_ANISOTROPIC_FRICTION, same index as
+ * the contact. */
+typedef struct {
+    BtgFloat4 dir1[BTG_MAX_POINTS]; /* Bullet's m_lateralFrictionDir1 after the scaling; w: 0 */
+    BtgFloat4 dir2[BTG_MAX_POINTS]; /* ... Dir2 (read with two friction directions) */
+} BtgFrictionDirs;
+
 /* An edge of the constraint graph: one constraint between two bodies. The batching colors
  * edges and the islands walk them, whatever kind of constraint each is: edges [0, contacts)
  * are the contacts, in their order; other kinds (joints) append theirs after them. */
@@ -361,6 +370,7 @@ typedef struct {
                                                        friction along btPlaneSpace1's axes */
 #define BTG_SOLVER_ROLLING_FRICTION 2u /* some body has rolling friction: prepare writes BtgRollingContact rows */
 #define BTG_SOLVER_SOFT_CONTACTS 4u    /* some body has contact stiffness and damping */
+#define BTG_SOLVER_ANISOTROPIC_FRICTION 8u /* a body has anisotropic friction: prepare writes BtgFrictionDirs */
 
 /* Device status flags (one uint, read back with the transforms). */
 #define BTG_STATUS_PAIR_OVERFLOW 1u
@@ -381,6 +391,7 @@ static_assert(sizeof(BtgManifoldRange) == 8, "BtgManifoldRange layout");
 static_assert(sizeof(BtgContact) == 16 + 16 * 24, "BtgContact layout");
 static_assert(sizeof(BtgEdge) == 8, "BtgEdge layout");
 static_assert(sizeof(BtgRollingContact) == 16 * 5 + 32, "BtgRollingContact layout");
+static_assert(sizeof(BtgFrictionDirs) == 32 * BTG_MAX_POINTS, "BtgFrictionDirs layout");
 static_assert(sizeof(BtgCachedContact) == 16 * (BTG_MAX_POINTS + 2 * BTG_WARMSTART_FRICTION) + 4 * BTG_MAX_POINTS + 32,
               "BtgCachedContact layout");
 static_assert(sizeof(BtgStepParams) == 64, "BtgStepParams layout");

@@ -12,10 +12,12 @@ BtgSolverBody solverBody(const ContactBodies& b, int i)
 }  // namespace
 
 std::vector<BtgEdge> prepareContacts(std::vector<BtgContact>& contacts, const ContactBodies& bodies,
-                                     const BtgStepParams& params, std::vector<BtgRollingContact>* rolling)
+                                     const BtgStepParams& params, std::vector<BtgRollingContact>* rolling,
+                                     std::vector<BtgFrictionDirs>* frictionDirs)
 {
     std::vector<BtgEdge> edges;
     if (rolling) rolling->clear();
+    if (frictionDirs) frictionDirs->clear();
     for (BtgContact& c : contacts) {
         edges.push_back(btgContactEdge(c));
         const BtgBodyProps& pa = bodies.props[c.bodyA];
@@ -28,6 +30,12 @@ std::vector<BtgEdge> prepareContacts(std::vector<BtgContact>& contacts, const Co
         const BtgPairMaterial mat = btgPairMaterial(pa, pb);
         const int solvable = btgContactSolvable(pa.flags, pb.flags);
         btgPrepareContact(&c, a, b, a0, b0, a1, b1, mat, solvable, params);
+        if (frictionDirs && (params.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION)) {
+            BtgFrictionDirs dirs;
+            btgPrepareAnisotropicFriction(&c, &dirs, a, b, a1, b1, bodies.rot[c.bodyA], bodies.rot[c.bodyB], pa, pb,
+                                          solvable, params);
+            frictionDirs->push_back(dirs);
+        }
         if (rolling && (params.solverFlags & BTG_SOLVER_ROLLING_FRICTION))
             rolling->push_back(btgPrepareRolling(&c, a, b, mat, solvable, bodies.rot[c.bodyA], bodies.rot[c.bodyB], pa, pb));
     }

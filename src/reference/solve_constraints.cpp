@@ -11,9 +11,10 @@
 namespace btgpu::ref {
 
 void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>& colors, ContactBodies& bodies,
-                      const BtgStepParams& params, int iterations, int numColors, std::vector<BtgRollingContact>* rolling)
+                      const BtgStepParams& params, int iterations, int numColors, std::vector<BtgRollingContact>* rolling,
+                      const std::vector<BtgFrictionDirs>* frictionDirs)
 {
-    const int rows = btgRowFlags(params) & (rolling ? ~0 : ~BTG_ROWS_ROLLING);
+    const int rows = btgRowFlags(params) & (rolling ? ~0 : ~BTG_ROWS_ROLLING) & (frictionDirs ? ~0 : ~BTG_ROWS_ANISOTROPIC);
     if (numColors < 1) numColors = 1;
     size_t n = bodies.props.size();
     if (params.splitImpulse) {
@@ -36,9 +37,10 @@ void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>&
                 int movingA = mode == BTG_PASS_PUSH ? a.dynamic : a.moving, movingB = mode == BTG_PASS_PUSH ? b.dynamic : b.moving;
                 BtgBodyVel va = btgMakeBodyVel(movingA, lin[c.bodyA], ang[c.bodyA]);
                 BtgBodyVel vb = btgMakeBodyVel(movingB, lin[c.bodyB], ang[c.bodyB]);
-                if (mode == BTG_PASS_WARM_START) btgContactWarmStart(&c, a, b, &va, &vb, rows);
+                const BtgFrictionDirs* d = (rows & BTG_ROWS_ANISOTROPIC) ? &(*frictionDirs)[e] : nullptr;
+                if (mode == BTG_PASS_WARM_START) btgContactWarmStartDirs(&c, d, a, b, &va, &vb, rows);
                 else if (mode == BTG_PASS_NORMALS) btgContactSolveNormals(&c, a, b, &va, &vb);
-                else if (mode == BTG_PASS_FRICTION) btgContactSolveFriction(&c, a, b, &va, &vb, rows);
+                else if (mode == BTG_PASS_FRICTION) btgContactSolveFrictionDirs(&c, d, a, b, &va, &vb, rows);
                 else if (mode == BTG_PASS_ROLLING)
                     btgRollingSolve(&(*rolling)[e], c.normal, c.normalImpulse, c.numPoints, a, b, &va, &vb);
                 else btgContactSolvePush(&c, a, b, &va, &vb);
@@ -73,7 +75,8 @@ void solveConstraints(std::vector<BtgContact>& contacts, JointTables& t, const s
         bodies.pushAng.assign(bodies.props.size(), btgZero4());
     }
     const size_t nc = contacts.size();
-    const int rows = btgRowFlags(params) & ~BTG_ROWS_ROLLING;  // (rolling rows: the contact-only reference)
+    // (rolling rows and anisotropic directions: the contact-only reference)
+    const int rows = btgRowFlags(params) & ~(BTG_ROWS_ROLLING | BTG_ROWS_ANISOTROPIC);
     auto body = [&](int i) {
         if (i < 0) return btgFixedJointBody().body;
         return btgMakeSolverBody(bodies.props[i], bodies.invInertiaWorld[3 * i], bodies.invInertiaWorld[3 * i + 1],

@@ -195,9 +195,26 @@ std::vector<Rule> rules()
              s.body(1)->setRollingFriction(0);
              for (int b : {1, 2}) s.body(b)->setAnisotropicFriction(btVector3(1, 1, 1));
          }},
-        {"anisotropic friction", "anisotropic friction",
-         [](Scene& s) { s.body(1)->setAnisotropicFriction(btVector3(1, btScalar(0.5), 1)); },
-         [](Scene& s) { s.body(1)->setAnisotropicFriction(btVector3(1, 1, 1)); }},
+        {"anisotropic friction on two bodies", "anisotropic friction on more than one body",
+         [](Scene& s) {
+             for (int b : {1, 2}) s.body(b)->setAnisotropicFriction(btVector3(1, btScalar(0.5), 1));
+         },
+         [](Scene& s) {
+             for (int b : {1, 2}) s.body(b)->setAnisotropicFriction(btVector3(1, 1, 1));
+         }},
+        {"anisotropic friction with cached directions", "anisotropic friction with friction direction caching",
+         [](Scene& s) {
+             s.body(1)->setAnisotropicFriction(btVector3(1, btScalar(0.5), 1));
+             s.world().getSolverInfo().m_solverMode |= SOLVER_ENABLE_FRICTION_DIRECTION_CACHING |
+                                                       SOLVER_USE_2_FRICTION_DIRECTIONS |
+                                                       SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION;
+         },
+         [](Scene& s) {
+             s.body(1)->setAnisotropicFriction(btVector3(1, 1, 1));
+             s.world().getSolverInfo().m_solverMode &= ~(SOLVER_ENABLE_FRICTION_DIRECTION_CACHING |
+                                                         SOLVER_USE_2_FRICTION_DIRECTIONS |
+                                                         SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION);
+         }},
         {"contact processing threshold", "contact processing threshold",
          [](Scene& s) { s.body(1)->setContactProcessingThreshold(0); },
          [](Scene& s) { s.body(1)->setContactProcessingThreshold(BT_LARGE_FLOAT); }},
@@ -278,6 +295,9 @@ TEST(CpuPathRules, JacobiSolverFallsBackForRowsItLacks)
                    [](btContactSolverInfo& i) { i.m_globalCfm = btScalar(1e-4); }),
         flag("contact stiffness and damping", "CF_HAS_CONTACT_STIFFNESS_DAMPING) with Config::solver = JacobiMassSplitting",
              btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING),
+        {"anisotropic friction", "anisotropic friction (setAnisotropicFriction) with Config::solver = JacobiMassSplitting",
+         [](Scene& s) { s.body(1)->setAnisotropicFriction(btVector3(1, btScalar(0.5), 1)); },
+         [](Scene& s) { s.body(1)->setAnisotropicFriction(btVector3(1, 1, 1)); }},
     };
     for (const Rule& rule : jacobiRules) {
         SCOPED_TRACE(rule.name);

@@ -270,9 +270,11 @@ TEST(PrepareContacts, MatchesBulletConvertContact)
         const char* name;
         btScalar sor, globalCfm;
         bool soft;
+        bool anisotropic = false;  // with two friction directions
     };
     for (const Case& cs : {Case{"defaults", 1, 0, false}, Case{"sor and cfm", btScalar(0.7), btScalar(0.02), false},
-                           Case{"stiffness and damping", 1, 0, true}}) {
+                           Case{"stiffness and damping", 1, 0, true},
+                           Case{"anisotropic friction, two directions", 1, 0, false, true}}) {
         SCOPED_TRACE(cs.name);
         const btTransform xf(btQuaternion(btVector3(1, 2, 3).normalized(), btScalar(0.4)), btVector3(0, btScalar(0.3), 0));
         const btVector3 v(btScalar(0.8), btScalar(-0.2), btScalar(0.3)), w(btScalar(0.5), btScalar(1.5), btScalar(-0.7));
@@ -283,11 +285,14 @@ TEST(PrepareContacts, MatchesBulletConvertContact)
         bp.ground->setFriction(btScalar(0.5));
         bp.ground->setRollingFriction(btScalar(0.02));
         if (cs.soft) bp.box->setContactStiffnessAndDamping(btScalar(3000), btScalar(40));
+        const btVector3 scale(1, btScalar(0.5), btScalar(0.2));
+        if (cs.anisotropic) bp.box->setAnisotropicFriction(scale);
         btContactSolverInfo info;
         info.m_timeStep = btScalar(1) / btScalar(60);
         info.m_sor = cs.sor;
         info.m_globalCfm = cs.globalCfm;
         info.m_solverMode &= ~SOLVER_USE_WARMSTARTING;
+        if (cs.anisotropic) info.m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
         // Two points on the ground (y = 0), the box's side a little into it.
         btPersistentManifold manifold(bp.box.get(), bp.ground.get(), 0, btScalar(0.02), btScalar(0.02));
         const btVector3 n(0, 1, 0);
@@ -331,6 +336,10 @@ TEST(PrepareContacts, MatchesBulletConvertContact)
         b.props[box].rollingFriction = 0.1f;
         b.props[box].spinningFriction = 0.05f;
         b.props[ground].rollingFriction = 0.02f;
+        if (cs.anisotropic) {
+            b.props[box].flags |= BTG_BODY_ANISOTROPIC;
+            b.props[box].anisotropicFriction = f4(scale);
+        }
         if (cs.soft) {
             b.props[box].flags |= BTG_BODY_STIFFNESS_DAMPING;
             b.props[box].contactStiffness = 3000.0f;
@@ -343,21 +352,34 @@ TEST(PrepareContacts, MatchesBulletConvertContact)
         p.warmstartFactor = 0.0f;
         p.sor = float(cs.sor);
         p.globalCfm = float(cs.globalCfm);
-        p.solverFlags = BTG_SOLVER_ROLLING_FRICTION | (cs.soft ? BTG_SOLVER_SOFT_CONTACTS : 0u);
+        p.solverFlags = BTG_SOLVER_ROLLING_FRICTION | (cs.soft ? BTG_SOLVER_SOFT_CONTACTS : 0u) |
+                        (cs.anisotropic ? BTG_SOLVER_ANISOTROPIC_FRICTION : 0u);
+        p.twoFrictionDirections = cs.anisotropic ? 1 : 0;
         std::vector<BtgContact> c = ref::buildContacts({m}, 1, b, {}, p);
         std::vector<BtgRollingContact> rolling;
-        ref::prepareContacts(c, b, p, &rolling);
+        std::vector<BtgFrictionDirs> dirs;
+        ref::prepareContacts(c, b, p, &rolling, &dirs);
+        ASSERT_EQ(dirs.size(), cs.anisotropic ? 1u : 0u);
         ASSERT_EQ(c.size(), 1u);
         ASSERT_EQ(rolling.size(), 1u);
         const float rel = 2e-5f;
         for (int k = 0; k < 2; ++k) {
             SCOPED_TRACE(k);
             const btSolverConstraint& nr = solver.normalRow(k);
-            const btSolverConstraint& fr = solver.frictionRow(k);
+            const btSolverConstraint& fr = solver.frictionRow(cs.anisotropic ? 2 * k : k);
             EXPECT_NEAR(btgLane(c[0].normalMass, k), nr.m_jacDiagABInv, rel * nr.m_jacDiagABInv);
             EXPECT_NEAR(btgLane(c[0].normalCfm, k), nr.m_cfm, rel * std::fabs(nr.m_cfm) + 1e-9f);
             EXPECT_NEAR(btgLane(c[0].friction1Mass, k), fr.m_jacDiagABInv, rel * fr.m_jacDiagABInv);
-            expectVecNear(btgFrictionDir1(&c[0], k), fr.m_contactNormal1, 1e-5f, "friction direction");
+            expectVecNear(btgFrictionDir1Of(&c[0], dirs.empty() ? nullptr : &dirs[0], k), fr.m_contactNormal1, 1e-5f,
+                          "friction direction");
+            if (cs.anisotropic) {
+                const btSolverConstraint& fr2 = solver.frictionRow(2 * k + 1);
+                expectVecNear(dirs[0].dir2[k], fr2.m_contactNormal1, 1e-5f, "friction direction 2");
+                EXPECT_NEAR(btgLane(c[0].friction2Mass, k), fr2.m_jacDiagABInv, rel * fr2.m_jacDiagABInv);
+                // scaled: neither unit nor in the tangent plane
+                EXPECT_LT(btgLength3(dirs[0].dir1[k]), 0.99f);
+                EXPECT_GT(std::fabs(dirs[0].dir1[k].y), 1e-3f);
+            }
             EXPECT_NEAR(c[0].friction, fr.m_friction, 1e-7f);
             // Bullet's rhs = (target - J v) * mass at setup; the row's target is prepare's.
             const BtgFloat4 rA = c[0].rA[k];

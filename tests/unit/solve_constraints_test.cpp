@@ -31,6 +31,7 @@ struct Result {
     std::vector<int> colors;  // the contacts' edge colors
     uint status = 0;          // counters[kStatus] after the solve
     std::vector<BtgRollingContact> rolling;  // with BTG_SOLVER_ROLLING_FRICTION
+    std::vector<BtgFrictionDirs> frictionDirs;  // with BTG_SOLVER_ANISOTROPIC_FRICTION
 };
 
 // contacts -> prepare -> batching -> solve on the device; prev is last step's contact list.
@@ -59,6 +60,8 @@ Result runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms
     r.colors = w.edgeColor.download(w.ctx, r.contacts.size());
     r.status = w.counters.download(w.ctx, kNumCounters)[kStatus];
     if (p.solverFlags & BTG_SOLVER_ROLLING_FRICTION) r.rolling = w.rollingContacts.download(w.ctx, r.contacts.size());
+    if (p.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION)
+        r.frictionDirs = w.frictionDirs.download(w.ctx, r.contacts.size());
     return r;
 }
 
@@ -68,9 +71,9 @@ Result runReference(const ref::ContactBodies& b, const std::vector<BtgManifold>&
     Result r;
     r.bodies = b;
     r.contacts = ref::buildContacts(ms, int(ms.size()), b, prev, p);
-    std::vector<BtgEdge> edges = ref::prepareContacts(r.contacts, r.bodies, p, &r.rolling);
+    std::vector<BtgEdge> edges = ref::prepareContacts(r.contacts, r.bodies, p, &r.rolling, &r.frictionDirs);
     r.colors = ref::colorConstraints(edges, r.bodies, maxColors);
-    ref::solveConstraints(r.contacts, r.colors, r.bodies, p, kIterations, maxColors, &r.rolling);
+    ref::solveConstraints(r.contacts, r.colors, r.bodies, p, kIterations, maxColors, &r.rolling, &r.frictionDirs);
     return r;
 }
 
@@ -386,5 +389,36 @@ TEST(SolveConstraints, SpinningFrictionClampsAndStops)
             EXPECT_LT(std::fabs(spin), bound);
             EXPECT_NEAR(d.bodies.angVel[ball].y, 0.0f, 1e-4f);
         }
+    }
+}
+
+// Anisotropic friction (BtgFrictionDirs: each point's directions scaled in its bodies' frames),
+// one and two directions, warm-started: the device against the reference on the stack scene
+// with every box turned and anisotropic.
+TEST(SolveConstraints, AnisotropicFrictionMatchesReference)
+{
+    for (int two : {0, 1}) {
+        SCOPED_TRACE(two);
+        test::StackScene s = test::stackScene(4, 3, 5);
+        for (size_t i = 1; i < s.bodies.props.size(); ++i) {
+            s.bodies.props[i].flags |= BTG_BODY_ANISOTROPIC;
+            s.bodies.props[i].anisotropicFriction = btgMake4(1.0f, 0.6f, 0.2f, 0);
+            s.bodies.rot[i] = btgQuatNormalize(btgMake4(0.1f * float(i % 3), 0.3f, -0.05f * float(i % 2), 1.0f));
+        }
+        BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
+        p.solverFlags = BTG_SOLVER_ANISOTROPIC_FRICTION;
+        p.twoFrictionDirections = two;
+        const int maxColors = 3;
+        Result r1 = runReference(s.bodies, s.manifolds, {}, p, maxColors);
+        Result d1 = runDevice(s.bodies, s.manifolds, {}, p, maxColors);
+        Result r = runReference(s.bodies, s.manifolds, r1.contacts, p, maxColors);
+        Result d = runDevice(s.bodies, s.manifolds, d1.contacts, p, maxColors);
+        test::expectSolvedAlike(d.bodies, d.contacts, r.bodies, r.contacts, 10 * tol::kStageAbs);
+        ASSERT_EQ(d.frictionDirs.size(), r.frictionDirs.size());
+        for (size_t i = 0; i < r.frictionDirs.size(); ++i)
+            for (int k = 0; k < r.contacts[i].numPoints; ++k) {
+                test::expectNear4(d.frictionDirs[i].dir1[k], r.frictionDirs[i].dir1[k], tol::kStageAbs, "dir1", i);
+                if (two) test::expectNear4(d.frictionDirs[i].dir2[k], r.frictionDirs[i].dir2[k], tol::kStageAbs, "dir2", i);
+            }
     }
 }
