@@ -13,6 +13,7 @@
 #include "shared/types.h"
 #include "shared/math.h"
 #include "shared/contact_rows.h"
+#include "shared/material_rows.h"
 
 
 __kernel void prepare_contacts(__global BtgContact* contacts, __global uint* counters,

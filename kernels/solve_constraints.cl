@@ -24,6 +24,7 @@
 #include "shared/types.h"
 #include "shared/math.h"
 #include "shared/contact_rows.h"
+#include "shared/material_rows.h"
 #include "shared/joint_rows.h"
 #include "shared/counters.h"
 #include "shared/grid_barrier.h"

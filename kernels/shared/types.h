@@ -361,7 +361,8 @@ typedef struct {
     int numBodies;
     int twoFrictionDirections;   /* SOLVER_USE_2_FRICTION_DIRECTIONS; else one, along the slip */
     uint solverFlags;            /* BTG_SOLVER_* */
-    float sor;                   /* m_sor: relaxation of the contact and friction rows' effective mass */
+    float sor;                   /* m_sor: relaxation of the contact and friction rows' effective mass;
+                                    Bullet's default is 1 (a zeroed BtgStepParams must set it) */
     float globalCfm;             /* m_globalCfm (contacts; the joints take theirs from BtgJointStepParams) */
     int pad0;
 } BtgStepParams;

@@ -5,6 +5,7 @@
 // device's sqrt/divide rounding.
 #pragma once
 #include "shared/contact_rows.h"
+#include "shared/material_rows.h"
 
 #include <vector>
 
