@@ -56,6 +56,15 @@ BtgBodyProps bodyProps(const btCollisionObject* obj, int shapeRow, const BtgShap
         p.linearFactor = btgMake4(1, 1, 1, 0);
         p.angularFactor = btgMake4(1, 1, 1, 0);
     }
+    if (obj->getCollisionFlags() & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING) flags |= BTG_BODY_STIFFNESS_DAMPING;
+    if (obj->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION)) flags |= BTG_BODY_ANISOTROPIC;
+    if (obj->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_ROLLING_FRICTION))
+        flags |= BTG_BODY_ANISOTROPIC_ROLLING;
+    p.anisotropicFriction = f4(obj->getAnisotropicFriction());
+    p.rollingFriction = obj->getRollingFriction();
+    p.spinningFriction = obj->getSpinningFriction();
+    p.contactStiffness = obj->getContactStiffness();
+    p.contactDamping = obj->getContactDamping();
     p.friction = obj->getFriction();
     p.restitution = obj->getRestitution();
     p.shape = shapeRow;
@@ -89,6 +98,8 @@ std::string badInput(const btCollisionObject* obj)
     if (!finite(t.getOrigin()) || !finite(b[0]) || !finite(b[1]) || !finite(b[2])) return "non-finite transform";
     if (!std::isfinite(obj->getFriction())) return "non-finite friction";
     if (!std::isfinite(obj->getRestitution())) return "non-finite restitution";
+    if (!std::isfinite(obj->getRollingFriction()) || !std::isfinite(obj->getSpinningFriction()))
+        return "non-finite rolling or spinning friction";
     const btRigidBody* rb = btRigidBody::upcast(obj);
     if (!rb) return "";
     if (!finite(rb->getLinearVelocity()) || !finite(rb->getAngularVelocity())) return "non-finite velocity";

@@ -12,6 +12,7 @@
 #include "convex_rows.h"
 #include "shape_tables.h"
 #include "shared/pair_kinds.h"
+#include "shared/types.h"
 
 #include <btBulletDynamicsCommon.h>
 #include <BulletCollision/CollisionDispatch/btCompoundCollisionAlgorithm.h>
@@ -317,7 +318,9 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
         return "gContactBreakingThreshold changed from 0.02 (set Config::contactThreshold to the same value)";
 
     // btContactSolverInfo, against Bullet 3.24's defaults, exactly. m_erp and m_damping are
-    // read by the joints (BtgJointStepParams). Left alone, because
+    // read by the joints (BtgJointStepParams), m_globalCfm by the joints and the contacts'
+    // rows, m_sor by the contacts' normal and friction rows (setupContactConstraint's
+    // relaxation; the rolling rows and the joints ignore it). Left alone, because
     // btSequentialImpulseConstraintSolver and btDiscreteDynamicsWorld never read them for rigid
     // bodies: m_tau, m_friction, m_restitution,
     // m_maxErrorReduction, m_frictionCFM (manifold points carry their own),
@@ -329,22 +332,34 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
     // groups independent islands into one solve, which changes no island's result.
     const btContactSolverInfo& info = world.getSolverInfo();
     static const btContactSolverInfo stock;
-    if (info.m_sor != stock.m_sor) return "btContactSolverInfo::m_sor changed from 1 (contact relaxation)";
-    if (info.m_globalCfm != stock.m_globalCfm) return "btContactSolverInfo::m_globalCfm changed from 0";
+    const bool jacobi = config.solver == SolverKind::JacobiMassSplitting;
+    if (jacobi && info.m_sor != stock.m_sor)
+        return "btContactSolverInfo::m_sor changed from 1 with Config::solver = JacobiMassSplitting";
+    if (jacobi && info.m_globalCfm != stock.m_globalCfm)
+        return "btContactSolverInfo::m_globalCfm changed from 0 with Config::solver = JacobiMassSplitting";
     if (info.m_linearSlop != stock.m_linearSlop) return "btContactSolverInfo::m_linearSlop changed from 0";
     if (info.m_leastSquaresResidualThreshold != stock.m_leastSquaresResidualThreshold)
         return "btContactSolverInfo::m_leastSquaresResidualThreshold changed from 0 (early solver exit)";
     if (info.m_numIterations < 1)
         return "btContactSolverInfo::m_numIterations below 1 (Bullet then leaves contacts unsolved)";
-    // Mode bits: warm starting and two friction directions are followed; SOLVER_SIMD picks SSE
-    // versions of the same row solve; the rest are unread by 3.24's rigid-body solver.
-    const int notFollowed = SOLVER_RANDMIZE_ORDER | SOLVER_ENABLE_FRICTION_DIRECTION_CACHING |
-                            SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION |
-                            SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS;
+    // Mode bits: warm starting, two friction directions and velocity-independent friction
+    // directions (btPlaneSpace1's, always) are followed; SOLVER_SIMD picks SSE versions of the
+    // same row solve; the rest are unread by 3.24's rigid-body solver.
+    // SOLVER_ENABLE_FRICTION_DIRECTION_CACHING reuses a point's m_lateralFrictionDir1/2 once
+    // BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED is set, and 3.24 sets that flag only with
+    // SOLVER_USE_2_FRICTION_DIRECTIONS and SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION
+    // both on (convertContact), and then to btPlaneSpace1 of the point's normal. A point the
+    // narrowphase refreshes is replaced (replaceContactPoint copies the new point's flags,
+    // clearing it); one it keeps keeps its normal too. So the cached directions are the ones
+    // convertContact would compute again: caching changes nothing but through anisotropic
+    // friction (applied to the cached directions with the body's rotation at the point's first
+    // step), which then falls back (bodiesReason). Tested: stock with and without the bit step for
+    // step alike (SolverFeatures.FrictionDirectionCachingIsStockNoOp).
+    const int notFollowed = SOLVER_RANDMIZE_ORDER | SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS;
     if ((info.m_solverMode ^ stock.m_solverMode) & notFollowed)
         return "btContactSolverInfo::m_solverMode " + std::to_string(info.m_solverMode) +
-               " sets bits the GPU path does not follow (randomised order, friction direction caching or "
-               "velocity-independent friction directions, interleaving)";
+               " sets bits the GPU path does not follow (SOLVER_RANDMIZE_ORDER: randomised row order, or "
+               "SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS)";
 
     // Dispatch info. m_useContinuous only matters for CCD bodies (a body rule); the CCD fields
     // (m_allowedCcdPenetration) likewise. m_useConvexConservativeDistanceUtil and its threshold
@@ -363,6 +378,7 @@ BodyRuleContext bodyRuleContext(btDiscreteDynamicsWorld& world)
     BodyRuleContext c;
     c.continuous = world.getDispatchInfo().m_useContinuous;
     c.contactAddedCallback = gContactAddedCallback != nullptr;
+    c.jacobi = false;
     return c;
 }
 
@@ -378,15 +394,21 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     const int flags = o->getCollisionFlags();
     if (!servedShapeType(o->getCollisionShape()->getShapeType()))
         return std::string("unsupported shape '") + o->getCollisionShape()->getName() + "'";
-    if (flags & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING)
-        return "contact stiffness and damping (CF_HAS_CONTACT_STIFFNESS_DAMPING)";
+    // Contact stiffness and damping give the pair's points setupContactConstraint's erp and cfm
+    // (btgPrepareContact), served by the PGS solver.
+    if ((flags & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING) && context.jacobi)
+        return "contact stiffness and damping (CF_HAS_CONTACT_STIFFNESS_DAMPING) with Config::solver = "
+               "JacobiMassSplitting";
     if (flags & btCollisionObject::CF_HAS_FRICTION_ANCHOR) return "friction anchors (CF_HAS_FRICTION_ANCHOR)";
-    // Bullet combines these with the other body's friction: one body with them is enough.
-    if (o->getRollingFriction() != btScalar(0)) return "rolling friction (setRollingFriction)";
-    if (o->getSpinningFriction() != btScalar(0)) return "spinning friction (setSpinningFriction)";
-    // Anisotropic rolling friction only acts with rolling friction, which falls back above.
-    if (o->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION))
-        return "anisotropic friction (setAnisotropicFriction)";
+    // Rolling and spinning friction are BtgRollingContact rows, solved in the PGS solver's
+    // rolling sweep; anisotropic rolling friction scales their axes (bodiesReason takes the
+    // case of two such bodies).
+    if (context.jacobi && (o->getRollingFriction() != btScalar(0) || o->getSpinningFriction() != btScalar(0)))
+        return "rolling or spinning friction with Config::solver = JacobiMassSplitting";
+    // Anisotropic friction scales the friction directions (BtgFrictionDirs); bodiesReason takes
+    // the cases that still fall back.
+    if (context.jacobi && o->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION))
+        return "anisotropic friction (setAnisotropicFriction) with Config::solver = JacobiMassSplitting";
     if (o->getContactProcessingThreshold() < btScalar(BT_LARGE_FLOAT))
         return "contact processing threshold (setContactProcessingThreshold)";
     const btRigidBody* rb = btRigidBody::upcast(o);
@@ -403,17 +425,21 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     return "";
 }
 
-std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex)
+std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool jacobi, unsigned* solverFlags)
 {
     *bodyIndex = -1;
     const btCollisionObjectArray& objs = world.getCollisionObjectArray();
-    const BodyRuleContext context = bodyRuleContext(world);
+    BodyRuleContext context = bodyRuleContext(world);
+    context.jacobi = jacobi;
     const size_t n = size_t(objs.size());
     const size_t minPerThread = 4096;
     struct Found {
         int index = -1;
         std::string why;
         std::uint64_t shapeTypes = 0;
+        unsigned solverFlags = 0;
+        int anisotropicRolling = 0;  // bodies with CF_ANISOTROPIC_ROLLING_FRICTION
+        int anisotropic = 0;         // bodies with CF_ANISOTROPIC_FRICTION
     };
     std::vector<Found> found(chunkCount(n, minPerThread));
     forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
@@ -427,9 +453,19 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex)
                 return;
             }
             f.shapeTypes |= shapeTypeBits(o->getCollisionShape());
+            if (o->getRollingFriction() != btScalar(0)) f.solverFlags |= BTG_SOLVER_ROLLING_FRICTION;
+            f.anisotropicRolling += o->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_ROLLING_FRICTION);
+            if (o->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION)) {
+                ++f.anisotropic;
+                f.solverFlags |= BTG_SOLVER_ANISOTROPIC_FRICTION;
+            }
+            if (o->getCollisionFlags() & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING)
+                f.solverFlags |= BTG_SOLVER_SOFT_CONTACTS;
         }
     });
     std::uint64_t shapeTypes = 0;
+    unsigned flags = 0;
+    int anisotropicRolling = 0, anisotropic = 0;
     for (const Found& f : found) {
         if (f.index >= 0) {
             *bodyIndex = f.index;
@@ -437,7 +473,27 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex)
                    "): " + f.why;
         }
         shapeTypes |= f.shapeTypes;
+        flags |= f.solverFlags;
+        anisotropicRolling += f.anisotropicRolling;
+        anisotropic += f.anisotropic;
     }
+    // convertContact scales a rolling axis by body 0's anisotropy, then body 1's: with both
+    // bodies of a pair anisotropic the result depends on which is Bullet's body 0 of the
+    // manifold, which the GPU path does not track. One such body in the world is served.
+    if (anisotropicRolling > 1 && (flags & BTG_SOLVER_ROLLING_FRICTION))
+        return "anisotropic rolling friction on more than one body (CF_ANISOTROPIC_ROLLING_FRICTION: the order "
+               "Bullet applies two bodies' in is its manifold's body order)";
+    if (anisotropic > 1)
+        return "anisotropic friction on more than one body (CF_ANISOTROPIC_FRICTION: the order Bullet applies two "
+               "bodies' in is its manifold's body order)";
+    // With these three bits convertContact keeps a point's directions from its first step,
+    // scaled by the body's orientation then (SOLVER_ENABLE_FRICTION_DIRECTION_CACHING, above).
+    const int caching = SOLVER_ENABLE_FRICTION_DIRECTION_CACHING | SOLVER_USE_2_FRICTION_DIRECTIONS |
+                        SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION;
+    if (anisotropic > 0 && (world.getSolverInfo().m_solverMode & caching) == caching)
+        return "anisotropic friction with friction direction caching, two friction directions and "
+               "velocity-independent directions (the cached directions keep the body's first orientation)";
+    if (solverFlags) *solverFlags = flags;
     return collisionAlgorithmReason(world, shapeTypes);
 }
 

@@ -30,6 +30,7 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config);
 struct BodyRuleContext {
     bool continuous = true;            // getDispatchInfo().m_useContinuous: CCD bodies sweep
     bool contactAddedCallback = false;  // gContactAddedCallback is set
+    bool jacobi = false;               // Config::solver is JacobiMassSplitting (its rows are plainer)
 };
 BodyRuleContext bodyRuleContext(btDiscreteDynamicsWorld& world);
 
@@ -39,8 +40,11 @@ std::string bodyReason(const btCollisionObject* body, const BodyRuleContext& con
 
 // Every body of the world (in parallel chunks), then the dispatcher's collision algorithms for
 // the shape pairs present. Returns the first reason in body order as "body i (user index u):
-// …" and sets *bodyIndex to i (-1 for a reason that is not one body's).
-std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex);
+// …" and sets *bodyIndex to i (-1 for a reason that is not one body's). jacobi: the Jacobi
+// solver is configured. *solverFlags (when given, and the bodies are served) gets the
+// BTG_SOLVER_* bits the bodies call for (rolling friction, soft contacts).
+std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool jacobi = false,
+                         unsigned* solverFlags = nullptr);
 
 // The dispatcher's collision algorithm for each pair of the shape types in `shapeTypes` (bit t:
 // proxy type t present) against a stock btDefaultCollisionConfiguration's: catches

@@ -133,7 +133,8 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
     }
     if (!m_structureReason.empty()) return m_structureReason;
     std::string why = worldReason(m_world, m_config);
-    if (why.empty()) why = bodiesReason(m_world, bodyIndex);
+    if (why.empty())
+        why = bodiesReason(m_world, bodyIndex, m_config.solver == SolverKind::JacobiMassSplitting, &m_solverFlags);
     if (why.empty() && (ContactCallbacks::wanted(m_world) || ContactCallbacks::events() ||
                         ContactCallbacks::overlapFilter(m_world))) {
         if (!m_callbackReason.empty() && m_callbackReasonFor == gContactAddedCallback) return m_callbackReason;
@@ -445,6 +446,11 @@ StepSettings GpuWorld::settings(int substeps, btScalar dt) const
     p.splitImpulse = info.m_splitImpulse ? 1 : 0;
     p.numBodies = m_dev->numBodies;
     p.twoFrictionDirections = (info.m_solverMode & SOLVER_USE_2_FRICTION_DIRECTIONS) ? 1 : 0;
+    p.solverFlags = m_solverFlags;
+    if (info.m_solverMode & SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION)
+        p.solverFlags |= BTG_SOLVER_VELOCITY_INDEPENDENT_FRICTION;
+    p.sor = info.m_sor;
+    p.globalCfm = info.m_globalCfm;
     s.substeps = substeps;
     s.iterations = std::max(info.m_numIterations, 1);
     s.maxColors = std::max(m_config.maxColors, 2);

@@ -137,6 +137,7 @@ private:
     std::unordered_set<const btCollisionObject*> m_removed;  // since the rows last followed the world
     bool m_rowsStale = true;  // objects added or removed since the rows last followed them
     std::vector<Mirror> m_mirror;
+    unsigned m_solverFlags = 0;  // BTG_SOLVER_* the bodies call for (bodiesReason, each step)
     std::vector<bool> m_large;  // rows paired by brute force instead of the grid
     // Per row, set by compareRow: the app woke this sleeping body (activate()), which restarts
     // its deactivation timer in Bullet; the device's timers are reset to match.

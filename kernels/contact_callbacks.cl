@@ -74,7 +74,7 @@ __kernel void apply_contact_materials(__global BtgContact* contacts, __global co
     BtgBodyVel b0 = btgMakeBodyVel(b.moving, linVel0[c.bodyB], angVel0[c.bodyB]);
     BtgBodyVel a1 = btgMakeBodyVel(a.moving, linVel[c.bodyA], angVel[c.bodyA]);
     BtgBodyVel b1 = btgMakeBodyVel(b.moving, linVel[c.bodyB], angVel[c.bodyB]);
-    btgApplyContactMaterial(&c, materials[found], a, b, a0, b0, a1, b1, btgContactSolvable(pa.flags, pb.flags), params);
+    btgApplyContactMaterial(&c, materials[found], btgPairMaterial(pa, pb), a, b, a0, b0, a1, b1, btgContactSolvable(pa.flags, pb.flags), params);
     contacts[i] = c;
 }
 

@@ -1,23 +1,29 @@
 /* prepare_contacts.cl — Stage: prepare (solver rows of each contact, setupContactConstraint,
  * and the contacts' edges of the constraint graph).
  * Launch: one work-item per contact slot (contactCapacity); early-out past the contact count.
- * Reads counters[kContactCount], props, invInertiaWorld, linVel0, angVel0 (restitution), linVel,
- * angVel (after this substep's forces: each point's friction direction), contacts.
- * Writes contacts (friction, tangent plane and per-point friction directions, row masses, normalTarget, pushTarget, pushImpulse
- * zeroed; impulses of non-solvable contacts zeroed), edges[0, contacts) (edge i: contact i's
+ * Reads counters[kContactCount], props, invInertiaWorld, rot (anisotropic friction), linVel0,
+ * angVel0 (restitution), linVel, angVel (after this substep's forces: each point's friction
+ * direction), contacts.
+ * Writes contacts (friction, tangent plane and per-point friction directions, row masses,
+ * normalCfm, normalTarget, pushTarget, pushImpulse zeroed; impulses of non-solvable contacts
+ * zeroed), rolling[0, contacts) (BTG_SOLVER_ROLLING_FRICTION only), frictionDirs[0, contacts)
+ * (BTG_SOLVER_ANISOTROPIC_FRICTION only), edges[0, contacts) (edge i: contact i's
  * bodies), counters[kEdgeCount] (= the contacts; kinds that follow append to it). */
 #include "shared/counters.h"
 #include "shared/types.h"
 #include "shared/math.h"
 #include "shared/contact_rows.h"
+#include "shared/material_rows.h"
 
 
 __kernel void prepare_contacts(__global BtgContact* contacts, __global uint* counters,
                                int contactCapacity, __global const BtgBodyProps* restrict props,
                                __global const BtgFloat4* restrict invInertiaWorld,
+                               __global const BtgFloat4* restrict rot,
                                __global const BtgFloat4* restrict linVel0, __global const BtgFloat4* restrict angVel0,
                                __global const BtgFloat4* restrict linVel, __global const BtgFloat4* restrict angVel,
-                               __global BtgEdge* edges, BtgStepParams params)
+                               __global BtgEdge* edges, __global BtgRollingContact* rolling,
+                               __global BtgFrictionDirs* frictionDirs, BtgStepParams params)
 {
     uint i = (uint)get_global_id(0);
     const uint n = min(counters[BTG_COUNTER_CONTACTS], (uint)contactCapacity);
@@ -34,7 +40,15 @@ __kernel void prepare_contacts(__global BtgContact* contacts, __global uint* cou
     BtgBodyVel b0 = btgMakeBodyVel(b.moving, linVel0[c.bodyB], angVel0[c.bodyB]);
     BtgBodyVel a1 = btgMakeBodyVel(a.moving, linVel[c.bodyA], angVel[c.bodyA]);
     BtgBodyVel b1 = btgMakeBodyVel(b.moving, linVel[c.bodyB], angVel[c.bodyB]);
-    btgPrepareContact(&c, a, b, a0, b0, a1, b1, btgCombinedFriction(pa.friction, pb.friction),
-                      pa.restitution * pb.restitution, btgContactSolvable(pa.flags, pb.flags), params);
+    const BtgPairMaterial mat = btgPairMaterial(pa, pb);
+    const int solvable = btgContactSolvable(pa.flags, pb.flags);
+    btgPrepareContact(&c, a, b, a0, b0, a1, b1, mat, solvable, params);
+    if (params.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION) {
+        BtgFrictionDirs dirs;
+        btgPrepareAnisotropicFriction(&c, &dirs, a, b, a1, b1, rot[c.bodyA], rot[c.bodyB], pa, pb, solvable, params);
+        frictionDirs[i] = dirs;
+    }
     contacts[i] = c;
+    if (params.solverFlags & BTG_SOLVER_ROLLING_FRICTION)
+        rolling[i] = btgPrepareRolling(&c, a, b, mat, solvable, rot[c.bodyA], rot[c.bodyB], pa, pb);
 }

@@ -12,15 +12,19 @@
  * last one or higher (so a caller launching fewer colors than were assigned still solves all).
  * mode 0: apply warm-start impulses; 1: velocity iteration (both sweeps at once, unused by
  * the host); 2: split-impulse iteration; 3, 4: a velocity iteration's normal sweep, then its
- * friction sweep over every contact (counters.h);
- * twoFriction: SOLVER_USE_2_FRICTION_DIRECTIONS (else the second friction rows are not read).
+ * friction sweep over every contact (counters.h); 5: its rolling sweep (rolling friction);
+ * rows: BTG_ROWS_* (contact_rows.h), which optional row fields exist (second friction rows,
+ * contact cfm, rolling rows).
  * Reads counters[kEdgeCount, kContactCount, kColorsUsed, kLeftovers], edgeColor, props,
  * invInertiaWorld, contacts (a pass reads the fields of its rows only, see BtgContact),
- * joints, jointState (rows built). Writes contacts and jointRows (accumulated impulses),
+ * rolling (rows & BTG_ROWS_ROLLING; else a placeholder), frictionDirs (rows & BTG_ROWS_ANISOTROPIC;
+ * else a placeholder), joints, jointState (rows built).
+ * Writes contacts, rolling and jointRows (accumulated impulses),
  * linVel, angVel (modes 0, 1) or pushLin, pushAng (mode 2), dynamic bodies only. */
 #include "shared/types.h"
 #include "shared/math.h"
 #include "shared/contact_rows.h"
+#include "shared/material_rows.h"
 #include "shared/joint_rows.h"
 #include "shared/counters.h"
 #include "shared/grid_barrier.h"
@@ -40,11 +44,12 @@ static BtgSolverBody load_body(__global const BtgBodyProps* restrict props,
 /* Body velocities go through BTG_SHARED (volatile on GPUs) pointers: solve_resident shares
  * them between work-groups across its grid barriers, where a non-coherent cache must not
  * serve a stale copy. The arithmetic is the same for every caller. */
-static void solve_contact(int i, int mode, int twoFriction, __global BtgContact* contacts,
+static void solve_contact(int i, int mode, int rows, __global BtgContact* contacts,
+                      __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs,
                       __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
                       BTG_SHARED __global BtgFloat4* lin, BTG_SHARED __global BtgFloat4* ang)
 {
-    BtgContact c = btgLoadContactRows(contacts, i, mode, twoFriction);
+    BtgContact c = btgLoadContactRows(contacts, i, mode == BTG_PASS_ROLLING ? BTG_PASS_NORMALS : mode, rows);
     BtgSolverBody a = load_body(props, invInertiaWorld, c.bodyA);
     BtgSolverBody b = load_body(props, invInertiaWorld, c.bodyB);
     /* Push velocities of infinite-mass bodies are zero, as Bullet's solver bodies start them. */
@@ -52,11 +57,26 @@ static void solve_contact(int i, int mode, int twoFriction, __global BtgContact*
     BtgFloat4 linA = lin[c.bodyA], angA = ang[c.bodyA], linB = lin[c.bodyB], angB = ang[c.bodyB];
     BtgBodyVel va = btgMakeBodyVel(movingA, linA, angA);
     BtgBodyVel vb = btgMakeBodyVel(movingB, linB, angB);
-    if (mode == BTG_PASS_WARM_START) btgContactWarmStart(&c, a, b, &va, &vb, twoFriction);
+    /* anisotropic friction: the explicit directions, for the passes with friction rows */
+    BtgFrictionDirs dirs;
+    const int explicitDirs = (rows & BTG_ROWS_ANISOTROPIC) != 0 &&
+                             (mode == BTG_PASS_WARM_START || mode == BTG_PASS_FRICTION || mode == BTG_PASS_VELOCITY);
+    if (explicitDirs) dirs = frictionDirs[i];
+    const BtgFrictionDirs* d = explicitDirs ? &dirs : 0;
+    if (mode == BTG_PASS_WARM_START) btgContactWarmStartDirs(&c, d, a, b, &va, &vb, rows);
     else if (mode == BTG_PASS_NORMALS) btgContactSolveNormals(&c, a, b, &va, &vb);
-    else if (mode == BTG_PASS_FRICTION) btgContactSolveFriction(&c, a, b, &va, &vb, twoFriction);
-    else if (mode == BTG_PASS_VELOCITY) btgContactSolveVelocity(&c, a, b, &va, &vb, twoFriction);
-    else btgContactSolvePush(&c, a, b, &va, &vb);
+    else if (mode == BTG_PASS_FRICTION) btgContactSolveFrictionDirs(&c, d, a, b, &va, &vb, rows);
+    else if (mode == BTG_PASS_VELOCITY) {
+        btgContactSolveNormals(&c, a, b, &va, &vb);
+        btgContactSolveFrictionDirs(&c, d, a, b, &va, &vb, rows);
+    }
+    else if (mode == BTG_PASS_ROLLING) {
+        BtgRollingContact r = rolling[i];
+        btgRollingSolve(&r, c.normal, c.normalImpulse, c.numPoints, a, b, &va, &vb);
+        rolling[i].spinImpulse = r.spinImpulse;
+        rolling[i].roll1Impulse = r.roll1Impulse;
+        rolling[i].roll2Impulse = r.roll2Impulse;
+    } else btgContactSolvePush(&c, a, b, &va, &vb);
     /* w of the velocity columns is not the solver's: keep it. */
     if (a.dynamic) {
         lin[c.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, linA.w);
@@ -66,16 +86,17 @@ static void solve_contact(int i, int mode, int twoFriction, __global BtgContact*
         lin[c.bodyB] = btgMake4(vb.lin.x, vb.lin.y, vb.lin.z, linB.w);
         ang[c.bodyB] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, angB.w);
     }
-    btgStoreContactImpulses(contacts, i, &c, mode, twoFriction);
+    if (mode != BTG_PASS_ROLLING) btgStoreContactImpulses(contacts, i, &c, mode, rows);
 }
 
 /* One edge of the graph: the contacts are the edges [0, contacts); a constraint kind with
  * edges after them is solved here by its own rows. */
-static void solve_edge(int e, int mode, int twoFriction, __global BtgContact* contacts,
+static void solve_edge(int e, int mode, int rows, __global BtgContact* contacts,
+                       __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs,
                        __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
                        BTG_SHARED __global BtgFloat4* lin, BTG_SHARED __global BtgFloat4* ang)
 {
-    solve_contact(e, mode, twoFriction, contacts, props, invInertiaWorld, lin, ang);
+    solve_contact(e, mode, rows, contacts, rolling, frictionDirs, props, invInertiaWorld, lin, ang);
 }
 
 static int edge_count(__global const uint* restrict counters, int edgeCapacity)
@@ -128,13 +149,15 @@ static void solve_joint(int j, int iteration, JOINT_ARGS, __global const BtgBody
 }
 
 /* One edge of the phase: a joint edge (phase 1) or a contact (phase 0). */
-static void solve_phase_edge(int e, int phase, int contacts, int iteration, int mode, int twoFriction,
-                             __global BtgContact* contactRows, JOINT_ARGS, __global const BtgBodyProps* restrict props,
+static void solve_phase_edge(int e, int phase, int contacts, int iteration, int mode, int rows,
+                             __global BtgContact* contactRows, __global BtgRollingContact* rolling,
+                             __global const BtgFrictionDirs* restrict frictionDirs, JOINT_ARGS,
+                             __global const BtgBodyProps* restrict props,
                              __global const BtgFloat4* restrict invInertiaWorld, BTG_SHARED __global BtgFloat4* lin,
                              BTG_SHARED __global BtgFloat4* ang)
 {
     if (phase) solve_joint(e - contacts, iteration, JOINT_PASS, props, invInertiaWorld, lin, ang);
-    else solve_edge(e, mode, twoFriction, contactRows, props, invInertiaWorld, lin, ang);
+    else solve_edge(e, mode, rows, contactRows, rolling, frictionDirs, props, invInertiaWorld, lin, ang);
 }
 
 /* Whether edge e has a split-impulse row (only contacts do: Bullet pushes contacts only). */
@@ -144,10 +167,11 @@ static int edge_has_push(__global const BtgContact* restrict contacts, int e)
 }
 
 __kernel void solve_color_serial(__global const int* restrict edgeColor, __global BtgContact* contacts,
+                                 __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs,
                                  __global const uint* restrict counters, int edgeCapacity,
                                  __global const BtgBodyProps* restrict props,
                                  __global const BtgFloat4* restrict invInertiaWorld, __global BtgFloat4* lin,
-                                 __global BtgFloat4* ang, int color, int mode, int twoFriction, JOINT_ARGS, int phase,
+                                 __global BtgFloat4* ang, int color, int mode, int rows, JOINT_ARGS, int phase,
                                  int iteration)
 {
     if (get_global_id(0) != 0) return;
@@ -158,8 +182,8 @@ __kernel void solve_color_serial(__global const int* restrict edgeColor, __globa
     const int nc = contact_edges(counters, edgeCapacity, numJoints);
     for (int i = phase ? nc : 0; i < (phase ? n : min(n, nc)); ++i)
         if (edgeColor[i] >= color)
-            solve_phase_edge(i, phase, nc, iteration, mode, twoFriction, contacts, JOINT_PASS, props, invInertiaWorld,
-                             lin, ang);
+            solve_phase_edge(i, phase, nc, iteration, mode, rows, contacts, rolling, frictionDirs, JOINT_PASS, props,
+                             invInertiaWorld, lin, ang);
 }
 
 /* Color ranges, so a color's launch touches only its own edges instead of reading every
@@ -227,10 +251,12 @@ __kernel void color_fill(__global const int* restrict edgeColor, __global const 
 /* solve_color_range: the color's range in list (phase 1: 2, the joints; else mode == 2 ? 1 : 0), strided over however many
  * work-items the host launched (it does not know the range's length; a launch over every
  * edge slot cost a CPU device hundreds of empty work-groups per color). */
-__kernel void solve_color_range(__global BtgContact* contacts, __global const uint* restrict colorStart,
+__kernel void solve_color_range(__global BtgContact* contacts, __global BtgRollingContact* rolling,
+                                __global const BtgFrictionDirs* restrict frictionDirs,
+                                __global const uint* restrict colorStart,
                                 __global const int* restrict colorOrder, __global const BtgBodyProps* restrict props,
                                 __global const BtgFloat4* restrict invInertiaWorld, __global BtgFloat4* lin,
-                                __global BtgFloat4* ang, int color, int mode, int twoFriction, int numColors,
+                                __global BtgFloat4* ang, int color, int mode, int rows, int numColors,
                                 int orderStride, __global const uint* restrict counters, int edgeCapacity, JOINT_ARGS,
                                 int phase, int iteration)
 {
@@ -239,8 +265,8 @@ __kernel void solve_color_range(__global BtgContact* contacts, __global const ui
     const int end = (int)colorStart[list * (numColors + 1) + color + 1];
     const int nc = phase ? contact_edges(counters, edgeCapacity, numJoints) : 0;
     for (int k = begin + (int)get_global_id(0); k < end; k += (int)get_global_size(0))
-        solve_phase_edge(colorOrder[list * orderStride + k], phase, nc, iteration, mode, twoFriction, contacts, JOINT_PASS,
-                         props, invInertiaWorld, lin, ang);
+        solve_phase_edge(colorOrder[list * orderStride + k], phase, nc, iteration, mode, rows, contacts, rolling,
+                         frictionDirs, JOINT_PASS, props, invInertiaWorld, lin, ang);
 }
 
 /* solve_resident: every pass and color in ONE launch over resident work-groups (GPUs), with a
@@ -252,13 +278,14 @@ __kernel void solve_color_range(__global BtgContact* contacts, __global const ui
  * for bit. A batching that timed out at its own barrier leaves nothing to solve: the step is redone. */
 
 __kernel void solve_resident(__global const int* restrict edgeColor, __global BtgContact* contacts,
+                             __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs,
                              __global uint* counters, int edgeCapacity,
                              __global const uint* restrict colorStart, __global const int* restrict colorOrder,
                              __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
                              BTG_SHARED __global BtgFloat4* linVel, BTG_SHARED __global BtgFloat4* angVel,
                              BTG_SHARED __global BtgFloat4* pushLin, BTG_SHARED __global BtgFloat4* pushAng,
                              volatile __global BtgGridBarrier* bar, int numColors, int orderStride, int iterations,
-                             int splitImpulse, int twoFriction, int spinLimit, JOINT_ARGS, int jointIterations)
+                             int splitImpulse, int rows, int spinLimit, JOINT_ARGS, int jointIterations)
 {
     __local int quit;
     if (counters[BTG_COUNTER_STATUS] & BTG_STATUS_GRID_BARRIER_TIMEOUT) return;
@@ -282,15 +309,16 @@ __kernel void solve_resident(__global const int* restrict edgeColor, __global Bt
             if (phase == 0 && mode == BTG_PASS_VELOCITY && iteration >= iterations) break;
             /* push passes: only contacts with a push target */
             const int list = phase ? 2 : (mode == 2 ? 1 : 0);
-            const int sweeps = phase == 0 && mode == BTG_PASS_VELOCITY ? 2 : 1;
+            const int sweeps = phase == 0 && mode == BTG_PASS_VELOCITY ? ((rows & BTG_ROWS_ROLLING) ? 3 : 2) : 1;
             for (int sweep = 0; sweep < sweeps; ++sweep) {
-                const int m = sweeps == 2 ? (sweep == 0 ? BTG_PASS_NORMALS : BTG_PASS_FRICTION) : mode;
+                const int m = sweeps >= 2 ? (sweep == 0 ? BTG_PASS_NORMALS : (sweep == 1 ? BTG_PASS_FRICTION : BTG_PASS_ROLLING))
+                                          : mode;
                 for (int color = 0; color < last; ++color) {
                     const int begin = (int)colorStart[list * (numColors + 1) + color];
                     const int end = (int)colorStart[list * (numColors + 1) + color + 1];
                     for (int k = begin + gid; k < end; k += gsize)
-                        solve_phase_edge(colorOrder[list * orderStride + k], phase, nc, iteration, m, twoFriction,
-                                         contacts, JOINT_PASS, props, invInertiaWorld, lin, ang);
+                        solve_phase_edge(colorOrder[list * orderStride + k], phase, nc, iteration, m, rows,
+                                         contacts, rolling, frictionDirs, JOINT_PASS, props, invInertiaWorld, lin, ang);
                     if (btgGridBarrier(bar, spinLimit, &quit)) {
                         if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
                         return;
@@ -300,8 +328,8 @@ __kernel void solve_resident(__global const int* restrict edgeColor, __global Bt
                     if (gid == 0)
                         for (int i = phase ? nc : 0; i < (phase ? n : min(n, nc)); ++i)
                             if (edgeColor[i] >= last)
-                                solve_phase_edge(i, phase, nc, iteration, m, twoFriction, contacts, JOINT_PASS, props,
-                                                 invInertiaWorld, lin, ang);
+                                solve_phase_edge(i, phase, nc, iteration, m, rows, contacts, rolling, frictionDirs, JOINT_PASS,
+                                                 props, invInertiaWorld, lin, ang);
                     if (btgGridBarrier(bar, spinLimit, &quit)) {
                         if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
                         return;

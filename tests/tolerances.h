@@ -37,6 +37,11 @@ constexpr double kMeshDrift = 0.01;          // m
 constexpr double kBounceApexRel = 0.05;
 // A cylinder rolling down a ramp: distance travelled in 3 s against stock's (issue 10).
 constexpr double kRollDistanceRel = 0.05;
+// A sphere slowed by spinning friction: its time to spin down, relative to stock's.
+constexpr double kSpinDownRel = 0.05;
+// A box resting on a soft contact (contact stiffness and damping, or m_globalCfm): its depth,
+// relative to stock's.
+constexpr double kSoftDepthRel = 0.05;
 // A stack of 8 unit boxes must not creep: the top box moves less than this in 5 s (on both).
 constexpr double kStackDrift = 0.05;         // m
 // A compound table at rest stays level: a 1.2 m top tipped by this is 2.4 mm higher at one end

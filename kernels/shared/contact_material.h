@@ -39,19 +39,25 @@ static inline int btgFindMaterial(BTG_CONST_GLOBAL BtgContactMaterial* materials
  * of the contact's geometry, so preparing twice changes only what friction and restitution
  * enter — the friction, and through restitution each point's normal target. A point whose
  * restitution differs from point 0's takes its target from a preparation with its own. */
-static inline void btgApplyContactMaterial(BtgContact* c, BtgContactMaterial m, BtgSolverBody a, BtgSolverBody b,
-                                           BtgBodyVel a0, BtgBodyVel b0, BtgBodyVel a1, BtgBodyVel b1, int solvable,
-                                           BtgStepParams p)
+static inline void btgApplyContactMaterial(BtgContact* c, BtgContactMaterial m, BtgPairMaterial pair, BtgSolverBody a,
+                                           BtgSolverBody b, BtgBodyVel a0, BtgBodyVel b0, BtgBodyVel a1,
+                                           BtgBodyVel b1, int solvable, BtgStepParams p)
 {
     const BtgContact base = *c;
-    btgPrepareContact(c, a, b, a0, b0, a1, b1, m.friction, btgLane(m.restitution, 0), solvable, p);
+    /* The pair's own material (rolling and spinning friction, contact stiffness) with the
+     * callback's friction and restitution. */
+    pair.friction = m.friction;
+    pair.restitution = btgLane(m.restitution, 0);
+    btgPrepareContact(c, a, b, a0, b0, a1, b1, pair, solvable, p);
     for (int k = 1; k < c->numPoints; ++k) {
         const float r = btgLane(m.restitution, k);
         int seen = 0;
         for (int j = 0; j < k; ++j) seen |= btgLane(m.restitution, j) == r;
         if (seen) continue;
         BtgContact t = base;
-        btgPrepareContact(&t, a, b, a0, b0, a1, b1, m.friction, r, solvable, p);
+        BtgPairMaterial own = pair;
+        own.restitution = r;
+        btgPrepareContact(&t, a, b, a0, b0, a1, b1, own, solvable, p);
         for (int j = k; j < c->numPoints; ++j)
             if (btgLane(m.restitution, j) == r) btgSetLane(&c->normalTarget, j, btgLane(t.normalTarget, j));
     }

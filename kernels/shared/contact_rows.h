@@ -1,9 +1,10 @@
 /* contact_rows.h — the contacts' part of btSequentialImpulseConstraintSolver, shared by the
  * contact kernels (contact_cache, prepare_contacts, solve_constraints, solve_jacobi) and their
  * CPU references: contact geometry and warm-start matching, the rows of a manifold
- * (setupContactConstraint / setupFrictionConstraint, the restitution curve), and their solve as
- * solver_rows.h rows (resolveSingleConstraintRow*, resolveSplitPenetrationImpulse), all on
- * private copies. */
+ * (setupContactConstraint / setupFrictionConstraint, the restitution curve, m_sor, cfm and soft
+ * contacts), and their solve as solver_rows.h rows (resolveSingleConstraintRow*,
+ * resolveSplitPenetrationImpulse), all on private copies. Rolling and anisotropic friction:
+ * material_rows.h. */
 #ifndef BTG_CONTACT_ROWS_H
 #define BTG_CONTACT_ROWS_H
 #include "counters.h"
@@ -15,6 +16,39 @@
 /* BTG_WARMSTART_FRICTION (friction impulses kept across steps) is in types.h. */
 #define BTG_MAX_FRICTION 10.0f       /* btManifoldResult::calculateCombinedFriction's clamp */
 #define BTG_NORMAL_UPPER_LIMIT 1e10f /* setupContactConstraint's m_upperLimit */
+#define BTG_SIMD_EPSILON 1.1920929e-07f /* Bullet's SIMD_EPSILON (FLT_EPSILON) */
+
+/* Which optional row fields the solver passes read (their `rows` argument): bit 0 is the
+ * second friction rows (SOLVER_USE_2_FRICTION_DIRECTIONS), so a caller passing 0 or 1 there
+ * reads no more than it always did. */
+#define BTG_ROWS_TWO_FRICTION 1
+#define BTG_ROWS_CFM 2     /* normalCfm: m_globalCfm or contact stiffness and damping */
+#define BTG_ROWS_ROLLING 4 /* BtgRollingContact rows (rolling and spinning friction) */
+#define BTG_ROWS_ANISOTROPIC 8 /* friction directions from BtgFrictionDirs (anisotropic friction) */
+
+/* The optional rows a step's solve reads. */
+static inline int btgRowFlags(BtgStepParams p)
+{
+    int rows = p.twoFrictionDirections ? BTG_ROWS_TWO_FRICTION : 0;
+    if (p.globalCfm != 0.0f || (p.solverFlags & BTG_SOLVER_SOFT_CONTACTS) != 0u) rows |= BTG_ROWS_CFM;
+    if ((p.solverFlags & BTG_SOLVER_ROLLING_FRICTION) != 0u) rows |= BTG_ROWS_ROLLING;
+    if ((p.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION) != 0u) rows |= BTG_ROWS_ANISOTROPIC;
+    return rows;
+}
+
+/* What btManifoldResult::addContactPoint gives a pair's points from its two bodies (Bullet's
+ * gCalculateCombined*Callback defaults), and what setupContactConstraint makes of contact
+ * stiffness and damping. */
+typedef struct {
+    float friction;
+    float restitution;
+    float rollingFriction;
+    float spinningFriction;
+    int stiffnessDamping;  /* either body has CF_HAS_CONTACT_STIFFNESS_DAMPING */
+    float stiffness;       /* combined: 1 / (1/k_A + 1/k_B), N/m */
+    float damping;         /* combined: d_A + d_B, N s/m */
+    int pad0;
+} BtgPairMaterial;
 
 /* convertContact skips pairs of two infinite masses; the dispatcher skips no-response bodies. */
 static inline int btgContactSolvable(uint flagsA, uint flagsB)
@@ -64,6 +98,7 @@ static inline BtgContact btgContactFromManifold(BtgManifold m, BtgFloat4 posA, B
     c.friction2Impulse = btgZero4();
     c.pushTarget = btgZero4();
     c.pushImpulse = btgZero4();
+    c.normalCfm = btgZero4();
     return c;
 }
 
@@ -225,6 +260,26 @@ static inline float btgCombinedFriction(float fa, float fb)
     return f;
 }
 
+static inline float btgClampFriction(float f)
+{
+    if (f < -BTG_MAX_FRICTION) f = -BTG_MAX_FRICTION;
+    if (f > BTG_MAX_FRICTION) f = BTG_MAX_FRICTION;
+    return f;
+}
+static inline BtgPairMaterial btgPairMaterial(BtgBodyProps a, BtgBodyProps b)
+{
+    BtgPairMaterial m;
+    m.friction = btgCombinedFriction(a.friction, b.friction);
+    m.restitution = a.restitution * b.restitution;
+    m.rollingFriction = btgClampFriction(a.rollingFriction * b.friction + b.rollingFriction * a.friction);
+    m.spinningFriction = btgClampFriction(a.spinningFriction * b.friction + b.spinningFriction * a.friction);
+    m.stiffnessDamping = ((a.flags | b.flags) & BTG_BODY_STIFFNESS_DAMPING) != 0u;
+    m.stiffness = 1.0f / (1.0f / a.contactStiffness + 1.0f / b.contactStiffness);
+    m.damping = a.contactDamping + b.contactDamping;
+    m.pad0 = 0;
+    return m;
+}
+
 /* Point k's friction directions (see BtgContact): 1 along its slip, 2 across it in the plane. */
 static inline BtgFloat4 btgFrictionDir1(const BtgContact* c, int k)
 {
@@ -234,15 +289,24 @@ static inline BtgFloat4 btgFrictionDir2(const BtgContact* c, int k)
 {
     return c->tangent2 * btgLane(c->frictionCos, k) - c->tangent1 * btgLane(c->frictionSin, k);
 }
+/* The same, or the explicit directions of anisotropic friction where dirs is given. */
+static inline BtgFloat4 btgFrictionDir1Of(const BtgContact* c, const BtgFrictionDirs* dirs, int k)
+{
+    return dirs ? dirs->dir1[k] : btgFrictionDir1(c, k);
+}
+static inline BtgFloat4 btgFrictionDir2Of(const BtgContact* c, const BtgFrictionDirs* dirs, int k)
+{
+    return dirs ? dirs->dir2[k] : btgFrictionDir2(c, k);
+}
 
 /* Solver rows of one contact. a0/b0: velocities before this substep's forces (restitution);
  * a1/b1: after them (the friction directions, as Bullet's getVelocityInLocalPointNoDelta).
  * Targets are velocities: the solver computes (target - J v) * mass against the live velocity,
  * which equals Bullet's rhs - J dv * mass with rhs = (target - J v_setup) * mass. */
 static inline void btgPrepareContact(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel a0, BtgBodyVel b0,
-                                     BtgBodyVel a1, BtgBodyVel b1, float friction, float restitution, int solvable,
-                                     BtgStepParams p)
+                                     BtgBodyVel a1, BtgBodyVel b1, BtgPairMaterial mat, int solvable, BtgStepParams p)
 {
+    const float friction = mat.friction, restitution = mat.restitution;
     BtgFloat4 n = btgXyz(c->normal);
     BtgFloat4 t1, t2;
     btgPlaneSpace(n, &t1, &t2);
@@ -251,8 +315,10 @@ static inline void btgPrepareContact(BtgContact* c, BtgSolverBody a, BtgSolverBo
     c->tangent1 = btgXyz(t1);
     c->tangent2 = btgXyz(t2);
     /* Bullet's default friction (convertContact): per point, one row along that point's slip
-     * velocity (btPlaneSpace1's p when it slips less than sqrt(SIMD_EPSILON)); a second,
-     * perpendicular row only with SOLVER_USE_2_FRICTION_DIRECTIONS. */
+     * velocity (btPlaneSpace1's p when it slips less than sqrt(SIMD_EPSILON), or always with
+     * SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION); a second, perpendicular row only
+     * with SOLVER_USE_2_FRICTION_DIRECTIONS. SOLVER_ENABLE_FRICTION_DIRECTION_CACHING changes
+     * none of it in 3.24 (cpu_path_rules.cpp says why). */
     c->frictionCos = btgMake4(1.0f, 1.0f, 1.0f, 1.0f);
     c->frictionSin = btgZero4();
     for (int k = 0; k < c->numPoints; ++k) {
@@ -260,7 +326,7 @@ static inline void btgPrepareContact(BtgContact* c, BtgSolverBody a, BtgSolverBo
         BtgFloat4 v = (a1.lin + btgCross3(a1.ang, rA)) - (b1.lin + btgCross3(b1.ang, rB));
         BtgFloat4 slip = v - n * btgDot3(v, n);
         float slip2 = btgDot3(slip, slip);
-        if (slip2 > 1.1920929e-07f) {
+        if (!(p.solverFlags & BTG_SOLVER_VELOCITY_INDEPENDENT_FRICTION) && slip2 > BTG_SIMD_EPSILON) {
             BtgFloat4 d = slip * (1.0f / btgSqrt(slip2));
             btgSetLane(&c->frictionCos, k, btgDot3(d, t1));
             btgSetLane(&c->frictionSin, k, btgDot3(d, t2));
@@ -270,18 +336,34 @@ static inline void btgPrepareContact(BtgContact* c, BtgSolverBody a, BtgSolverBo
     c->friction1Mass = btgZero4();
     c->friction2Mass = btgZero4();
     c->pushImpulse = btgZero4();
+    c->normalCfm = btgZero4();
     float invDt = 1.0f / p.dt;
+    /* setupContactConstraint: cfm = 1 / (dt k + d), erp = dt k / (dt k + d) for a soft
+     * contact, else m_globalCfm and m_erp2; the relaxation m_sor scales the normal and
+     * friction rows' masses (not the rolling rows'). */
+    float cfm = p.globalCfm, erp = p.erp2;
+    if (mat.stiffnessDamping) {
+        float denom = p.dt * mat.stiffness + mat.damping;
+        if (denom < BTG_SIMD_EPSILON) denom = BTG_SIMD_EPSILON;
+        cfm = 1.0f / denom;
+        erp = (p.dt * mat.stiffness) / denom;
+    }
+    cfm *= invDt;
     for (int k = 0; k < BTG_MAX_POINTS; ++k) {
         BtgFloat4 rA = btgXyz(c->rA[k]);
         BtgFloat4 rB = btgXyz(c->rB[k]);
         float target = 0.0f, push = 0.0f;
         if (k < c->numPoints && solvable) {
             const BtgFloat4 d1 = btgFrictionDir1(c, k);
-            btgSetLane(&c->normalMass, k, btgPointRowMass(btgPointJacobian(n, rA, rB, a, b), rA, rB, a, b));
-            btgSetLane(&c->friction1Mass, k, btgPointRowMass(btgPointJacobian(d1, rA, rB, a, b), rA, rB, a, b));
+            const float normalMass = btgPointRowMassRelaxed(btgPointJacobian(n, rA, rB, a, b), rA, rB, a, b, p.sor, cfm);
+            btgSetLane(&c->normalMass, k, normalMass);
+            btgSetLane(&c->normalCfm, k, cfm * normalMass);
+            btgSetLane(&c->friction1Mass, k,
+                       btgPointRowMassRelaxed(btgPointJacobian(d1, rA, rB, a, b), rA, rB, a, b, p.sor, 0.0f));
             if (p.twoFrictionDirections) {
                 const BtgFloat4 d2 = btgFrictionDir2(c, k);
-                btgSetLane(&c->friction2Mass, k, btgPointRowMass(btgPointJacobian(d2, rA, rB, a, b), rA, rB, a, b));
+                btgSetLane(&c->friction2Mass, k,
+                           btgPointRowMassRelaxed(btgPointJacobian(d2, rA, rB, a, b), rA, rB, a, b, p.sor, 0.0f));
             }
             BtgFloat4 velA = a0.lin + btgCross3(a0.ang, rA);
             BtgFloat4 velB = b0.lin + btgCross3(b0.ang, rB);
@@ -289,7 +371,7 @@ static inline void btgPrepareContact(BtgContact* c, BtgSolverBody a, BtgSolverBo
             target = btgRestitution(btgDot3(n, velA - velB), restitution, p.restitutionThreshold);
             float positional = 0.0f;
             if (penetration > 0.0f) target -= penetration * invDt; /* speculative: reach, not pass */
-            else positional = -penetration * p.erp2 * invDt;       /* 3.24 uses m_erp2 for contacts */
+            else positional = -penetration * erp * invDt;          /* 3.24 uses m_erp2 for contacts */
             if (!p.splitImpulse || penetration > p.splitPenetrationThreshold) target += positional;
             else push = positional;
         } else {
@@ -308,7 +390,7 @@ static inline void btgPrepareContact(BtgContact* c, BtgSolverBody a, BtgSolverBo
  * these fields and nothing else (a copy of the whole contact would read all its bytes every
  * pass), the lever arms of the contact's points only. twoFriction: the second friction rows
  * exist (SOLVER_USE_2_FRICTION_DIRECTIONS). */
-static inline BtgContact btgLoadContactRows(BTG_CONST_GLOBAL BtgContact* contacts, int i, int mode, int twoFriction)
+static inline BtgContact btgLoadContactRows(BTG_CONST_GLOBAL BtgContact* contacts, int i, int mode, int rows)
 {
     BtgContact c;
     c.bodyA = contacts[i].bodyA;
@@ -325,7 +407,7 @@ static inline BtgContact btgLoadContactRows(BTG_CONST_GLOBAL BtgContact* contact
     }
     c.normalMass = contacts[i].normalMass;
     const int push = mode == BTG_PASS_PUSH, noFriction = push || mode == BTG_PASS_NORMALS;
-    const int second = !noFriction && twoFriction;
+    const int second = !noFriction && (rows & BTG_ROWS_TWO_FRICTION) != 0;
     c.normalTarget = normalRows ? contacts[i].normalTarget : btgZero4();
     c.normalImpulse = push ? btgZero4() : contacts[i].normalImpulse;
     c.tangent1 = noFriction ? btgZero4() : contacts[i].tangent1;
@@ -339,12 +421,14 @@ static inline BtgContact btgLoadContactRows(BTG_CONST_GLOBAL BtgContact* contact
     c.pushTarget = push ? contacts[i].pushTarget : btgZero4();
     c.pushImpulse = push ? contacts[i].pushImpulse : btgZero4();
     c.separation = btgZero4();
+    c.normalCfm = (rows & BTG_ROWS_CFM) != 0 && (normalRows || push) ? contacts[i].normalCfm : btgZero4();
     return c;
 }
 /* What pass `mode` changed of contact c, written back to slot i: its accumulated impulses. */
 static inline void btgStoreContactImpulses(BTG_GLOBAL BtgContact* contacts, int i, const BtgContact* c, int mode,
-                                           int twoFriction)
+                                           int rows)
 {
+    const int twoFriction = (rows & BTG_ROWS_TWO_FRICTION) != 0;
     if (mode == BTG_PASS_VELOCITY || mode == BTG_PASS_NORMALS) contacts[i].normalImpulse = c->normalImpulse;
     if (mode == BTG_PASS_VELOCITY || mode == BTG_PASS_FRICTION) {
         contacts[i].friction1Impulse = c->friction1Impulse;
@@ -360,8 +444,11 @@ static inline void btgStoreContactImpulses(BTG_GLOBAL BtgContact* contacts, int 
 static inline BtgSolverRow btgContactNormalRow(const BtgContact* c, int k, BtgSolverBody a, BtgSolverBody b)
 {
     BtgFloat4 rA = btgXyz(c->rA[k]), rB = btgXyz(c->rB[k]);
-    return btgMakeSolverRow(btgPointJacobian(c->normal, rA, rB, a, b), btgLane(c->normalMass, k),
-                            btgLane(c->normalTarget, k), 0.0f, BTG_NORMAL_UPPER_LIMIT, btgLane(c->normalImpulse, k));
+    BtgSolverRow r = btgMakeSolverRow(btgPointJacobian(c->normal, rA, rB, a, b), btgLane(c->normalMass, k),
+                                      btgLane(c->normalTarget, k), 0.0f, BTG_NORMAL_UPPER_LIMIT,
+                                      btgLane(c->normalImpulse, k));
+    r.cfm = btgLane(c->normalCfm, k);
+    return r;
 }
 static inline BtgSolverRow btgContactFrictionRow(const BtgContact* c, int k, BtgFloat4 dir, float mass, float impulse,
                                                  BtgSolverBody a, BtgSolverBody b)
@@ -373,27 +460,36 @@ static inline BtgSolverRow btgContactFrictionRow(const BtgContact* c, int k, Btg
 static inline BtgSolverRow btgContactPushRow(const BtgContact* c, int k, BtgSolverBody a, BtgSolverBody b)
 {
     BtgFloat4 rA = btgXyz(c->rA[k]), rB = btgXyz(c->rB[k]);
-    return btgMakeSolverRow(btgPointJacobian(c->normal, rA, rB, a, b), btgLane(c->normalMass, k),
-                            btgLane(c->pushTarget, k), 0.0f, BTG_NORMAL_UPPER_LIMIT, btgLane(c->pushImpulse, k));
+    BtgSolverRow r = btgMakeSolverRow(btgPointJacobian(c->normal, rA, rB, a, b), btgLane(c->normalMass, k),
+                                      btgLane(c->pushTarget, k), 0.0f, BTG_NORMAL_UPPER_LIMIT,
+                                      btgLane(c->pushImpulse, k));
+    r.cfm = btgLane(c->normalCfm, k);
+    return r;
 }
 
 /* The setup-time warm start: accumulated impulses applied once before the iterations.
  * twoFriction: SOLVER_USE_2_FRICTION_DIRECTIONS (without it the second friction rows have no
  * mass, and are not read at all). */
-static inline void btgContactWarmStart(const BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
-                                       BtgBodyVel* vb, int twoFriction)
+static inline void btgContactWarmStartDirs(const BtgContact* c, const BtgFrictionDirs* dirs, BtgSolverBody a,
+                                           BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb, int rows)
 {
+    const int twoFriction = (rows & BTG_ROWS_TWO_FRICTION) != 0;
     for (int k = 0; k < c->numPoints; ++k) {
         BtgFloat4 rA = btgXyz(c->rA[k]), rB = btgXyz(c->rB[k]);
         if (btgLane(c->normalMass, k) == 0.0f) continue;
         btgRowApply(btgPointJacobian(c->normal, rA, rB, a, b), a, b, va, vb, btgLane(c->normalImpulse, k));
         if (btgLane(c->friction1Mass, k) != 0.0f)
-            btgRowApply(btgPointJacobian(btgFrictionDir1(c, k), rA, rB, a, b), a, b, va, vb,
+            btgRowApply(btgPointJacobian(btgFrictionDir1Of(c, dirs, k), rA, rB, a, b), a, b, va, vb,
                         btgLane(c->friction1Impulse, k));
         if (twoFriction && btgLane(c->friction2Mass, k) != 0.0f)
-            btgRowApply(btgPointJacobian(btgFrictionDir2(c, k), rA, rB, a, b), a, b, va, vb,
+            btgRowApply(btgPointJacobian(btgFrictionDir2Of(c, dirs, k), rA, rB, a, b), a, b, va, vb,
                         btgLane(c->friction2Impulse, k));
     }
+}
+static inline void btgContactWarmStart(const BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
+                                       BtgBodyVel* vb, int rows)
+{
+    btgContactWarmStartDirs(c, 0, a, b, va, vb, rows);
 }
 /* A velocity iteration's normal rows of one contact (BTG_PASS_NORMALS). */
 static inline void btgContactSolveNormals(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb)
@@ -407,31 +503,39 @@ static inline void btgContactSolveNormals(BtgContact* c, BtgSolverBody a, BtgSol
 }
 /* Its friction rows (directions 1 and 2 per point) whose normal impulse is positive
  * (BTG_PASS_FRICTION). */
-static inline void btgContactSolveFriction(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
-                                           BtgBodyVel* vb, int twoFriction)
+static inline void btgContactSolveFrictionDirs(BtgContact* c, const BtgFrictionDirs* dirs, BtgSolverBody a,
+                                               BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb, int rows)
 {
+    const int twoFriction = (rows & BTG_ROWS_TWO_FRICTION) != 0;
     for (int k = 0; k < c->numPoints; ++k) {
         if (!(btgLane(c->normalImpulse, k) > 0.0f)) continue;
         float m1 = btgLane(c->friction1Mass, k);
         if (m1 != 0.0f) {
-            BtgSolverRow r = btgContactFrictionRow(c, k, btgFrictionDir1(c, k), m1, btgLane(c->friction1Impulse, k), a, b);
+            BtgSolverRow r =
+                btgContactFrictionRow(c, k, btgFrictionDir1Of(c, dirs, k), m1, btgLane(c->friction1Impulse, k), a, b);
             btgRowSolve(&r, a, b, va, vb);
             btgSetLane(&c->friction1Impulse, k, r.impulse);
         }
         float m2 = twoFriction ? btgLane(c->friction2Mass, k) : 0.0f;
         if (m2 != 0.0f) {
-            BtgSolverRow r = btgContactFrictionRow(c, k, btgFrictionDir2(c, k), m2, btgLane(c->friction2Impulse, k), a, b);
+            BtgSolverRow r =
+                btgContactFrictionRow(c, k, btgFrictionDir2Of(c, dirs, k), m2, btgLane(c->friction2Impulse, k), a, b);
             btgRowSolve(&r, a, b, va, vb);
             btgSetLane(&c->friction2Impulse, k, r.impulse);
         }
     }
 }
+static inline void btgContactSolveFriction(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
+                                           BtgBodyVel* vb, int rows)
+{
+    btgContactSolveFrictionDirs(c, 0, a, b, va, vb, rows);
+}
 /* Both for one contact (the Jacobi solver's velocity pass, which sweeps every contact once). */
 static inline void btgContactSolveVelocity(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
-                                           BtgBodyVel* vb, int twoFriction)
+                                           BtgBodyVel* vb, int rows)
 {
     btgContactSolveNormals(c, a, b, va, vb);
-    btgContactSolveFriction(c, a, b, va, vb, twoFriction);
+    btgContactSolveFriction(c, a, b, va, vb, rows);
 }
 /* Whether any of the contact's points has a push row (the push passes visit only such
  * contacts); read straight from the list, three fields. */

@@ -25,6 +25,7 @@
 #define BTG_PASS_PUSH 2
 #define BTG_PASS_NORMALS 3
 #define BTG_PASS_FRICTION 4
+#define BTG_PASS_ROLLING 5 /* then, with rolling friction, every rolling row (BtgRollingContact) */
 
 /* Pair sort keys (find_pairs' pair_sort_keys): (a, b) packed in one key, or two stable
  * passes: b (minor) first, then a. */

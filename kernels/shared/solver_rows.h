@@ -52,6 +52,8 @@ typedef struct {
     float lower;   /* impulse bounds, N s */
     float upper;
     float impulse; /* accumulated impulse, N s */
+    float cfm;     /* Bullet's m_cfm: the step gives up cfm times the accumulated impulse (a contact's
+                      m_globalCfm or stiffness and damping; 0 for friction and rolling rows) */
 } BtgSolverRow;
 
 static inline float btgLane(BtgFloat4 v, int k)
@@ -132,6 +134,17 @@ static inline float btgPointRowMass(BtgJacobian j, BtgFloat4 rA, BtgFloat4 rB, B
     float denom = denomA + denomB;
     return denom > 0.0f ? 1.0f / denom : 0.0f;
 }
+/* The same with setupContactConstraint's relaxation (m_sor) and cfm (already divided by the
+ * step): relaxation / (denom + cfm); with 1 and 0 it is btgPointRowMass bit for bit. A row
+ * without mobility stays 0 (never solved) whatever its cfm. */
+static inline float btgPointRowMassRelaxed(BtgJacobian j, BtgFloat4 rA, BtgFloat4 rB, BtgSolverBody a, BtgSolverBody b,
+                                           float relaxation, float cfm)
+{
+    float denomA = a.invMass + btgDot3(j.linear, btgCross3(j.responseA, rA));
+    float denomB = b.invMass + btgDot3(j.linear, btgCross3(-j.responseB, rB));
+    float denom = denomA + denomB;
+    return denom > 0.0f ? relaxation / (denom + cfm) : 0.0f;
+}
 static inline BtgSolverRow btgMakeSolverRow(BtgJacobian j, float mass, float target, float lower, float upper,
                                             float impulse)
 {
@@ -142,6 +155,7 @@ static inline BtgSolverRow btgMakeSolverRow(BtgJacobian j, float mass, float tar
     r.lower = lower;
     r.upper = upper;
     r.impulse = impulse;
+    r.cfm = 0.0f;
     return r;
 }
 
@@ -167,7 +181,7 @@ static inline void btgRowApply(BtgJacobian j, BtgSolverBody a, BtgSolverBody b, 
  * within the bounds, applied to both bodies. */
 static inline void btgRowSolve(BtgSolverRow* r, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb)
 {
-    float delta = (r->target - btgRowVelocity(r->jacobian, *va, *vb)) * r->mass;
+    float delta = (r->target - btgRowVelocity(r->jacobian, *va, *vb)) * r->mass - r->impulse * r->cfm;
     float sum = r->impulse + delta;
     if (sum < r->lower) {
         delta = r->lower - r->impulse;

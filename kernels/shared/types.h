@@ -18,6 +18,9 @@
 #define BTG_BODY_NEVER_SLEEP 256u /* DISABLE_DEACTIVATION, or a kinematic body */
 #define BTG_BODY_CUSTOM_MATERIAL 512u /* CF_CUSTOM_MATERIAL_CALLBACK while gContactAddedCallback is set: its
                                          manifolds go to the host before the solve (contact_callbacks) */
+#define BTG_BODY_STIFFNESS_DAMPING 1024u /* CF_HAS_CONTACT_STIFFNESS_DAMPING: soft contacts */
+#define BTG_BODY_ANISOTROPIC 2048u        /* CF_ANISOTROPIC_FRICTION: friction directions scaled */
+#define BTG_BODY_ANISOTROPIC_ROLLING 4096u /* CF_ANISOTROPIC_ROLLING_FRICTION: rolling axes scaled */
 
 /* Shape kinds (BtgShape.type). Which pairs of them collide, and how, is the pair-kind table
  * (pair_kinds.h), which follows stock's choice of algorithm per pair: BOX is a btBoxShape (a
@@ -78,6 +81,7 @@ typedef struct {
     BtgFloat4 linearFactor;    /* per-axis factor (0..1); w: 0 */
     BtgFloat4 angularFactor;   /* per-axis factor (0..1); w: 0 */
     BtgFloat4 gravity;         /* m/s^2, this body's own gravity; w: 0 */
+    BtgFloat4 anisotropicFriction; /* per local axis scale of friction directions (BTG_BODY_ANISOTROPIC*); w: 0 */
     float invMass;             /* 1/kg; 0 unless dynamic */
     float friction;            /* coefficient, combined by product (btManifoldResult) */
     float restitution;         /* coefficient, combined by product */
@@ -90,6 +94,10 @@ typedef struct {
     float sleepLinear;         /* m/s: linear sleeping threshold */
     float sleepAngular;        /* rad/s: angular sleeping threshold */
     float pad0;
+    float rollingFriction;     /* coefficient (btCollisionObject::m_rollingFriction) */
+    float spinningFriction;    /* coefficient (m_spinningFriction) */
+    float contactStiffness;    /* N/m (m_contactStiffness; read with BTG_BODY_STIFFNESS_DAMPING) */
+    float contactDamping;      /* N s/m (m_contactDamping) */
 } BtgBodyProps;
 
 /* One collision shape; hull data live in the shared vertex/face/index/edge tables. */
@@ -258,7 +266,42 @@ typedef struct {
     BtgFloat4 pushImpulse;             /* accumulated split (position) impulse per point, N s */
     BtgFloat4 separation;              /* per point: signed distance, m (negative: penetrating);
                                           what prepare forms the targets from */
+    BtgFloat4 normalCfm;               /* per point: the normal and push rows' m_cfm, cfm / dt times
+                                          the row mass (m_globalCfm, contact stiffness and damping);
+                                          read only with BTG_ROWS_CFM */
 } BtgContact;
+
+/* The rolling-friction rows of one contact (convertContact's addTorsionalFrictionConstraint
+ * rows; only with BTG_SOLVER_ROLLING_FRICTION, same index as the contact): per point a
+ * torsional row about the normal bounded by the spinning friction and two rolling rows about
+ * rollAxis1/2 (btPlaneSpace1 of the normal, anisotropic rolling friction applied) bounded by
+ * the rolling friction, each times the point's normal impulse and at most the coefficient
+ * itself. Angular rows only: their Jacobian and mass are the same at every point of the
+ * manifold, the impulses are per point. */
+typedef struct {
+    BtgFloat4 rollAxis1;     /* unit-ish axis (anisotropy scales it); w: 0 */
+    BtgFloat4 rollAxis2;
+    BtgFloat4 spinImpulse;   /* accumulated per point, N m s */
+    BtgFloat4 roll1Impulse;
+    BtgFloat4 roll2Impulse;
+    float spinMass;          /* kg m^2: 1 / (n I_A^-1 n + n I_B^-1 n); 0: no row */
+    float roll1Mass;         /* 0: no row (no rolling friction, or an axis anisotropy shrank away) */
+    float roll2Mass;
+    float spinningFriction;  /* combined (btManifoldResult::calculateCombinedSpinningFriction) */
+    float rollingFriction;   /* combined rolling friction */
+    float pad0;
+    float pad1;
+    float pad2;
+} BtgRollingContact;
+
+/* Each point's friction directions when anisotropic friction scales them
+ * (applyAnisotropicFriction: neither unit nor in the tangent plane any more, so not expressible
+ * as BtgContact's frictionCos/Sin); only with BTG_SOLVER_ANISOTROPIC_FRICTION, same index as
+ * the contact. */
+typedef struct {
+    BtgFloat4 dir1[BTG_MAX_POINTS]; /* Bullet's m_lateralFrictionDir1 after the scaling; w: 0 */
+    BtgFloat4 dir2[BTG_MAX_POINTS]; /* ... Dir2 (read with two friction directions) */
+} BtgFrictionDirs;
 
 /* An edge of the constraint graph: one constraint between two bodies. The batching colors
  * edges and the islands walk them, whatever kind of constraint each is: edges [0, contacts)
@@ -319,7 +362,18 @@ typedef struct {
     int splitImpulse;            /* m_splitImpulse != 0 */
     int numBodies;
     int twoFrictionDirections;   /* SOLVER_USE_2_FRICTION_DIRECTIONS; else one, along the slip */
+    uint solverFlags;            /* BTG_SOLVER_* */
+    float sor;                   /* m_sor: relaxation of the contact and friction rows' effective mass;
+                                    Bullet's default is 1 (a zeroed BtgStepParams must set it) */
+    float globalCfm;             /* m_globalCfm (contacts; the joints take theirs from BtgJointStepParams) */
+    int pad0;
 } BtgStepParams;
+/* BtgStepParams.solverFlags */
+#define BTG_SOLVER_VELOCITY_INDEPENDENT_FRICTION 1u /* SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION:
+                                                       friction along btPlaneSpace1's axes */
+#define BTG_SOLVER_ROLLING_FRICTION 2u /* some body has rolling friction: prepare writes BtgRollingContact rows */
+#define BTG_SOLVER_SOFT_CONTACTS 4u    /* some body has contact stiffness and damping */
+#define BTG_SOLVER_ANISOTROPIC_FRICTION 8u /* a body has anisotropic friction: prepare writes BtgFrictionDirs */
 
 /* Device status flags (one uint, read back with the transforms). */
 #define BTG_STATUS_PAIR_OVERFLOW 1u
@@ -329,7 +383,7 @@ typedef struct {
 #define BTG_STATUS_SUB_PAIR_OVERFLOW 16u   /* the midphase found more triangles than subPairs holds */
 
 #ifndef __OPENCL_C_VERSION__
-static_assert(sizeof(BtgBodyProps) == 112, "BtgBodyProps layout");
+static_assert(sizeof(BtgBodyProps) == 144, "BtgBodyProps layout");
 static_assert(sizeof(BtgShape) == 112, "BtgShape layout");
 static_assert(sizeof(BtgFace) == 32, "BtgFace layout");
 static_assert(sizeof(BtgPair) == 16, "BtgPair layout");
@@ -337,11 +391,13 @@ static_assert(sizeof(BtgChild) == 80, "BtgChild layout");
 static_assert(sizeof(BtgManifoldPoint) == 32, "BtgManifoldPoint layout");
 static_assert(sizeof(BtgManifold) == 32 * BTG_MAX_POINTS + 32, "BtgManifold layout");
 static_assert(sizeof(BtgManifoldRange) == 8, "BtgManifoldRange layout");
-static_assert(sizeof(BtgContact) == 16 + 16 * 23, "BtgContact layout");
+static_assert(sizeof(BtgContact) == 16 + 16 * 24, "BtgContact layout");
 static_assert(sizeof(BtgEdge) == 8, "BtgEdge layout");
+static_assert(sizeof(BtgRollingContact) == 16 * 5 + 32, "BtgRollingContact layout");
+static_assert(sizeof(BtgFrictionDirs) == 32 * BTG_MAX_POINTS, "BtgFrictionDirs layout");
 static_assert(sizeof(BtgCachedContact) == 16 * (BTG_MAX_POINTS + 2 * BTG_WARMSTART_FRICTION) + 4 * BTG_MAX_POINTS + 32,
               "BtgCachedContact layout");
-static_assert(sizeof(BtgStepParams) == 48, "BtgStepParams layout");
+static_assert(sizeof(BtgStepParams) == 64, "BtgStepParams layout");
 static_assert(sizeof(BtgPersistentManifold) == 16 * 3 * BTG_MAX_POINTS + 4 * BTG_MAX_POINTS + 16,
               "BtgPersistentManifold layout");
 #endif

@@ -42,7 +42,7 @@ void applyContactMaterials(std::vector<BtgContact>& contacts, const std::vector<
         BtgBodyVel b0 = btgMakeBodyVel(b.moving, linVel0[size_t(c.bodyB)], angVel0[size_t(c.bodyB)]);
         BtgBodyVel a1 = btgMakeBodyVel(a.moving, linVel[size_t(c.bodyA)], angVel[size_t(c.bodyA)]);
         BtgBodyVel b1 = btgMakeBodyVel(b.moving, linVel[size_t(c.bodyB)], angVel[size_t(c.bodyB)]);
-        btgApplyContactMaterial(&c, materials[size_t(found)], a, b, a0, b0, a1, b1,
+        btgApplyContactMaterial(&c, materials[size_t(found)], btgPairMaterial(pa, pb), a, b, a0, b0, a1, b1,
                                 btgContactSolvable(pa.flags, pb.flags), params);
     }
 }

@@ -5,6 +5,7 @@
 // device's sqrt/divide rounding.
 #pragma once
 #include "shared/contact_rows.h"
+#include "shared/material_rows.h"
 
 #include <vector>
 
@@ -51,9 +52,12 @@ std::vector<BtgCachedContact> storeContactCache(const std::vector<BtgContact>& c
 std::vector<BtgCachedContact> storeContactCache(const std::vector<BtgContact>& contacts, const ContactBodies& bodies);
 
 // prepareContacts on every contact of the list; returns the contacts' edges of the constraint
-// graph (edge i: contact i), as the stage writes them.
+// graph (edge i: contact i), as the stage writes them. With BTG_SOLVER_ROLLING_FRICTION and
+// `rolling`, each contact's rolling rows there; with BTG_SOLVER_ANISOTROPIC_FRICTION and
+// `frictionDirs`, each contact's friction directions.
 std::vector<BtgEdge> prepareContacts(std::vector<BtgContact>& contacts, const ContactBodies& bodies,
-                                     const BtgStepParams& params);
+                                     const BtgStepParams& params, std::vector<BtgRollingContact>* rolling = nullptr,
+                                     std::vector<BtgFrictionDirs>* frictionDirs = nullptr);
 
 // colorConstraints: the device's rounds replayed in order; returns every edge's color.
 std::vector<int> colorConstraints(const std::vector<BtgEdge>& edges, const ContactBodies& bodies, int maxColors);
@@ -61,7 +65,11 @@ std::vector<int> colorConstraints(const std::vector<BtgEdge>& edges, const Conta
 // solveConstraints: colors in order, the edges (contacts) of a color in index order; colors
 // are the edges'; updates linVel/angVel and (zeroed first when params.splitImpulse)
 // pushLin/pushAng.
+// With rolling rows (BTG_SOLVER_ROLLING_FRICTION) each velocity iteration ends with their sweep;
+// with frictionDirs (BTG_SOLVER_ANISOTROPIC_FRICTION) the friction rows take those directions.
 void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>& colors, ContactBodies& bodies,
-                      const BtgStepParams& params, int iterations, int numColors);
+                      const BtgStepParams& params, int iterations, int numColors,
+                      std::vector<BtgRollingContact>* rolling = nullptr,
+                      const std::vector<BtgFrictionDirs>* frictionDirs = nullptr);
 
 }  // namespace btgpu::ref

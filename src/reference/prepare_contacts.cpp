@@ -1,5 +1,5 @@
-// prepare_contacts.cpp — CPU reference of the prepare stage (btgPrepareContact per contact, and
-// the contacts' graph edges).
+// prepare_contacts.cpp — CPU reference of the prepare stage (btgPrepareContact per contact, its
+// rolling rows with rolling friction, and the contacts' graph edges).
 #include "reference/contact_solver_reference.h"
 
 namespace btgpu::ref {
@@ -12,9 +12,12 @@ BtgSolverBody solverBody(const ContactBodies& b, int i)
 }  // namespace
 
 std::vector<BtgEdge> prepareContacts(std::vector<BtgContact>& contacts, const ContactBodies& bodies,
-                                     const BtgStepParams& params)
+                                     const BtgStepParams& params, std::vector<BtgRollingContact>* rolling,
+                                     std::vector<BtgFrictionDirs>* frictionDirs)
 {
     std::vector<BtgEdge> edges;
+    if (rolling) rolling->clear();
+    if (frictionDirs) frictionDirs->clear();
     for (BtgContact& c : contacts) {
         edges.push_back(btgContactEdge(c));
         const BtgBodyProps& pa = bodies.props[c.bodyA];
@@ -24,8 +27,17 @@ std::vector<BtgEdge> prepareContacts(std::vector<BtgContact>& contacts, const Co
         BtgBodyVel b0 = btgMakeBodyVel(b.moving, bodies.linVel0[c.bodyB], bodies.angVel0[c.bodyB]);
         BtgBodyVel a1 = btgMakeBodyVel(a.moving, bodies.linVel[c.bodyA], bodies.angVel[c.bodyA]);
         BtgBodyVel b1 = btgMakeBodyVel(b.moving, bodies.linVel[c.bodyB], bodies.angVel[c.bodyB]);
-        btgPrepareContact(&c, a, b, a0, b0, a1, b1, btgCombinedFriction(pa.friction, pb.friction),
-                          pa.restitution * pb.restitution, btgContactSolvable(pa.flags, pb.flags), params);
+        const BtgPairMaterial mat = btgPairMaterial(pa, pb);
+        const int solvable = btgContactSolvable(pa.flags, pb.flags);
+        btgPrepareContact(&c, a, b, a0, b0, a1, b1, mat, solvable, params);
+        if (frictionDirs && (params.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION)) {
+            BtgFrictionDirs dirs;
+            btgPrepareAnisotropicFriction(&c, &dirs, a, b, a1, b1, bodies.rot[c.bodyA], bodies.rot[c.bodyB], pa, pb,
+                                          solvable, params);
+            frictionDirs->push_back(dirs);
+        }
+        if (rolling && (params.solverFlags & BTG_SOLVER_ROLLING_FRICTION))
+            rolling->push_back(btgPrepareRolling(&c, a, b, mat, solvable, bodies.rot[c.bodyA], bodies.rot[c.bodyB], pa, pb));
     }
     return edges;
 }

@@ -11,8 +11,10 @@
 namespace btgpu::ref {
 
 void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>& colors, ContactBodies& bodies,
-                      const BtgStepParams& params, int iterations, int numColors)
+                      const BtgStepParams& params, int iterations, int numColors, std::vector<BtgRollingContact>* rolling,
+                      const std::vector<BtgFrictionDirs>* frictionDirs)
 {
+    const int rows = btgRowFlags(params) & (rolling ? ~0 : ~BTG_ROWS_ROLLING) & (frictionDirs ? ~0 : ~BTG_ROWS_ANISOTROPIC);
     if (numColors < 1) numColors = 1;
     size_t n = bodies.props.size();
     if (params.splitImpulse) {
@@ -30,14 +32,17 @@ void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>&
             for (size_t e = 0; e < contacts.size(); ++e) {
                 bool last = color == numColors - 1;  // the serial launch takes higher colors too
                 if (last ? colors[e] < color : colors[e] != color) continue;
-                BtgContact c = btgLoadContactRows(contacts.data(), int(e), mode, params.twoFrictionDirections);
+                BtgContact c = btgLoadContactRows(contacts.data(), int(e), mode == BTG_PASS_ROLLING ? BTG_PASS_NORMALS : mode, rows);
                 BtgSolverBody a = body(c.bodyA), b = body(c.bodyB);
                 int movingA = mode == BTG_PASS_PUSH ? a.dynamic : a.moving, movingB = mode == BTG_PASS_PUSH ? b.dynamic : b.moving;
                 BtgBodyVel va = btgMakeBodyVel(movingA, lin[c.bodyA], ang[c.bodyA]);
                 BtgBodyVel vb = btgMakeBodyVel(movingB, lin[c.bodyB], ang[c.bodyB]);
-                if (mode == BTG_PASS_WARM_START) btgContactWarmStart(&c, a, b, &va, &vb, params.twoFrictionDirections);
+                const BtgFrictionDirs* d = (rows & BTG_ROWS_ANISOTROPIC) ? &(*frictionDirs)[e] : nullptr;
+                if (mode == BTG_PASS_WARM_START) btgContactWarmStartDirs(&c, d, a, b, &va, &vb, rows);
                 else if (mode == BTG_PASS_NORMALS) btgContactSolveNormals(&c, a, b, &va, &vb);
-                else if (mode == BTG_PASS_FRICTION) btgContactSolveFriction(&c, a, b, &va, &vb, params.twoFrictionDirections);
+                else if (mode == BTG_PASS_FRICTION) btgContactSolveFrictionDirs(&c, d, a, b, &va, &vb, rows);
+                else if (mode == BTG_PASS_ROLLING)
+                    btgRollingSolve(&(*rolling)[e], c.normal, c.normalImpulse, c.numPoints, a, b, &va, &vb);
                 else btgContactSolvePush(&c, a, b, &va, &vb);
                 if (a.dynamic) {
                     lin[c.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, lin[c.bodyA].w);
@@ -47,13 +52,14 @@ void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>&
                     lin[c.bodyB] = btgMake4(vb.lin.x, vb.lin.y, vb.lin.z, lin[c.bodyB].w);
                     ang[c.bodyB] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, ang[c.bodyB].w);
                 }
-                btgStoreContactImpulses(contacts.data(), int(e), &c, mode, params.twoFrictionDirections);
+                if (mode != BTG_PASS_ROLLING) btgStoreContactImpulses(contacts.data(), int(e), &c, mode, rows);
             }
     };
     pass(BTG_PASS_WARM_START);
     for (int it = 0; it < iterations; ++it) {
         pass(BTG_PASS_NORMALS);
         pass(BTG_PASS_FRICTION);
+        if (rows & BTG_ROWS_ROLLING) pass(BTG_PASS_ROLLING);
     }
     if (params.splitImpulse)
         for (int it = 0; it < iterations; ++it) pass(BTG_PASS_PUSH);
@@ -69,6 +75,8 @@ void solveConstraints(std::vector<BtgContact>& contacts, JointTables& t, const s
         bodies.pushAng.assign(bodies.props.size(), btgZero4());
     }
     const size_t nc = contacts.size();
+    // (rolling rows and anisotropic directions: the contact-only reference)
+    const int rows = btgRowFlags(params) & ~(BTG_ROWS_ROLLING | BTG_ROWS_ANISOTROPIC);
     auto body = [&](int i) {
         if (i < 0) return btgFixedJointBody().body;
         return btgMakeSolverBody(bodies.props[i], bodies.invInertiaWorld[3 * i], bodies.invInertiaWorld[3 * i + 1],
@@ -83,14 +91,14 @@ void solveConstraints(std::vector<BtgContact>& contacts, JointTables& t, const s
         for (int color = 0; color < numColors; ++color)
             for (size_t e = 0; e < nc; ++e) {
                 if (!inColor(e, color)) continue;
-                BtgContact c = btgLoadContactRows(contacts.data(), int(e), mode, params.twoFrictionDirections);
+                BtgContact c = btgLoadContactRows(contacts.data(), int(e), mode, rows);
                 BtgSolverBody a = body(c.bodyA), b = body(c.bodyB);
                 int movingA = mode == BTG_PASS_PUSH ? a.dynamic : a.moving, movingB = mode == BTG_PASS_PUSH ? b.dynamic : b.moving;
                 BtgBodyVel va = btgMakeBodyVel(movingA, lin[c.bodyA], ang[c.bodyA]);
                 BtgBodyVel vb = btgMakeBodyVel(movingB, lin[c.bodyB], ang[c.bodyB]);
-                if (mode == BTG_PASS_WARM_START) btgContactWarmStart(&c, a, b, &va, &vb, params.twoFrictionDirections);
+                if (mode == BTG_PASS_WARM_START) btgContactWarmStart(&c, a, b, &va, &vb, rows);
                 else if (mode == BTG_PASS_NORMALS) btgContactSolveNormals(&c, a, b, &va, &vb);
-                else if (mode == BTG_PASS_FRICTION) btgContactSolveFriction(&c, a, b, &va, &vb, params.twoFrictionDirections);
+                else if (mode == BTG_PASS_FRICTION) btgContactSolveFriction(&c, a, b, &va, &vb, rows);
                 else btgContactSolvePush(&c, a, b, &va, &vb);
                 if (a.dynamic) {
                     lin[c.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, lin[c.bodyA].w);
@@ -100,7 +108,7 @@ void solveConstraints(std::vector<BtgContact>& contacts, JointTables& t, const s
                     lin[c.bodyB] = btgMake4(vb.lin.x, vb.lin.y, vb.lin.z, lin[c.bodyB].w);
                     ang[c.bodyB] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, ang[c.bodyB].w);
                 }
-                btgStoreContactImpulses(contacts.data(), int(e), &c, mode, params.twoFrictionDirections);
+                btgStoreContactImpulses(contacts.data(), int(e), &c, mode, rows);
             }
     };
     auto jointPass = [&](int iteration) {

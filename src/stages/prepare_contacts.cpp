@@ -16,9 +16,15 @@ void prepareContacts(DeviceWorld& w, const BtgStepParams& params)
     w.edgeCapacity = size_t(contactCapacity) + size_t(w.numJoints);
     w.edges.reserveExact(w.ctx, w.edgeCapacity);
     w.edgeColor.reserveExact(w.ctx, w.edgeCapacity);
+    // Rolling rows only for a scene with rolling friction (a placeholder element otherwise).
+    const size_t rows = size_t(std::max(contactCapacity, 1));
+    w.rollingContacts.reserve(w.ctx, (params.solverFlags & BTG_SOLVER_ROLLING_FRICTION) ? rows : 1);
+    w.frictionDirs.reserve(w.ctx, (params.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION) ? rows : 1);
     cl::Launch(w.ctx, w.ctx.program("prepare_contacts").kernel("prepare_contacts"), &w.profiler)
-        .arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props).arg(w.invInertiaWorld)
-        .arg(w.linVel0).arg(w.angVel0).arg(w.linVel).arg(w.angVel).arg(w.edges).arg(params).run(size_t(contactCapacity));
+        .arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props).arg(w.invInertiaWorld).arg(w.rot)
+        .arg(w.linVel0).arg(w.angVel0).arg(w.linVel).arg(w.angVel).arg(w.edges).arg(w.rollingContacts)
+        .arg(w.frictionDirs).arg(params)
+        .run(size_t(contactCapacity));
 }
 
 }  // namespace btgpu

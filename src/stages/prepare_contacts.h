@@ -7,9 +7,13 @@
 // body, get zero masses and impulses (never solved).
 // Each contact is also an edge of the constraint graph (edge i = contact i's bodies), which the
 // batching colors and the islands walk.
-// Reads contacts, counters, props, invInertiaWorld, linVel0, angVel0.
-// Writes contacts (combined friction, per-point friction directions, row masses, normal and push targets),
-// edges[0, contacts), counters[kEdgeCount], w.edgeCapacity (= contact slots + joints).
+// With the solver features of params.solverFlags also each contact's rolling rows
+// (w.rollingContacts) and anisotropic friction directions (w.frictionDirs), else those stay one
+// placeholder element; m_sor, m_globalCfm and soft contacts enter the normal and friction rows.
+// Reads contacts, counters, props, invInertiaWorld, rot, linVel0, angVel0, linVel, angVel.
+// Writes contacts (combined friction, per-point friction directions, row masses, cfm, normal and
+// push targets), rollingContacts, frictionDirs, edges[0, contacts), counters[kEdgeCount],
+// w.edgeCapacity (= contact slots + joints).
 #pragma once
 #include "world/device_world.h"
 

@@ -5,6 +5,7 @@
 #include "stages/solve_constraints.h"
 
 #include "cl/program.h"
+#include "shared/contact_rows.h"
 #include "stages/resident.h"
 
 #include <algorithm>
@@ -31,8 +32,11 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     }
     if (slots == 0) return;
     cl::Program& prog = ctx.program("solve_constraints");
-    // Without two friction directions the second friction rows have no mass: not read at all.
-    const int twoFriction = params.twoFrictionDirections ? 1 : 0;
+    // The optional rows the passes read (BTG_ROWS_*): without two friction directions the
+    // second friction rows have no mass, without cfm normalCfm is zero: not read at all.
+    const int rows = btgRowFlags(params);
+    w.rollingContacts.reserve(ctx, 1);
+    w.frictionDirs.reserve(ctx, 1);
     // Edges sorted into per-color ranges once, so each color's launch reads only its own.
     SolverScratch& sc = w.solverScratch;
     // Two lists (see color_count): the contacts, and the contacts with a push target; with
@@ -68,11 +72,12 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
         cl_kernel k = prog.kernel("solve_resident");
         size_t group = std::min<size_t>(256, cl::kernelGroupLimit(ctx, k));
         size_t groups = resident ? std::max<cl_uint>(ctx.device().computeUnits, 1) : 1;
-        cl::Launch(ctx, k, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.counters).arg(edgeCapacity)
+        cl::Launch(ctx, k, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.rollingContacts).arg(w.frictionDirs)
+            .arg(w.counters).arg(edgeCapacity)
             .arg(sc.colorStart)
             .arg(sc.colorOrder).arg(w.props).arg(w.invInertiaWorld).arg(w.linVel).arg(w.angVel).arg(w.pushLin)
             .arg(w.pushAng).arg(gridBarrier(w)).arg(numColors).arg(orderStride).arg(iterations)
-            .arg(params.splitImpulse ? 1 : 0).arg(twoFriction).arg(kGridBarrierSpins).arg(w.joints).arg(w.jointState)
+            .arg(params.splitImpulse ? 1 : 0).arg(rows).arg(kGridBarrierSpins).arg(w.joints).arg(w.jointState)
             .arg(w.jointRows).arg(numJoints).arg(w.jointIterations).run(groups * group, group);
         return;
     }
@@ -86,13 +91,16 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             // The last color holds the coloring's leftovers (usually none: the serial kernel
             // then returns at once).
             if (color == numColors - 1) {
-                cl::Launch(ctx, serial, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.counters)
+                cl::Launch(ctx, serial, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.rollingContacts)
+                    .arg(w.frictionDirs).arg(w.counters)
                     .arg(edgeCapacity).arg(w.props)
-                    .arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(twoFriction).arg(w.joints)
+                    .arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(rows).arg(w.joints)
                     .arg(w.jointState).arg(w.jointRows).arg(numJoints).arg(phase).arg(iteration).run(1, 1);
             } else {
-                cl::Launch(ctx, parallel, &w.profiler).arg(w.contacts).arg(sc.colorStart).arg(sc.colorOrder)
-                    .arg(w.props).arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(twoFriction)
+                cl::Launch(ctx, parallel, &w.profiler).arg(w.contacts).arg(w.rollingContacts).arg(w.frictionDirs)
+                    .arg(sc.colorStart)
+                    .arg(sc.colorOrder)
+                    .arg(w.props).arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(rows)
                     .arg(numColors).arg(orderStride).arg(w.counters).arg(edgeCapacity).arg(w.joints).arg(w.jointState)
                     .arg(w.jointRows).arg(numJoints).arg(phase).arg(iteration).run(rangeItems, 64);
             }
@@ -105,6 +113,7 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             // every contact's normal rows, then every friction row (counters.h)
             pass(BTG_PASS_NORMALS, 0, it, w.linVel, w.angVel);
             pass(BTG_PASS_FRICTION, 0, it, w.linVel, w.angVel);
+            if (rows & BTG_ROWS_ROLLING) pass(BTG_PASS_ROLLING, 0, it, w.linVel, w.angVel);
         }
     }
     if (params.splitImpulse)

@@ -7,8 +7,11 @@
 // passes on the push velocities for the split rows.
 // pushLin/pushAng are zeroed here (first numBodies rows) when params.splitImpulse. The last
 // color's launch also takes any higher color, so numColors may be below what was assigned.
-// Reads edgeColor, contacts, props, invInertiaWorld, counters. Writes linVel, angVel, pushLin, pushAng
-// (xyz of dynamic rows only), contacts (accumulated impulses, kept for next step's warm start).
+// With rolling friction each velocity pass ends with a sweep of the rolling rows; with
+// anisotropic friction the friction rows take w.frictionDirs' directions.
+// Reads edgeColor, contacts, rollingContacts, frictionDirs, props, invInertiaWorld, counters.
+// Writes linVel, angVel, pushLin, pushAng (xyz of dynamic rows only), contacts (accumulated
+// impulses, kept for next step's warm start), rollingContacts (their impulses).
 #pragma once
 #include "world/device_world.h"
 

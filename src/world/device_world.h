@@ -124,6 +124,12 @@ struct DeviceWorld {
     cl::DeviceArray<BtgManifoldRange> pairManifolds;  // pairCapacity
     cl::DeviceArray<BtgContact> contacts;    // this step's, in pair order
     cl::DeviceArray<uint> contactManifolds;  // contactCapacity: the manifold slot of each contact
+    // Rolling and spinning friction rows, same index as contacts; only while some body has
+    // rolling friction (BTG_SOLVER_ROLLING_FRICTION), else one placeholder element.
+    cl::DeviceArray<BtgRollingContact> rollingContacts;
+    // Per-point friction directions of anisotropic friction, likewise only while a body has it
+    // (BTG_SOLVER_ANISOTROPIC_FRICTION).
+    cl::DeviceArray<BtgFrictionDirs> frictionDirs;
     // The last substep's contacts packed for the app's dispatcher (stage report_contacts, only
     // while Config::fillDispatcherManifolds): read back by syncOut when written since its last read.
     cl::DeviceArray<BtgContactReport> contactReports;

@@ -127,20 +127,12 @@ std::vector<Rule> rules()
         // The contact events are served (callbacks_test.cpp), but for the cases it tests.
         // The combiners are served (callbacks_test.cpp), but for the cases it tests.
         global("contact breaking threshold", "gContactBreakingThreshold", gContactBreakingThreshold, btScalar(0.05)),
-        solverInfo("m_sor", "m_sor", [](btContactSolverInfo& i) { i.m_sor = btScalar(0.9); }),
-        solverInfo("m_globalCfm", "m_globalCfm", [](btContactSolverInfo& i) { i.m_globalCfm = btScalar(1e-4); }),
         solverInfo("m_linearSlop", "m_linearSlop", [](btContactSolverInfo& i) { i.m_linearSlop = btScalar(0.01); }),
         solverInfo("m_leastSquaresResidualThreshold", "m_leastSquaresResidualThreshold",
                    [](btContactSolverInfo& i) { i.m_leastSquaresResidualThreshold = btScalar(1e-6); }),
         solverInfo("no iterations", "m_numIterations", [](btContactSolverInfo& i) { i.m_numIterations = 0; }),
         solverInfo("randomised order", "m_solverMode",
                    [](btContactSolverInfo& i) { i.m_solverMode |= SOLVER_RANDMIZE_ORDER; }),
-        solverInfo("friction direction caching", "m_solverMode",
-                   [](btContactSolverInfo& i) { i.m_solverMode |= SOLVER_ENABLE_FRICTION_DIRECTION_CACHING; }),
-        solverInfo("velocity-independent friction", "m_solverMode",
-                   [](btContactSolverInfo& i) {
-                       i.m_solverMode |= SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION;
-                   }),
         solverInfo("interleaving", "m_solverMode",
                    [](btContactSolverInfo& i) {
                        i.m_solverMode |= SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS;
@@ -162,8 +154,6 @@ std::vector<Rule> rules()
                  BOX_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE,
                  configuration(s).getCollisionAlgorithmCreateFunc(BOX_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE));
          }},
-        flag("contact stiffness and damping", "CF_HAS_CONTACT_STIFFNESS_DAMPING",
-             btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING),
         flag("friction anchor", "CF_HAS_FRICTION_ANCHOR", btCollisionObject::CF_HAS_FRICTION_ANCHOR),
         // Served (callbacks_test.cpp) but beside a support-function shape (here body 2 made a
         // capsule), whose device manifolds keep points across steps.
@@ -183,16 +173,37 @@ std::vector<Rule> rules()
              s.body(2)->setCollisionShape(savedShapes().at(&s));
              s.world().updateSingleAabb(s.body(2));
          }},
-        {"rolling friction", "rolling friction", [](Scene& s) { s.body(2)->setRollingFriction(btScalar(0.1)); },
-         [](Scene& s) { s.body(2)->setRollingFriction(0); }},
-        {"rolling friction on the static ground", "body 0",
-         [](Scene& s) { s.body(0)->setRollingFriction(btScalar(0.1)); },
-         [](Scene& s) { s.body(0)->setRollingFriction(0); }},
-        {"spinning friction", "spinning friction", [](Scene& s) { s.body(1)->setSpinningFriction(btScalar(0.1)); },
-         [](Scene& s) { s.body(1)->setSpinningFriction(0); }},
-        {"anisotropic friction", "anisotropic friction",
-         [](Scene& s) { s.body(1)->setAnisotropicFriction(btVector3(1, btScalar(0.5), 1)); },
-         [](Scene& s) { s.body(1)->setAnisotropicFriction(btVector3(1, 1, 1)); }},
+        {"anisotropic rolling friction on two bodies", "anisotropic rolling friction on more than one body",
+         [](Scene& s) {
+             s.body(1)->setRollingFriction(btScalar(0.1));
+             for (int b : {1, 2})
+                 s.body(b)->setAnisotropicFriction(btVector3(1, btScalar(0.5), 1),
+                                                   btCollisionObject::CF_ANISOTROPIC_ROLLING_FRICTION);
+         },
+         [](Scene& s) {
+             s.body(1)->setRollingFriction(0);
+             for (int b : {1, 2}) s.body(b)->setAnisotropicFriction(btVector3(1, 1, 1));
+         }},
+        {"anisotropic friction on two bodies", "anisotropic friction on more than one body",
+         [](Scene& s) {
+             for (int b : {1, 2}) s.body(b)->setAnisotropicFriction(btVector3(1, btScalar(0.5), 1));
+         },
+         [](Scene& s) {
+             for (int b : {1, 2}) s.body(b)->setAnisotropicFriction(btVector3(1, 1, 1));
+         }},
+        {"anisotropic friction with cached directions", "anisotropic friction with friction direction caching",
+         [](Scene& s) {
+             s.body(1)->setAnisotropicFriction(btVector3(1, btScalar(0.5), 1));
+             s.world().getSolverInfo().m_solverMode |= SOLVER_ENABLE_FRICTION_DIRECTION_CACHING |
+                                                       SOLVER_USE_2_FRICTION_DIRECTIONS |
+                                                       SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION;
+         },
+         [](Scene& s) {
+             s.body(1)->setAnisotropicFriction(btVector3(1, 1, 1));
+             s.world().getSolverInfo().m_solverMode &= ~(SOLVER_ENABLE_FRICTION_DIRECTION_CACHING |
+                                                         SOLVER_USE_2_FRICTION_DIRECTIONS |
+                                                         SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION);
+         }},
         {"contact processing threshold", "contact processing threshold",
          [](Scene& s) { s.body(1)->setContactProcessingThreshold(0); },
          [](Scene& s) { s.body(1)->setContactProcessingThreshold(BT_LARGE_FLOAT); }},
@@ -251,12 +262,50 @@ TEST(CpuPathRules, EachRuleFallsBackAndComesBack)
     EXPECT_TRUE(scenes::allFinite(*scene));
 }
 
+// The Jacobi solver (Config::solver = JacobiMassSplitting) has plain contact rows only: the
+// rows the PGS solver adds for these settings send such a world to the CPU path, naming them.
+TEST(CpuPathRules, JacobiSolverFallsBackForRowsItLacks)
+{
+    Config config;
+    config.solver = SolverKind::JacobiMassSplitting;
+    ScenePtr scene = scenes::dropRow(WorldKind::Gpu, config);
+    scene->step();
+    const Report& r = *scene->report();
+    ASSERT_TRUE(r.gpuPath) << r.cpuPathReason;
+    const std::vector<Rule> jacobiRules = {
+        {"rolling friction", "rolling or spinning friction with Config::solver = JacobiMassSplitting",
+         [](Scene& s) { s.body(2)->setRollingFriction(btScalar(0.1)); }, [](Scene& s) { s.body(2)->setRollingFriction(0); }},
+        {"spinning friction", "rolling or spinning friction with Config::solver = JacobiMassSplitting",
+         [](Scene& s) { s.body(1)->setSpinningFriction(btScalar(0.1)); },
+         [](Scene& s) { s.body(1)->setSpinningFriction(0); }},
+        solverInfo("m_sor", "m_sor changed from 1 with Config::solver = JacobiMassSplitting",
+                   [](btContactSolverInfo& i) { i.m_sor = btScalar(0.9); }),
+        solverInfo("m_globalCfm", "m_globalCfm changed from 0 with Config::solver = JacobiMassSplitting",
+                   [](btContactSolverInfo& i) { i.m_globalCfm = btScalar(1e-4); }),
+        flag("contact stiffness and damping", "CF_HAS_CONTACT_STIFFNESS_DAMPING) with Config::solver = JacobiMassSplitting",
+             btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING),
+        {"anisotropic friction", "anisotropic friction (setAnisotropicFriction) with Config::solver = JacobiMassSplitting",
+         [](Scene& s) { s.body(1)->setAnisotropicFriction(btVector3(1, btScalar(0.5), 1)); },
+         [](Scene& s) { s.body(1)->setAnisotropicFriction(btVector3(1, 1, 1)); }},
+    };
+    for (const Rule& rule : jacobiRules) {
+        SCOPED_TRACE(rule.name);
+        rule.set(*scene);
+        scene->step();
+        EXPECT_FALSE(r.gpuPath);
+        EXPECT_NE(r.cpuPathReason.find(rule.expect), std::string::npos) << r.cpuPathReason;
+        rule.reset(*scene);
+        scene->step();
+        EXPECT_TRUE(r.gpuPath) << r.cpuPathReason;
+    }
+}
+
 TEST(CpuPathRules, ComingBackAgreesWithStock)
 {
     // Set while the boxes fall: they land on the CPU path; set back, the GPU path must go on from
     // where the CPU path left every row (not from its own last upload) and stay with stock.
     std::vector<Rule> all = rules();
-    for (const char* name : {"rolling friction", "randomised order", "near callback", "contact breaking threshold"}) {
+    for (const char* name : {"friction anchor", "randomised order", "near callback", "contact breaking threshold"}) {
         SCOPED_TRACE(name);
         const Rule& rule = *std::find_if(all.begin(), all.end(), [&](const Rule& r) { return r.name == name; });
         SideBySide s(scenes::dropRow);
@@ -282,7 +331,7 @@ TEST(CpuPathRules, ComingBackAgreesWithStock)
 TEST(CpuPathRules, GoingToTheCpuPathAfterLandingFindsTheGroundPairs)
 {
     std::vector<Rule> all = rules();
-    const Rule& rule = *std::find_if(all.begin(), all.end(), [](const Rule& r) { return r.name == std::string("rolling friction"); });
+    const Rule& rule = *std::find_if(all.begin(), all.end(), [](const Rule& r) { return r.name == std::string("friction anchor"); });
     // Released 4 m up: no broadphase pair with the ground when they are added.
     auto make = [](WorldKind kind, const Config& config) {
         auto scene = std::make_unique<Scene>(kind, config, "high_drop");

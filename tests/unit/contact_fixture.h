@@ -27,6 +27,7 @@ inline BtgStepParams defaultParams(int numBodies)
     p.contactThreshold = 0.02f;
     p.splitImpulse = 1;
     p.numBodies = numBodies;
+    p.sor = 1.0f;
     return p;
 }
 
@@ -44,6 +45,8 @@ inline int addBody(ref::ContactBodies& b, BtgFloat4 pos, float invMass, BtgFloat
     p.friction = friction;
     p.restitution = restitution;
     p.flags = flags;
+    p.contactStiffness = 1e18f;  // btCollisionObject's defaults (BT_LARGE_FLOAT, 0.1)
+    p.contactDamping = 0.1f;
     b.props.push_back(p);
     b.pos.push_back(pos);
     b.rot.push_back(btgMake4(0, 0, 0, 1));

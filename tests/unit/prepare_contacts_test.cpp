@@ -1,15 +1,20 @@
 // prepare_contacts_test.cpp — the prepare stage: rows within tolerance of the reference on a
 // mixed scene, and Bullet 3.24's targets on hand-made cases: erp2 bias below the split
 // threshold, split push rows past it, speculative approach for separated points, the
-// restitution curve (2:1 masses) and the effective mass.
+// restitution curve (2:1 masses) and the effective mass; and the rows against the ones
+// Bullet's own convertContact builds (relaxation, cfm, soft contacts, rolling rows).
 #include "contact_fixture.h"
 #include "stages/contact_cache.h"
 #include "stages/prepare_contacts.h"
 #include "test_device.h"
 #include "tolerances.h"
 
+#include <btBulletDynamicsCommon.h>
+#include <BulletCollision/CollisionDispatch/btManifoldResult.h>
+
 #include <cmath>
 #include <gtest/gtest.h>
+#include <memory>
 
 using namespace btgpu;
 
@@ -146,6 +151,36 @@ TEST(PrepareContacts, FrictionDirectionPerPointAlongItsSlip)
     EXPECT_LT(btgDot3(btgFrictionDir1(&c[0], 0), btgFrictionDir1(&c[0], 2)), -0.99f);
 }
 
+// SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION: btPlaneSpace1's p at every point
+// whatever its slip (the same spinning box), on the device and in the reference.
+TEST(PrepareContacts, VelocityIndependentFrictionAlongPlaneSpace)
+{
+    ref::ContactBodies b;
+    int ground = test::addBody(b, btgZero4(), 0.0f, btgZero4(), BTG_BODY_STATIC, 0.5f);
+    int box = test::addBody(b, btgMake4(0, 0.5f, 0, 0), 1.0f, btgMake4(6, 6, 6, 0), BTG_BODY_DYNAMIC, 0.5f);
+    b.angVel[box] = btgMake4(0, 2, 0, 0);
+    b.linVel[box] = btgMake4(1, -0.1f, 0.5f, 0);
+    BtgStepParams p = test::defaultParams(2);
+    p.solverFlags |= BTG_SOLVER_VELOCITY_INDEPENDENT_FRICTION;
+    p.twoFrictionDirections = 1;
+    std::vector<BtgManifold> ms = {test::boxOnPlane(box, ground, b.pos[box], 0.5f, -0.01f)};
+    std::vector<BtgContact> c = runDevice(b, ms, p);
+    std::vector<BtgContact> expect = ref::buildContacts(ms, 1, b, {}, p);
+    ref::prepareContacts(expect, b, p);
+    ASSERT_EQ(c.size(), 1u);
+    for (int k = 0; k < 4; ++k) {
+        EXPECT_EQ(btgLane(c[0].frictionCos, k), 1.0f) << "point " << k;
+        EXPECT_EQ(btgLane(c[0].frictionSin, k), 0.0f) << "point " << k;
+        EXPECT_EQ(btgLane(expect[0].frictionCos, k), 1.0f) << "point " << k;
+        expectNearRel(btgLane(c[0].friction1Mass, k), btgLane(expect[0].friction1Mass, k), "friction1Mass", k);
+        expectNearRel(btgLane(c[0].friction2Mass, k), btgLane(expect[0].friction2Mass, k), "friction2Mass", k);
+        EXPECT_GT(btgLane(c[0].friction2Mass, k), 0.0f);
+    }
+    // btPlaneSpace1 of (0, 1, 0): p = (-1, 0, 0), q = (0, 0, 1)
+    EXPECT_EQ(c[0].tangent1.x, -1.0f);
+    EXPECT_EQ(c[0].tangent2.z, 1.0f);
+}
+
 TEST(PrepareContacts, RestitutionTwoToOne)
 {
     // Sphere A (2 kg) falls at 2 m/s onto sphere B (1 kg) rising at 1 m/s; e = 1 * 0.5.
@@ -176,3 +211,193 @@ TEST(PrepareContacts, NanFrictionStaysNan)
     EXPECT_EQ(btgCombinedFriction(0.5f, 0.5f), 0.25f);
 }
 
+namespace {
+
+// btSequentialImpulseConstraintSolver's own rows for one manifold (convertContact), read from
+// its pools: normal rows, friction rows, rolling rows in the order it adds them.
+struct PeekSolver : btSequentialImpulseConstraintSolver {
+    void convert(btPersistentManifold* m, const btContactSolverInfo& info)
+    {
+        m_tmpSolverBodyPool.resize(0);
+        m_tmpSolverContactConstraintPool.resize(0);
+        m_tmpSolverContactFrictionConstraintPool.resize(0);
+        m_tmpSolverContactRollingFrictionConstraintPool.resize(0);
+        m_fixedBodyId = -1;
+        convertContact(m, info);
+    }
+    const btSolverConstraint& normalRow(int k) const { return m_tmpSolverContactConstraintPool[k]; }
+    const btSolverConstraint& frictionRow(int k) const { return m_tmpSolverContactFrictionConstraintPool[k]; }
+    int rollingRows() const { return m_tmpSolverContactRollingFrictionConstraintPool.size(); }
+    const btSolverConstraint& rollingRow(int k) const { return m_tmpSolverContactRollingFrictionConstraintPool[k]; }
+};
+
+struct BulletPair {
+    btBoxShape boxShape{btVector3(btScalar(0.5), btScalar(0.3), btScalar(0.2))};
+    btBoxShape groundShape{btVector3(10, 10, 10)};
+    std::unique_ptr<btRigidBody> box, ground;
+    BulletPair(const btTransform& boxXf, const btVector3& linVel, const btVector3& angVel)
+    {
+        btVector3 inertia;
+        boxShape.calculateLocalInertia(2, inertia);
+        box = std::make_unique<btRigidBody>(2, nullptr, &boxShape, inertia);
+        box->setWorldTransform(boxXf);
+        box->setCenterOfMassTransform(boxXf);
+        box->setLinearVelocity(linVel);
+        box->setAngularVelocity(angVel);
+        ground = std::make_unique<btRigidBody>(0, nullptr, &groundShape, btVector3(0, 0, 0));
+        ground->setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, -10, 0)));
+    }
+};
+
+BtgFloat4 f4(const btVector3& v) { return btgMake4(v.x(), v.y(), v.z(), 0); }
+
+void expectVecNear(BtgFloat4 got, const btVector3& want, float tol, const char* what)
+{
+    EXPECT_NEAR(got.x, want.x(), tol) << what;
+    EXPECT_NEAR(got.y, want.y(), tol) << what;
+    EXPECT_NEAR(got.z, want.z(), tol) << what;
+}
+
+}  // namespace
+
+// The rows prepare builds against the btSolverConstraint rows Bullet 3.24's convertContact
+// builds for the same manifold (a turned, moving box on the ground, two points): effective
+// masses, cfm and friction directions of the normal and friction rows, and the rolling rows'
+// axes, masses and coefficients, with m_sor, m_globalCfm and soft contacts off and on.
+TEST(PrepareContacts, MatchesBulletConvertContact)
+{
+    struct Case {
+        const char* name;
+        btScalar sor, globalCfm;
+        bool soft;
+        bool anisotropic = false;  // with two friction directions
+    };
+    for (const Case& cs : {Case{"defaults", 1, 0, false}, Case{"sor and cfm", btScalar(0.7), btScalar(0.02), false},
+                           Case{"stiffness and damping", 1, 0, true},
+                           Case{"anisotropic friction, two directions", 1, 0, false, true}}) {
+        SCOPED_TRACE(cs.name);
+        const btTransform xf(btQuaternion(btVector3(1, 2, 3).normalized(), btScalar(0.4)), btVector3(0, btScalar(0.3), 0));
+        const btVector3 v(btScalar(0.8), btScalar(-0.2), btScalar(0.3)), w(btScalar(0.5), btScalar(1.5), btScalar(-0.7));
+        BulletPair bp(xf, v, w);
+        bp.box->setFriction(btScalar(0.6));
+        bp.box->setRollingFriction(btScalar(0.1));
+        bp.box->setSpinningFriction(btScalar(0.05));
+        bp.ground->setFriction(btScalar(0.5));
+        bp.ground->setRollingFriction(btScalar(0.02));
+        if (cs.soft) bp.box->setContactStiffnessAndDamping(btScalar(3000), btScalar(40));
+        const btVector3 scale(1, btScalar(0.5), btScalar(0.2));
+        if (cs.anisotropic) bp.box->setAnisotropicFriction(scale);
+        btContactSolverInfo info;
+        info.m_timeStep = btScalar(1) / btScalar(60);
+        info.m_sor = cs.sor;
+        info.m_globalCfm = cs.globalCfm;
+        info.m_solverMode &= ~SOLVER_USE_WARMSTARTING;
+        if (cs.anisotropic) info.m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
+        // Two points on the ground (y = 0), the box's side a little into it.
+        btPersistentManifold manifold(bp.box.get(), bp.ground.get(), 0, btScalar(0.02), btScalar(0.02));
+        const btVector3 n(0, 1, 0);
+        const btVector3 onB[2] = {btVector3(btScalar(0.3), 0, btScalar(0.1)), btVector3(btScalar(-0.25), 0, btScalar(-0.05))};
+        const btScalar depth[2] = {btScalar(-0.01), btScalar(-0.004)};
+        for (int k = 0; k < 2; ++k) {
+            const btVector3 onA = onB[k] + n * depth[k];
+            btManifoldPoint p(bp.box->getWorldTransform().invXform(onA), bp.ground->getWorldTransform().invXform(onB[k]), n,
+                              depth[k]);
+            p.m_positionWorldOnA = onA;
+            p.m_positionWorldOnB = onB[k];
+            p.m_combinedFriction = btManifoldResult::calculateCombinedFriction(bp.box.get(), bp.ground.get());
+            p.m_combinedRollingFriction = btManifoldResult::calculateCombinedRollingFriction(bp.box.get(), bp.ground.get());
+            p.m_combinedSpinningFriction = btManifoldResult::calculateCombinedSpinningFriction(bp.box.get(), bp.ground.get());
+            if (cs.soft) {
+                p.m_combinedContactDamping1 = btManifoldResult::calculateCombinedContactDamping(bp.box.get(), bp.ground.get());
+                p.m_combinedContactStiffness1 =
+                    btManifoldResult::calculateCombinedContactStiffness(bp.box.get(), bp.ground.get());
+                p.m_contactPointFlags |= BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING;
+            }
+            manifold.addManifoldPoint(p);
+        }
+        PeekSolver solver;
+        solver.convert(&manifold, info);
+        ASSERT_EQ(solver.rollingRows(), 6);
+
+        // The same on btgpu's side.
+        ref::ContactBodies b;
+        const btQuaternion q = xf.getRotation();
+        const BtgFloat4 rot = btgMake4(q.x(), q.y(), q.z(), q.w());
+        const BtgFloat4 invI = f4(bp.box->getInvInertiaDiagLocal());
+        int box = test::addBody(b, f4(xf.getOrigin()), 0.5f, invI, BTG_BODY_DYNAMIC, 0.6f);
+        int ground = test::addBody(b, btgMake4(0, -10, 0, 0), 0.0f, btgZero4(), BTG_BODY_STATIC, 0.5f);
+        b.rot[box] = rot;
+        const BtgMat3 iw = btgInvInertiaWorld(rot, invI);
+        b.invInertiaWorld[3 * box] = iw.r0;
+        b.invInertiaWorld[3 * box + 1] = iw.r1;
+        b.invInertiaWorld[3 * box + 2] = iw.r2;
+        b.linVel[box] = b.linVel0[box] = f4(v);
+        b.angVel[box] = b.angVel0[box] = f4(w);
+        b.props[box].rollingFriction = 0.1f;
+        b.props[box].spinningFriction = 0.05f;
+        b.props[ground].rollingFriction = 0.02f;
+        if (cs.anisotropic) {
+            b.props[box].flags |= BTG_BODY_ANISOTROPIC;
+            b.props[box].anisotropicFriction = f4(scale);
+        }
+        if (cs.soft) {
+            b.props[box].flags |= BTG_BODY_STIFFNESS_DAMPING;
+            b.props[box].contactStiffness = 3000.0f;
+            b.props[box].contactDamping = 40.0f;
+        }
+        BtgManifold m = btgEmptyManifold(box, ground);
+        m.breakingThreshold = 0.02f;
+        for (int k = 0; k < 2; ++k) btgAddPoint(&m, f4(n), f4(onB[k]), depth[k], BTG_FEATURE_VERTEX | uint(k));
+        BtgStepParams p = test::defaultParams(2);
+        p.warmstartFactor = 0.0f;
+        p.sor = float(cs.sor);
+        p.globalCfm = float(cs.globalCfm);
+        p.solverFlags = BTG_SOLVER_ROLLING_FRICTION | (cs.soft ? BTG_SOLVER_SOFT_CONTACTS : 0u) |
+                        (cs.anisotropic ? BTG_SOLVER_ANISOTROPIC_FRICTION : 0u);
+        p.twoFrictionDirections = cs.anisotropic ? 1 : 0;
+        std::vector<BtgContact> c = ref::buildContacts({m}, 1, b, {}, p);
+        std::vector<BtgRollingContact> rolling;
+        std::vector<BtgFrictionDirs> dirs;
+        ref::prepareContacts(c, b, p, &rolling, &dirs);
+        ASSERT_EQ(dirs.size(), cs.anisotropic ? 1u : 0u);
+        ASSERT_EQ(c.size(), 1u);
+        ASSERT_EQ(rolling.size(), 1u);
+        const float rel = 2e-5f;
+        for (int k = 0; k < 2; ++k) {
+            SCOPED_TRACE(k);
+            const btSolverConstraint& nr = solver.normalRow(k);
+            const btSolverConstraint& fr = solver.frictionRow(cs.anisotropic ? 2 * k : k);
+            EXPECT_NEAR(btgLane(c[0].normalMass, k), nr.m_jacDiagABInv, rel * nr.m_jacDiagABInv);
+            EXPECT_NEAR(btgLane(c[0].normalCfm, k), nr.m_cfm, rel * std::fabs(nr.m_cfm) + 1e-9f);
+            EXPECT_NEAR(btgLane(c[0].friction1Mass, k), fr.m_jacDiagABInv, rel * fr.m_jacDiagABInv);
+            expectVecNear(btgFrictionDir1Of(&c[0], dirs.empty() ? nullptr : &dirs[0], k), fr.m_contactNormal1, 1e-5f,
+                          "friction direction");
+            if (cs.anisotropic) {
+                const btSolverConstraint& fr2 = solver.frictionRow(2 * k + 1);
+                expectVecNear(dirs[0].dir2[k], fr2.m_contactNormal1, 1e-5f, "friction direction 2");
+                EXPECT_NEAR(btgLane(c[0].friction2Mass, k), fr2.m_jacDiagABInv, rel * fr2.m_jacDiagABInv);
+                // scaled: neither unit nor in the tangent plane
+                EXPECT_LT(btgLength3(dirs[0].dir1[k]), 0.99f);
+                EXPECT_GT(std::fabs(dirs[0].dir1[k].y), 1e-3f);
+            }
+            EXPECT_NEAR(c[0].friction, fr.m_friction, 1e-7f);
+            // Bullet's rhs = (target - J v) * mass at setup; the row's target is prepare's.
+            const BtgFloat4 rA = c[0].rA[k];
+            const BtgFloat4 vA = f4(v) + btgCross3(f4(w), rA);
+            const float jv = btgDot3(f4(n), vA);
+            EXPECT_NEAR((btgLane(c[0].normalTarget, k) - jv) * btgLane(c[0].normalMass, k), nr.m_rhs,
+                        1e-4f * std::fabs(nr.m_rhs) + 1e-6f);
+            // Rolling rows: torsional about the normal, then the two rolling axes.
+            const btSolverConstraint& spin = solver.rollingRow(3 * k);
+            const btSolverConstraint& r1 = solver.rollingRow(3 * k + 1);
+            const btSolverConstraint& r2 = solver.rollingRow(3 * k + 2);
+            EXPECT_NEAR(rolling[0].spinMass, spin.m_jacDiagABInv, rel * spin.m_jacDiagABInv);
+            EXPECT_NEAR(rolling[0].roll1Mass, r1.m_jacDiagABInv, rel * r1.m_jacDiagABInv);
+            EXPECT_NEAR(rolling[0].roll2Mass, r2.m_jacDiagABInv, rel * r2.m_jacDiagABInv);
+            expectVecNear(rolling[0].rollAxis1, r1.m_relpos2CrossNormal, 1e-6f, "rolling axis 1");
+            expectVecNear(rolling[0].rollAxis2, r2.m_relpos2CrossNormal, 1e-6f, "rolling axis 2");
+            EXPECT_NEAR(rolling[0].spinningFriction, spin.m_friction, 1e-7f);
+            EXPECT_NEAR(rolling[0].rollingFriction, r1.m_friction, 1e-7f);
+        }
+    }
+}

@@ -30,6 +30,8 @@ struct Result {
     std::vector<BtgContact> contacts;
     std::vector<int> colors;  // the contacts' edge colors
     uint status = 0;          // counters[kStatus] after the solve
+    std::vector<BtgRollingContact> rolling;  // with BTG_SOLVER_ROLLING_FRICTION
+    std::vector<BtgFrictionDirs> frictionDirs;  // with BTG_SOLVER_ANISOTROPIC_FRICTION
 };
 
 // contacts -> prepare -> batching -> solve on the device; prev is last step's contact list.
@@ -57,6 +59,9 @@ Result runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms
     r.contacts = test::downloadContacts(w);
     r.colors = w.edgeColor.download(w.ctx, r.contacts.size());
     r.status = w.counters.download(w.ctx, kNumCounters)[kStatus];
+    if (p.solverFlags & BTG_SOLVER_ROLLING_FRICTION) r.rolling = w.rollingContacts.download(w.ctx, r.contacts.size());
+    if (p.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION)
+        r.frictionDirs = w.frictionDirs.download(w.ctx, r.contacts.size());
     return r;
 }
 
@@ -66,9 +71,9 @@ Result runReference(const ref::ContactBodies& b, const std::vector<BtgManifold>&
     Result r;
     r.bodies = b;
     r.contacts = ref::buildContacts(ms, int(ms.size()), b, prev, p);
-    std::vector<BtgEdge> edges = ref::prepareContacts(r.contacts, r.bodies, p);
+    std::vector<BtgEdge> edges = ref::prepareContacts(r.contacts, r.bodies, p, &r.rolling, &r.frictionDirs);
     r.colors = ref::colorConstraints(edges, r.bodies, maxColors);
-    ref::solveConstraints(r.contacts, r.colors, r.bodies, p, kIterations, maxColors);
+    ref::solveConstraints(r.contacts, r.colors, r.bodies, p, kIterations, maxColors, &r.rolling, &r.frictionDirs);
     return r;
 }
 
@@ -319,4 +324,101 @@ TEST(SolveConstraints, FewerColorsThanAssignedStillSolvesEveryContact)
     EXPECT_GT(active, got.size() / 2);
     std::vector<BtgFloat4> lin = w.linVel.download(w.ctx, s.bodies.props.size());
     for (size_t i = 0; i < lin.size(); ++i) test::expectNear4(lin[i], r.bodies.linVel[i], 10 * tol::kStageAbs, "linVel", i);
+}
+
+// Rolling and spinning friction (BtgRollingContact rows, the rolling sweep after the friction
+// sweep), with m_sor and m_globalCfm in the normal and friction rows: the device (per-color
+// launches and the one-group solve) against the reference on the stack scene.
+TEST(SolveConstraints, RollingFrictionSorAndCfmMatchReference)
+{
+    test::StackScene s = test::stackScene(5, 3, 21);
+    for (size_t i = 0; i < s.bodies.props.size(); ++i) {
+        s.bodies.props[i].rollingFriction = 0.05f + 0.01f * float(i % 3);
+        s.bodies.props[i].spinningFriction = 0.03f;
+        s.bodies.angVel[i] = s.bodies.angVel0[i] = s.bodies.angVel0[i] + btgMake4(0, 1.5f, 0, 0);
+    }
+    BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
+    p.solverFlags = BTG_SOLVER_ROLLING_FRICTION;
+    p.sor = 0.9f;
+    p.globalCfm = 0.01f;
+    const int maxColors = 3;
+    Result r = runReference(s.bodies, s.manifolds, {}, p, maxColors);
+    for (bool fused : {false, true}) {
+        SCOPED_TRACE(fused ? "one group" : "per color");
+        Result d = runDevice(s.bodies, s.manifolds, {}, p, maxColors, fused);
+        test::expectSolvedAlike(d.bodies, d.contacts, r.bodies, r.contacts, 10 * tol::kStageAbs);
+        ASSERT_EQ(d.rolling.size(), r.rolling.size());
+        int spun = 0;
+        for (size_t i = 0; i < r.rolling.size(); ++i) {
+            test::expectNear4(d.rolling[i].spinImpulse, r.rolling[i].spinImpulse, 10 * tol::kStageAbs, "spin", i);
+            test::expectNear4(d.rolling[i].roll1Impulse, r.rolling[i].roll1Impulse, 10 * tol::kStageAbs, "roll1", i);
+            test::expectNear4(d.rolling[i].roll2Impulse, r.rolling[i].roll2Impulse, 10 * tol::kStageAbs, "roll2", i);
+            spun += btgLane(r.rolling[i].spinImpulse, 0) != 0.0f;
+        }
+        EXPECT_GT(spun, 0);  // the rows did act
+    }
+}
+
+// A sphere-like body on one point, spinning about the normal: the torsional row's impulse is
+// bounded by the spinning friction times the point's normal impulse (at most the coefficient
+// itself, solveSingleIteration's clamp), and a large enough coefficient stops the spin.
+TEST(SolveConstraints, SpinningFrictionClampsAndStops)
+{
+    for (float spinning : {0.02f, 5.0f}) {
+        SCOPED_TRACE(spinning);
+        ref::ContactBodies b;
+        int ground = test::addBody(b, btgZero4(), 0.0f, btgZero4(), BTG_BODY_STATIC, 1.0f);
+        int ball = test::addBody(b, btgMake4(0, 0.5f, 0, 0), 1.0f, btgMake4(10, 10, 10, 0), BTG_BODY_DYNAMIC, 1.0f);
+        b.props[ball].rollingFriction = 0.01f;  // 3.24 adds the torsional row only with rolling friction
+        b.props[ball].spinningFriction = spinning;
+        b.angVel0[ball] = b.angVel[ball] = btgMake4(0, 3, 0, 0);
+        b.linVel[ball] = btgMake4(0, -kG / 60.0f, 0, 0);
+        BtgManifold m = test::onePointManifold(ball, ground, btgMake4(0, 1, 0, 0), btgZero4(), 0.0f);
+        BtgStepParams p = test::defaultParams(2);
+        p.solverFlags = BTG_SOLVER_ROLLING_FRICTION;
+        Result d = runDevice(b, {m}, {}, p, 3);
+        ASSERT_EQ(d.rolling.size(), 1u);
+        const float normal = btgLane(d.contacts[0].normalImpulse, 0);
+        const float spin = btgLane(d.rolling[0].spinImpulse, 0);
+        const float bound = std::min(spinning * normal, spinning);  // combined: 1.0 * spinning
+        EXPECT_NEAR(normal, kG / 60.0f, 1e-4f);
+        if (spinning < 1.0f) {
+            EXPECT_NEAR(std::fabs(spin), bound, 1e-6f);  // saturated: the spin slows by bound / I
+            EXPECT_NEAR(d.bodies.angVel[ball].y, 3.0f - 10.0f * bound, 1e-4f);
+        } else {
+            EXPECT_LT(std::fabs(spin), bound);
+            EXPECT_NEAR(d.bodies.angVel[ball].y, 0.0f, 1e-4f);
+        }
+    }
+}
+
+// Anisotropic friction (BtgFrictionDirs: each point's directions scaled in its bodies' frames),
+// one and two directions, warm-started: the device against the reference on the stack scene
+// with every box turned and anisotropic.
+TEST(SolveConstraints, AnisotropicFrictionMatchesReference)
+{
+    for (int two : {0, 1}) {
+        SCOPED_TRACE(two);
+        test::StackScene s = test::stackScene(4, 3, 5);
+        for (size_t i = 1; i < s.bodies.props.size(); ++i) {
+            s.bodies.props[i].flags |= BTG_BODY_ANISOTROPIC;
+            s.bodies.props[i].anisotropicFriction = btgMake4(1.0f, 0.6f, 0.2f, 0);
+            s.bodies.rot[i] = btgQuatNormalize(btgMake4(0.1f * float(i % 3), 0.3f, -0.05f * float(i % 2), 1.0f));
+        }
+        BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
+        p.solverFlags = BTG_SOLVER_ANISOTROPIC_FRICTION;
+        p.twoFrictionDirections = two;
+        const int maxColors = 3;
+        Result r1 = runReference(s.bodies, s.manifolds, {}, p, maxColors);
+        Result d1 = runDevice(s.bodies, s.manifolds, {}, p, maxColors);
+        Result r = runReference(s.bodies, s.manifolds, r1.contacts, p, maxColors);
+        Result d = runDevice(s.bodies, s.manifolds, d1.contacts, p, maxColors);
+        test::expectSolvedAlike(d.bodies, d.contacts, r.bodies, r.contacts, 10 * tol::kStageAbs);
+        ASSERT_EQ(d.frictionDirs.size(), r.frictionDirs.size());
+        for (size_t i = 0; i < r.frictionDirs.size(); ++i)
+            for (int k = 0; k < r.contacts[i].numPoints; ++k) {
+                test::expectNear4(d.frictionDirs[i].dir1[k], r.frictionDirs[i].dir1[k], tol::kStageAbs, "dir1", i);
+                if (two) test::expectNear4(d.frictionDirs[i].dir2[k], r.frictionDirs[i].dir2[k], tol::kStageAbs, "dir2", i);
+            }
+    }
 }

@@ -1,0 +1,31 @@
+// solver_feature_scenes.h — scenes for the solver settings beyond the defaults (rolling and
+// spinning friction, friction direction modes, soft contacts, relaxation and cfm, anisotropic
+// friction): each a body or two on a static ground box whose top face is at y = 0, gravity
+// (0, -10, 0). Body 0 is the ground, body 1 the body the setting is about.
+#pragma once
+#include "scenes/scenes.h"
+
+namespace btgpu::scenes::features {
+
+// A sphere of radius 0.5, mass 1, rolling along +x at `speed` m/s (angular velocity to match) on
+// the ground; rolling friction `rolling` on the sphere (the ground's friction 0.5 combines with it).
+ScenePtr rollingSphere(WorldKind kind, const Config& config, btScalar rolling = btScalar(0.05), btScalar speed = 1);
+// A capsule (radius 0.3, half height 0.4) lying along z, rolling along +x at 2 m/s, rolling
+// friction 0.05: a two-point manifold.
+ScenePtr rollingCapsule(WorldKind kind, const Config& config);
+// A sphere of radius 0.5, mass 1, resting on the ground and spinning about the vertical at 20
+// rad/s; spinning friction `spinning` and a little rolling friction (0.01: 3.24 adds the
+// torsional row only with rolling friction).
+ScenePtr spinningSphere(WorldKind kind, const Config& config, btScalar spinning = btScalar(0.1));
+// A unit box, mass 1, sliding at (2, 0, 2) m/s on the ground (friction 0.3 on both).
+ScenePtr slidingBox(WorldKind kind, const Config& config);
+// A unit box of mass 1 resting on the ground, contact stiffness `stiffness` N/m and damping
+// `damping` N s/m on the box (setContactStiffnessAndDamping).
+ScenePtr softBox(WorldKind kind, const Config& config, btScalar stiffness = btScalar(2000), btScalar damping = btScalar(20));
+// A BenchmarkDemo-like pile: `side` x `side` x `side` unit boxes dropped in a loose lattice.
+ScenePtr boxPile(WorldKind kind, const Config& config, int side = 5);
+// A unit box with anisotropic friction (1, 1, 0.1) (CF_ANISOTROPIC_FRICTION), turned 30 degrees
+// about y, sliding at (2, 0, 2) m/s (friction 0.5 on both).
+ScenePtr anisotropicBox(WorldKind kind, const Config& config);
+
+}  // namespace btgpu::scenes::features
