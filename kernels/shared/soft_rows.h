@@ -61,6 +61,7 @@ typedef struct {
     BtgFloat4 total1;
     BtgFloat4 total2;
     BtgFloat4 relativeVelocity;       /* per point: normal velocity before the step's forces, m/s (restitution) */
+    BtgFloat4 stiffening;             /* per point: r >= 1, its spring's stiffness and damping factor this step */
     float friction;
     float restitution;
     int bodyA;
@@ -93,7 +94,7 @@ typedef struct {
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(BtgSoftness) == 16, "BtgSoftness layout");
 static_assert(sizeof(BtgSoftParams) == 80, "BtgSoftParams layout");
-static_assert(sizeof(BtgSoftContact) == 16 * (14 + 2 * BTG_MAX_POINTS) + 32, "BtgSoftContact layout");
+static_assert(sizeof(BtgSoftContact) == 16 * (15 + 2 * BTG_MAX_POINTS) + 32, "BtgSoftContact layout");
 #endif
 
 /* b2MakeSoft: hertz 0 is a rigid row. */
@@ -191,6 +192,8 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
     s.total1 = btgZero4();
     s.total2 = btgZero4();
     s.relativeVelocity = btgZero4();
+    s.stiffening = btgMake4(1.0f, 1.0f, 1.0f, 1.0f);
+    const float omega2 = s.fixed ? p.omega2Fixed : p.omega2Contact;
     for (int k = 0; k < BTG_MAX_POINTS; ++k) {
         s.rA[k] = btgZero4();
         s.rB[k] = btgZero4();
@@ -205,7 +208,20 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
         btgSetLane(&s.tangent1Mass, k, btgPointRowMass(btgPointJacobian(s.tangent1, rA, rB, a, b), rA, rB, a, b));
         btgSetLane(&s.tangent2Mass, k, btgPointRowMass(btgPointJacobian(s.tangent2, rA, rB, a, b), rA, rB, a, b));
         btgSetLane(&s.normalImpulse, k, btgLane(c.normalImpulse, k) * p.warmScale);
+        btgSetLane(&s.tangent1Impulse, k, btgLane(c.friction1Impulse, k) * p.warmScale);
+        btgSetLane(&s.tangent2Impulse, k, btgLane(c.friction2Impulse, k) * p.warmScale);
         btgSetLane(&s.relativeVelocity, k, btgRowVelocity(jn, a0, b0));
+        /* A spring of omega relative to the point's effective mass m sinks by
+         * lambda / (m h omega^2) under the impulse lambda it carries a substep: a 1,000 kg box
+         * on a 1 kg one 28 cm at 30 Hz, the bottom of a tower of 30 2 cm. Stiffened r times
+         * (stiffness and damping alike) it sinks r times less: r is set once a step from the
+         * load the point carried last step (its warm start), so that it sinks at most maxSag
+         * (within the step it stays put: a stiffness following the substeps' impulses rings). */
+        float m = btgLane(s.normalMass, k), load = btgLane(s.normalImpulse, k);
+        if (p.maxSag > 0.0f && m > 0.0f) {
+            float r = load / (m * p.h * omega2 * p.maxSag);
+            btgSetLane(&s.stiffening, k, r > 1.0f ? r : 1.0f);
+        }
     }
     return s;
 }
@@ -267,13 +283,7 @@ static inline void btgSoftSolve(BtgSoftContact* s, BtgSolverBody a, BtgSolverBod
         } else if (useBias) {
             massScale = soft.massScale;
             impulseScale = soft.impulseScale;
-            /* A spring of omega relative to the point's effective mass m sinks by
-             * lambda / (m h omega^2) under the impulse lambda it carries a substep: a 1,000 kg
-             * box on a 1 kg one 28 cm at 30 Hz, the bottom of a tower of 30 2 cm. Stiffened r
-             * times (stiffness and damping alike) it sinks r times less: r is chosen from the
-             * load it carried last (the warm start) so that it sinks at most maxSag. */
-            float omega2 = s->fixed ? p.omega2Fixed : p.omega2Contact;
-            float r = p.maxSag > 0.0f ? old / (mass * p.h * omega2 * p.maxSag) : 1.0f;
+            float r = btgLane(s->stiffening, k);
             if (r > 1.0f) {
                 float a2 = r * soft.stiffness;
                 massScale = a2 / (1.0f + a2);
