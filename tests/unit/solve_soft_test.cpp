@@ -9,9 +9,11 @@
 #include "stages/contact_cache.h"
 #include "stages/prepare_contacts.h"
 #include "stages/solve_soft.h"
+#include "world/plan.h"
 #include "test_device.h"
 #include "tolerances.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -35,13 +37,16 @@ BtgSoftParams softParams(const BtgStepParams& p, int substeps = 0, float maxSag 
 struct Result {
     ref::ContactBodies bodies;
     std::vector<BtgContact> contacts;
+    uint status = 0;  // counters[kStatus] after the stage
 };
 
 // contacts -> prepare -> batching -> soft step -> poses on the device; prev: last step's contacts.
 Result runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms, const std::vector<BtgContact>& prev,
-                 const BtgStepParams& p, const BtgSoftParams& sp, int maxColors, bool fused)
+                 const BtgStepParams& p, const BtgSoftParams& sp, int maxColors, bool fused,
+                 DeviceWorld::Resident resident = DeviceWorld::Resident::Auto)
 {
     DeviceWorld w(test::context());
+    w.resident = resident;
     w.lastContactCount = fused ? 0 : (1 << 30);
     test::uploadWorld(w, b, ms, uint(ms.size()), prev, ms.size() + 4);
     buildContacts(w, p);
@@ -58,6 +63,7 @@ Result runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms
     r.bodies.pos = w.pos.download(w.ctx, n);
     r.bodies.rot = w.rot.download(w.ctx, n);
     r.contacts = test::downloadContacts(w);
+    r.status = w.counters.download(w.ctx, kNumCounters)[kStatus];
     return r;
 }
 
@@ -123,6 +129,36 @@ TEST(SolveSoft, MatchesReferenceWithWarmStart)
     float total = 0.0f;
     for (const BtgContact& c : r.contacts) total += normalSum(c);
     EXPECT_GT(total, 1.0f);
+}
+
+// The three launch shapes compute the same arithmetic in the same color order: per-color
+// launches, one launch on one group, and one launch over resident groups (where the device
+// keeps them resident; a CPU device may time out at the grid barrier, which the pipeline redoes).
+TEST(SolveSoft, LaunchShapesAgreeBitwise)
+{
+    using Resident = DeviceWorld::Resident;
+    test::StackScene s = test::stackScene(6, 4, 9);
+    BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
+    BtgSoftParams sp = softParams(p);
+    Result perColor = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, false, Resident::Off);
+    Result oneGroup = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, true, Resident::Off);
+    Result resident = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, false, Resident::On);
+    EXPECT_EQ(perColor.status & BTG_STATUS_GRID_BARRIER_TIMEOUT, 0u);
+    std::vector<const Result*> others = {&oneGroup};
+    if (resident.status & BTG_STATUS_GRID_BARRIER_TIMEOUT)
+        EXPECT_FALSE(test::context().device().isGpu) << "a GPU must keep one group per compute unit resident";
+    else
+        others.push_back(&resident);
+    const size_t n = perColor.bodies.linVel.size();
+    for (const Result* o : others) {
+        EXPECT_EQ(0, std::memcmp(o->bodies.linVel.data(), perColor.bodies.linVel.data(), n * sizeof(BtgFloat4)));
+        EXPECT_EQ(0, std::memcmp(o->bodies.angVel.data(), perColor.bodies.angVel.data(), n * sizeof(BtgFloat4)));
+        EXPECT_EQ(0, std::memcmp(o->bodies.pos.data(), perColor.bodies.pos.data(), n * sizeof(BtgFloat4)));
+        EXPECT_EQ(0, std::memcmp(o->bodies.rot.data(), perColor.bodies.rot.data(), n * sizeof(BtgFloat4)));
+        ASSERT_EQ(o->contacts.size(), perColor.contacts.size());
+        for (size_t i = 0; i < o->contacts.size(); ++i)
+            EXPECT_EQ(0, std::memcmp(&o->contacts[i].normalImpulse, &perColor.contacts[i].normalImpulse, sizeof(BtgFloat4)));
+    }
 }
 
 // A unit box of 1 kg resting on a static ground, moving down at g dt as after the forces: its
@@ -209,4 +245,27 @@ TEST(SolveSoft, FreeBodyFallsThroughSubsteps)
     Result d = runDevice(b, {}, {}, p, sp, 4, true);
     EXPECT_NEAR(d.bodies.linVel[ball].y, -kG * dt, 1e-6f);
     EXPECT_NEAR(d.bodies.pos[ball].y, 10.0f - kG * dt * dt * 5.0f / 8.0f, 1e-5f);
+}
+
+// The plan of a soft-step scene: the soft stages in place of the PGS solve and the Euler
+// integration; a scene with nothing to collide or join keeps integrate_transforms.
+TEST(SolveSoft, PlanRunsTheSoftStages)
+{
+    PlanInput in;
+    in.solver = SolverKind::SoftStep;
+    PlanBody ground, box;
+    ground.shapeType = BTG_SHAPE_BOX;
+    ground.size = 10.0f;
+    box.shapeType = BTG_SHAPE_BOX;
+    box.size = 1.7f;
+    box.movable = box.dynamic = true;
+    in.bodies = {ground, box, box};
+    const std::vector<std::string> stages = derivePlan(in).plan.stages();
+    auto has = [&](const char* name) { return std::find(stages.begin(), stages.end(), name) != stages.end(); };
+    EXPECT_TRUE(has("color_constraints") && has("solve_soft") && has("soft_transforms"));
+    EXPECT_FALSE(has("solve_constraints") || has("solve_jacobi") || has("integrate_transforms"));
+    in.bodies = {box};
+    const std::vector<std::string> alone = derivePlan(in).plan.stages();
+    EXPECT_NE(std::find(alone.begin(), alone.end(), "integrate_transforms"), alone.end());
+    EXPECT_EQ(std::find(alone.begin(), alone.end(), "solve_soft"), alone.end());
 }
