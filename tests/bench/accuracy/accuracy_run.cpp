@@ -29,6 +29,8 @@ RunResult runCase(const Case& c, const std::string& engine, const Setting& s, in
     }
     const scenes::WorldKind kind = engine == "btgpu" ? scenes::WorldKind::Gpu : scenes::WorldKind::Stock;
     Config chosen = config;
+    // Each kind names its solver, whatever Config's default is.
+    if (s.solver == "pgs") chosen.solver = SolverKind::BatchedPgs;
     if (s.solver == "jacobi") chosen.solver = SolverKind::JacobiMassSplitting;
     if (s.solver == "soft") chosen.solver = SolverKind::SoftStep;  // substeps = the iterations swept
     scenes::AccuracyScene a = c.make(kind, chosen, copies);
