@@ -93,6 +93,27 @@ TEST(SolverModes, HeavyPlank)
     // 10 substeps: 11 mm into the boxes, the plank rocking 6 cm; 20 substeps hold it.
     runModes("plank 400 kg on 2 boxes, 10 s", st::heavyPlank, target(), Earned::No);
 }
+// What more substeps earn (SoftStepConfig::substeps; the app's steps unchanged).
+void runSoftWithSubsteps(const std::string& name, const Builder& make, int substeps)
+{
+    Config config = modeConfig(SolverKind::SoftStep);
+    config.softStep.substeps = substeps;
+    const Outcome soft = run(make, WorldKind::Gpu, target(), config);
+    recordAs(name, "btgpu soft, " + std::to_string(substeps) + " substeps", soft, figure(soft));
+    EXPECT_TRUE(soft.gpuEveryStep) << name;
+    EXPECT_TRUE(soft.pass) << name << ", soft mode with " << substeps << " substeps: " << soft.why;
+}
+
+TEST(SolverModes, HeavyPlankWithTwentySubsteps)
+{
+    runSoftWithSubsteps("plank 400 kg on 2 boxes, 10 s", st::heavyPlank, 20);
+}
+TEST(SolverModes, MassRatioThousandWithFortySubsteps)
+{
+    runSoftWithSubsteps("mass ratio 1000:1, 10 s", [](WorldKind k, const Config& c) { return st::massRatio(k, c, 1000); },
+                        40);
+}
+
 TEST(SolverModes, TowerTen)
 {
     runModes("tower 10 exact, 10 s", [](WorldKind k, const Config& c) { return st::tower(k, c, 10); }, target(),
