@@ -226,17 +226,16 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
     return s;
 }
 
-/* WarmStart: this substep starts from the last one's impulses. */
+/* WarmStart: this substep starts from the last one's impulses, each point's three applied as
+ * one impulse vector (the rows' effect is linear in it: one Jacobian instead of three). */
 static inline void btgSoftWarmStart(BtgSoftContact* s, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
                                     BtgBodyVel* vb)
 {
     for (int k = 0; k < s->numPoints; ++k) {
         if (btgLane(s->normalMass, k) == 0.0f) continue;
-        BtgFloat4 rA = s->rA[k], rB = s->rB[k];
         float ln = btgLane(s->normalImpulse, k), l1 = btgLane(s->tangent1Impulse, k), l2 = btgLane(s->tangent2Impulse, k);
-        btgRowApply(btgPointJacobian(s->normal, rA, rB, a, b), a, b, va, vb, ln);
-        btgRowApply(btgPointJacobian(s->tangent1, rA, rB, a, b), a, b, va, vb, l1);
-        btgRowApply(btgPointJacobian(s->tangent2, rA, rB, a, b), a, b, va, vb, l2);
+        BtgFloat4 impulse = s->normal * ln + s->tangent1 * l1 + s->tangent2 * l2;
+        btgRowApply(btgPointJacobian(impulse, s->rA[k], s->rB[k], a, b), a, b, va, vb, 1.0f);
         btgSetLane(&s->totalNormal, k, btgLane(s->totalNormal, k) + ln);
         btgSetLane(&s->total1, k, btgLane(s->total1, k) + l1);
         btgSetLane(&s->total2, k, btgLane(s->total2, k) + l2);
