@@ -5,7 +5,7 @@
 // and pyramids (no box farther than 5 cm in 10 s); and jointed scenes in the soft mode (a
 // hanging chain holds its links together, ragdolls land and settle). Each row is recorded for
 // the three engines; the soft mode's cases assert what it earns, and both btgpu modes must stay
-// on the GPU path on every step. BTGPU_STABILITY_SOFT_SUBSTEPS=N runs the soft mode with N
+// on the GPU path on every step; the soft step is deterministic. BTGPU_STABILITY_SOFT_SUBSTEPS=N runs the soft mode with N
 // substeps instead of m_numIterations (to measure the mapping).
 #include "scenes/joint_scenes.h"
 #include "stability/stability.h"
@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 
 using namespace btgpu;
 using namespace btgpu::stability;
@@ -188,4 +189,22 @@ TEST(SolverModes, RagdollsLandInSoftMode)
     EXPECT_TRUE(soft.gpuEveryStep);
     EXPECT_TRUE(soft.pass) << soft.why;
     EXPECT_LT(soft.finalKePerMass, 1e-3);
+}
+
+// Same scene, device and binary: the soft step's states are bitwise the same, step by step (two
+// worlds of the pyramid of 55 boxes side by side, 120 steps).
+TEST(SolverModes, SoftStepIsDeterministic)
+{
+    const auto make = [] { return st::pyramid(WorldKind::Gpu, modeConfig(SolverKind::SoftStep), 10); };
+    scenes::ScenePtr a = make(), b = make();
+    for (int step = 0; step < 120; ++step) {
+        a->step(btScalar(1) / 60, 1, btScalar(1) / 60);
+        b->step(btScalar(1) / 60, 1, btScalar(1) / 60);
+        ASSERT_TRUE(a->report()->gpuPath && b->report()->gpuPath);
+        for (std::size_t i = 0; i < a->bodies().size(); ++i) {
+            const btTransform& ta = a->bodies()[i]->getWorldTransform();
+            const btTransform& tb = b->bodies()[i]->getWorldTransform();
+            ASSERT_EQ(0, std::memcmp(&ta, &tb, sizeof(btTransform))) << "body " << i << ", step " << step;
+        }
+    }
 }
