@@ -455,6 +455,7 @@ StepSettings GpuWorld::settings(int substeps, btScalar dt) const
     s.iterations = std::max(info.m_numIterations, 1);
     s.maxColors = std::max(m_config.maxColors, 2);
     s.solver = m_config.solver;
+    s.soft = m_config.softStep;
     BtgJointStepParams& j = s.joints;
     j = BtgJointStepParams{};
     j.dt = dt;

@@ -20,6 +20,7 @@
 #include "stages/report_contacts.h"
 #include "stages/solve_constraints.h"
 #include "stages/solve_jacobi.h"
+#include "stages/solve_soft.h"
 #include "stages/update_aabbs.h"
 #include "stages/update_activation.h"
 
@@ -56,6 +57,7 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::ColorConstraints: colorConstraints(w, s.maxColors); break;
         case Stage::SolveConstraints: solveConstraints(w, p, s.iterations, w.numColors); break;
         case Stage::SolveJacobi: solveJacobi(w, p, s.iterations); break;
+        case Stage::SolveSoft: solveSoft(w, makeSoftParams(s.soft, p, s.iterations), w.numColors); break;
         case Stage::StoreContactCache:
             storeContactCache(w);
             // A cache stored without the GJK manifolds beside it leaves those stale.
@@ -64,6 +66,7 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::StorePersistentManifolds: storePersistentManifolds(w); break;
         case Stage::ReportContacts: reportContacts(w); break;
         case Stage::IntegrateTransforms: integrateTransforms(w, p.dt, p.splitTurnErp); break;
+        case Stage::SoftTransforms: softTransforms(w); break;
         case Stage::UpdateActivation: updateActivation(w, p.dt, p.deactivationTime); break;
     }
 }

@@ -34,6 +34,7 @@ struct StepSettings {
     int iterations = 10;   // btContactSolverInfo::m_numIterations
     int maxColors = 24;    // BatchedPgs only
     SolverKind solver = SolverKind::BatchedPgs;  // must match the plan's
+    SoftStepConfig soft;   // SolverKind::SoftStep only
     BtgJointStepParams joints{};  // the joints' solver settings (numJoints 0: none)
 };
 

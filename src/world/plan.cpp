@@ -32,10 +32,12 @@ const char* stageName(Stage stage)
         case Stage::ColorConstraints: return "color_constraints";
         case Stage::SolveConstraints: return "solve_constraints";
         case Stage::SolveJacobi: return "solve_jacobi";
+        case Stage::SolveSoft: return "solve_soft";
         case Stage::StoreContactCache: return "store_contact_cache";
         case Stage::StorePersistentManifolds: return "store_persistent_manifolds";
         case Stage::ReportContacts: return "report_contacts";
         case Stage::IntegrateTransforms: return "integrate_transforms";
+        case Stage::SoftTransforms: return "soft_transforms";
         case Stage::UpdateActivation: return "update_activation";
     }
     return "?";
@@ -76,6 +78,7 @@ std::vector<Stage> Plan::substep() const
         // Jacobi world with joints away).
         if (hasJoints) s.push_back(Stage::PrepareJoints);
         if (solver == SolverKind::JacobiMassSplitting && !hasJoints) s.push_back(Stage::SolveJacobi);
+        else if (solver == SolverKind::SoftStep) s.insert(s.end(), {Stage::ColorConstraints, Stage::SolveSoft});
         else s.insert(s.end(), {Stage::ColorConstraints, Stage::SolveConstraints});
         if (hasJoints) s.push_back(Stage::FinishJoints);
         // Before the bodies move: the cache keys use A's rotation as the contacts were built.
@@ -85,7 +88,9 @@ std::vector<Stage> Plan::substep() const
             if (reportContacts) s.push_back(Stage::ReportContacts);
         }
     }
-    s.insert(s.end(), {Stage::IntegrateTransforms, Stage::UpdateActivation});
+    // The soft step moves the bodies through its substeps: its deltas give the poses.
+    const bool soft = solver == SolverKind::SoftStep && (collide || hasJoints);
+    s.insert(s.end(), {soft ? Stage::SoftTransforms : Stage::IntegrateTransforms, Stage::UpdateActivation});
     return s;
 }
 

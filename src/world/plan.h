@@ -41,11 +41,13 @@ enum class Stage {
     ColorConstraints,
     SolveConstraints,
     SolveJacobi,
+    SolveSoft,            // the soft step's substeps (SolverKind::SoftStep), poses kept as deltas
     FinishJoints,         // applied impulses, feedback, breaks
     StoreContactCache,
     StorePersistentManifolds,  // the GJK kinds' manifolds beside the cache
     ReportContacts,       // the contacts packed for the app's dispatcher (last substep of a call only)
     IntegrateTransforms,
+    SoftTransforms,       // the soft step's poses from its deltas (in place of integrate_transforms)
     UpdateActivation,
 };
 const char* stageName(Stage stage);

@@ -2,6 +2,7 @@
 // per-body coloring claims, the Jacobi solver's per-body contact lists and velocity changes). One member of DeviceWorld, so those stages add no columns of their
 // own to the shared world layout.
 #pragma once
+#include "shared/soft_rows.h"
 #include "shared/types.h"
 #include "stages/prims/scan.h"
 
@@ -18,6 +19,11 @@ struct SolverScratch {
     cl::DeviceArray<uint> colorStart;  // 2 x (numColors + 1)
     cl::DeviceArray<int> colorOrder;   // two per contact slot
     cl::DeviceArray<uint> gridBarrier; // solve_resident's arrival count, generation, timeout flag
+    // solve_soft (SolverKind::SoftStep): each contact slot's soft rows, and BTG_SOFT_BODY_ROWS per
+    // body (position and rotation deltas, the forces' velocity change per substep); the color
+    // ranges above hold one list there, over every edge
+    cl::DeviceArray<BtgSoftContact> softContacts;
+    cl::DeviceArray<BtgFloat4> softBodies;
     // solve_jacobi: body b's contacts are jacobiEntries[jacobiStart[b], jacobiStart[b + 1]),
     // each 2 * contact + side, in increasing order; jacobiDeltas holds 4 per contact slot
     // (A lin, A ang, B lin, B ang: m/s, rad/s), the change each contact made to its copies.

@@ -39,6 +39,7 @@ public:
         if (m_noAabbSync) n += "; Config::syncBroadphaseAabbs off";
         if (m_noManifolds) n += "; Config::fillDispatcherManifolds off";
         if (m_jacobi) n += "; Jacobi with mass splitting";
+        if (m_soft) n += "; soft step";
         n += "; step column = sync-in of app changes + device substeps + readback (Report::syncInMs + deviceMs); "
              "write-back column = results into btRigidBody + motion states (Report::writeBackMs)";
         if (!m_noAabbSync) n += " + Bullet's broadphase AABB sync (Report::aabbSyncMs)";
@@ -59,6 +60,8 @@ public:
         m_noManifolds = options.noManifolds;
         if (options.jacobi) config.solver = btgpu::SolverKind::JacobiMassSplitting;
         m_jacobi = options.jacobi;
+        if (options.soft) config.solver = btgpu::SolverKind::SoftStep;
+        m_soft = options.soft;
         m_world.reset(new btGpuDynamicsWorld(&m_infra.dispatcher, &m_infra.broadphase, &m_infra.solver, &m_infra.config,
                                         config));
         m_bodies.reset(new BtBodies);
@@ -111,6 +114,7 @@ private:
     bool m_noAabbSync = false;
     bool m_noManifolds = false;
     bool m_jacobi = false;
+    bool m_soft = false;
 };
 
 }  // namespace

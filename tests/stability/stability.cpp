@@ -10,6 +10,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <vector>
 
 namespace btgpu::stability {
 
@@ -156,6 +157,16 @@ Outcome run(Scene& scene, const Criteria& c)
     const btVector3 driftStart =
         c.driftBody >= 0 ? scene.body(c.driftBody)->getWorldTransform().getOrigin() : btVector3(0, 0, 0);
     const double e0 = totalEnergy(scene);
+    std::vector<btVector3> starts;
+    for (const btRigidBody* b : scene.bodies()) starts.push_back(b->getWorldTransform().getOrigin());
+    auto farthest = [&] {
+        double d = 0;
+        for (std::size_t i = 0; i < scene.bodies().size(); ++i)
+            if (isDynamic(scene.bodies()[i]))
+                d = std::max(d, double((scene.bodies()[i]->getWorldTransform().getOrigin() - starts[i]).length()));
+        return d;
+    };
+    o.gpuEveryStep = scene.report() != nullptr;
     const int steps = int(std::lround(c.seconds / double(c.timeStep)));
     const double measureFrom = c.measureFrom >= 0 ? c.measureFrom : c.settleBy >= 0 ? c.settleBy : c.seconds;
     const int measureEvery = std::max(1, int(std::lround(0.5 / double(c.timeStep))));  // every 0.5 s
@@ -168,8 +179,10 @@ Outcome run(Scene& scene, const Criteria& c)
             o.finite = false;
             break;
         }
+        if (const Report* r = scene.report()) o.gpuEveryStep = o.gpuEveryStep && r->gpuPath;
         for (const btRigidBody* b : scene.bodies())
             if (isDynamic(b)) o.maxSpeed = std::max(o.maxSpeed, double(b->getLinearVelocity().length()));
+        if (c.move >= 0 && (s % measureEvery == 0 || s == steps)) o.maxMove = std::max(o.maxMove, farthest());
         const double ke = kePerMass(scene);
         if (ke > tol::kSettledKePerMass) o.settleTime = t;
         if (c.settleBy >= 0 && t >= c.settleBy && ke > tol::kSettledKePerMass) settled = false;
@@ -189,6 +202,7 @@ Outcome run(Scene& scene, const Criteria& c)
     }
     if (const Report* r = scene.report()) {
         o.gpuPath = r->gpuPath;
+        o.stages = r->stages;
         o.issues = int(r->issues.size());
         if (!r->issues.empty()) o.firstIssue = r->issues.front().message;
     }
@@ -200,6 +214,7 @@ Outcome run(Scene& scene, const Criteria& c)
         why << "penetration " << mm(o.penetration) << " > " << mm(c.penetration) << "; ";
     if (o.finite && c.driftBody >= 0 && o.drift > c.drift) why << "drift " << mm(o.drift) << " > " << mm(c.drift) << "; ";
     if (o.finite && c.drop >= 0 && o.drop > c.drop) why << "top fell " << mm(o.drop) << " > " << mm(c.drop) << "; ";
+    if (o.finite && c.move >= 0 && o.maxMove > c.move) why << "a body moved " << mm(o.maxMove) << " > " << mm(c.move) << "; ";
     if (o.finite && c.energyNeverGrows && o.energyRise > tol::kEnergyRise)
         why << "energy rose " << o.energyRise << " J; ";
     o.why = why.str();
@@ -218,7 +233,9 @@ std::string figure(const Outcome& o)
     std::ostringstream f;
     f.precision(3);
     if (!o.finite) f << "NaN; ";
-    f << "pen " << mm(o.penetration) << ", drift " << mm(o.drift) << ", top drop " << mm(o.drop) << ", vmax " << o.maxSpeed << " m/s, KE/M "
+    f << "pen " << mm(o.penetration) << ", drift " << mm(o.drift) << ", top drop " << mm(o.drop);
+    if (o.maxMove > 0) f << ", farthest move " << mm(o.maxMove);
+    f << ", vmax " << o.maxSpeed << " m/s, KE/M "
       << o.finalKePerMass << " J/kg, settled at " << o.settleTime << " s";
     if (o.energyRise > 0) f << ", energy rise " << o.energyRise << " J";
     if (o.kind == WorldKind::Gpu) f << (o.gpuPath ? ", gpu path" : ", CPU fallback");

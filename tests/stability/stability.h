@@ -7,6 +7,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "btgpu/btGpuDynamicsWorld.h"
 #include "scenes/scenes.h"
@@ -37,6 +38,9 @@ struct Criteria {
     double speed = -1;                          // m/s: bound on every body's speed; < 0: from the scene's heights
     bool energyNeverGrows = false;
     bool noSleep = false;                       // DISABLE_DEACTIVATION on every body (tests the solver, not sleep)
+    // m: how far any dynamic body may be from where it started (3-D, sampled every 0.5 s and
+    // at the end); < 0: not asked.
+    double move = -1;
 };
 
 struct Outcome {
@@ -51,7 +55,10 @@ struct Outcome {
     double drop = 0;            // m, how far Criteria::driftBody ended below its start
     double energyRise = 0;      // J, max over steps of E(t) - E(0) (kinetic + potential)
     double wallSeconds = 0;
+    double maxMove = 0;         // m, the farthest any dynamic body got from its start (Criteria::move)
     bool gpuPath = false;       // btgpu only: the last step ran on the OpenCL pipeline
+    bool gpuEveryStep = false;  // btgpu only: every step ran on it
+    std::vector<std::string> stages;  // btgpu only: the plan's stages at the end (Report::stages)
     int issues = 0;             // btgpu only: report().issues.size()
     std::string firstIssue;
     bool pass = false;

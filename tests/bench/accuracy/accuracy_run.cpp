@@ -13,7 +13,8 @@ namespace btgpu::accuracy {
 bool solverKindSupported(const std::string& engine, const std::string& kind)
 {
     if (kind == "pgs") return engine == "stock" || engine == "btgpu";
-    return kind == "jacobi" && engine == "btgpu";  // Jacobi with mass splitting: btgpu only
+    // Jacobi with mass splitting and the soft step: btgpu only
+    return (kind == "jacobi" || kind == "soft") && engine == "btgpu";
 }
 
 RunResult runCase(const Case& c, const std::string& engine, const Setting& s, int copies, const Config& config)
@@ -28,7 +29,10 @@ RunResult runCase(const Case& c, const std::string& engine, const Setting& s, in
     }
     const scenes::WorldKind kind = engine == "btgpu" ? scenes::WorldKind::Gpu : scenes::WorldKind::Stock;
     Config chosen = config;
+    // Each kind names its solver, whatever Config's default is.
+    if (s.solver == "pgs") chosen.solver = SolverKind::BatchedPgs;
     if (s.solver == "jacobi") chosen.solver = SolverKind::JacobiMassSplitting;
+    if (s.solver == "soft") chosen.solver = SolverKind::SoftStep;  // substeps = the iterations swept
     scenes::AccuracyScene a = c.make(kind, chosen, copies);
     r.copies = a.copies;
     r.bodies = a.copies * a.bodiesPerCopy;

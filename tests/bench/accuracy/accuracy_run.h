@@ -26,7 +26,8 @@ struct RunResult {
 };
 
 // Solver kinds each engine has: "pgs" (Bullet's sequential impulse; btgpu's batched PGS).
-// Kinds: "pgs" (both engines), "jacobi" (btgpu's Jacobi with mass splitting).
+// Kinds: "pgs" (both engines), "jacobi" (btgpu's Jacobi with mass splitting), "soft" (btgpu's
+// soft step, SolverKind::SoftStep: m_numIterations = the iterations swept is its substep count).
 bool solverKindSupported(const std::string& engine, const std::string& kind);
 
 RunResult runCase(const Case& c, const std::string& engine, const Setting& s, int copies, const Config& config);

@@ -17,7 +17,7 @@ namespace {
 
 const char* kUsage =
     "usage: btgpu_accuracy [--quick] [--scene NAME[,NAME...]] [--out DIR] [--device NAME]\n"
-    "                      [--solvers pgs,jacobi] [--iterations 1,2,4,8,16,32] [--substeps 1,2,4,8]\n"
+    "                      [--solvers pgs,jacobi,soft] [--iterations 1,2,4,8,16,32] [--substeps 1,2,4,8]\n"
     "                      [--copies 1000] [--engines stock,btgpu] [--reference FILE] [--list]\n"
     "  --quick: iterations 2,10, substeps 1,2, 100 copies, shorter runs (the ctest run).\n"
     "  --reference: btgpu_accuracy_reference's file for the pile (default DIR/pile_reference.csv).\n"

@@ -1,0 +1,372 @@
+/* soft_rows.h — the soft step's rows (SolverKind::SoftStep; Box2D v3's solver, solver.c and
+ * contact_solver.c): per step a contact's fixed anchors, masses and restitution speed; per
+ * substep its separation followed from the bodies' position and rotation deltas (the
+ * narrowphase runs once a step), a soft normal row (spring of contactHertz, damping ratio, push
+ * speed), friction on two tangents per point, then restitution once after the substeps. Joints
+ * keep their Bullet rows (joint_rows.h), solved each substep. Shared by kernels/solve_soft.cl
+ * and its CPU reference. */
+#ifndef BTG_SOFT_ROWS_H
+#define BTG_SOFT_ROWS_H
+#include "prelude.h"
+#include "types.h"
+#include "math.h"
+#include "solver_rows.h"
+#include "contact_rows.h"
+#include "joint_rows.h"
+
+/* Box2D's b2Softness: a row of stiffness omega and damping ratio zeta, implicit over a substep.
+ * A spring stiffer by r (k and c both times r: omega and zeta times sqrt r) keeps its bias rate
+ * and has stiffness r x a2 (massScale = r a2 / (1 + r a2), impulseScale = 1 / (1 + r a2)). */
+typedef struct {
+    float biasRate;     /* 1/s: velocity bias per metre of penetration */
+    float massScale;    /* share of the effective mass the row applies */
+    float impulseScale; /* share of the accumulated impulse it relaxes */
+    float stiffness;    /* a2 = h omega (2 zeta + h omega) */
+} BtgSoftness;
+
+/* Per-step scalars of the soft solve, by value. */
+typedef struct {
+    BtgSoftness contact;         /* between two dynamic bodies */
+    BtgSoftness fixed;           /* against a static, kinematic or sleeping body (twice the frequency) */
+    float h;                     /* s: one substep */
+    float invH;                  /* 1/s */
+    float pushSpeed;             /* m/s: fastest the soft bias pushes a penetration apart (contactSpeed) */
+    float restitutionThreshold;  /* m/s: slower approaches do not bounce */
+    float warmScale;             /* the cache's impulse (a step's total, times the warm-start factor)
+                                    to the first substep's: 1 / (substeps x factor); 0: no warm start */
+    float jointBoundScale;       /* 1 / substeps: a joint row's bounds are N s a step */
+    int substeps;
+    int frictionInSolve;         /* friction rows also in the biased solve, not only in the relax */
+    float maxSag;                /* m: a loaded spring stiffens so it sinks no more (SoftStepConfig::maxSag); 0: never */
+    float omega2Contact;         /* (rad/s)^2 of the two springs */
+    float omega2Fixed;
+    int pad0;
+} BtgSoftParams;
+
+/* One contact manifold as the soft step solves it (Box2D's b2ContactConstraint). */
+typedef struct {
+    BtgFloat4 normal;                 /* unit, from B towards A; w 0 */
+    BtgFloat4 tangent1;               /* btPlaneSpace1 of the normal: the two friction directions */
+    BtgFloat4 tangent2;
+    BtgFloat4 rA[BTG_MAX_POINTS];     /* fixed anchors: point on A minus A's centre at the step's start, m */
+    BtgFloat4 rB[BTG_MAX_POINTS];
+    BtgFloat4 baseSeparation;         /* per point: distance - n.(rA - rB), m; plus n.(pA - pB) now = distance now */
+    BtgFloat4 normalMass;             /* per point, kg; 0: no rows */
+    BtgFloat4 tangent1Mass;
+    BtgFloat4 tangent2Mass;
+    BtgFloat4 normalImpulse;          /* per point, accumulated this substep (warm-started from the last), N s */
+    BtgFloat4 tangent1Impulse;
+    BtgFloat4 tangent2Impulse;
+    BtgFloat4 totalNormal;            /* per point, applied over the whole step, N s (Bullet's m_appliedImpulse) */
+    BtgFloat4 total1;
+    BtgFloat4 total2;
+    BtgFloat4 relativeVelocity;       /* per point: normal velocity before the step's forces, m/s (restitution) */
+    BtgFloat4 stiffening;             /* per point: r >= 1, its spring's stiffness and damping factor this step */
+    float friction;
+    float restitution;
+    int bodyA;
+    int bodyB;
+    int numPoints;
+    int fixed;                        /* 1: solved with BtgSoftParams.fixed */
+    int pad0;
+    int pad1;
+} BtgSoftContact;
+
+/* Per body, four rows of the soft scratch (BTG_SOFT_BODY_ROWS x numBodies): the position and
+ * rotation moved so far this step, and the velocity change the step's forces make per substep. */
+#define BTG_SOFT_BODY_ROWS 4
+#define BTG_SOFT_DELTA_POS 0 /* m */
+#define BTG_SOFT_DELTA_ROT 1 /* unit quaternion */
+#define BTG_SOFT_FORCE_LIN 2 /* m/s per substep */
+#define BTG_SOFT_FORCE_ANG 3 /* rad/s per substep */
+
+/* Edge passes and body passes of the soft solve. */
+#define BTG_SOFT_PREPARE 0
+#define BTG_SOFT_WARM_START 1
+#define BTG_SOFT_SOLVE 2
+#define BTG_SOFT_RELAX 3
+#define BTG_SOFT_RESTITUTION 4
+#define BTG_SOFT_STORE 5
+#define BTG_SOFT_BODY_BEGIN 0
+#define BTG_SOFT_BODY_VELOCITY 1
+#define BTG_SOFT_BODY_POSITION 2
+
+#ifndef __OPENCL_C_VERSION__
+static_assert(sizeof(BtgSoftness) == 16, "BtgSoftness layout");
+static_assert(sizeof(BtgSoftParams) == 80, "BtgSoftParams layout");
+static_assert(sizeof(BtgSoftContact) == 16 * (15 + 2 * BTG_MAX_POINTS) + 32, "BtgSoftContact layout");
+#endif
+
+/* b2MakeSoft: hertz 0 is a rigid row. */
+static inline BtgSoftness btgMakeSoftness(float hertz, float zeta, float h)
+{
+    BtgSoftness s;
+    if (hertz == 0.0f) {
+        s.biasRate = 0.0f;
+        s.massScale = 1.0f;
+        s.impulseScale = 0.0f;
+        s.stiffness = 0.0f;
+        return s;
+    }
+    float omega = 2.0f * 3.14159265359f * hertz;
+    float a1 = 2.0f * zeta + h * omega;
+    float a2 = h * omega * a1;
+    float a3 = 1.0f / (1.0f + a2);
+    s.biasRate = omega / a1;
+    s.massScale = a2 * a3;
+    s.impulseScale = a3;
+    s.stiffness = a2;
+    return s;
+}
+
+/* ---- bodies ---- */
+
+/* The step's start: velocities back to before the forces (the substeps add them a share at a
+ * time), nothing moved yet. v0/w0: apply_forces' linVel0/angVel0; v1/w1: after the forces. */
+static inline void btgSoftBodyBegin(uint flags, BtgFloat4* lin, BtgFloat4* ang, BtgFloat4 v0, BtgFloat4 w0,
+                                    BtgFloat4* rows, int substeps)
+{
+    rows[BTG_SOFT_DELTA_POS] = btgZero4();
+    rows[BTG_SOFT_DELTA_ROT] = btgMake4(0.0f, 0.0f, 0.0f, 1.0f);
+    rows[BTG_SOFT_FORCE_LIN] = btgZero4();
+    rows[BTG_SOFT_FORCE_ANG] = btgZero4();
+    if (!btgIsSolverDynamic(flags)) return;
+    float share = 1.0f / (float)substeps;
+    rows[BTG_SOFT_FORCE_LIN] = (btgXyz(*lin) - btgXyz(v0)) * share;
+    rows[BTG_SOFT_FORCE_ANG] = (btgXyz(*ang) - btgXyz(w0)) * share;
+    *lin = btgMake4(v0.x, v0.y, v0.z, (*lin).w);
+    *ang = btgMake4(w0.x, w0.y, w0.z, (*ang).w);
+}
+/* IntegrateVelocities: a substep's share of the forces. */
+static inline void btgSoftBodyVelocity(uint flags, BtgFloat4* lin, BtgFloat4* ang, const BtgFloat4* rows)
+{
+    if (!btgIsSolverDynamic(flags)) return;
+    *lin = *lin + rows[BTG_SOFT_FORCE_LIN];
+    *ang = *ang + rows[BTG_SOFT_FORCE_ANG];
+}
+/* IntegratePositions: the deltas of every body whose velocity enters the rows (kinematic ones
+ * too: the host moves them by their velocity over the step). */
+static inline void btgSoftBodyPosition(uint flags, BtgFloat4 lin, BtgFloat4 ang, BtgFloat4* rows, float h)
+{
+    if (!btgIsSolverMoving(flags)) return;
+    rows[BTG_SOFT_DELTA_POS] = btgXyz(rows[BTG_SOFT_DELTA_POS]) + btgXyz(lin) * h;
+    rows[BTG_SOFT_DELTA_ROT] = btgIntegrateRotation(rows[BTG_SOFT_DELTA_ROT], btgXyz(ang), h);
+}
+/* The step's end for a body the integrator moves: its pose moved by the deltas. */
+static inline void btgSoftBodyFinish(BtgFloat4* pos, BtgFloat4* rot, const BtgFloat4* rows)
+{
+    *pos = btgXyz(*pos) + btgXyz(rows[BTG_SOFT_DELTA_POS]);
+    *rot = btgQuatNormalize(btgQuatMul(rows[BTG_SOFT_DELTA_ROT], *rot));
+}
+
+/* ---- contacts ---- */
+
+/* PrepareContacts: c as contact_cache built it (anchors from the step's start, distances, its
+ * warm-start impulse: the cached step total times the warm-start factor). a0/b0: the bodies'
+ * velocities before the step's forces. */
+static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel a0,
+                                            BtgBodyVel b0, float restitution, int solvable, BtgSoftParams p)
+{
+    BtgSoftContact s;
+    BtgFloat4 n = btgXyz(c.normal), t1, t2;
+    btgPlaneSpace(n, &t1, &t2);
+    s.normal = n;
+    s.tangent1 = btgXyz(t1);
+    s.tangent2 = btgXyz(t2);
+    s.friction = c.friction;
+    s.restitution = restitution;
+    s.bodyA = c.bodyA;
+    s.bodyB = c.bodyB;
+    s.numPoints = c.numPoints;
+    s.fixed = !(a.dynamic && b.dynamic);
+    s.pad0 = 0;
+    s.pad1 = 0;
+    s.baseSeparation = btgZero4();
+    s.normalMass = btgZero4();
+    s.tangent1Mass = btgZero4();
+    s.tangent2Mass = btgZero4();
+    s.normalImpulse = btgZero4();
+    s.tangent1Impulse = btgZero4();
+    s.tangent2Impulse = btgZero4();
+    s.totalNormal = btgZero4();
+    s.total1 = btgZero4();
+    s.total2 = btgZero4();
+    s.relativeVelocity = btgZero4();
+    s.stiffening = btgMake4(1.0f, 1.0f, 1.0f, 1.0f);
+    const float omega2 = s.fixed ? p.omega2Fixed : p.omega2Contact;
+    for (int k = 0; k < BTG_MAX_POINTS; ++k) {
+        s.rA[k] = btgZero4();
+        s.rB[k] = btgZero4();
+        if (k >= c.numPoints) continue;
+        BtgFloat4 rA = btgXyz(c.rA[k]), rB = btgXyz(c.rB[k]);
+        s.rA[k] = rA;
+        s.rB[k] = rB;
+        btgSetLane(&s.baseSeparation, k, btgLane(c.separation, k) - btgDot3(rA - rB, n));
+        if (!solvable) continue;
+        BtgJacobian jn = btgPointJacobian(n, rA, rB, a, b);
+        btgSetLane(&s.normalMass, k, btgPointRowMass(jn, rA, rB, a, b));
+        btgSetLane(&s.tangent1Mass, k, btgPointRowMass(btgPointJacobian(s.tangent1, rA, rB, a, b), rA, rB, a, b));
+        btgSetLane(&s.tangent2Mass, k, btgPointRowMass(btgPointJacobian(s.tangent2, rA, rB, a, b), rA, rB, a, b));
+        btgSetLane(&s.normalImpulse, k, btgLane(c.normalImpulse, k) * p.warmScale);
+        btgSetLane(&s.tangent1Impulse, k, btgLane(c.friction1Impulse, k) * p.warmScale);
+        btgSetLane(&s.tangent2Impulse, k, btgLane(c.friction2Impulse, k) * p.warmScale);
+        btgSetLane(&s.relativeVelocity, k, btgRowVelocity(jn, a0, b0));
+        /* A spring of omega relative to the point's effective mass m sinks by
+         * lambda / (m h omega^2) under the impulse lambda it carries a substep: a 1,000 kg box
+         * on a 1 kg one 28 cm at 30 Hz, the bottom of a tower of 30 2 cm. Stiffened r times
+         * (stiffness and damping alike) it sinks r times less: r is set once a step from the
+         * load the point carried last step (its warm start), so that it sinks at most maxSag
+         * (within the step it stays put: a stiffness following the substeps' impulses rings). */
+        float m = btgLane(s.normalMass, k), load = btgLane(s.normalImpulse, k);
+        if (p.maxSag > 0.0f && m > 0.0f) {
+            float r = load / (m * p.h * omega2 * p.maxSag);
+            btgSetLane(&s.stiffening, k, r > 1.0f ? r : 1.0f);
+        }
+    }
+    return s;
+}
+
+/* WarmStart: this substep starts from the last one's impulses, each point's three applied as
+ * one impulse vector (the rows' effect is linear in it: one Jacobian instead of three). */
+static inline void btgSoftWarmStart(BtgSoftContact* s, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
+                                    BtgBodyVel* vb)
+{
+    for (int k = 0; k < s->numPoints; ++k) {
+        if (btgLane(s->normalMass, k) == 0.0f) continue;
+        float ln = btgLane(s->normalImpulse, k), l1 = btgLane(s->tangent1Impulse, k), l2 = btgLane(s->tangent2Impulse, k);
+        BtgFloat4 impulse = s->normal * ln + s->tangent1 * l1 + s->tangent2 * l2;
+        btgRowApply(btgPointJacobian(impulse, s->rA[k], s->rB[k], a, b), a, b, va, vb, 1.0f);
+        btgSetLane(&s->totalNormal, k, btgLane(s->totalNormal, k) + ln);
+        btgSetLane(&s->total1, k, btgLane(s->total1, k) + l1);
+        btgSetLane(&s->total2, k, btgLane(s->total2, k) + l2);
+    }
+}
+
+/* Point k's separation now: its base plus how far the anchors moved apart along the normal
+ * (the normal held fixed over the step). dp/dq: the bodies' deltas (BTG_SOFT_DELTA_*). */
+static inline float btgSoftSeparation(const BtgSoftContact* s, int k, BtgFloat4 dpA, BtgFloat4 dqA, BtgFloat4 dpB,
+                                      BtgFloat4 dqB)
+{
+    BtgFloat4 pA = btgXyz(dpA) + btgQuatRotate(dqA, s->rA[k]);
+    BtgFloat4 pB = btgXyz(dpB) + btgQuatRotate(dqB, s->rB[k]);
+    return btgLane(s->baseSeparation, k) + btgDot3(pA - pB, s->normal);
+}
+
+/* One friction row of point k along dir: driven to no slip within friction x the point's
+ * normal impulse of this substep. */
+static inline float btgSoftFrictionRow(const BtgSoftContact* s, int k, BtgFloat4 dir, float mass, float impulse,
+                                       BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb)
+{
+    if (mass == 0.0f) return impulse;
+    float lim = s->friction * btgLane(s->normalImpulse, k);
+    BtgSolverRow r = btgMakeSolverRow(btgPointJacobian(dir, s->rA[k], s->rB[k], a, b), mass, 0.0f, -lim, lim, impulse);
+    btgRowSolve(&r, a, b, va, vb);
+    return r.impulse;
+}
+
+/* Solve (useBias 1) or Relax (0): the normal rows, soft against penetration while biased, a
+ * speculative gap closed in one substep either way; then the friction rows (in the relax, and
+ * also in the solve with frictionInSolve). */
+static inline void btgSoftSolve(BtgSoftContact* s, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb,
+                                BtgFloat4 dpA, BtgFloat4 dqA, BtgFloat4 dpB, BtgFloat4 dqB, int useBias, BtgSoftParams p)
+{
+    const BtgSoftness soft = s->fixed ? p.fixed : p.contact;
+    for (int k = 0; k < s->numPoints; ++k) {
+        float mass = btgLane(s->normalMass, k);
+        if (mass == 0.0f) continue;
+        float sep = btgSoftSeparation(s, k, dpA, dqA, dpB, dqB);
+        float old = btgLane(s->normalImpulse, k);
+        float bias = 0.0f, massScale = 1.0f, impulseScale = 0.0f;
+        if (sep > 0.0f) {
+            bias = sep * p.invH;
+        } else if (useBias) {
+            massScale = soft.massScale;
+            impulseScale = soft.impulseScale;
+            float r = btgLane(s->stiffening, k);
+            if (r > 1.0f) {
+                float a2 = r * soft.stiffness;
+                massScale = a2 / (1.0f + a2);
+                impulseScale = 1.0f / (1.0f + a2);
+            }
+            bias = massScale * soft.biasRate * sep;
+            if (bias < -p.pushSpeed) bias = -p.pushSpeed;
+        }
+        BtgJacobian j = btgPointJacobian(s->normal, s->rA[k], s->rB[k], a, b);
+        float vn = btgRowVelocity(j, *va, *vb);
+        float next = old - mass * (massScale * vn + bias) - impulseScale * old;
+        if (!(next > 0.0f)) next = 0.0f;
+        btgSetLane(&s->normalImpulse, k, next);
+        btgSetLane(&s->totalNormal, k, btgLane(s->totalNormal, k) + (next - old));
+        btgRowApply(j, a, b, va, vb, next - old);
+    }
+    if (useBias && !p.frictionInSolve) return;
+    for (int k = 0; k < s->numPoints; ++k) {
+        if (btgLane(s->normalMass, k) == 0.0f) continue;
+        float o1 = btgLane(s->tangent1Impulse, k), o2 = btgLane(s->tangent2Impulse, k);
+        float n1 = btgSoftFrictionRow(s, k, s->tangent1, btgLane(s->tangent1Mass, k), o1, a, b, va, vb);
+        float n2 = btgSoftFrictionRow(s, k, s->tangent2, btgLane(s->tangent2Mass, k), o2, a, b, va, vb);
+        btgSetLane(&s->tangent1Impulse, k, n1);
+        btgSetLane(&s->tangent2Impulse, k, n2);
+        btgSetLane(&s->total1, k, btgLane(s->total1, k) + (n1 - o1));
+        btgSetLane(&s->total2, k, btgLane(s->total2, k) + (n2 - o2));
+    }
+}
+
+/* ApplyRestitution, after the substeps: a point that approached faster than the threshold and
+ * took an impulse leaves at restitution x its approach speed. */
+static inline void btgSoftRestitution(BtgSoftContact* s, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
+                                      BtgBodyVel* vb, BtgSoftParams p)
+{
+    if (s->restitution == 0.0f) return;
+    for (int k = 0; k < s->numPoints; ++k) {
+        float mass = btgLane(s->normalMass, k), rel = btgLane(s->relativeVelocity, k);
+        if (mass == 0.0f || rel > -p.restitutionThreshold || btgLane(s->totalNormal, k) == 0.0f) continue;
+        BtgJacobian j = btgPointJacobian(s->normal, s->rA[k], s->rB[k], a, b);
+        float vn = btgRowVelocity(j, *va, *vb);
+        float old = btgLane(s->normalImpulse, k);
+        float next = old - mass * (vn + s->restitution * rel);
+        if (!(next > 0.0f)) next = 0.0f;
+        btgSetLane(&s->normalImpulse, k, next);
+        btgSetLane(&s->totalNormal, k, btgLane(s->totalNormal, k) + (next - old));
+        btgRowApply(j, a, b, va, vb, next - old);
+    }
+}
+
+/* StoreImpulses into the contact list: the step's totals (what the cache warm-starts the next
+ * step from and the app's manifolds report), friction along the two tangents as directions 1
+ * and 2 (cos 1, sin 0). */
+static inline void btgSoftStore(BTG_GLOBAL BtgContact* contacts, int i, const BtgSoftContact* s)
+{
+    contacts[i].normalImpulse = s->totalNormal;
+    contacts[i].friction1Impulse = s->total1;
+    contacts[i].friction2Impulse = s->total2;
+    contacts[i].tangent1 = s->tangent1;
+    contacts[i].tangent2 = s->tangent2;
+    contacts[i].frictionCos = btgMake4(1.0f, 1.0f, 1.0f, 1.0f);
+    contacts[i].frictionSin = btgZero4();
+}
+
+/* ---- joints (their Bullet rows, built once a step by prepare_joints) ---- */
+
+/* Warm start: the rows' impulses of the last substep (zero at the step's start). */
+static inline void btgSoftJointWarmStart(BTG_CONST_GLOBAL BtgJointRow* rows, int first, int count, BtgSolverBody a,
+                                         BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb)
+{
+    for (int k = 0; k < count; ++k) btgRowApply(rows[first + k].jacobian, a, b, va, vb, rows[first + k].impulse);
+}
+/* One Gauss-Seidel step on each row, its bounds (N s a step) scaled to a substep. The rows'
+ * targets keep their Bullet bias in the relax too: they carry motors and limits as well as the
+ * position error, and Bullet's joints take no split impulse either. */
+static inline void btgSoftJointSolve(BTG_GLOBAL BtgJointRow* rows, int first, int count, BtgSolverBody a,
+                                     BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb, float boundScale)
+{
+    for (int k = 0; k < count; ++k) {
+        BtgJointRow r = rows[first + k];
+        r.lower *= boundScale;
+        r.upper *= boundScale;
+        btgJointRowSolve(&r, a, b, va, vb);
+        rows[first + k].impulse = r.impulse;
+    }
+}
+
+#endif

@@ -1,0 +1,276 @@
+/* solve_soft.cl — Stage: soft step (SolverKind::SoftStep, Box2D v3's solver on the colored
+ * constraint graph; shared/soft_rows.h). Per step: bodies begin (velocities before forces),
+ * contacts prepare; per substep: integrate velocities, warm start, solve (soft, biased),
+ * integrate positions (deltas only), relax (unbiased); then restitution and store. Edge e below
+ * the contact count is contact e, edge contacts + j is joint j.
+ * Launch: soft_color_count / soft_color_fill: one work-item per edge slot, edge indices into
+ * per-color ranges (soft_color_offsets: one work-item); soft_bodies: one per body row;
+ * soft_color_range: a color's range strided over the launch; soft_color_serial: one work-item,
+ * every edge of the last color or higher in index order (the coloring's leftovers);
+ * soft_resident: all of the stage in one launch (resident groups on GPUs, one group for small
+ * scenes on CPUs); soft_transforms (Stage soft_transforms, after the cache is stored): one per
+ * body row.
+ * Reads counters[kEdgeCount, kContactCount, kColorsUsed, kLeftovers], edgeColor, props,
+ * invInertiaWorld, linVel0, angVel0, contacts, joints, jointState, jointRows.
+ * Writes softContacts, softBodies (scratch), linVel, angVel (dynamic rows), contacts (impulses,
+ * tangents), jointRows (impulses: a step's, substep's times substeps), and in soft_transforms
+ * pos, rot and NaN status. */
+#include "shared/types.h"
+#include "shared/math.h"
+#include "shared/soft_rows.h"
+#include "shared/integrate.h"
+#include "shared/counters.h"
+#include "shared/grid_barrier.h"
+
+#define SOFT_ARGS __global BtgContact* contacts, __global BtgSoftContact* softContacts, \
+    __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld, \
+    __global const BtgFloat4* restrict linVel0, __global const BtgFloat4* restrict angVel0, \
+    BTG_SHARED __global BtgFloat4* lin, BTG_SHARED __global BtgFloat4* ang, BTG_SHARED __global BtgFloat4* softBodies, \
+    __global const BtgJoint* restrict joints, __global const BtgJointState* restrict jointState, \
+    __global BtgJointRow* jointRows, BtgSoftParams params
+#define SOFT_PASS contacts, softContacts, props, invInertiaWorld, linVel0, angVel0, lin, ang, softBodies, joints, \
+    jointState, jointRows, params
+
+static BtgSolverBody load_body(__global const BtgBodyProps* restrict props,
+                               __global const BtgFloat4* restrict invInertiaWorld, int i)
+{
+    return btgMakeSolverBody(props[i], invInertiaWorld[3 * i], invInertiaWorld[3 * i + 1], invInertiaWorld[3 * i + 2]);
+}
+
+static int edge_count(__global const uint* restrict counters, int edgeCapacity)
+{
+    return (int)min(counters[BTG_COUNTER_EDGES], (uint)edgeCapacity);
+}
+static int contact_edges(__global const uint* restrict counters, int edgeCapacity, int numJoints)
+{
+    return (int)min(counters[BTG_COUNTER_CONTACTS], (uint)(edgeCapacity - numJoints));
+}
+
+/* A body's velocity as the rows see it, and written back (w of the columns is not the solver's). */
+static BtgBodyVel load_vel(int moving, BTG_SHARED __global BtgFloat4* lin, BTG_SHARED __global BtgFloat4* ang, int i)
+{
+    return btgMakeBodyVel(moving, lin[i], ang[i]);
+}
+static void store_vel(BtgBodyVel v, BTG_SHARED __global BtgFloat4* lin, BTG_SHARED __global BtgFloat4* ang, int i)
+{
+    lin[i] = btgMake4(v.lin.x, v.lin.y, v.lin.z, lin[i].w);
+    ang[i] = btgMake4(v.ang.x, v.ang.y, v.ang.z, ang[i].w);
+}
+
+static void soft_contact(int i, int mode, SOFT_ARGS)
+{
+    if (mode == BTG_SOFT_STORE) {
+        BtgSoftContact s = softContacts[i];
+        btgSoftStore(contacts, i, &s);
+        return;
+    }
+    const int bodyA = contacts[i].bodyA, bodyB = contacts[i].bodyB;
+    BtgSolverBody a = load_body(props, invInertiaWorld, bodyA);
+    BtgSolverBody b = load_body(props, invInertiaWorld, bodyB);
+    if (mode == BTG_SOFT_PREPARE) {
+        BtgBodyProps pa = props[bodyA], pb = props[bodyB];
+        BtgBodyVel a0 = btgMakeBodyVel(a.moving, linVel0[bodyA], angVel0[bodyA]);
+        BtgBodyVel b0 = btgMakeBodyVel(b.moving, linVel0[bodyB], angVel0[bodyB]);
+        softContacts[i] = btgSoftPrepare(contacts[i], a, b, a0, b0, pa.restitution * pb.restitution,
+                                         btgContactSolvable(pa.flags, pb.flags), params);
+        return;
+    }
+    BtgSoftContact s = softContacts[i];
+    BtgBodyVel va = load_vel(a.moving, lin, ang, bodyA), vb = load_vel(b.moving, lin, ang, bodyB);
+    if (mode == BTG_SOFT_WARM_START) {
+        btgSoftWarmStart(&s, a, b, &va, &vb);
+    } else if (mode == BTG_SOFT_RESTITUTION) {
+        btgSoftRestitution(&s, a, b, &va, &vb, params);
+    } else {
+        const int rA = BTG_SOFT_BODY_ROWS * bodyA, rB = BTG_SOFT_BODY_ROWS * bodyB;
+        btgSoftSolve(&s, a, b, &va, &vb, softBodies[rA + BTG_SOFT_DELTA_POS], softBodies[rA + BTG_SOFT_DELTA_ROT],
+                     softBodies[rB + BTG_SOFT_DELTA_POS], softBodies[rB + BTG_SOFT_DELTA_ROT],
+                     mode == BTG_SOFT_SOLVE, params);
+    }
+    if (a.dynamic) store_vel(va, lin, ang, bodyA);
+    if (b.dynamic) store_vel(vb, lin, ang, bodyB);
+    softContacts[i].normalImpulse = s.normalImpulse;
+    softContacts[i].tangent1Impulse = s.tangent1Impulse;
+    softContacts[i].tangent2Impulse = s.tangent2Impulse;
+    softContacts[i].totalNormal = s.totalNormal;
+    softContacts[i].total1 = s.total1;
+    softContacts[i].total2 = s.total2;
+}
+
+static void soft_joint(int j, int mode, SOFT_ARGS)
+{
+    const int rows = jointState[j].numRows;
+    if (rows == 0 || mode == BTG_SOFT_PREPARE || mode == BTG_SOFT_RESTITUTION) return;
+    const BtgJoint joint = joints[j];
+    if (mode == BTG_SOFT_STORE) {
+        for (int k = 0; k < rows; ++k) jointRows[joint.firstRow + k].impulse *= (float)params.substeps;
+        return;
+    }
+    BtgSolverBody a = joint.bodyA >= 0 ? load_body(props, invInertiaWorld, joint.bodyA) : btgFixedJointBody().body;
+    BtgSolverBody b = joint.bodyB >= 0 ? load_body(props, invInertiaWorld, joint.bodyB) : btgFixedJointBody().body;
+    BtgBodyVel va = btgMakeBodyVel(0, btgZero4(), btgZero4()), vb = va;
+    if (joint.bodyA >= 0) va = load_vel(a.moving, lin, ang, joint.bodyA);
+    if (joint.bodyB >= 0) vb = load_vel(b.moving, lin, ang, joint.bodyB);
+    if (mode == BTG_SOFT_WARM_START) btgSoftJointWarmStart(jointRows, joint.firstRow, rows, a, b, &va, &vb);
+    else btgSoftJointSolve(jointRows, joint.firstRow, rows, a, b, &va, &vb, params.jointBoundScale);
+    if (a.dynamic) store_vel(va, lin, ang, joint.bodyA);
+    if (b.dynamic) store_vel(vb, lin, ang, joint.bodyB);
+}
+
+static void soft_edge(int e, int nc, int mode, SOFT_ARGS)
+{
+    if (e < nc) soft_contact(e, mode, SOFT_PASS);
+    else soft_joint(e - nc, mode, SOFT_PASS);
+}
+
+static void soft_body(int i, int mode, SOFT_ARGS)
+{
+    const uint flags = props[i].flags;
+    BtgFloat4 rows[BTG_SOFT_BODY_ROWS];
+    for (int r = 0; r < BTG_SOFT_BODY_ROWS; ++r) rows[r] = softBodies[BTG_SOFT_BODY_ROWS * i + r];
+    BtgFloat4 v = lin[i], w = ang[i];
+    if (mode == BTG_SOFT_BODY_BEGIN) btgSoftBodyBegin(flags, &v, &w, linVel0[i], angVel0[i], rows, params.substeps);
+    else if (mode == BTG_SOFT_BODY_VELOCITY) btgSoftBodyVelocity(flags, &v, &w, rows);
+    else btgSoftBodyPosition(flags, v, w, rows, params.h);
+    for (int r = 0; r < BTG_SOFT_BODY_ROWS; ++r) softBodies[BTG_SOFT_BODY_ROWS * i + r] = rows[r];
+    if (btgIsSolverDynamic(flags)) {
+        lin[i] = v;
+        ang[i] = w;
+    }
+}
+
+/* One list of color ranges over every edge (contacts and joints alike): count per color,
+ * offsets, fill. Within a range the order is the atomics', which does not matter: edges of one
+ * color share no dynamic body. */
+__kernel void soft_color_count(__global const int* restrict edgeColor, __global const uint* restrict counters,
+                               int edgeCapacity, __global uint* colorCount, int numColors)
+{
+    int i = (int)get_global_id(0);
+    if (i >= edge_count(counters, edgeCapacity)) return;
+    int c = edgeColor[i];
+    if (c >= 0 && c < numColors - 1) atomic_inc(&colorCount[c]);
+}
+
+__kernel void soft_color_offsets(__global uint* colorCount, __global uint* colorStart, int numColors)
+{
+    if (get_global_id(0) != 0) return;
+    uint sum = 0u;
+    for (int c = 0; c < numColors; ++c) {
+        colorStart[c] = sum;
+        sum += c < numColors - 1 ? colorCount[c] : 0u;
+        colorCount[c] = 0u; /* the fill cursor */
+    }
+    colorStart[numColors] = sum;
+}
+
+__kernel void soft_color_fill(__global const int* restrict edgeColor, __global const uint* restrict counters,
+                              int edgeCapacity, __global const uint* restrict colorStart, __global uint* colorCursor,
+                              __global int* colorOrder, int numColors)
+{
+    int i = (int)get_global_id(0);
+    if (i >= edge_count(counters, edgeCapacity)) return;
+    int c = edgeColor[i];
+    if (c >= 0 && c < numColors - 1) colorOrder[colorStart[c] + atomic_inc(&colorCursor[c])] = i;
+}
+
+__kernel void soft_bodies(int n, int mode, SOFT_ARGS)
+{
+    int i = (int)get_global_id(0);
+    if (i < n) soft_body(i, mode, SOFT_PASS);
+}
+
+__kernel void soft_color_range(__global const uint* restrict colorStart, __global const int* restrict colorOrder,
+                               __global const uint* restrict counters, int edgeCapacity, int numJoints, int color,
+                               int mode, SOFT_ARGS)
+{
+    const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
+    const int nc = contact_edges(counters, edgeCapacity, numJoints);
+    for (int k = begin + (int)get_global_id(0); k < end; k += (int)get_global_size(0))
+        soft_edge(colorOrder[k], nc, mode, SOFT_PASS);
+}
+
+__kernel void soft_color_serial(__global const int* restrict edgeColor, __global const uint* restrict counters,
+                                int edgeCapacity, int numJoints, int color, int mode, SOFT_ARGS)
+{
+    if (get_global_id(0) != 0) return;
+    if (counters[BTG_COUNTER_LEFTOVERS] == 0u && counters[BTG_COUNTER_COLORS_USED] <= (uint)color) return;
+    const int n = edge_count(counters, edgeCapacity), nc = contact_edges(counters, edgeCapacity, numJoints);
+    for (int i = 0; i < n; ++i)
+        if (edgeColor[i] >= color) soft_edge(i, nc, mode, SOFT_PASS);
+}
+
+/* Every pass of the stage in one launch, a grid barrier where the per-color path has a kernel
+ * boundary; the same arithmetic in the same color order, so the same results bit for bit.
+ * Each edge stays with one work-item for the launch (its soft contact needs no sharing); body
+ * velocities and deltas go through BTG_SHARED pointers. */
+#define SOFT_BARRIER()                                                                                    \
+    if (btgGridBarrier(bar, spinLimit, &quit)) {                                                          \
+        if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);          \
+        return;                                                                                           \
+    }
+
+__kernel void soft_resident(__global const int* restrict edgeColor, __global uint* counters, int edgeCapacity,
+                            __global const uint* restrict colorStart, __global const int* restrict colorOrder,
+                            volatile __global BtgGridBarrier* bar, int numColors, int numJoints, int numBodies,
+                            int spinLimit, SOFT_ARGS)
+{
+    __local int quit;
+    if (counters[BTG_COUNTER_STATUS] & BTG_STATUS_GRID_BARRIER_TIMEOUT) return;
+    const int gid = (int)get_global_id(0), gsize = (int)get_global_size(0);
+    const int n = edge_count(counters, edgeCapacity), nc = contact_edges(counters, edgeCapacity, numJoints);
+    const int last = numColors - 1;
+    const int walkLast = counters[BTG_COUNTER_LEFTOVERS] != 0u || counters[BTG_COUNTER_COLORS_USED] > (uint)last;
+    /* pass list: prepare; per substep velocity, warm start, solve, position, relax; restitution; store */
+    const int passes = 2 + 5 * params.substeps + 2;
+    for (int pass = 0; pass < passes; ++pass) {
+        int bodyMode = -1, mode = -1;
+        if (pass == 0) bodyMode = BTG_SOFT_BODY_BEGIN;
+        else if (pass == 1) mode = BTG_SOFT_PREPARE;
+        else if (pass == passes - 1) mode = BTG_SOFT_STORE;
+        else if (pass == passes - 2) mode = BTG_SOFT_RESTITUTION;
+        else {
+            const int q = (pass - 2) % 5;
+            if (q == 0) bodyMode = BTG_SOFT_BODY_VELOCITY;
+            else if (q == 1) mode = BTG_SOFT_WARM_START;
+            else if (q == 2) mode = BTG_SOFT_SOLVE;
+            else if (q == 3) bodyMode = BTG_SOFT_BODY_POSITION;
+            else mode = BTG_SOFT_RELAX;
+        }
+        if (bodyMode >= 0) {
+            for (int i = gid; i < numBodies; i += gsize) soft_body(i, bodyMode, SOFT_PASS);
+            SOFT_BARRIER();
+            continue;
+        }
+        /* prepare and store touch each edge alone: no barrier between colors */
+        const int independent = mode == BTG_SOFT_PREPARE || mode == BTG_SOFT_STORE;
+        for (int color = 0; color < last; ++color) {
+            const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
+            for (int k = begin + gid; k < end; k += gsize) soft_edge(colorOrder[k], nc, mode, SOFT_PASS);
+            if (!independent) SOFT_BARRIER();
+        }
+        if (walkLast && gid == 0)
+            for (int i = 0; i < n; ++i)
+                if (edgeColor[i] >= last) soft_edge(i, nc, mode, SOFT_PASS);
+        SOFT_BARRIER();
+    }
+}
+
+__kernel void soft_transforms(int n, __global const BtgBodyProps* restrict props,
+                              __global const BtgFloat4* restrict softBodies, __global const BtgFloat4* restrict linVel,
+                              __global const BtgFloat4* restrict angVel, __global BtgFloat4* pos, __global BtgFloat4* rot,
+                              __global uint* counters)
+{
+    int i = (int)get_global_id(0);
+    if (i >= n) return;
+    if (!btgIsMoving(props[i].flags)) return;
+    BtgFloat4 rows[BTG_SOFT_BODY_ROWS];
+    for (int r = 0; r < BTG_SOFT_BODY_ROWS; ++r) rows[r] = softBodies[BTG_SOFT_BODY_ROWS * i + r];
+    BtgFloat4 x = pos[i], q = rot[i];
+    btgSoftBodyFinish(&x, &q, rows);
+    if (!btgIsFinite4(x) || !btgIsFinite4(q) || !btgIsFinite4(linVel[i]) || !btgIsFinite4(angVel[i])) {
+        atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_NAN);
+        atomic_min(&counters[BTG_COUNTER_NAN_BODY], (uint)i);
+    }
+    pos[i] = x;
+    rot[i] = q;
+}

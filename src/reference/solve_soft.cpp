@@ -1,0 +1,102 @@
+// solve_soft.cpp — CPU reference of the soft step: the device's passes in its order (bodies,
+// then per color the edges of that color in index order; the last color takes the leftovers),
+// on contacts only (joints are compared through scenes).
+#include "reference/solve_soft.h"
+
+#include "shared/integrate.h"
+
+namespace btgpu::ref {
+
+std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::vector<int>& colors,
+                                 ContactBodies& bodies, const BtgSoftParams& params, int numColors)
+{
+    if (numColors < 1) numColors = 1;
+    const size_t n = bodies.props.size();
+    std::vector<BtgFloat4> rows(BTG_SOFT_BODY_ROWS * n);
+    std::vector<BtgSoftContact> soft(contacts.size());
+    auto body = [&](int i) {
+        return btgMakeSolverBody(bodies.props[i], bodies.invInertiaWorld[3 * i], bodies.invInertiaWorld[3 * i + 1],
+                                 bodies.invInertiaWorld[3 * i + 2]);
+    };
+    auto bodyPass = [&](int mode) {
+        for (size_t i = 0; i < n; ++i) {
+            const uint flags = bodies.props[i].flags;
+            BtgFloat4* r = rows.data() + BTG_SOFT_BODY_ROWS * i;
+            BtgFloat4 v = bodies.linVel[i], w = bodies.angVel[i];
+            if (mode == BTG_SOFT_BODY_BEGIN)
+                btgSoftBodyBegin(flags, &v, &w, bodies.linVel0[i], bodies.angVel0[i], r, params.substeps);
+            else if (mode == BTG_SOFT_BODY_VELOCITY)
+                btgSoftBodyVelocity(flags, &v, &w, r);
+            else
+                btgSoftBodyPosition(flags, v, w, r, params.h);
+            if (btgIsSolverDynamic(flags)) {
+                bodies.linVel[i] = v;
+                bodies.angVel[i] = w;
+            }
+        }
+    };
+    auto edge = [&](size_t e, int mode) {
+        if (mode == BTG_SOFT_STORE) {
+            btgSoftStore(contacts.data(), int(e), &soft[e]);
+            return;
+        }
+        const int ia = contacts[e].bodyA, ib = contacts[e].bodyB;
+        BtgSolverBody a = body(ia), b = body(ib);
+        if (mode == BTG_SOFT_PREPARE) {
+            const BtgBodyProps& pa = bodies.props[ia];
+            const BtgBodyProps& pb = bodies.props[ib];
+            soft[e] = btgSoftPrepare(contacts[e], a, b, btgMakeBodyVel(a.moving, bodies.linVel0[ia], bodies.angVel0[ia]),
+                                     btgMakeBodyVel(b.moving, bodies.linVel0[ib], bodies.angVel0[ib]),
+                                     pa.restitution * pb.restitution, btgContactSolvable(pa.flags, pb.flags), params);
+            return;
+        }
+        BtgBodyVel va = btgMakeBodyVel(a.moving, bodies.linVel[ia], bodies.angVel[ia]);
+        BtgBodyVel vb = btgMakeBodyVel(b.moving, bodies.linVel[ib], bodies.angVel[ib]);
+        if (mode == BTG_SOFT_WARM_START) {
+            btgSoftWarmStart(&soft[e], a, b, &va, &vb);
+        } else if (mode == BTG_SOFT_RESTITUTION) {
+            btgSoftRestitution(&soft[e], a, b, &va, &vb, params);
+        } else {
+            const BtgFloat4* ra = rows.data() + BTG_SOFT_BODY_ROWS * ia;
+            const BtgFloat4* rb = rows.data() + BTG_SOFT_BODY_ROWS * ib;
+            btgSoftSolve(&soft[e], a, b, &va, &vb, ra[BTG_SOFT_DELTA_POS], ra[BTG_SOFT_DELTA_ROT],
+                         rb[BTG_SOFT_DELTA_POS], rb[BTG_SOFT_DELTA_ROT], mode == BTG_SOFT_SOLVE, params);
+        }
+        if (a.dynamic) {
+            bodies.linVel[ia] = btgMake4(va.lin.x, va.lin.y, va.lin.z, bodies.linVel[ia].w);
+            bodies.angVel[ia] = btgMake4(va.ang.x, va.ang.y, va.ang.z, bodies.angVel[ia].w);
+        }
+        if (b.dynamic) {
+            bodies.linVel[ib] = btgMake4(vb.lin.x, vb.lin.y, vb.lin.z, bodies.linVel[ib].w);
+            bodies.angVel[ib] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, bodies.angVel[ib].w);
+        }
+    };
+    auto edgePass = [&](int mode) {
+        for (int color = 0; color < numColors; ++color)
+            for (size_t e = 0; e < contacts.size(); ++e) {
+                const bool last = color == numColors - 1;
+                if (last ? colors[e] < color : colors[e] != color) continue;
+                edge(e, mode);
+            }
+    };
+    bodyPass(BTG_SOFT_BODY_BEGIN);
+    edgePass(BTG_SOFT_PREPARE);
+    for (int s = 0; s < params.substeps; ++s) {
+        bodyPass(BTG_SOFT_BODY_VELOCITY);
+        edgePass(BTG_SOFT_WARM_START);
+        edgePass(BTG_SOFT_SOLVE);
+        bodyPass(BTG_SOFT_BODY_POSITION);
+        edgePass(BTG_SOFT_RELAX);
+    }
+    edgePass(BTG_SOFT_RESTITUTION);
+    edgePass(BTG_SOFT_STORE);
+    return rows;
+}
+
+void softTransforms(ContactBodies& bodies, const std::vector<BtgFloat4>& rows)
+{
+    for (size_t i = 0; i < bodies.props.size(); ++i)
+        if (btgIsMoving(bodies.props[i].flags)) btgSoftBodyFinish(&bodies.pos[i], &bodies.rot[i], &rows[BTG_SOFT_BODY_ROWS * i]);
+}
+
+}  // namespace btgpu::ref

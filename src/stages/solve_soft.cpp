@@ -1,0 +1,145 @@
+// solve_soft.cpp — host launcher of the soft step: edges into per-color ranges, then either
+// every pass in one launch (resident groups on a GPU, one group for small scenes on a CPU) or
+// per pass and color one launch (body passes one launch each), the last color serially.
+#include "stages/solve_soft.h"
+
+#include "cl/program.h"
+#include "stages/resident.h"
+
+#include <algorithm>
+
+namespace btgpu {
+
+namespace {
+// As solve_constraints: up to this many contacts a CPU device takes the whole stage in one
+// launch on one work-group.
+constexpr int kOneGroupMaxContacts = 4096;
+constexpr int kMaxSubsteps = 256;
+}  // namespace
+
+int softSubsteps(const SoftStepConfig& c, int iterations)
+{
+    return std::clamp(c.substeps > 0 ? c.substeps : iterations, 1, kMaxSubsteps);
+}
+
+BtgSoftParams makeSoftParams(const SoftStepConfig& c, const BtgStepParams& params, int iterations)
+{
+    BtgSoftParams p{};
+    p.substeps = softSubsteps(c, iterations);
+    p.h = params.dt / float(p.substeps);
+    p.invH = p.h > 0.0f ? 1.0f / p.h : 0.0f;
+    // Box2D caps the spring at an eighth of the substep rate: stiffer than that and one substep
+    // cannot follow it.
+    const float hertz = std::min(std::max(c.contactHertz, 0.0f), 0.125f * p.invH);
+    p.contact = btgMakeSoftness(hertz, c.dampingRatio, p.h);
+    p.fixed = btgMakeSoftness(2.0f * hertz, c.dampingRatio, p.h);
+    p.pushSpeed = c.pushSpeed;
+    p.restitutionThreshold = params.restitutionThreshold;
+    p.warmScale = params.warmstartFactor > 0.0f ? 1.0f / (float(p.substeps) * params.warmstartFactor) : 0.0f;
+    p.jointBoundScale = 1.0f / float(p.substeps);
+    p.frictionInSolve = c.frictionInSolve ? 1 : 0;
+    p.maxSag = std::max(c.maxSag, 0.0f);
+    const float omega = 2.0f * 3.14159265359f * hertz;
+    p.omega2Contact = omega * omega;
+    p.omega2Fixed = 4.0f * omega * omega;
+    return p;
+}
+
+void solveSoft(DeviceWorld& w, const BtgSoftParams& params, int numColors)
+{
+    cl::Context& ctx = w.ctx;
+    const size_t slots = std::min({w.edgeCapacity, w.edges.capacity(), w.edgeColor.capacity()});
+    const int numBodies = std::max(w.numBodies, 0);
+    if (numBodies == 0) return;
+    const int edgeCapacity = int(slots);
+    numColors = std::max(numColors, 1);
+    cl::Program& prog = ctx.program("solve_soft");
+    SolverScratch& sc = w.solverScratch;
+    sc.softContacts.reserve(ctx, std::max<size_t>(slots, 1));
+    sc.softBodies.reserve(ctx, size_t(BTG_SOFT_BODY_ROWS) * size_t(numBodies));
+    // Bound buffers even without contacts or joints.
+    w.contacts.reserve(ctx, 1);
+    w.joints.reserve(ctx, 1);
+    w.jointState.reserve(ctx, 1);
+    w.jointRows.reserve(ctx, 1);
+    auto soft = [&](cl::Launch& l) -> cl::Launch& {
+        return l.arg(w.contacts).arg(sc.softContacts).arg(w.props).arg(w.invInertiaWorld).arg(w.linVel0)
+            .arg(w.angVel0).arg(w.linVel).arg(w.angVel).arg(sc.softBodies).arg(w.joints).arg(w.jointState)
+            .arg(w.jointRows).arg(params);
+    };
+    cl_kernel bodies = prog.kernel("soft_bodies");
+    auto bodyPass = [&](int mode) {
+        cl::Launch l(ctx, bodies, &w.profiler);
+        l.arg(numBodies).arg(mode);
+        soft(l).run(size_t(numBodies));
+    };
+    if (slots == 0) {
+        // Nothing to solve yet (no edge slots): the bodies still take their substeps.
+        bodyPass(BTG_SOFT_BODY_BEGIN);
+        for (int s = 0; s < params.substeps; ++s) {
+            bodyPass(BTG_SOFT_BODY_VELOCITY);
+            bodyPass(BTG_SOFT_BODY_POSITION);
+        }
+        return;
+    }
+    sc.colorCount.reserve(ctx, size_t(numColors) + 1);
+    sc.colorStart.reserve(ctx, size_t(numColors) + 1);
+    sc.colorOrder.reserve(ctx, slots);
+    sc.colorCount.zero(ctx, size_t(numColors) + 1);
+    const int numJoints = w.numJoints;
+    cl::Launch(ctx, prog.kernel("soft_color_count"), &w.profiler).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity)
+        .arg(sc.colorCount).arg(numColors).run(slots);
+    cl::Launch(ctx, prog.kernel("soft_color_offsets"), &w.profiler).arg(sc.colorCount).arg(sc.colorStart)
+        .arg(numColors).run(1, 1);
+    cl::Launch(ctx, prog.kernel("soft_color_fill"), &w.profiler).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity)
+        .arg(sc.colorStart).arg(sc.colorCount).arg(sc.colorOrder).arg(numColors).run(slots);
+    const bool resident = useResident(w);
+    if (resident || w.lastContactCount <= kOneGroupMaxContacts) {
+        cl_kernel k = prog.kernel("soft_resident");
+        const size_t group = std::min<size_t>(256, cl::kernelGroupLimit(ctx, k));
+        const size_t groups = resident ? std::max<cl_uint>(ctx.device().computeUnits, 1) : 1;
+        cl::Launch l(ctx, k, &w.profiler);
+        l.arg(w.edgeColor).arg(w.counters).arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorOrder).arg(gridBarrier(w))
+            .arg(numColors).arg(numJoints).arg(numBodies).arg(kGridBarrierSpins);
+        soft(l).run(groups * group, group);
+        return;
+    }
+    const size_t rangeItems = std::min(slots, size_t(std::max<cl_uint>(ctx.device().computeUnits, 1)) * 256);
+    cl_kernel range = prog.kernel("soft_color_range"), serial = prog.kernel("soft_color_serial");
+    auto edgePass = [&](int mode) {
+        for (int color = 0; color < numColors; ++color) {
+            if (color == numColors - 1) {
+                cl::Launch l(ctx, serial, &w.profiler);
+                l.arg(w.edgeColor).arg(w.counters).arg(edgeCapacity).arg(numJoints).arg(color).arg(mode);
+                soft(l).run(1, 1);
+            } else {
+                cl::Launch l(ctx, range, &w.profiler);
+                l.arg(sc.colorStart).arg(sc.colorOrder).arg(w.counters).arg(edgeCapacity).arg(numJoints).arg(color)
+                    .arg(mode);
+                soft(l).run(rangeItems, 64);
+            }
+        }
+    };
+    bodyPass(BTG_SOFT_BODY_BEGIN);
+    edgePass(BTG_SOFT_PREPARE);
+    for (int s = 0; s < params.substeps; ++s) {
+        bodyPass(BTG_SOFT_BODY_VELOCITY);
+        edgePass(BTG_SOFT_WARM_START);
+        edgePass(BTG_SOFT_SOLVE);
+        bodyPass(BTG_SOFT_BODY_POSITION);
+        edgePass(BTG_SOFT_RELAX);
+    }
+    edgePass(BTG_SOFT_RESTITUTION);
+    edgePass(BTG_SOFT_STORE);
+}
+
+void softTransforms(DeviceWorld& w)
+{
+    const int n = std::max(w.numBodies, 0);
+    if (n == 0 || w.solverScratch.softBodies.capacity() < size_t(BTG_SOFT_BODY_ROWS) * size_t(n)) return;
+    cl::Program& prog = w.ctx.program("solve_soft");
+    cl::Launch(w.ctx, prog.kernel("soft_transforms"), &w.profiler).arg(n).arg(w.props).arg(w.solverScratch.softBodies)
+        .arg(w.linVel).arg(w.angVel).arg(w.pos).arg(w.rot).arg(w.counters).run(size_t(n));
+}
+
+}  // namespace btgpu

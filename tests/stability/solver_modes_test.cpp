@@ -1,0 +1,210 @@
+// solver_modes_test.cpp — issue 13's targets on stock Bullet and on btgpu's two solver modes
+// (bullet: SolverKind::BatchedPgs; soft: SolverKind::SoftStep), deactivation off, Bullet's
+// defaults (10 iterations, dt 1/60, one step a frame): mass ratios and a heavy plank (10 s,
+// penetration <= 1% of the smallest box, no box farther than 5 cm from its start), exact towers
+// and pyramids (no box farther than 5 cm in 10 s); and jointed scenes in the soft mode (a
+// hanging chain holds its links together, ragdolls land and settle). Each row is recorded for
+// the three engines; the soft mode's cases assert what it earns, and both btgpu modes must stay
+// on the GPU path on every step; the soft step is deterministic. BTGPU_STABILITY_SOFT_SUBSTEPS=N runs the soft mode with N
+// substeps instead of m_numIterations (to measure the mapping).
+#include "scenes/joint_scenes.h"
+#include "stability/stability.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
+using namespace btgpu;
+using namespace btgpu::stability;
+namespace st = btgpu::scenes::stability;
+
+namespace {
+
+Config modeConfig(SolverKind solver)
+{
+    Config c;
+    c.solver = solver;
+    // The measurement of the substep mapping (README's table): any other count than the default
+    // m_numIterations. Recorded, not asserted differently.
+    if (const char* n = std::getenv("BTGPU_STABILITY_SOFT_SUBSTEPS")) c.softStep.substeps = std::atoi(n);
+    return c;
+}
+
+// The issue's criteria for resting unit boxes: 10 s without sleeping, penetration within 1% of
+// the smallest box (whole run), no dynamic body farther than 5 cm from its start.
+Criteria target(double smallest = 1)
+{
+    Criteria c;
+    c.seconds = 10;
+    c.noSleep = true;
+    c.penetration = tol::kPenetrationFraction * smallest;
+    c.measureFrom = 0;
+    c.move = tol::kTopDriftFraction * smallest;
+    return c;
+}
+
+enum class Earned { Yes, No };
+
+bool has(const std::vector<std::string>& stages, const std::string& name)
+{
+    return std::find(stages.begin(), stages.end(), name) != stages.end();
+}
+
+// Runs the case on the three engines and records each; `soft` says whether the soft mode is
+// asserted to pass (a case it does not earn is recorded, not failed).
+void runModes(const std::string& name, const Builder& make, const Criteria& c, Earned soft)
+{
+    const Outcome stock = run(make, WorldKind::Stock, c);
+    const Outcome bullet = run(make, WorldKind::Gpu, c, modeConfig(SolverKind::BatchedPgs));
+    const Outcome softStep = run(make, WorldKind::Gpu, c, modeConfig(SolverKind::SoftStep));
+    recordAs(name, "stock", stock, figure(stock));
+    recordAs(name, "btgpu bullet", bullet, figure(bullet));
+    recordAs(name, "btgpu soft", softStep, figure(softStep));
+    EXPECT_TRUE(bullet.gpuEveryStep) << name << ": bullet mode left the GPU path";
+    EXPECT_TRUE(softStep.gpuEveryStep) << name << ": soft mode left the GPU path";
+    EXPECT_TRUE(has(bullet.stages, "solve_constraints") && !has(bullet.stages, "solve_soft")) << name;
+    EXPECT_TRUE(has(softStep.stages, "solve_soft") && has(softStep.stages, "soft_transforms") &&
+                !has(softStep.stages, "solve_constraints") && !has(softStep.stages, "integrate_transforms"))
+        << name;
+    // What the default mapping (substeps = m_numIterations) earns; another count is measured only.
+    if (soft == Earned::Yes && !std::getenv("BTGPU_STABILITY_SOFT_SUBSTEPS"))
+        EXPECT_TRUE(softStep.pass) << name << ", soft mode: " << softStep.why;
+}
+
+}  // namespace
+
+TEST(SolverModes, MassRatioTen)
+{
+    runModes("mass ratio 10:1, 10 s", [](WorldKind k, const Config& c) { return st::massRatio(k, c, 10); }, target(),
+             Earned::Yes);
+}
+TEST(SolverModes, MassRatioHundred)
+{
+    runModes("mass ratio 100:1, 10 s", [](WorldKind k, const Config& c) { return st::massRatio(k, c, 100); }, target(),
+             Earned::Yes);
+}
+TEST(SolverModes, MassRatioThousand)
+{
+    runModes("mass ratio 1000:1, 10 s", [](WorldKind k, const Config& c) { return st::massRatio(k, c, 1000); },
+             target(), Earned::No);
+}
+TEST(SolverModes, HeavyPlank)
+{
+    // 10 substeps: 11 mm into the boxes, the plank rocking 6 cm; 20 substeps hold it.
+    runModes("plank 400 kg on 2 boxes, 10 s", st::heavyPlank, target(), Earned::No);
+}
+// What more substeps earn (SoftStepConfig::substeps; the app's steps unchanged).
+void runSoftWithSubsteps(const std::string& name, const Builder& make, int substeps)
+{
+    Config config = modeConfig(SolverKind::SoftStep);
+    config.softStep.substeps = substeps;
+    const Outcome soft = run(make, WorldKind::Gpu, target(), config);
+    recordAs(name, "btgpu soft, " + std::to_string(substeps) + " substeps", soft, figure(soft));
+    EXPECT_TRUE(soft.gpuEveryStep) << name;
+    EXPECT_TRUE(soft.pass) << name << ", soft mode with " << substeps << " substeps: " << soft.why;
+}
+
+TEST(SolverModes, HeavyPlankWithTwentySubsteps)
+{
+    runSoftWithSubsteps("plank 400 kg on 2 boxes, 10 s", st::heavyPlank, 20);
+}
+TEST(SolverModes, MassRatioThousandWithFortySubsteps)
+{
+    runSoftWithSubsteps("mass ratio 1000:1, 10 s", [](WorldKind k, const Config& c) { return st::massRatio(k, c, 1000); },
+                        40);
+}
+
+TEST(SolverModes, TowerTen)
+{
+    runModes("tower 10 exact, 10 s", [](WorldKind k, const Config& c) { return st::tower(k, c, 10); }, target(),
+             Earned::Yes);
+}
+TEST(SolverModes, TowerTwenty)
+{
+    runModes("tower 20 exact, 10 s", [](WorldKind k, const Config& c) { return st::tower(k, c, 20); }, target(),
+             Earned::Yes);
+}
+TEST(SolverModes, TowerThirty)
+{
+    runModes("tower 30 exact, 10 s", [](WorldKind k, const Config& c) { return st::tower(k, c, 30); }, target(),
+             Earned::Yes);
+}
+TEST(SolverModes, PyramidTwenty)
+{
+    runModes("pyramid base 20, 10 s", [](WorldKind k, const Config& c) { return st::pyramid(k, c, 20); }, target(),
+             Earned::Yes);
+}
+TEST(SolverModes, PyramidFifty)
+{
+    if (!fullMode()) GTEST_SKIP() << "BTGPU_STABILITY_FULL=1 runs it";
+    runModes("pyramid base 50, 10 s", [](WorldKind k, const Config& c) { return st::pyramid(k, c, 50); }, target(),
+             Earned::No);
+}
+
+// Joints in the soft mode: a hanging chain of 20 point-to-point links, 5 s; its worst stretch
+// (distance between neighbours less the pitch) within 1 cm and under half the bullet mode's
+// (Bullet's 10 iterations leave a chain of 20 stretched by centimetres; stock is measured alike).
+TEST(SolverModes, ChainHoldsInSoftMode)
+{
+    double stretch[3] = {0, 0, 0};
+    const char* names[3] = {"stock", "btgpu bullet", "btgpu soft"};
+    for (int m = 0; m < 3; ++m) {
+        const WorldKind kind = m == 0 ? WorldKind::Stock : WorldKind::Gpu;
+        scenes::ScenePtr s =
+            scenes::chain(kind, modeConfig(m == 2 ? SolverKind::SoftStep : SolverKind::BatchedPgs), 20);
+        bool gpu = true;
+        for (int step = 0; step < 300; ++step) {
+            s->step(btScalar(1) / 60, 1, btScalar(1) / 60);
+            if (kind == WorldKind::Gpu) gpu = gpu && s->report()->gpuPath;
+        }
+        ASSERT_TRUE(scenes::allFinite(*s)) << names[m];
+        EXPECT_TRUE(gpu) << names[m];
+        for (int i = 2; i + 1 < int(s->bodies().size()); ++i) {
+            const double d =
+                (s->body(i + 1)->getWorldTransform().getOrigin() - s->body(i)->getWorldTransform().getOrigin()).length();
+            stretch[m] = std::max(stretch[m], std::fabs(d - 0.2));
+        }
+        RecordProperty(std::string(names[m]) + "_stretch_m", std::to_string(stretch[m]));
+        std::printf("[ chain ] %-12s worst link stretch %.3g mm\n", names[m], stretch[m] * 1e3);
+    }
+    EXPECT_LT(stretch[2], 0.01);
+    EXPECT_LT(stretch[2], 0.5 * stretch[1]);
+}
+
+// Four ragdolls (hinges and cone-twists) dropped on the ground in the soft mode: finite, speeds
+// within the fall's bound, on the GPU path every step, and nearly at rest after 5 s
+// (KE/M below 1e-3 J/kg; the bullet mode is recorded beside it).
+TEST(SolverModes, RagdollsLandInSoftMode)
+{
+    Criteria c;
+    c.seconds = 5;
+    const auto make = [](WorldKind k, const Config& cf) { return scenes::ragdolls(k, cf, 4); };
+    const Outcome stock = run(make, WorldKind::Stock, c);
+    const Outcome bullet = run(make, WorldKind::Gpu, c, modeConfig(SolverKind::BatchedPgs));
+    const Outcome soft = run(make, WorldKind::Gpu, c, modeConfig(SolverKind::SoftStep));
+    recordAs("4 ragdolls, 5 s", "stock", stock, figure(stock));
+    recordAs("4 ragdolls, 5 s", "btgpu bullet", bullet, figure(bullet));
+    recordAs("4 ragdolls, 5 s", "btgpu soft", soft, figure(soft));
+    EXPECT_TRUE(soft.gpuEveryStep);
+    EXPECT_TRUE(soft.pass) << soft.why;
+    EXPECT_LT(soft.finalKePerMass, 1e-3);
+}
+
+// Same scene, device and binary: the soft step's states are bitwise the same, step by step (two
+// worlds of the pyramid of 55 boxes side by side, 120 steps).
+TEST(SolverModes, SoftStepIsDeterministic)
+{
+    const auto make = [] { return st::pyramid(WorldKind::Gpu, modeConfig(SolverKind::SoftStep), 10); };
+    scenes::ScenePtr a = make(), b = make();
+    for (int step = 0; step < 120; ++step) {
+        a->step(btScalar(1) / 60, 1, btScalar(1) / 60);
+        b->step(btScalar(1) / 60, 1, btScalar(1) / 60);
+        ASSERT_TRUE(a->report()->gpuPath && b->report()->gpuPath);
+        for (std::size_t i = 0; i < a->bodies().size(); ++i) {
+            const btTransform& ta = a->bodies()[i]->getWorldTransform();
+            const btTransform& tb = b->bodies()[i]->getWorldTransform();
+            ASSERT_EQ(0, std::memcmp(&ta, &tb, sizeof(btTransform))) << "body " << i << ", step " << step;
+        }
+    }
+}

@@ -1,0 +1,271 @@
+// solve_soft_test.cpp — the soft step (SolverKind::SoftStep): velocities, impulses and poses
+// within tolerance of the reference over the contact chain (warm-started, both launch shapes),
+// bitwise repeatable, and physics: a resting box's step impulses sum to m g dt and it does not
+// move; a 100 kg box on a 1 kg box sinks less than 1% of the box in 10 s of steps; without
+// contacts a body falls as the substeps integrate it.
+#include "contact_fixture.h"
+#include "reference/solve_soft.h"
+#include "stages/color_constraints.h"
+#include "stages/contact_cache.h"
+#include "stages/prepare_contacts.h"
+#include "stages/solve_soft.h"
+#include "world/plan.h"
+#include "test_device.h"
+#include "tolerances.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <gtest/gtest.h>
+
+using namespace btgpu;
+
+namespace {
+
+const float kG = 9.81f;
+const int kIterations = 10;
+
+BtgSoftParams softParams(const BtgStepParams& p, int substeps = 0, float maxSag = SoftStepConfig{}.maxSag)
+{
+    SoftStepConfig c;
+    c.substeps = substeps;
+    c.maxSag = maxSag;
+    return makeSoftParams(c, p, kIterations);
+}
+
+struct Result {
+    ref::ContactBodies bodies;
+    std::vector<BtgContact> contacts;
+    uint status = 0;  // counters[kStatus] after the stage
+};
+
+// contacts -> prepare -> batching -> soft step -> poses on the device; prev: last step's contacts.
+Result runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms, const std::vector<BtgContact>& prev,
+                 const BtgStepParams& p, const BtgSoftParams& sp, int maxColors, bool fused,
+                 DeviceWorld::Resident resident = DeviceWorld::Resident::Auto)
+{
+    DeviceWorld w(test::context());
+    w.resident = resident;
+    w.lastContactCount = fused ? 0 : (1 << 30);
+    test::uploadWorld(w, b, ms, uint(ms.size()), prev, ms.size() + 4);
+    buildContacts(w, p);
+    prepareContacts(w, p);
+    w.colorRounds = maxColors - 1;
+    colorConstraints(w, maxColors);
+    solveSoft(w, sp, w.numColors);
+    softTransforms(w);
+    Result r;
+    r.bodies = b;
+    size_t n = b.props.size();
+    r.bodies.linVel = w.linVel.download(w.ctx, n);
+    r.bodies.angVel = w.angVel.download(w.ctx, n);
+    r.bodies.pos = w.pos.download(w.ctx, n);
+    r.bodies.rot = w.rot.download(w.ctx, n);
+    r.contacts = test::downloadContacts(w);
+    r.status = w.counters.download(w.ctx, kNumCounters)[kStatus];
+    return r;
+}
+
+Result runReference(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms, const std::vector<BtgContact>& prev,
+                    const BtgStepParams& p, const BtgSoftParams& sp, int maxColors)
+{
+    Result r;
+    r.bodies = b;
+    r.contacts = ref::buildContacts(ms, int(ms.size()), b, prev, p);
+    std::vector<BtgEdge> edges = ref::prepareContacts(r.contacts, r.bodies, p);
+    std::vector<int> colors = ref::colorConstraints(edges, r.bodies, maxColors);
+    std::vector<BtgFloat4> rows = ref::solveSoft(r.contacts, colors, r.bodies, sp, maxColors);
+    ref::softTransforms(r.bodies, rows);
+    return r;
+}
+
+void expectAlike(const Result& d, const Result& r, float tol)
+{
+    ASSERT_EQ(d.contacts.size(), r.contacts.size());
+    for (size_t i = 0; i < r.bodies.props.size(); ++i) {
+        test::expectNear4(d.bodies.linVel[i], r.bodies.linVel[i], tol, "linVel", i);
+        test::expectNear4(d.bodies.angVel[i], r.bodies.angVel[i], tol, "angVel", i);
+        test::expectNear4(d.bodies.pos[i], r.bodies.pos[i], tol, "pos", i);
+        test::expectNear4(d.bodies.rot[i], r.bodies.rot[i], tol, "rot", i);
+    }
+    for (size_t i = 0; i < r.contacts.size(); ++i) {
+        test::expectNear4(d.contacts[i].normalImpulse, r.contacts[i].normalImpulse, tol, "normalImpulse", i);
+        test::expectNear4(d.contacts[i].friction1Impulse, r.contacts[i].friction1Impulse, tol, "friction1Impulse", i);
+        test::expectNear4(d.contacts[i].friction2Impulse, r.contacts[i].friction2Impulse, tol, "friction2Impulse", i);
+    }
+}
+
+float normalSum(const BtgContact& c)
+{
+    float s = 0.0f;
+    for (int k = 0; k < c.numPoints; ++k) s += btgLane(c.normalImpulse, k);
+    return s;
+}
+
+}  // namespace
+
+TEST(SolveSoft, MatchesReferenceWithWarmStart)
+{
+    test::StackScene s = test::stackScene(6, 4, 9);
+    BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
+    BtgSoftParams sp = softParams(p);
+    ASSERT_EQ(sp.substeps, kIterations);  // substeps 0: m_numIterations of them
+    Result r1 = runReference(s.bodies, s.manifolds, {}, p, sp, 8);
+    Result r = runReference(s.bodies, s.manifolds, r1.contacts, p, sp, 8);
+    // 10 substeps of 3 passes each: a few hundred rounded row updates per body.
+    const float tol = 30 * tol::kStageAbs;
+    for (bool fused : {true, false}) {
+        SCOPED_TRACE(fused ? "one launch" : "per-color launches");
+        Result d1 = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, fused);
+        expectAlike(d1, r1, tol);
+        Result d = runDevice(s.bodies, s.manifolds, d1.contacts, p, sp, 8, fused);
+        expectAlike(d, r, tol);
+        Result again = runDevice(s.bodies, s.manifolds, d1.contacts, p, sp, 8, fused);
+        EXPECT_EQ(0, std::memcmp(again.bodies.linVel.data(), d.bodies.linVel.data(), d.bodies.linVel.size() * sizeof(BtgFloat4)));
+        EXPECT_EQ(0, std::memcmp(again.bodies.pos.data(), d.bodies.pos.data(), d.bodies.pos.size() * sizeof(BtgFloat4)));
+    }
+    // Something was solved: the warm-started step carries the stacks' weight.
+    float total = 0.0f;
+    for (const BtgContact& c : r.contacts) total += normalSum(c);
+    EXPECT_GT(total, 1.0f);
+}
+
+// The three launch shapes compute the same arithmetic in the same color order: per-color
+// launches, one launch on one group, and one launch over resident groups (where the device
+// keeps them resident; a CPU device may time out at the grid barrier, which the pipeline redoes).
+TEST(SolveSoft, LaunchShapesAgreeBitwise)
+{
+    using Resident = DeviceWorld::Resident;
+    test::StackScene s = test::stackScene(6, 4, 9);
+    BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
+    BtgSoftParams sp = softParams(p);
+    Result perColor = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, false, Resident::Off);
+    Result oneGroup = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, true, Resident::Off);
+    Result resident = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, false, Resident::On);
+    EXPECT_EQ(perColor.status & BTG_STATUS_GRID_BARRIER_TIMEOUT, 0u);
+    std::vector<const Result*> others = {&oneGroup};
+    if (resident.status & BTG_STATUS_GRID_BARRIER_TIMEOUT)
+        EXPECT_FALSE(test::context().device().isGpu) << "a GPU must keep one group per compute unit resident";
+    else
+        others.push_back(&resident);
+    const size_t n = perColor.bodies.linVel.size();
+    for (const Result* o : others) {
+        EXPECT_EQ(0, std::memcmp(o->bodies.linVel.data(), perColor.bodies.linVel.data(), n * sizeof(BtgFloat4)));
+        EXPECT_EQ(0, std::memcmp(o->bodies.angVel.data(), perColor.bodies.angVel.data(), n * sizeof(BtgFloat4)));
+        EXPECT_EQ(0, std::memcmp(o->bodies.pos.data(), perColor.bodies.pos.data(), n * sizeof(BtgFloat4)));
+        EXPECT_EQ(0, std::memcmp(o->bodies.rot.data(), perColor.bodies.rot.data(), n * sizeof(BtgFloat4)));
+        ASSERT_EQ(o->contacts.size(), perColor.contacts.size());
+        for (size_t i = 0; i < o->contacts.size(); ++i)
+            EXPECT_EQ(0, std::memcmp(&o->contacts[i].normalImpulse, &perColor.contacts[i].normalImpulse, sizeof(BtgFloat4)));
+    }
+}
+
+// A unit box of 1 kg resting on a static ground, moving down at g dt as after the forces: its
+// step's normal impulses sum to m g dt, and it stays where it is.
+TEST(SolveSoft, RestingBoxCarriesItsWeight)
+{
+    ref::ContactBodies b;
+    test::addBody(b, btgZero4(), 0.0f, btgZero4(), BTG_BODY_STATIC);
+    BtgFloat4 pos = btgMake4(0, 0.5f, 0, 0);
+    int box = test::addBody(b, pos, 1.0f, btgMake4(6, 6, 6, 0), BTG_BODY_DYNAMIC);
+    const float dt = 1.0f / 60.0f;
+    b.linVel[box] = btgMake4(0, -kG * dt, 0, 0);
+    std::vector<BtgManifold> ms = {test::boxOnPlane(box, 0, pos, 0.5f, 0.0f)};
+    BtgStepParams p = test::defaultParams(2);
+    BtgSoftParams sp = softParams(p);
+    std::vector<BtgContact> prev;
+    Result d;
+    for (int step = 0; step < 3; ++step) {
+        d = runDevice(b, ms, prev, p, sp, 4, true);
+        prev = d.contacts;
+    }
+    ASSERT_EQ(d.contacts.size(), 1u);
+    EXPECT_NEAR(normalSum(d.contacts[0]), kG * dt, 0.02f * kG * dt);
+    EXPECT_NEAR(d.bodies.linVel[box].y, 0.0f, 1e-3f);
+    EXPECT_NEAR(d.bodies.pos[box].y, 0.5f, 1e-4f);
+}
+
+// A heavy unit box on a 1 kg unit box on a static ground, stepped 600 times (10 s) through
+// the stage alone (manifolds from the poses); returns the deepest penetration of either contact.
+float sinkOfHeavyOnLight(float ratio, float maxSag)
+{
+    ref::ContactBodies b;
+    test::addBody(b, btgZero4(), 0.0f, btgZero4(), BTG_BODY_STATIC);
+    int light = test::addBody(b, btgMake4(0, 0.5f, 0, 0), 1.0f, btgMake4(6, 6, 6, 0), BTG_BODY_DYNAMIC);
+    int heavy = test::addBody(b, btgMake4(0, 1.5f, 0, 0), 1.0f / ratio, btgMake4(6 / ratio, 6 / ratio, 6 / ratio, 0),
+                              BTG_BODY_DYNAMIC);
+    const float dt = 1.0f / 60.0f;
+    BtgStepParams p = test::defaultParams(3);
+    BtgSoftParams sp = softParams(p, 0, maxSag);
+    std::vector<BtgContact> prev;
+    float worst = 0.0f;
+    for (int step = 0; step < 600; ++step) {
+        for (int i : {light, heavy}) {
+            b.linVel0[i] = b.linVel[i];
+            b.angVel0[i] = b.angVel[i];
+            b.linVel[i] = b.linVel[i] + btgMake4(0, -kG * dt, 0, 0);
+        }
+        std::vector<BtgManifold> ms = {test::boxOnPlane(light, 0, b.pos[light], 0.5f, b.pos[light].y - 0.5f),
+                                       test::boxOnPlane(heavy, light, b.pos[heavy], 0.5f,
+                                                        b.pos[heavy].y - b.pos[light].y - 1.0f)};
+        Result r = runReference(b, ms, prev, p, sp, 4);
+        prev = r.contacts;
+        b.pos = r.bodies.pos;
+        b.rot = r.bodies.rot;
+        b.linVel = r.bodies.linVel;
+        b.angVel = r.bodies.angVel;
+        worst = std::max({worst, 0.5f - b.pos[light].y, b.pos[light].y + 1.0f - b.pos[heavy].y});
+    }
+    return worst;
+}
+
+// Mass ratio 100 at the defaults (10 substeps): neither contact sinks by 1% of the box. Box2D's
+// springs (maxSag 0), relative to the light box's effective mass, sink further.
+TEST(SolveSoft, MassRatio100Stands)
+{
+    const float stiffened = sinkOfHeavyOnLight(100.0f, SoftStepConfig{}.maxSag);
+    const float box2d = sinkOfHeavyOnLight(100.0f, 0.0f);
+    RecordProperty("sink_m", std::to_string(stiffened));
+    RecordProperty("sink_box2d_springs_m", std::to_string(box2d));
+    EXPECT_LT(stiffened, 0.01f);
+    EXPECT_GT(box2d, stiffened);
+}
+
+// No contacts: the stage still moves the bodies, each substep taking its share of gravity
+// (x = v0 t + g t^2 (n + 1) / 2n after one step).
+TEST(SolveSoft, FreeBodyFallsThroughSubsteps)
+{
+    ref::ContactBodies b;
+    int ball = test::addBody(b, btgMake4(0, 10, 0, 0), 1.0f, btgMake4(1, 1, 1, 0), BTG_BODY_DYNAMIC);
+    const float dt = 1.0f / 60.0f;
+    b.linVel[ball] = btgMake4(0, -kG * dt, 0, 0);
+    BtgStepParams p = test::defaultParams(1);
+    BtgSoftParams sp = softParams(p, 4);
+    Result d = runDevice(b, {}, {}, p, sp, 4, true);
+    EXPECT_NEAR(d.bodies.linVel[ball].y, -kG * dt, 1e-6f);
+    EXPECT_NEAR(d.bodies.pos[ball].y, 10.0f - kG * dt * dt * 5.0f / 8.0f, 1e-5f);
+}
+
+// The plan of a soft-step scene: the soft stages in place of the PGS solve and the Euler
+// integration; a scene with nothing to collide or join keeps integrate_transforms.
+TEST(SolveSoft, PlanRunsTheSoftStages)
+{
+    PlanInput in;
+    in.solver = SolverKind::SoftStep;
+    PlanBody ground, box;
+    ground.shapeType = BTG_SHAPE_BOX;
+    ground.size = 10.0f;
+    box.shapeType = BTG_SHAPE_BOX;
+    box.size = 1.7f;
+    box.movable = box.dynamic = true;
+    in.bodies = {ground, box, box};
+    const std::vector<std::string> stages = derivePlan(in).plan.stages();
+    auto has = [&](const char* name) { return std::find(stages.begin(), stages.end(), name) != stages.end(); };
+    EXPECT_TRUE(has("color_constraints") && has("solve_soft") && has("soft_transforms"));
+    EXPECT_FALSE(has("solve_constraints") || has("solve_jacobi") || has("integrate_transforms"));
+    in.bodies = {box};
+    const std::vector<std::string> alone = derivePlan(in).plan.stages();
+    EXPECT_NE(std::find(alone.begin(), alone.end(), "integrate_transforms"), alone.end());
+    EXPECT_EQ(std::find(alone.begin(), alone.end(), "solve_soft"), alone.end());
+}
