@@ -117,6 +117,16 @@ bool ContactCallbacks::wanted(const btDiscreteDynamicsWorld& world)
     return customCombiners() || gContactProcessedCallback || customMaterials(world);
 }
 
+ContactCallbacks::Set ContactCallbacks::current()
+{
+    return {gContactAddedCallback,
+            gContactProcessedCallback,
+            gCalculateCombinedFrictionCallback,
+            gCalculateCombinedRestitutionCallback,
+            gCalculateCombinedRollingFrictionCallback,
+            gCalculateCombinedSpinningFrictionCallback};
+}
+
 bool ContactCallbacks::events()
 {
     return gContactStartedCallback || gContactEndedCallback || gContactProcessedCallback || gContactDestroyedCallback;
