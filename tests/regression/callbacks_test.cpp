@@ -4,6 +4,7 @@
 // before the solve, and the cases still sent to the CPU path, each naming itself.
 #include "btgpu/btGpuDynamicsWorld.h"
 #include "scenes/callback_scenes.h"
+#include "scenes/compound_scenes.h"
 #include "side_by_side.h"
 
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
@@ -13,6 +14,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <set>
+#include <tuple>
 #include <cstdio>
 #include <vector>
 
@@ -630,4 +633,50 @@ TEST(Callbacks, OverlapFilterLetsRefusedBodiesPassAsStock)
     EXPECT_FALSE(gpu->gpuWorld()->isGpuPath());
     EXPECT_NE(gpu->report()->cpuPathReason.find("overlap filter"), std::string::npos) << gpu->report()->cpuPathReason;
     gpu->world().getPairCache()->setOverlapFilterCallback(nullptr);
+}
+
+namespace {
+
+// What the added callback was handed: each wrapper's shape type and index, the index arguments.
+using Handed = std::tuple<int, int, int, int, int, int>;
+std::set<Handed> g_handed;
+bool recordWrappers(btManifoldPoint&, const btCollisionObjectWrapper* w0, int partId0, int index0,
+                    const btCollisionObjectWrapper* w1, int partId1, int index1)
+{
+    g_handed.insert({w0->getCollisionShape()->getShapeType(), w0->m_index, index0,
+                     w1->getCollisionShape()->getShapeType(), partId0, partId1 >= 0 ? 1 : -1});
+    (void)index1;
+    return true;
+}
+
+}  // namespace
+
+// A table (compound) on a flagged box ground and on a flagged mesh: the callback gets stock's
+// wrappers — the compound's child shape (a box) with the child's index, body 0 the compound
+// side — and on the mesh the point's btTriangleShape with a part id.
+TEST(Callbacks, CompoundAndMeshWrappersAsStock)
+{
+    Globals restore;
+    gContactAddedCallback = recordWrappers;
+    for (int onMesh = 0; onMesh < 2; ++onMesh) {
+        SCOPED_TRACE(onMesh ? "mesh" : "box ground");
+        std::set<Handed> seen[2];
+        SideBySide sb([onMesh](WorldKind k, const Config& c) {
+            ScenePtr s = onMesh ? scenes::tableOnMesh(k, c) : scenes::tableStack(k, c, 1);
+            s->body(0)->setCollisionFlags(s->body(0)->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+            return s;
+        });
+        for (int step = 0; step < 60; ++step) {
+            g_handed.clear();
+            sb.stock->step();
+            seen[0].insert(g_handed.begin(), g_handed.end());
+            g_handed.clear();
+            sb.gpu->step();
+            seen[1].insert(g_handed.begin(), g_handed.end());
+            ASSERT_TRUE(sb.onGpu()) << step << " " << sb.gpu->report()->cpuPathReason;
+        }
+        ASSERT_FALSE(seen[0].empty());
+        EXPECT_EQ(seen[0].size(), 4u);  // the four legs, each its own child index
+        EXPECT_EQ(seen[1], seen[0]);
+    }
 }
