@@ -680,3 +680,42 @@ TEST(Callbacks, CompoundAndMeshWrappersAsStock)
         EXPECT_EQ(seen[1], seen[0]);
     }
 }
+
+namespace {
+int g_maxLife = 0;
+bool recordLife(btManifoldPoint& cp, const btCollisionObjectWrapper*, int, int, const btCollisionObjectWrapper*, int, int)
+{
+    g_maxLife = std::max(g_maxLife, cp.m_lifeTime);
+    return true;
+}
+}  // namespace
+
+// The point the added callback gets is the one it replaces, as stock's (replaceContactPoint):
+// a resting box's points carry their lifetimes, equal to stock's at each step stock calls it
+// (from step 21 stock's box-box detector adds no points for the settled box, whose points only
+// persist; the GPU path goes on calling it for its points, lifetimes counting on).
+TEST(Callbacks, AddedPointCarriesItsLifetimeAsStock)
+{
+    Globals restore;
+    gContactAddedCallback = recordLife;
+    SideBySide sb([](WorldKind k, const Config& c) {
+        ScenePtr s = scenes::slidingBox(k, c);
+        s->body(1)->setLinearVelocity(btVector3(0, 0, 0));
+        return s;
+    });
+    int compared = 0, last = 0;
+    for (int step = 0; step < 90; ++step) {
+        g_maxLife = -1;
+        sb.stock->step();
+        const int a = g_maxLife;
+        g_maxLife = -1;
+        sb.gpu->step();
+        ASSERT_TRUE(sb.onGpu()) << step;
+        last = g_maxLife;
+        if (a < 0) continue;
+        EXPECT_EQ(g_maxLife, a) << step;
+        ++compared;
+    }
+    EXPECT_GE(compared, 20);
+    EXPECT_GE(last, 80);
+}
