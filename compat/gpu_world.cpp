@@ -138,6 +138,13 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
                         ContactCallbacks::overlapFilter(m_world))) {
         if (!m_callbackReason.empty() && m_callbackReasonFor == ContactCallbacks::current()) return m_callbackReason;
         why = ContactCallbacks::unservedReason(m_world, m_config, m_shapes);
+        // A trigger (a ghost without contact response) has no contacts on the device; stock's
+        // manifolds of its pairs have points, which its callbacks see.
+        const bool callbacks = ContactCallbacks::wanted(m_world) || ContactCallbacks::events();
+        for (size_t g = 0; g < m_ghostResponds.size() && why.empty() && callbacks; ++g)
+            if (!m_ghostResponds[g])
+                why = "contact callbacks beside a ghost object without contact response (its pairs' contact points are "
+                      "not on the GPU path)";
     }
     return why;
 }

@@ -5,6 +5,7 @@
 #include "btgpu/btGpuDynamicsWorld.h"
 #include "scenes/callback_scenes.h"
 #include "scenes/compound_scenes.h"
+#include "scenes/ghost_scenes.h"
 #include "side_by_side.h"
 
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
@@ -255,6 +256,17 @@ TEST(Callbacks, UnservedCasesFallBackNamingThemselves)
         EXPECT_NE(gpu->report()->cpuPathReason.find(which == 0 ? "internalSubsteps" : "fillDispatcherManifolds"),
                   std::string::npos)
             << gpu->report()->cpuPathReason;
+        gContactAddedCallback = bouncy;
+    }
+    {  // a trigger ghost: stock's manifolds of its pairs have points the device does not make
+        gContactAddedCallback = nullptr;
+        gContactProcessedCallback = [](btManifoldPoint&, void*, void*) { return true; };
+        auto ghosts = scenes::triggerFall(WorldKind::Gpu);
+        ghosts->scene->step();
+        gContactProcessedCallback = nullptr;
+        EXPECT_FALSE(ghosts->scene->gpuWorld()->isGpuPath());
+        EXPECT_NE(ghosts->scene->report()->cpuPathReason.find("ghost"), std::string::npos)
+            << ghosts->scene->report()->cpuPathReason;
         gContactAddedCallback = bouncy;
     }
     {  // a support-function shape beside a flagged body
