@@ -731,3 +731,49 @@ TEST(Callbacks, AddedPointCarriesItsLifetimeAsStock)
     EXPECT_GE(compared, 20);
     EXPECT_GE(last, 80);
 }
+
+namespace {
+// An app's action that does nothing: the step then runs in two parts around the actions.
+struct IdleAction : btActionInterface {
+    void updateAction(btCollisionWorld*, btScalar) override {}
+    void debugDraw(btIDebugDraw*) override {}
+};
+}  // namespace
+
+// The split for the callbacks and the actions' split in one internal step: the trampoline bounces
+// as stock's with an action in the world; a change the device cannot carry still moves the step
+// to the CPU path there.
+TEST(Callbacks, WithActionsAsStock)
+{
+    Globals restore;
+    gContactAddedCallback = bouncy;
+    IdleAction idle[2];
+    SideBySide sb([](WorldKind k, const Config& c) { return scenes::trampoline(k, c); });
+    sb.stock->world().addAction(&idle[0]);
+    sb.gpu->world().addAction(&idle[1]);
+    std::vector<double> ys, yg;
+    for (int step = 0; step < 200; ++step) {
+        sb.step();
+        ASSERT_TRUE(sb.onGpu()) << step << " " << sb.gpu->report()->cpuPathReason;
+        ys.push_back(sb.stockY(1));
+        yg.push_back(sb.gpuY(1));
+    }
+    const std::vector<double> a = apexes(ys), b = apexes(yg);
+    ASSERT_GE(a.size(), 2u);
+    ASSERT_GE(b.size(), 2u);
+    for (size_t i = 0; i < 2; ++i) EXPECT_NEAR(b[i], a[i], 0.05 * (a[i] - 0.5)) << "apex " << i;
+    sb.stock->world().removeAction(&idle[0]);
+    sb.gpu->world().removeAction(&idle[1]);
+
+    gContactAddedCallback = conveyor;
+    SideBySide sl([](WorldKind k, const Config& c) { return scenes::slidingBox(k, c); });
+    sl.stock->world().addAction(&idle[0]);
+    sl.gpu->world().addAction(&idle[1]);
+    sl.step(3);
+    EXPECT_FALSE(sl.onGpu());
+    EXPECT_NE(sl.gpu->report()->cpuPathReason.find("m_contactMotion"), std::string::npos) << sl.gpu->report()->cpuPathReason;
+    sl.step(20);
+    EXPECT_LT(sl.distance(1), 1e-4);
+    sl.stock->world().removeAction(&idle[0]);
+    sl.gpu->world().removeAction(&idle[1]);
+}
