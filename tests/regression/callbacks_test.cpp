@@ -92,13 +92,15 @@ struct Combiners {
 };
 
 // An app's internal-edge fix, as Bullet's demos write it: the mesh is body 1 (convex first).
-long g_triangleCalls = 0;
+long g_triangleCalls = 0, g_adjusted = 0;
 bool edgeFix(btManifoldPoint& cp, const btCollisionObjectWrapper* w0, int, int, const btCollisionObjectWrapper* w1,
              int partId1, int index1)
 {
     ++g_calls;
     if (w1->getCollisionShape()->getShapeType() == TRIANGLE_SHAPE_PROXYTYPE) ++g_triangleCalls;
+    const btVector3 n = cp.m_normalWorldOnB;
     btAdjustInternalEdgeContacts(cp, w1, w0, partId1, index1);
+    if (!(cp.m_normalWorldOnB == n)) ++g_adjusted;
     return true;
 }
 
@@ -304,30 +306,36 @@ TEST(Callbacks, InternalEdgeUtilityOnAMeshAsStock)
     Globals restore;
     gContactAddedCallback = edgeFix;
     SideBySide sb([](WorldKind k, const Config& c) { return scenes::edgeSlide(k, c); });
-    long stockCalls = 0, gpuCalls = 0, stockTriangles = 0, gpuTriangles = 0;
+    long stockCalls = 0, gpuCalls = 0, stockTriangles = 0, gpuTriangles = 0, stockAdjusted = 0, gpuAdjusted = 0;
     double highest = 0, callbackMs = 0;
     for (int step = 0; step < 150; ++step) {
+        g_adjusted = 0;
         g_calls = g_triangleCalls = 0;
         sb.stock->step();
         stockCalls += g_calls;
         stockTriangles += g_triangleCalls;
+        stockAdjusted += g_adjusted;
+        g_adjusted = 0;
         g_calls = g_triangleCalls = 0;
         sb.gpu->step();
         gpuCalls += g_calls;
         gpuTriangles += g_triangleCalls;
+        gpuAdjusted += g_adjusted;
         ASSERT_TRUE(sb.onGpu()) << step << " " << sb.gpu->report()->cpuPathReason;
         callbackMs += sb.gpu->report()->callbackMs;
         highest = std::max(highest, sb.gpuY(1));
     }
     const double ds = sb.stock->body(1)->getWorldTransform().getOrigin().x() + 6;
     const double dg = sb.gpu->body(1)->getWorldTransform().getOrigin().x() + 6;
-    std::printf("slid over edges: stock %.4f m, gpu %.4f m; calls stock %ld gpu %ld; host part %.3f ms a step\n", ds,
-                dg, stockCalls, gpuCalls, callbackMs / 150);
+    std::printf("slid over edges: stock %.4f m, gpu %.4f m; calls stock %ld gpu %ld, normals adjusted stock %ld gpu %ld; "
+                "host part %.3f ms a step\n",
+                ds, dg, stockCalls, gpuCalls, stockAdjusted, gpuAdjusted, callbackMs / 150);
     EXPECT_GT(ds, 4.0);
     EXPECT_NEAR(dg, ds, 0.05 * ds);
     EXPECT_LT(highest, 0.52);
     EXPECT_NEAR(sb.gpuY(1), sb.stockY(1), 0.01);
     EXPECT_GT(gpuCalls, 0);
+    EXPECT_GT(stockAdjusted, 0);  // on this mesh only stock's contacts catch on edges (GPU: 0 adjusted)
     EXPECT_EQ(gpuTriangles, gpuCalls);  // every mesh point's wrapper is its triangle, as stock's
     EXPECT_EQ(stockTriangles, stockCalls);
 }
@@ -776,4 +784,41 @@ TEST(Callbacks, WithActionsAsStock)
     EXPECT_LT(sl.distance(1), 1e-4);
     sl.stock->world().removeAction(&idle[0]);
     sl.gpu->world().removeAction(&idle[1]);
+}
+
+namespace {
+// Moves every contact 1 cm deeper (the point on B along the normal, and B's local point, as
+// btAdjustInternalEdgeContacts reprojects them): the solve then holds the box about that much
+// higher. (Stock calls it only when its narrowphase adds a point; the points it keeps are
+// refreshed from their local points, so the change lasts only because the local point moved too.
+// The GPU path calls it for its points of each step, which exist within the breaking threshold,
+// 2 cm: a push beyond that would leave the box without points there and it sinks back; stock's
+// kept points go on.)
+bool deeper(btManifoldPoint& cp, const btCollisionObjectWrapper*, int, int, const btCollisionObjectWrapper* w1, int, int)
+{
+    cp.m_distance1 -= btScalar(0.01);
+    cp.m_positionWorldOnB = cp.m_positionWorldOnA - cp.m_normalWorldOnB * cp.m_distance1;
+    cp.m_localPointB = w1->getWorldTransform().invXform(cp.m_positionWorldOnB);
+    return true;
+}
+}  // namespace
+
+// The callback's distance and points reach the solve (the manifold rewritten on the device): a
+// box on a flagged floor hovers as high as on stock.
+TEST(Callbacks, ChangedDistanceReachesTheSolveAsStock)
+{
+    Globals restore;
+    gContactAddedCallback = deeper;
+    SideBySide sb([](WorldKind k, const Config& c) {
+        ScenePtr s = scenes::slidingBox(k, c);
+        s->body(1)->setLinearVelocity(btVector3(0, 0, 0));
+        return s;
+    });
+    for (int step = 0; step < 90; ++step) {
+        sb.step();
+        ASSERT_TRUE(sb.onGpu()) << step << " " << sb.gpu->report()->cpuPathReason;
+    }
+    std::printf("hover: stock y %.4f, gpu y %.4f\n", sb.stockY(1), sb.gpuY(1));
+    EXPECT_GT(sb.stockY(1), 0.505);
+    EXPECT_NEAR(sb.gpuY(1), sb.stockY(1), 0.002);
 }
