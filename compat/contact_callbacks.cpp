@@ -117,6 +117,16 @@ bool ContactCallbacks::wanted(const btDiscreteDynamicsWorld& world)
     return customCombiners() || gContactProcessedCallback || customMaterials(world);
 }
 
+ContactCallbacks::Set ContactCallbacks::current()
+{
+    return {gContactAddedCallback,
+            gContactProcessedCallback,
+            gCalculateCombinedFrictionCallback,
+            gCalculateCombinedRestitutionCallback,
+            gCalculateCombinedRollingFrictionCallback,
+            gCalculateCombinedSpinningFrictionCallback};
+}
+
 bool ContactCallbacks::events()
 {
     return gContactStartedCallback || gContactEndedCallback || gContactProcessedCallback || gContactDestroyedCallback;
@@ -256,8 +266,17 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
             cp.m_index0 = swap ? indexB : indexA;
             cp.m_partId1 = swap ? partA : partB;
             cp.m_index1 = swap ? indexA : indexB;
-            cp.m_userPersistentData =
-                sync.userDataOf(side, p.featureId, cp.m_index0, cp.m_partId1, cp.m_index1, cp.m_localPointA);
+            // A point that replaces one keeps its user data, lifetime and impulses
+            // (replaceContactPoint): those of the app's point it continues.
+            if (const btManifoldPoint* old =
+                    sync.continued(side, p.featureId, cp.m_index0, cp.m_partId1, cp.m_index1, cp.m_localPointA)) {
+                cp.m_userPersistentData = old->m_userPersistentData;
+                cp.m_lifeTime = old->m_lifeTime;
+                cp.m_appliedImpulse = old->m_appliedImpulse;
+                cp.m_appliedImpulseLateral1 = old->m_appliedImpulseLateral1;
+                cp.m_appliedImpulseLateral2 = old->m_appliedImpulseLateral2;
+                cp.m_prevRHS = old->m_prevRHS;
+            }
             loaded[k] = cp.m_userPersistentData;
             initial[k] = cp;
             if (!flagged) continue;
@@ -267,9 +286,12 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
                                   cp.m_index1);
             ++m_calls;
         }
-        // The refresh's processed callback: every point, from the last down (refreshContactPoints).
-        if (gContactProcessedCallback)
+        // The refresh's processed callback: every point, from the last down, its lifetime counted
+        // on (refreshContactPoints). Stock's sphere–sphere algorithm clears its manifold instead
+        // and refreshes nothing.
+        if (gContactProcessedCallback && !side.spheres)
             for (int k = n - 1; k >= 0; --k) {
+                ++cps[k].m_lifeTime;
                 gContactProcessedCallback(cps[k], (void*)o0, (void*)o1);
                 ++m_calls;
             }

@@ -11,6 +11,9 @@
 #include "btgpu/Config.h"
 #include "stages/contact_callbacks.h"
 
+#include <BulletCollision/CollisionDispatch/btManifoldResult.h>
+#include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
+
 #include <string>
 #include <unordered_set>
 #include <vector>
@@ -30,6 +33,18 @@ public:
     static bool customCombiners();
     static bool wanted(const btDiscreteDynamicsWorld& world);
     static bool events();  // gContactStarted/Ended/Processed/DestroyedCallback
+    // The callbacks that run before the solve, as a value: a refusal holds while they are the same.
+    struct Set {
+        ContactAddedCallback added;
+        ContactProcessedCallback processed;
+        CalculateCombinedCallback friction, restitution, rolling, spinning;
+        bool operator==(const Set& o) const
+        {
+            return added == o.added && processed == o.processed && friction == o.friction &&
+                   restitution == o.restitution && rolling == o.rolling && spinning == o.spinning;
+        }
+    };
+    static Set current();
     // Why they cannot be served on the GPU path while wanted ("" when they can): with
     // Config::internalSubsteps > 1 they would be called once per device substep, more often than
     // stock; support-function convex shapes keep their manifold points across steps on the device

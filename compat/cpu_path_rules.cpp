@@ -200,9 +200,9 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, ShapeTables* s
     for (int i = 0; i < objs.size(); ++i) {
         const btCollisionObject* o = objs[i];
         int type = o->getInternalType();
-        // A ghost without contact response takes no part on the device (ghost_objects.h): only
-        // its overlaps, from Bullet's own broadphase run on the host. One with is a fixed
-        // collider there: its shape meets the dynamic bodies.
+        // A ghost's overlaps come from Bullet's own broadphase run on the host (ghost_objects.h);
+        // on the device one without contact response is a kinematic row that is never solved
+        // (its pairs' manifolds, as stock's dispatcher makes them), one with is a collider.
         const bool ghost = type == btCollisionObject::CO_GHOST_OBJECT;
         if (type != btCollisionObject::CO_RIGID_BODY && type != btCollisionObject::CO_COLLISION_OBJECT && !ghost)
             return "collision object " + std::to_string(i) + " is not a rigid body or ghost object (soft or other object)";

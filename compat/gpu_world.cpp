@@ -137,7 +137,7 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
         why = bodiesReason(m_world, bodyIndex, m_config.solver == SolverKind::JacobiMassSplitting, &m_solverFlags);
     if (why.empty() && (ContactCallbacks::wanted(m_world) || ContactCallbacks::events() ||
                         ContactCallbacks::overlapFilter(m_world))) {
-        if (!m_callbackReason.empty() && m_callbackReasonFor == gContactAddedCallback) return m_callbackReason;
+        if (!m_callbackReason.empty() && m_callbackReasonFor == ContactCallbacks::current()) return m_callbackReason;
         why = ContactCallbacks::unservedReason(m_world, m_config, m_shapes);
     }
     return why;
@@ -706,23 +706,8 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         // Ghosts: the host runs stock's broadphase update at each internal step's start.
         const bool ghosts = !m_ghosts.empty();
         // The app's contact callbacks: each internal step stops between its contacts and its solve.
-        const bool filtered = m_overlapFilter;
-        const bool wantedCallbacks = ContactCallbacks::wanted(m_world);
-        const bool callbacks = wantedCallbacks || filtered;
-        if (callbacks != m_plan.contactCallbacks) {
-            m_plan.contactCallbacks = callbacks;
-            m_report.stages = m_plan.stages();
-        }
-        std::function<bool()> betweenContacts;
-        if (callbacks)
-            betweenContacts = [this, filtered, wantedCallbacks] {
-                const Clock::time_point c0 = Clock::now();
-                if (filtered) m_callbacks.keepStockPairs(*m_dev, m_rows, m_world);
-                const bool carried = !wantedCallbacks || m_callbacks.run(*m_dev, m_rows, m_removed, m_manifolds);
-                m_report.callbackMs += msBetween(c0, Clock::now());
-                m_report.contactCallbacks += m_callbacks.calls();
-                return carried;
-            };
+        const std::function<bool()> betweenContacts = contactHostPart();
+        const bool callbacks = bool(betweenContacts), filtered = m_overlapFilter;
         // The manifold events are the fill's, at every internal step as stock's.
         bool perSubstep = m_world.m_internalTickCallback || m_world.m_internalPreTickCallback || actions || ghosts ||
                           callbacks || ContactCallbacks::events();
@@ -772,7 +757,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             // the rest of the call run on the CPU path (the callbacks are called again there).
             auto abandoned = [&] {
                 m_callbackReason = m_callbacks.reason();
-                m_callbackReasonFor = gContactAddedCallback;
+                m_callbackReasonFor = ContactCallbacks::current();
                 cpuPathFrom(b, batches, fixedTimeStep, m_callbackReason);
                 *substepsDone = numSubSteps;
                 return finishCall(profiled, false);

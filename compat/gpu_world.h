@@ -91,6 +91,9 @@ private:
     // Internal step `batch` of a call, after an action or callback added or removed
     // something: false when the rest of the call ran on the CPU path.
     bool followWithinCall(int batch, int batches, btScalar fixedTimeStep);
+    // The host's part between an internal step's contacts and its solve while the app's contact
+    // callbacks or an overlap filter need it (empty otherwise); keeps the plan's stage in step.
+    std::function<bool()> contactHostPart();
     // Internal steps [batch, batches) of this call on the CPU path, for `why`.
     void cpuPathFrom(int batch, int batches, btScalar fixedTimeStep, const std::string& why);
     // Bullet's broadphase AABBs where the bodies are, without its pair tests (see the .cpp), and
@@ -144,14 +147,14 @@ private:
     std::vector<char> m_woken;
     std::vector<int> takeWoken();
     ManifoldSync m_manifolds;   // the app's dispatcher manifolds on the GPU path
-    ContactCallbacks m_callbacks;  // gContactAddedCallback between the contacts and the solve
-    // A change the callback made that the device cannot carry: the world stays on the CPU path
-    // until something is added or removed or the callback is another.
+    ContactCallbacks m_callbacks;  // the app's callbacks between the contacts and the solve
+    // A change the callbacks made that the device cannot carry: the world stays on the CPU path
+    // until something is added or removed or the callbacks are others.
     std::string m_callbackReason;
+    ContactCallbacks::Set m_callbackReasonFor{};
     // An overlap filter callback is set: Bullet's broadphase runs on the host at each internal
     // step and decides the pairs (the rows' group and mask then accept everything on the device).
     bool m_overlapFilter = false;
-    ContactAddedCallback m_callbackReasonFor = nullptr;
     JointSync m_joints;         // the joint table on the device and its write-back
     IgnoredPairs m_ignored;     // collision-check exceptions (disableCollisionsBetweenLinkedBodies)
     Snapshot m_snapshot;

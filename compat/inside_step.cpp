@@ -1,9 +1,11 @@
 // inside_step.cpp — the host's part inside a GPU-path call, between or beside the device's:
 // Bullet's own broadphase kept where the bodies are (and its pairs completed before a CPU-path
-// step), the app's dispatcher manifolds, the app's actions between a step and its deactivation,
-// and following what an action or callback added, removed or changed inside a call.
+// step), the app's dispatcher manifolds, the app's contact callbacks between a step's contacts
+// and its solve, the app's actions between a step and its deactivation, and following what an
+// action or callback added, removed or changed inside a call.
 #include "gpu_world.h"
 
+#include <chrono>
 #include <iostream>
 #include <typeinfo>
 
@@ -62,6 +64,26 @@ void GpuWorld::dropCpuPathManifolds()
     btBroadphasePairArray& pairs = cache->getOverlappingPairArray();
     for (int i = 0; i < pairs.size(); ++i)
         if (pairs[i].m_algorithm) cache->cleanOverlappingPair(pairs[i], dispatcher);
+}
+
+std::function<bool()> GpuWorld::contactHostPart()
+{
+    const bool filtered = m_overlapFilter;
+    const bool wanted = ContactCallbacks::wanted(m_world);
+    const bool any = wanted || filtered;
+    if (any != m_plan.contactCallbacks) {
+        m_plan.contactCallbacks = any;
+        m_report.stages = m_plan.stages();
+    }
+    if (!any) return {};
+    return [this, filtered, wanted] {
+        const auto c0 = std::chrono::steady_clock::now();
+        if (filtered) m_callbacks.keepStockPairs(*m_dev, m_rows, m_world);
+        const bool carried = !wanted || m_callbacks.run(*m_dev, m_rows, m_removed, m_manifolds);
+        m_report.callbackMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - c0).count();
+        m_report.contactCallbacks += wanted ? m_callbacks.calls() : 0;
+        return carried;
+    };
 }
 
 void GpuWorld::runActions(btScalar dt)

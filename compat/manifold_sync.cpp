@@ -107,8 +107,8 @@ ManifoldSync::Side ManifoldSync::orient(const RowMap& rows, int bodyA, int bodyB
     return out;
 }
 
-void* ManifoldSync::userDataOf(const Side& side, unsigned featureId, int index0, int partId1, int index1,
-                               const btVector3& localA) const
+const btManifoldPoint* ManifoldSync::continued(const Side& side, unsigned featureId, int index0, int partId1,
+                                               int index1, const btVector3& localA) const
 {
     auto it = m_map.find(side.key);
     if (it == m_map.end() || !it->second.manifold || side.spheres) return nullptr;  // none, or its body left  // stock clears a sphere pair's manifold each step
@@ -132,7 +132,7 @@ void* ManifoldSync::userDataOf(const Side& side, unsigned featureId, int index0,
             }
         }
     }
-    return match >= 0 ? m->getContactPoint(match).m_userPersistentData : nullptr;
+    return match >= 0 ? &m->getContactPoint(match) : nullptr;
 }
 
 void ManifoldSync::refill(Group& g, const BtgContactReport* reports)

@@ -17,6 +17,7 @@
 class btCollisionObject;
 class btCollisionShape;
 class btDispatcher;
+class btManifoldPoint;
 class btPersistentManifold;
 
 namespace btgpu {
@@ -111,11 +112,11 @@ public:
     // One device manifold's sides (bodies and sub-shape keys as the device names them).
     static Side orient(const RowMap& rows, int bodyA, int bodyB, int indexA, int indexB,
                        const std::unordered_set<const btCollisionObject*>& removed);
-    // The user data of the app's manifold point that a point of this side's manifold continues
-    // (as the fill matches them: same feature and sub-shape, else the nearest in body0's frame
-    // within the breaking threshold), nullptr when none.
-    void* userDataOf(const Side& side, unsigned featureId, int index0, int partId1, int index1,
-                     const btVector3& localA) const;
+    // The app's manifold point (as the last fill left it) that a point of this side's manifold
+    // continues (as the fill matches them: same feature and sub-shape, else the nearest in
+    // body0's frame within the breaking threshold), nullptr when none.
+    const btManifoldPoint* continued(const Side& side, unsigned featureId, int index0, int partId1, int index1,
+                                     const btVector3& localA) const;
 
 private:
     // The reports [first, last) of one manifold.

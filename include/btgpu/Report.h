@@ -40,9 +40,10 @@ struct Report {
     double writeBackMs = 0.0;
     double aabbSyncMs = 0.0;
     double ghostBroadphaseMs = 0.0;   // with ghost objects: Bullet's broadphase pair update on the host (in syncInMs)
-    // With gContactAddedCallback and a CF_CUSTOM_MATERIAL_CALLBACK body: the host's part inside
-    // each internal step (gather of the flagged pairs' manifolds, the callbacks, the changes sent
-    // back), in deviceMs; and the points the callback was called for in this call.
+    // While the app's contact callbacks (gContactAddedCallback on CF_CUSTOM_MATERIAL_CALLBACK
+    // bodies, gContactProcessedCallback, custom combiners) or an overlap filter need the host
+    // between a step's contacts and its solve: that part's time (gather, callbacks, the changes
+    // sent back), in deviceMs; and the added and processed callbacks' calls in this call.
     double callbackMs = 0.0;
     long contactCallbacks = 0;
     std::size_t deviceBytes = 0;      // device memory held by this world

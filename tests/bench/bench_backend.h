@@ -27,6 +27,10 @@ using scenes::spec::makeCompounds;
 struct Options {
     bool noSleep = false;           // disable Bullet's deactivation on every dynamic body
     bool noManifolds = false;       // btgpu: Config::fillDispatcherManifolds off (apps that never read contacts)
+    // btgpu: the app's contact callbacks' cost: "ground" (gContactAddedCallback, the first static
+    // body CF_CUSTOM_MATERIAL_CALLBACK), "all" (every body flagged), "processed"
+    // (gContactProcessedCallback); empty: none.
+    std::string contactCallback;
     bool noAabbSync = false;        // btgpu: Config::syncBroadphaseAabbs off (apps that never query)
     bool jacobi = false;            // btgpu: Config::solver = JacobiMassSplitting
     bool soft = false;              // btgpu: Config::solver = SoftStep

@@ -22,6 +22,8 @@ public:
     {
         m_bodies.reset();
         m_world.reset();
+        if (m_callback == "ground" || m_callback == "all") gContactAddedCallback = nullptr;
+        if (m_callback == "processed") gContactProcessedCallback = nullptr;
     }
     std::string name() const override { return "btgpu"; }
     std::string device() const override { return m_world ? m_world->report().device : std::string(); }
@@ -38,6 +40,7 @@ public:
         }
         if (m_noAabbSync) n += "; Config::syncBroadphaseAabbs off";
         if (m_noManifolds) n += "; Config::fillDispatcherManifolds off";
+        if (!m_callback.empty()) n += "; contact callback: " + m_callback + " (host part: Report::callbackMs)";
         if (m_jacobi) n += "; Jacobi with mass splitting";
         if (m_soft) n += "; soft step";
         n += "; step column = sync-in of app changes + device substeps + readback (Report::syncInMs + deviceMs); "
@@ -66,6 +69,22 @@ public:
                                         config));
         m_bodies.reset(new BtBodies);
         m_bodies->build(scene, options, m_world.get());
+        m_callback = options.contactCallback;
+        if (m_callback == "ground" || m_callback == "all") {
+            gContactAddedCallback = [](btManifoldPoint& cp, const btCollisionObjectWrapper*, int, int,
+                                       const btCollisionObjectWrapper*, int, int) {
+                cp.m_combinedRestitution = cp.m_combinedRestitution * btScalar(0.5);
+                return true;
+            };
+            btCollisionObjectArray& objs = m_world->getCollisionObjectArray();
+            for (int i = 0; i < objs.size(); ++i) {
+                if (m_callback == "ground" && !objs[i]->isStaticObject()) continue;
+                objs[i]->setCollisionFlags(objs[i]->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+                if (m_callback == "ground") break;
+            }
+        } else if (m_callback == "processed") {
+            gContactProcessedCallback = [](btManifoldPoint&, void*, void*) { return true; };
+        }
         return true;
     }
 
@@ -97,6 +116,7 @@ public:
         out.stageMs["host: sync-in (compare rows, upload)"] = r.syncInMs;
         out.stageMs["host: enqueue + wait + readback"] = r.deviceMs;
         out.stageMs["host: write-back"] = r.writeBackMs;
+        if (!m_callback.empty()) out.stageMs["host: contact callbacks (in enqueue + wait)"] = r.callbackMs;
         out.pairs = r.pairs;
         out.manifolds = r.contacts;
         out.deviceBytes = static_cast<long long>(r.deviceBytes);
@@ -115,6 +135,7 @@ private:
     bool m_noManifolds = false;
     bool m_jacobi = false;
     bool m_soft = false;
+    std::string m_callback;  // Options::contactCallback (its globals put back in the destructor)
 };
 
 }  // namespace
