@@ -57,6 +57,44 @@ static void store_vel(BtgBodyVel v, BTG_SHARED __global BtgFloat4* lin, BTG_SHAR
     ang[i] = btgMake4(v.ang.x, v.ang.y, v.ang.z, ang[i].w);
 }
 
+/* What pass `mode` reads of soft contact i, the rest zero: a pass loads its rows' fields only
+ * (a copy of all 416 bytes every pass would read the friction rows in the solve, the
+ * separations in the warm start, ...), the lever arms of the contact's points only. */
+static BtgSoftContact load_soft(__global const BtgSoftContact* softContacts, int i, int mode, int frictionInSolve)
+{
+    BtgSoftContact s;
+    s.bodyA = softContacts[i].bodyA;
+    s.bodyB = softContacts[i].bodyB;
+    s.numPoints = softContacts[i].numPoints;
+    s.fixed = softContacts[i].fixed;
+    s.friction = softContacts[i].friction;
+    s.restitution = softContacts[i].restitution;
+    s.pad0 = 0;
+    s.pad1 = 0;
+    s.normal = softContacts[i].normal;
+    for (int k = 0; k < BTG_MAX_POINTS; ++k) {
+        s.rA[k] = k < s.numPoints ? softContacts[i].rA[k] : btgZero4();
+        s.rB[k] = k < s.numPoints ? softContacts[i].rB[k] : btgZero4();
+    }
+    s.normalMass = softContacts[i].normalMass;
+    s.normalImpulse = softContacts[i].normalImpulse;
+    s.totalNormal = softContacts[i].totalNormal;
+    const int friction = mode == BTG_SOFT_WARM_START || mode == BTG_SOFT_RELAX || (mode == BTG_SOFT_SOLVE && frictionInSolve);
+    const int separation = mode == BTG_SOFT_SOLVE || mode == BTG_SOFT_RELAX;
+    s.tangent1 = friction ? softContacts[i].tangent1 : btgZero4();
+    s.tangent2 = friction ? softContacts[i].tangent2 : btgZero4();
+    s.tangent1Mass = friction ? softContacts[i].tangent1Mass : btgZero4();
+    s.tangent2Mass = friction ? softContacts[i].tangent2Mass : btgZero4();
+    s.tangent1Impulse = friction ? softContacts[i].tangent1Impulse : btgZero4();
+    s.tangent2Impulse = friction ? softContacts[i].tangent2Impulse : btgZero4();
+    s.total1 = friction ? softContacts[i].total1 : btgZero4();
+    s.total2 = friction ? softContacts[i].total2 : btgZero4();
+    s.baseSeparation = separation ? softContacts[i].baseSeparation : btgZero4();
+    s.stiffening = separation ? softContacts[i].stiffening : btgZero4();
+    s.relativeVelocity = mode == BTG_SOFT_RESTITUTION ? softContacts[i].relativeVelocity : btgZero4();
+    return s;
+}
+
 static void soft_contact(int i, int mode, SOFT_ARGS)
 {
     if (mode == BTG_SOFT_STORE) {
@@ -75,7 +113,7 @@ static void soft_contact(int i, int mode, SOFT_ARGS)
                                          btgContactSolvable(pa.flags, pb.flags), params);
         return;
     }
-    BtgSoftContact s = softContacts[i];
+    BtgSoftContact s = load_soft(softContacts, i, mode, params.frictionInSolve);
     BtgBodyVel va = load_vel(a.moving, lin, ang, bodyA), vb = load_vel(b.moving, lin, ang, bodyB);
     if (mode == BTG_SOFT_WARM_START) {
         btgSoftWarmStart(&s, a, b, &va, &vb);
@@ -90,11 +128,13 @@ static void soft_contact(int i, int mode, SOFT_ARGS)
     if (a.dynamic) store_vel(va, lin, ang, bodyA);
     if (b.dynamic) store_vel(vb, lin, ang, bodyB);
     softContacts[i].normalImpulse = s.normalImpulse;
-    softContacts[i].tangent1Impulse = s.tangent1Impulse;
-    softContacts[i].tangent2Impulse = s.tangent2Impulse;
     softContacts[i].totalNormal = s.totalNormal;
-    softContacts[i].total1 = s.total1;
-    softContacts[i].total2 = s.total2;
+    if (mode == BTG_SOFT_WARM_START || mode == BTG_SOFT_RELAX || (mode == BTG_SOFT_SOLVE && params.frictionInSolve)) {
+        softContacts[i].tangent1Impulse = s.tangent1Impulse;
+        softContacts[i].tangent2Impulse = s.tangent2Impulse;
+        softContacts[i].total1 = s.total1;
+        softContacts[i].total2 = s.total2;
+    }
 }
 
 static void soft_joint(int j, int mode, SOFT_ARGS)
