@@ -692,6 +692,14 @@ TEST(Callbacks, CompoundAndMeshWrappersAsStock)
 
 namespace {
 int g_maxLife = 0;
+// The sliding-box scene with its box at rest on the floor.
+ScenePtr settledSlidingBox(WorldKind kind, const Config& config)
+{
+    ScenePtr s = scenes::slidingBox(kind, config);
+    s->body(1)->setLinearVelocity(btVector3(0, 0, 0));
+    return s;
+}
+
 bool recordLife(btManifoldPoint& cp, const btCollisionObjectWrapper*, int, int, const btCollisionObjectWrapper*, int, int)
 {
     g_maxLife = std::max(g_maxLife, cp.m_lifeTime);
@@ -707,11 +715,7 @@ TEST(Callbacks, AddedPointCarriesItsLifetimeAsStock)
 {
     Globals restore;
     gContactAddedCallback = recordLife;
-    SideBySide sb([](WorldKind k, const Config& c) {
-        ScenePtr s = scenes::slidingBox(k, c);
-        s->body(1)->setLinearVelocity(btVector3(0, 0, 0));
-        return s;
-    });
+    SideBySide sb(settledSlidingBox);
     int compared = 0, last = 0;
     for (int step = 0; step < 90; ++step) {
         g_maxLife = -1;
@@ -798,11 +802,7 @@ TEST(Callbacks, ChangedDistanceReachesTheSolveAsStock)
 {
     Globals restore;
     gContactAddedCallback = deeper;
-    SideBySide sb([](WorldKind k, const Config& c) {
-        ScenePtr s = scenes::slidingBox(k, c);
-        s->body(1)->setLinearVelocity(btVector3(0, 0, 0));
-        return s;
-    });
+    SideBySide sb(settledSlidingBox);
     for (int step = 0; step < 90; ++step) {
         sb.step();
         ASSERT_TRUE(sb.onGpu()) << step << " " << sb.gpu->report()->cpuPathReason;
