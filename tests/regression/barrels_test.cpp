@@ -18,9 +18,9 @@ using scenes::WorldKind;
 
 constexpr int kSteps = 240;  // 4 s at 1/60 s: every barrel has landed and settled
 
-double gpuUpright(const BarrelDrop& drop, int* offPathSteps)
+double gpuUpright(const BarrelDrop& drop, int* offPathSteps, const Config& config = Config())
 {
-    auto gpu = scenes::barrelDrop(WorldKind::Gpu, Config(), drop);
+    auto gpu = scenes::barrelDrop(WorldKind::Gpu, config, drop);
     for (int s = 0; s < kSteps; ++s) {
         gpu->step();
         if (!gpu->gpuWorld()->isGpuPath()) ++*offPathSteps;
@@ -48,4 +48,22 @@ TEST(Barrels, UprightFractionWithinStocksChaos)
 }
 
 }  // namespace
+
+// The soft step (issue 13's candidate default) on the same drop, against the same chaos of stock.
+TEST(Barrels, SoftStepUprightFractionWithinStocksChaos)
+{
+    BarrelDrop drop;
+    const auto bands = scenes::stockChaos(
+        [&](WorldKind kind) { return scenes::barrelDrop(kind, Config(), drop); }, kSteps,
+        [](const scenes::Scene& s) { return std::vector<double>{scenes::uprightFraction(s)}; }, {"upright"},
+        {tol::kChaosStandingFloor});
+    Config soft;
+    soft.solver = SolverKind::SoftStep;
+    int offPath = 0;
+    const double gpu = gpuUpright(drop, &offPath, soft);
+    std::printf("barrels, soft step: upright btgpu %.2f, stock %.2f +- %.2f\n", gpu, bands[0].stockMean, bands[0].bound());
+    EXPECT_EQ(offPath, 0);
+    EXPECT_TRUE(bands[0].admits(gpu)) << "btgpu " << gpu << ", stock " << bands[0].stockMean << " +- " << bands[0].bound();
+}
+
 }  // namespace btgpu::test
