@@ -139,6 +139,14 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
                         ContactCallbacks::overlapFilter(m_world))) {
         if (!m_callbackReason.empty() && m_callbackReasonFor == ContactCallbacks::current()) return m_callbackReason;
         why = ContactCallbacks::unservedReason(m_world, m_config, m_shapes);
+        // The callbacks' second preparation of a contact (contact_material.h) rebuilds its rows
+        // from the changed friction and restitution, but not the rows prepare_contacts adds for
+        // rolling friction or anisotropic friction directions.
+        if (why.empty() && ContactCallbacks::wanted(m_world) &&
+            (m_solverFlags & (BTG_SOLVER_ROLLING_FRICTION | BTG_SOLVER_ANISOTROPIC_FRICTION)))
+            why = "contact callbacks that run before the solve (gContactAddedCallback on a CF_CUSTOM_MATERIAL_CALLBACK "
+                  "body, gContactProcessedCallback, a custom combiner) beside rolling, spinning or anisotropic "
+                  "friction (their rows are not prepared again with the callbacks' changes)";
     }
     return why;
 }

@@ -233,6 +233,18 @@ TEST(Callbacks, UnservedCasesFallBackNamingThemselves)
         EXPECT_NE(gpu->report()->cpuPathReason.find("internalSubsteps"), std::string::npos)
             << gpu->report()->cpuPathReason;
     }
+    for (int which = 0; which < 2; ++which) {  // rows the callbacks' second preparation does not rebuild
+        ScenePtr gpu = scenes::trampoline(WorldKind::Gpu);
+        gpu->step();
+        ASSERT_TRUE(gpu->gpuWorld()->isGpuPath()) << gpu->report()->cpuPathReason;
+        btRigidBody* ball = gpu->bodies().back();
+        if (which == 0) ball->setRollingFriction(btScalar(0.1));
+        else ball->setAnisotropicFriction(btVector3(1, btScalar(0.5), 1));
+        gpu->step();
+        EXPECT_FALSE(gpu->gpuWorld()->isGpuPath());
+        EXPECT_NE(gpu->report()->cpuPathReason.find("rolling, spinning or anisotropic"), std::string::npos)
+            << gpu->report()->cpuPathReason;
+    }
     {  // a combiner with several device substeps
         gContactAddedCallback = nullptr;
         Combiners undo;
