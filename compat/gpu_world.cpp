@@ -148,7 +148,27 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
                   "body, gContactProcessedCallback, a custom combiner) beside rolling, spinning or anisotropic "
                   "friction (their rows are not prepared again with the callbacks' changes)";
     }
+    if (why.empty() && m_config.solver == SolverKind::SoftStep) why = softStepReason();
     return why;
+}
+
+std::string GpuWorld::softStepReason() const
+{
+    // The soft step's contacts are its own springs (soft_rows.h): it builds none of the rows the
+    // bullet mode adds for these Bullet features, nor takes the callbacks' per-point restitution.
+    if (m_solverFlags & BTG_SOLVER_ROLLING_FRICTION)
+        return "rolling or spinning friction with Config::solver = SoftStep (the soft step has no rolling rows)";
+    if (m_solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION)
+        return "anisotropic friction with Config::solver = SoftStep";
+    if (m_solverFlags & BTG_SOLVER_SOFT_CONTACTS)
+        return "contact stiffness and damping (CF_HAS_CONTACT_STIFFNESS_DAMPING) with Config::solver = SoftStep";
+    const btContactSolverInfo& info = m_world.getSolverInfo();
+    if (info.m_sor != btScalar(1) || info.m_globalCfm != btScalar(0))
+        return "btContactSolverInfo::m_sor or m_globalCfm changed with Config::solver = SoftStep";
+    if (ContactCallbacks::wanted(m_world))
+        return "contact callbacks that run before the solve (gContactAddedCallback on a CF_CUSTOM_MATERIAL_CALLBACK body, "
+               "gContactProcessedCallback, a custom combiner) with Config::solver = SoftStep";
+    return "";
 }
 
 void GpuWorld::makePlan()

@@ -68,6 +68,8 @@ private:
     // Why this step must run on the CPU path (cpu_path_rules.h), "" for the GPU path; a
     // per-body reason sets *bodyIndex.
     std::string cpuPathReason(int* bodyIndex);
+    // Bullet features the soft step (Config::solver = SoftStep) does not serve, "" when none.
+    std::string softStepReason() const;
     // Every row from scratch: the rows, the shape tables, the plan, the device state (the
     // warm-start cache dropped). After the CPU path ran, or when retired rows pile up.
     void rebuild();

@@ -326,3 +326,47 @@ TEST(SolverFeatures, AnisotropicFrictionSlidesAsStock)
         EXPECT_GT(std::fabs(stock.dot(lowAxis)), std::fabs(stock.dot(highAxis)));
     }
 }
+
+// The soft step builds none of the rows these Bullet features add to the bullet mode: with
+// Config::solver = SoftStep each sends the world to the CPU path naming it (and back when unset).
+TEST(SolverFeatures, SoftStepFallsBackForTheBulletModesContactFeatures)
+{
+    Config soft;
+    soft.solver = SolverKind::SoftStep;
+    const std::vector<std::pair<std::string, std::function<void(scenes::Scene&, bool)>>> cases = {
+        {"rolling or spinning friction",
+         [](scenes::Scene& s, bool on) { s.body(1)->setRollingFriction(on ? btScalar(0.1) : btScalar(0)); }},
+        {"anisotropic friction",
+         [](scenes::Scene& s, bool on) {
+             s.body(1)->setAnisotropicFriction(on ? btVector3(1, btScalar(0.5), 1) : btVector3(1, 1, 1),
+                                               on ? btCollisionObject::CF_ANISOTROPIC_FRICTION
+                                                  : btCollisionObject::CF_ANISOTROPIC_FRICTION_DISABLED);
+         }},
+        {"contact stiffness and damping",
+         [](scenes::Scene& s, bool on) {
+             if (on) s.body(1)->setContactStiffnessAndDamping(1000, 10);
+             else s.body(1)->setCollisionFlags(s.body(1)->getCollisionFlags() &
+                                               ~btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING);
+         }},
+        {"m_sor or m_globalCfm",
+         [](scenes::Scene& s, bool on) { s.world().getSolverInfo().m_sor = on ? btScalar(0.5) : btScalar(1); }},
+        {"contact callbacks",
+         [](scenes::Scene&, bool on) {
+             ContactProcessedCallback keep = [](btManifoldPoint&, void*, void*) { return true; };
+             gContactProcessedCallback = on ? keep : nullptr;
+         }},
+    };
+    for (const auto& [name, set] : cases) {
+        scenes::ScenePtr gpu = scenes::boxStack(WorldKind::Gpu, soft, 2);
+        gpu->step();
+        ASSERT_TRUE(gpu->gpuWorld()->isGpuPath()) << gpu->report()->cpuPathReason;
+        set(*gpu, true);
+        gpu->step();
+        EXPECT_FALSE(gpu->gpuWorld()->isGpuPath()) << name;
+        EXPECT_NE(gpu->report()->cpuPathReason.find(name), std::string::npos) << gpu->report()->cpuPathReason;
+        EXPECT_NE(gpu->report()->cpuPathReason.find("SoftStep"), std::string::npos) << gpu->report()->cpuPathReason;
+        set(*gpu, false);
+        gpu->step();
+        EXPECT_TRUE(gpu->gpuWorld()->isGpuPath()) << name << ": " << gpu->report()->cpuPathReason;
+    }
+}
