@@ -1,5 +1,5 @@
 // gpu_world.cpp — the GPU path of btGpuDynamicsWorld::stepSimulation: device choice, the
-// scene → rows rebuild and plan, per-call sync of what the app changed, the device substeps
+// scene → rows rebuild and plan, per-call sync of what the app changed (found by row_changes.cpp), the device substeps
 // with redo on overflow, and the write-back that leaves every body as stock Bullet would.
 #include "gpu_world.h"
 
@@ -22,20 +22,6 @@
 namespace btgpu {
 
 namespace {
-
-bool sameTransform(const btTransform& a, const btTransform& b)
-{
-    const btVector3 &o1 = a.getOrigin(), &o2 = b.getOrigin();
-    if (o1.x() != o2.x() || o1.y() != o2.y() || o1.z() != o2.z()) return false;
-    for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c)
-            if (a.getBasis()[r][c] != b.getBasis()[r][c]) return false;
-    return true;
-}
-
-bool sameVec(const btVector3& a, const btVector3& b) { return a.x() == b.x() && a.y() == b.y() && a.z() == b.z(); }
-
-BtgFloat4 finiteOrZero(BtgFloat4 v) { return btgIsFinite4(v) ? v : btgZero4(); }
 
 using Clock = std::chrono::steady_clock;
 double msBetween(Clock::time_point a, Clock::time_point b)
@@ -294,167 +280,6 @@ void GpuWorld::rebuild()
     m_ignored.reset();
 }
 
-void GpuWorld::followRows()
-{
-    DeviceWorld& w = *m_dev;
-    const RowMap::Changes changes = m_rows.follow(m_world.getCollisionObjectArray(), m_removed);
-    m_removed.clear();
-    m_rowsStale = false;
-    // Retired rows are cheap (every stage skips them) but not free: past as many as there are
-    // bodies, and past the unused shape rows' worth, every row is rebuilt densely.
-    if (m_rows.unused() > std::max<size_t>(1024, m_rows.live()) ||
-        m_shapes.unreferenced() > std::max<size_t>(64, m_shapes.shapes.size() / 2)) {
-        rebuild();
-        return;
-    }
-    const size_t n = m_rows.size();
-    resizeBodies(w, int(n));  // keeps every row's contents
-    if (m_shapes.takeGrown()) uploadShapeTables(true);
-    makePlan();
-    w.pairCapacity = std::max(w.pairCapacity, std::max<size_t>(256, 4 * n));
-    w.contactCapacity = std::max(w.contactCapacity, std::max<size_t>(256, 2 * n));
-    w.pairs.reserveExact(w.ctx, w.pairCapacity);
-    w.manifolds.reserveExact(w.ctx, w.pairCapacity);
-    w.contacts.reserveExact(w.ctx, w.contactCapacity);
-    w.contactCache.reserveExact(w.ctx, w.contactCapacity, true);  // the untouched pairs warm-start
-    m_mirror.resize(n);
-    // A retired row takes no part in anything; a fresh one starts with its timers cleared and
-    // is written whole by the next comparison (its mirror can match nothing).
-    std::vector<BodyRowUpdate> retired;
-    for (size_t r : changes.retired) {
-        BodyRowUpdate u{};
-        u.row = int(r);
-        u.rot = btgMake4(0, 0, 0, 1);
-        u.props.flags = BTG_BODY_EXCLUDED;
-        retired.push_back(u);
-        m_mirror[r] = Mirror();
-        m_mirror[r].props = u.props;
-    }
-    syncIn(w, retired);
-    std::vector<int> fresh;
-    for (size_t r : changes.fresh) {
-        m_mirror[r] = Mirror();
-        m_mirror[r].props.flags = 0xffffffffu;
-        fresh.push_back(int(r));
-    }
-    resetRows(w, fresh);
-}
-
-bool GpuWorld::shapesSwapped() const
-{
-    const btCollisionObjectArray& objs = m_world.getCollisionObjectArray();
-    const size_t n = size_t(objs.size());
-    if (n != m_shapeOfObject.size()) return true;
-    const size_t minPerThread = 8192;
-    std::vector<char> swapped(size_t(chunkCount(n, minPerThread)), 0);
-    forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
-        for (size_t i = begin; i < end; ++i)
-            if (objs[int(i)]->getCollisionShape() != m_shapeOfObject[i]) {
-                swapped[size_t(chunk)] = 1;
-                return;
-            }
-    });
-    return std::find(swapped.begin(), swapped.end(), 1) != swapped.end();
-}
-
-std::vector<BodyRowUpdate> GpuWorld::changedRows(bool all)
-{
-    // Every row is compared with what the device holds (impulses and forces set between steps
-    // leave no other trace). Rows are independent: compared in parallel chunks, each with its
-    // own update list, merged in row order so the upload does not depend on thread timing.
-    const size_t n = m_rows.size();
-    const size_t minPerThread = 4096;
-    const int chunks = chunkCount(n, minPerThread);
-    std::vector<std::vector<BodyRowUpdate>> found(chunks);
-    m_woken.assign(n, 0);
-    std::vector<std::vector<std::pair<size_t, std::string>>> newlyBad(chunks);
-    forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
-        for (size_t r = begin; r < end; ++r) {
-            // Removed inside this call (by an action or a tick callback): the row follows at
-            // the next internal step; the object may be gone already.
-            if (!m_removed.empty() && m_removed.count(m_rows.at(r))) continue;
-            BodyRowUpdate u;
-            std::string bad;
-            if (!compareRow(r, all, &u, &bad)) continue;
-            if (!bad.empty()) newlyBad[chunk].emplace_back(r, std::move(bad));
-            found[chunk].push_back(u);
-        }
-    });
-    for (const auto& list : newlyBad)
-        for (const auto& [r, bad] : list) {
-            btCollisionObject* o = m_rows.at(r);
-            int index = m_world.getCollisionObjectArray().findLinearSearch(o);
-            report({Issue::Kind::BadBody,
-                    "body " + std::to_string(index) + " (user index " + std::to_string(o->getUserIndex()) + ", shape " +
-                        o->getCollisionShape()->getName() + "): " + bad + "; kept out of the simulation until fixed",
-                    index, o->getUserIndex(), o->getCollisionShape()->getShapeType()});
-        }
-    std::vector<BodyRowUpdate> out;
-    size_t total = 0;
-    for (const auto& list : found) total += list.size();
-    out.reserve(total);
-    for (const auto& list : found) out.insert(out.end(), list.begin(), list.end());
-    return out;
-}
-
-std::vector<int> GpuWorld::takeWoken()
-{
-    std::vector<int> rows;
-    for (size_t r = 0; r < m_woken.size(); ++r)
-        if (m_woken[r]) rows.push_back(int(r));
-    m_woken.clear();
-    return rows;
-}
-
-bool GpuWorld::compareRow(size_t r, bool all, BodyRowUpdate* u, std::string* newlyBad)
-{
-    btCollisionObject* o = m_rows.at(r);
-    if (!o) return false;  // retired: written once when it was
-    Mirror& m = m_mirror[r];
-    int shapeRow = m_shapes.rowOf.at(o->getCollisionShape());
-    std::string bad = badInput(o);
-    if (bad.empty() && !m_shapes.badReason[size_t(shapeRow)].empty()) bad = "shape: " + m_shapes.badReason[size_t(shapeRow)];
-    if (bad.empty() && aabbOverflows(o, m_shapes.shapes[size_t(shapeRow)], m_stepDt, m_world.getDispatchInfo().m_useContinuous)) {
-        // What stock Bullet does to such a body (and all it does to the app's object).
-        o->setActivationState(DISABLE_SIMULATION);
-        bad = "AABB 1e6 m or more across: removed from the simulation (DISABLE_SIMULATION), as stock Bullet does";
-    }
-    bool excluded = !bad.empty();
-    BtgBodyProps props = bodyProps(o, shapeRow, m_shapes.shapes[shapeRow], excluded);
-    if (m_large[r]) props.flags |= BTG_BODY_LARGE;  // paired by the large pass, not the grid
-    if (r < m_heldAwake.size() && m_heldAwake[r]) props.flags |= BTG_BODY_NEVER_SLEEP;  // in a ghost's island
-    // With an app's overlap filter Bullet's pair cache decides the pairs, not group and mask.
-    if (m_overlapFilter) props.group = props.mask = -1;
-    const btRigidBody* rb = btRigidBody::upcast(o);
-    btVector3 lin = rb ? rb->getLinearVelocity() : btVector3(0, 0, 0);
-    btVector3 ang = rb ? rb->getAngularVelocity() : btVector3(0, 0, 0);
-    btVector3 force = rb ? rb->getTotalForce() : btVector3(0, 0, 0);
-    btVector3 torque = rb ? rb->getTotalTorque() : btVector3(0, 0, 0);
-    bool changed = all || excluded != m.excluded || std::memcmp(&props, &m.props, sizeof(props)) != 0 ||
-                   !sameTransform(o->getWorldTransform(), m.xf) || !sameVec(lin, m.linVel) || !sameVec(ang, m.angVel) ||
-                   !sameVec(force, m.force) || !sameVec(torque, m.torque);
-    if (!changed) return false;
-    if (excluded && !m.excluded) *newlyBad = bad;
-    if (!all && m.props.flags != 0xffffffffu && (m.props.flags & BTG_BODY_SLEEPING) && !(props.flags & BTG_BODY_SLEEPING))
-        m_woken[r] = 1;
-    BodyState s = bodyState(o);
-    u->row = int(r);
-    u->pos = finiteOrZero(s.pos);
-    u->rot = btgIsFinite4(s.rot) ? s.rot : btgMake4(0, 0, 0, 1);
-    u->linVel = finiteOrZero(s.linVel);
-    u->angVel = finiteOrZero(s.angVel);
-    u->force = finiteOrZero(s.force);
-    u->torque = finiteOrZero(s.torque);
-    u->props = props;
-    m.xf = o->getWorldTransform();
-    m.linVel = lin;
-    m.angVel = ang;
-    m.force = force;
-    m.torque = torque;
-    m.props = props;
-    m.excluded = excluded;
-    return true;
-}
 
 StepSettings GpuWorld::settings(int substeps, btScalar dt) const
 {
