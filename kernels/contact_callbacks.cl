@@ -65,15 +65,10 @@ __kernel void apply_contact_materials(__global BtgContact* contacts, __global co
     const int found = btgFindMaterial(materials, numMaterials, contactManifolds[i]);
     if (found < 0) return;
     BtgContact c = contacts[i];
-    BtgBodyProps pa = props[c.bodyA], pb = props[c.bodyB];
-    BtgSolverBody a = btgMakeSolverBody(pa, invInertiaWorld[3 * c.bodyA], invInertiaWorld[3 * c.bodyA + 1],
-                                        invInertiaWorld[3 * c.bodyA + 2]);
-    BtgSolverBody b = btgMakeSolverBody(pb, invInertiaWorld[3 * c.bodyB], invInertiaWorld[3 * c.bodyB + 1],
-                                        invInertiaWorld[3 * c.bodyB + 2]);
-    BtgBodyVel a0 = btgMakeBodyVel(a.moving, linVel0[c.bodyA], angVel0[c.bodyA]);
-    BtgBodyVel b0 = btgMakeBodyVel(b.moving, linVel0[c.bodyB], angVel0[c.bodyB]);
-    BtgBodyVel a1 = btgMakeBodyVel(a.moving, linVel[c.bodyA], angVel[c.bodyA]);
-    BtgBodyVel b1 = btgMakeBodyVel(b.moving, linVel[c.bodyB], angVel[c.bodyB]);
+    const BtgContactBodies t = btgLoadContactBodies(c, props, invInertiaWorld, linVel0, angVel0, linVel, angVel);
+    const BtgBodyProps pa = t.pa, pb = t.pb;
+    const BtgSolverBody a = t.a, b = t.b;
+    const BtgBodyVel a0 = t.a0, b0 = t.b0, a1 = t.a1, b1 = t.b1;
     btgApplyContactMaterial(&c, materials[found], btgPairMaterial(pa, pb), a, b, a0, b0, a1, b1, btgContactSolvable(pa.flags, pb.flags), params);
     contacts[i] = c;
 }

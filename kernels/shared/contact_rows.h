@@ -50,6 +50,34 @@ typedef struct {
     int pad0;
 } BtgPairMaterial;
 
+/* A contact's two bodies as the kernels that prepare its rows read them: their rows, solver
+ * bodies, and velocities before (0: restitution) and after (1: friction directions) this
+ * substep's forces. */
+typedef struct {
+    BtgBodyProps pa, pb;
+    BtgSolverBody a, b;
+    BtgBodyVel a0, b0, a1, b1;
+} BtgContactBodies;
+
+static inline BtgContactBodies btgLoadContactBodies(BtgContact c, BTG_CONST_GLOBAL BtgBodyProps* props,
+                                                    BTG_CONST_GLOBAL BtgFloat4* invInertiaWorld,
+                                                    BTG_CONST_GLOBAL BtgFloat4* linVel0, BTG_CONST_GLOBAL BtgFloat4* angVel0,
+                                                    BTG_CONST_GLOBAL BtgFloat4* linVel, BTG_CONST_GLOBAL BtgFloat4* angVel)
+{
+    BtgContactBodies t;
+    t.pa = props[c.bodyA];
+    t.pb = props[c.bodyB];
+    t.a = btgMakeSolverBody(t.pa, invInertiaWorld[3 * c.bodyA], invInertiaWorld[3 * c.bodyA + 1],
+                            invInertiaWorld[3 * c.bodyA + 2]);
+    t.b = btgMakeSolverBody(t.pb, invInertiaWorld[3 * c.bodyB], invInertiaWorld[3 * c.bodyB + 1],
+                            invInertiaWorld[3 * c.bodyB + 2]);
+    t.a0 = btgMakeBodyVel(t.a.moving, linVel0[c.bodyA], angVel0[c.bodyA]);
+    t.b0 = btgMakeBodyVel(t.b.moving, linVel0[c.bodyB], angVel0[c.bodyB]);
+    t.a1 = btgMakeBodyVel(t.a.moving, linVel[c.bodyA], angVel[c.bodyA]);
+    t.b1 = btgMakeBodyVel(t.b.moving, linVel[c.bodyB], angVel[c.bodyB]);
+    return t;
+}
+
 /* convertContact skips pairs of two infinite masses; the dispatcher skips no-response bodies. */
 static inline int btgContactSolvable(uint flagsA, uint flagsB)
 {
