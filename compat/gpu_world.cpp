@@ -560,13 +560,15 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         const bool ghosts = !m_ghosts.empty();
         // The app's contact callbacks: each internal step stops between its contacts and its solve.
         const std::function<bool()> betweenContacts = contactHostPart();
-        const bool callbacks = bool(betweenContacts), filtered = m_overlapFilter;
+        const bool callbacks = bool(betweenContacts);
         // The manifold events are the fill's, at every internal step as stock's.
+        // Bullet's broadphase on the host at each internal step's start: for ghosts, for an
+        // app's overlap filter (which stock's pair cache asks for each new pair), and for stock's
+        // empty manifolds (its pairs).
+        const bool hostBroadphase = broadphaseAsStock();
+        const bool stockPairs = m_config.fillDispatcherManifolds && m_config.stockEmptyManifolds;
         bool perSubstep = m_world.m_internalTickCallback || m_world.m_internalPreTickCallback || actions || ghosts ||
-                          callbacks || ContactCallbacks::events();
-        // Bullet's broadphase on the host at each internal step's start: for ghosts, and for an
-        // app's overlap filter (which stock's pair cache asks for each new pair).
-        const bool hostBroadphase = ghosts || filtered;
+                          callbacks || ContactCallbacks::events() || stockPairs;
         int batches = perSubstep ? clamped : 1;
         int perBatch = perSubstep ? 1 : clamped;
         for (int b = 0; b < batches; ++b) {
@@ -590,6 +592,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
                 completeBroadphasePairs();  // after steps that synced without pair tests
                 updateBroadphaseAsStock(m_world, fixedTimeStep);
                 if (!m_ghosts.empty()) heldAwakeByGhosts(m_world, m_rows, &m_heldAwake);
+                if (stockPairs) m_manifolds.notePairs(m_world.getDispatcher(), m_world.getPairCache(), m_rows, m_removed);
                 m_report.ghostBroadphaseMs += msBetween(g0, Clock::now());
             }
             syncIn(*m_dev, changedRows(false));
@@ -654,7 +657,7 @@ bool GpuWorld::finishCall(bool profiled, bool gpuPath)
     Clock::time_point t4 = Clock::now();
     // With ghosts (or an overlap filter) the broadphase holds stock's AABBs already (set at the
     // step's start): moving them here would add pairs, and ghost overlaps, stock does not have.
-    if (m_config.syncBroadphaseAabbs && m_ghosts.empty() && !m_overlapFilter) syncBroadphaseAabbs();
+    if (m_config.syncBroadphaseAabbs && !broadphaseAsStock()) syncBroadphaseAabbs();
     m_report.writeBackMs += msBetween(t3, t4);
     m_report.aabbSyncMs = msBetween(t4, Clock::now());
     m_report.stageMs.clear();  // empty on calls that were not profiled

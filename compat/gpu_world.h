@@ -104,6 +104,13 @@ private:
     void syncBroadphaseAabbs();
     void completeBroadphasePairs();
     bool m_broadphasePairsStale = false;
+    // Bullet's broadphase runs as stock's at each internal step's start: for ghosts, an overlap
+    // filter, and stock's empty manifolds (Config::stockEmptyManifolds); its AABBs are then
+    // stock's own and the after-step sync leaves them.
+    bool broadphaseAsStock() const
+    {
+        return !m_ghosts.empty() || m_overlapFilter || (m_config.fillDispatcherManifolds && m_config.stockEmptyManifolds);
+    }
     // The app's dispatcher manifolds from the readback just taken (Config::fillDispatcherManifolds).
     void fillManifolds();
     // The CPU path runs next: our manifolds go back to the dispatcher's pool (its algorithms

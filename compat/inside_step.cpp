@@ -92,7 +92,7 @@ void GpuWorld::runActions(btScalar dt)
     // broadphase AABBs enclose the bodies where this step put them, so the actions' ray and
     // sweep tests find what stock's find (stock's AABBs span the step's predicted motion).
     // With ghosts the step's start set stock's own AABBs, predicted motion included.
-    if (m_ghosts.empty() && !m_overlapFilter) syncBroadphaseAabbs();
+    if (!broadphaseAsStock()) syncBroadphaseAabbs();
     m_world.updateActions(dt);
     // Velocities, impulses, forces and transforms the actions set, and bodies they woke. What
     // they added or removed joins or leaves the rows at the next internal step (removed

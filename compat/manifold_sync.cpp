@@ -86,15 +86,14 @@ ManifoldSync::Side ManifoldSync::orient(const RowMap& rows, int bodyA, int bodyB
     const btCollisionShape* leafB = leafShape(oB, indexB);
     const bool concA = leafA->isConcave(), concB = leafB->isConcave();
     const int tA = leafA->getShapeType(), tB = leafB->getShapeType();
-    // The algorithm's order: convex–concave and convex–plane put the convex first, the
-    // sphere–box algorithm the sphere, a compound's child algorithms the child; else the pair
-    // cache's (the lower proxy id first).
+    // The algorithm's order: convex–concave and convex–plane put the convex first, a compound's
+    // child algorithms the child; else the pair cache's (the lower proxy id first). A sphere and
+    // a box meet in the convex–convex algorithm, which keeps the order it is given (Bullet's
+    // sphere–box algorithm, which puts the sphere first, is compiled out unless
+    // USE_BUGGY_SPHERE_BOX_ALGORITHM).
     const bool compA = oA->getCollisionShape()->isCompound(), compB = oB->getCollisionShape()->isCompound();
     bool swap;
     if (concA != concB) swap = concA;
-    else if ((tA == SPHERE_SHAPE_PROXYTYPE) != (tB == SPHERE_SHAPE_PROXYTYPE) &&
-             (tA == BOX_SHAPE_PROXYTYPE || tB == BOX_SHAPE_PROXYTYPE))
-        swap = tA == BOX_SHAPE_PROXYTYPE;
     else if (compA != compB) swap = compB;
     else swap = proxyId(oA) > proxyId(oB);
     out.valid = true;
@@ -319,7 +318,9 @@ void ManifoldSync::contactEvents()
         btPersistentManifold* m = g.entry->second.manifold;
         const bool restarted = g.spheres && g.before > 0 && !g.fresh;
         if (restarted && gContactEndedCallback) gContactEndedCallback(m);
-        if ((g.fresh || restarted) && m->getNumContacts() > 0 && gContactStartedCallback) gContactStartedCallback(m);
+        // A manifold's first point starts its contact (btManifoldResult::addContactPoint), whether
+        // the manifold is new or was held empty (Config::stockEmptyManifolds).
+        if ((g.before == 0 || restarted) && m->getNumContacts() > 0 && gContactStartedCallback) gContactStartedCallback(m);
         if (gContactDestroyedCallback)
             for (void* p : g.dropped) gContactDestroyedCallback(p);
         g.dropped.clear();
@@ -450,7 +451,17 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
     }
     std::sort(stale.begin(), stale.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
     for (const auto& [index, node] : stale) {
-        if (keepsOldPoints(node, rows)) {
+        // With stock's pairs noted (Config::stockEmptyManifolds) a manifold lives as long as its
+        // pair's algorithm: given back when the pair left, kept (emptied if its points went)
+        // while it stays.
+        const bool held = m_wantedValid && stockHolds(node->first);
+        if ((!m_wantedValid || held) && keepsOldPoints(node, rows)) {
+            m_nextLive.push_back(node);
+            continue;
+        }
+        if (held) {
+            btPersistentManifold* m = node->second.manifold;
+            for (int s = m->getNumContacts() - 1; s >= 0; --s) m->removeContactPoint(s);  // destroyed, then ended
             m_nextLive.push_back(node);
             continue;
         }
@@ -460,6 +471,8 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
     // Nodes of bodies that left and were not found again: gone for good.
     for (Node* node : m_dead) m_map.erase(node->first);
     m_dead.clear();
+    if (m_wantedValid) holdStockPairs(dispatcher, removed);
+    m_wantedValid = false;  // each internal step notes its own pairs
     m_live.swap(m_nextLive);
 }
 
@@ -553,6 +566,10 @@ void ManifoldSync::releaseAll(btDispatcher* dispatcher)
     m_live.clear();
     m_dead.clear();
     m_pending.clear();
+    m_stockPairs.clear();
+    m_wanted.clear();
+    m_wantedSet.clear();
+    m_wantedValid = false;
 }
 
 void ManifoldSync::removed(btDispatcher* dispatcher, const btCollisionObject* object)

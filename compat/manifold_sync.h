@@ -19,6 +19,7 @@ class btCollisionShape;
 class btDispatcher;
 class btManifoldPoint;
 class btPersistentManifold;
+class btOverlappingPairCache;
 
 namespace btgpu {
 
@@ -44,6 +45,12 @@ public:
     // contacts come back) the fill keeps only the device's points.
     void noteCollidedAt(const RowMap& rows);
     void forgetCollidedAt() { m_collidedAtValid = false; }
+    // Config::stockEmptyManifolds: the pairs stock's dispatcher has collided, from its pair cache
+    // just updated as stock's at an internal step's start (pair_manifolds.cpp). The next fill
+    // holds a manifold (empty where the device found no points) for each, and gives back those
+    // of pairs that left. Without a call before a fill, only manifolds with points are held.
+    void notePairs(btDispatcher* dispatcher, btOverlappingPairCache* cache, const RowMap& rows,
+                   const std::unordered_set<const btCollisionObject*>& removed);
     // Those of an object leaving the world (stock: removeRigidBody → cleanProxyFromPairs).
     void removed(btDispatcher* dispatcher, const btCollisionObject* object);
     size_t size() const { return m_map.size() - m_dead.size(); }
@@ -139,6 +146,10 @@ private:
     bool keepsOldPoints(Node* node, const RowMap& rows);
     // Drops one map entry (and its place in m_byObject); the manifold is the caller's to release.
     void forget(Node* node);
+    // Config::stockEmptyManifolds, in the fill: whether a manifold the device did not name
+    // stays (its pair still stock's), and empty manifolds for the noted pairs that have none.
+    bool stockHolds(const Key& key) const { return m_wantedSet.count(key) > 0; }
+    void holdStockPairs(btDispatcher* dispatcher, const std::unordered_set<const btCollisionObject*>& removed);
 
     std::unordered_map<Key, Entry, KeyHash> m_map;
     std::vector<btTransform> m_collidedAt;  // per row (noteCollidedAt)
@@ -158,6 +169,13 @@ private:
     std::vector<Group> m_groups;
     std::vector<BtgContactReport> m_scratch;
     std::unordered_map<PointKey, PointState, PointKeyHash> m_pending;  // for the next fill
+    // Config::stockEmptyManifolds (notePairs): the manifold keys of each pair stock's dispatcher
+    // has collided, by the pair's proxy ids (an algorithm lives as long as its pair), and all
+    // of them in the pair cache's order (the order empty manifolds are made in).
+    std::unordered_map<unsigned long long, std::vector<Key>> m_stockPairs;
+    std::vector<Key> m_wanted;
+    std::unordered_set<Key, KeyHash> m_wantedSet;
+    bool m_wantedValid = false;
 };
 
 }  // namespace btgpu

@@ -51,6 +51,17 @@ ScenePtr tableStack(WorldKind kind, const Config& config, int count)
     return scene;
 }
 
+ScenePtr tableBesideSphere(WorldKind kind, const Config& config)
+{
+    auto scene = std::make_unique<Scene>(kind, config, "table_beside_sphere");
+    boxGround(*scene);
+    scene->addBody(tableShape(*scene), 1, btVector3(0, btScalar(kTableFootDepth), 0));
+    // Off the (+x, +z) leg's outer edge diagonally: 6 cm from the leg, inside its AABB's reach.
+    const btScalar off = btScalar(0.55 + 0.185), offZ = btScalar(0.35 + 0.185);
+    scene->addBody(scene->sphereShape(btScalar(0.2)), 1, btVector3(off, btScalar(0.2), offZ));
+    return scene;
+}
+
 ScenePtr tableOnMesh(WorldKind kind, const Config& config)
 {
     auto scene = std::make_unique<Scene>(kind, config, "table_on_mesh");

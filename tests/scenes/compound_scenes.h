@@ -18,6 +18,9 @@ constexpr double kTableHeight = 0.7;     // m, feet to top
 // ground); bodies 1..count, body 0 the ground.
 ScenePtr tableStack(WorldKind kind, const Config& config = Config(), int count = 1);
 // A table 1 cm above a flat triangle-mesh ground, or a flat heightfield (body 1; body 0 the ground).
+// A table resting on a box ground and a ball resting beside one of its legs, 6 cm from it but
+// inside the leg's AABB: stock holds an empty manifold for that child pair.
+ScenePtr tableBesideSphere(WorldKind kind, const Config& config = Config());
 ScenePtr tableOnMesh(WorldKind kind, const Config& config = Config());
 ScenePtr tableOnHeightfield(WorldKind kind, const Config& config = Config());
 // A cart of support-function children (GJK leaves): two cylinders (radius 0.3, half width 0.1,

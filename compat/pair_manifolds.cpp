@@ -1,0 +1,126 @@
+// pair_manifolds.cpp — Config::stockEmptyManifolds: the dispatcher holds a manifold for every pair
+// stock's dispatcher has collided, touching or not, as stock's collision algorithms hold one from
+// their pair's first collision until the pair leaves the pair cache (per compound child whose AABB
+// overlaps the other side's), so that getNumManifolds() is stock's count. The pairs are read from
+// Bullet's own pair cache, updated as stock's at the internal step's start (ghost_objects.cpp).
+#include "manifold_sync.h"
+
+#include <btBulletCollisionCommon.h>
+
+namespace btgpu {
+
+namespace {
+
+btVector3 childAabb(const btCollisionObject* o, int child, btVector3* max)
+{
+    const auto* c = static_cast<const btCompoundShape*>(o->getCollisionShape());
+    btVector3 min;
+    c->getChildShape(child)->getAabb(o->getWorldTransform() * c->getChildTransform(child), min, *max);
+    return min;
+}
+
+}  // namespace
+
+void ManifoldSync::notePairs(btDispatcher* dispatcher, btOverlappingPairCache* cache, const RowMap& rows,
+                             const std::unordered_set<const btCollisionObject*>& removed)
+{
+    m_wanted.clear();
+    m_wantedSet.clear();
+    m_wantedValid = dispatcher && cache;
+    if (!m_wantedValid) {
+        m_stockPairs.clear();
+        return;
+    }
+    // The manifolds of one pair's algorithm as its collision this step leaves them: one for two
+    // whole shapes (none for two concave ones: Bullet's empty algorithm); a compound's child
+    // algorithms made for the children whose AABB overlaps the other side's and freed for those
+    // that stopped (btCompoundCollisionAlgorithm::processCollision; child AABBs at the step's
+    // start, without a threshold, as stock's discrete collision).
+    auto collided = [&](const btCollisionObject* a, const btCollisionObject* b) {
+        std::vector<Key> keys;
+        const int ra = rows.rowOf(a), rb = rows.rowOf(b);
+        if (ra < 0 || rb < 0) return keys;
+        const btCollisionShape* sa = a->getCollisionShape();
+        const btCollisionShape* sb = b->getCollisionShape();
+        if (sa->isConcave() && sb->isConcave()) return keys;
+        const int na = sa->isCompound() ? static_cast<const btCompoundShape*>(sa)->getNumChildShapes() : 0;
+        const int nb = sb->isCompound() ? static_cast<const btCompoundShape*>(sb)->getNumChildShapes() : 0;
+        auto add = [&](int ia, int ib) {
+            const Side s = orient(rows, ra, rb, ia, ib, removed);
+            if (s.valid) keys.push_back(s.key);
+        };
+        if (!sa->isCompound() && !sb->isCompound()) {
+            add(-1, -1);
+            return keys;
+        }
+        btVector3 wholeMinA, wholeMaxA, wholeMinB, wholeMaxB;
+        sa->getAabb(a->getWorldTransform(), wholeMinA, wholeMaxA);
+        sb->getAabb(b->getWorldTransform(), wholeMinB, wholeMaxB);
+        if (sa->isCompound() && sb->isCompound()) {
+            for (int i = 0; i < na; ++i) {
+                btVector3 maxA, minA = childAabb(a, i, &maxA);
+                if (!TestAabbAgainstAabb2(minA, maxA, wholeMinB, wholeMaxB)) continue;
+                for (int j = 0; j < nb; ++j) {
+                    btVector3 maxB, minB = childAabb(b, j, &maxB);
+                    if (TestAabbAgainstAabb2(minA, maxA, minB, maxB)) add(i, j);
+                }
+            }
+        } else if (sa->isCompound()) {
+            for (int i = 0; i < na; ++i) {
+                btVector3 maxA, minA = childAabb(a, i, &maxA);
+                if (TestAabbAgainstAabb2(minA, maxA, wholeMinB, wholeMaxB)) add(i, -1);
+            }
+        } else {
+            for (int j = 0; j < nb; ++j) {
+                btVector3 maxB, minB = childAabb(b, j, &maxB);
+                if (TestAabbAgainstAabb2(wholeMinA, wholeMaxA, minB, maxB)) add(-1, j);
+            }
+        }
+        return keys;
+    };
+    // Stock's near callback collides a pair only while needsCollision holds (an active body,
+    // collisions not ignored); an algorithm made once lives on with its manifolds, untouched
+    // while the pair is not collided (two sleeping bodies).
+    std::unordered_map<unsigned long long, std::vector<Key>> next;
+    const btBroadphasePairArray& pairs = cache->getOverlappingPairArray();
+    for (int i = 0; i < pairs.size(); ++i) {
+        const btBroadphasePair& pair = pairs[i];
+        const auto* a = static_cast<const btCollisionObject*>(pair.m_pProxy0->m_clientObject);
+        const auto* b = static_cast<const btCollisionObject*>(pair.m_pProxy1->m_clientObject);
+        if (!a || !b || (!removed.empty() && (removed.count(a) || removed.count(b)))) continue;
+        const unsigned long long id =
+            (static_cast<unsigned long long>(unsigned(pair.m_pProxy0->m_uniqueId)) << 32) | unsigned(pair.m_pProxy1->m_uniqueId);
+        std::vector<Key> keys;
+        if (dispatcher->needsCollision(a, b)) {
+            keys = collided(a, b);
+        } else {
+            auto it = m_stockPairs.find(id);
+            if (it == m_stockPairs.end()) continue;  // never collided: no algorithm yet
+            keys = std::move(it->second);
+        }
+        for (const Key& k : keys)
+            if (m_wantedSet.insert(k).second) m_wanted.push_back(k);
+        next.emplace(id, std::move(keys));
+    }
+    m_stockPairs.swap(next);
+}
+
+void ManifoldSync::holdStockPairs(btDispatcher* dispatcher, const std::unordered_set<const btCollisionObject*>& removed)
+{
+    // After the fill's own manifolds: each noted pair without one gets an empty manifold from
+    // the dispatcher's pool, in the pair cache's order (getNewManifold, as stock's algorithm makes
+    // it: no callback for an empty one; its contact starts when the device gives it points).
+    for (const Key& k : m_wanted) {
+        if (!removed.empty() && (removed.count(k.body0) || removed.count(k.body1))) continue;
+        auto it = m_map.find(k);
+        if (it != m_map.end() && it->second.manifold) continue;
+        if (it == m_map.end()) it = m_map.emplace(k, Entry{nullptr, 0, {}}).first;
+        Node* node = &*it;
+        node->second = Entry{dispatcher->getNewManifold(k.body0, k.body1), m_stamp, {}};
+        m_byObject[k.body0].push_back(node);
+        if (k.body1 != k.body0) m_byObject[k.body1].push_back(node);
+        m_nextLive.push_back(node);
+    }
+}
+
+}  // namespace btgpu
