@@ -39,7 +39,7 @@ struct Report {
     double deviceMs = 0.0;
     double writeBackMs = 0.0;
     double aabbSyncMs = 0.0;
-    double ghostBroadphaseMs = 0.0;   // with ghost objects: Bullet's broadphase pair update on the host (in syncInMs)
+    double ghostBroadphaseMs = 0.0;   // with ghosts, an overlap filter or Config::stockEmptyManifolds: Bullet's broadphase pair update on the host (in syncInMs)
     // While the app's contact callbacks (gContactAddedCallback on CF_CUSTOM_MATERIAL_CALLBACK
     // bodies, gContactProcessedCallback, custom combiners) or an overlap filter need the host
     // between a step's contacts and its solve: that part's time (gather, callbacks, the changes

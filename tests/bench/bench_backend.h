@@ -27,6 +27,7 @@ using scenes::spec::makeCompounds;
 struct Options {
     bool noSleep = false;           // disable Bullet's deactivation on every dynamic body
     bool noManifolds = false;       // btgpu: Config::fillDispatcherManifolds off (apps that never read contacts)
+    bool emptyManifolds = false;    // btgpu: Config::stockEmptyManifolds (stock's empty manifolds too)
     // btgpu: the app's contact callbacks' cost: "ground" (gContactAddedCallback, the first static
     // body CF_CUSTOM_MATERIAL_CALLBACK), "all" (every body flagged), "processed"
     // (gContactProcessedCallback); empty: none.
