@@ -5,7 +5,9 @@
  * the substep goes on.
  * With an overlap filter callback the host first empties the ranges of the pairs Bullet's pair
  * cache does not hold (clear_pair_ranges, one work-item per refused pair).
- * Launch: gather_callback_manifolds one work-item per pair slot (pairCapacity);
+ * Launch: gather_callback_manifolds one work-item per pair slot (pairCapacity), each gathered
+ * manifold with the point its GJK pair added this substep (gjkPairState.added; -2: not a GJK
+ * pair, all its points are this substep's);
  * scatter_callback_manifolds one per changed manifold; apply_contact_materials one per contact
  * slot (contactCapacity), right after prepare_contacts.
  * Reads pairManifolds, manifolds, props (BTG_BODY_CUSTOM_MATERIAL), counters[kPairCount,
@@ -18,18 +20,32 @@
 #include "shared/math.h"
 #include "shared/contact_rows.h"
 #include "shared/contact_material.h"
+#include "shared/compound.h"
+#include "shared/pair_kinds.h"
 
 __kernel void gather_callback_manifolds(__global const BtgManifoldRange* restrict pairManifolds,
                                         __global const BtgManifold* restrict manifolds,
                                         __global const BtgBodyProps* restrict props,
                                         __global const uint* restrict counters, int pairCapacity,
                                         __global uint* gatherCount, __global uint* slots,
-                                        __global BtgManifold* copies, int capacity, int all)
+                                        __global BtgManifold* copies, int capacity, int all,
+                                        __global const BtgPair* restrict pairs, __global const BtgShape* restrict shapes,
+                                        __global const BtgChild* restrict children,
+                                        __global const BtgPersistentManifold* restrict gjkPairState, int gjkCapacity,
+                                        __global int* added)
 {
     uint i = (uint)get_global_id(0);
     uint n = min(counters[BTG_COUNTER_PAIRS], (uint)pairCapacity);
     if (i >= n) return;
     BtgManifoldRange r = pairManifolds[i];
+    /* A GJK pair's manifold persists its points: which one this substep added (the points the
+     * app's added callback is called for), from the pair's state the narrowphase left. */
+    int addedId = -2;
+    if ((int)i < gjkCapacity) {
+        const int kind = btgPairKindOf(pairs[i], props, shapes, children);
+        const BtgPersistentManifold s = gjkPairState[i];
+        if (btgIsPersistentKind(kind) && s.kind == kind && s.bodyA == pairs[i].a && s.bodyB == pairs[i].b) addedId = s.added;
+    }
     for (int j = r.start; j < r.start + r.count; ++j) {
         BtgManifold m = manifolds[j];
         if (m.numPoints <= 0) continue;
@@ -38,6 +54,7 @@ __kernel void gather_callback_manifolds(__global const BtgManifoldRange* restric
         if (k >= (uint)capacity) continue;
         slots[k] = (uint)j;
         copies[k] = m;
+        added[k] = addedId;
     }
 }
 

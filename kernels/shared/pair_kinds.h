@@ -128,4 +128,16 @@ static inline int btgPairKind(int ta, int tb)
 }
 #undef BTG_PAIR_KIND_IF_ROW
 
+/* Whether a kind's pairs keep a persistent manifold (the GJK program's). */
+#define BTG_PAIR_KIND_CASE(program, kind, shapeA, shapeB, routine, kernel) case (kind):
+static inline int btgIsPersistentKind(int kind)
+{
+    switch (kind) {
+        BTG_PAIR_KINDS_NARROWPHASE_GJK(BTG_PAIR_KIND_CASE)
+        return 1;
+        default: return 0;
+    }
+}
+#undef BTG_PAIR_KIND_CASE
+
 #endif

@@ -24,6 +24,8 @@ static inline BtgPersistentManifold btgEmptyPersistent(int bodyA, int bodyB, int
     m.bodyB = bodyB;
     m.numPoints = 0;
     m.kind = kind;
+    m.added = -1;
+    m.pad0 = m.pad1 = m.pad2 = 0;
     return m;
 }
 
@@ -125,6 +127,7 @@ static inline void btgPersistentAdd(BtgPersistentManifold* m, float* dist, const
     m->localB[slot] = lb;
     m->normal[slot] = btgXyz(normal);
     m->id[slot] = id;
+    m->added = (int)id;
     dist[slot] = distance;
 }
 
@@ -154,6 +157,7 @@ static inline BtgPersistentManifold btgPersistentStep(BtgPersistentManifold prev
                                                       BtgPose pb, float threshold, float* dist)
 {
     BtgPersistentManifold m = prev;
+    m.added = -1;
     btgPersistentBegin(&m, dist);
     if (p.valid) btgPersistentAdd(&m, dist, &prev, p.normal, p.pointB, p.distance, pa, pb, threshold);
     btgPersistentRefresh(&m, dist, pa, pb, threshold);

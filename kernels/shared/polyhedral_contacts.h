@@ -100,15 +100,18 @@ static inline BtgPersistentManifold btgPolyhedralStep(BtgPersistentManifold prev
                                                       BTG_SHAPE_TABLES, float threshold, float* dist)
 {
     BtgPersistentManifold m = prev;
+    m.added = -1;
     btgPersistentBegin(&m, dist);
     const BtgConvexPoint g = btgGjkPoint(a, b, verts, threshold);
     if (g.valid) {
         const float d = g.distance + a.shape.margin + b.shape.margin;
         btgPersistentAdd(&m, dist, &prev, g.normal, g.pointB - g.normal * b.shape.margin, d, a.pose, b.pose,
                          threshold);
-        if (d < 0.0f)
+        if (d < 0.0f) {
             btgClipHullsIntoManifold(&m, dist, &prev, a, b, verts, faces, indices, edges, g.normal, d - threshold,
                                      threshold);
+            m.added = -2; /* the clipped points too: several added this substep */
+        }
     }
     btgPersistentRefresh(&m, dist, a.pose, b.pose, threshold);
     return m;

@@ -346,6 +346,11 @@ typedef struct {
     int bodyB;
     int numPoints;
     int kind;                         /* BTG_PAIR_* of the pair that wrote it */
+    int added;                        /* the identity of the point this substep's collision added
+                                         or replaced (the one stock's gContactAddedCallback sees),
+                                         -1 for none (the points persisted from earlier substeps),
+                                         -2 for several (hulls clipped: every point) */
+    int pad0, pad1, pad2;
 } BtgPersistentManifold;
 
 /* Per-step scalars, passed by value to the kernels that need them. */
@@ -398,7 +403,7 @@ static_assert(sizeof(BtgFrictionDirs) == 32 * BTG_MAX_POINTS, "BtgFrictionDirs l
 static_assert(sizeof(BtgCachedContact) == 16 * (BTG_MAX_POINTS + 2 * BTG_WARMSTART_FRICTION) + 4 * BTG_MAX_POINTS + 32,
               "BtgCachedContact layout");
 static_assert(sizeof(BtgStepParams) == 64, "BtgStepParams layout");
-static_assert(sizeof(BtgPersistentManifold) == 16 * 3 * BTG_MAX_POINTS + 4 * BTG_MAX_POINTS + 16,
+static_assert(sizeof(BtgPersistentManifold) == 16 * 3 * BTG_MAX_POINTS + 4 * BTG_MAX_POINTS + 32,
               "BtgPersistentManifold layout");
 #endif
 

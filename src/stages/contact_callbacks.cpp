@@ -19,14 +19,17 @@ std::vector<GatheredManifold> gatherCallbackManifolds(DeviceWorld& w, bool all)
     if (w.callbackSlots.capacity() == 0) {
         w.callbackSlots.reserveExact(ctx, 256);
         w.callbackManifolds.reserveExact(ctx, 256);
+        w.callbackAdded.reserveExact(ctx, 256);
     }
     uint count = 0;
     for (int attempt = 0; attempt < 2; ++attempt) {
-        const int capacity = int(std::min(w.callbackSlots.capacity(), w.callbackManifolds.capacity()));
+        const int capacity = int(std::min({w.callbackSlots.capacity(), w.callbackManifolds.capacity(), w.callbackAdded.capacity()}));
         w.callbackCount.fill(ctx, 0u, 0, 1);
         cl::Launch(ctx, ctx.program("contact_callbacks").kernel("gather_callback_manifolds"), &w.profiler)
             .arg(w.pairManifolds).arg(w.manifolds).arg(w.props).arg(w.counters).arg(pairCapacity)
             .arg(w.callbackCount).arg(w.callbackSlots).arg(w.callbackManifolds).arg(capacity).arg(all ? 1 : 0)
+            .arg(w.pairs).arg(w.shapes).arg(w.children).arg(w.gjkPairState)
+            .arg(int(std::min(w.gjkPairState.capacity(), size_t(pairCapacity)))).arg(w.callbackAdded)
             .run(size_t(std::max(pairCapacity, 1)));
         w.callbackCount.download(ctx, &count, 1);
         if (count <= uint(capacity)) break;
@@ -34,13 +37,16 @@ std::vector<GatheredManifold> gatherCallbackManifolds(DeviceWorld& w, bool all)
         const size_t grown = size_t(count) + count / 4 + 64;
         w.callbackSlots.reserveExact(ctx, grown);
         w.callbackManifolds.reserveExact(ctx, grown);
+        w.callbackAdded.reserveExact(ctx, grown);
     }
     std::vector<uint> slots(count);
     std::vector<BtgManifold> copies(count);
+    std::vector<int> added(count);
     w.callbackSlots.download(ctx, slots.data(), count);
     w.callbackManifolds.download(ctx, copies.data(), count);
+    w.callbackAdded.download(ctx, added.data(), count);
     std::vector<GatheredManifold> out(count);
-    for (uint i = 0; i < count; ++i) out[i] = {slots[i], copies[i]};
+    for (uint i = 0; i < count; ++i) out[i] = {slots[i], copies[i], added[i]};
     std::sort(out.begin(), out.end(), [](const GatheredManifold& a, const GatheredManifold& b) { return a.slot < b.slot; });
     return out;
 }

@@ -11,10 +11,13 @@
 
 namespace btgpu {
 
-// One flagged manifold as gathered: its slot and its contents.
+// One flagged manifold as gathered: its slot and its contents; for a pair of the GJK program
+// (a persistent manifold) the identity of the point this substep added or replaced
+// (BtgPersistentManifold::added: -1 none), else -2 (every point is this substep's).
 struct GatheredManifold {
     uint slot;
     BtgManifold manifold;
+    int added = -2;
 };
 // The manifolds of pairs with a flagged body (all: every manifold with points), sorted by slot
 // (blocking: one round trip, a second only when they outgrew the gather buffer).

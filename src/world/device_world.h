@@ -142,6 +142,7 @@ struct DeviceWorld {
     cl::DeviceArray<uint> callbackCount;
     cl::DeviceArray<uint> callbackSlots;
     cl::DeviceArray<BtgManifold> callbackManifolds;
+    cl::DeviceArray<int> callbackAdded;  // per gathered manifold: BtgPersistentManifold::added, -2 for none
     cl::DeviceArray<BtgContactMaterial> contactMaterials;
     int numMaterials = 0;
     // The warm-start cache: the last substep's solved contacts, reduced to what matching and

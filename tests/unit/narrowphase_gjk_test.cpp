@@ -309,6 +309,14 @@ TEST(NarrowphaseGjk, MatchesReferenceOverTwoSubsteps)
     for (size_t i = 0; i < f.pairs.size(); ++i) {
         expectSame(dev2[i], ref2.manifolds[i], i);
         for (int k = 0; k < dev2[i].numPoints; ++k) continued += dev2[i].points[k].featureId == dev[i].points[0].featureId;
+        // The point this substep added (the app's added callback is called for it alone) is one
+        // of the manifold's, named by its identity.
+        ASSERT_LT(i, states2.size());
+        if (dev2[i].numPoints == 0) continue;
+        int named = 0;
+        for (int k = 0; k < dev2[i].numPoints; ++k)
+            named += states2[i].added >= 0 && dev2[i].points[k].featureId == (BTG_FEATURE_SINGLE | uint(states2[i].added));
+        EXPECT_EQ(named, 1) << "pair " << i << " added " << states2[i].added;
     }
     EXPECT_GT(continued, 0) << "no point kept its identity across the substeps";
 }
@@ -368,6 +376,11 @@ TEST(NarrowphaseGjk, PersistentManifoldKeepsFourByArea)
     bool kept = false;
     for (int k = 0; k < 4; ++k) kept |= m.id[k] == idBefore;
     EXPECT_TRUE(kept) << "a replaced point keeps its identity";
+    EXPECT_EQ(m.added, int(idBefore)) << "the replaced point is the one added this step";
+    BtgConvexPoint none = near;
+    none.valid = 0;
+    m = btgPersistentStep(m, none, pa, pb, t, dist);
+    EXPECT_EQ(m.added, -1) << "no point found: every point persisted";
     pa.pos = btgMake4(0, 1.05f, 0, 0);  // pulled 5 cm apart: every point beyond the threshold
     m = btgPersistentStep(m, btgNoPoint(), pa, pb, t, dist);
     EXPECT_EQ(m.numPoints, 0);
