@@ -214,6 +214,11 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
         const btScalar deviceFriction = btManifoldResult::calculateCombinedFriction(sA.object, sB.object);
         const btScalar deviceRestitution = sA.object->getRestitution() * sB.object->getRestitution();
         const int n = std::min(m.numPoints, int(BTG_MAX_POINTS));
+        // Stock's box–box algorithm (the dispatcher's for two btBoxShape leaves, a compound's
+        // child boxes too: the GPU path requires Bullet's default algorithms) reports a point only
+        // while the boxes overlap and only with depth >= 0 (dBoxBox2); a speculative device point
+        // there is, on stock, an old point its refresh kept, not one added.
+        const bool boxBox = sA.shape->getShapeType() == BOX_SHAPE_PROXYTYPE && sB.shape->getShapeType() == BOX_SHAPE_PROXYTYPE;
         // Each point as addContactPoint makes it (with the user data of the app's point it
         // continues, as replaceContactPoint keeps it), then the added callback on it.
         btManifoldPoint cps[BTG_MAX_POINTS], initial[BTG_MAX_POINTS];
@@ -268,8 +273,10 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
             cp.m_index1 = swap ? indexA : indexB;
             // A point that replaces one keeps its user data, lifetime and impulses
             // (replaceContactPoint): those of the app's point it continues.
-            if (const btManifoldPoint* old =
-                    sync.continued(side, p.featureId, cp.m_index0, cp.m_partId1, cp.m_index1, cp.m_localPointA)) {
+            bool oldMoved = false;
+            const btManifoldPoint* old =
+                sync.continued(side, p.featureId, cp.m_index0, cp.m_partId1, cp.m_index1, cp.m_localPointA, &oldMoved);
+            if (old) {
                 cp.m_userPersistentData = old->m_userPersistentData;
                 cp.m_lifeTime = old->m_lifeTime;
                 cp.m_appliedImpulse = old->m_appliedImpulse;
@@ -277,9 +284,20 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
                 cp.m_appliedImpulseLateral2 = old->m_appliedImpulseLateral2;
                 cp.m_prevRHS = old->m_prevRHS;
             }
+            // A box–box point stock's detector would not report that continues one: stock's
+            // solve uses the kept point as the callback left it when it was added (its friction
+            // and restitution), and calls nothing for it. One that continues none is still
+            // called: stock has no point there, and the device's new contact must be served. So
+            // is one whose last callback moved its points: stock's kept point goes on from the
+            // moved local points, the device's fresh one only through the callback again.
+            const bool kept = flagged && boxBox && p.distance > 0 && old && !oldMoved;
+            if (kept) {
+                cp.m_combinedFriction = old->m_combinedFriction;
+                cp.m_combinedRestitution = old->m_combinedRestitution;
+            }
             loaded[k] = cp.m_userPersistentData;
             initial[k] = cp;
-            if (!flagged) continue;
+            if (!flagged || kept) continue;
             const btCollisionObjectWrapper wA(nullptr, sA.concave ? &triA : sA.shape, sA.object, sA.transform, partA, indexA);
             const btCollisionObjectWrapper wB(nullptr, sB.concave ? &triB : sB.shape, sB.object, sB.transform, partB, indexB);
             gContactAddedCallback(cp, swap ? &wB : &wA, cp.m_partId0, cp.m_index0, swap ? &wA : &wB, cp.m_partId1,
@@ -317,13 +335,14 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
             }
             btgSetLane(&material.restitution, k, cp.m_combinedRestitution);
             needMaterial |= cp.m_combinedFriction != deviceFriction || cp.m_combinedRestitution != deviceRestitution;
+            const bool moved = !(sameVec(cp.m_normalWorldOnB, before.m_normalWorldOnB) &&
+                                 sameVec(cp.m_positionWorldOnA, before.m_positionWorldOnA) &&
+                                 sameVec(cp.m_positionWorldOnB, before.m_positionWorldOnB) &&
+                                 cp.m_distance1 == before.m_distance1);
             if (cp.m_userPersistentData || loaded[k] || flagged || all)
                 sync.setPointState({m.bodyA, m.bodyB, m.indexA, m.indexB, m.points[k].featureId, k},
-                                   {cp.m_userPersistentData, cp.m_combinedFriction, cp.m_combinedRestitution});
-            if (sameVec(cp.m_normalWorldOnB, before.m_normalWorldOnB) &&
-                sameVec(cp.m_positionWorldOnA, before.m_positionWorldOnA) &&
-                sameVec(cp.m_positionWorldOnB, before.m_positionWorldOnB) && cp.m_distance1 == before.m_distance1)
-                continue;
+                                   {cp.m_userPersistentData, cp.m_combinedFriction, cp.m_combinedRestitution, moved});
+            if (!moved) continue;
             // The device keeps the point on B, the normal and the distance (the point on A is
             // implied): the callback's points must keep that relation, its normal unit.
             const btVector3 implied = cp.m_positionWorldOnB + cp.m_normalWorldOnB * cp.m_distance1;

@@ -64,6 +64,7 @@ struct NewPoint {
     btManifoldPoint point;
     uint featureId;
     bool pending;  // its user data and coefficients came from the callbacks before the solve
+    bool moved;    // a callback changed its geometry (PointState::moved)
     int continues;  // the old point it continues, -1 for none
 };
 
@@ -108,8 +109,9 @@ ManifoldSync::Side ManifoldSync::orient(const RowMap& rows, int bodyA, int bodyB
 }
 
 const btManifoldPoint* ManifoldSync::continued(const Side& side, unsigned featureId, int index0, int partId1,
-                                               int index1, const btVector3& localA) const
+                                               int index1, const btVector3& localA, bool* moved) const
 {
+    if (moved) *moved = false;
     auto it = m_map.find(side.key);
     if (it == m_map.end() || !it->second.manifold || side.spheres) return nullptr;  // none, or its body left  // stock clears a sphere pair's manifold each step
     const Entry& e = it->second;
@@ -132,6 +134,7 @@ const btManifoldPoint* ManifoldSync::continued(const Side& side, unsigned featur
             }
         }
     }
+    if (match >= 0 && moved) *moved = e.moved[match];
     return match >= 0 ? &m->getContactPoint(match) : nullptr;
 }
 
@@ -163,7 +166,7 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
             if (side.concaveA) triangleOfFeature(side.concaveA, r.featureId[k], &partA, &indexA);
             if (side.concaveB) triangleOfFeature(side.concaveB, r.featureId[k], &partB, &indexB);
             // The impulses act on the report's A along +n, +d1, +d2; Bullet's on body0.
-            NewPoint np{swap ? btManifoldPoint(lB, lA, -n, d) : btManifoldPoint(lA, lB, n, d), r.featureId[k], false};
+            NewPoint np{swap ? btManifoldPoint(lB, lA, -n, d) : btManifoldPoint(lA, lB, n, d), r.featureId[k], false, false, -1};
             btManifoldPoint& p = np.point;
             p.m_positionWorldOnA = swap ? pB : pA;
             p.m_positionWorldOnB = swap ? pA : pB;
@@ -187,6 +190,7 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
                     p.m_combinedFriction = it->second.friction;
                     p.m_combinedRestitution = it->second.restitution;
                     np.pending = true;
+                    np.moved = it->second.moved;
                 }
             }
             push(np);
@@ -236,7 +240,11 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
     g.before = oldCount;
     for (int j = 0; j < oldCount; ++j) m->getContactPoint(j).m_userPersistentData = nullptr;
     unsigned oldIds[MANIFOLD_CACHE_SIZE];
-    for (int j = 0; j < MANIFOLD_CACHE_SIZE; ++j) oldIds[j] = e.ids[j];
+    bool oldMoved[MANIFOLD_CACHE_SIZE];
+    for (int j = 0; j < MANIFOLD_CACHE_SIZE; ++j) {
+        oldIds[j] = e.ids[j];
+        oldMoved[j] = e.moved[j];
+    }
     // Stock's order inside the pair's collision: the detector's points go into the manifold as
     // it holds them (a continued point replaces its old one in place, a new one is added,
     // replacing by Bullet's reduction when four are held), then refreshContactPoints keeps the
@@ -284,10 +292,12 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
             const int i = p.m_lifeTime - kNewTag;
             owner[s] = i;
             e.ids[s] = at(i).featureId;
+            e.moved[s] = at(i).moved;
             p.m_lifeTime = at(i).point.m_lifeTime;
         } else {
             const int j = p.m_lifeTime - kOldTag;
             e.ids[s] = oldIds[j];
+            e.moved[s] = oldMoved[j];
             p.m_lifeTime = old[j].m_lifeTime + 1;
             p.m_appliedImpulse = p.m_appliedImpulseLateral1 = p.m_appliedImpulseLateral2 = 0;
             p.m_userPersistentData = old[j].m_userPersistentData;
@@ -362,14 +372,14 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
         Node* node = side.node;
         if (!node) {
             auto it = m_map.find(side.key);  // a new key seen earlier in this pass
-            if (it == m_map.end()) it = m_map.emplace(side.key, Entry{nullptr, 0, {}}).first;
+            if (it == m_map.end()) it = m_map.emplace(side.key, Entry{nullptr, 0, {}, {}}).first;
             node = &*it;
         }
         const bool fresh = !node->second.manifold;
         if (fresh) {
             // New, or revived after its body left (a new body at the freed address).
             m_dead.erase(node);
-            node->second = Entry{dispatcher->getNewManifold(side.key.body0, side.key.body1), 0, {}};
+            node->second = Entry{dispatcher->getNewManifold(side.key.body0, side.key.body1), 0, {}, {}};
             m_byObject[side.key.body0].push_back(node);
             if (side.key.body1 != side.key.body0) m_byObject[side.key.body1].push_back(node);
         }
@@ -503,7 +513,10 @@ bool ManifoldSync::keepsOldPoints(Node* node, const RowMap& rows)
         const btVector3 drift = p.m_positionWorldOnB - (p.m_positionWorldOnA - p.m_normalWorldOnB * p.m_distance1);
         if (p.m_distance1 > breaking || drift.length2() > breaking * breaking) {
             const int last = m->getNumContacts() - 1;
-            if (s != last && last < MANIFOLD_CACHE_SIZE) e.ids[s] = e.ids[last];  // the last point moves into s
+            if (s != last && last < MANIFOLD_CACHE_SIZE) {  // the last point moves into s
+                e.ids[s] = e.ids[last];
+                e.moved[s] = e.moved[last];
+            }
             m->removeContactPoint(s);
         }
     }

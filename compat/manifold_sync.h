@@ -70,10 +70,12 @@ public:
         }
     };
     // What the callbacks left on a point before the solve: its user data and combined
-    // coefficients (those the solve used), given to the manifold point the next fill makes of it.
+    // coefficients (those the solve used), given to the manifold point the next fill makes of it;
+    // moved: a callback changed its points or distance (continued() tells the next step).
     struct PointState {
         void* userData;
         btScalar friction, restitution;
+        bool moved;
     };
     void setPointState(const PointKey& point, const PointState& state) { m_pending[point] = state; }
 
@@ -97,6 +99,7 @@ public:
         btPersistentManifold* manifold;
         long stamp;  // the last fill that named it (written by the parallel pass: atomically)
         unsigned ids[4];  // the feature id of each of its points (BTG_FEATURE_*)
+        bool moved[4];    // each point's PointState::moved as it was filled
     };
     using Node = std::pair<const Key, Entry>;  // a map node: its address stays while it is in the map
     // One report's manifold in Bullet's terms (orient: which side is body0, the key).
@@ -114,9 +117,10 @@ public:
                        const std::unordered_set<const btCollisionObject*>& removed);
     // The app's manifold point (as the last fill left it) that a point of this side's manifold
     // continues (as the fill matches them: same feature and sub-shape, else the nearest in
-    // body0's frame within the breaking threshold), nullptr when none.
+    // body0's frame within the breaking threshold), nullptr when none; *moved: whether a
+    // callback changed that point's geometry before the solve that made it.
     const btManifoldPoint* continued(const Side& side, unsigned featureId, int index0, int partId1, int index1,
-                                     const btVector3& localA) const;
+                                     const btVector3& localA, bool* moved = nullptr) const;
 
 private:
     // The reports [first, last) of one manifold.
