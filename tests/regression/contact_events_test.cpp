@@ -77,7 +77,8 @@ struct Events {
 // the device's new contact is served); a speculative one that continues a point is not called,
 // never (stock: 0 too). Measured +5.9% in the first window (the landing's speculative points, 64
 // calls, and more of the GPU path's resting ground points penetrate: about 61 of 64 against
-// stock's 54 — the device solve rests its boxes deeper) and +1.5% in the second, +3.4% over the
+// stock's 54 — the device's resting contacts hold a steady 0.1-1 mm depth, stock's jitter
+// about zero) and +1.5% in the second, +3.4% over the
 // 200 steps (before: +16-21%): 5% over the steps, 8% a window. After 200 steps stock's pile
 // sleeps earlier than the GPU path's (no calls for a pair of sleeping bodies on either), so the
 // windows stop there.
