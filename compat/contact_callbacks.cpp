@@ -276,9 +276,30 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
             bool oldMoved = false;
             const btManifoldPoint* old =
                 sync.continued(side, p.featureId, cp.m_index0, cp.m_partId1, cp.m_index1, cp.m_localPointA, &oldMoved);
+            // Where a body is a compound, stock's compound algorithm refreshes the child manifold
+            // before the child collides (ManifoldSync::refreshesPerStep): the old point, aged and
+            // at this step's transforms, goes to the processed callback first, and the point that
+            // replaces it keeps that lifetime and the user data the callback left.
+            btManifoldPoint pre;
+            bool preCalled = false;
             if (old) {
-                cp.m_userPersistentData = old->m_userPersistentData;
-                cp.m_lifeTime = old->m_lifeTime;
+                pre = *old;
+                pre.m_lifeTime += side.refreshes - 1;
+                if (side.refreshes > 1 && gContactProcessedCallback) {
+                    pre.m_positionWorldOnA = o0->getWorldTransform()(pre.m_localPointA);
+                    pre.m_positionWorldOnB = o1->getWorldTransform()(pre.m_localPointB);
+                    pre.m_distance1 = (pre.m_positionWorldOnA - pre.m_positionWorldOnB).dot(pre.m_normalWorldOnB);
+                    const btScalar breaking = sync.manifold(side)->getContactBreakingThreshold();
+                    const btVector3 drift =
+                        pre.m_positionWorldOnB - (pre.m_positionWorldOnA - pre.m_normalWorldOnB * pre.m_distance1);
+                    if (pre.m_distance1 <= breaking && drift.length2() <= breaking * breaking) {
+                        gContactProcessedCallback(pre, (void*)o0, (void*)o1);
+                        ++m_calls;
+                        preCalled = true;
+                    }
+                }
+                cp.m_userPersistentData = pre.m_userPersistentData;
+                cp.m_lifeTime = pre.m_lifeTime;
                 cp.m_appliedImpulse = old->m_appliedImpulse;
                 cp.m_appliedImpulseLateral1 = old->m_appliedImpulseLateral1;
                 cp.m_appliedImpulseLateral2 = old->m_appliedImpulseLateral2;
@@ -292,8 +313,8 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
             // moved local points, the device's fresh one only through the callback again.
             const bool kept = flagged && boxBox && p.distance > 0 && old && !oldMoved;
             if (kept) {
-                cp.m_combinedFriction = old->m_combinedFriction;
-                cp.m_combinedRestitution = old->m_combinedRestitution;
+                cp.m_combinedFriction = (preCalled ? pre : *old).m_combinedFriction;
+                cp.m_combinedRestitution = (preCalled ? pre : *old).m_combinedRestitution;
             }
             loaded[k] = cp.m_userPersistentData;
             initial[k] = cp;

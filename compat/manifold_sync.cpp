@@ -75,6 +75,13 @@ constexpr int kNewTag = 1 << 21;
 
 }  // namespace
 
+int ManifoldSync::refreshesPerStep(const btCollisionObject* body0, const btCollisionObject* body1)
+{
+    // btCompoundCollisionAlgorithm and btCompoundCompoundCollisionAlgorithm::processCollision
+    // (3.24): "we need to refresh all contact manifolds" of their child algorithms, then collide.
+    return body0->getCollisionShape()->isCompound() || body1->getCollisionShape()->isCompound() ? 2 : 1;
+}
+
 ManifoldSync::Side ManifoldSync::orient(const RowMap& rows, int bodyA, int bodyB, int indexA, int indexB,
                                        const std::unordered_set<const btCollisionObject*>& removed)
 {
@@ -103,6 +110,7 @@ ManifoldSync::Side ManifoldSync::orient(const RowMap& rows, int bodyA, int bodyB
     out.spheres = tA == SPHERE_SHAPE_PROXYTYPE && tB == SPHERE_SHAPE_PROXYTYPE;
     out.concaveA = concA ? leafA : nullptr;
     out.concaveB = concB ? leafB : nullptr;
+    out.refreshes = compA || compB ? 2 : 1;
     out.key = swap ? Key{oB, oA, sideKey(oB, leafB, indexB), sideKey(oA, leafA, indexA)}
                    : Key{oA, oB, sideKey(oA, leafA, indexA), sideKey(oB, leafB, indexB)};
     return out;
@@ -202,6 +210,7 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
     // nearest in A's frame within the breaking threshold, as getCacheEntry) counts on; a new one
     // starts at 1, as stock's refreshContactPoints leaves a point added this step.
     const int oldCount = m->getNumContacts();
+    const int ages = refreshesPerStep(key.body0, key.body1);
     btManifoldPoint old[MANIFOLD_CACHE_SIZE];
     for (int j = 0; j < oldCount; ++j) old[j] = m->getContactPoint(j);
     const btScalar thr2 = m->getContactBreakingThreshold() * m->getContactBreakingThreshold();
@@ -228,7 +237,7 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
         }
         if (match >= 0) claimed |= 1u << match;
         np.continues = match;
-        np.point.m_lifeTime = g.spheres ? 0 : (match >= 0 ? old[match].m_lifeTime + 1 : 1);
+        np.point.m_lifeTime = g.spheres ? 0 : (match >= 0 ? old[match].m_lifeTime + ages : 1);
         // A point that continues one keeps its user data (replaceContactPoint); stock clears a
         // sphere pair's manifold every step, which drops it.
         if (!np.pending) np.point.m_userPersistentData = match >= 0 && !g.spheres ? old[match].m_userPersistentData : nullptr;
@@ -298,7 +307,7 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
             const int j = p.m_lifeTime - kOldTag;
             e.ids[s] = oldIds[j];
             e.moved[s] = oldMoved[j];
-            p.m_lifeTime = old[j].m_lifeTime + 1;
+            p.m_lifeTime = old[j].m_lifeTime + ages;
             p.m_appliedImpulse = p.m_appliedImpulseLateral1 = p.m_appliedImpulseLateral2 = 0;
             p.m_userPersistentData = old[j].m_userPersistentData;
         }
@@ -508,7 +517,7 @@ bool ManifoldSync::keepsOldPoints(Node* node, const RowMap& rows)
         p.m_positionWorldOnA = t0(p.m_localPointA);
         p.m_positionWorldOnB = t1(p.m_localPointB);
         p.m_distance1 = (p.m_positionWorldOnA - p.m_positionWorldOnB).dot(p.m_normalWorldOnB);
-        p.m_lifeTime++;
+        p.m_lifeTime += refreshesPerStep(k.body0, k.body1);
         p.m_appliedImpulse = p.m_appliedImpulseLateral1 = p.m_appliedImpulseLateral2 = 0;
         const btVector3 drift = p.m_positionWorldOnB - (p.m_positionWorldOnA - p.m_normalWorldOnB * p.m_distance1);
         if (p.m_distance1 > breaking || drift.length2() > breaking * breaking) {

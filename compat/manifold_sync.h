@@ -111,7 +111,13 @@ public:
         bool spheres;  // sphere–sphere (stock clears that manifold every step)
         const btCollisionShape* concaveA;  // the report's concave leaves (per-point triangles)
         const btCollisionShape* concaveB;
+        int refreshes;  // refreshContactPoints a step on stock (refreshesPerStep)
     };
+    // How often stock refreshes the manifold of a pair in a step (each ages its points by one and
+    // calls gContactProcessedCallback): twice where a body is a compound (its algorithm refreshes
+    // every child manifold before the children collide, then each child's own algorithm refreshes
+    // its manifold), else once.
+    static int refreshesPerStep(const btCollisionObject* body0, const btCollisionObject* body1);
     // One device manifold's sides (bodies and sub-shape keys as the device names them).
     static Side orient(const RowMap& rows, int bodyA, int bodyB, int indexA, int indexB,
                        const std::unordered_set<const btCollisionObject*>& removed);
@@ -121,6 +127,12 @@ public:
     // callback changed that point's geometry before the solve that made it.
     const btManifoldPoint* continued(const Side& side, unsigned featureId, int index0, int partId1, int index1,
                                      const btVector3& localA, bool* moved = nullptr) const;
+    // The app's manifold of this side as the last fill left it, nullptr when none.
+    const btPersistentManifold* manifold(const Side& side) const
+    {
+        auto it = m_map.find(side.key);
+        return it == m_map.end() ? nullptr : it->second.manifold;
+    }
 
 private:
     // The reports [first, last) of one manifold.

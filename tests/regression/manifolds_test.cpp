@@ -260,18 +260,22 @@ TEST(Manifolds, RestingStackImpulsesCarryTheWeight)
     }
 }
 
+namespace {
+std::multiset<int> lifetimes(Scene& s)
+{
+    std::multiset<int> l;
+    btDispatcher* d = s.world().getDispatcher();
+    for (int i = 0; i < d->getNumManifolds(); ++i)
+        for (int j = 0; j < d->getManifoldByIndexInternal(i)->getNumContacts(); ++j)
+            l.insert(d->getManifoldByIndexInternal(i)->getContactPoint(j).getLifeTime());
+    return l;
+}
+}  // namespace
+
 // Resting contacts keep their points: lifetimes count up by one a step, as stock's do.
 TEST(Manifolds, LifetimesGrowForRestingContacts)
 {
     SideBySide sb([](WorldKind k, const Config& c) { return scenes::boxStack(k, c, 3); });
-    auto lifetimes = [](Scene& s) {
-        std::multiset<int> l;
-        btDispatcher* d = s.world().getDispatcher();
-        for (int i = 0; i < d->getNumManifolds(); ++i)
-            for (int j = 0; j < d->getManifoldByIndexInternal(i)->getNumContacts(); ++j)
-                l.insert(d->getManifoldByIndexInternal(i)->getContactPoint(j).getLifeTime());
-        return l;
-    };
     sb.step(60);
     ASSERT_TRUE(sb.onGpu());
     std::multiset<int> before = lifetimes(*sb.gpu), stockBefore = lifetimes(*sb.stock);
@@ -290,6 +294,28 @@ TEST(Manifolds, LifetimesGrowForRestingContacts)
     std::multiset<int> stockExpected;
     for (int l : stockBefore) stockExpected.insert(l + 20);
     EXPECT_EQ(stockAfter, stockExpected);
+}
+
+// A compound's child manifolds age by two a step on stock (its algorithm refreshes every child
+// manifold before the children collide, then each child's algorithm its own): a resting table's
+// leg points too on the GPU path.
+TEST(Manifolds, CompoundChildLifetimesGrowAsStock)
+{
+    SideBySide sb([](WorldKind k, const Config& c) { return scenes::tableStack(k, c, 1); });
+    sb.step(40);
+    ASSERT_TRUE(sb.onGpu());
+    const std::multiset<int> before = lifetimes(*sb.gpu), stockBefore = lifetimes(*sb.stock);
+    ASSERT_EQ(before.size(), 16u);
+    ASSERT_EQ(stockBefore.size(), 16u);
+    for (int step = 0; step < 20; ++step) {
+        sb.step();
+        ASSERT_TRUE(sb.onGpu()) << step;
+    }
+    std::multiset<int> expected, stockExpected;
+    for (int l : before) expected.insert(l + 40);
+    for (int l : stockBefore) stockExpected.insert(l + 40);
+    EXPECT_EQ(lifetimes(*sb.stock), stockExpected);
+    EXPECT_EQ(lifetimes(*sb.gpu), expected);
 }
 
 // A compound (a table: top and four legs) on a box: one manifold per leg–ground child pair,
