@@ -223,6 +223,8 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
         // continues, as replaceContactPoint keeps it), then the added callback on it.
         btManifoldPoint cps[BTG_MAX_POINTS], initial[BTG_MAX_POINTS];
         void* loaded[BTG_MAX_POINTS];
+        btPersistentManifold* app = side.spheres ? nullptr : sync.manifold(side);
+        int continues[BTG_MAX_POINTS];  // the app's point each device point continues, -1 for none
         for (int k = 0; k < n; ++k) {
             const BtgManifoldPoint& p = m.points[k];
             const btVector3 nrm(p.nx, p.ny, p.nz), pB(p.px, p.py, p.pz);
@@ -282,6 +284,7 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
             // replaces it keeps that lifetime and the user data the callback left.
             btManifoldPoint pre;
             bool preCalled = false;
+            continues[k] = old && app ? int(old - &app->getContactPoint(0)) : -1;
             if (old) {
                 pre = *old;
                 pre.m_lifeTime += side.refreshes - 1;
@@ -334,6 +337,58 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
                 gContactProcessedCallback(cps[k], (void*)o0, (void*)o1);
                 ++m_calls;
             }
+        // The app's old points no device point replaced: stock's refresh keeps them while within
+        // the breaking threshold at these transforms and gives each to the processed callback,
+        // aged (at each of its refreshes). Which stay is the fill's (refill's `retain`): the old
+        // points, then the device's, a continued one in its old one's slot, a new one added with
+        // Bullet's reduction choosing when four are held; replayed here on a scratch manifold.
+        // What the callback sets on them stays on the app's point, for the fill; they are not in
+        // the device's solve (nor were they before).
+        if (gContactProcessedCallback && app && app->getNumContacts() > 0 && n > 0) {
+            const btScalar breaking = app->getContactBreakingThreshold();
+            btPersistentManifold scratch(o0, o1, 0, breaking, app->getContactProcessingThreshold());
+            for (int j = 0; j < app->getNumContacts(); ++j) {
+                btManifoldPoint q = app->getContactPoint(j);
+                q.m_userPersistentData = nullptr;
+                q.m_lifeTime = j;
+                scratch.addManifoldPoint(q, true);
+            }
+            for (int k = 0; k < n; ++k) {
+                btManifoldPoint q = cps[k];
+                q.m_userPersistentData = nullptr;
+                q.m_lifeTime = -1 - k;
+                int slot = -1;
+                for (int sl = 0; continues[k] >= 0 && sl < scratch.getNumContacts() && slot < 0; ++sl)
+                    if (scratch.getContactPoint(sl).m_lifeTime == continues[k]) slot = sl;
+                if (slot >= 0) scratch.getContactPoint(slot) = q;
+                else scratch.addManifoldPoint(q, true);
+            }
+            // Where the reduction dropped a device point for an old one, the callback had that
+            // device point (it is in the device's solve, which needs its coefficients): the old
+            // one is not called, so that no more points are called than the manifold holds.
+            int devicePoints = 0;
+            for (int sl = 0; sl < scratch.getNumContacts(); ++sl) devicePoints += scratch.getContactPoint(sl).m_lifeTime < 0;
+            for (int sl = scratch.getNumContacts() - 1; sl >= 0 && devicePoints == n; --sl) {
+                const int j = scratch.getContactPoint(sl).m_lifeTime;
+                if (j < 0) continue;  // a device point: called above
+                btManifoldPoint& op = app->getContactPoint(j);
+                btManifoldPoint q = op;
+                q.m_positionWorldOnA = o0->getWorldTransform()(q.m_localPointA);
+                q.m_positionWorldOnB = o1->getWorldTransform()(q.m_localPointB);
+                q.m_distance1 = (q.m_positionWorldOnA - q.m_positionWorldOnB).dot(q.m_normalWorldOnB);
+                const btVector3 drift = q.m_positionWorldOnB - (q.m_positionWorldOnA - q.m_normalWorldOnB * q.m_distance1);
+                if (q.m_distance1 > breaking || drift.length2() > breaking * breaking) continue;
+                for (int r = 0; r < side.refreshes; ++r) {
+                    ++q.m_lifeTime;
+                    gContactProcessedCallback(q, (void*)o0, (void*)o1);
+                    ++m_calls;
+                }
+                op.m_userPersistentData = q.m_userPersistentData;
+                op.m_combinedFriction = q.m_combinedFriction;
+                op.m_combinedRestitution = q.m_combinedRestitution;
+            }
+            scratch.setNumContacts(0);
+        }
         BtgManifold out = m;
         BtgContactMaterial material{};
         material.slot = g.slot;

@@ -127,8 +127,9 @@ public:
     // callback changed that point's geometry before the solve that made it.
     const btManifoldPoint* continued(const Side& side, unsigned featureId, int index0, int partId1, int index1,
                                      const btVector3& localA, bool* moved = nullptr) const;
-    // The app's manifold of this side as the last fill left it, nullptr when none.
-    const btPersistentManifold* manifold(const Side& side) const
+    // The app's manifold of this side as the last fill left it, nullptr when none (the callbacks
+    // before the solve may set its old points' user data and coefficients: the fill keeps them).
+    btPersistentManifold* manifold(const Side& side) const
     {
         auto it = m_map.find(side.key);
         return it == m_map.end() ? nullptr : it->second.manifold;
