@@ -214,10 +214,17 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
         const btScalar deviceFriction = btManifoldResult::calculateCombinedFriction(sA.object, sB.object);
         const btScalar deviceRestitution = sA.object->getRestitution() * sB.object->getRestitution();
         const int n = std::min(m.numPoints, int(BTG_MAX_POINTS));
+        // Stock's box–box algorithm (the dispatcher's for two btBoxShape leaves, a compound's
+        // child boxes too: the GPU path requires Bullet's default algorithms) reports a point only
+        // while the boxes overlap and only with depth >= 0 (dBoxBox2); a speculative device point
+        // there is, on stock, an old point its refresh kept, not one added.
+        const bool boxBox = sA.shape->getShapeType() == BOX_SHAPE_PROXYTYPE && sB.shape->getShapeType() == BOX_SHAPE_PROXYTYPE;
         // Each point as addContactPoint makes it (with the user data of the app's point it
         // continues, as replaceContactPoint keeps it), then the added callback on it.
         btManifoldPoint cps[BTG_MAX_POINTS], initial[BTG_MAX_POINTS];
         void* loaded[BTG_MAX_POINTS];
+        btPersistentManifold* app = side.spheres ? nullptr : sync.manifold(side);
+        int continues[BTG_MAX_POINTS];  // the app's point each device point continues, -1 for none
         for (int k = 0; k < n; ++k) {
             const BtgManifoldPoint& p = m.points[k];
             const btVector3 nrm(p.nx, p.ny, p.nz), pB(p.px, p.py, p.pz);
@@ -268,18 +275,53 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
             cp.m_index1 = swap ? indexA : indexB;
             // A point that replaces one keeps its user data, lifetime and impulses
             // (replaceContactPoint): those of the app's point it continues.
-            if (const btManifoldPoint* old =
-                    sync.continued(side, p.featureId, cp.m_index0, cp.m_partId1, cp.m_index1, cp.m_localPointA)) {
-                cp.m_userPersistentData = old->m_userPersistentData;
-                cp.m_lifeTime = old->m_lifeTime;
+            bool oldMoved = false;
+            const btManifoldPoint* old =
+                sync.continued(side, p.featureId, cp.m_index0, cp.m_partId1, cp.m_index1, cp.m_localPointA, &oldMoved);
+            // Where a body is a compound, stock's compound algorithm refreshes the child manifold
+            // before the child collides (ManifoldSync::refreshesPerStep): the old point, aged and
+            // at this step's transforms, goes to the processed callback first, and the point that
+            // replaces it keeps that lifetime and the user data the callback left.
+            btManifoldPoint pre;
+            bool preCalled = false;
+            continues[k] = old && app ? int(old - &app->getContactPoint(0)) : -1;
+            if (old) {
+                pre = *old;
+                pre.m_lifeTime += side.refreshes - 1;
+                if (side.refreshes > 1 && gContactProcessedCallback) {
+                    pre.m_positionWorldOnA = o0->getWorldTransform()(pre.m_localPointA);
+                    pre.m_positionWorldOnB = o1->getWorldTransform()(pre.m_localPointB);
+                    pre.m_distance1 = (pre.m_positionWorldOnA - pre.m_positionWorldOnB).dot(pre.m_normalWorldOnB);
+                    const btScalar breaking = sync.manifold(side)->getContactBreakingThreshold();
+                    const btVector3 drift =
+                        pre.m_positionWorldOnB - (pre.m_positionWorldOnA - pre.m_normalWorldOnB * pre.m_distance1);
+                    if (pre.m_distance1 <= breaking && drift.length2() <= breaking * breaking) {
+                        gContactProcessedCallback(pre, (void*)o0, (void*)o1);
+                        ++m_calls;
+                        preCalled = true;
+                    }
+                }
+                cp.m_userPersistentData = pre.m_userPersistentData;
+                cp.m_lifeTime = pre.m_lifeTime;
                 cp.m_appliedImpulse = old->m_appliedImpulse;
                 cp.m_appliedImpulseLateral1 = old->m_appliedImpulseLateral1;
                 cp.m_appliedImpulseLateral2 = old->m_appliedImpulseLateral2;
                 cp.m_prevRHS = old->m_prevRHS;
             }
+            // A box–box point stock's detector would not report that continues one: stock's
+            // solve uses the kept point as the callback left it when it was added (its friction
+            // and restitution), and calls nothing for it. One that continues none is still
+            // called: stock has no point there, and the device's new contact must be served. So
+            // is one whose last callback moved its points: stock's kept point goes on from the
+            // moved local points, the device's fresh one only through the callback again.
+            const bool kept = flagged && boxBox && p.distance > 0 && old && !oldMoved;
+            if (kept) {
+                cp.m_combinedFriction = (preCalled ? pre : *old).m_combinedFriction;
+                cp.m_combinedRestitution = (preCalled ? pre : *old).m_combinedRestitution;
+            }
             loaded[k] = cp.m_userPersistentData;
             initial[k] = cp;
-            if (!flagged) continue;
+            if (!flagged || kept) continue;
             const btCollisionObjectWrapper wA(nullptr, sA.concave ? &triA : sA.shape, sA.object, sA.transform, partA, indexA);
             const btCollisionObjectWrapper wB(nullptr, sB.concave ? &triB : sB.shape, sB.object, sB.transform, partB, indexB);
             gContactAddedCallback(cp, swap ? &wB : &wA, cp.m_partId0, cp.m_index0, swap ? &wA : &wB, cp.m_partId1,
@@ -295,6 +337,58 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
                 gContactProcessedCallback(cps[k], (void*)o0, (void*)o1);
                 ++m_calls;
             }
+        // The app's old points no device point replaced: stock's refresh keeps them while within
+        // the breaking threshold at these transforms and gives each to the processed callback,
+        // aged (at each of its refreshes). Which stay is the fill's (refill's `retain`): the old
+        // points, then the device's, a continued one in its old one's slot, a new one added with
+        // Bullet's reduction choosing when four are held; replayed here on a scratch manifold.
+        // What the callback sets on them stays on the app's point, for the fill; they are not in
+        // the device's solve (nor were they before).
+        if (gContactProcessedCallback && app && app->getNumContacts() > 0 && n > 0) {
+            const btScalar breaking = app->getContactBreakingThreshold();
+            btPersistentManifold scratch(o0, o1, 0, breaking, app->getContactProcessingThreshold());
+            for (int j = 0; j < app->getNumContacts(); ++j) {
+                btManifoldPoint q = app->getContactPoint(j);
+                q.m_userPersistentData = nullptr;
+                q.m_lifeTime = j;
+                scratch.addManifoldPoint(q, true);
+            }
+            for (int k = 0; k < n; ++k) {
+                btManifoldPoint q = cps[k];
+                q.m_userPersistentData = nullptr;
+                q.m_lifeTime = -1 - k;
+                int slot = -1;
+                for (int sl = 0; continues[k] >= 0 && sl < scratch.getNumContacts() && slot < 0; ++sl)
+                    if (scratch.getContactPoint(sl).m_lifeTime == continues[k]) slot = sl;
+                if (slot >= 0) scratch.getContactPoint(slot) = q;
+                else scratch.addManifoldPoint(q, true);
+            }
+            // Where the reduction dropped a device point for an old one, the callback had that
+            // device point (it is in the device's solve, which needs its coefficients): the old
+            // one is not called, so that no more points are called than the manifold holds.
+            int devicePoints = 0;
+            for (int sl = 0; sl < scratch.getNumContacts(); ++sl) devicePoints += scratch.getContactPoint(sl).m_lifeTime < 0;
+            for (int sl = scratch.getNumContacts() - 1; sl >= 0 && devicePoints == n; --sl) {
+                const int j = scratch.getContactPoint(sl).m_lifeTime;
+                if (j < 0) continue;  // a device point: called above
+                btManifoldPoint& op = app->getContactPoint(j);
+                btManifoldPoint q = op;
+                q.m_positionWorldOnA = o0->getWorldTransform()(q.m_localPointA);
+                q.m_positionWorldOnB = o1->getWorldTransform()(q.m_localPointB);
+                q.m_distance1 = (q.m_positionWorldOnA - q.m_positionWorldOnB).dot(q.m_normalWorldOnB);
+                const btVector3 drift = q.m_positionWorldOnB - (q.m_positionWorldOnA - q.m_normalWorldOnB * q.m_distance1);
+                if (q.m_distance1 > breaking || drift.length2() > breaking * breaking) continue;
+                for (int r = 0; r < side.refreshes; ++r) {
+                    ++q.m_lifeTime;
+                    gContactProcessedCallback(q, (void*)o0, (void*)o1);
+                    ++m_calls;
+                }
+                op.m_userPersistentData = q.m_userPersistentData;
+                op.m_combinedFriction = q.m_combinedFriction;
+                op.m_combinedRestitution = q.m_combinedRestitution;
+            }
+            scratch.setNumContacts(0);
+        }
         BtgManifold out = m;
         BtgContactMaterial material{};
         material.slot = g.slot;
@@ -317,13 +411,14 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
             }
             btgSetLane(&material.restitution, k, cp.m_combinedRestitution);
             needMaterial |= cp.m_combinedFriction != deviceFriction || cp.m_combinedRestitution != deviceRestitution;
+            const bool moved = !(sameVec(cp.m_normalWorldOnB, before.m_normalWorldOnB) &&
+                                 sameVec(cp.m_positionWorldOnA, before.m_positionWorldOnA) &&
+                                 sameVec(cp.m_positionWorldOnB, before.m_positionWorldOnB) &&
+                                 cp.m_distance1 == before.m_distance1);
             if (cp.m_userPersistentData || loaded[k] || flagged || all)
                 sync.setPointState({m.bodyA, m.bodyB, m.indexA, m.indexB, m.points[k].featureId, k},
-                                   {cp.m_userPersistentData, cp.m_combinedFriction, cp.m_combinedRestitution});
-            if (sameVec(cp.m_normalWorldOnB, before.m_normalWorldOnB) &&
-                sameVec(cp.m_positionWorldOnA, before.m_positionWorldOnA) &&
-                sameVec(cp.m_positionWorldOnB, before.m_positionWorldOnB) && cp.m_distance1 == before.m_distance1)
-                continue;
+                                   {cp.m_userPersistentData, cp.m_combinedFriction, cp.m_combinedRestitution, moved});
+            if (!moved) continue;
             // The device keeps the point on B, the normal and the distance (the point on A is
             // implied): the callback's points must keep that relation, its normal unit.
             const btVector3 implied = cp.m_positionWorldOnB + cp.m_normalWorldOnB * cp.m_distance1;

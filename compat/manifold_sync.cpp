@@ -64,6 +64,7 @@ struct NewPoint {
     btManifoldPoint point;
     uint featureId;
     bool pending;  // its user data and coefficients came from the callbacks before the solve
+    bool moved;    // a callback changed its geometry (PointState::moved)
     int continues;  // the old point it continues, -1 for none
 };
 
@@ -73,6 +74,13 @@ constexpr int kOldTag = 1 << 20;
 constexpr int kNewTag = 1 << 21;
 
 }  // namespace
+
+int ManifoldSync::refreshesPerStep(const btCollisionObject* body0, const btCollisionObject* body1)
+{
+    // btCompoundCollisionAlgorithm and btCompoundCompoundCollisionAlgorithm::processCollision
+    // (3.24): "we need to refresh all contact manifolds" of their child algorithms, then collide.
+    return body0->getCollisionShape()->isCompound() || body1->getCollisionShape()->isCompound() ? 2 : 1;
+}
 
 ManifoldSync::Side ManifoldSync::orient(const RowMap& rows, int bodyA, int bodyB, int indexA, int indexB,
                                        const std::unordered_set<const btCollisionObject*>& removed)
@@ -101,14 +109,16 @@ ManifoldSync::Side ManifoldSync::orient(const RowMap& rows, int bodyA, int bodyB
     out.spheres = tA == SPHERE_SHAPE_PROXYTYPE && tB == SPHERE_SHAPE_PROXYTYPE;
     out.concaveA = concA ? leafA : nullptr;
     out.concaveB = concB ? leafB : nullptr;
+    out.refreshes = compA || compB ? 2 : 1;
     out.key = swap ? Key{oB, oA, sideKey(oB, leafB, indexB), sideKey(oA, leafA, indexA)}
                    : Key{oA, oB, sideKey(oA, leafA, indexA), sideKey(oB, leafB, indexB)};
     return out;
 }
 
 const btManifoldPoint* ManifoldSync::continued(const Side& side, unsigned featureId, int index0, int partId1,
-                                               int index1, const btVector3& localA) const
+                                               int index1, const btVector3& localA, bool* moved) const
 {
+    if (moved) *moved = false;
     auto it = m_map.find(side.key);
     if (it == m_map.end() || !it->second.manifold || side.spheres) return nullptr;  // none, or its body left  // stock clears a sphere pair's manifold each step
     const Entry& e = it->second;
@@ -131,6 +141,7 @@ const btManifoldPoint* ManifoldSync::continued(const Side& side, unsigned featur
             }
         }
     }
+    if (match >= 0 && moved) *moved = e.moved[match];
     return match >= 0 ? &m->getContactPoint(match) : nullptr;
 }
 
@@ -162,7 +173,7 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
             if (side.concaveA) triangleOfFeature(side.concaveA, r.featureId[k], &partA, &indexA);
             if (side.concaveB) triangleOfFeature(side.concaveB, r.featureId[k], &partB, &indexB);
             // The impulses act on the report's A along +n, +d1, +d2; Bullet's on body0.
-            NewPoint np{swap ? btManifoldPoint(lB, lA, -n, d) : btManifoldPoint(lA, lB, n, d), r.featureId[k], false};
+            NewPoint np{swap ? btManifoldPoint(lB, lA, -n, d) : btManifoldPoint(lA, lB, n, d), r.featureId[k], false, false, -1};
             btManifoldPoint& p = np.point;
             p.m_positionWorldOnA = swap ? pB : pA;
             p.m_positionWorldOnB = swap ? pA : pB;
@@ -186,6 +197,7 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
                     p.m_combinedFriction = it->second.friction;
                     p.m_combinedRestitution = it->second.restitution;
                     np.pending = true;
+                    np.moved = it->second.moved;
                 }
             }
             push(np);
@@ -197,6 +209,7 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
     // nearest in A's frame within the breaking threshold, as getCacheEntry) counts on; a new one
     // starts at 1, as stock's refreshContactPoints leaves a point added this step.
     const int oldCount = m->getNumContacts();
+    const int ages = refreshesPerStep(key.body0, key.body1);
     btManifoldPoint old[MANIFOLD_CACHE_SIZE];
     for (int j = 0; j < oldCount; ++j) old[j] = m->getContactPoint(j);
     const btScalar thr2 = m->getContactBreakingThreshold() * m->getContactBreakingThreshold();
@@ -223,7 +236,7 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
         }
         if (match >= 0) claimed |= 1u << match;
         np.continues = match;
-        np.point.m_lifeTime = g.spheres ? 0 : (match >= 0 ? old[match].m_lifeTime + 1 : 1);
+        np.point.m_lifeTime = g.spheres ? 0 : (match >= 0 ? old[match].m_lifeTime + ages : 1);
         // A point that continues one keeps its user data (replaceContactPoint); stock clears a
         // sphere pair's manifold every step, which drops it.
         if (!np.pending) np.point.m_userPersistentData = match >= 0 && !g.spheres ? old[match].m_userPersistentData : nullptr;
@@ -235,7 +248,11 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
     g.before = oldCount;
     for (int j = 0; j < oldCount; ++j) m->getContactPoint(j).m_userPersistentData = nullptr;
     unsigned oldIds[MANIFOLD_CACHE_SIZE];
-    for (int j = 0; j < MANIFOLD_CACHE_SIZE; ++j) oldIds[j] = e.ids[j];
+    bool oldMoved[MANIFOLD_CACHE_SIZE];
+    for (int j = 0; j < MANIFOLD_CACHE_SIZE; ++j) {
+        oldIds[j] = e.ids[j];
+        oldMoved[j] = e.moved[j];
+    }
     // Stock's order inside the pair's collision: the detector's points go into the manifold as
     // it holds them (a continued point replaces its old one in place, a new one is added,
     // replacing by Bullet's reduction when four are held), then refreshContactPoints keeps the
@@ -283,11 +300,13 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
             const int i = p.m_lifeTime - kNewTag;
             owner[s] = i;
             e.ids[s] = at(i).featureId;
+            e.moved[s] = at(i).moved;
             p.m_lifeTime = at(i).point.m_lifeTime;
         } else {
             const int j = p.m_lifeTime - kOldTag;
             e.ids[s] = oldIds[j];
-            p.m_lifeTime = old[j].m_lifeTime + 1;
+            e.moved[s] = oldMoved[j];
+            p.m_lifeTime = old[j].m_lifeTime + ages;
             p.m_appliedImpulse = p.m_appliedImpulseLateral1 = p.m_appliedImpulseLateral2 = 0;
             p.m_userPersistentData = old[j].m_userPersistentData;
         }
@@ -363,14 +382,14 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
         Node* node = side.node;
         if (!node) {
             auto it = m_map.find(side.key);  // a new key seen earlier in this pass
-            if (it == m_map.end()) it = m_map.emplace(side.key, Entry{nullptr, 0, {}}).first;
+            if (it == m_map.end()) it = m_map.emplace(side.key, Entry{nullptr, 0, {}, {}}).first;
             node = &*it;
         }
         const bool fresh = !node->second.manifold;
         if (fresh) {
             // New, or revived after its body left (a new body at the freed address).
             m_dead.erase(node);
-            node->second = Entry{dispatcher->getNewManifold(side.key.body0, side.key.body1), 0, {}};
+            node->second = Entry{dispatcher->getNewManifold(side.key.body0, side.key.body1), 0, {}, {}};
             m_byObject[side.key.body0].push_back(node);
             if (side.key.body1 != side.key.body0) m_byObject[side.key.body1].push_back(node);
         }
@@ -511,12 +530,15 @@ bool ManifoldSync::keepsOldPoints(Node* node, const RowMap& rows)
         p.m_positionWorldOnA = t0(p.m_localPointA);
         p.m_positionWorldOnB = t1(p.m_localPointB);
         p.m_distance1 = (p.m_positionWorldOnA - p.m_positionWorldOnB).dot(p.m_normalWorldOnB);
-        p.m_lifeTime++;
+        p.m_lifeTime += refreshesPerStep(k.body0, k.body1);
         p.m_appliedImpulse = p.m_appliedImpulseLateral1 = p.m_appliedImpulseLateral2 = 0;
         const btVector3 drift = p.m_positionWorldOnB - (p.m_positionWorldOnA - p.m_normalWorldOnB * p.m_distance1);
         if (p.m_distance1 > breaking || drift.length2() > breaking * breaking) {
             const int last = m->getNumContacts() - 1;
-            if (s != last && last < MANIFOLD_CACHE_SIZE) e.ids[s] = e.ids[last];  // the last point moves into s
+            if (s != last && last < MANIFOLD_CACHE_SIZE) {  // the last point moves into s
+                e.ids[s] = e.ids[last];
+                e.moved[s] = e.moved[last];
+            }
             m->removeContactPoint(s);
         }
     }

@@ -77,10 +77,12 @@ public:
         }
     };
     // What the callbacks left on a point before the solve: its user data and combined
-    // coefficients (those the solve used), given to the manifold point the next fill makes of it.
+    // coefficients (those the solve used), given to the manifold point the next fill makes of it;
+    // moved: a callback changed its points or distance (continued() tells the next step).
     struct PointState {
         void* userData;
         btScalar friction, restitution;
+        bool moved;
     };
     void setPointState(const PointKey& point, const PointState& state) { m_pending[point] = state; }
 
@@ -104,6 +106,7 @@ public:
         btPersistentManifold* manifold;
         long stamp;  // the last fill that named it (written by the parallel pass: atomically)
         unsigned ids[4];  // the feature id of each of its points (BTG_FEATURE_*)
+        bool moved[4];    // each point's PointState::moved as it was filled
     };
     using Node = std::pair<const Key, Entry>;  // a map node: its address stays while it is in the map
     // One report's manifold in Bullet's terms (orient: which side is body0, the key).
@@ -115,15 +118,29 @@ public:
         bool spheres;  // sphere–sphere (stock clears that manifold every step)
         const btCollisionShape* concaveA;  // the report's concave leaves (per-point triangles)
         const btCollisionShape* concaveB;
+        int refreshes;  // refreshContactPoints a step on stock (refreshesPerStep)
     };
+    // How often stock refreshes the manifold of a pair in a step (each ages its points by one and
+    // calls gContactProcessedCallback): twice where a body is a compound (its algorithm refreshes
+    // every child manifold before the children collide, then each child's own algorithm refreshes
+    // its manifold), else once.
+    static int refreshesPerStep(const btCollisionObject* body0, const btCollisionObject* body1);
     // One device manifold's sides (bodies and sub-shape keys as the device names them).
     static Side orient(const RowMap& rows, int bodyA, int bodyB, int indexA, int indexB,
                        const std::unordered_set<const btCollisionObject*>& removed);
     // The app's manifold point (as the last fill left it) that a point of this side's manifold
     // continues (as the fill matches them: same feature and sub-shape, else the nearest in
-    // body0's frame within the breaking threshold), nullptr when none.
+    // body0's frame within the breaking threshold), nullptr when none; *moved: whether a
+    // callback changed that point's geometry before the solve that made it.
     const btManifoldPoint* continued(const Side& side, unsigned featureId, int index0, int partId1, int index1,
-                                     const btVector3& localA) const;
+                                     const btVector3& localA, bool* moved = nullptr) const;
+    // The app's manifold of this side as the last fill left it, nullptr when none (the callbacks
+    // before the solve may set its old points' user data and coefficients: the fill keeps them).
+    btPersistentManifold* manifold(const Side& side) const
+    {
+        auto it = m_map.find(side.key);
+        return it == m_map.end() ? nullptr : it->second.manifold;
+    }
 
 private:
     // The reports [first, last) of one manifold.

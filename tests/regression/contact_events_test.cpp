@@ -4,6 +4,7 @@
 // trigger ghost. Each step asserts the GPU path.
 #include "btgpu/btGpuDynamicsWorld.h"
 #include "scenes/callback_scenes.h"
+#include "scenes/compound_scenes.h"
 #include "scenes/ghost_scenes.h"
 #include "side_by_side.h"
 
@@ -12,6 +13,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <functional>
 #include <vector>
 
 using namespace btgpu;
@@ -21,6 +23,7 @@ namespace {
 
 struct EventCounts {
     long started = 0, ended = 0, processed = 0, added = 0, destroyed = 0;
+    long addedKept = 0;  // added calls for a point apart (distance > 0) that continues one
 };
 EventCounts g_events;
 long g_allocated = 0;
@@ -31,9 +34,10 @@ bool onProcessed(btManifoldPoint&, void*, void*)
     ++g_events.processed;
     return true;
 }
-bool onAdded(btManifoldPoint&, const btCollisionObjectWrapper*, int, int, const btCollisionObjectWrapper*, int, int)
+bool onAdded(btManifoldPoint& cp, const btCollisionObjectWrapper*, int, int, const btCollisionObjectWrapper*, int, int)
 {
     ++g_events.added;
+    if (cp.getDistance() > 0 && cp.getLifeTime() > 0) ++g_events.addedKept;
     return true;
 }
 // The usual user-data pattern: a point gets its own record the first time it is processed, the
@@ -52,6 +56,17 @@ bool freePoint(void* data)
     delete static_cast<long*>(data);
     return true;
 }
+// The points of the app's manifolds whose pair has an awake body (stock's refresh processes them).
+long heldPoints(Scene& s)
+{
+    long n = 0;
+    btDispatcher* d = s.world().getDispatcher();
+    for (int i = 0; i < d->getNumManifolds(); ++i) {
+        const btPersistentManifold* m = d->getManifoldByIndexInternal(i);
+        if (m->getBody0()->isActive() || m->getBody1()->isActive()) n += m->getNumContacts();
+    }
+    return n;
+}
 struct Events {
     ~Events()
     {
@@ -66,15 +81,22 @@ struct Events {
 }  // namespace
 
 // A 4 x 4 x 4 box pile falling onto a flagged ground, per 100-step window against stock:
-// processed calls (the points in the manifolds, refreshed) within 5% over the 200 steps and 8%
-// a window (measured 0.4% and 5.5%: near 2 s the GPU path's pile has fewer points than stock's,
-// Manifolds.BoxPileCountsAsStock's known 13-14% at a few steps); started and ended within
-// 5% plus 10 (the landing's 163 starts equal; later a few a window come and go, as the pile's
-// chaos has it); added calls on the GPU path are its device points of the ground's contacts,
-// which include speculative ones (distance up to the breaking threshold) that stock's box–box
-// detector does not report (it adds penetrating points only): measured 16-21% more, bounded to
-// [stock, 1.3 stock]. After 200 steps stock's pile sleeps earlier than the GPU path's (no
-// calls for a pair of sleeping bodies on either), so the windows stop there.
+// processed calls (the points in the manifolds, refreshed: the device's, and the app's old points
+// no device point continues that stock's refresh keeps) within 5% over the 200 steps and 8% a
+// window (measured +2.2% and -4.0%, -1.2% over the steps; without the old points +0.4% and
+// -5.5%: near 2 s the GPU path's pile has fewer points than stock's, see
+// Manifolds.BoxPileCountsAsStock); started and ended within 5% plus 10 (the landing's 163
+// starts equal; later a few a window come and go, as the pile's chaos has it). Added calls: as
+// stock's box–box detector, only for the ground's penetrating points (distance <= 0), and for a
+// speculative device point that continues no point of the app's manifold (stock has none there;
+// the device's new contact is served); a speculative one that continues a point is not called,
+// never (stock: 0 too). Measured +5.9% in the first window (the landing's speculative points, 64
+// calls, and more of the GPU path's resting ground points penetrate: about 61 of 64 against
+// stock's 54 — the device's resting contacts hold a steady 0.1-1 mm depth, stock's jitter
+// about zero) and +1.5% in the second, +3.4% over the
+// 200 steps (before: +16-21%): 5% over the steps, 8% a window. After 200 steps stock's pile
+// sleeps earlier than the GPU path's (no calls for a pair of sleeping bodies on either), so the
+// windows stop there.
 TEST(Callbacks, EventCountsOnABoxPileAsStock)
 {
     Events restore;
@@ -91,7 +113,7 @@ TEST(Callbacks, EventCountsOnABoxPileAsStock)
     SideBySide sb(make);
     const int window = 100;
     EventCounts stock, gpu;
-    long stockProcessed = 0, gpuProcessed = 0;
+    long stockProcessed = 0, gpuProcessed = 0, stockAdded = 0, gpuAdded = 0;
     for (int step = 0; step < 200; ++step) {
         g_events = EventCounts();
         sb.stock->step();
@@ -106,6 +128,12 @@ TEST(Callbacks, EventCountsOnABoxPileAsStock)
             sum->processed += one->processed;
             sum->added += one->added;
         }
+        EXPECT_EQ(a.addedKept, 0) << step;  // stock's box–box detector reports penetrating points only
+        EXPECT_EQ(b.addedKept, 0) << step;
+        // Each refreshed point is processed once: as many calls as the app's manifolds of pairs
+        // with an awake body hold, on both.
+        EXPECT_EQ(a.processed, heldPoints(*sb.stock)) << step;
+        EXPECT_EQ(b.processed, heldPoints(*sb.gpu)) << step;
         if ((step + 1) % window) continue;
         std::printf("steps %3d-%3d: started %ld/%ld ended %ld/%ld processed %ld/%ld added %ld/%ld (stock/gpu)\n",
                     step + 1 - window, step, stock.started, gpu.started, stock.ended, gpu.ended, stock.processed,
@@ -115,12 +143,131 @@ TEST(Callbacks, EventCountsOnABoxPileAsStock)
         gpuProcessed += gpu.processed;
         EXPECT_NEAR(gpu.started, stock.started, 0.05 * double(stock.started) + 10) << step;
         EXPECT_NEAR(gpu.ended, stock.ended, 0.05 * double(stock.ended) + 10) << step;
-        EXPECT_GE(gpu.added, stock.added) << step;
-        EXPECT_LE(gpu.added, 1.3 * double(stock.added)) << step;
+        EXPECT_NEAR(gpu.added, stock.added, 0.08 * double(stock.added)) << step;
+        stockAdded += stock.added;
+        gpuAdded += gpu.added;
         EXPECT_GT(stock.processed, 0);
         stock = gpu = EventCounts();
     }
     EXPECT_NEAR(gpuProcessed, stockProcessed, 0.05 * double(stockProcessed));
+    EXPECT_NEAR(gpuAdded, stockAdded, 0.05 * double(stockAdded));
+    std::printf("added over 200 steps: stock %ld gpu %ld\n", stockAdded, gpuAdded);
+}
+
+namespace {
+// The ground's contacts get the callback's friction and restitution (not the bodies' 0.5 x 0.5
+// and 0); the processed callback counts the points that are apart and were added in an earlier
+// step (on stock: kept by its refresh; on the GPU path: not called again, see above).
+bool groundMaterial(btManifoldPoint& cp, const btCollisionObjectWrapper*, int, int, const btCollisionObjectWrapper*, int, int)
+{
+    ++g_events.added;
+    if (cp.getDistance() > 0 && cp.getLifeTime() > 0) ++g_events.addedKept;
+    cp.m_combinedFriction = btScalar(0.3);
+    cp.m_combinedRestitution = btScalar(0.05);
+    return true;
+}
+bool countKept(btManifoldPoint& cp, void* body0, void* body1)
+{
+    const int flags = static_cast<btCollisionObject*>(body0)->getCollisionFlags() |
+                      static_cast<btCollisionObject*>(body1)->getCollisionFlags();
+    if (!(flags & btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK)) return true;
+    ++g_events.processed;
+    if (cp.getDistance() > 0 && cp.getLifeTime() > 1) ++g_events.destroyed;  // here: kept points
+    return true;
+}
+
+struct KeptRun {
+    long added[2] = {0, 0}, kept[2] = {0, 0}, checked[2] = {0, 0};
+};
+// Steps a scene whose body 0 (a box ground) is flagged with groundMaterial, on both worlds: no
+// added call for an apart point that continues one, every point of a ground manifold with the
+// callback's friction and restitution after every step, the GPU path on every step.
+KeptRun keptRun(const std::function<ScenePtr(WorldKind)>& scene, int steps)
+{
+    gContactAddedCallback = groundMaterial;
+    gContactProcessedCallback = countKept;
+    SideBySide sb([&](WorldKind k, const Config&) {
+        ScenePtr s = scene(k);
+        btRigidBody* ground = s->body(0);
+        ground->setCollisionFlags(ground->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+        return s;
+    });
+    KeptRun r;
+    for (int step = 0; step < steps; ++step) {
+        int w = 0;
+        for (Scene* s : {sb.stock.get(), sb.gpu.get()}) {
+            g_events = EventCounts();
+            s->step();
+            EXPECT_EQ(g_events.addedKept, 0) << step << " " << w;
+            r.added[w] += g_events.added;
+            r.kept[w] += g_events.destroyed;
+            btDispatcher* d = s->world().getDispatcher();
+            for (int i = 0; i < d->getNumManifolds(); ++i) {
+                const btPersistentManifold* m = d->getManifoldByIndexInternal(i);
+                if (m->getBody0() != s->body(0) && m->getBody1() != s->body(0)) continue;
+                for (int j = 0; j < m->getNumContacts(); ++j) {
+                    EXPECT_FLOAT_EQ(m->getContactPoint(j).m_combinedFriction, 0.3f) << step << " " << w;
+                    EXPECT_FLOAT_EQ(m->getContactPoint(j).m_combinedRestitution, 0.05f) << step << " " << w;
+                    ++r.checked[w];
+                }
+            }
+            ++w;
+        }
+        EXPECT_TRUE(sb.onGpu()) << step << " " << sb.gpu->report()->cpuPathReason;
+        if (!sb.onGpu()) break;
+    }
+    std::printf("ground points checked stock %ld gpu %ld; added stock %ld gpu %ld; kept (apart, not added "
+                "again) stock %ld gpu %ld\n",
+                r.checked[0], r.checked[1], r.added[0], r.added[1], r.kept[0], r.kept[1]);
+    return r;
+}
+}  // namespace
+
+// A ground box's added callback: the points stock's box–box detector does not add (apart, kept
+// from an earlier step) keep on both what the callback gave them when added, in the step's solve
+// (one friction a device manifold: no fallback) and in the app's manifolds. On a box pile, and
+// under tables (compounds: stock's child algorithms are box–box too, one per leg).
+TEST(Callbacks, KeptBoxPointsKeepTheCallbacksMaterialAsStock)
+{
+    Events restore;
+    const KeptRun pile = keptRun([](WorldKind k) { return scenes::cubes(k, 4, 4, 4, Config()); }, 90);
+    EXPECT_GT(pile.checked[1], 64 * 60);
+    EXPECT_GT(pile.kept[0], 0);
+    EXPECT_GT(pile.kept[1], 0);  // the path is taken on the GPU path too
+    const KeptRun tables = keptRun([](WorldKind k) { return scenes::tableStack(k, Config(), 3); }, 90);
+    EXPECT_GT(tables.checked[1], 4 * 60);
+    EXPECT_GT(tables.added[1], 0);
+}
+
+// On compounds stock calls the processed callback twice a step for a point that continues one
+// (the compound's algorithm refreshes every child manifold before the children collide, then
+// each child's algorithm refreshes its own): a stack of three tables on a box. Measured per
+// 30-step window (stock/GPU) 2376/2832, 2572/2880, 2548/2880, 2664/2880, +12.9% over the 120
+// steps (before: about half of stock's): stock's table-on-table points are often replaced by
+// new ones (lifetimes of 2 or 3 at step 100), which its first refresh does not see; the GPU
+// path's stay (96 calls a step: 48 points, twice). Bound: 15% over the steps.
+TEST(Callbacks, ProcessedTwiceOnCompoundsAsStock)
+{
+    Events restore;
+    gContactProcessedCallback = onProcessed;
+    SideBySide sb([](WorldKind k, const Config& c) { return scenes::tableStack(k, c, 3); });
+    long processed[2] = {0, 0}, total[2] = {0, 0};
+    for (int step = 0; step < 120; ++step) {
+        int w = 0;
+        for (Scene* s : {sb.stock.get(), sb.gpu.get()}) {
+            g_events = EventCounts();
+            s->step();
+            processed[w] += g_events.processed;
+            total[w++] += g_events.processed;
+        }
+        ASSERT_TRUE(sb.onGpu()) << step << " " << sb.gpu->report()->cpuPathReason;
+        if ((step + 1) % 30) continue;
+        std::printf("steps %3d-%3d: processed %ld/%ld (stock/gpu)\n", step - 29, step, processed[0], processed[1]);
+        processed[0] = processed[1] = 0;
+    }
+    std::printf("tables: processed %ld/%ld\n", total[0], total[1]);
+    EXPECT_GT(total[0], 120 * 48 * 3 / 2);  // stock's own: more than once a point
+    EXPECT_NEAR(total[1], total[0], 0.15 * double(total[0]));
 }
 
 // m_userPersistentData set in the processed callback persists on the app's manifold points as
