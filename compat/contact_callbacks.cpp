@@ -132,8 +132,7 @@ bool ContactCallbacks::events()
     return gContactStartedCallback || gContactEndedCallback || gContactProcessedCallback || gContactDestroyedCallback;
 }
 
-std::string ContactCallbacks::unservedReason(const btDiscreteDynamicsWorld& world, const Config& config,
-                                             const ShapeTables& shapes)
+std::string ContactCallbacks::unservedReason(const btDiscreteDynamicsWorld& world, const Config& config)
 {
     if (config.internalSubsteps > 1 && overlapFilter(const_cast<btDiscreteDynamicsWorld&>(world)))
         return "overlap filter callback (setOverlapFilterCallback) with Config::internalSubsteps > 1 (Bullet's "
@@ -149,12 +148,6 @@ std::string ContactCallbacks::unservedReason(const btDiscreteDynamicsWorld& worl
                                         "> 1 (stock calls it once per internal step)"
                                       : "a custom friction or restitution combiner (gCalculateCombined*Callback) with "
                                         "Config::internalSubsteps > 1 (stock calls it once per internal step)";
-    if (customMaterials(world))
-        for (const BtgShape& s : shapes.shapes)
-            if (s.type == BTG_SHAPE_CONVEX)
-                return "gContactAddedCallback with CF_CUSTOM_MATERIAL_CALLBACK beside a support-function convex shape "
-                       "(capsule, cylinder, cone, ...: its contact points persist on the device, which are added is not "
-                       "known)";
     return "";
 }
 
@@ -277,7 +270,8 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
             // (replaceContactPoint): those of the app's point it continues.
             bool oldMoved = false;
             const btManifoldPoint* old =
-                sync.continued(side, p.featureId, cp.m_index0, cp.m_partId1, cp.m_index1, cp.m_localPointA, &oldMoved);
+                sync.continued(side, p.featureId, cp.m_index0, cp.m_partId1, cp.m_index1, cp.m_localPointA, &oldMoved,
+                               g.added != -2);
             // Where a body is a compound, stock's compound algorithm refreshes the child manifold
             // before the child collides (ManifoldSync::refreshesPerStep): the old point, aged and
             // at this step's transforms, goes to the processed callback first, and the point that
@@ -314,7 +308,11 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
             // called: stock has no point there, and the device's new contact must be served. So
             // is one whose last callback moved its points: stock's kept point goes on from the
             // moved local points, the device's fresh one only through the callback again.
-            const bool kept = flagged && boxBox && p.distance > 0 && old && !oldMoved;
+            // A GJK pair's manifold persists its points (stock's convex–convex algorithm adds one
+            // a step): only the one this substep added or replaced is called; the others are kept
+            // points, as the box–box ones above.
+            const bool persisted = g.added != -2 && p.featureId != uint(g.added);
+            const bool kept = flagged && ((boxBox && p.distance > 0) || persisted) && old && !oldMoved;
             if (kept) {
                 cp.m_combinedFriction = (preCalled ? pre : *old).m_combinedFriction;
                 cp.m_combinedRestitution = (preCalled ? pre : *old).m_combinedRestitution;

@@ -47,9 +47,9 @@ public:
     static Set current();
     // Why they cannot be served on the GPU path while wanted ("" when they can): with
     // Config::internalSubsteps > 1 they would be called once per device substep, more often than
-    // stock; support-function convex shapes keep their manifold points across steps on the device
-    // (narrowphase_gjk), so which points the added callback would see is not known.
-    static std::string unservedReason(const btDiscreteDynamicsWorld& world, const Config& config, const ShapeTables& shapes);
+    // stock. (Support-function shapes' persistent manifolds name the point each substep added:
+    // the added callback is called for it alone, as stock's convex–convex algorithm.)
+    static std::string unservedReason(const btDiscreteDynamicsWorld& world, const Config& config);
     // The host's part between the contacts and the solve. False when a change the callback made
     // cannot be carried by the device's contacts (reason() says which): the step must run on the
     // CPU path instead.

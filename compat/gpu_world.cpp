@@ -124,7 +124,7 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
     if (why.empty() && (ContactCallbacks::wanted(m_world) || ContactCallbacks::events() ||
                         ContactCallbacks::overlapFilter(m_world))) {
         if (!m_callbackReason.empty() && m_callbackReasonFor == ContactCallbacks::current()) return m_callbackReason;
-        why = ContactCallbacks::unservedReason(m_world, m_config, m_shapes);
+        why = ContactCallbacks::unservedReason(m_world, m_config);
         // The callbacks' second preparation of a contact (contact_material.h) rebuilds its rows
         // from the changed friction and restitution, but not the rows prepare_contacts adds for
         // rolling friction or anisotropic friction directions.

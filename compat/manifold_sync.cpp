@@ -116,7 +116,7 @@ ManifoldSync::Side ManifoldSync::orient(const RowMap& rows, int bodyA, int bodyB
 }
 
 const btManifoldPoint* ManifoldSync::continued(const Side& side, unsigned featureId, int index0, int partId1,
-                                               int index1, const btVector3& localA, bool* moved) const
+                                               int index1, const btVector3& localA, bool* moved, bool identities) const
 {
     if (moved) *moved = false;
     auto it = m_map.find(side.key);
@@ -128,7 +128,7 @@ const btManifoldPoint* ManifoldSync::continued(const Side& side, unsigned featur
     for (int j = 0; j < m->getNumContacts() && match < 0; ++j) {
         const btManifoldPoint& o = m->getContactPoint(j);
         if (featureId != BTG_FEATURE_UNKNOWN && e.ids[j] == featureId && o.m_index1 == index1 && o.m_partId1 == partId1 &&
-            o.m_index0 == index0 && (o.m_localPointA - localA).length2() < thr2)
+            o.m_index0 == index0 && (identities || (o.m_localPointA - localA).length2() < thr2))
             match = j;
     }
     if (match < 0) {
@@ -259,7 +259,10 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
     // old points nothing replaced while they stay within the breaking threshold at the
     // transforms the pair was collided at (a box tipping onto an edge of another still shows
     // four points on stock). Such a point was not in the device's solve: its impulses are 0.
-    const bool retain = m_collidedAtValid && !g.spheres && total > 0 && g.row0 >= 0 && g.row1 >= 0 &&
+    // A GJK pair's manifold is the device's persistent one, refreshed there as stock's: its
+    // points are the whole manifold (keeping old ones here would double the refresh).
+    const bool persistent = reports[g.first].persistent != 0;
+    const bool retain = !persistent && m_collidedAtValid && !g.spheres && total > 0 && g.row0 >= 0 && g.row1 >= 0 &&
                         size_t(std::max(g.row0, g.row1)) < m_collidedAt.size();
     m->setNumContacts(0);
     if (retain)

@@ -131,9 +131,11 @@ public:
     // The app's manifold point (as the last fill left it) that a point of this side's manifold
     // continues (as the fill matches them: same feature and sub-shape, else the nearest in
     // body0's frame within the breaking threshold), nullptr when none; *moved: whether a
-    // callback changed that point's geometry before the solve that made it.
+    // callback changed that point's geometry before the solve that made it. `identities`: the
+    // feature ids are the points' identities (a GJK pair's persistent manifold), which match
+    // wherever the point has gone in A's frame (a rolling body's point turns with it).
     const btManifoldPoint* continued(const Side& side, unsigned featureId, int index0, int partId1, int index1,
-                                     const btVector3& localA, bool* moved = nullptr) const;
+                                     const btVector3& localA, bool* moved = nullptr, bool identities = false) const;
     // The app's manifold of this side as the last fill left it, nullptr when none (the callbacks
     // before the solve may set its old points' user data and coefficients: the fill keeps them).
     btPersistentManifold* manifold(const Side& side) const

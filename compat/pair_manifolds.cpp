@@ -114,9 +114,11 @@ void ManifoldSync::holdStockPairs(btDispatcher* dispatcher, const std::unordered
         if (!removed.empty() && (removed.count(k.body0) || removed.count(k.body1))) continue;
         auto it = m_map.find(k);
         if (it != m_map.end() && it->second.manifold) continue;
-        if (it == m_map.end()) it = m_map.emplace(k, Entry{nullptr, 0, {}}).first;
+        if (it == m_map.end()) it = m_map.emplace(k, Entry{}).first;
         Node* node = &*it;
-        node->second = Entry{dispatcher->getNewManifold(k.body0, k.body1), m_stamp, {}};
+        node->second = Entry{};
+        node->second.manifold = dispatcher->getNewManifold(k.body0, k.body1);
+        node->second.stamp = m_stamp;
         m_byObject[k.body0].push_back(node);
         if (k.body1 != k.body0) m_byObject[k.body1].push_back(node);
         m_nextLive.push_back(node);

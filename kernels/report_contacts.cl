@@ -3,22 +3,37 @@
  * the compact record the host turns into a btPersistentManifold (shared/contact_report.h).
  * Launch: one work-item per contact slot (contactCapacity), after store_contact_cache and before
  * integrate_transforms (the bodies still where the contacts were built).
- * Reads contacts, contactManifolds, manifolds, counters[kContactCount], pos, rot.
+ * Reads contacts, contactManifolds, manifolds, counters[kContactCount], pos, rot; pairs, props,
+ * shapes, children and gjkPairState to mark a GJK pair's persistent manifold.
  * Writes reports[0, min(count, capacity)). */
 #include "shared/counters.h"
 #include "shared/types.h"
 #include "shared/contact_report.h"
+#include "shared/compound.h"
+#include "shared/pair_kinds.h"
 
 __kernel void report_contacts(__global const BtgContact* restrict contacts,
                               __global const uint* restrict contactManifolds,
                               __global const BtgManifold* restrict manifolds, __global const uint* restrict counters,
                               int contactCapacity, __global const BtgFloat4* restrict pos,
-                              __global const BtgFloat4* restrict rot, __global BtgContactReport* reports)
+                              __global const BtgFloat4* restrict rot, __global BtgContactReport* reports,
+                              __global const BtgPair* restrict pairs, __global const BtgBodyProps* restrict props,
+                              __global const BtgShape* restrict shapes, __global const BtgChild* restrict children,
+                              __global const BtgPersistentManifold* restrict gjkPairState, int gjkCapacity)
 {
     uint i = (uint)get_global_id(0);
     uint n = min(counters[BTG_COUNTER_CONTACTS], (uint)contactCapacity);
     if (i >= n) return;
     BtgContact c = contacts[i];
-    BtgManifold m = manifolds[contactManifolds[i]];
-    reports[i] = btgContactReportFrom(&c, m, pos[m.bodyA], rot[m.bodyA], pos[m.bodyB], rot[m.bodyB]);
+    const uint slot = contactManifolds[i];
+    BtgManifold m = manifolds[slot];
+    BtgContactReport r = btgContactReportFrom(&c, m, pos[m.bodyA], rot[m.bodyA], pos[m.bodyB], rot[m.bodyB]);
+    /* A GJK pair's manifold is its pair's slot (narrowphase_gjk), its state the one the
+     * narrowphase left there (as store_persistent_manifolds finds it). */
+    if (slot < (uint)gjkCapacity) {
+        const int kind = btgPairKindOf(pairs[slot], props, shapes, children);
+        const BtgPersistentManifold s = gjkPairState[slot];
+        r.persistent = btgIsPersistentKind(kind) && s.kind == kind && s.bodyA == m.bodyA && s.bodyB == m.bodyB;
+    }
+    reports[i] = r;
 }

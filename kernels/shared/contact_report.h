@@ -14,7 +14,8 @@ typedef struct {
     int bodyA;
     int bodyB;
     int numPoints;
-    float pad0;
+    int persistent;                  /* 1: a GJK pair's persistent manifold, whose points are the
+                                        whole of stock's (its refresh done on the device) */
     int partIdA;                     /* the manifold's sub-shape keys (BtgManifold's) */
     int indexA;
     int partIdB;
@@ -40,7 +41,7 @@ static inline BtgContactReport btgContactReportFrom(const BtgContact* c, BtgMani
     r.bodyA = m.bodyA;
     r.bodyB = m.bodyB;
     r.numPoints = m.numPoints;
-    r.pad0 = 0.0f;
+    r.persistent = 0;
     r.partIdA = m.partIdA;
     r.indexA = m.indexA;
     r.partIdB = m.partIdB;

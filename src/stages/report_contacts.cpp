@@ -15,7 +15,8 @@ void reportContacts(DeviceWorld& w)
     w.contactReports.reserveExact(ctx, size_t(std::max(contactCapacity, 1)));
     cl::Launch(ctx, ctx.program("report_contacts").kernel("report_contacts"), &w.profiler)
         .arg(w.contacts).arg(w.contactManifolds).arg(w.manifolds).arg(w.counters).arg(contactCapacity).arg(w.pos)
-        .arg(w.rot).arg(w.contactReports)
+        .arg(w.rot).arg(w.contactReports).arg(w.pairs).arg(w.props).arg(w.shapes).arg(w.children).arg(w.gjkPairState)
+        .arg(int(std::min({w.gjkPairState.capacity(), w.pairCapacity, w.pairs.capacity()})))
         .run(size_t(std::max(contactCapacity, 1)));
     w.contactReportsWritten = true;
 }

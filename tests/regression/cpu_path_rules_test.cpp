@@ -155,24 +155,6 @@ std::vector<Rule> rules()
                  configuration(s).getCollisionAlgorithmCreateFunc(BOX_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE));
          }},
         flag("friction anchor", "CF_HAS_FRICTION_ANCHOR", btCollisionObject::CF_HAS_FRICTION_ANCHOR),
-        // Served (callbacks_test.cpp) but beside a support-function shape (here body 2 made a
-        // capsule), whose device manifolds keep points across steps.
-        {"custom material callback beside a capsule", "gContactAddedCallback",
-         [](Scene& s) {
-             gContactAddedCallback = added;
-             btRigidBody* b = s.body(1);
-             b->setCollisionFlags(b->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
-             savedShapes()[&s] = s.body(2)->getCollisionShape();
-             s.body(2)->setCollisionShape(&capsule);
-             s.world().updateSingleAabb(s.body(2));
-         },
-         [](Scene& s) {
-             gContactAddedCallback = nullptr;
-             btRigidBody* b = s.body(1);
-             b->setCollisionFlags(b->getCollisionFlags() & ~btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
-             s.body(2)->setCollisionShape(savedShapes().at(&s));
-             s.world().updateSingleAabb(s.body(2));
-         }},
         {"anisotropic rolling friction on two bodies", "anisotropic rolling friction on more than one body",
          [](Scene& s) {
              s.body(1)->setRollingFriction(btScalar(0.1));

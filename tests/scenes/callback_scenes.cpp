@@ -41,6 +41,47 @@ ScenePtr edgeSlide(WorldKind kind, const Config& config)
     return scene;
 }
 
+ScenePtr capsuleTrampoline(WorldKind kind, const Config& config)
+{
+    auto scene = std::make_unique<Scene>(kind, config, "capsule_trampoline");
+    btRigidBody* pad = scene->addBody(scene->boxShape(btVector3(3, .25, 3)), 0, btVector3(0, -.25, 0));
+    pad->setCollisionFlags(pad->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+    btRigidBody* c = scene->addBody(scene->ownShape(new btCapsuleShape(.3f, 1.0f)), 1, btVector3(0, 3, 0));
+    c->setAngularFactor(btVector3(0, 0, 0));  // stays upright, as a character's capsule
+    return scene;
+}
+
+ScenePtr capsulePile(WorldKind kind, const Config& config)
+{
+    auto scene = std::make_unique<Scene>(kind, config, "capsule_pile");
+    btRigidBody* ground = scene->addBody(scene->boxShape(btVector3(20, 20, 20)), 0, btVector3(0, -20, 0));
+    ground->setCollisionFlags(ground->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+    btCapsuleShape* capsule = scene->ownShape(new btCapsuleShapeX(.25f, 1.0f));
+    for (int layer = 0; layer < 3; ++layer)
+        for (int i = 0; i < 4; ++i) {
+            const btScalar across = btScalar(0.6 * i - 0.9), y = btScalar(0.3 + 0.55 * layer);
+            const bool turned = layer % 2 == 1;  // along z, side by side along x
+            const btQuaternion turn(btVector3(0, 1, 0), btScalar(turned ? 1.5707963 : 0.0));
+            scene->addBody(capsule, 1,
+                           btTransform(turn, turned ? btVector3(across, y, btScalar(0.05)) : btVector3(btScalar(0.05 * layer), y, across)));
+        }
+    return scene;
+}
+
+ScenePtr capsuleEdgeSlide(WorldKind kind, const Config& config)
+{
+    auto scene = std::make_unique<Scene>(kind, config, "capsule_edge_slide");
+    btBvhTriangleMeshShape* mesh = gridMesh(*scene, 16, 1.0f, true, false);
+    btTriangleInfoMap* edges = scene->ownData(new btTriangleInfoMap());
+    btGenerateInternalEdgeInfo(mesh, edges);
+    btRigidBody* ground = scene->addBody(mesh, 0, btVector3(0, 0, 0));
+    ground->setCollisionFlags(ground->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+    btRigidBody* c = scene->addBody(scene->ownShape(new btCapsuleShape(.3f, 1.0f)), 1, btVector3(-6, .8, .3));
+    c->setAngularFactor(btVector3(0, 0, 0));
+    c->setLinearVelocity(btVector3(5, 0, 0));
+    return scene;
+}
+
 ScenePtr boxOverBox(WorldKind kind, const Config& config)
 {
     auto scene = std::make_unique<Scene>(kind, config, "box_over_box");

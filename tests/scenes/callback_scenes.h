@@ -23,5 +23,15 @@ ScenePtr edgeSlide(WorldKind kind, const Config& config = Config());
 // Body 0: the ground box; body 1: a 0.5 m half-extent box resting on it (user index 8); body 2:
 // the same box released 3 m above it (user index 7), for an overlap filter that refuses the pair.
 ScenePtr boxOverBox(WorldKind kind, const Config& config = Config());
+// Capsules (support-function shapes: a persistent manifold adding one point a step, as stock's
+// convex–convex algorithm): body 0 the trampoline's flagged pad, body 1 an upright capsule
+// (radius 0.3, half height 0.5, angular factor 0) released with its centre at y = 3.
+ScenePtr capsuleTrampoline(WorldKind kind, const Config& config = Config());
+// Body 0 a flagged 20 m half-extent ground box; 12 capsules (radius 0.25, 1.5 m long) in three
+// crossed layers of four falling onto it.
+ScenePtr capsulePile(WorldKind kind, const Config& config = Config());
+// edgeSlide's flagged internal-edge mesh with an upright capsule (angular factor 0) resting on it
+// at x = -6, given 5 m/s along x.
+ScenePtr capsuleEdgeSlide(WorldKind kind, const Config& config = Config());
 
 }  // namespace btgpu::scenes
