@@ -6,6 +6,8 @@
 
 #include <btBulletDynamicsCommon.h>
 
+#include <algorithm>
+
 namespace btgpu {
 
 std::vector<const btCollisionObject*> findGhosts(const btDiscreteDynamicsWorld& world)
@@ -40,7 +42,11 @@ void heldAwakeByGhosts(btDiscreteDynamicsWorld& world, const RowMap& rows, std::
     }
 }
 
-void updateBroadphaseAsStock(btDiscreteDynamicsWorld& world, float dt)
+namespace {
+
+// Each dynamic body's interpolation transform its predicted one, as stock's
+// predictUnconstraintMotion leaves it for updateAabbs.
+void predictAsStock(btDiscreteDynamicsWorld& world, float dt)
 {
     // applyDamping and predictIntegratedTransform are stock's own (additional damping
     // included); the velocities they damp are put back, since the device does the damping.
@@ -54,8 +60,66 @@ void updateBroadphaseAsStock(btDiscreteDynamicsWorld& world, float dt)
         body->setLinearVelocity(lin);
         body->setAngularVelocity(ang);
     }
+}
+
+struct LeafCollector : btDbvt::ICollide {
+    std::vector<btBroadphaseProxy*> proxies;
+    void Process(const btDbvtNode* leaf) override { proxies.push_back(static_cast<btBroadphaseProxy*>(leaf->data)); }
+};
+
+}  // namespace
+
+void updateBroadphaseAsStock(btDiscreteDynamicsWorld& world, float dt)
+{
+    predictAsStock(world, dt);
     world.updateAabbs();
     world.computeOverlappingPairs();
+}
+
+void updateGhostPairsFromTree(btDiscreteDynamicsWorld& world, btDbvtBroadphase& dbvt,
+                              const std::vector<const btCollisionObject*>& ghosts, float dt)
+{
+    predictAsStock(world, dt);
+    // The leaves move as stock's setAabb moves them; the pair tests wait (deferred), and only
+    // the ghosts' are made below.
+    const bool deferred = dbvt.m_deferedcollide;
+    dbvt.m_deferedcollide = true;
+    world.updateAabbs();
+    dbvt.m_deferedcollide = deferred;
+    btOverlappingPairCache* cache = dbvt.getOverlappingPairCache();
+    btDispatcher* dispatcher = world.getDispatcher();
+    // A ghost's pairs whose leaves stopped overlapping go (the test stock's cleanup makes), the
+    // ghost callback taking each off the ghost's list.
+    std::vector<const btBroadphaseProxy*> ghostProxies;
+    for (const btCollisionObject* g : ghosts) ghostProxies.push_back(g->getBroadphaseHandle());
+    auto isGhost = [&](const btBroadphaseProxy* p) {
+        return std::find(ghostProxies.begin(), ghostProxies.end(), p) != ghostProxies.end();
+    };
+    std::vector<std::pair<btBroadphaseProxy*, btBroadphaseProxy*>> gone;
+    const btBroadphasePairArray& pairs = cache->getOverlappingPairArray();
+    for (int i = 0; i < pairs.size(); ++i) {
+        auto* a = static_cast<btDbvtProxy*>(pairs[i].m_pProxy0);
+        auto* b = static_cast<btDbvtProxy*>(pairs[i].m_pProxy1);
+        if ((isGhost(a) || isGhost(b)) && a->leaf && b->leaf && !Intersect(a->leaf->volume, b->leaf->volume))
+            gone.push_back({a, b});
+    }
+    for (const auto& [a, b] : gone) cache->removeOverlappingPair(a, b, dispatcher);
+    for (const btCollisionObject* g : ghosts) {
+        auto* gp = static_cast<btDbvtProxy*>(const_cast<btCollisionObject*>(g)->getBroadphaseHandle());
+        if (!gp || !gp->leaf) continue;
+        // New pairs: the leaves the ghost's meets in both trees, in the trees' order, added as
+        // stock's tree collider adds them (the pair cache filters and calls the ghost callback).
+        LeafCollector meet;
+        dbvt.m_sets[0].collideTV(dbvt.m_sets[0].m_root, gp->leaf->volume, meet);
+        dbvt.m_sets[1].collideTV(dbvt.m_sets[1].m_root, gp->leaf->volume, meet);
+        for (btBroadphaseProxy* p : meet.proxies) {
+            if (p == gp || cache->findPair(gp, p)) continue;
+            btBroadphaseProxy* a = gp;
+            btBroadphaseProxy* b = p;
+            if (a > b) std::swap(a, b);  // DBVT_BP_SORTPAIRS
+            cache->addOverlappingPair(a, b);
+        }
+    }
 }
 
 }  // namespace btgpu

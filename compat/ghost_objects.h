@@ -7,6 +7,7 @@
 #include <vector>
 
 class btCollisionObject;
+class btDbvtBroadphase;
 class btDiscreteDynamicsWorld;
 
 namespace btgpu {
@@ -21,6 +22,14 @@ std::vector<const btCollisionObject*> findGhosts(const btDiscreteDynamicsWorld& 
 // left as they were), then updateAabbs and computeOverlappingPairs, whose pair callbacks fill
 // the ghosts' lists.
 void updateBroadphaseAsStock(btDiscreteDynamicsWorld& world, float dt);
+
+// The same AABBs (predicted motion included, the Dbvt leaves fattened as stock's), but only the
+// ghosts' pairs updated, from Bullet's own tree: each ghost's leaf against both trees, new pairs
+// added to the pair cache (its ghost callback fills the list, as stock's), pairs whose leaves no
+// longer overlap removed at once (stock's lazy cleanup takes up to ~10 steps). For big worlds,
+// where the whole pair update is stock's dearest step; the other pairs are left as they were.
+void updateGhostPairsFromTree(btDiscreteDynamicsWorld& world, btDbvtBroadphase& dbvt,
+                              const std::vector<const btCollisionObject*>& ghosts, float dt);
 
 // After the broadphase update: per row, whether the body is in a broadphase pair with a ghost
 // that merges simulation islands (contact response, neither static nor kinematic) and merges

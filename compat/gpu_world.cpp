@@ -589,8 +589,16 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             Clock::time_point t0 = Clock::now();
             if (hostBroadphase) {
                 const Clock::time_point g0 = Clock::now();
-                completeBroadphasePairs();  // after steps that synced without pair tests
-                updateBroadphaseAsStock(m_world, fixedTimeStep);
+                btDbvtBroadphase* dbvt = dbvtBroadphase();
+                const bool ghostsOnly = dbvt && !m_ghosts.empty() && !m_overlapFilter && !stockPairs &&
+                                        m_world.getNumCollisionObjects() > m_config.ghostPairsExactUpTo;
+                if (ghostsOnly) {
+                    updateGhostPairsFromTree(m_world, *dbvt, m_ghosts, fixedTimeStep);
+                    m_broadphasePairsStale = !dbvt->m_deferedcollide;  // the others' pairs, before a CPU-path step
+                } else {
+                    completeBroadphasePairs();  // after steps that synced without pair tests
+                    updateBroadphaseAsStock(m_world, fixedTimeStep);
+                }
                 if (!m_ghosts.empty()) heldAwakeByGhosts(m_world, m_rows, &m_heldAwake);
                 if (stockPairs) m_manifolds.notePairs(m_world.getDispatcher(), m_world.getPairCache(), m_rows, m_removed);
                 m_report.ghostBroadphaseMs += msBetween(g0, Clock::now());

@@ -69,6 +69,13 @@ struct Config {
     // internal step (stock's cost for it: about 1 ms at 1,000 boxes on one core, tens at 30,000),
     // so it is off by default: without it the dispatcher holds the manifolds with points only.
     bool stockEmptyManifolds = false;
+    // Ghost objects' overlaps on the GPU path come from Bullet's own broadphase, updated on the
+    // host at each internal step. In a world of up to this many collision objects it is stock's
+    // whole pair update (the ghosts' lists exactly stock's, step by step); in a bigger one only the
+    // ghosts' pairs are updated, from Bullet's own tree and leaves (the pairs stock adds, added at
+    // stock's step; one that stops overlapping goes at once, where stock's lazy cleanup takes up to
+    // ~10 steps), so a character or trigger in a big world does not cost stock's broadphase.
+    int ghostPairsExactUpTo = 4096;
     // Per-stage device times from OpenCL profiling events (Report::stageMs), taken on one
     // stepSimulation call in profileEvery (events cost host time on every launch).
     bool profile = false;

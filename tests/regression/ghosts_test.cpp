@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -105,6 +106,52 @@ TEST(Ghosts, TriggerCountsTheBodiesInsideAsStock)
                   tol::kRestHeight) << "body " << b;
 }
 
+// The same trigger as a big world would run it (Config::ghostPairsExactUpTo 0): only the ghost's
+// pairs updated, from Bullet's own tree. Each body enters the trigger's list at stock's step
+// (the same leaves), and leaves it at most 10 steps before stock's (whose lazy cleanup keeps a
+// pair that stopped overlapping up to ~10 steps); the list never holds a body stock's does not.
+TEST(Ghosts, TriggerInABigWorldFromTheTree)
+{
+    Config big;
+    big.ghostPairsExactUpTo = 0;
+    auto stock = scenes::triggerFall(WorldKind::Stock);
+    auto gpu = scenes::triggerFall(WorldKind::Gpu, big);
+    std::map<int, int> enteredS, enteredG, leftS, leftG;  // body: first / last step listed
+    int differ = 0;
+    for (int i = 0; i < 180; ++i) {
+        if (i == 100) {
+            stock->moveGhost(0, btVector3(0, -20, 0));
+            gpu->moveGhost(0, btVector3(0, -20, 0));
+        }
+        stock->scene->step();
+        gpu->scene->step();
+        ASSERT_TRUE(gpu->scene->gpuWorld()->isGpuPath()) << "step " << i << ": " << gpu->scene->report()->cpuPathReason;
+        std::vector<int> s = overlapping(*stock), g = overlapping(*gpu);
+        std::sort(s.begin(), s.end());
+        std::sort(g.begin(), g.end());
+        differ += s != g;
+        for (int b : g) EXPECT_TRUE(std::binary_search(s.begin(), s.end(), b)) << "step " << i << " body " << b;
+        const int pass = i < 100 ? 0 : 1000;  // the two passes through it, apart
+        for (int b : s) {
+            enteredS.emplace(pass + b, i);
+            leftS[pass + b] = i;
+        }
+        for (int b : g) {
+            enteredG.emplace(pass + b, i);
+            leftG[pass + b] = i;
+        }
+    }
+    std::printf("trigger from the tree: %d of 180 steps differ from stock's list; host broadphase %.3f ms a call\n",
+                differ, gpu->scene->report()->ghostBroadphaseMs);
+    EXPECT_EQ(enteredG.size(), enteredS.size());
+    EXPECT_EQ(enteredG.size(), 16u);  // eight boxes, twice
+    for (const auto& [b, step] : enteredS) {
+        EXPECT_EQ(enteredG[b], step) << "body " << b;
+        EXPECT_LE(leftG[b], leftS[b]) << "body " << b;
+        EXPECT_GE(leftG[b], leftS[b] - 10) << "body " << b;
+    }
+}
+
 // An app's ghost subclass with its own addOverlappingObjectInternal and
 // removeOverlappingObjectInternal gets stock's calls, in stock's order, at the same steps.
 TEST(Ghosts, GhostSubclassGetsStockCalls)
@@ -136,10 +183,10 @@ TEST(Ghosts, GhostSubclassGetsStockCalls)
 // Bullet's character walks 3 s along +z: up the 0.3 m step, across it, down, into the wall. It
 // is where stock's is within 1 cm each step, on the ground when stock's is, and it did step up
 // and stop at the wall. Its ghost is moved by the character inside each step (setWorldTransform).
-TEST(Ghosts, CharacterWalksIntoAStepAndAWallAsStock)
+void walkIntoAStepAndAWall(const Config& config)
 {
     auto stock = scenes::characterWalk(WorldKind::Stock);
-    auto gpu = scenes::characterWalk(WorldKind::Gpu);
+    auto gpu = scenes::characterWalk(WorldKind::Gpu, config);
     double onStep = 0, onGroundAfter = 0, zAt150 = 0;
     for (int i = 0; i < 180; ++i) {
         stock->character->setWalkDirection(btVector3(0, 0, btScalar(0.05)));
@@ -163,6 +210,16 @@ TEST(Ghosts, CharacterWalksIntoAStepAndAWallAsStock)
     EXPECT_NEAR(gEnd.z(), zAt150, 1e-4);              // stopped there: 1.5 m of walking into it
     EXPECT_TRUE(gpu->character->onGround());
     EXPECT_LT((end - gEnd).length(), 0.01);
+}
+
+TEST(Ghosts, CharacterWalksIntoAStepAndAWallAsStock) { walkIntoAStepAndAWall(Config()); }
+
+// The same as a big world runs it: the character's ghost pairs from Bullet's tree only.
+TEST(Ghosts, CharacterInABigWorldWalksAsStock)
+{
+    Config big;
+    big.ghostPairsExactUpTo = 0;
+    walkIntoAStepAndAWall(big);
 }
 
 // A character standing 3 s with a box against its capsule and one far off: stock unites the box
