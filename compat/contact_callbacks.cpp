@@ -342,34 +342,49 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
         // Bullet's reduction choosing when four are held; replayed here on a scratch manifold.
         // What the callback sets on them stays on the app's point, for the fill; they are not in
         // the device's solve (nor were they before).
-        if (gContactProcessedCallback && app && app->getNumContacts() > 0 && n > 0) {
+        const int oldCount = app ? app->getNumContacts() : 0;
+        unsigned replaced = 0;  // the old points a device point takes the slot of
+        int added = 0;          // the device points the fill adds (continuing none, or one already taken)
+        for (int k = 0; k < n; ++k) {
+            if (continues[k] >= 0 && !((replaced >> continues[k]) & 1u)) replaced |= 1u << continues[k];
+            else ++added;
+        }
+        if (gContactProcessedCallback && oldCount > 0 && n > 0 && replaced != (1u << oldCount) - 1) {
+            int order[MANIFOLD_CACHE_SIZE], numKept = 0;  // old points the fill keeps, last slot first
+            if (oldCount + added <= MANIFOLD_CACHE_SIZE) {
+                // Room for all: no reduction, the old points stay in their slots.
+                for (int j = oldCount - 1; j >= 0; --j)
+                    if (!((replaced >> j) & 1u)) order[numKept++] = j;
+            } else {
+                btPersistentManifold scratch(o0, o1, 0, app->getContactBreakingThreshold(), app->getContactProcessingThreshold());
+                for (int j = 0; j < oldCount; ++j) {
+                    btManifoldPoint q = app->getContactPoint(j);
+                    q.m_userPersistentData = nullptr;
+                    q.m_lifeTime = j;
+                    scratch.addManifoldPoint(q, true);
+                }
+                for (int k = 0; k < n; ++k) {
+                    btManifoldPoint q = cps[k];
+                    q.m_userPersistentData = nullptr;
+                    q.m_lifeTime = -1 - k;
+                    int slot = -1;
+                    for (int sl = 0; continues[k] >= 0 && sl < scratch.getNumContacts() && slot < 0; ++sl)
+                        if (scratch.getContactPoint(sl).m_lifeTime == continues[k]) slot = sl;
+                    if (slot >= 0) scratch.getContactPoint(slot) = q;
+                    else scratch.addManifoldPoint(q, true);
+                }
+                // Where the reduction dropped a device point for an old one, the callback had that
+                // device point (it is in the device's solve, which needs its coefficients): the old
+                // one is not called, so that no more points are called than the manifold holds.
+                int devicePoints = 0;
+                for (int sl = 0; sl < scratch.getNumContacts(); ++sl) devicePoints += scratch.getContactPoint(sl).m_lifeTime < 0;
+                for (int sl = scratch.getNumContacts() - 1; sl >= 0 && devicePoints == n; --sl)
+                    if (scratch.getContactPoint(sl).m_lifeTime >= 0) order[numKept++] = scratch.getContactPoint(sl).m_lifeTime;
+                scratch.setNumContacts(0);
+            }
             const btScalar breaking = app->getContactBreakingThreshold();
-            btPersistentManifold scratch(o0, o1, 0, breaking, app->getContactProcessingThreshold());
-            for (int j = 0; j < app->getNumContacts(); ++j) {
-                btManifoldPoint q = app->getContactPoint(j);
-                q.m_userPersistentData = nullptr;
-                q.m_lifeTime = j;
-                scratch.addManifoldPoint(q, true);
-            }
-            for (int k = 0; k < n; ++k) {
-                btManifoldPoint q = cps[k];
-                q.m_userPersistentData = nullptr;
-                q.m_lifeTime = -1 - k;
-                int slot = -1;
-                for (int sl = 0; continues[k] >= 0 && sl < scratch.getNumContacts() && slot < 0; ++sl)
-                    if (scratch.getContactPoint(sl).m_lifeTime == continues[k]) slot = sl;
-                if (slot >= 0) scratch.getContactPoint(slot) = q;
-                else scratch.addManifoldPoint(q, true);
-            }
-            // Where the reduction dropped a device point for an old one, the callback had that
-            // device point (it is in the device's solve, which needs its coefficients): the old
-            // one is not called, so that no more points are called than the manifold holds.
-            int devicePoints = 0;
-            for (int sl = 0; sl < scratch.getNumContacts(); ++sl) devicePoints += scratch.getContactPoint(sl).m_lifeTime < 0;
-            for (int sl = scratch.getNumContacts() - 1; sl >= 0 && devicePoints == n; --sl) {
-                const int j = scratch.getContactPoint(sl).m_lifeTime;
-                if (j < 0) continue;  // a device point: called above
-                btManifoldPoint& op = app->getContactPoint(j);
+            for (int o = 0; o < numKept; ++o) {
+                btManifoldPoint& op = app->getContactPoint(order[o]);
                 btManifoldPoint q = op;
                 q.m_positionWorldOnA = o0->getWorldTransform()(q.m_localPointA);
                 q.m_positionWorldOnB = o1->getWorldTransform()(q.m_localPointB);
@@ -385,7 +400,6 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
                 op.m_combinedFriction = q.m_combinedFriction;
                 op.m_combinedRestitution = q.m_combinedRestitution;
             }
-            scratch.setNumContacts(0);
         }
         BtgManifold out = m;
         BtgContactMaterial material{};
