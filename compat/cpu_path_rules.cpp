@@ -415,17 +415,16 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     if (!rb || rb->isStaticOrKinematicObject()) return "";
     if (isMeshType(o->getCollisionShape()->getShapeType()))
         return "dynamic triangle mesh or heightfield body (the GPU path takes static and kinematic ones)";
-    // integrateTransforms sweeps a sphere of the swept radius (even radius 0) for a body moving
-    // more than its motion threshold and stops it at the hit; createPredictiveContacts adds a
-    // contact there. The GPU path has only its speculative contacts.
-    if (context.continuous && rb->getCcdSquareMotionThreshold() != btScalar(0))
-        return "continuous collision detection (setCcdMotionThreshold)";
+    // Continuous collision detection (setCcdMotionThreshold) is served step by step: the GPU path
+    // where stock's sweeps hit nothing (they then change nothing), the CPU path for a step where
+    // one hits (ccd_steps.h; GpuWorld gathers the bodies).
     if (rb->getFlags() & (BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT | BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD))
         return "explicit or world-frame gyroscopic term (BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT, _IMPLICIT_WORLD)";
     return "";
 }
 
-std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool jacobi, unsigned* solverFlags)
+std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool jacobi, unsigned* solverFlags,
+                         std::vector<btRigidBody*>* ccdBodies)
 {
     *bodyIndex = -1;
     const btCollisionObjectArray& objs = world.getCollisionObjectArray();
@@ -440,6 +439,7 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
         unsigned solverFlags = 0;
         int anisotropicRolling = 0;  // bodies with CF_ANISOTROPIC_ROLLING_FRICTION
         int anisotropic = 0;         // bodies with CF_ANISOTROPIC_FRICTION
+        std::vector<btRigidBody*> ccd;  // bodies stock's CCD looks at
     };
     std::vector<Found> found(chunkCount(n, minPerThread));
     forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
@@ -461,11 +461,17 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
             }
             if (o->getCollisionFlags() & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING)
                 f.solverFlags |= BTG_SOLVER_SOFT_CONTACTS;
+            // Stock's CCD sweeps only dynamic bodies with a convex shape (a compound has none).
+            const btRigidBody* rb = btRigidBody::upcast(o);
+            if (ccdBodies && context.continuous && rb && !rb->isStaticOrKinematicObject() &&
+                rb->getCcdSquareMotionThreshold() != btScalar(0) && rb->getCollisionShape()->isConvex())
+                f.ccd.push_back(const_cast<btRigidBody*>(rb));
         }
     });
     std::uint64_t shapeTypes = 0;
     unsigned flags = 0;
     int anisotropicRolling = 0, anisotropic = 0;
+    if (ccdBodies) ccdBodies->clear();
     for (const Found& f : found) {
         if (f.index >= 0) {
             *bodyIndex = f.index;
@@ -476,6 +482,7 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
         flags |= f.solverFlags;
         anisotropicRolling += f.anisotropicRolling;
         anisotropic += f.anisotropic;
+        if (ccdBodies) ccdBodies->insert(ccdBodies->end(), f.ccd.begin(), f.ccd.end());
     }
     // convertContact scales a rolling axis by body 0's anisotropy, then body 1's: with both
     // bodies of a pair anisotropic the result depends on which is Bullet's body 0 of the

@@ -6,9 +6,11 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 class btCollisionObject;
 class btDiscreteDynamicsWorld;
+class btRigidBody;
 
 namespace btgpu {
 
@@ -42,9 +44,10 @@ std::string bodyReason(const btCollisionObject* body, const BodyRuleContext& con
 // the shape pairs present. Returns the first reason in body order as "body i (user index u):
 // …" and sets *bodyIndex to i (-1 for a reason that is not one body's). jacobi: the Jacobi
 // solver is configured. *solverFlags (when given, and the bodies are served) gets the
-// BTG_SOLVER_* bits the bodies call for (rolling friction, soft contacts).
+// BTG_SOLVER_* bits the bodies call for (rolling friction, soft contacts). *ccdBodies (when
+// given) gets the bodies stock's continuous collision detection looks at (ccd_steps.h).
 std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool jacobi = false,
-                         unsigned* solverFlags = nullptr);
+                         unsigned* solverFlags = nullptr, std::vector<btRigidBody*>* ccdBodies = nullptr);
 
 // The dispatcher's collision algorithm for each pair of the shape types in `shapeTypes` (bit t:
 // proxy type t present) against a stock btDefaultCollisionConfiguration's: catches

@@ -3,6 +3,8 @@
 // with redo on overflow, and the write-back that leaves every body as stock Bullet would.
 #include "gpu_world.h"
 
+#include "ccd_steps.h"
+
 #include "body_rows.h"
 #include "cpu_path_rules.h"
 #include "ghost_objects.h"
@@ -120,7 +122,9 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
     if (!m_structureReason.empty()) return m_structureReason;
     std::string why = worldReason(m_world, m_config);
     if (why.empty())
-        why = bodiesReason(m_world, bodyIndex, m_config.solver == SolverKind::JacobiMassSplitting, &m_solverFlags);
+        why = bodiesReason(m_world, bodyIndex, m_config.solver == SolverKind::JacobiMassSplitting, &m_solverFlags,
+                           &m_ccdBodies);
+    if (why.empty() && !m_ccdBodies.empty()) why = ccdReason();
     if (why.empty() && (ContactCallbacks::wanted(m_world) || ContactCallbacks::events() ||
                         ContactCallbacks::overlapFilter(m_world))) {
         if (!m_callbackReason.empty() && m_callbackReasonFor == ContactCallbacks::current()) return m_callbackReason;
@@ -567,8 +571,11 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         // empty manifolds (its pairs).
         const bool hostBroadphase = broadphaseAsStock();
         const bool stockPairs = m_config.fillDispatcherManifolds && m_config.stockEmptyManifolds;
+        // CCD: each internal step its own device call, asked before and after whether stock's
+        // sweeps would hit (ccd_steps.h).
+        const bool ccd = !m_ccdBodies.empty();
         bool perSubstep = m_world.m_internalTickCallback || m_world.m_internalPreTickCallback || actions || ghosts ||
-                          callbacks || ContactCallbacks::events() || stockPairs;
+                          callbacks || ContactCallbacks::events() || stockPairs || ccd;
         int batches = perSubstep ? clamped : 1;
         int perBatch = perSubstep ? 1 : clamped;
         for (int b = 0; b < batches; ++b) {
@@ -580,6 +587,15 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
                 return finishCall(profiled, false);
             }
             if (m_world.m_internalPreTickCallback) m_world.m_internalPreTickCallback(&m_world, fixedTimeStep);
+            // Stock's predictive sweep, with the velocity the step starts with: a hit makes a
+            // contact the device has not, so this step is Bullet's own.
+            std::string ccdHit;
+            if (ccd && ccdSweepHits(m_world, m_ccdBodies, fixedTimeStep,
+                                    [&](btRigidBody* body) { return dampedVelocity(body, fixedTimeStep); }, &ccdHit)) {
+                cpuPathFrom(b, batches, fixedTimeStep, ccdHit);
+                *substepsDone = numSubSteps;
+                return finishCall(profiled, false);
+            }
             // What internalSingleStepSimulation sets for the app's callbacks and queries.
             btDispatcherInfo& dispatchInfo = m_world.getDispatchInfo();
             dispatchInfo.m_timeStep = fixedTimeStep;
@@ -635,6 +651,20 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
                 runOnDevice(1, fixedTimeStep, SubstepPart::ActivationOnly);
             } else {
                 if (!runOnDevice(perBatch, fixedTimeStep, SubstepPart::Whole, betweenContacts)) return abandoned();
+                // Stock's clamping sweep, with the solved velocity: a hit would stop the body
+                // where the device moved it on. The device's step is dropped (nothing of it has
+                // reached the app's objects yet) and Bullet's own runs instead.
+                auto solved = [&](btRigidBody* body) {
+                    const int r = m_rows.rowOf(body);
+                    if (r < 0) return body->getLinearVelocity();
+                    const BtgFloat4 v = m_readback.linVel[size_t(r)];
+                    return btVector3(v.x, v.y, v.z);
+                };
+                if (ccd && ccdSweepHits(m_world, m_ccdBodies, fixedTimeStep, solved, &ccdHit)) {
+                    cpuPathFrom(b, batches, fixedTimeStep, ccdHit);
+                    *substepsDone = numSubSteps;
+                    return finishCall(profiled, false);
+                }
                 m_joints.writeBack(*m_dev);  // applied impulses, feedback, breaks
             }
             Clock::time_point t2 = Clock::now();
@@ -655,6 +685,24 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
     }
     *substepsDone = numSubSteps;
     return finishCall(profiled, true);
+}
+
+std::string GpuWorld::ccdReason() const
+{
+    // A step CCD acts in runs again on Bullet's own path: nothing of the device's may have
+    // reached the app before (callbacks inside the step, actions, ghosts' lists), and the sweeps
+    // need Bullet's broadphase where the bodies are.
+    if (!m_config.syncBroadphaseAabbs)
+        return "continuous collision detection (setCcdMotionThreshold) with Config::syncBroadphaseAabbs off (the "
+               "sweeps need Bullet's broadphase where the bodies are)";
+    if (m_config.internalSubsteps > 1)
+        return "continuous collision detection (setCcdMotionThreshold) with Config::internalSubsteps > 1";
+    if (ContactCallbacks::wanted(m_world) || ContactCallbacks::overlapFilter(m_world) || !m_ghosts.empty() ||
+        m_world.m_actions.size() > 0 || m_world.m_internalPreTickCallback)
+        return "continuous collision detection (setCcdMotionThreshold) beside contact callbacks, an overlap filter, "
+               "ghost objects, actions or a pre-tick callback (a step CCD acts in runs again on the CPU path, which "
+               "would call them twice)";
+    return "";
 }
 
 bool GpuWorld::finishCall(bool profiled, bool gpuPath)

@@ -107,6 +107,10 @@ private:
     // Bullet's broadphase runs as stock's at each internal step's start: for ghosts, an overlap
     // filter, and stock's empty manifolds (Config::stockEmptyManifolds); its AABBs are then
     // stock's own and the after-step sync leaves them.
+    // Continuous collision detection: the bodies stock's sweeps look at (cpuPathReason), and why
+    // they cannot be served beside what else the world has ("" when they can).
+    std::vector<btRigidBody*> m_ccdBodies;
+    std::string ccdReason() const;
     bool broadphaseAsStock() const
     {
         return !m_ghosts.empty() || m_overlapFilter || (m_config.fillDispatcherManifolds && m_config.stockEmptyManifolds);

@@ -1,0 +1,85 @@
+// ccd_test.cpp — Bullet's continuous collision detection on the GPU path, against stock in the
+// same test: a CCD pile that never moves fast stays on the GPU path with the very results it has
+// without CCD; a fast ball in free flight stays on the GPU path as stock's; a fast ball shot at a
+// thin wall is stopped by it as on stock, the steps CCD acts in run on the CPU path (named), and
+// the world comes back to the GPU path after.
+#include "scenes/ccd_scenes.h"
+#include "side_by_side.h"
+
+#include <btBulletDynamicsCommon.h>
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+using namespace btgpu;
+using namespace btgpu::test;
+
+// The 4x4x4 pile with a CCD threshold on every box (a quarter of its size): no box moves that far
+// in a step, so stock's sweeps never run; the GPU path stays, bitwise as without CCD.
+TEST(Ccd, PileThatNeverMovesFastIsUnchanged)
+{
+    auto make = [](bool ccd) {
+        ScenePtr s = scenes::cubes(WorldKind::Gpu, 4, 4, 4, Config());
+        if (ccd)
+            for (btRigidBody* b : s->bodies())
+                if (b->getInvMass() > 0) {
+                    b->setCcdMotionThreshold(btScalar(0.25));
+                    b->setCcdSweptSphereRadius(btScalar(0.2));
+                }
+        return s;
+    };
+    ScenePtr with = make(true), without = make(false);
+    for (int step = 0; step < 120; ++step) {
+        with->step();
+        without->step();
+        ASSERT_TRUE(with->gpuWorld()->isGpuPath()) << step << " " << with->report()->cpuPathReason;
+    }
+    EXPECT_EQ(with->gpuWorld()->stateHash(), without->gpuWorld()->stateHash());
+}
+
+// A ball at 120 m/s with nothing in its way: its sweep runs every step and hits nothing, so the
+// GPU path keeps it, where stock's is.
+TEST(Ccd, FastBallInFreeFlightStaysOnTheGpu)
+{
+    SideBySide sb([](WorldKind k, const Config& c) { return scenes::ballAtWall(k, c, 120, false); });
+    for (int step = 0; step < 30; ++step) {
+        sb.step();
+        ASSERT_TRUE(sb.onGpu()) << step << " " << sb.gpu->report()->cpuPathReason;
+        EXPECT_LT(sb.distance(2), 1e-3) << step;
+    }
+    EXPECT_GT(sb.gpu->body(2)->getWorldTransform().getOrigin().x(), 50);
+}
+
+// The ball shot at the 4 cm wall (2 m a step: without CCD it passes through between two steps):
+// stock's CCD stops it at the wall; so does btgpu's, the step(s) it acts in on the CPU path with
+// a reason naming the body and the wall, and once the ball is slow the GPU path again.
+TEST(Ccd, FastBallStopsAtAThinWallAsStock)
+{
+    {  // the test can fail: without CCD the ball goes through
+        ScenePtr s = scenes::ballAtWall(WorldKind::Stock);
+        s->body(2)->setCcdMotionThreshold(0);
+        for (int step = 0; step < 10; ++step) s->step();
+        ASSERT_GT(s->body(2)->getWorldTransform().getOrigin().x(), 5.5);
+    }
+    SideBySide sb([](WorldKind k, const Config& c) { return scenes::ballAtWall(k, c); });
+    int cpuSteps = 0;
+    bool named = false;
+    for (int step = 0; step < 90; ++step) {
+        sb.step();
+        if (!sb.onGpu()) {
+            ++cpuSteps;
+            const std::string& why = sb.gpu->report()->cpuPathReason;
+            named |= why.find("continuous collision detection acts: body 2") != std::string::npos &&
+                     why.find("hit body 1") != std::string::npos;
+        }
+        EXPECT_LT(sb.gpu->body(2)->getWorldTransform().getOrigin().x(), 5.0) << step;  // never through the wall
+        EXPECT_LT(sb.stock->body(2)->getWorldTransform().getOrigin().x(), 5.0) << step;
+    }
+    std::printf("ball at the wall: %d steps on the CPU path; x stock %.4f, btgpu %.4f\n", cpuSteps,
+                sb.stock->body(2)->getWorldTransform().getOrigin().x(), sb.gpu->body(2)->getWorldTransform().getOrigin().x());
+    EXPECT_GE(cpuSteps, 1);
+    EXPECT_LE(cpuSteps, 5);
+    EXPECT_TRUE(named);
+    EXPECT_TRUE(sb.onGpu());  // back once CCD no longer acts
+    EXPECT_LT(sb.distance(2), 0.05);
+}
