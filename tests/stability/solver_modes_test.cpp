@@ -28,6 +28,8 @@ Config modeConfig(SolverKind solver)
     // The measurement of the substep mapping (README's table): any other count than the default
     // m_numIterations. Recorded, not asserted differently.
     if (const char* n = std::getenv("BTGPU_STABILITY_SOFT_SUBSTEPS")) c.softStep.substeps = std::atoi(n);
+    // The same for the springs' sag bound (SoftStepConfig::maxSag, m).
+    if (const char* m = std::getenv("BTGPU_STABILITY_SOFT_MAXSAG")) c.softStep.maxSag = float(std::atof(m));
     return c;
 }
 
@@ -68,7 +70,7 @@ void runModes(const std::string& name, const Builder& make, const Criteria& c, E
                 !has(softStep.stages, "solve_constraints") && !has(softStep.stages, "integrate_transforms"))
         << name;
     // What the default mapping (substeps = m_numIterations) earns; another count is measured only.
-    if (soft == Earned::Yes && !std::getenv("BTGPU_STABILITY_SOFT_SUBSTEPS"))
+    if (soft == Earned::Yes && !std::getenv("BTGPU_STABILITY_SOFT_SUBSTEPS") && !std::getenv("BTGPU_STABILITY_SOFT_MAXSAG"))
         EXPECT_TRUE(softStep.pass) << name << ", soft mode: " << softStep.why;
 }
 
@@ -91,7 +93,7 @@ TEST(SolverModes, MassRatioThousand)
 }
 TEST(SolverModes, HeavyPlank)
 {
-    // 10 substeps: 11 mm into the boxes, the plank rocking 6 cm; 20 substeps hold it.
+    // 10 substeps: 16 mm into the boxes, the plank rocking 12 cm; 20 substeps hold it.
     runModes("plank 400 kg on 2 boxes, 10 s", st::heavyPlank, target(), Earned::No);
 }
 // What more substeps earn (SoftStepConfig::substeps; the app's steps unchanged).
@@ -138,8 +140,9 @@ TEST(SolverModes, PyramidTwenty)
 TEST(SolverModes, PyramidFifty)
 {
     if (!fullMode()) GTEST_SKIP() << "BTGPU_STABILITY_FULL=1 runs it";
+    // Earned since SoftStepConfig::maxSag is 1 mm (H200 and PoCL: farthest move 41 mm).
     runModes("pyramid base 50, 10 s", [](WorldKind k, const Config& c) { return st::pyramid(k, c, 50); }, target(),
-             Earned::No);
+             Earned::Yes);
 }
 
 // Joints in the soft mode: a hanging chain of 20 point-to-point links, 5 s; its worst stretch
