@@ -642,8 +642,24 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
                 *substepsDone = numSubSteps;
                 return finishCall(profiled, false);
             };
+            // Stock's clamping sweep, with the solved velocity: a hit would stop the body where
+            // the device moved it on. The device's step is dropped (nothing of it has reached the
+            // app's objects yet: this runs before the write-back, and before the actions, which
+            // stock runs after integrateTransforms) and Bullet's own runs instead.
+            auto solved = [&](btRigidBody* body) {
+                const int r = m_rows.rowOf(body);
+                if (r < 0) return body->getLinearVelocity();
+                const BtgFloat4 v = m_readback.linVel[size_t(r)];
+                return btVector3(v.x, v.y, v.z);
+            };
+            auto clampedByCcd = [&] { return ccd && ccdSweepHits(m_world, m_ccdBodies, fixedTimeStep, solved, &ccdHit); };
             if (actions) {
                 if (!runOnDevice(perBatch, fixedTimeStep, SubstepPart::BeforeActivation, betweenContacts)) return abandoned();
+                if (clampedByCcd()) {
+                    cpuPathFrom(b, batches, fixedTimeStep, ccdHit);
+                    *substepsDone = numSubSteps;
+                    return finishCall(profiled, false);
+                }
                 m_joints.writeBack(*m_dev);
                 writeBack(m_readback, false, false);
                 fillManifolds();  // the actions see this internal step's contacts
@@ -651,16 +667,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
                 runOnDevice(1, fixedTimeStep, SubstepPart::ActivationOnly);
             } else {
                 if (!runOnDevice(perBatch, fixedTimeStep, SubstepPart::Whole, betweenContacts)) return abandoned();
-                // Stock's clamping sweep, with the solved velocity: a hit would stop the body
-                // where the device moved it on. The device's step is dropped (nothing of it has
-                // reached the app's objects yet) and Bullet's own runs instead.
-                auto solved = [&](btRigidBody* body) {
-                    const int r = m_rows.rowOf(body);
-                    if (r < 0) return body->getLinearVelocity();
-                    const BtgFloat4 v = m_readback.linVel[size_t(r)];
-                    return btVector3(v.x, v.y, v.z);
-                };
-                if (ccd && ccdSweepHits(m_world, m_ccdBodies, fixedTimeStep, solved, &ccdHit)) {
+                if (clampedByCcd()) {
                     cpuPathFrom(b, batches, fixedTimeStep, ccdHit);
                     *substepsDone = numSubSteps;
                     return finishCall(profiled, false);
@@ -690,17 +697,18 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
 std::string GpuWorld::ccdReason() const
 {
     // A step CCD acts in runs again on Bullet's own path: nothing of the device's may have
-    // reached the app before (callbacks inside the step, actions, ghosts' lists), and the sweeps
-    // need Bullet's broadphase where the bodies are.
+    // reached the app before (the contact callbacks inside the step; a pre-tick callback, which
+    // the CPU path would call again), and the sweeps need Bullet's broadphase where the bodies
+    // are. Actions run after the clamping check; ghosts' pairs, updated at the step's start as
+    // stock's, are what Bullet's own step finds again.
     if (!m_config.syncBroadphaseAabbs)
         return "continuous collision detection (setCcdMotionThreshold) with Config::syncBroadphaseAabbs off (the "
                "sweeps need Bullet's broadphase where the bodies are)";
     if (m_config.internalSubsteps > 1)
         return "continuous collision detection (setCcdMotionThreshold) with Config::internalSubsteps > 1";
-    if (ContactCallbacks::wanted(m_world) || ContactCallbacks::overlapFilter(m_world) || !m_ghosts.empty() ||
-        m_world.m_actions.size() > 0 || m_world.m_internalPreTickCallback)
-        return "continuous collision detection (setCcdMotionThreshold) beside contact callbacks, an overlap filter, "
-               "ghost objects, actions or a pre-tick callback (a step CCD acts in runs again on the CPU path, which "
+    if (ContactCallbacks::wanted(m_world) || ContactCallbacks::overlapFilter(m_world) || m_world.m_internalPreTickCallback)
+        return "continuous collision detection (setCcdMotionThreshold) beside contact callbacks that run before the "
+               "solve, an overlap filter or a pre-tick callback (a step CCD acts in runs again on the CPU path, which "
                "would call them twice)";
     return "";
 }

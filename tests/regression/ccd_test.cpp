@@ -2,8 +2,10 @@
 // same test: a CCD pile that never moves fast stays on the GPU path with the very results it has
 // without CCD; a fast ball in free flight stays on the GPU path as stock's; a fast ball shot at a
 // thin wall is stopped by it as on stock, the steps CCD acts in run on the CPU path (named), and
-// the world comes back to the GPU path after.
+// the world comes back to the GPU path after; the same beside Bullet's character controller
+// (an action on a ghost object).
 #include "scenes/ccd_scenes.h"
+#include "scenes/ghost_scenes.h"
 #include "side_by_side.h"
 
 #include <btBulletDynamicsCommon.h>
@@ -82,4 +84,39 @@ TEST(Ccd, FastBallStopsAtAThinWallAsStock)
     EXPECT_TRUE(named);
     EXPECT_TRUE(sb.onGpu());  // back once CCD no longer acts
     EXPECT_LT(sb.distance(2), 0.05);
+}
+
+// Bullet's character walking (an action on its ghost) while a CCD ball is shot at the wall in
+// front of it (0.5 m thick, 2.5 m a step): the ball stops at the wall on both; the character
+// walks as stock's every step; the step CCD acts in is Bullet's own, the others the GPU path's.
+TEST(Ccd, BesideACharacterControllerAsStock)
+{
+    auto make = [](WorldKind k) {
+        auto g = scenes::characterWalk(k, Config());
+        btRigidBody* ball = g->scene->addBody(g->scene->sphereShape(btScalar(0.1)), 1, btVector3(btScalar(1.5), 2, 2));
+        ball->setLinearVelocity(btVector3(0, 0, 150));
+        ball->setCcdMotionThreshold(btScalar(0.1));
+        ball->setCcdSweptSphereRadius(btScalar(0.08));
+        return g;
+    };
+    auto stock = make(WorldKind::Stock), gpu = make(WorldKind::Gpu);
+    btRigidBody* ballS = stock->scene->bodies().back();
+    btRigidBody* ballG = gpu->scene->bodies().back();
+    int gpuSteps = 0, cpuSteps = 0;
+    for (int i = 0; i < 90; ++i) {
+        stock->character->setWalkDirection(btVector3(0, 0, btScalar(0.05)));
+        gpu->character->setWalkDirection(btVector3(0, 0, btScalar(0.05)));
+        stock->scene->step();
+        gpu->scene->step();
+        (gpu->scene->gpuWorld()->isGpuPath() ? gpuSteps : cpuSteps)++;
+        EXPECT_LT(ballS->getWorldTransform().getOrigin().z(), 7.75) << i;
+        EXPECT_LT(ballG->getWorldTransform().getOrigin().z(), 7.75) << i;  // never into the wall
+        const btVector3 s = stock->ghost()->getWorldTransform().getOrigin(), g = gpu->ghost()->getWorldTransform().getOrigin();
+        ASSERT_LT((s - g).length(), 0.01) << "step " << i;
+    }
+    std::printf("beside the character: %d steps on the GPU path, %d on the CPU path; ball z stock %.3f, btgpu %.3f\n",
+                gpuSteps, cpuSteps, ballS->getWorldTransform().getOrigin().z(), ballG->getWorldTransform().getOrigin().z());
+    EXPECT_GE(cpuSteps, 1);
+    EXPECT_GE(gpuSteps, 80);
+    EXPECT_TRUE(gpu->scene->gpuWorld()->isGpuPath());
 }
