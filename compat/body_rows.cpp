@@ -72,6 +72,7 @@ BtgBodyProps bodyProps(const btCollisionObject* obj, int shapeRow, const BtgShap
     const btBroadphaseProxy* proxy = obj->getBroadphaseHandle();
     p.group = proxy ? proxy->m_collisionFilterGroup : -1;
     p.mask = proxy ? proxy->m_collisionFilterMask : -1;
+    p.proxyOrder = proxy ? proxy->m_uniqueId : 0;
     return p;
 }
 

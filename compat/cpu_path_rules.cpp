@@ -439,6 +439,7 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
         unsigned solverFlags = 0;
         int anisotropicRolling = 0;  // bodies with CF_ANISOTROPIC_ROLLING_FRICTION
         int anisotropic = 0;         // bodies with CF_ANISOTROPIC_FRICTION
+        int anisotropicOrdered = 0;  // of those (either kind), compound or concave ones
         std::vector<btRigidBody*> ccd;  // bodies stock's CCD looks at
     };
     std::vector<Found> found(chunkCount(n, minPerThread));
@@ -455,6 +456,9 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
             f.shapeTypes |= shapeTypeBits(o->getCollisionShape());
             if (o->getRollingFriction() != btScalar(0)) f.solverFlags |= BTG_SOLVER_ROLLING_FRICTION;
             f.anisotropicRolling += o->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_ROLLING_FRICTION);
+            if (o->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION) ||
+                o->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_ROLLING_FRICTION))
+                f.anisotropicOrdered += o->getCollisionShape()->isCompound() || o->getCollisionShape()->isConcave();
             if (o->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION)) {
                 ++f.anisotropic;
                 f.solverFlags |= BTG_SOLVER_ANISOTROPIC_FRICTION;
@@ -470,7 +474,7 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
     });
     std::uint64_t shapeTypes = 0;
     unsigned flags = 0;
-    int anisotropicRolling = 0, anisotropic = 0;
+    int anisotropicRolling = 0, anisotropic = 0, anisotropicOrdered = 0;
     if (ccdBodies) ccdBodies->clear();
     for (const Found& f : found) {
         if (f.index >= 0) {
@@ -482,17 +486,19 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
         flags |= f.solverFlags;
         anisotropicRolling += f.anisotropicRolling;
         anisotropic += f.anisotropic;
+        anisotropicOrdered += f.anisotropicOrdered;
         if (ccdBodies) ccdBodies->insert(ccdBodies->end(), f.ccd.begin(), f.ccd.end());
     }
-    // convertContact scales a rolling axis by body 0's anisotropy, then body 1's: with both
-    // bodies of a pair anisotropic the result depends on which is Bullet's body 0 of the
-    // manifold, which the GPU path does not track. One such body in the world is served.
-    if (anisotropicRolling > 1 && (flags & BTG_SOLVER_ROLLING_FRICTION))
-        return "anisotropic rolling friction on more than one body (CF_ANISOTROPIC_ROLLING_FRICTION: the order "
-               "Bullet applies two bodies' in is its manifold's body order)";
-    if (anisotropic > 1)
-        return "anisotropic friction on more than one body (CF_ANISOTROPIC_FRICTION: the order Bullet applies two "
-               "bodies' in is its manifold's body order)";
+    // convertContact scales by body 0's anisotropy, then body 1's: for two convex bodies body 0 is
+    // the one of the lower proxy id (the pair cache's order), which the rows carry
+    // (BtgBodyProps::proxyOrder); a compound's or a concave body's manifolds are ordered by their
+    // algorithms (a child first, the concave side second), which the device does not follow.
+    if (anisotropicRolling > 1 && (flags & BTG_SOLVER_ROLLING_FRICTION) && anisotropicOrdered > 0)
+        return "anisotropic rolling friction on more than one body, one of them a compound or concave "
+               "(CF_ANISOTROPIC_ROLLING_FRICTION: the order Bullet applies two bodies' in is its manifold's body order)";
+    if (anisotropic > 1 && anisotropicOrdered > 0)
+        return "anisotropic friction on more than one body, one of them a compound or concave (CF_ANISOTROPIC_FRICTION: "
+               "the order Bullet applies two bodies' in is its manifold's body order)";
     // With these three bits convertContact keeps a point's directions from its first step,
     // scaled by the body's orientation then (SOLVER_ENABLE_FRICTION_DIRECTION_CACHING, above).
     const int caching = SOLVER_ENABLE_FRICTION_DIRECTION_CACHING | SOLVER_USE_2_FRICTION_DIRECTIONS |

@@ -47,11 +47,21 @@ static inline BtgFloat4 btgApplyAnisotropy(BtgFloat4 dir, BtgFloat4 rot, BtgBody
     return btgMat3MulVec(m, inBody);
 }
 
+/* Both bodies' anisotropy on dir in convertContact's order: body 0 of Bullet's manifold first,
+ * which for two convex bodies is the one of the lower proxy id (two anisotropic bodies whose
+ * manifold another algorithm orders, a compound's or a concave one's, are not on the GPU path). */
+static inline BtgFloat4 btgApplyBothAnisotropies(BtgFloat4 dir, BtgFloat4 rotA, BtgFloat4 rotB, BtgBodyProps pa,
+                                                 BtgBodyProps pb, uint mode)
+{
+    if (pa.proxyOrder <= pb.proxyOrder) return btgApplyAnisotropy(btgApplyAnisotropy(dir, rotA, pa, mode), rotB, pb, mode);
+    return btgApplyAnisotropy(btgApplyAnisotropy(dir, rotB, pb, mode), rotA, pa, mode);
+}
+
 /* convertContact's rolling rows of a prepared contact c: only when the combined rolling
  * friction is positive (spinning friction alone adds no row in 3.24), and only while c is
  * solvable (its normal rows have mass). Impulses start at zero (Bullet never warm-starts
- * them). The axes take A's anisotropic rolling friction, then B's (rotA, rotB, pa, pb: the
- * bodies' orientations and rows). */
+ * them). The axes take both bodies' anisotropic rolling friction, body 0's first (rotA, rotB,
+ * pa, pb: the bodies' orientations and rows). */
 static inline BtgRollingContact btgPrepareRolling(const BtgContact* c, BtgSolverBody a, BtgSolverBody b,
                                                   BtgPairMaterial mat, int solvable, BtgFloat4 rotA, BtgFloat4 rotB,
                                                   BtgBodyProps pa, BtgBodyProps pb)
@@ -75,8 +85,8 @@ static inline BtgRollingContact btgPrepareRolling(const BtgContact* c, BtgSolver
     if (!(mat.rollingFriction > 0.0f) || !solvable || c->numPoints == 0) return r;
     r.spinMass = btgAngularRowMass(btgAngularJacobian(c->normal, a, b), a, b);
     const uint mode = BTG_BODY_ANISOTROPIC_ROLLING;
-    r.rollAxis1 = btgApplyAnisotropy(btgApplyAnisotropy(r.rollAxis1, rotA, pa, mode), rotB, pb, mode);
-    r.rollAxis2 = btgApplyAnisotropy(btgApplyAnisotropy(r.rollAxis2, rotA, pa, mode), rotB, pb, mode);
+    r.rollAxis1 = btgApplyBothAnisotropies(r.rollAxis1, rotA, rotB, pa, pb, mode);
+    r.rollAxis2 = btgApplyBothAnisotropies(r.rollAxis2, rotA, rotB, pa, pb, mode);
     /* a row needs |axis| > 0.001 */
     if (btgLength3(r.rollAxis1) > 0.001f) r.roll1Mass = btgAngularRowMass(btgAngularJacobian(r.rollAxis1, a, b), a, b);
     if (btgLength3(r.rollAxis2) > 0.001f) r.roll2Mass = btgAngularRowMass(btgAngularJacobian(r.rollAxis2, a, b), a, b);
@@ -117,7 +127,7 @@ static inline void btgRollingSolve(BtgRollingContact* r, BtgFloat4 normal, BtgFl
 
 /* convertContact's friction directions where a body has CF_ANISOTROPIC_FRICTION, after
  * btgPrepareContact built c (its directions then are Bullet's before the scaling): direction 1
- * scaled by A's anisotropy, then B's; with two directions, direction 2 is the scaled direction
+ * scaled by both bodies' anisotropy, body 0's first; with two directions, direction 2 is the scaled direction
  * 1 crossed with the normal and normalised (along a slip), or btPlaneSpace1's q (no slip, or
  * velocity-independent directions), each then scaled alike. The rows' masses follow the scaled
  * directions (setupFrictionConstraint takes them as they are: the inverse mass term unscaled).
@@ -137,9 +147,9 @@ static inline void btgPrepareAnisotropicFriction(BtgContact* c, BtgFrictionDirs*
         BtgFloat4 slip = v - n * btgDot3(v, n);
         const int alongSlip =
             !(p.solverFlags & BTG_SOLVER_VELOCITY_INDEPENDENT_FRICTION) && btgDot3(slip, slip) > BTG_SIMD_EPSILON;
-        BtgFloat4 d1 = btgApplyAnisotropy(btgApplyAnisotropy(btgFrictionDir1(c, k), rotA, pa, mode), rotB, pb, mode);
+        BtgFloat4 d1 = btgApplyBothAnisotropies(btgFrictionDir1(c, k), rotA, rotB, pa, pb, mode);
         BtgFloat4 d2 = alongSlip ? btgNormalizeBullet(btgCross3(d1, n)) : btgFrictionDir2(c, k);
-        d2 = btgApplyAnisotropy(btgApplyAnisotropy(d2, rotA, pa, mode), rotB, pb, mode);
+        d2 = btgApplyBothAnisotropies(d2, rotA, rotB, pa, pb, mode);
         dirs->dir1[k] = d1;
         dirs->dir2[k] = d2;
         if (!solvable) continue;

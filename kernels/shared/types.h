@@ -93,7 +93,8 @@ typedef struct {
     int mask;                  /* broadphase collision filter mask */
     float sleepLinear;         /* m/s: linear sleeping threshold */
     float sleepAngular;        /* rad/s: angular sleeping threshold */
-    float pad0;
+    int proxyOrder;            /* Bullet's broadphase proxy id (m_uniqueId): of two convex bodies the
+                                  lower one is their manifold's body 0 (the pair cache's order) */
     float rollingFriction;     /* coefficient (btCollisionObject::m_rollingFriction) */
     float spinningFriction;    /* coefficient (m_spinningFriction) */
     float contactStiffness;    /* N/m (m_contactStiffness; read with BTG_BODY_STIFFNESS_DAMPING) */

@@ -95,6 +95,10 @@ std::vector<Rule> rules()
     static btMinkowskiSumShape sum(&capsule, &ball);
     static btCompoundShape compound;
     if (compound.getNumChildShapes() == 0) compound.addChildShape(btTransform::getIdentity(), &sum);
+    // A compound of one box: its manifolds' body order is the compound algorithm's (a child first).
+    static btBoxShape boxChild(btVector3(.5, .5, .5));
+    static btCompoundShape boxCompound;
+    if (boxCompound.getNumChildShapes() == 0) boxCompound.addChildShape(btTransform::getIdentity(), &boxChild);
     // A convex triangle mesh the app gave polyhedral features: stock then clips it against
     // featured hulls, which the GPU path does not.
     static btTriangleMesh featuredMesh;
@@ -155,23 +159,35 @@ std::vector<Rule> rules()
                  configuration(s).getCollisionAlgorithmCreateFunc(BOX_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE));
          }},
         flag("friction anchor", "CF_HAS_FRICTION_ANCHOR", btCollisionObject::CF_HAS_FRICTION_ANCHOR),
-        {"anisotropic rolling friction on two bodies", "anisotropic rolling friction on more than one body",
+        // Two anisotropic bodies are served (solver_features_test.cpp) unless one is a compound or
+        // concave, whose manifolds' body order is its algorithm's (here body 2 made a compound).
+        {"anisotropic rolling friction on two bodies, one a compound", "anisotropic rolling friction on more than one body",
          [](Scene& s) {
              s.body(1)->setRollingFriction(btScalar(0.1));
              for (int b : {1, 2})
                  s.body(b)->setAnisotropicFriction(btVector3(1, btScalar(0.5), 1),
                                                    btCollisionObject::CF_ANISOTROPIC_ROLLING_FRICTION);
+             savedShapes()[&s] = s.body(2)->getCollisionShape();
+             s.body(2)->setCollisionShape(&boxCompound);
+             s.world().updateSingleAabb(s.body(2));
          },
          [](Scene& s) {
              s.body(1)->setRollingFriction(0);
              for (int b : {1, 2}) s.body(b)->setAnisotropicFriction(btVector3(1, 1, 1));
+             s.body(2)->setCollisionShape(savedShapes().at(&s));
+             s.world().updateSingleAabb(s.body(2));
          }},
-        {"anisotropic friction on two bodies", "anisotropic friction on more than one body",
+        {"anisotropic friction on two bodies, one a compound", "anisotropic friction on more than one body",
          [](Scene& s) {
              for (int b : {1, 2}) s.body(b)->setAnisotropicFriction(btVector3(1, btScalar(0.5), 1));
+             savedShapes()[&s] = s.body(2)->getCollisionShape();
+             s.body(2)->setCollisionShape(&boxCompound);
+             s.world().updateSingleAabb(s.body(2));
          },
          [](Scene& s) {
              for (int b : {1, 2}) s.body(b)->setAnisotropicFriction(btVector3(1, 1, 1));
+             s.body(2)->setCollisionShape(savedShapes().at(&s));
+             s.world().updateSingleAabb(s.body(2));
          }},
         {"anisotropic friction with cached directions", "anisotropic friction with friction direction caching",
          [](Scene& s) {

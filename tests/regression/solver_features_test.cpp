@@ -327,6 +327,39 @@ TEST(SolverFeatures, AnisotropicFrictionSlidesAsStock)
     }
 }
 
+// Anisotropic friction on both bodies of a pair: convertContact scales by body 0's anisotropy,
+// then body 1's, body 0 being the one of the lower proxy id. The ground is removed and added
+// back first, so the world's object order (the GPU path's rows: slider, slab, ground) is not
+// the proxy order (slab, slider, ground): the device must take Bullet's. The box slides as far
+// as stock's (within 5%), and the slab's anisotropy matters (without it stock's box goes
+// elsewhere).
+TEST(SolverFeatures, AnisotropicFrictionOnBothBodiesAsStock)
+{
+    for (int mode : {0, int(SOLVER_USE_2_FRICTION_DIRECTIONS)}) {
+        SCOPED_TRACE(mode);
+        auto reorder = [](Scene& s) {
+            s.world().removeRigidBody(s.body(0));
+            s.world().addRigidBody(s.body(0));
+        };
+        SideBySide s(with(features::anisotropicPair, solverMode(mode)));
+        s.both(reorder);
+        ASSERT_EQ(s.gpu->world().getCollisionObjectArray()[0], s.gpu->body(2));  // the rows' order is not the proxies'
+        ScenePtr plain = features::anisotropicPair(WorldKind::Stock, Config());
+        solverMode(mode)(*plain);
+        reorder(*plain);
+        plain->body(1)->setAnisotropicFriction(btVector3(1, 1, 1), btCollisionObject::CF_ANISOTROPIC_FRICTION_DISABLED);
+        const btVector3 start = s.stock->body(2)->getWorldTransform().getOrigin();
+        stepOnGpu(s, 60);
+        for (int i = 0; i < 60; ++i) plain->step();
+        const btVector3 stock = travel(*s.stock, 2, start), gpu = travel(*s.gpu, 2, start),
+                        one = travel(*plain, 2, start);
+        std::printf("both anisotropic, mode %d: stock (%.4f, %.4f), btgpu (%.4f, %.4f), slab isotropic (%.4f, %.4f)\n",
+                    mode, stock.x(), stock.z(), gpu.x(), gpu.z(), one.x(), one.z());
+        EXPECT_LT((gpu - stock).length(), tol::kRollDistanceRel * stock.length());
+        EXPECT_GT((stock - one).length(), 0.05 * stock.length());  // the slab's anisotropy matters
+    }
+}
+
 // The soft step builds none of the rows these Bullet features add to the bullet mode: with
 // Config::solver = SoftStep each sends the world to the CPU path naming it (and back when unset).
 TEST(SolverFeatures, SoftStepFallsBackForTheBulletModesContactFeatures)

@@ -78,6 +78,20 @@ ScenePtr boxPile(WorldKind kind, const Config& config, int side)
     return scene;
 }
 
+ScenePtr anisotropicPair(WorldKind kind, const Config& config)
+{
+    auto scene = std::make_unique<Scene>(kind, config, "anisotropic_pair");
+    ground(*scene);
+    btRigidBody* base = scene->addBody(scene->boxShape(btVector3(3, btScalar(0.25), 3)), 0,
+                                       btTransform(btQuaternion(btVector3(0, 1, 0), btScalar(0.35)), btVector3(0, .25, 0)));
+    base->setAnisotropicFriction(btVector3(1, 1, btScalar(0.2)));
+    btTransform t(btQuaternion(btVector3(0, 1, 0), btScalar(SIMD_PI / 6)), btVector3(0, 1, 0));
+    btRigidBody* box = scene->addBody(scene->boxShape(btVector3(.5, .5, .5)), 1, t);
+    box->setAnisotropicFriction(btVector3(1, 1, btScalar(0.1)));
+    box->setLinearVelocity(btVector3(2, 0, 2));
+    return scene;
+}
+
 ScenePtr anisotropicBox(WorldKind kind, const Config& config)
 {
     auto scene = std::make_unique<Scene>(kind, config, "anisotropic_box");

@@ -27,5 +27,9 @@ ScenePtr boxPile(WorldKind kind, const Config& config, int side = 5);
 // A unit box with anisotropic friction (1, 1, 0.1) (CF_ANISOTROPIC_FRICTION), turned 30 degrees
 // about y, sliding at (2, 0, 2) m/s (friction 0.5 on both).
 ScenePtr anisotropicBox(WorldKind kind, const Config& config);
+// Two anisotropic bodies touching: body 0 the ground; body 1 a static 6 x 0.5 x 6 m slab turned
+// 0.35 rad about y with friction (1, 1, 0.2) on its own axes; body 2 anisotropicBox's box
+// (friction (1, 1, 0.1), turned 30 degrees) resting on the slab, given (2, 0, 2) m/s.
+ScenePtr anisotropicPair(WorldKind kind, const Config& config);
 
 }  // namespace btgpu::scenes::features
