@@ -592,7 +592,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             std::string ccdHit;
             if (ccd && ccdSweepHits(m_world, m_ccdBodies, fixedTimeStep,
                                     [&](btRigidBody* body) { return dampedVelocity(body, fixedTimeStep); }, &ccdHit)) {
-                cpuPathFrom(b, batches, fixedTimeStep, ccdHit);
+                cpuPathFrom(b, batches, fixedTimeStep, ccdHit, true);
                 *substepsDone = numSubSteps;
                 return finishCall(profiled, false);
             }
@@ -638,7 +638,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             auto abandoned = [&] {
                 m_callbackReason = m_callbacks.reason();
                 m_callbackReasonFor = ContactCallbacks::current();
-                cpuPathFrom(b, batches, fixedTimeStep, m_callbackReason);
+                cpuPathFrom(b, batches, fixedTimeStep, m_callbackReason, true);
                 *substepsDone = numSubSteps;
                 return finishCall(profiled, false);
             };
@@ -656,7 +656,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             if (actions) {
                 if (!runOnDevice(perBatch, fixedTimeStep, SubstepPart::BeforeActivation, betweenContacts)) return abandoned();
                 if (clampedByCcd()) {
-                    cpuPathFrom(b, batches, fixedTimeStep, ccdHit);
+                    cpuPathFrom(b, batches, fixedTimeStep, ccdHit, true);
                     *substepsDone = numSubSteps;
                     return finishCall(profiled, false);
                 }
@@ -668,7 +668,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             } else {
                 if (!runOnDevice(perBatch, fixedTimeStep, SubstepPart::Whole, betweenContacts)) return abandoned();
                 if (clampedByCcd()) {
-                    cpuPathFrom(b, batches, fixedTimeStep, ccdHit);
+                    cpuPathFrom(b, batches, fixedTimeStep, ccdHit, true);
                     *substepsDone = numSubSteps;
                     return finishCall(profiled, false);
                 }
@@ -697,19 +697,18 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
 std::string GpuWorld::ccdReason() const
 {
     // A step CCD acts in runs again on Bullet's own path: nothing of the device's may have
-    // reached the app before (the contact callbacks inside the step; a pre-tick callback, which
-    // the CPU path would call again), and the sweeps need Bullet's broadphase where the bodies
-    // are. Actions run after the clamping check; ghosts' pairs, updated at the step's start as
+    // reached the app before (the contact callbacks inside the step; the pre-tick callback is
+    // not called again there), and the sweeps need Bullet's broadphase where the bodies are. Actions run after the clamping check; ghosts' pairs, updated at the step's start as
     // stock's, are what Bullet's own step finds again.
     if (!m_config.syncBroadphaseAabbs)
         return "continuous collision detection (setCcdMotionThreshold) with Config::syncBroadphaseAabbs off (the "
                "sweeps need Bullet's broadphase where the bodies are)";
     if (m_config.internalSubsteps > 1)
         return "continuous collision detection (setCcdMotionThreshold) with Config::internalSubsteps > 1";
-    if (ContactCallbacks::wanted(m_world) || ContactCallbacks::overlapFilter(m_world) || m_world.m_internalPreTickCallback)
+    if (ContactCallbacks::wanted(m_world) || ContactCallbacks::overlapFilter(m_world))
         return "continuous collision detection (setCcdMotionThreshold) beside contact callbacks that run before the "
-               "solve, an overlap filter or a pre-tick callback (a step CCD acts in runs again on the CPU path, which "
-               "would call them twice)";
+               "solve or an overlap filter (a step CCD acts in runs again on the CPU path, which would call them "
+               "twice)";
     return "";
 }
 

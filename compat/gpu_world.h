@@ -97,7 +97,8 @@ private:
     // callbacks or an overlap filter need it (empty otherwise); keeps the plan's stage in step.
     std::function<bool()> contactHostPart();
     // Internal steps [batch, batches) of this call on the CPU path, for `why`.
-    void cpuPathFrom(int batch, int batches, btScalar fixedTimeStep, const std::string& why);
+    // preTickCalled: the step's pre-tick callback ran already (the step began on the GPU path).
+    void cpuPathFrom(int batch, int batches, btScalar fixedTimeStep, const std::string& why, bool preTickCalled = false);
     // Bullet's broadphase AABBs where the bodies are, without its pair tests (see the .cpp), and
     // the pairs those left out, found before a CPU-path step.
     btDbvtBroadphase* dbvtBroadphase() const;

@@ -113,7 +113,7 @@ bool GpuWorld::followWithinCall(int batch, int batches, btScalar fixedTimeStep)
     return false;
 }
 
-void GpuWorld::cpuPathFrom(int batch, int batches, btScalar fixedTimeStep, const std::string& why)
+void GpuWorld::cpuPathFrom(int batch, int batches, btScalar fixedTimeStep, const std::string& why, bool preTickCalled)
 {
     // As a call that starts on the CPU path, but from this internal step on: Bullet's own
     // internal steps (they run the pre-tick and tick callbacks), with the gravity stepSimulation
@@ -127,7 +127,14 @@ void GpuWorld::cpuPathFrom(int batch, int batches, btScalar fixedTimeStep, const
     leaveGpuPath();
     completeBroadphasePairs();
     m_world.applyGravity();
-    for (int b = batch; b < batches; ++b) m_world.internalSingleStepSimulation(fixedTimeStep);
+    for (int b = batch; b < batches; ++b) {
+        // This internal step's pre-tick callback already ran on the GPU path's side (the step
+        // was started there, then handed over): stock calls it once a step.
+        const btInternalTickCallback preTick = m_world.m_internalPreTickCallback;
+        if (b == batch && preTickCalled) m_world.m_internalPreTickCallback = nullptr;
+        m_world.internalSingleStepSimulation(fixedTimeStep);
+        if (b == batch && preTickCalled) m_world.m_internalPreTickCallback = preTick;
+    }
 }
 
 }  // namespace btgpu

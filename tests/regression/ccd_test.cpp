@@ -120,3 +120,26 @@ TEST(Ccd, BesideACharacterControllerAsStock)
     EXPECT_GE(gpuSteps, 80);
     EXPECT_TRUE(gpu->scene->gpuWorld()->isGpuPath());
 }
+
+// With an app's pre-tick callback (called once at the start of each internal step): the steps
+// CCD acts in are started on the GPU path and handed to Bullet's, which must not call it again.
+// The callback is called as often as on stock (once a step), and the ball stops at the wall.
+TEST(Ccd, PreTickCallbackOncePerStepAsStock)
+{
+    static long calls[2];
+    calls[0] = calls[1] = 0;
+    auto tick = [](btDynamicsWorld* w, btScalar) { ++calls[w->getWorldUserInfo() ? 1 : 0]; };
+    SideBySide sb([](WorldKind k, const Config& c) { return scenes::ballAtWall(k, c); });
+    sb.stock->world().setInternalTickCallback(tick, nullptr, true);
+    sb.gpu->world().setInternalTickCallback(tick, reinterpret_cast<void*>(1), true);
+    int cpuSteps = 0;
+    for (int step = 0; step < 60; ++step) {
+        sb.step();
+        cpuSteps += !sb.onGpu();
+        EXPECT_EQ(calls[1], calls[0]) << step;
+        EXPECT_LT(sb.gpu->body(2)->getWorldTransform().getOrigin().x(), 5.0) << step;
+    }
+    EXPECT_EQ(calls[0], 60);
+    EXPECT_GE(cpuSteps, 1);
+    EXPECT_TRUE(sb.onGpu());
+}

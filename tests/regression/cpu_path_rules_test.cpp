@@ -205,18 +205,21 @@ std::vector<Rule> rules()
         {"contact processing threshold", "contact processing threshold",
          [](Scene& s) { s.body(1)->setContactProcessingThreshold(0); },
          [](Scene& s) { s.body(1)->setContactProcessingThreshold(BT_LARGE_FLOAT); }},
-        // CCD is served step by step (ccd_test.cpp); beside a pre-tick callback a step it acts in
-        // would call the callback twice.
-        {"CCD beside a pre-tick callback", "continuous collision detection (setCcdMotionThreshold) beside",
+        // CCD is served step by step (ccd_test.cpp); beside an overlap filter a step it acts in
+        // would ask the filter again.
+        {"CCD beside an overlap filter", "continuous collision detection (setCcdMotionThreshold) beside",
          [](Scene& s) {
+             static struct AcceptAll : btOverlapFilterCallback {
+                 bool needBroadphaseCollision(btBroadphaseProxy*, btBroadphaseProxy*) const override { return true; }
+             } acceptAll;
              s.body(3)->setCcdMotionThreshold(btScalar(0.01));
              s.body(3)->setCcdSweptSphereRadius(btScalar(0.2));
-             s.world().setInternalTickCallback([](btDynamicsWorld*, btScalar) {}, nullptr, true);
+             s.world().getPairCache()->setOverlapFilterCallback(&acceptAll);
          },
          [](Scene& s) {
              s.body(3)->setCcdMotionThreshold(0);
              s.body(3)->setCcdSweptSphereRadius(0);
-             s.world().setInternalTickCallback(nullptr, nullptr, true);
+             s.world().getPairCache()->setOverlapFilterCallback(nullptr);
          }},
         {"explicit gyroscopic term", "gyroscopic",
          [](Scene& s) { s.body(1)->setFlags(s.body(1)->getFlags() | BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT); },
