@@ -41,11 +41,8 @@ __kernel void gather_callback_manifolds(__global const BtgManifoldRange* restric
     /* A GJK pair's manifold persists its points: which one this substep added (the points the
      * app's added callback is called for), from the pair's state the narrowphase left. */
     int addedId = -2;
-    if ((int)i < gjkCapacity) {
-        const int kind = btgPairKindOf(pairs[i], props, shapes, children);
-        const BtgPersistentManifold s = gjkPairState[i];
-        if (btgIsPersistentKind(kind) && s.kind == kind && s.bodyA == pairs[i].a && s.bodyB == pairs[i].b) addedId = s.added;
-    }
+    if ((int)i < gjkCapacity && btgHasPersistentState(pairs[i], gjkPairState[i], props, shapes, children))
+        addedId = gjkPairState[i].added;
     for (int j = r.start; j < r.start + r.count; ++j) {
         BtgManifold m = manifolds[j];
         if (m.numPoints <= 0) continue;

@@ -30,10 +30,6 @@ __kernel void report_contacts(__global const BtgContact* restrict contacts,
     BtgContactReport r = btgContactReportFrom(&c, m, pos[m.bodyA], rot[m.bodyA], pos[m.bodyB], rot[m.bodyB]);
     /* A GJK pair's manifold is its pair's slot (narrowphase_gjk), its state the one the
      * narrowphase left there (as store_persistent_manifolds finds it). */
-    if (slot < (uint)gjkCapacity) {
-        const int kind = btgPairKindOf(pairs[slot], props, shapes, children);
-        const BtgPersistentManifold s = gjkPairState[slot];
-        r.persistent = btgIsPersistentKind(kind) && s.kind == kind && s.bodyA == m.bodyA && s.bodyB == m.bodyB;
-    }
+    if (slot < (uint)gjkCapacity) r.persistent = btgHasPersistentState(pairs[slot], gjkPairState[slot], props, shapes, children);
     reports[i] = r;
 }

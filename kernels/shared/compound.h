@@ -40,6 +40,15 @@ static inline int btgPairKindOf(BtgPair p, BTG_CONST_GLOBAL BtgBodyProps* props,
                        btgPairSideShape(p, 1, props, shapes, children).type);
 }
 
+/* Whether the GJK state the narrowphase left at pair p's slot is p's own of this substep (a kind
+ * with a persistent manifold, p's bodies): the contact report and the callbacks' gather read it. */
+static inline int btgHasPersistentState(BtgPair p, BtgPersistentManifold s, BTG_CONST_GLOBAL BtgBodyProps* props,
+                                        BTG_CONST_GLOBAL BtgShape* shapes, BTG_CHILD_TABLE)
+{
+    const int kind = btgPairKindOf(p, props, shapes, children);
+    return btgIsPersistentKind(kind) && s.kind == kind && s.bodyA == p.a && s.bodyB == p.b;
+}
+
 /* A leaf's world pose as a position and quaternion (Bullet's body * child transform). */
 static inline void btgChildWorld(BtgFloat4 bodyPos, BtgFloat4 bodyRot, BtgChild c, BtgFloat4* pos, BtgFloat4* rot)
 {

@@ -6,6 +6,7 @@
 #include "scenes/callback_scenes.h"
 #include "scenes/compound_scenes.h"
 #include "scenes/ghost_scenes.h"
+#include "callback_helpers.h"
 #include "side_by_side.h"
 
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
@@ -98,29 +99,10 @@ bool edgeFix(btManifoldPoint& cp, const btCollisionObjectWrapper* w0, int, int, 
 {
     ++g_calls;
     if (w1->getCollisionShape()->getShapeType() == TRIANGLE_SHAPE_PROXYTYPE) ++g_triangleCalls;
-    const btVector3 n = cp.m_normalWorldOnB;
-    btAdjustInternalEdgeContacts(cp, w1, w0, partId1, index1);
-    if (!(cp.m_normalWorldOnB == n)) ++g_adjusted;
+    if (adjustInternalEdge(cp, w0, w1, partId1, index1)) ++g_adjusted;
     return true;
 }
 
-// The heights at which the ball turned back up (the apexes after each bounce).
-std::vector<double> apexes(const std::vector<double>& y)
-{
-    std::vector<double> out;
-    bool bounced = false;
-    for (size_t i = 1; i + 1 < y.size(); ++i) {
-        if (y[i] < y[i - 1] && y[i] < y[i + 1]) bounced = true;
-        if (bounced && y[i] > y[i - 1] && y[i] >= y[i + 1]) out.push_back(y[i]);
-    }
-    return out;
-}
-
-bool hasStage(const Scene& s, const char* name)
-{
-    const auto& st = s.report()->stages;
-    return std::find(st.begin(), st.end(), name) != st.end();
-}
 
 }  // namespace
 
@@ -154,7 +136,7 @@ TEST(Callbacks, TrampolineBouncesAsStock)
         }
     }
     EXPECT_EQ(reported, gpuCalls);
-    const std::vector<double> a = apexes(ys), b = apexes(yg);
+    const std::vector<double> a = bounceApexes(ys), b = bounceApexes(yg);
     ASSERT_GE(a.size(), 3u);
     ASSERT_GE(b.size(), 3u);
     for (size_t i = 0; i < 3; ++i) {
@@ -379,7 +361,7 @@ TEST(Callbacks, CombinersAsStock)
             ys.push_back(sb.stockY(1));
             yg.push_back(sb.gpuY(1));
         }
-        const std::vector<double> a = apexes(ys), b = apexes(yg);
+        const std::vector<double> a = bounceApexes(ys), b = bounceApexes(yg);
         ASSERT_GE(a.size(), 2u);
         ASSERT_GE(b.size(), 2u);
         for (size_t i = 0; i < 2; ++i) {
@@ -418,7 +400,7 @@ TEST(Callbacks, CalledAtEachInternalStep)
         ys.push_back(sb.stockY(1));
         yg.push_back(sb.gpuY(1));
     }
-    const std::vector<double> a = apexes(ys), b = apexes(yg);
+    const std::vector<double> a = bounceApexes(ys), b = bounceApexes(yg);
     ASSERT_GE(a.size(), 3u);
     ASSERT_GE(b.size(), 3u);
     for (size_t i = 0; i < 3; ++i) EXPECT_NEAR(b[i], a[i], 0.05 * (a[i] - 0.5)) << "apex " << i;
@@ -604,7 +586,7 @@ TEST(Callbacks, WithActionsAsStock)
         ys.push_back(sb.stockY(1));
         yg.push_back(sb.gpuY(1));
     }
-    const std::vector<double> a = apexes(ys), b = apexes(yg);
+    const std::vector<double> a = bounceApexes(ys), b = bounceApexes(yg);
     ASSERT_GE(a.size(), 2u);
     ASSERT_GE(b.size(), 2u);
     for (size_t i = 0; i < 2; ++i) EXPECT_NEAR(b[i], a[i], 0.05 * (a[i] - 0.5)) << "apex " << i;

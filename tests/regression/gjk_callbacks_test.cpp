@@ -5,6 +5,7 @@
 // counts on a capsule pile, and a capsule sliding over a mesh's internal edges through
 // btAdjustInternalEdgeContacts. Each step asserts the GPU path.
 #include "scenes/callback_scenes.h"
+#include "callback_helpers.h"
 #include "side_by_side.h"
 
 #include <BulletCollision/CollisionDispatch/btInternalEdgeUtility.h>
@@ -51,17 +52,10 @@ bool edgeFix(btManifoldPoint& cp, const btCollisionObjectWrapper* w0, int, int, 
              int partId1, int index1)
 {
     ++g_added;
-    const btVector3 n = cp.m_normalWorldOnB;
-    btAdjustInternalEdgeContacts(cp, w1, w0, partId1, index1);
-    if (!(cp.m_normalWorldOnB == n)) ++g_adjusted;
+    if (adjustInternalEdge(cp, w0, w1, partId1, index1)) ++g_adjusted;
     return true;
 }
 
-bool hasStage(const Scene& s, const char* name)
-{
-    const auto& st = s.report()->stages;
-    return std::find(st.begin(), st.end(), name) != st.end();
-}
 
 // The manifolds with points between the ground (body 0) and another body.
 int groundPairs(Scene& s)
@@ -104,16 +98,7 @@ TEST(GjkCallbacks, CapsuleTrampolineBouncesAsStock)
         ys.push_back(sb.stockY(1));
         yg.push_back(sb.gpuY(1));
     }
-    auto apexes = [](const std::vector<double>& y) {
-        std::vector<double> out;
-        bool bounced = false;
-        for (size_t i = 1; i + 1 < y.size(); ++i) {
-            if (y[i] < y[i - 1] && y[i] < y[i + 1]) bounced = true;
-            if (bounced && y[i] > y[i - 1] && y[i] >= y[i + 1]) out.push_back(y[i]);
-        }
-        return out;
-    };
-    const std::vector<double> a = apexes(ys), b = apexes(yg);
+    const std::vector<double> a = bounceApexes(ys), b = bounceApexes(yg);
     std::printf("apexes stock");
     for (double v : a) std::printf(" %.4f", v);
     std::printf(", btgpu");

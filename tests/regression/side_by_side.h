@@ -3,6 +3,7 @@
 // two body by body (Scene keeps bodies in creation order on both worlds).
 #pragma once
 #include <functional>
+#include <vector>
 
 #include "btgpu/btGpuDynamicsWorld.h"
 #include "scenes/scenes.h"
@@ -48,5 +49,18 @@ struct SideBySide {
     double stockY(int i) const { return stock->body(i)->getWorldTransform().getOrigin().y(); }
     bool onGpu() const { return gpu->gpuWorld()->isGpuPath(); }
 };
+
+// The heights at which a bouncing body turned back up, from its height each step (the apexes
+// after each bounce).
+inline std::vector<double> bounceApexes(const std::vector<double>& y)
+{
+    std::vector<double> out;
+    bool bounced = false;
+    for (size_t i = 1; i + 1 < y.size(); ++i) {
+        if (y[i] < y[i - 1] && y[i] < y[i + 1]) bounced = true;
+        if (bounced && y[i] > y[i - 1] && y[i] >= y[i + 1]) out.push_back(y[i]);
+    }
+    return out;
+}
 
 }  // namespace btgpu::test

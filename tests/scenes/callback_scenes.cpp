@@ -28,14 +28,25 @@ ScenePtr slidingBox(WorldKind kind, const Config& config)
     return scene;
 }
 
+namespace {
+
+// A flat 16 x 16-quad triangle-mesh ground whose internal edges btGenerateInternalEdgeInfo has
+// recorded, flagged CF_CUSTOM_MATERIAL_CALLBACK (for btAdjustInternalEdgeContacts).
+void edgeMeshGround(Scene& scene)
+{
+    btBvhTriangleMeshShape* mesh = gridMesh(scene, 16, 1.0f, true, false);
+    btTriangleInfoMap* edges = scene.ownData(new btTriangleInfoMap());
+    btGenerateInternalEdgeInfo(mesh, edges);
+    btRigidBody* ground = scene.addBody(mesh, 0, btVector3(0, 0, 0));
+    ground->setCollisionFlags(ground->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+}
+
+}  // namespace
+
 ScenePtr edgeSlide(WorldKind kind, const Config& config)
 {
     auto scene = std::make_unique<Scene>(kind, config, "edge_slide");
-    btBvhTriangleMeshShape* mesh = gridMesh(*scene, 16, 1.0f, true, false);
-    btTriangleInfoMap* edges = scene->ownData(new btTriangleInfoMap());
-    btGenerateInternalEdgeInfo(mesh, edges);
-    btRigidBody* ground = scene->addBody(mesh, 0, btVector3(0, 0, 0));
-    ground->setCollisionFlags(ground->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+    edgeMeshGround(*scene);
     btRigidBody* box = scene->addBody(scene->boxShape(btVector3(.5, .5, .5)), 1, btVector3(-6, .5, .3));
     box->setLinearVelocity(btVector3(5, 0, 0));
     return scene;
@@ -71,11 +82,7 @@ ScenePtr capsulePile(WorldKind kind, const Config& config)
 ScenePtr capsuleEdgeSlide(WorldKind kind, const Config& config)
 {
     auto scene = std::make_unique<Scene>(kind, config, "capsule_edge_slide");
-    btBvhTriangleMeshShape* mesh = gridMesh(*scene, 16, 1.0f, true, false);
-    btTriangleInfoMap* edges = scene->ownData(new btTriangleInfoMap());
-    btGenerateInternalEdgeInfo(mesh, edges);
-    btRigidBody* ground = scene->addBody(mesh, 0, btVector3(0, 0, 0));
-    ground->setCollisionFlags(ground->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+    edgeMeshGround(*scene);
     btRigidBody* c = scene->addBody(scene->ownShape(new btCapsuleShape(.3f, 1.0f)), 1, btVector3(-6, .8, .3));
     c->setAngularFactor(btVector3(0, 0, 0));
     c->setLinearVelocity(btVector3(5, 0, 0));
