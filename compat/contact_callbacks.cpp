@@ -311,7 +311,7 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
             // A GJK pair's manifold persists its points (stock's convex–convex algorithm adds one
             // a step): only the one this substep added or replaced is called; the others are kept
             // points, as the box–box ones above.
-            const bool persisted = g.added != -2 && p.featureId != uint(g.added);
+            const bool persisted = g.added != -2 && !((unsigned(g.added) >> (p.featureId & 7u)) & 1u);
             const bool kept = flagged && ((boxBox && p.distance > 0) || persisted) && old && !oldMoved;
             if (kept) {
                 cp.m_combinedFriction = (preCalled ? pre : *old).m_combinedFriction;
@@ -349,7 +349,9 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
             if (continues[k] >= 0 && !((replaced >> continues[k]) & 1u)) replaced |= 1u << continues[k];
             else ++added;
         }
-        if (gContactProcessedCallback && oldCount > 0 && n > 0 && replaced != (1u << oldCount) - 1) {
+        // A persistent manifold (g.added != -2) is the device's own refresh: it holds every point
+        // stock's would.
+        if (gContactProcessedCallback && g.added == -2 && oldCount > 0 && n > 0 && replaced != (1u << oldCount) - 1) {
             int order[MANIFOLD_CACHE_SIZE], numKept = 0;  // old points the fill keeps, last slot first
             if (oldCount + added <= MANIFOLD_CACHE_SIZE) {
                 // Room for all: no reduction, the old points stay in their slots.

@@ -262,6 +262,7 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
     // A GJK pair's manifold is the device's persistent one, refreshed there as stock's: its
     // points are the whole manifold (keeping old ones here would double the refresh).
     const bool persistent = reports[g.first].persistent != 0;
+    e.persistent = persistent;
     const bool retain = !persistent && m_collidedAtValid && !g.spheres && total > 0 && g.row0 >= 0 && g.row1 >= 0 &&
                         size_t(std::max(g.row0, g.row1)) < m_collidedAt.size();
     m->setNumContacts(0);
@@ -505,7 +506,9 @@ bool ManifoldSync::keepsOldPoints(Node* node, const RowMap& rows)
     // pair was collided at, aged a step; the contact ends when the last goes (Bullet's
     // removeContactPoint calls the app's destroyed and ended callbacks). A sphere pair's
     // manifold is cleared every step instead.
-    if (!m_collidedAtValid) return false;
+    // A persistent manifold's refresh is the device's own: a pair it left without points has
+    // none on stock either.
+    if (!m_collidedAtValid || node->second.persistent) return false;
     const Key& k = node->first;
     if (leafShape(k.body0, k.sub0)->getShapeType() == SPHERE_SHAPE_PROXYTYPE &&
         leafShape(k.body1, k.sub1)->getShapeType() == SPHERE_SHAPE_PROXYTYPE)

@@ -107,6 +107,7 @@ public:
         long stamp;  // the last fill that named it (written by the parallel pass: atomically)
         unsigned ids[4];  // the feature id of each of its points (BTG_FEATURE_*)
         bool moved[4];    // each point's PointState::moved as it was filled
+        bool persistent = false;  // its last fill was a device persistent manifold (box and GJK pairs)
     };
     using Node = std::pair<const Key, Entry>;  // a map node: its address stays while it is in the map
     // One report's manifold in Bullet's terms (orient: which side is body0, the key).

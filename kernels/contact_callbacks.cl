@@ -6,8 +6,8 @@
  * With an overlap filter callback the host first empties the ranges of the pairs Bullet's pair
  * cache does not hold (clear_pair_ranges, one work-item per refused pair).
  * Launch: gather_callback_manifolds one work-item per pair slot (pairCapacity), each gathered
- * manifold with the point its GJK pair added this substep (gjkPairState.added; -2: not a GJK
- * pair, all its points are this substep's);
+ * manifold with the points its persistent pair added this substep (gjkPairState.addedMask;
+ * -2: not persistent, all its points are this substep's);
  * scatter_callback_manifolds one per changed manifold; apply_contact_materials one per contact
  * slot (contactCapacity), right after prepare_contacts.
  * Reads pairManifolds, manifolds, props (BTG_BODY_CUSTOM_MATERIAL), counters[kPairCount,
@@ -38,11 +38,12 @@ __kernel void gather_callback_manifolds(__global const BtgManifoldRange* restric
     uint n = min(counters[BTG_COUNTER_PAIRS], (uint)pairCapacity);
     if (i >= n) return;
     BtgManifoldRange r = pairManifolds[i];
-    /* A GJK pair's manifold persists its points: which one this substep added (the points the
-     * app's added callback is called for), from the pair's state the narrowphase left. */
+    /* A persistent manifold (box and GJK pairs) keeps its points: which ones this substep added
+     * (the points the app's added callback is called for), from the pair's state the
+     * narrowphase left, as a mask of their identities. */
     int addedId = -2;
     if ((int)i < gjkCapacity && btgHasPersistentState(pairs[i], gjkPairState[i], props, shapes, children))
-        addedId = gjkPairState[i].added;
+        addedId = (int)gjkPairState[i].addedMask;
     for (int j = r.start; j < r.start + r.count; ++j) {
         BtgManifold m = manifolds[j];
         if (m.numPoints <= 0) continue;

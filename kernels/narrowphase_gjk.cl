@@ -9,96 +9,9 @@
  * [kPrevContactCount], contactCache (to find a pair's previous manifold), gjkCache.
  * Writes manifolds[slot], pairManifolds[slot] and gjkPairState[slot] of the kind's pairs;
  * then gjkCache (in the warm-start cache's order). */
-#include "shared/contact_rows.h"
 #include "shared/polyhedral_contacts.h"
-#include "shared/compound.h"
+#define BTG_PERSISTENT_STEP btgPairStep
+#include "shared/persistent_kernels.h"
 
-/* The manifold the pair kept last substep: found through the warm-start cache (the contacts in
- * pair order), whose entry j the GJK cache holds at j too. None when the pair had no points, or
- * the entry is another kind's (the pair's shapes changed). */
-static BtgPersistentManifold previous_manifold(BtgPair p, int kind, __global const BtgChild* restrict children,
-                                               __global const uint* restrict counters,
-                                               __global const BtgCachedContact* restrict cache, int cacheCapacity,
-                                               __global const BtgPersistentManifold* restrict gjkCache,
-                                               int gjkCapacity)
-{
-    BtgManifold key = btgPairKeyManifold(p, children);
-    const int prevCount = (int)min(counters[BTG_COUNTER_PREV_CONTACTS], (uint)min(cacheCapacity, gjkCapacity));
-    const int j = btgFindPrevContact(cache, prevCount, key);
-    if (j >= 0) {
-        BtgPersistentManifold prev = gjkCache[j];
-        if (prev.bodyA == p.a && prev.bodyB == p.b && prev.kind == kind && prev.numPoints >= 0 &&
-            prev.numPoints <= BTG_MAX_POINTS)
-            return prev;
-    }
-    return btgEmptyPersistent(p.a, p.b, kind);
-}
+BTG_PAIR_KINDS_NARROWPHASE_GJK(BTG_PERSISTENT_KERNEL)
 
-#define BTG_GJK_KERNEL(program, kind, shapeA, shapeB, routine, kernel)                                               \
-    __kernel void kernel(__global const BtgPair* restrict pairs, __global const uint* restrict kindOrder,            \
-                         __global const uint* restrict kindRanges, int indirect,                                      \
-                         __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,              \
-                         __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes,       \
-                         __global const BtgChild* restrict children,                                                  \
-                         __global const BtgFloat4* restrict verts, __global const BtgFace* restrict faces,            \
-                         __global const int* restrict indices, __global const BtgFloat4* restrict edges,              \
-                         __global const uint* restrict counters,                                                      \
-                         __global const BtgCachedContact* restrict cache, int cacheCapacity,                          \
-                         __global const BtgPersistentManifold* restrict gjkCache, int gjkCapacity,                    \
-                         __global BtgManifold* restrict manifolds, __global BtgManifoldRange* restrict pairManifolds, \
-                         __global BtgPersistentManifold* restrict gjkPairState)                                       \
-    {                                                                                                                 \
-        const uint end = kindRanges[BTG_KIND_RANGE_END(kind)];                                                        \
-        for (uint i = kindRanges[BTG_KIND_RANGE_START(kind)] + (uint)get_global_id(0); i < end;                      \
-             i += (uint)get_global_size(0)) {                                                                        \
-            const uint slot = indirect ? kindOrder[i] : i;                                                            \
-            const BtgPair p = pairs[slot];                                                                            \
-            BtgCollider a = btgLoadPairCollider(p, 0, pos, rot, props, shapes, children);                             \
-            BtgCollider b = btgLoadPairCollider(p, 1, pos, rot, props, shapes, children);                             \
-            const float t = btgPairThreshold(a.shape, b.shape);                                                       \
-            BtgPersistentManifold pm = btgEmptyPersistent(p.a, p.b, kind);                                           \
-            BtgManifold m = btgEmptyManifold(p.a, p.b);                                                               \
-            if (btgPairKind(a.shape.type, b.shape.type) == (kind)) {                                                  \
-                float dist[BTG_MAX_POINTS];                                                                           \
-                BtgPersistentManifold prev =                                                                          \
-                    previous_manifold(p, kind, children, counters, cache, cacheCapacity, gjkCache, gjkCapacity);      \
-                pm = btgPairStep(prev, a, b, verts, faces, indices, edges, t, dist);                                  \
-                m = btgManifoldFromPersistent(pm, dist, b.pose);                                                      \
-            }                                                                                                         \
-            m = btgWithChildKeys(btgWithThreshold(m, t), p, children);                                                \
-            gjkPairState[slot] = pm;                                                                                  \
-            manifolds[slot] = m;                                                                                      \
-            pairManifolds[slot] = btgOneManifold((int)slot, m);                                                       \
-        }                                                                                                             \
-    }
-
-BTG_PAIR_KINDS_NARROWPHASE_GJK(BTG_GJK_KERNEL)
-
-/* After store_contact_cache, with the same rule for a substep that must be redone: contact i's
- * pair's manifold goes to gjkCache[i], beside its warm-start entry; a contact of another kind
- * gets an entry no pair takes. */
-__kernel void store_persistent_manifolds(__global const uint* restrict contactManifolds,
-                                         __global const BtgManifold* restrict manifolds,
-                                         __global const uint* restrict counters, int contactCapacity,
-                                         __global const BtgBodyProps* restrict props,
-                                         __global const BtgShape* restrict shapes, __global const BtgPair* restrict pairs,
-                                         __global const BtgChild* restrict children,
-                                         __global const BtgPersistentManifold* restrict gjkPairState, int pairCapacity,
-                                         __global BtgPersistentManifold* restrict gjkCache, int gjkCapacity)
-{
-    const uint redo = BTG_STATUS_PAIR_OVERFLOW | BTG_STATUS_CONTACT_OVERFLOW | BTG_STATUS_GRID_BARRIER_TIMEOUT;
-    if ((counters[BTG_COUNTER_STATUS] & redo) != 0u) return;
-    const uint n = min(counters[BTG_COUNTER_CONTACTS], (uint)min(contactCapacity, gjkCapacity));
-    const uint i = (uint)get_global_id(0);
-    if (i >= n) return;
-    const uint slot = contactManifolds[i];
-    const BtgManifold m = manifolds[slot];
-    BtgPersistentManifold pm = btgEmptyPersistent(m.bodyA, m.bodyB, BTG_PAIR_NONE);
-    if (slot < (uint)pairCapacity) {
-        /* the kind of the (leaf) pair in this slot, which wrote gjkPairState[slot] if a GJK kind */
-        const int kind = btgPairKindOf(pairs[slot], props, shapes, children);
-        const BtgPersistentManifold s = gjkPairState[slot];
-        if (s.kind == kind && s.bodyA == m.bodyA && s.bodyB == m.bodyB) pm = s;
-    }
-    gjkCache[i] = pm;
-}

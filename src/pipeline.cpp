@@ -45,7 +45,10 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::Midphase: midphase(w); break;
         case Stage::Narrowphase:
         case Stage::NarrowphaseSat:
-        case Stage::NarrowphaseGjk: narrowphaseProgram(w, plan.kinds, narrowphaseProgramOf(stage)); break;
+        case Stage::NarrowphaseGjk:
+            w.speculativeBoxes = plan.solver == SolverKind::SoftStep;
+            narrowphaseProgram(w, plan.kinds, narrowphaseProgramOf(stage));
+            break;
         case Stage::NarrowphaseMesh: narrowphaseMesh(w, plan.kinds); break;
         case Stage::FilterPairs: filterPairs(w); break;
         case Stage::ApplyForces: applyForces(w, p.dt); break;
@@ -60,10 +63,10 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::SolveSoft: solveSoft(w, makeSoftParams(s.soft, p, s.iterations), w.numColors); break;
         case Stage::StoreContactCache:
             storeContactCache(w);
-            // A cache stored without the GJK manifolds beside it leaves those stale.
-            if (!plan.kinds.anyIn("narrowphase_gjk")) w.gjkCacheCurrent = false;
+            // A cache stored without the persistent manifolds beside it leaves those stale.
+            if (!anyPersistent(plan.kinds)) w.gjkCacheCurrent = false;
             break;
-        case Stage::StorePersistentManifolds: storePersistentManifolds(w); break;
+        case Stage::StorePersistentManifolds: storePersistentManifolds(w, plan.kinds); break;
         case Stage::ReportContacts: reportContacts(w); break;
         case Stage::IntegrateTransforms: integrateTransforms(w, p.dt, p.splitTurnErp); break;
         case Stage::SoftTransforms: softTransforms(w); break;

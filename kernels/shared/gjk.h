@@ -18,14 +18,6 @@
 #define BTG_EPA_MAX_ITERATIONS 40
 #define BTG_EPA_ACCURACY 1.0e-4f /* m: Bullet's EPA_ACCURACY */
 
-/* The point one step adds (Bullet's addContactPoint arguments). */
-typedef struct {
-    BtgFloat4 normal;  /* world unit normal from B towards A */
-    BtgFloat4 pointB;  /* world point on B */
-    float distance;    /* m, negative when penetrating */
-    int valid;         /* 0: nothing within reach */
-    int pad0, pad1;
-} BtgConvexPoint;
 
 typedef struct {
     BtgFloat4 w; /* a - b */

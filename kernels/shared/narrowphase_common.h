@@ -28,6 +28,15 @@ typedef struct {
     BtgMat3 rot;   /* body to world */
 } BtgPose;
 
+/* The point one step adds (Bullet's addContactPoint arguments). */
+typedef struct {
+    BtgFloat4 normal;  /* world unit normal from B towards A */
+    BtgFloat4 pointB;  /* world point on B */
+    float distance;    /* m, negative when penetrating */
+    int valid;         /* 0: nothing within reach */
+    int pad0, pad1;
+} BtgConvexPoint;
+
 /* One side of a pair: where the body is and what shape it has. */
 typedef struct {
     BtgPose pose;

@@ -65,9 +65,10 @@
     X(narrowphase, BTG_PAIR_SPHERE_PLANE, BTG_SHAPE_SPHERE, BTG_SHAPE_PLANE, btgCollideSpherePlane,            \
       collide_sphere_plane)                                                                                    \
     X(narrowphase, BTG_PAIR_SPHERE_BOX, BTG_SHAPE_SPHERE, BTG_SHAPE_BOX, btgCollideSphereHull, collide_sphere_box)
-/* Two boxes: clipped after the SAT at once, as stock's btBoxBoxDetector finds them. */
+/* Two boxes: stock's btBoxBoxDetector points into a persistent manifold (box_box.h); like the
+ * GJK program's kinds, their kernels read and write the manifold each pair kept. */
 #define BTG_PAIR_KINDS_NARROWPHASE_SAT(X) \
-    X(narrowphase_sat, BTG_PAIR_BOX_BOX, BTG_SHAPE_BOX, BTG_SHAPE_BOX, btgCollideHullHull, collide_box_box)
+    X(narrowphase_sat, BTG_PAIR_BOX_BOX, BTG_SHAPE_BOX, BTG_SHAPE_BOX, btgCollideBoxBox, collide_box_box)
 /* The pairs stock collides by GJK/EPA (btConvexConvexAlgorithm) or by the plane's support point
  * (btConvexPlaneCollisionAlgorithm, boxes and hulls included): one point a substep into a
  * persistent manifold (persistent_manifold.h); two hulls with polyhedral features add their
@@ -128,11 +129,12 @@ static inline int btgPairKind(int ta, int tb)
 }
 #undef BTG_PAIR_KIND_IF_ROW
 
-/* Whether a kind's pairs keep a persistent manifold (the GJK program's). */
+/* Whether a kind's pairs keep a persistent manifold (the box and GJK programs'). */
 #define BTG_PAIR_KIND_CASE(program, kind, shapeA, shapeB, routine, kernel) case (kind):
 static inline int btgIsPersistentKind(int kind)
 {
     switch (kind) {
+        BTG_PAIR_KINDS_NARROWPHASE_SAT(BTG_PAIR_KIND_CASE)
         BTG_PAIR_KINDS_NARROWPHASE_GJK(BTG_PAIR_KIND_CASE)
         return 1;
         default: return 0;

@@ -9,7 +9,7 @@
  * cold. */
 #ifndef BTG_PERSISTENT_MANIFOLD_H
 #define BTG_PERSISTENT_MANIFOLD_H
-#include "gjk.h"
+#include "narrowphase_common.h"
 
 static inline BtgPersistentManifold btgEmptyPersistent(int bodyA, int bodyB, int kind)
 {
@@ -25,7 +25,8 @@ static inline BtgPersistentManifold btgEmptyPersistent(int bodyA, int bodyB, int
     m.numPoints = 0;
     m.kind = kind;
     m.added = -1;
-    m.pad0 = m.pad1 = m.pad2 = 0;
+    m.addedMask = 0u;
+    m.pad1 = m.pad2 = 0;
     return m;
 }
 
@@ -128,6 +129,7 @@ static inline void btgPersistentAdd(BtgPersistentManifold* m, float* dist, const
     m->normal[slot] = btgXyz(normal);
     m->id[slot] = id;
     m->added = (int)id;
+    m->addedMask |= 1u << id;
     dist[slot] = distance;
 }
 
@@ -158,6 +160,7 @@ static inline BtgPersistentManifold btgPersistentStep(BtgPersistentManifold prev
 {
     BtgPersistentManifold m = prev;
     m.added = -1;
+    m.addedMask = 0u;
     btgPersistentBegin(&m, dist);
     if (p.valid) btgPersistentAdd(&m, dist, &prev, p.normal, p.pointB, p.distance, pa, pb, threshold);
     btgPersistentRefresh(&m, dist, pa, pb, threshold);

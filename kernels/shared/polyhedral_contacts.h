@@ -10,7 +10,9 @@
  * nearest to it or, with four held, the one sortCachedPoints picks. */
 #ifndef BTG_POLYHEDRAL_CONTACTS_H
 #define BTG_POLYHEDRAL_CONTACTS_H
+#include "gjk.h"
 #include "persistent_manifold.h"
+#include "box_box.h"
 
 /* Corners of a clipped face: Bullet's arrays grow as needed; a face of n corners clipped by m
  * planes has at most n + m, so faces up to 32 corners clipped by faces up to 32 are exact. A
@@ -101,6 +103,7 @@ static inline BtgPersistentManifold btgPolyhedralStep(BtgPersistentManifold prev
 {
     BtgPersistentManifold m = prev;
     m.added = -1;
+    m.addedMask = 0u;
     btgPersistentBegin(&m, dist);
     const BtgConvexPoint g = btgGjkPoint(a, b, verts, threshold);
     if (g.valid) {
@@ -117,13 +120,14 @@ static inline BtgPersistentManifold btgPolyhedralStep(BtgPersistentManifold prev
     return m;
 }
 
-/* Every pair of the GJK program: featured hull pairs as above, the others the one point
- * their algorithm adds (gjk.h). */
+/* Every pair with a persistent manifold: featured hull pairs as above, two boxes as stock's box
+ * algorithm (box_box.h, the SAT program's), the others the one point their algorithm adds (gjk.h). */
 static inline BtgPersistentManifold btgPairStep(BtgPersistentManifold prev, BtgCollider a, BtgCollider b,
                                                 BTG_SHAPE_TABLES, float threshold, float* dist)
 {
     if (a.shape.type == BTG_SHAPE_HULL && b.shape.type == BTG_SHAPE_HULL)
         return btgPolyhedralStep(prev, a, b, verts, faces, indices, edges, threshold, dist);
+    if (a.shape.type == BTG_SHAPE_BOX && b.shape.type == BTG_SHAPE_BOX) return btgBoxBoxStep(prev, a, b, threshold, dist);
     const BtgConvexPoint p = btgConvexPairPoint(a, b, verts, threshold);
     return btgPersistentStep(prev, p, a.pose, b.pose, threshold, dist);
 }

@@ -350,8 +350,9 @@ typedef struct {
     int added;                        /* the identity of the point this substep's collision added
                                          or replaced (the one stock's gContactAddedCallback sees),
                                          -1 for none (the points persisted from earlier substeps),
-                                         -2 for several (hulls clipped: every point) */
-    int pad0, pad1, pad2;
+                                         -2 for several (hulls clipped, boxes: every point) */
+    uint addedMask;                   /* bit id set for each point added or replaced this substep */
+    int pad1, pad2;
 } BtgPersistentManifold;
 
 /* Per-step scalars, passed by value to the kernels that need them. */

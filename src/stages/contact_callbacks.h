@@ -11,9 +11,9 @@
 
 namespace btgpu {
 
-// One flagged manifold as gathered: its slot and its contents; for a pair of the GJK program
-// (a persistent manifold) the identity of the point this substep added or replaced
-// (BtgPersistentManifold::added: -1 none), else -2 (every point is this substep's).
+// One flagged manifold as gathered: its slot and its contents; for a pair with a persistent
+// manifold (box and GJK pairs) the mask of the identities of the points this substep added or
+// replaced (BtgPersistentManifold::addedMask: 0 none), else -2 (every point is this substep's).
 struct GatheredManifold {
     uint slot;
     BtgManifold manifold;

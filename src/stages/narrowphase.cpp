@@ -1,7 +1,7 @@
 // narrowphase.cpp — launches the kernel of each pair-kind row (world/pair_kinds.h) whose kind
 // the plan has, all with the same arguments; each strides over its kind's range of the
 // kind-grouped pairs (find_pairs), so together they write every pair's manifold once. A
-// program is built only when one of its kinds is present (the SAT program only for hull–hull
+// program is built only when one of its kinds is present (the SAT program only for box–box
 // pairs).
 #include "stages/narrowphase.h"
 
@@ -15,7 +15,9 @@ namespace btgpu {
 
 void narrowphaseProgram(DeviceWorld& w, const PairKinds& kinds, const char* program)
 {
-    if (std::strcmp(program, "narrowphase_gjk") == 0) return narrowphaseGjk(w, kinds);  // its own arguments
+    // Programs whose pairs keep a persistent manifold take its arguments too.
+    if (std::strcmp(program, "narrowphase_gjk") == 0 || std::strcmp(program, "narrowphase_sat") == 0)
+        return narrowphasePersistent(w, kinds, program);
     if (!kinds.anyIn(program) || w.pairCapacity == 0) return;
     if (std::strcmp(program, "narrowphase_mesh") == 0) return narrowphaseMesh(w, kinds);
     w.manifolds.reserveExact(w.ctx, w.pairCapacity);

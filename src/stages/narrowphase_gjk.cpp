@@ -1,4 +1,5 @@
-// narrowphase_gjk.cpp — host launchers of the GJK narrowphase: one kernel per GJK row of the
+// narrowphase_gjk.cpp — host launchers of the narrowphase programs whose pairs keep persistent
+// manifolds (the GJK kinds; two boxes, program "narrowphase_sat"): one kernel per row of the
 // pair-kind table the plan has, each striding over its kind's range; and the store of the
 // persistent manifolds beside the warm-start cache. The GJK cache is kept as large as the
 // warm-start cache, whose indices it shares.
@@ -13,7 +14,7 @@
 namespace btgpu {
 
 namespace {
-constexpr const char* kProgram = "narrowphase_gjk";
+constexpr const char* kPersistentPrograms[] = {"narrowphase_sat", "narrowphase_gjk"};
 
 void reserveGjk(DeviceWorld& w)
 {
@@ -22,7 +23,14 @@ void reserveGjk(DeviceWorld& w)
 }
 }  // namespace
 
-void narrowphaseGjk(DeviceWorld& w, const PairKinds& kinds)
+bool anyPersistent(const PairKinds& kinds)
+{
+    for (const char* program : kPersistentPrograms)
+        if (kinds.anyIn(program)) return true;
+    return false;
+}
+
+void narrowphasePersistent(DeviceWorld& w, const PairKinds& kinds, const char* kProgram)
 {
     if (!kinds.anyIn(kProgram) || w.pairCapacity == 0) return;
     w.manifolds.reserveExact(w.ctx, w.pairCapacity);
@@ -44,17 +52,21 @@ void narrowphaseGjk(DeviceWorld& w, const PairKinds& kinds)
     for (int r = 0; r < kNumPairKindRows; ++r) {
         const PairKindRow& row = kPairKindRows[r];
         if (!kinds.has(row.kind) || std::strcmp(row.program, kProgram) != 0) continue;
-        cl::Launch(w.ctx, prog.kernel(row.kernel), &w.profiler)
-            .arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)
+        cl::Launch launch(w.ctx, prog.kernel(row.kernel), &w.profiler);
+        launch.arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)
             .arg(w.shapes).arg(w.children).arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges)
             .arg(w.counters).arg(w.contactCache).arg(cacheCapacity)
-            .arg(w.gjkCache).arg(gjkCapacity).arg(w.manifolds).arg(w.pairManifolds).arg(w.gjkPairState)
-            .run(items);
+            .arg(w.gjkCache).arg(gjkCapacity).arg(w.manifolds).arg(w.pairManifolds).arg(w.gjkPairState);
+        // The box program's kernel also takes the soft step's choice of speculative clipping.
+        if (std::strcmp(kProgram, "narrowphase_sat") == 0) launch.arg(cl_int(w.speculativeBoxes ? 1 : 0));
+        launch.run(items);
     }
 }
 
-void storePersistentManifolds(DeviceWorld& w)
+void storePersistentManifolds(DeviceWorld& w, const PairKinds& kinds)
 {
+    // Both programs hold the same store kernel: the one the plan builds anyway.
+    const char* kProgram = kinds.anyIn(kPersistentPrograms[0]) ? kPersistentPrograms[0] : kPersistentPrograms[1];
     reserveGjk(w);
     const int contactCapacity = int(std::min({w.contactCapacity, w.contacts.capacity(), w.contactManifolds.capacity()}));
     cl::Launch(w.ctx, w.ctx.program(kProgram).kernel("store_persistent_manifolds"), &w.profiler)

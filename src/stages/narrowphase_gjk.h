@@ -1,7 +1,8 @@
-// narrowphase_gjk.h — Stage: the GJK pair kinds (a convex shape known by its support function
-// against any convex or a plane): each pair's one new point (GJK/EPA, the capsule closed form,
-// or the plane's support point) into its persistent manifold, as Bullet's convex algorithms and
-// btPersistentManifold; after the solve, the manifolds kept for the next substep.
+// narrowphase_gjk.h — Stage: the pair kinds with a persistent manifold: the GJK kinds (a convex
+// shape known by its support function against any convex or a plane: each pair's one new point,
+// GJK/EPA, the capsule closed form or the plane's support point) and two boxes (stock's box
+// detector's points, program narrowphase_sat), into the pair's persistent manifold as Bullet's
+// algorithms and btPersistentManifold; after the solve, the manifolds kept for the next substep.
 // Reads pairs, pairOrder, pairKindRanges, pos, rot, props, shapes, hullVertices, counters,
 // contactCache, gjkCache. Writes manifolds, pairManifolds and gjkPairState of those pairs;
 // storePersistentManifolds writes gjkCache (contact order).
@@ -10,8 +11,10 @@
 #include "world/pair_kinds.h"
 
 namespace btgpu {
-// The kernels of program "narrowphase_gjk" for the kinds in `kinds`.
-void narrowphaseGjk(DeviceWorld& w, const PairKinds& kinds);
+// Whether any kind in `kinds` keeps a persistent manifold (programs narrowphase_sat, narrowphase_gjk).
+bool anyPersistent(const PairKinds& kinds);
+// The kernels of `program` (one of those two) for the kinds in `kinds`.
+void narrowphasePersistent(DeviceWorld& w, const PairKinds& kinds, const char* program);
 // After storeContactCache: contact i's persistent manifold to gjkCache[i].
-void storePersistentManifolds(DeviceWorld& w);
+void storePersistentManifolds(DeviceWorld& w, const PairKinds& kinds);
 }  // namespace btgpu

@@ -158,7 +158,10 @@ struct DeviceWorld {
     cl::DeviceArray<BtgPersistentManifold> gjkPairState;
     cl::DeviceArray<BtgPersistentManifold> gjkCache;
     cl::DeviceArray<BtgPersistentManifold> gjkCacheAtCall;
-    bool gjkCacheCurrent = false;  // gjkCache was stored by the last substep that stored the cache
+    bool gjkCacheCurrent = false;
+    // Box pairs take each step's SAT clip with speculative points (the soft step's substeps need
+    // them) instead of stock's box detector into a persistent manifold (narrowphase_sat.cl).
+    bool speculativeBoxes = false;  // gjkCache was stored by the last substep that stored the cache
 
     // --- the constraint graph: one edge (body A, body B) per constraint of any kind ---
     // Rebuilt every substep; the batching colors it and the islands walk it. Edge e below the

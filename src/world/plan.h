@@ -29,7 +29,7 @@ enum class Stage {
     ExpandCompounds,      // pairs with a compound side become their leaves' pairs (scenes with compounds only)
     Midphase,             // convex–mesh pairs split into (convex, triangle) sub-pairs by BVH walk
     Narrowphase,          // the pair kinds of program "narrowphase" (no SAT)
-    NarrowphaseSat,       // those of "narrowphase_sat" (hull-hull)
+    NarrowphaseSat,       // those of "narrowphase_sat" (box-box)
     NarrowphaseGjk,       // those of "narrowphase_gjk" (support-function convex shapes)
     NarrowphaseMesh,      // those of "narrowphase_mesh" (convex against triangles)
     FilterPairs,          // pairs that ignore each other's collision check lose their contacts
@@ -44,7 +44,7 @@ enum class Stage {
     SolveSoft,            // the soft step's substeps (SolverKind::SoftStep), poses kept as deltas
     FinishJoints,         // applied impulses, feedback, breaks
     StoreContactCache,
-    StorePersistentManifolds,  // the GJK kinds' manifolds beside the cache
+    StorePersistentManifolds,  // the box and GJK kinds' manifolds beside the cache
     ReportContacts,       // the contacts packed for the app's dispatcher (last substep of a call only)
     IntegrateTransforms,
     SoftTransforms,       // the soft step's poses from its deltas (in place of integrate_transforms)

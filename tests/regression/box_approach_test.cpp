@@ -1,9 +1,9 @@
-// box_approach_test.cpp — where btgpu's box–box contacts knowingly differ from stock's: stock's
+// box_approach_test.cpp — a box reaching a wall within one step, as stock: stock's
 // btBoxBoxDetector returns no point while two boxes are apart (a separating axis ends it) and
-// keeps older points only by refreshing its persistent manifold, so a box that reaches a wall
-// within one step passes into it by up to v·dt before the split impulse pushes it out. btgpu's
-// box–box points start within the contact threshold, so the box stops at the wall: the analytic
-// answer for restitution 0 (no penetration, no rebound); stock's is thrown back off the wall.
+// keeps older points only by refreshing its persistent manifold, so the box passes into the wall
+// by up to v·dt before the penetration's velocity bias throws it back off. btgpu's box pairs
+// run the same detector into a persistent manifold (kernels/shared/box_box.h): the same
+// penetration and the same rebound (before, its speculative points stopped the box at the wall).
 #include <gtest/gtest.h>
 
 #include "side_by_side.h"
@@ -13,7 +13,7 @@
 using namespace btgpu;
 using namespace btgpu::test;
 
-TEST(BoxApproach, SpeculativeBoxContactStopsWhereStockPenetrates)
+TEST(BoxApproach, BoxReachingAWallPenetratesAndReboundsAsStock)
 {
     auto make = [](WorldKind kind, const Config& config) {
         auto s = std::make_unique<Scene>(kind, config, "box_into_wall");
@@ -32,16 +32,17 @@ TEST(BoxApproach, SpeculativeBoxContactStopsWhereStockPenetrates)
         ASSERT_TRUE(s.onGpu()) << "step " << i;
         stockDeepest = std::max(stockDeepest, s.stock->body(1)->getWorldTransform().getOrigin().x() - 0.5);
         gpuDeepest = std::max(gpuDeepest, s.gpu->body(1)->getWorldTransform().getOrigin().x() - 0.5);
+        EXPECT_NEAR(s.gpu->body(1)->getWorldTransform().getOrigin().x(), s.stock->body(1)->getWorldTransform().getOrigin().x(),
+                    0.001)
+            << "step " << i;
     }
     std::printf("box into a wall at 1 m/s: deepest penetration stock %.2f mm, btgpu %.2f mm; final x stock %.4f, btgpu %.4f m\n",
                 1e3 * stockDeepest, 1e3 * gpuDeepest, s.stock->body(1)->getWorldTransform().getOrigin().x(),
                 s.gpu->body(1)->getWorldTransform().getOrigin().x());
-    // Stock's behaviour as documented (if these fail, stock changed): in by 5 mm, then the
-    // penetration's velocity bias throws the box back off the wall, restitution 0 or not.
+    // Stock's behaviour as documented (if these fail, stock changed): in by 5 mm, then thrown
+    // back off the wall, restitution 0 or not; btgpu the same within 0.1 mm.
     EXPECT_GT(stockDeepest, 0.003);
     EXPECT_LT(s.stock->body(1)->getWorldTransform().getOrigin().x(), 0.49);
-    // btgpu: stops at the wall and stays there, as a box of restitution 0 does.
-    EXPECT_LT(gpuDeepest, 0.0005);
-    EXPECT_NEAR(s.gpu->body(1)->getWorldTransform().getOrigin().x(), 0.5, 0.002);
-    EXPECT_LT(s.gpu->body(1)->getLinearVelocity().length(), 0.01);
+    EXPECT_NEAR(gpuDeepest, stockDeepest, 0.0001);
+    EXPECT_NEAR(s.gpu->body(1)->getLinearVelocity().x(), s.stock->body(1)->getLinearVelocity().x(), 0.005);
 }

@@ -535,15 +535,16 @@ bool recordLife(btManifoldPoint& cp, const btCollisionObjectWrapper*, int, int, 
 }  // namespace
 
 // The point the added callback gets is the one it replaces, as stock's (replaceContactPoint):
-// a resting box's points carry their lifetimes, equal to stock's at each step stock calls it
-// (from step 21 stock's box-box detector adds no points for the settled box, whose points only
-// persist; the GPU path goes on calling it for its points, lifetimes counting on).
+// a resting box's points carry their lifetimes, equal to stock's at each step stock calls it;
+// once the box has settled, stock's box-box detector adds no points (they only persist in its
+// manifold), and neither does the GPU path's (the same detector into a persistent manifold): no
+// call at all on either, step for step.
 TEST(Callbacks, AddedPointCarriesItsLifetimeAsStock)
 {
     Globals restore;
     gContactAddedCallback = recordLife;
     SideBySide sb(settledSlidingBox);
-    int compared = 0, last = 0;
+    int compared = 0, quiet = 0;
     for (int step = 0; step < 90; ++step) {
         g_maxLife = -1;
         sb.stock->step();
@@ -551,13 +552,12 @@ TEST(Callbacks, AddedPointCarriesItsLifetimeAsStock)
         g_maxLife = -1;
         sb.gpu->step();
         ASSERT_TRUE(sb.onGpu()) << step;
-        last = g_maxLife;
-        if (a < 0) continue;
         EXPECT_EQ(g_maxLife, a) << step;
-        ++compared;
+        if (a < 0) ++quiet;
+        else ++compared;
     }
     EXPECT_GE(compared, 20);
-    EXPECT_GE(last, 80);
+    EXPECT_GE(quiet, 60);
 }
 
 namespace {

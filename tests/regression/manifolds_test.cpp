@@ -160,14 +160,13 @@ bool onTriangle(const btCollisionObject* mesh, int part, int index, const btVect
 // A pile of boxes (4x4x4 lattice dropped on a ground box): the manifolds with points and their
 // points, step by step against stock. The pile lands at slightly different moments on the two
 // worlds (counts differ by up to half while it lands), so the comparison starts once it is
-// down (step 40). Measured on PoCL (build 7a7e3f5): at most 4.5% (manifolds, step 133) and 7.1%
-// (points, step 122) low, the means 0.4% and 2.3% low; on the H200 a step failed at 12%. The low
-// steps near 2 s are the pile's shape (stock's 8 nudged runs agree there to the point): the top
-// layer's corner boxes (60, 64) tip over the edge on both, the GPU path's some 40 steps later,
-// and their fall tilts the column below it (body 32 up to 14 degrees, 48 lifted 0.2 m) where
-// stock's stays flat; a tilted box touches on edges, 1-2 points instead of 4 (by step 239: 628
-// and 626 points). Bound per step: 15% of stock's count, or stock's own chaos (3x the nudged
-// runs' largest distance plus a floor) where that is wider; 5% on the mean.
+// down (step 40). Box pairs run stock's box–box detector into a persistent manifold
+// (kernels/shared/box_box.h): a box lands the way stock's does (no point until the boxes
+// overlap, then its penetration pushed out) and the top layer's corner boxes tip over at stock's
+// pace. Measured on PoCL: at most 4.7% (manifolds) and 2.7% (points) off stock at any step, the
+// means 0.2% and 0.3% low (before, with speculative SAT points: 7.1% at a step, the corner boxes
+// tipping 40 steps late). Bound per step: 5% of stock's count, or stock's own chaos (3x the
+// nudged runs' largest distance plus a floor) where that is wider; 5% on the mean.
 TEST(Manifolds, BoxPileCountsAsStock)
 {
     auto make = [](WorldKind k) { return scenes::cubes(k, 4, 4, 4, Config()); };
@@ -187,10 +186,10 @@ TEST(Manifolds, BoxPileCountsAsStock)
         }
     }
     auto bound = [](double stock, double chaos) {
-        return std::max(0.15 * stock, tol::kChaosFactor * chaos + tol::kChaosContactsFloor);
+        return std::max(0.05 * stock, tol::kChaosFactor * chaos + tol::kChaosContactsFloor);
     };
     SideBySide sb([&](WorldKind k, const Config&) { return make(k); });
-    double sumStockM = 0, sumGpuM = 0, sumStockP = 0, sumGpuP = 0;
+    double sumStockM = 0, sumGpuM = 0, sumStockP = 0, sumGpuP = 0, worstM = 0, worstP = 0;
     // While the pile settles (steps 100-140) stock's manifolds hold four points nearly always,
     // old points its detector did not replace kept by its refresh: so do btgpu's (without that
     // emulation they held 3.71 a manifold against stock's 3.92; 3.85 with it).
@@ -205,6 +204,8 @@ TEST(Manifolds, BoxPileCountsAsStock)
         if (step < first) continue;
         EXPECT_NEAR(b.touching, a.touching, bound(a.touching, hi[step].touching - lo[step].touching)) << step;
         EXPECT_NEAR(b.points, a.points, bound(a.points, hi[step].points - lo[step].points)) << step;
+        worstM = std::max(worstM, std::fabs(double(b.touching - a.touching)) / std::max(1.0, double(a.touching)));
+        worstP = std::max(worstP, std::fabs(double(b.points - a.points)) / std::max(1.0, double(a.points)));
         if (step >= 100 && step <= 140) {
             settleStockM += a.touching;
             settleGpuM += b.touching;
@@ -217,7 +218,9 @@ TEST(Manifolds, BoxPileCountsAsStock)
         sumGpuP += b.points;
     }
     const double perStock = settleStockP / settleStockM, perGpu = settleGpuP / settleGpuM;
-    printf("points a manifold while settling: stock %.3f, btgpu %.3f\n", perStock, perGpu);
+    printf("points a manifold while settling: stock %.3f, btgpu %.3f; per step worst manifolds %.1f%%, points %.1f%%; "
+           "means %.2f%%, %.2f%%\n",
+           perStock, perGpu, 100 * worstM, 100 * worstP, 100 * (sumGpuM / sumStockM - 1), 100 * (sumGpuP / sumStockP - 1));
     EXPECT_NEAR(perGpu, perStock, 0.05 * perStock);
     EXPECT_GT(sumStockP, 200.0 * 500);
     EXPECT_NEAR(sumGpuM, sumStockM, 0.05 * sumStockM);
@@ -460,6 +463,15 @@ TEST(Manifolds, CpuPathAndBackKeepTheDispatcherConsistent)
     for (int step = 40; step < 80; ++step) {
         sb.step();
         ASSERT_TRUE(sb.onGpu()) << step;
+        if (step == 40) {
+            // Back on the GPU path the device's box manifolds start anew from the detector's
+            // points (stock's persistent ones keep a point the detector no longer reports):
+            // measured one point fewer at this step, none after.
+            EXPECT_EQ(counts(*sb.gpu).touching, counts(*sb.stock).touching);
+            EXPECT_NEAR(counts(*sb.gpu).points, counts(*sb.stock).points, 2);
+            expectConsistent(*sb.gpu);
+            continue;
+        }
         same(step);
         EXPECT_EQ(counts(*sb.gpu).manifolds, counts(*sb.gpu).touching) << step;  // no stale ones left
     }

@@ -49,7 +49,7 @@ TEST(ContactCallbacks, GatherFindsTheFlaggedPairsManifolds)
         ASSERT_EQ(got.size(), want.size());
         for (size_t i = 0; i < want.size(); ++i) {
             EXPECT_EQ(got[i].slot, want[i]) << i;
-            EXPECT_EQ(got[i].added, -2) << i;  // box pairs: every point is the substep's own
+            EXPECT_EQ(got[i].added, -2) << i;  // no persistent state uploaded: every point is the substep's own
             EXPECT_EQ(std::memcmp(&got[i].manifold, &s.manifolds[want[i]], sizeof(BtgManifold)), 0) << i;
         }
     }

@@ -6,6 +6,7 @@
 #include "reference/narrowphase_gjk.h"
 #include "shape_tables.h"
 #include "shared/aabb.h"
+#include "shared/gjk.h"
 #include "shared/persistent_manifold.h"
 #include "stages/find_pairs.h"
 #include "stages/narrowphase.h"

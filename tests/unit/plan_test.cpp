@@ -53,8 +53,8 @@ TEST(Plan, StagesInTheTalksOrder)
     const std::vector<Stage> expected = {
         Stage::Integrate,   Stage::UpdateAabbs,      Stage::UniformGrid,       Stage::FindPairs,
         Stage::NarrowphaseSat, Stage::ApplyForces,   Stage::ContactCache,      Stage::PrepareContacts,
-        Stage::ColorConstraints, Stage::SolveConstraints, Stage::StoreContactCache, Stage::IntegrateTransforms,
-        Stage::UpdateActivation};
+        Stage::ColorConstraints, Stage::SolveConstraints, Stage::StoreContactCache, Stage::StorePersistentManifolds,
+        Stage::IntegrateTransforms, Stage::UpdateActivation};
     EXPECT_EQ(derivePlan(in).plan.substep(), expected);
     in.solver = SolverKind::JacobiMassSplitting;
     const std::vector<Stage> jacobi = derivePlan(in).plan.substep();
@@ -65,13 +65,18 @@ TEST(Plan, StagesInTheTalksOrder)
 
 TEST(Plan, ConvexShapesBringTheGjkStagesAndNothingElseDoes)
 {
-    // Spheres and boxes: no GJK program, no persistent-manifold store (box-box pairs are
-    // clipped, sphere-box pairs are closed form).
+    // Spheres and boxes: no GJK program (sphere-box pairs are closed form); two boxes keep a
+    // persistent manifold (stock's box detector), so the store comes with the box program.
     PlanInput in;
-    in.bodies = {body(BTG_SHAPE_BOX, 0, false), body(BTG_SHAPE_SPHERE, 1, true), body(BTG_SHAPE_BOX, 1, true)};
+    in.bodies = {body(BTG_SHAPE_SPHERE, 0, false), body(BTG_SHAPE_SPHERE, 1, true), body(BTG_SHAPE_BOX, 1, true)};
     std::vector<Stage> stages = derivePlan(in).plan.substep();
     EXPECT_FALSE(has(stages, Stage::NarrowphaseGjk));
     EXPECT_FALSE(has(stages, Stage::StorePersistentManifolds));
+    in.bodies = {body(BTG_SHAPE_BOX, 0, false), body(BTG_SHAPE_SPHERE, 1, true), body(BTG_SHAPE_BOX, 1, true)};
+    stages = derivePlan(in).plan.substep();
+    EXPECT_FALSE(has(stages, Stage::NarrowphaseGjk));
+    EXPECT_TRUE(has(stages, Stage::NarrowphaseSat));
+    EXPECT_TRUE(has(stages, Stage::StorePersistentManifolds));
     // A capsule (a convex row) arrives: its pairs with the box, the sphere and the ground box
     // are GJK kinds; the store follows the cache's.
     in.bodies.push_back(body(BTG_SHAPE_CONVEX, 1, true));
@@ -136,7 +141,7 @@ TEST(Plan, JointsAddTheirStagesAroundTheSolve)
         Stage::Integrate,     Stage::UpdateAabbs,      Stage::UniformGrid,      Stage::FindPairs,
         Stage::NarrowphaseSat, Stage::ApplyForces,     Stage::ContactCache,     Stage::PrepareContacts,
         Stage::PrepareJoints, Stage::ColorConstraints, Stage::SolveConstraints, Stage::FinishJoints,
-        Stage::StoreContactCache, Stage::IntegrateTransforms, Stage::UpdateActivation};
+        Stage::StoreContactCache, Stage::StorePersistentManifolds, Stage::IntegrateTransforms, Stage::UpdateActivation};
     EXPECT_EQ(derivePlan(in).plan.substep(), both);
     const std::vector<std::string> names = derivePlan(in).plan.stages();
     EXPECT_NE(std::find(names.begin(), names.end(), "prepare_joints"), names.end());
@@ -278,7 +283,8 @@ TEST(Plan, ContactReportOnlyWhenAskedBeforeTheBodiesMove)
     const std::vector<Stage> s = p.substep();
     auto at = [&](Stage x) { return std::find(s.begin(), s.end(), x) - s.begin(); };
     ASSERT_TRUE(has(s, Stage::ReportContacts));
-    EXPECT_EQ(at(Stage::ReportContacts), at(Stage::StoreContactCache) + 1);
+    EXPECT_EQ(at(Stage::ReportContacts), at(Stage::StorePersistentManifolds) + 1);
+    EXPECT_EQ(at(Stage::StorePersistentManifolds), at(Stage::StoreContactCache) + 1);
     EXPECT_LT(at(Stage::ReportContacts), at(Stage::IntegrateTransforms));
     const std::vector<std::string> names = p.stages();
     EXPECT_NE(std::find(names.begin(), names.end(), "report_contacts"), names.end());
