@@ -6,12 +6,14 @@
 #include "scenes/callback_scenes.h"
 #include "scenes/compound_scenes.h"
 #include "scenes/ghost_scenes.h"
+#include "scenes/stock_chaos.h"
 #include "side_by_side.h"
 
 #include <btBulletDynamicsCommon.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <vector>
@@ -87,11 +89,12 @@ struct Events {
 // stock's, box pairs run stock's box–box detector into a persistent manifold
 // (kernels/shared/box_box.h), so only the points it reports (penetrating, distance <= 0) are
 // added and called; a point kept from an earlier step is not. Measured +9.3% in the first window
-// and +7.6% in the second (+8.4% over the 200 steps): the rest is the solver's, not the
-// detector's — a resting box on the GPU path lies tilted by some 0.3 mm across its base, all four
-// ground points at or below zero, where stock's rests flat to 0.06 mm with one corner just above
-// (about 3 of its 4 points added a step against the GPU path's 4). Bound: 10% a window, 9% over
-// the steps. After 200 steps stock's pile sleeps earlier than the GPU path's (no calls for a
+// and +7.6% in the second (+8.4% over the 200 steps) against the unnudged stock run; stock's own
+// chaos is as wide: its 8 nudged runs make 4,621-4,891 and 5,663-6,189 calls a window (10,320-
+// 11,080 in all: a resting box's corner just above or just below zero decides a call), so the
+// bound is stock's chaos (the nudged runs' mean, 3 x their largest distance plus a floor) where
+// wider than 5%: measured 419 off the mean against 810, 500 against 1,578, 919 against 2,280.
+// After 200 steps stock's pile sleeps earlier than the GPU path's (no calls for a
 // pair of sleeping bodies on either), so the windows stop there.
 TEST(Callbacks, EventCountsOnABoxPileAsStock)
 {
@@ -105,6 +108,33 @@ TEST(Callbacks, EventCountsOnABoxPileAsStock)
         btRigidBody* ground = s->body(0);
         ground->setCollisionFlags(ground->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
         return s;
+    };
+    // Stock's own chaos of the added calls: per window and over the run, the nudged runs' mean
+    // and largest distance.
+    double chaosMean[3] = {0, 0, 0}, chaosLo[3] = {1e30, 1e30, 1e30}, chaosHi[3] = {0, 0, 0};
+    for (int run = 0; run < tol::kChaosRuns; ++run) {
+        ScenePtr s = make(WorldKind::Stock, Config());
+        scenes::nudge(*s, 1000u + unsigned(run), tol::kChaosNudge);
+        double counts[3] = {0, 0, 0};
+        for (int step = 0; step < 200; ++step) {
+            g_events = EventCounts();
+            s->step();
+            counts[step / 100] += double(g_events.added);
+            counts[2] += double(g_events.added);
+        }
+        for (int k = 0; k < 3; ++k) {
+            chaosMean[k] += counts[k] / tol::kChaosRuns;
+            chaosLo[k] = std::min(chaosLo[k], counts[k]);
+            chaosHi[k] = std::max(chaosHi[k], counts[k]);
+        }
+    }
+    auto expectAddedAsStock = [&](double gpuCount, double stockCount, int k) {
+        const double chaos = tol::kChaosFactor * (chaosHi[k] - chaosLo[k]) + tol::kChaosContactsFloor;
+        std::printf("added %s: btgpu %.0f, stock %.0f, stock's nudged runs %.0f-%.0f (mean %.0f): %.0f off, bound %.0f\n",
+                    k < 2 ? (k ? "steps 100-199" : "steps 0-99") : "over 200 steps", gpuCount, stockCount, chaosLo[k],
+                    chaosHi[k], chaosMean[k], std::fabs(gpuCount - chaosMean[k]), std::max(0.05 * stockCount, chaos));
+        if (std::fabs(gpuCount - stockCount) <= 0.05 * stockCount) return;
+        EXPECT_NEAR(gpuCount, chaosMean[k], chaos) << "added calls, " << k;
     };
     SideBySide sb(make);
     const int window = 100;
@@ -139,14 +169,14 @@ TEST(Callbacks, EventCountsOnABoxPileAsStock)
         gpuProcessed += gpu.processed;
         EXPECT_NEAR(gpu.started, stock.started, 0.05 * double(stock.started) + 10) << step;
         EXPECT_NEAR(gpu.ended, stock.ended, 0.05 * double(stock.ended) + 10) << step;
-        EXPECT_NEAR(gpu.added, stock.added, 0.10 * double(stock.added)) << step;
+        expectAddedAsStock(double(gpu.added), double(stock.added), step / window);
         stockAdded += stock.added;
         gpuAdded += gpu.added;
         EXPECT_GT(stock.processed, 0);
         stock = gpu = EventCounts();
     }
     EXPECT_NEAR(gpuProcessed, stockProcessed, 0.05 * double(stockProcessed));
-    EXPECT_NEAR(gpuAdded, stockAdded, 0.09 * double(stockAdded));
+    expectAddedAsStock(double(gpuAdded), double(stockAdded), 2);
     std::printf("added over 200 steps: stock %ld gpu %ld\n", stockAdded, gpuAdded);
 }
 
