@@ -2,6 +2,7 @@
 // scene → rows rebuild and plan, per-call sync of what the app changed (found by row_changes.cpp), the device substeps
 // with redo on overflow, and the write-back that leaves every body as stock Bullet would.
 #include "gpu_world.h"
+#include "seed_contacts.h"
 
 #include "ccd_steps.h"
 
@@ -510,8 +511,14 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         return false;
     }
     if (m_needsRebuild) {
+        // Stock's contacts as its algorithms leave them, continued by the device's first step.
+        const std::vector<StockContact> stock = takeStockContacts(m_world.getDispatcher());
         dropCpuPathManifolds();
         rebuild();
+        seedContacts(*m_dev, stock, m_rows, [this](int row) {
+            const int shape = m_mirror.at(size_t(row)).props.shape;
+            return shape >= 0 && size_t(shape) < m_shapes.shapes.size() ? m_shapes.shapes[size_t(shape)].type : -1;
+        });
         m_needsRebuild = false;
     } else if (m_rowsStale) {
         followRows();

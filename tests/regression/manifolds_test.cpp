@@ -463,16 +463,21 @@ TEST(Manifolds, CpuPathAndBackKeepTheDispatcherConsistent)
     for (int step = 40; step < 80; ++step) {
         sb.step();
         ASSERT_TRUE(sb.onGpu()) << step;
-        if (step == 40) {
-            // Back on the GPU path the device's box manifolds start anew from the detector's
-            // points (stock's persistent ones keep a point the detector no longer reports):
-            // measured one point fewer at this step, none after.
-            EXPECT_EQ(counts(*sb.gpu).touching, counts(*sb.stock).touching);
-            EXPECT_NEAR(counts(*sb.gpu).points, counts(*sb.stock).points, 2);
-            expectConsistent(*sb.gpu);
-            continue;
-        }
+        // Back on the GPU path the device continues stock's manifolds (seed_contacts.h): the
+        // same points from the first step (anew, one box point fewer at step 40), and the
+        // stack's impulses warm-started from stock's (anew, the first step's fall short).
         same(step);
+        if (step == 40) {
+            double a = 0, b = 0;
+            for (Scene* sc : {sb.stock.get(), sb.gpu.get()}) {
+                btDispatcher* d = sc->world().getDispatcher();
+                for (int i = 0; i < d->getNumManifolds(); ++i)
+                    for (int j = 0; j < d->getManifoldByIndexInternal(i)->getNumContacts(); ++j)
+                        (sc == sb.stock.get() ? a : b) += d->getManifoldByIndexInternal(i)->getContactPoint(j).getAppliedImpulse();
+            }
+            std::printf("back on the GPU path: normal impulses stock %.4f, btgpu %.4f N s\n", a, b);
+            EXPECT_NEAR(b, a, 0.02 * a);
+        }
         EXPECT_EQ(counts(*sb.gpu).manifolds, counts(*sb.gpu).touching) << step;  // no stale ones left
     }
 }
