@@ -513,6 +513,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
     if (m_needsRebuild) {
         // Stock's contacts as its algorithms leave them, continued by the device's first step.
         const std::vector<StockContact> stock = takeStockContacts(m_world.getDispatcher());
+        m_manifolds.takeFromStock(m_world.getDispatcher());
         dropCpuPathManifolds();
         rebuild();
         seedContacts(*m_dev, stock, m_rows, [this](int row) {

@@ -51,7 +51,14 @@ void GpuWorld::fillManifolds()
     if (m_config.fillDispatcherManifolds) m_manifolds.fill(m_world.getDispatcher(), m_rows, m_readback, m_removed);
 }
 
-void GpuWorld::leaveGpuPath() { m_manifolds.releaseAll(m_world.getDispatcher()); }
+void GpuWorld::leaveGpuPath()
+{
+    // The pairs first (stock's algorithms hang on them), then the contacts handed over, then
+    // what is left given back.
+    completeBroadphasePairs();
+    m_manifolds.handToStock(m_world);
+    m_manifolds.releaseAll(m_world.getDispatcher());
+}
 
 void GpuWorld::dropCpuPathManifolds()
 {

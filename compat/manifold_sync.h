@@ -16,6 +16,7 @@
 
 class btCollisionObject;
 class btCollisionShape;
+class btCollisionWorld;
 class btDispatcher;
 class btManifoldPoint;
 class btPersistentManifold;
@@ -38,6 +39,19 @@ public:
     // Their contacts do not end for the app (no gContactEndedCallback: the CPU path's manifolds
     // take them on); points' user data go to gContactDestroyedCallback, as they leave the app.
     void releaseAll(btDispatcher* dispatcher);
+    // Before Bullet's own step takes over (manifold_handover.cpp): each manifold with points of
+    // two convex, non-compound bodies goes to the algorithm stock's near callback makes for
+    // the pair (made now, as that callback makes it), whose manifold takes its points as they
+    // are (lifetimes, impulses, user data), so the contact continues there with no ended or
+    // started event, as on stock; returns how many were handed over. Those stock's algorithm
+    // makes lazily (GJK pairs) and sphere pairs (cleared every step) are not.
+    int handToStock(btCollisionWorld& world);
+    // The other way, back on the GPU path before the CPU path's algorithms are freed: each of
+    // their manifolds with points of two convex, non-compound bodies becomes this fill's, its
+    // points moved over as they are (the device continues them: seed_contacts.h names them by
+    // slot), so freeing the algorithms ends no contact and destroys no user data, and the
+    // contact goes on with no started event; returns how many were taken.
+    int takeFromStock(btDispatcher* dispatcher);
     // The transforms the device collides the next fill's pairs at: each row's, as the host holds
     // them before a device call of one substep. Stock's refreshContactPoints keeps a manifold's
     // old points its detector did not replace while they stay within the breaking threshold at
