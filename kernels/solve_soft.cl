@@ -12,7 +12,8 @@
  * body row.
  * Reads counters[kEdgeCount, kContactCount, kColorsUsed, kLeftovers], edgeColor, props,
  * invInertiaWorld, linVel0, angVel0, contacts, joints, jointState, jointRows.
- * Writes softContacts, softBodies (scratch), linVel, angVel (dynamic rows), contacts (impulses,
+ * Writes softContacts (a held pair's pass also its support's impulses), softBodies (scratch: the
+ * deltas, force shares and, prepared color by color with heldMassRatio, supports), linVel, angVel (dynamic rows), contacts (impulses,
  * tangents), jointRows (impulses: a step's, substep's times substeps), and in soft_transforms
  * pos, rot and NaN status. */
 #include "shared/types.h"
@@ -111,6 +112,13 @@ static void soft_contact(int i, int mode, SOFT_ARGS)
         BtgBodyVel b0 = btgMakeBodyVel(b.moving, linVel0[bodyB], angVel0[bodyB]);
         softContacts[i] = btgSoftPrepare(contacts[i], a, b, a0, b0, pa.restitution * pb.restitution,
                                          btgContactSolvable(pa.flags, pb.flags), params);
+        if (params.heldMassRatio > 0.0f) {
+            const int fixed = a.dynamic != b.dynamic && btgContactSolvable(pa.flags, pb.flags);
+            const int light = btgSoftLightSide(a, b, params);
+            const int rowA = BTG_SOFT_BODY_ROWS * bodyA + BTG_SOFT_SUPPORT, rowB = BTG_SOFT_BODY_ROWS * bodyB + BTG_SOFT_SUPPORT;
+            if (a.dynamic) softBodies[rowA] = btgSoftNoteSupport(softBodies[rowA], fixed, light == 1, i);
+            if (b.dynamic) softBodies[rowB] = btgSoftNoteSupport(softBodies[rowB], fixed, light == 2, i);
+        }
         return;
     }
     BtgSoftContact s = load_soft(softContacts, i, mode, params.frictionInSolve);
@@ -121,9 +129,21 @@ static void soft_contact(int i, int mode, SOFT_ARGS)
         btgSoftRestitution(&s, a, b, &va, &vb, params);
     } else {
         const int rA = BTG_SOFT_BODY_ROWS * bodyA, rB = BTG_SOFT_BODY_ROWS * bodyB;
-        btgSoftSolve(&s, a, b, &va, &vb, softBodies[rA + BTG_SOFT_DELTA_POS], softBodies[rA + BTG_SOFT_DELTA_ROT],
-                     softBodies[rB + BTG_SOFT_DELTA_POS], softBodies[rB + BTG_SOFT_DELTA_ROT],
-                     mode == BTG_SOFT_SOLVE, params);
+        const BtgFloat4 dpA = softBodies[rA + BTG_SOFT_DELTA_POS], dqA = softBodies[rA + BTG_SOFT_DELTA_ROT];
+        const BtgFloat4 dpB = softBodies[rB + BTG_SOFT_DELTA_POS], dqB = softBodies[rB + BTG_SOFT_DELTA_ROT];
+        int normals = 1;
+        if (params.heldMassRatio > 0.0f) {
+            const int light = btgSoftLightSide(a, b, params);
+            if (light) {
+                const BtgFloat4 support = softBodies[(light == 1 ? rA : rB) + BTG_SOFT_SUPPORT];
+                if (support.x == 1.0f && btgSoftHeldNormals(&s, light == 1, softContacts + (int)support.y, a, b, &va,
+                                                            &vb, dpA, dqA, dpB, dqB, mode == BTG_SOFT_SOLVE, params))
+                    normals = 0;
+            } else if (a.dynamic != b.dynamic && softBodies[(a.dynamic ? rA : rB) + BTG_SOFT_SUPPORT].z == 1.0f) {
+                normals = 3;
+            }
+        }
+        btgSoftSolve(&s, a, b, &va, &vb, dpA, dqA, dpB, dqB, mode == BTG_SOFT_SOLVE, normals, params);
     }
     if (a.dynamic) store_vel(va, lin, ang, bodyA);
     if (b.dynamic) store_vel(vb, lin, ang, bodyB);
@@ -166,13 +186,15 @@ static void soft_edge(int e, int nc, int mode, SOFT_ARGS)
 static void soft_body(int i, int mode, SOFT_ARGS)
 {
     const uint flags = props[i].flags;
+    /* the substeps' passes leave the support row alone (prepare's, between them) */
     BtgFloat4 rows[BTG_SOFT_BODY_ROWS];
-    for (int r = 0; r < BTG_SOFT_BODY_ROWS; ++r) rows[r] = softBodies[BTG_SOFT_BODY_ROWS * i + r];
+    const int used = mode == BTG_SOFT_BODY_BEGIN ? BTG_SOFT_BODY_ROWS : BTG_SOFT_SUPPORT;
+    for (int r = 0; r < BTG_SOFT_BODY_ROWS; ++r) rows[r] = r < used ? softBodies[BTG_SOFT_BODY_ROWS * i + r] : btgZero4();
     BtgFloat4 v = lin[i], w = ang[i];
     if (mode == BTG_SOFT_BODY_BEGIN) btgSoftBodyBegin(flags, &v, &w, linVel0[i], angVel0[i], rows, params.substeps);
     else if (mode == BTG_SOFT_BODY_VELOCITY) btgSoftBodyVelocity(flags, &v, &w, rows);
     else btgSoftBodyPosition(flags, v, w, rows, params.h);
-    for (int r = 0; r < BTG_SOFT_BODY_ROWS; ++r) softBodies[BTG_SOFT_BODY_ROWS * i + r] = rows[r];
+    for (int r = 0; r < used; ++r) softBodies[BTG_SOFT_BODY_ROWS * i + r] = rows[r];
     if (btgIsSolverDynamic(flags)) {
         lin[i] = v;
         ang[i] = w;
@@ -281,8 +303,8 @@ __kernel void soft_resident(__global const int* restrict edgeColor, __global uin
             SOFT_BARRIER();
             continue;
         }
-        /* prepare and store touch each edge alone: no barrier between colors */
-        const int independent = mode == BTG_SOFT_PREPARE || mode == BTG_SOFT_STORE;
+        /* store (and prepare, unless it notes the bodies' supports) touch each edge alone: no barrier between colors */
+        const int independent = (mode == BTG_SOFT_PREPARE && !(params.heldMassRatio > 0.0f)) || mode == BTG_SOFT_STORE;
         for (int color = 0; color < last; ++color) {
             const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
             for (int k = begin + gid; k < end; k += gsize) soft_edge(colorOrder[k], nc, mode, SOFT_PASS);

@@ -48,6 +48,16 @@ struct SoftStepConfig {
     // the pyramid of 50 within 5 cm (2 mm let its apex sink 6 cm) and the towers still; 0.5 mm
     // and one Gauss-Seidel pass a substep no longer holds tall towers still.
     float maxSag = 0.001f;
+    // Opt-in (0: off, the default): a light body under a much heavier one (masses differing by
+    // more than this). Gauss-Seidel hands the heavy body only the light one's share of each
+    // correction, so the load builds over many substeps and the pair, stiffened to maxSag,
+    // rings until it falls (a 1,000 kg box on a 1 kg one at 10 substeps; a 400 kg plank on two
+    // 1 kg boxes rocks). Where the light body rests on one fixed body, their contact's normal
+    // rows hold it (the heavy body takes each correction whole) and pass its reaction straight
+    // to that support's points, balancing force and torque on it: with 100 both stand still at
+    // 10 substeps. Not the default: a heavy body dropped near the light one's edge tips off
+    // and the light one is thrown (tens of m/s; README, solver modes).
+    float heldMassRatio = 0.0f;
 };
 
 struct Config {

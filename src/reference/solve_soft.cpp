@@ -48,6 +48,14 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
             soft[e] = btgSoftPrepare(contacts[e], a, b, btgMakeBodyVel(a.moving, bodies.linVel0[ia], bodies.angVel0[ia]),
                                      btgMakeBodyVel(b.moving, bodies.linVel0[ib], bodies.angVel0[ib]),
                                      pa.restitution * pb.restitution, btgContactSolvable(pa.flags, pb.flags), params);
+            if (params.heldMassRatio > 0.0f) {
+                const int fixed = a.dynamic != b.dynamic && btgContactSolvable(pa.flags, pb.flags);
+                const int light = btgSoftLightSide(a, b, params);
+                BtgFloat4& rowA = rows[BTG_SOFT_BODY_ROWS * ia + BTG_SOFT_SUPPORT];
+                BtgFloat4& rowB = rows[BTG_SOFT_BODY_ROWS * ib + BTG_SOFT_SUPPORT];
+                if (a.dynamic) rowA = btgSoftNoteSupport(rowA, fixed, light == 1, int(e));
+                if (b.dynamic) rowB = btgSoftNoteSupport(rowB, fixed, light == 2, int(e));
+            }
             return;
         }
         BtgBodyVel va = btgMakeBodyVel(a.moving, bodies.linVel[ia], bodies.angVel[ia]);
@@ -59,8 +67,23 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
         } else {
             const BtgFloat4* ra = rows.data() + BTG_SOFT_BODY_ROWS * ia;
             const BtgFloat4* rb = rows.data() + BTG_SOFT_BODY_ROWS * ib;
+            // As the kernel: a held pair's normal rows, or a held body's support following its load.
+            int normals = 1;
+            if (params.heldMassRatio > 0.0f) {
+                const int light = btgSoftLightSide(a, b, params);
+                if (light) {
+                    const BtgFloat4 support = (light == 1 ? ra : rb)[BTG_SOFT_SUPPORT];
+                    if (support.x == 1.0f &&
+                        btgSoftHeldNormals(&soft[e], light == 1, &soft[size_t(support.y)], a, b, &va, &vb,
+                                           ra[BTG_SOFT_DELTA_POS], ra[BTG_SOFT_DELTA_ROT], rb[BTG_SOFT_DELTA_POS],
+                                           rb[BTG_SOFT_DELTA_ROT], mode == BTG_SOFT_SOLVE, params))
+                        normals = 0;
+                } else if (a.dynamic != b.dynamic && (a.dynamic ? ra : rb)[BTG_SOFT_SUPPORT].z == 1.0f) {
+                    normals = 3;
+                }
+            }
             btgSoftSolve(&soft[e], a, b, &va, &vb, ra[BTG_SOFT_DELTA_POS], ra[BTG_SOFT_DELTA_ROT],
-                         rb[BTG_SOFT_DELTA_POS], rb[BTG_SOFT_DELTA_ROT], mode == BTG_SOFT_SOLVE, params);
+                         rb[BTG_SOFT_DELTA_POS], rb[BTG_SOFT_DELTA_ROT], mode == BTG_SOFT_SOLVE, normals, params);
         }
         if (a.dynamic) {
             bodies.linVel[ia] = btgMake4(va.lin.x, va.lin.y, va.lin.z, bodies.linVel[ia].w);

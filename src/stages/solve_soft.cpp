@@ -39,6 +39,7 @@ BtgSoftParams makeSoftParams(const SoftStepConfig& c, const BtgStepParams& param
     p.jointBoundScale = 1.0f / float(p.substeps);
     p.frictionInSolve = c.frictionInSolve ? 1 : 0;
     p.maxSag = std::max(c.maxSag, 0.0f);
+    p.heldMassRatio = std::max(c.heldMassRatio, 0.0f);
     const float omega = 2.0f * 3.14159265359f * hertz;
     p.omega2Contact = omega * omega;
     p.omega2Fixed = 4.0f * omega * omega;

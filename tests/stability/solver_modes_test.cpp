@@ -86,6 +86,8 @@ TEST(SolverModes, MassRatioHundred)
     runModes("mass ratio 100:1, 10 s", [](WorldKind k, const Config& c) { return st::massRatio(k, c, 100); }, target(),
              Earned::Yes);
 }
+// 10 substeps: the light box rings under the heavy one and it falls off (88-108 mm, 1.5-2 m;
+// the 1-D model tests/stability/soft_mass_ratio_model.py shows why); held, it stands (below).
 TEST(SolverModes, MassRatioThousand)
 {
     runModes("mass ratio 1000:1, 10 s", [](WorldKind k, const Config& c) { return st::massRatio(k, c, 1000); },
@@ -93,7 +95,8 @@ TEST(SolverModes, MassRatioThousand)
 }
 TEST(SolverModes, HeavyPlank)
 {
-    // 10 substeps: 16 mm into the boxes, the plank rocking 12 cm; 20 substeps hold it.
+    // 10 substeps: 16 mm into the boxes, the plank rocking 12 cm; 20 substeps hold it, and so
+    // does holding the light boxes (HeavyPlankHeld).
     runModes("plank 400 kg on 2 boxes, 10 s", st::heavyPlank, target(), Earned::No);
 }
 // What more substeps earn (SoftStepConfig::substeps; the app's steps unchanged).
@@ -115,6 +118,28 @@ TEST(SolverModes, MassRatioThousandWithFortySubsteps)
 {
     runSoftWithSubsteps("mass ratio 1000:1, 10 s", [](WorldKind k, const Config& c) { return st::massRatio(k, c, 1000); },
                         40);
+}
+
+// What holding the light body earns at the default 10 substeps (SoftStepConfig::heldMassRatio
+// 100, opt-in: see Config.h for why it is not the default).
+void runSoftHeld(const std::string& name, const Builder& make)
+{
+    Config config = modeConfig(SolverKind::SoftStep);
+    config.softStep.heldMassRatio = 100.0f;
+    const Outcome soft = run(make, WorldKind::Gpu, target(), config);
+    recordAs(name, "btgpu soft, held", soft, figure(soft));
+    EXPECT_TRUE(soft.gpuEveryStep) << name;
+    EXPECT_TRUE(has(soft.stages, "solve_soft")) << name;
+    if (!std::getenv("BTGPU_STABILITY_SOFT_SUBSTEPS") && !std::getenv("BTGPU_STABILITY_SOFT_MAXSAG"))
+        EXPECT_TRUE(soft.pass) << name << ", soft mode, light body held: " << soft.why;
+}
+TEST(SolverModes, MassRatioThousandHeld)
+{
+    runSoftHeld("mass ratio 1000:1, 10 s", [](WorldKind k, const Config& c) { return st::massRatio(k, c, 1000); });
+}
+TEST(SolverModes, HeavyPlankHeld)
+{
+    runSoftHeld("plank 400 kg on 2 boxes, 10 s", st::heavyPlank);
 }
 
 TEST(SolverModes, TowerTen)
@@ -210,4 +235,30 @@ TEST(SolverModes, SoftStepIsDeterministic)
             ASSERT_EQ(0, std::memcmp(&ta, &tb, sizeof(btTransform))) << "body " << i << ", step " << step;
         }
     }
+}
+
+// Known failure of the held light body (why heldMassRatio is opt-in): a 1,000 kg box dropped
+// 5 cm onto a 1 kg box 45 cm off its centre (its centre still over the light box) should land
+// and stay, the light box where it was; held, the heavy box tips off and the light box is
+// thrown (tens of m/s) and falls through the ground. Run with --gtest_also_run_disabled_tests.
+TEST(SolverModes, DISABLED_HeldHeavyDroppedNearTheEdge)
+{
+    Config config = modeConfig(SolverKind::SoftStep);
+    config.softStep.heldMassRatio = 100.0f;
+    scenes::ScenePtr s = st::massRatio(WorldKind::Gpu, config, 1000);
+    btTransform t = s->body(2)->getWorldTransform();
+    t.setOrigin(t.getOrigin() + btVector3(btScalar(0.45), btScalar(0.05), 0));
+    s->body(2)->setCenterOfMassTransform(t);
+    s->body(2)->getMotionState()->setWorldTransform(t);
+    for (btRigidBody* b : s->bodies()) b->setActivationState(DISABLE_DEACTIVATION);
+    const btVector3 start = s->body(1)->getWorldTransform().getOrigin();
+    double fastest = 0;
+    for (int step = 0; step < 600; ++step) {
+        s->step(btScalar(1) / 60, 1, btScalar(1) / 60);
+        ASSERT_TRUE(s->report()->gpuPath);
+        fastest = std::max(fastest, double(s->body(1)->getLinearVelocity().length()));
+    }
+    EXPECT_LT(fastest, 2.0) << "the light box was thrown";
+    EXPECT_LT((s->body(1)->getWorldTransform().getOrigin() - start).length(), 0.05);
+    EXPECT_GT(s->body(2)->getWorldTransform().getOrigin().y(), 1.4) << "the heavy box tipped off";
 }
