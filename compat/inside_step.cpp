@@ -53,11 +53,10 @@ void GpuWorld::fillManifolds()
 
 void GpuWorld::leaveGpuPath()
 {
-    // The pairs first (stock's algorithms hang on them), then the contacts handed over, then
-    // what is left given back.
+    // The pairs first (stock's algorithms hang on them), then the contacts handed over (which
+    // gives back every manifold of the GPU path's).
     completeBroadphasePairs();
     m_manifolds.handToStock(m_world);
-    m_manifolds.releaseAll(m_world.getDispatcher());
 }
 
 void GpuWorld::dropCpuPathManifolds()

@@ -6,6 +6,7 @@
 #include <btBulletCollisionCommon.h>
 
 #include <algorithm>
+#include <unordered_map>
 #include <vector>
 
 #include "shared/types.h"
@@ -41,41 +42,69 @@ int ManifoldSync::handToStock(btCollisionWorld& world)
     btDispatcher* dispatcher = world.getDispatcher();
     btBroadphaseInterface* broadphase = world.getBroadphase();
     btOverlappingPairCache* cache = broadphase ? broadphase->getOverlappingPairCache() : nullptr;
-    if (!dispatcher || !cache) return 0;
+    // The points first (their user data goes with them, not destroyed), then every manifold of
+    // ours given back: the dispatcher then holds none of them, whatever order the map releases
+    // them in, so the algorithms' manifolds made next sit in the pair cache's order, as stock's
+    // near callback leaves them (the CPU path's solve order: bitwise repeatable).
+    struct Held {
+        const btCollisionObject* body0;
+        int numPoints;
+        btManifoldPoint points[4];
+    };
+    std::unordered_map<const void*, std::unordered_map<const void*, Held>> held;
+    if (dispatcher && cache)
+        for (auto& [key, e] : m_map) {
+            btPersistentManifold* m = e.manifold;
+            if (!m || m->getNumContacts() == 0 || key.sub0 >= 0 || key.sub1 >= 0) continue;
+            if (!convexLeaf(m->getBody0()) || !convexLeaf(m->getBody1())) continue;
+            Held h{m->getBody0(), std::min(m->getNumContacts(), 4), {}};
+            for (int j = 0; j < h.numPoints; ++j) {
+                h.points[j] = m->getContactPoint(j);
+                m->getContactPoint(j).m_userPersistentData = nullptr;
+            }
+            m->setNumContacts(0);
+            const void* lo = std::min<const void*>(m->getBody0(), m->getBody1());
+            const void* hi = std::max<const void*>(m->getBody0(), m->getBody1());
+            held[lo][hi] = h;
+        }
+    releaseAll(dispatcher);
+    if (held.empty()) return 0;
     int handed = 0;
-    btManifoldArray held;
-    for (auto& [key, e] : m_map) {
-        btPersistentManifold* m = e.manifold;
-        if (!m || m->getNumContacts() == 0 || key.sub0 >= 0 || key.sub1 >= 0) continue;
-        const btCollisionObject* a = m->getBody0();
-        const btCollisionObject* b = m->getBody1();
-        if (!convexLeaf(a) || !convexLeaf(b) || !a->getBroadphaseHandle() || !b->getBroadphaseHandle()) continue;
-        btBroadphasePair* pair = cache->findPair(const_cast<btBroadphaseProxy*>(a->getBroadphaseHandle()),
-                                                 const_cast<btBroadphaseProxy*>(b->getBroadphaseHandle()));
-        if (!pair) continue;
-        btCollisionObject* o0 = static_cast<btCollisionObject*>(pair->m_pProxy0->m_clientObject);
-        btCollisionObject* o1 = static_cast<btCollisionObject*>(pair->m_pProxy1->m_clientObject);
-        if (!pair->m_algorithm) {
+    btManifoldArray manifolds;
+    btBroadphasePairArray& pairs = cache->getOverlappingPairArray();
+    for (int i = 0; i < pairs.size(); ++i) {
+        btBroadphasePair& pair = pairs[i];
+        btCollisionObject* o0 = static_cast<btCollisionObject*>(pair.m_pProxy0->m_clientObject);
+        btCollisionObject* o1 = static_cast<btCollisionObject*>(pair.m_pProxy1->m_clientObject);
+        auto outer = held.find(std::min<const void*>(o0, o1));
+        if (outer == held.end()) continue;
+        auto inner = outer->second.find(std::max<const void*>(o0, o1));
+        if (inner == outer->second.end()) continue;
+        const Held& h = inner->second;
+        if (!pair.m_algorithm) {
             // As btCollisionDispatcher::defaultNearCallback makes it.
             if (!dispatcher->needsCollision(o0, o1)) continue;
             btCollisionObjectWrapper w0(nullptr, o0->getCollisionShape(), o0, o0->getWorldTransform(), -1, -1);
             btCollisionObjectWrapper w1(nullptr, o1->getCollisionShape(), o1, o1->getWorldTransform(), -1, -1);
-            pair->m_algorithm = dispatcher->findAlgorithm(&w0, &w1, nullptr, BT_CONTACT_POINT_ALGORITHMS);
-            if (!pair->m_algorithm) continue;
+            pair.m_algorithm = dispatcher->findAlgorithm(&w0, &w1, nullptr, BT_CONTACT_POINT_ALGORITHMS);
+            if (!pair.m_algorithm) continue;
         }
-        held.resize(0);
-        pair->m_algorithm->getAllContactManifolds(held);
-        if (held.size() != 1 || held[0]->getNumContacts() != 0) continue;
-        btPersistentManifold* target = held[0];
-        const bool swap = target->getBody0() != a;
-        for (int j = 0; j < m->getNumContacts(); ++j) {
-            btManifoldPoint& p = m->getContactPoint(j);
-            target->addManifoldPoint(swap ? swapped(p) : p);
-            p.m_userPersistentData = nullptr;  // it goes with the point, not destroyed here
-        }
-        m->setNumContacts(0);
+        manifolds.resize(0);
+        pair.m_algorithm->getAllContactManifolds(manifolds);
+        if (manifolds.size() != 1 || manifolds[0]->getNumContacts() != 0) continue;
+        btPersistentManifold* target = manifolds[0];
+        const bool swap = target->getBody0() != h.body0;
+        for (int j = 0; j < h.numPoints; ++j) target->addManifoldPoint(swap ? swapped(h.points[j]) : h.points[j]);
+        inner->second.numPoints = 0;  // handed over
         ++handed;
     }
+    // Points no algorithm took (a lazily made manifold, a pair stock would not collide): their
+    // user data is destroyed, as the release would have.
+    for (auto& [lo, inners] : held)
+        for (auto& [hi, h] : inners)
+            for (int j = 0; j < h.numPoints; ++j)
+                if (h.points[j].m_userPersistentData && gContactDestroyedCallback)
+                    gContactDestroyedCallback(h.points[j].m_userPersistentData);
     return handed;
 }
 

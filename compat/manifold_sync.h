@@ -44,7 +44,8 @@ public:
     // the pair (made now, as that callback makes it), whose manifold takes its points as they
     // are (lifetimes, impulses, user data), so the contact continues there with no ended or
     // started event, as on stock; returns how many were handed over. Those stock's algorithm
-    // makes lazily (GJK pairs) and sphere pairs (cleared every step) are not.
+    // makes lazily (GJK pairs) and sphere pairs (cleared every step) are not. Gives back every
+    // manifold of this fill's (releaseAll) on the way.
     int handToStock(btCollisionWorld& world);
     // The other way, back on the GPU path before the CPU path's algorithms are freed: each of
     // their manifolds with points of two convex, non-compound bodies becomes this fill's, its

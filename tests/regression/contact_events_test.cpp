@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <functional>
 #include <vector>
 
@@ -411,6 +412,20 @@ TEST(Callbacks, CpuPathExcursionContinuesContactsAsStock)
     // Without the hand-overs: 8 started, 4 ended, 32 destroyed and remade.
     EXPECT_NEAR(sum[1].destroyed, sum[0].destroyed, 4);
     EXPECT_NEAR(allocated[1], allocated[0], 4);
+    // The same excursion on a second btgpu world (other addresses, so the manifold map keeps
+    // another order): bitwise the same bodies — the hand-overs follow the pair cache's order.
+    ScenePtr again = scenes::boxStack(WorldKind::Gpu, Config(), 4);
+    auto near = [&](btNearCallback cb) { static_cast<btCollisionDispatcher*>(again->world().getDispatcher())->setNearCallback(cb); };
+    for (int i = 0; i < 30; ++i) again->step();
+    near(nearAsStock);
+    for (int i = 0; i < 10; ++i) again->step();
+    near(btCollisionDispatcher::defaultNearCallback);
+    for (int i = 0; i < 30; ++i) again->step();
+    for (size_t i = 0; i < again->bodies().size(); ++i) {
+        const btTransform& x = again->body(int(i))->getWorldTransform();
+        const btTransform& y = sb.gpu->body(int(i))->getWorldTransform();
+        EXPECT_EQ(std::memcmp(&x, &y, sizeof(btTransform)), 0) << "body " << i;
+    }
 }
 
 // Contact events beside a trigger ghost (CF_NO_CONTACT_RESPONSE): stock's dispatcher collides the
