@@ -11,6 +11,7 @@
  * then gjkCache (in the warm-start cache's order). */
 #include "shared/polyhedral_contacts.h"
 #define BTG_PERSISTENT_STEP btgPairStep
+#define BTG_SPECULATIVE_COLLIDE btgCollideGjk /* the host never asks it of these kinds */
 #include "shared/persistent_kernels.h"
 
 BTG_PAIR_KINDS_NARROWPHASE_GJK(BTG_PERSISTENT_KERNEL)

@@ -151,34 +151,26 @@ static inline BtgBoxBoxPoints btgBoxBoxPoints(BtgCollider a, BtgCollider b)
             Q[i][j] = btgAbs(R[i][j]);
         }
     }
-    /* The face axes: A's (codes 1-3), then B's (4-6). */
+    /* The face axes: A's (codes 1-3), then B's (4-6); on each, the centres' distance e1 against
+     * the two boxes' radii e2. */
     float s = -1e30f;
     int invert = 0, code = 0;
     BtgFloat4 normal = btgZero4();
-    int faceAxis = 1;
-    BtgFloat4 normalC = btgZero4(); /* an edge axis, in A's frame */
-    for (int i = 0; i < 3; ++i) {
-        const float e1 = pp[i], e2 = A[i] + B[0] * Q[i][0] + B[1] * Q[i][1] + B[2] * Q[i][2];
+    for (int k = 0; k < 6; ++k) {
+        const int i = k % 3;
+        const float e1 = k < 3 ? pp[i] : btgDot3(bx[i], p);
+        const float e2 = k < 3 ? A[i] + B[0] * Q[i][0] + B[1] * Q[i][1] + B[2] * Q[i][2]
+                               : A[0] * Q[0][i] + A[1] * Q[1][i] + A[2] * Q[2][i] + B[i];
         const float s2 = btgAbs(e1) - e2;
         if (s2 > 0.0f) return out;
         if (s2 > s) {
             s = s2;
-            normal = ax[i];
+            normal = k < 3 ? ax[i] : bx[i];
             invert = e1 < 0.0f;
-            code = 1 + i;
+            code = 1 + k;
         }
     }
-    for (int j = 0; j < 3; ++j) {
-        const float e1 = btgDot3(bx[j], p), e2 = A[0] * Q[0][j] + A[1] * Q[1][j] + A[2] * Q[2][j] + B[j];
-        const float s2 = btgAbs(e1) - e2;
-        if (s2 > 0.0f) return out;
-        if (s2 > s) {
-            s = s2;
-            normal = bx[j];
-            invert = e1 < 0.0f;
-            code = 4 + j;
-        }
-    }
+    BtgFloat4 normalC = btgZero4(); /* the winning edge axis, in A's frame */
     /* The nine edge axes ax[i] x bx[j] (codes 7 + 3i + j), radii on slightly padded Q so that
      * near-parallel edges do not win on rounding; taken only when 5% deeper than the best. */
     for (int i = 0; i < 3; ++i)
@@ -206,7 +198,6 @@ static inline BtgBoxBoxPoints btgBoxBoxPoints(BtgCollider a, BtgCollider b)
                 if (s2 * 1.05f > s) {
                     s = s2;
                     normalC = btgMake4(n[0] / l, n[1] / l, n[2] / l, 0.0f);
-                    faceAxis = 0;
                     invert = e1 < 0.0f;
                     code = 7 + 3 * i + j;
                 }
@@ -214,8 +205,7 @@ static inline BtgBoxBoxPoints btgBoxBoxPoints(BtgCollider a, BtgCollider b)
         }
     }
     if (!code) return out;
-    if (code > 6) faceAxis = 0;
-    if (!faceAxis) normal = ax[0] * normalC.x + ax[1] * normalC.y + ax[2] * normalC.z;
+    if (code > 6) normal = ax[0] * normalC.x + ax[1] * normalC.y + ax[2] * normalC.z;
     if (invert) normal = btgZero4() - normal;
     normal = btgXyz(normal);
     const float depth = -s;

@@ -1,7 +1,8 @@
 /* persistent_kernels.h — the kernels of the narrowphase programs whose pairs keep a persistent
  * manifold (narrowphase_gjk.cl: the GJK kinds; narrowphase_sat.cl: two boxes): each collide
  * kernel reads the manifold its pair kept last substep, steps it (BTG_PERSISTENT_STEP, which the
- * program defines before including this) and writes it beside the pair's manifold; after the
+ * program defines before including this) and writes it beside the pair's manifold, or with
+ * `speculative` collides the pair afresh (BTG_SPECULATIVE_COLLIDE) and keeps nothing; after the
  * solve, store_persistent_manifolds keeps those manifolds for the next substep. OpenCL only. */
 #ifndef BTG_PERSISTENT_KERNELS_H
 #define BTG_PERSISTENT_KERNELS_H
@@ -42,7 +43,7 @@ static BtgPersistentManifold btgPreviousManifold(BtgPair p, int kind, __global c
                          __global const BtgCachedContact* restrict cache, int cacheCapacity,                          \
                          __global const BtgPersistentManifold* restrict gjkCache, int gjkCapacity,                    \
                          __global BtgManifold* restrict manifolds, __global BtgManifoldRange* restrict pairManifolds, \
-                         __global BtgPersistentManifold* restrict gjkPairState)                                       \
+                         __global BtgPersistentManifold* restrict gjkPairState, int speculative)                      \
     {                                                                                                                 \
         const uint end = kindRanges[BTG_KIND_RANGE_END(kind)];                                                        \
         for (uint i = kindRanges[BTG_KIND_RANGE_START(kind)] + (uint)get_global_id(0); i < end;                      \
@@ -54,7 +55,11 @@ static BtgPersistentManifold btgPreviousManifold(BtgPair p, int kind, __global c
             const float t = btgPairThreshold(a.shape, b.shape);                                                       \
             BtgPersistentManifold pm = btgEmptyPersistent(p.a, p.b, kind);                                           \
             BtgManifold m = btgEmptyManifold(p.a, p.b);                                                               \
-            if (btgPairKind(a.shape.type, b.shape.type) == (kind)) {                                                  \
+            if (btgPairKind(a.shape.type, b.shape.type) == (kind) && speculative) {                                   \
+                /* this step's own points, no manifold kept: kind NONE, which no pair takes */                        \
+                m = BTG_SPECULATIVE_COLLIDE(a, b, verts, faces, indices, edges, t);                                   \
+                pm = btgEmptyPersistent(p.a, p.b, BTG_PAIR_NONE);                                                     \
+            } else if (btgPairKind(a.shape.type, b.shape.type) == (kind)) {                                           \
                 float dist[BTG_MAX_POINTS];                                                                           \
                 BtgPersistentManifold prev =                                                                          \
                     btgPreviousManifold(p, kind, children, counters, cache, cacheCapacity, gjkCache, gjkCapacity);      \

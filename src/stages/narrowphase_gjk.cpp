@@ -52,14 +52,14 @@ void narrowphasePersistent(DeviceWorld& w, const PairKinds& kinds, const char* k
     for (int r = 0; r < kNumPairKindRows; ++r) {
         const PairKindRow& row = kPairKindRows[r];
         if (!kinds.has(row.kind) || std::strcmp(row.program, kProgram) != 0) continue;
-        cl::Launch launch(w.ctx, prog.kernel(row.kernel), &w.profiler);
-        launch.arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)
+        // Only the box program clips speculatively, for the soft step.
+        const cl_int speculative = std::strcmp(kProgram, "narrowphase_sat") == 0 && w.speculativeBoxes ? 1 : 0;
+        cl::Launch(w.ctx, prog.kernel(row.kernel), &w.profiler)
+            .arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)
             .arg(w.shapes).arg(w.children).arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges)
             .arg(w.counters).arg(w.contactCache).arg(cacheCapacity)
-            .arg(w.gjkCache).arg(gjkCapacity).arg(w.manifolds).arg(w.pairManifolds).arg(w.gjkPairState);
-        // The box program's kernel also takes the soft step's choice of speculative clipping.
-        if (std::strcmp(kProgram, "narrowphase_sat") == 0) launch.arg(cl_int(w.speculativeBoxes ? 1 : 0));
-        launch.run(items);
+            .arg(w.gjkCache).arg(gjkCapacity).arg(w.manifolds).arg(w.pairManifolds).arg(w.gjkPairState).arg(speculative)
+            .run(items);
     }
 }
 
