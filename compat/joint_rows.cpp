@@ -96,12 +96,12 @@ uint sixDofMode(bool motor, bool servo, bool spring, bool stiffLimited, bool dam
 bool isServedType(const std::type_info& t)
 {
     return t == typeid(btPoint2PointConstraint) || t == typeid(btHingeConstraint) || t == typeid(btConeTwistConstraint) ||
-           t == typeid(btSliderConstraint) || isGeneric6Dof(t) || isSixDof2(t);
+           t == typeid(btSliderConstraint) || isGeneric6Dof(t) || isSixDof2(t) || t == typeid(btGearConstraint);
 }
 
 bool served(const btTypedConstraint& c)
 {
-    if (isSixDof2(typeid(c))) return true;
+    if (isSixDof2(typeid(c)) || typeid(c) == typeid(btGearConstraint)) return true;  // no obsolete solve
     if (typeid(c) == typeid(btPoint2PointConstraint))
         return !static_cast<const btPoint2PointConstraint&>(c).m_useSolveConstraintObsolete;
     if (typeid(c) == typeid(btHingeConstraint))
@@ -213,7 +213,7 @@ std::string jointsStructureReason(const btDiscreteDynamicsWorld& world)
         if (&c->getRigidBodyB() != fixed && !inWorld.count(&c->getRigidBodyB()))
             return "joint " + std::to_string(i) + " links a body that is not in the world (its body B)";
         const std::type_info& t = typeid(*c);
-        if (isSixDof2(t)) continue;
+        if (isSixDof2(t) || t == typeid(btGearConstraint)) continue;
         if (t == typeid(btPoint2PointConstraint) || t == typeid(btHingeConstraint) || t == typeid(btConeTwistConstraint) ||
             t == typeid(btSliderConstraint) || isGeneric6Dof(t)) {
             if (!served(*c))
@@ -224,7 +224,8 @@ std::string jointsStructureReason(const btDiscreteDynamicsWorld& world)
         return "joint " + std::to_string(i) + " of type " + typeName(t) +
                " is not on the GPU path (served, by exact type: btPoint2PointConstraint, btHingeConstraint, "
                "btConeTwistConstraint, btSliderConstraint, btGeneric6DofConstraint, btUniversalConstraint, "
-               "btGeneric6DofSpringConstraint, btGeneric6DofSpring2Constraint, btFixedConstraint, btHinge2Constraint)";
+               "btGeneric6DofSpringConstraint, btGeneric6DofSpring2Constraint, btFixedConstraint, btHinge2Constraint, "
+               "btGearConstraint)";
     }
     return "";
 }
@@ -277,6 +278,14 @@ bool jointRow(const btTypedConstraint& c, const RowMap& rows, int numIterations,
         }
         j.damping = p.m_setting.m_damping;
         j.impulseClamp = p.m_setting.m_impulseClamp;
+    } else if (typeid(c) == typeid(btGearConstraint)) {
+        // getInfo2 reads the axes and the ratio afresh each step: the table follows setAxisA/B
+        // and setRatio through the per-step comparison.
+        const auto& g = static_cast<const btGearConstraint&>(c);
+        j.type = BTG_JOINT_GEAR;
+        j.axesA[0] = vec4(g.getAxisA());
+        j.axesB[0] = vec4(g.getAxisB());
+        j.gearRatio = g.getRatio();
     } else if (typeid(c) == typeid(btHingeConstraint)) {
         auto& h = const_cast<btHingeConstraint&>(static_cast<const btHingeConstraint&>(c));
         j.type = BTG_JOINT_HINGE;

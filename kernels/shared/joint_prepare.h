@@ -1,6 +1,6 @@
 /* joint_prepare.h — convertJoints for one joint of any served type: which rows it builds this
  * substep and each row finished for the solver (joint_rows.h, hinge_rows.h,
- * cone_twist_rows.h, slider_rows.h, sixdof_rows.h, generic6dof_rows.h). */
+ * cone_twist_rows.h, slider_rows.h, sixdof_rows.h, generic6dof_rows.h; the gear's row in joint_rows.h). */
 #ifndef BTG_JOINT_PREPARE_H
 #define BTG_JOINT_PREPARE_H
 #include "joint_rows.h"
@@ -26,6 +26,9 @@ static inline void btgPrepareJoint(BtgJoint j, BtgJointState* s, BTG_GLOBAL BtgJ
             rows[j.firstRow + k] =
                 btgFinishJointRow(btgP2PInfoRow(j, a, b, k, fps, p.erp, p.globalCfm), a, b, j.damping, j.breakingThreshold);
         s->numRows = BTG_JOINT_P2P_ROWS;
+    } else if (j.type == BTG_JOINT_GEAR) {
+        rows[j.firstRow] = btgFinishJointRow(btgGearInfoRow(j, a, b, p.globalCfm), a, b, p.damping, j.breakingThreshold);
+        s->numRows = BTG_JOINT_GEAR_ROWS;
     } else if (j.type == BTG_JOINT_HINGE) {
         BtgJointInfoRow info[BTG_JOINT_HINGE_ROWS];
         const int n = btgHingeInfoRows(j, a, b, fps, p.erp, p.globalCfm, info);

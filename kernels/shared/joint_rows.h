@@ -18,6 +18,7 @@
 #define BTG_JOINT_SLIDER 4
 #define BTG_JOINT_SIXDOF2 5 /* btGeneric6DofSpring2Constraint, btFixedConstraint, btHinge2Constraint */
 #define BTG_JOINT_SIXDOF 6  /* btGeneric6DofConstraint, btUniversalConstraint, btGeneric6DofSpringConstraint */
+#define BTG_JOINT_GEAR 7    /* btGearConstraint */
 /* Rows one joint of each type may build (getInfo1's maximum): its slots in the row table. */
 #define BTG_JOINT_P2P_ROWS 3
 #define BTG_JOINT_HINGE_ROWS 6
@@ -26,6 +27,7 @@
 #define BTG_JOINT_MAX_ROWS 6
 #define BTG_JOINT_SIXDOF2_ROWS 24 /* per axis: two limit rows, a motor (or servo) row, a spring row */
 #define BTG_JOINT_SIXDOF_ROWS 6   /* one row per axis (limit and motor share it) */
+#define BTG_JOINT_GEAR_ROWS 1
 
 /* BtgJoint.flags */
 #define BTG_JOINT_ENABLED 1u   /* btTypedConstraint::isEnabled() as the app left it */
@@ -137,7 +139,7 @@ typedef struct {
     float twistSpan;
     float limitSoftness;      /* cone-twist: the limits act from softness x span */
     float fixThresh;          /* cone-twist: spans below this lock the swing (m_fixThresh) */
-    float pad0;
+    float gearRatio;          /* gear: m_ratio (its axes are axesA[0] and axesB[0]) */
     float pad1;
     float pad2;
     BtgSliderParams slider;   /* slider only */
@@ -207,6 +209,7 @@ static inline int btgJointMaxRows(int type)
     if (type == BTG_JOINT_SLIDER) return BTG_JOINT_SLIDER_ROWS;
     if (type == BTG_JOINT_SIXDOF2) return BTG_JOINT_SIXDOF2_ROWS;
     if (type == BTG_JOINT_SIXDOF) return BTG_JOINT_SIXDOF_ROWS;
+    if (type == BTG_JOINT_GEAR) return BTG_JOINT_GEAR_ROWS;
     return 0;
 }
 
@@ -318,6 +321,25 @@ static inline BtgJointInfoRow btgP2PInfoRow(BtgJoint j, BtgJointBody a, BtgJoint
         r.lower = -j.impulseClamp;
         r.upper = j.impulseClamp;
     }
+    return r;
+}
+
+/* btGearConstraint::getInfo2, its one row: the two bodies' angular velocities about their axes
+ * (in each body's frame) coupled by the ratio, axisA . wA + ratio axisB . wB = 0; no linear part,
+ * no error, unbounded; convertJoint's first-row cfm. */
+static inline BtgJointInfoRow btgGearInfoRow(BtgJoint j, BtgJointBody a, BtgJointBody b, float globalCfm)
+{
+    BtgJointInfoRow r;
+    BtgFloat4 axisA = btgMat3MulVec(a.basis, j.axesA[0]);
+    BtgFloat4 axisB = btgMat3MulVec(b.basis, j.axesB[0]);
+    r.linA = btgZero4();
+    r.linB = btgZero4();
+    r.angA = axisA;
+    r.angB = btgMake4(j.gearRatio * axisB.x, j.gearRatio * axisB.y, j.gearRatio * axisB.z, 0.0f);
+    r.error = 0.0f;
+    r.cfm = globalCfm;
+    r.lower = -INFINITY;
+    r.upper = INFINITY;
     return r;
 }
 

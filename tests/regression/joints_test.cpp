@@ -258,11 +258,13 @@ TEST(Joints, UnservedJointsKeepTheCpuPathNamingThem)
         EXPECT_NE(s->report()->cpuPathReason.find("AppJoint"), std::string::npos) << s->report()->cpuPathReason;
     }
     {
+        // A subclass of a served type is not the type: Bullet's own accumulated-angle hinge too.
         ScenePtr s = scenes::chain(WorldKind::Gpu, Config(), 2);
-        s->addJoint(new btGearConstraint(*s->body(2), *s->body(3), btVector3(0, 1, 0), btVector3(0, 1, 0)));
+        s->addJoint(new btHingeAccumulatedAngleConstraint(*s->body(2), btVector3(0, 0, 0), btVector3(0, 1, 0)));
         s->step();
         EXPECT_FALSE(s->gpuWorld()->isGpuPath());
-        EXPECT_NE(s->report()->cpuPathReason.find("btGearConstraint"), std::string::npos) << s->report()->cpuPathReason;
+        EXPECT_NE(s->report()->cpuPathReason.find("btHingeAccumulatedAngleConstraint"), std::string::npos)
+            << s->report()->cpuPathReason;
     }
     {
         Config c;
@@ -271,6 +273,41 @@ TEST(Joints, UnservedJointsKeepTheCpuPathNamingThem)
         s->step();
         EXPECT_FALSE(s->gpuWorld()->isGpuPath());
         EXPECT_NE(s->report()->cpuPathReason.find("Jacobi"), std::string::npos) << s->report()->cpuPathReason;
+    }
+}
+
+// btGearConstraint: a wheel driven by its hinge motor turns a geared one at -w / ratio, and a
+// wheel spun free shares its spin through the gear, as on stock, both ratios' signs.
+TEST(Joints, GearTurnsTheSecondWheelAsOnStock)
+{
+    for (double ratio : {2.0, -0.5}) {
+        SideBySide s([=](WorldKind k, const Config& c) { return scenes::gearPair(k, c, ratio, 2.0); });
+        STEP_ON_GPU(s, 120);
+        const double stockA = s.stock->body(0)->getAngularVelocity().y(), gpuA = s.gpu->body(0)->getAngularVelocity().y();
+        const double stockB = s.stock->body(1)->getAngularVelocity().y(), gpuB = s.gpu->body(1)->getAngularVelocity().y();
+        std::printf("gear ratio %.1f, motor 2 rad/s after 2 s: wheel 0 stock %.4f btgpu %.4f, wheel 1 stock %.4f btgpu %.4f\n",
+                    ratio, stockA, gpuA, stockB, gpuB);
+        EXPECT_NEAR(gpuA, 2.0, tol::kMotorSpeedRel * 2.0);
+        EXPECT_NEAR(gpuB, -gpuA / ratio, tol::kMotorSpeedRel * std::fabs(gpuA / ratio));
+        EXPECT_NEAR(gpuA, stockA, tol::kMotorSpeedRel * std::fabs(stockA));
+        EXPECT_NEAR(gpuB, stockB, tol::kMotorSpeedRel * std::fabs(stockB));
+        EXPECT_LT(s.distance(0), tol::kJointPosition * 10);
+        EXPECT_LT(s.distance(1), tol::kJointPosition * 10);
+        EXPECT_TRUE(has(*s.gpu->report(), "prepare_joints"));
+    }
+    {
+        // Free: wheel 0 starts at 3 rad/s; the gear's impulse shares it (equal inertias, ratio 2:
+        // w0 = 3 / (1 + 1/4) = 2.4, w1 = -1.2), the hinges' rows leaving the spin axis alone.
+        SideBySide s([](WorldKind k, const Config& c) { return scenes::gearPair(k, c, 2.0, 0.0); });
+        STEP_ON_GPU(s, 60);
+        const double gpuA = s.gpu->body(0)->getAngularVelocity().y(), gpuB = s.gpu->body(1)->getAngularVelocity().y();
+        const double stockA = s.stock->body(0)->getAngularVelocity().y(), stockB = s.stock->body(1)->getAngularVelocity().y();
+        std::printf("gear ratio 2, free after 1 s: wheel 0 stock %.4f btgpu %.4f, wheel 1 stock %.4f btgpu %.4f\n", stockA,
+                    gpuA, stockB, gpuB);
+        EXPECT_NEAR(gpuA, 2.4, 0.02 * 2.4);
+        EXPECT_NEAR(gpuB, -1.2, 0.02 * 1.2);
+        EXPECT_NEAR(gpuA, stockA, tol::kMotorSpeedRel * std::fabs(stockA));
+        EXPECT_NEAR(gpuB, stockB, tol::kMotorSpeedRel * std::fabs(stockB));
     }
 }
 

@@ -74,6 +74,21 @@ ScenePtr hingeDoor(WorldKind kind, const Config& config, double speed, double ma
     return s;
 }
 
+ScenePtr gearPair(WorldKind kind, const Config& config, double ratio, double speed)
+{
+    auto s = std::make_unique<Scene>(kind, config, "gear_pair");
+    btCollisionShape* wheel = s->ownShape(new btCylinderShape(btVector3(0.5f, 0.1f, 0.5f)));
+    btRigidBody* a = s->addBody(wheel, 2.0f, btVector3(-1.0f, 2.0f, 0));
+    btRigidBody* b = s->addBody(wheel, 2.0f, btVector3(1.2f, 2.0f, 0));
+    for (btRigidBody* w : {a, b}) w->setActivationState(DISABLE_DEACTIVATION);
+    auto* hingeA = s->addJoint(new btHingeConstraint(*a, btVector3(0, 0, 0), btVector3(0, 1, 0)));
+    s->addJoint(new btHingeConstraint(*b, btVector3(0, 0, 0), btVector3(0, 1, 0)));
+    if (speed != 0.0) hingeA->enableAngularMotor(true, btScalar(speed), 1.0f);
+    else a->setAngularVelocity(btVector3(0, 3, 0));
+    s->addJoint(new btGearConstraint(*a, *b, btVector3(0, 1, 0), btVector3(0, 1, 0), btScalar(ratio)));
+    return s;
+}
+
 ScenePtr ragdolls(WorldKind kind, const Config& config, int count)
 {
     auto s = std::make_unique<Scene>(kind, config, "ragdolls");

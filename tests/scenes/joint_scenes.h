@@ -35,6 +35,14 @@ ScenePtr jointedPair(WorldKind kind, const Config& config = Config());
 ScenePtr hingeDoor(WorldKind kind, const Config& config = Config(), double speed = 1.0, double maxImpulse = 0.5,
                    double lower = 1.0, double upper = -1.0);
 
+// Two wheels (cylinders of radius 0.5, half height 0.1, mass 2, their axes vertical) hinged to
+// Bullet's fixed body at x = -1 and x = +1.2, 2 m up (bodies 0 and 1), coupled by a
+// btGearConstraint of `ratio` about their vertical axes (joint 2; joints 0 and 1 the hinges).
+// Wheel 0 is driven by its hinge motor at `speed` rad/s (max impulse 1 N m s a step) when
+// `speed` is not 0, else it starts spinning at 3 rad/s, free; the gear turns wheel 1 at
+// -w0 / ratio (Bullet's gear row: axisA . wA + ratio axisB . wB = 0).
+ScenePtr gearPair(WorldKind kind, const Config& config = Config(), double ratio = 2.0, double speed = 2.0);
+
 // `count` ragdolls of scene_specs' makeRagdolls (11 capsules, 5 hinges, 5 cone-twists each, added
 // with disableCollisionsBetweenLinkedBodies) dropping onto a ground box; the benchmark's scene.
 ScenePtr ragdolls(WorldKind kind, const Config& config = Config(), int count = 4);

@@ -91,6 +91,24 @@ TEST(PrepareJoints, Point2PointRowsMatchBulletAndReference)
     EXPECT_EQ(got.edges[2].bodyB, 1);
 }
 
+// btGearConstraint: its one angular row from each body's axis and the ratio (any sign), on the
+// device against the reference and Bullet's getInfo1/getInfo2 for the same bodies.
+TEST(PrepareJoints, GearRowMatchesBulletAndReference)
+{
+    BulletBodies s;
+    btRigidBody* a = s.addBodyA();
+    btRigidBody* b = s.addBodyB();
+    const RowMap map = s.rowsOf(a, b);
+    std::vector<std::unique_ptr<btGearConstraint>> c;
+    c.emplace_back(new btGearConstraint(*a, *b, btVector3(0, 1, 0), btVector3(0, 1, 0)));
+    c.emplace_back(new btGearConstraint(*a, *b, btVector3(0.3f, -0.8f, 0.5f).normalized(), btVector3(1, 0, 0), 2.5f));
+    c.emplace_back(new btGearConstraint(*b, *a, btVector3(0, 0, 1), btVector3(0.6f, 0.0f, -0.8f), -0.4f));
+    c.back()->setBreakingImpulseThreshold(0.02f);
+    const RowKinds kinds = expectRowsAsBullet(s, map, c, BTG_JOINT_GEAR);
+    EXPECT_EQ(kinds.firstRows0, 1);
+    EXPECT_EQ(kinds.motors, 1);  // the last bounded on both sides by its breaking threshold
+}
+
 TEST(PrepareJoints, HingeRowsMatchBulletAndReference)
 {
     BulletBodies s;
