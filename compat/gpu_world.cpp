@@ -583,7 +583,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         // sweeps would hit (ccd_steps.h).
         const bool ccd = !m_ccdBodies.empty();
         bool perSubstep = m_world.m_internalTickCallback || m_world.m_internalPreTickCallback || actions || ghosts ||
-                          callbacks || ContactCallbacks::events() || stockPairs || ccd;
+                          callbacks || ContactCallbacks::events() || stockPairs || ccd || tracksAnglesEachStep(m_world);
         int batches = perSubstep ? clamped : 1;
         int perBatch = perSubstep ? 1 : clamped;
         for (int b = 0; b < batches; ++b) {

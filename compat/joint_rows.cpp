@@ -92,10 +92,17 @@ uint sixDofMode(bool motor, bool servo, bool spring, bool stiffLimited, bool dam
            (stiffLimited ? BTG_SIXDOF_STIFF_LIMITED : 0u) | (dampLimited ? BTG_SIXDOF_DAMP_LIMITED : 0u);
 }
 
+// A hinge: btHingeConstraint, or Bullet's btHingeAccumulatedAngleConstraint, whose rows are the
+// hinge's (it overrides getInfo1 only, to track its angle across the -pi/pi boundary).
+bool isHinge(const std::type_info& t)
+{
+    return t == typeid(btHingeConstraint) || t == typeid(btHingeAccumulatedAngleConstraint);
+}
+
 // The exact types the GPU path takes (whether this one's settings are served is served()).
 bool isServedType(const std::type_info& t)
 {
-    return t == typeid(btPoint2PointConstraint) || t == typeid(btHingeConstraint) || t == typeid(btConeTwistConstraint) ||
+    return t == typeid(btPoint2PointConstraint) || isHinge(t) || t == typeid(btConeTwistConstraint) ||
            t == typeid(btSliderConstraint) || isGeneric6Dof(t) || isSixDof2(t) || t == typeid(btGearConstraint);
 }
 
@@ -104,8 +111,7 @@ bool served(const btTypedConstraint& c)
     if (isSixDof2(typeid(c)) || typeid(c) == typeid(btGearConstraint)) return true;  // no obsolete solve
     if (typeid(c) == typeid(btPoint2PointConstraint))
         return !static_cast<const btPoint2PointConstraint&>(c).m_useSolveConstraintObsolete;
-    if (typeid(c) == typeid(btHingeConstraint))
-        return !(static_cast<const btHingeConstraint&>(c).*member(HingeObsolete()));
+    if (isHinge(typeid(c))) return !(static_cast<const btHingeConstraint&>(c).*member(HingeObsolete()));
     if (typeid(c) == typeid(btConeTwistConstraint)) {
         const auto& k = static_cast<const btConeTwistConstraint&>(c);
         return !(k.*member(ConeObsolete()));
@@ -197,7 +203,24 @@ void mirrorSprings(btTypedConstraint& c, const btContactSolverInfo& info)
     (k.*update)(&info2);
 }
 
+// Stock's getInfo1 of a btHingeAccumulatedAngleConstraint, called for an enabled joint at each
+// internal step's solve with the poses the step starts from, moves m_accumulatedAngle on by the
+// shortest turn to the hinge's angle; its getter does the same. Called with those poses (each
+// internal step is its own device call while such a joint exists: tracksAnglesEachStep).
+void trackAccumulatedAngle(btTypedConstraint& c)
+{
+    if (typeid(c) != typeid(btHingeAccumulatedAngleConstraint) || !c.isEnabled()) return;
+    static_cast<btHingeAccumulatedAngleConstraint&>(c).getAccumulatedHingeAngle();
+}
+
 }  // namespace
+
+bool tracksAnglesEachStep(const btDiscreteDynamicsWorld& world)
+{
+    for (int i = 0; i < world.getNumConstraints(); ++i)
+        if (typeid(*world.getConstraint(i)) == typeid(btHingeAccumulatedAngleConstraint)) return true;
+    return false;
+}
 
 std::string jointsStructureReason(const btDiscreteDynamicsWorld& world)
 {
@@ -214,7 +237,7 @@ std::string jointsStructureReason(const btDiscreteDynamicsWorld& world)
             return "joint " + std::to_string(i) + " links a body that is not in the world (its body B)";
         const std::type_info& t = typeid(*c);
         if (isSixDof2(t) || t == typeid(btGearConstraint)) continue;
-        if (t == typeid(btPoint2PointConstraint) || t == typeid(btHingeConstraint) || t == typeid(btConeTwistConstraint) ||
+        if (t == typeid(btPoint2PointConstraint) || isHinge(t) || t == typeid(btConeTwistConstraint) ||
             t == typeid(btSliderConstraint) || isGeneric6Dof(t)) {
             if (!served(*c))
                 return "joint " + std::to_string(i) + " (" + typeName(t) +
@@ -223,6 +246,7 @@ std::string jointsStructureReason(const btDiscreteDynamicsWorld& world)
         }
         return "joint " + std::to_string(i) + " of type " + typeName(t) +
                " is not on the GPU path (served, by exact type: btPoint2PointConstraint, btHingeConstraint, "
+               "btHingeAccumulatedAngleConstraint, "
                "btConeTwistConstraint, btSliderConstraint, btGeneric6DofConstraint, btUniversalConstraint, "
                "btGeneric6DofSpringConstraint, btGeneric6DofSpring2Constraint, btFixedConstraint, btHinge2Constraint, "
                "btGearConstraint)";
@@ -286,7 +310,7 @@ bool jointRow(const btTypedConstraint& c, const RowMap& rows, int numIterations,
         j.axesA[0] = vec4(g.getAxisA());
         j.axesB[0] = vec4(g.getAxisB());
         j.gearRatio = g.getRatio();
-    } else if (typeid(c) == typeid(btHingeConstraint)) {
+    } else if (isHinge(typeid(c))) {
         auto& h = const_cast<btHingeConstraint&>(static_cast<const btHingeConstraint&>(c));
         j.type = BTG_JOINT_HINGE;
         setFrame(h.getAFrame(), &j.pivotA, j.axesA);
@@ -441,6 +465,7 @@ void JointSync::upload(btDiscreteDynamicsWorld& world, const RowMap& rows, Devic
             m_constraints[i] = c;
             jointRow(*c, rows, numIterations, &table[i]);
             mirrorSprings(*c, world.getSolverInfo());
+            trackAccumulatedAngle(*c);
         }
     });
     int nextRow = 0, iterations = 0;

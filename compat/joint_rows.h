@@ -22,6 +22,10 @@ std::string jointsStructureReason(const btDiscreteDynamicsWorld& world);
 // after the add that no row here builds (the obsolete solve switched on).
 std::string jointsStepReason(const btDiscreteDynamicsWorld& world);
 
+// Whether a joint keeps host state that stock's solver updates at each internal step (a
+// btHingeAccumulatedAngleConstraint's angle): each internal step is then its own device call.
+bool tracksAnglesEachStep(const btDiscreteDynamicsWorld& world);
+
 class JointSync {
 public:
     // The world's joints as rows (bodies by row), uploaded where they differ from what the
