@@ -1,11 +1,19 @@
 // body_rows.cpp — reading Bullet bodies into rows.
 #include "body_rows.h"
+#include "private_member.h"
 
 #include <btBulletDynamicsCommon.h>
 
 #include <cmath>
 
 namespace btgpu {
+
+// btRigidBody's additional damping, set through btRigidBodyConstructionInfo only (no getter, no
+// setter); tags of private_member.h, at namespace scope as its explicit instantiations must be.
+BTGPU_PRIVATE_MEMBER(AdditionalDamping, btRigidBody, bool, m_additionalDamping);
+BTGPU_PRIVATE_MEMBER(AdditionalDampingFactor, btRigidBody, btScalar, m_additionalDampingFactor);
+BTGPU_PRIVATE_MEMBER(AdditionalLinearThresholdSqr, btRigidBody, btScalar, m_additionalLinearDampingThresholdSqr);
+BTGPU_PRIVATE_MEMBER(AdditionalAngularThresholdSqr, btRigidBody, btScalar, m_additionalAngularDampingThresholdSqr);
 
 namespace {
 BtgFloat4 f4(const btVector3& v, float w = 0.0f) { return btgMake4(v.x(), v.y(), v.z(), w); }
@@ -52,6 +60,12 @@ BtgBodyProps bodyProps(const btCollisionObject* obj, int shapeRow, const BtgShap
         p.gravity = f4(rb->getGravity());
         p.sleepLinear = rb->getLinearSleepingThreshold();
         p.sleepAngular = rb->getAngularSleepingThreshold();
+        if (rb->*member(AdditionalDamping())) {
+            flags |= BTG_BODY_ADDITIONAL_DAMPING;
+            p.additionalDampingFactor = rb->*member(AdditionalDampingFactor());
+            p.additionalLinearThresholdSqr = rb->*member(AdditionalLinearThresholdSqr());
+            p.additionalAngularThresholdSqr = rb->*member(AdditionalAngularThresholdSqr());
+        }
     } else {
         p.linearFactor = btgMake4(1, 1, 1, 0);
         p.angularFactor = btgMake4(1, 1, 1, 0);

@@ -42,35 +42,6 @@ struct DispatcherPeek : btCollisionDispatcher {
         &DispatcherPeek::m_doubleDispatchContactPoints;
 };
 
-// btRigidBody keeps m_additionalDamping private, with no getter; its serialize() writes it out.
-// This serializer only lets serialize() run (no names, no pointers to remap).
-struct NullSerializer : btSerializer {
-    const unsigned char* getBufferPointer() const override { return nullptr; }
-    int getCurrentBufferSize() const override { return 0; }
-    btChunk* allocate(size_t, int) override { return nullptr; }
-    void finalizeChunk(btChunk*, const char*, int, void*) override {}
-    void* findPointer(void*) override { return nullptr; }
-    void* getUniquePointer(void*) override { return nullptr; }
-    void startSerialization() override {}
-    void finishSerialization() override {}
-    const char* findNameForPointer(const void*) const override { return nullptr; }
-    void registerNameForPointer(const void*, const char*) override {}
-    void serializeName(const char*) override {}
-    int getSerializationFlags() const override { return 0; }
-    void setSerializationFlags(int) override {}
-    int getNumChunks() const override { return 0; }
-    const btChunk* getChunk(int) const override { return nullptr; }
-};
-
-bool additionalDamping(const btRigidBody* body)
-{
-    size_t size = std::max<size_t>(size_t(body->calculateSerializeBufferSize()), sizeof(btRigidBodyData));
-    std::vector<unsigned char> buffer(size);
-    NullSerializer serializer;
-    body->serialize(buffer.data(), &serializer);
-    return reinterpret_cast<const btRigidBodyData*>(buffer.data())->m_additionalDamping != 0;
-}
-
 std::string typeName(const std::type_info& type)
 {
 #if defined(__GNUG__)
@@ -232,13 +203,6 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, ShapeTables* s
             dynamicKinds |= kindBit;
         if (o->getCollisionShape()->getShapeType() == BOX_SHAPE_PROXYTYPE)
             (static_cast<const btBoxShape*>(o->getCollisionShape())->getConvexPolyhedron() ? featuredBox : plainBox) = true;
-        // Set only through btRigidBodyConstructionInfo, so it cannot change after the add (any
-        // body: a static one may be made dynamic later). btRigidBody::applyDamping then scales
-        // slow bodies' velocities down; the GPU path does not.
-        const btRigidBody* rb = btRigidBody::upcast(o);
-        if (rb && additionalDamping(rb))
-            return "body " + std::to_string(i) +
-                   ": additional damping (btRigidBodyConstructionInfo::m_additionalDamping)";
     }
     // A featured box is served as a featured hull (clipped against featured shapes, GJK against
     // the rest); against a box without features stock still runs btBoxBoxDetector.

@@ -3,6 +3,7 @@
 #include "joint_rows.h"
 
 #include "parallel_rows.h"
+#include "private_member.h"
 #include "shared/generic6dof_rows.h"
 
 #include <algorithm>
@@ -15,39 +16,10 @@
 
 namespace btgpu {
 
-namespace {
-
-std::string typeName(const std::type_info& t)
-{
-    int status = 0;
-    char* name = abi::__cxa_demangle(t.name(), nullptr, nullptr, &status);
-    std::string out = status == 0 && name ? name : t.name();
-    std::free(name);
-    return out;
-}
-
-BtgFloat4 vec4(const btVector3& v) { return btgMake4(v.x(), v.y(), v.z(), 0.0f); }
-
-int bodyRow(const btRigidBody& b, const RowMap& rows)
-{
-    if (&b == &btTypedConstraint::getFixedBody()) return BTG_JOINT_FIXED_BODY;
-    return rows.rowOf(&b);
-}
-
-// btHingeConstraint's private state that has no getter: the reference sign (fixed by the
-// constructor; setUseReferenceFrameA does not change it), the limit's centre, the setParam
-// values and the obsolete-solve flag. Read through member pointers named in an explicit
-// instantiation, where C++ does not check access (read only; nothing is written).
-template <class Tag, typename Tag::type Member>
-struct Reader {
-    friend typename Tag::type member(Tag) { return Member; }
-};
-#define BTGPU_PRIVATE_MEMBER(Name, Class, Type, Field)        \
-    struct Name {                                             \
-        using type = Type Class::*;                           \
-        friend type member(Name);                             \
-    };                                                        \
-    template struct Reader<Name, &Class::Field>
+// The joints' private state that has no getter (private_member.h; tags at namespace scope, as its
+// explicit instantiations must be): the hinge's reference sign (fixed by the constructor;
+// setUseReferenceFrameA does not change it), its limit's centre, the setParam values and the
+// obsolete-solve flags.
 BTGPU_PRIVATE_MEMBER(HingeReferenceSign, btHingeConstraint, btScalar, m_referenceSign);
 BTGPU_PRIVATE_MEMBER(HingeLimit, btHingeConstraint, btAngularLimit, m_limit);
 BTGPU_PRIVATE_MEMBER(HingeNormalCfm, btHingeConstraint, btScalar, m_normalCFM);
@@ -68,7 +40,26 @@ BTGPU_PRIVATE_MEMBER(SliderCfmLimAng, btSliderConstraint, btScalar, m_cfmLimAng)
 BTGPU_PRIVATE_MEMBER(SliderCfmOrthoLin, btSliderConstraint, btScalar, m_cfmOrthoLin);
 BTGPU_PRIVATE_MEMBER(SliderCfmOrthoAng, btSliderConstraint, btScalar, m_cfmOrthoAng);
 BTGPU_PRIVATE_MEMBER(SixDofFlags, btGeneric6DofSpring2Constraint, int, m_flags);
-#undef BTGPU_PRIVATE_MEMBER
+
+namespace {
+
+std::string typeName(const std::type_info& t)
+{
+    int status = 0;
+    char* name = abi::__cxa_demangle(t.name(), nullptr, nullptr, &status);
+    std::string out = status == 0 && name ? name : t.name();
+    std::free(name);
+    return out;
+}
+
+BtgFloat4 vec4(const btVector3& v) { return btgMake4(v.x(), v.y(), v.z(), 0.0f); }
+
+int bodyRow(const btRigidBody& b, const RowMap& rows)
+{
+    if (&b == &btTypedConstraint::getFixedBody()) return BTG_JOINT_FIXED_BODY;
+    return rows.rowOf(&b);
+}
+
 
 // btGeneric6DofConstraint by exact type, and the two Bullet classes that derive from it and add
 // nothing to its rows but their construction (btUniversalConstraint) or their springs

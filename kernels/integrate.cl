@@ -1,5 +1,5 @@
 /* integrate.cl — Stage: integrate (three kernels, one work-item per body row).
- * predict_motion   Reads props. Writes linVel, angVel (damping).
+ * predict_motion   Reads props. Writes linVel, angVel (damping, additional damping).
  * apply_forces     Reads rot, props, extForce, extTorque. Writes invInertiaWorld, linVel0,
  *                  angVel0 (velocities before forces, for restitution), linVel, angVel,
  *                  pushLin/pushAng (zeroed for the split-impulse passes).
@@ -15,8 +15,11 @@ __kernel void predict_motion(int n, __global const BtgBodyProps* restrict props,
     if (i >= n) return;
     BtgBodyProps p = props[i];
     if (!btgIsMoving(p.flags)) return;
-    linVel[i] = btgDamp(linVel[i], p.linearDamping, dt);
-    angVel[i] = btgDamp(angVel[i], p.angularDamping, dt);
+    BtgFloat4 v = btgDamp(linVel[i], p.linearDamping, dt);
+    BtgFloat4 w = btgDamp(angVel[i], p.angularDamping, dt);
+    btgAdditionalDamping(&v, &w, p);
+    linVel[i] = v;
+    angVel[i] = w;
 }
 
 __kernel void apply_forces(int n, __global const BtgFloat4* restrict rot, __global const BtgBodyProps* restrict props,

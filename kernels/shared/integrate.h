@@ -20,6 +20,29 @@ static inline BtgFloat4 btgDamp(BtgFloat4 v, float damping, float dt)
     return btgXyz(v) * btgPow(1.0f - damping, dt);
 }
 
+/* btRigidBody::applyDamping's additional damping (m_additionalDamping), after the plain
+ * damping: a body slower than both thresholds is scaled by the factor; then a speed below the
+ * damping coefficient itself (Bullet compares the two) is cut by 0.005 or to zero, linear and
+ * angular alike. */
+static inline BtgFloat4 btgCutSlow(BtgFloat4 v, float below)
+{
+    const float dampVel = 0.005f;
+    float speed = btgSqrt(btgDot3(v, v));
+    if (!(speed < below)) return v;
+    if (speed > dampVel) return v - v * (dampVel / speed);
+    return btgZero4();
+}
+static inline void btgAdditionalDamping(BtgFloat4* lin, BtgFloat4* ang, BtgBodyProps p)
+{
+    if (!(p.flags & BTG_BODY_ADDITIONAL_DAMPING)) return;
+    if (btgDot3(*ang, *ang) < p.additionalAngularThresholdSqr && btgDot3(*lin, *lin) < p.additionalLinearThresholdSqr) {
+        *ang = *ang * p.additionalDampingFactor;
+        *lin = *lin * p.additionalDampingFactor;
+    }
+    *lin = btgCutSlow(*lin, p.linearDamping);
+    *ang = btgCutSlow(*ang, p.angularDamping);
+}
+
 /* Linear velocity after app forces and gravity: force already carries the linear factor
  * (btRigidBody::applyCentralForce applies it), gravity gets it here (applyGravity). */
 static inline BtgFloat4 btgApplyLinearForces(BtgFloat4 linVel, BtgFloat4 force, BtgBodyProps p, float dt)

@@ -21,6 +21,7 @@
 #define BTG_BODY_STIFFNESS_DAMPING 1024u /* CF_HAS_CONTACT_STIFFNESS_DAMPING: soft contacts */
 #define BTG_BODY_ANISOTROPIC 2048u        /* CF_ANISOTROPIC_FRICTION: friction directions scaled */
 #define BTG_BODY_ANISOTROPIC_ROLLING 4096u /* CF_ANISOTROPIC_ROLLING_FRICTION: rolling axes scaled */
+#define BTG_BODY_ADDITIONAL_DAMPING 8192u  /* m_additionalDamping: applyDamping's extra damping of slow bodies */
 
 /* Shape kinds (BtgShape.type). Which pairs of them collide, and how, is the pair-kind table
  * (pair_kinds.h), which follows stock's choice of algorithm per pair: BOX is a btBoxShape (a
@@ -99,6 +100,11 @@ typedef struct {
     float spinningFriction;    /* coefficient (m_spinningFriction) */
     float contactStiffness;    /* N/m (m_contactStiffness; read with BTG_BODY_STIFFNESS_DAMPING) */
     float contactDamping;      /* N s/m (m_contactDamping) */
+    /* btRigidBodyConstructionInfo's additional damping (read with BTG_BODY_ADDITIONAL_DAMPING) */
+    float additionalDampingFactor;      /* m_additionalDampingFactor */
+    float additionalLinearThresholdSqr; /* m_additionalLinearDampingThresholdSqr, (m/s)^2 */
+    float additionalAngularThresholdSqr;/* m_additionalAngularDampingThresholdSqr, (rad/s)^2 */
+    float pad0;
 } BtgBodyProps;
 
 /* One collision shape; hull data live in the shared vertex/face/index/edge tables. */
@@ -390,7 +396,7 @@ typedef struct {
 #define BTG_STATUS_SUB_PAIR_OVERFLOW 16u   /* the midphase found more triangles than subPairs holds */
 
 #ifndef __OPENCL_C_VERSION__
-static_assert(sizeof(BtgBodyProps) == 144, "BtgBodyProps layout");
+static_assert(sizeof(BtgBodyProps) == 160, "BtgBodyProps layout");
 static_assert(sizeof(BtgShape) == 112, "BtgShape layout");
 static_assert(sizeof(BtgFace) == 32, "BtgFace layout");
 static_assert(sizeof(BtgPair) == 16, "BtgPair layout");

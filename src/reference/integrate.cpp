@@ -11,6 +11,7 @@ void predictMotion(Bodies& b, float dt)
         if (!btgIsMoving(b.props[i].flags)) continue;
         b.linVel[i] = btgDamp(b.linVel[i], b.props[i].linearDamping, dt);
         b.angVel[i] = btgDamp(b.angVel[i], b.props[i].angularDamping, dt);
+        btgAdditionalDamping(&b.linVel[i], &b.angVel[i], b.props[i]);
     }
 }
 

@@ -1,6 +1,7 @@
 // body_properties_test.cpp — per-body settings an app sets on btRigidBody, on stock Bullet and
 // on btgpu side by side: damping, linear and angular factors, per-body gravity,
-// CF_NO_CONTACT_RESPONSE, an applied torque. Each must move its body as stock does.
+// CF_NO_CONTACT_RESPONSE, an applied torque, additional damping. Each must move its body as
+// stock does.
 #include <gtest/gtest.h>
 
 #include "side_by_side.h"
@@ -52,4 +53,63 @@ TEST(BodyProperties, SettingsMoveBodiesAsStock)
     const double w1 = s.gpu->body(1)->getAngularVelocity().y(), k1 = s.stock->body(1)->getAngularVelocity().y();
     EXPECT_NEAR(w1, k1, 1e-4) << "angular damping";
     EXPECT_TRUE(s.onGpu());
+}
+
+// btRigidBodyConstructionInfo::m_additionalDamping (ragdoll and game code set it): a slow body is
+// scaled by the factor each step, one slower than its damping coefficient cut by 5 mm/s a step,
+// as applyDamping does; fast bodies and bodies without it are left alone. Weightless boxes far
+// apart, so only damping acts.
+TEST(BodyProperties, AdditionalDampingAsStock)
+{
+    struct Case {
+        btVector3 v, w;
+        float linDamp, angDamp;
+        bool additional;
+    };
+    const Case cases[] = {
+        {btVector3(0.05f, 0, 0), btVector3(0, 0.05f, 0), 0.0f, 0.0f, true},   // below both thresholds: scaled to rest
+        {btVector3(0.5f, 0, 0), btVector3(0, 0, 0.4f), 0.6f, 0.5f, true},     // slower than its damping: cut
+        {btVector3(2.0f, 0, 0), btVector3(0, 3.0f, 0), 0.1f, 0.1f, true},     // fast: plain damping only
+        {btVector3(0.05f, 0, 0), btVector3(0, 0.05f, 0), 0.0f, 0.0f, false},  // without it: keeps moving
+        {btVector3(0.004f, 0, 0), btVector3(0, 0, 0.003f), 0.2f, 0.2f, true}, // slower than the cut: stopped
+    };
+    auto make = [&](WorldKind k, const Config& c) {
+        auto scene = std::make_unique<Scene>(k, c, "additional_damping");
+        btBoxShape* box = scene->boxShape(btVector3(.5, .5, .5));
+        btVector3 inertia;
+        box->calculateLocalInertia(1, inertia);
+        for (int i = 0; i < int(std::size(cases)); ++i) {
+            btRigidBody::btRigidBodyConstructionInfo info(1, nullptr, box, inertia);
+            info.m_additionalDamping = cases[i].additional;
+            info.m_linearDamping = cases[i].linDamp;
+            info.m_angularDamping = cases[i].angDamp;
+            btTransform t;
+            t.setIdentity();
+            t.setOrigin(btVector3(btScalar(10 * i), 0, 0));
+            btRigidBody* b = scene->addBody(info, t);
+            b->setGravity(btVector3(0, 0, 0));
+            b->setLinearVelocity(cases[i].v);
+            b->setAngularVelocity(cases[i].w);
+            b->setActivationState(DISABLE_DEACTIVATION);
+        }
+        return ScenePtr(std::move(scene));
+    };
+    SideBySide s(make);
+    for (int step = 0; step < 60; ++step) {
+        s.step();
+        ASSERT_TRUE(s.onGpu()) << step;
+        for (int i = 0; i < int(std::size(cases)); ++i) {
+            const btRigidBody *g = s.gpu->body(i), *k = s.stock->body(i);
+            EXPECT_LT((g->getLinearVelocity() - k->getLinearVelocity()).length(), 1e-5) << "body " << i << " step " << step;
+            EXPECT_LT((g->getAngularVelocity() - k->getAngularVelocity()).length(), 1e-5) << "body " << i << " step " << step;
+        }
+    }
+    for (int i = 0; i < int(std::size(cases)); ++i) EXPECT_LT(s.distance(i), 1e-5) << "body " << i;
+    // What applyDamping does: the slow one at rest at once; the cut one at 0.5 - 0.005 a step
+    // (less its plain damping); the one without the setting still moving.
+    EXPECT_EQ(s.gpu->body(0)->getLinearVelocity().length(), 0.0f);
+    EXPECT_LT(s.gpu->body(1)->getLinearVelocity().length(), 0.5 - 60 * 0.005);
+    EXPECT_GT(s.gpu->body(2)->getLinearVelocity().length(), 1.0);
+    EXPECT_NEAR(s.gpu->body(3)->getLinearVelocity().length(), 0.05, 1e-6);
+    EXPECT_EQ(s.gpu->body(4)->getAngularVelocity().length(), 0.0f);
 }

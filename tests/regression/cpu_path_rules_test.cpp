@@ -369,22 +369,18 @@ TEST(CpuPathRules, GoingToTheCpuPathAfterLandingFindsTheGroundPairs)
 
 TEST(CpuPathRules, StructureRulesFallBackAndComeBack)
 {
-    // Additional damping is set only through the construction info; removing the body clears it.
+    // A box with polyhedral features beside plain boxes (stock collides the two kinds apart);
+    // removing it brings the GPU path back.
     ScenePtr scene = scenes::dropRow(WorldKind::Gpu);
     scene->step();
-    btBoxShape* box = scene->boxShape(btVector3(.5, .5, .5));
-    btVector3 inertia;
-    box->calculateLocalInertia(1, inertia);
-    btRigidBody::btRigidBodyConstructionInfo info(1, nullptr, box, inertia);
-    info.m_additionalDamping = true;
-    info.m_startWorldTransform.setOrigin(btVector3(6, 3, 0));
-    btRigidBody damped(info);
-    scene->world().addRigidBody(&damped);
+    btBoxShape* featured = scene->boxShape(btVector3(.5, .5, .5));
+    featured->initializePolyhedralFeatures();
+    btRigidBody* body = scene->addBody(featured, 1, btVector3(6, 3, 0));
     scene->step();
     const Report& r = *scene->report();
     EXPECT_FALSE(r.gpuPath);
-    EXPECT_NE(r.cpuPathReason.find("additional damping"), std::string::npos) << r.cpuPathReason;
-    scene->world().removeRigidBody(&damped);
+    EXPECT_NE(r.cpuPathReason.find("polyhedral features"), std::string::npos) << r.cpuPathReason;
+    scene->removeBody(body);
     scene->step();
     EXPECT_TRUE(r.gpuPath) << r.cpuPathReason;
 }

@@ -92,10 +92,15 @@ btRigidBody* Scene::addBody(btCollisionShape* shape, btScalar mass, const btTran
 {
     btVector3 inertia(0, 0, 0);
     if (mass != btScalar(0)) shape->calculateLocalInertia(mass, inertia);
-    auto* motionState = new btDefaultMotionState(transform);
-    btRigidBody::btRigidBodyConstructionInfo info(mass, motionState, shape, inertia);
+    btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape, inertia);
     info.m_friction = material.friction;
     info.m_restitution = material.restitution;
+    return addBody(info, transform);
+}
+
+btRigidBody* Scene::addBody(btRigidBody::btRigidBodyConstructionInfo info, const btTransform& transform)
+{
+    info.m_motionState = new btDefaultMotionState(transform);
     auto* body = new btRigidBody(info);
     body->setUserIndex(static_cast<int>(m_bodies.size()));
     m_bodies.push_back(body);

@@ -66,6 +66,9 @@ public:
                          const Material& material = Material());
     btRigidBody* addBody(btCollisionShape* shape, btScalar mass, const btVector3& origin,
                          const Material& material = Material());
+    // A body made from the app's own construction info (settings only it carries, such as
+    // m_additionalDamping); the scene gives it a btDefaultMotionState at `transform`.
+    btRigidBody* addBody(btRigidBody::btRigidBodyConstructionInfo info, const btTransform& transform);
     // A kinematic body (CF_KINEMATIC_OBJECT, DISABLE_DEACTIVATION), moved through its motion state.
     btRigidBody* addKinematic(btCollisionShape* shape, const btTransform& transform,
                               const Material& material = Material());

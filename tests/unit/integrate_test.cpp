@@ -39,6 +39,16 @@ reference::Bodies randomBodies(int n, unsigned seed)
         p.gravity = btgMake4(0, -10, 0, 0);
         p.friction = 0.5f;
         p.flags = (i % 7 == 0) ? BTG_BODY_STATIC : BTG_BODY_DYNAMIC | (i % 2 ? BTG_BODY_GYRO : 0u);
+        if (i % 3 == 1) {
+            // Additional damping with thresholds that catch some of these velocities and a
+            // damping coefficient above some speeds (applyDamping's cut).
+            p.flags |= BTG_BODY_ADDITIONAL_DAMPING;
+            p.additionalDampingFactor = 0.005f;
+            p.additionalLinearThresholdSqr = 1.0f;
+            p.additionalAngularThresholdSqr = 4.0f;
+            p.linearDamping = 0.9f;
+            p.angularDamping = 0.9f;
+        }
         b.props.push_back(p);
     }
     return b;
