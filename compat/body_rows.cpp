@@ -51,6 +51,8 @@ BtgBodyProps bodyProps(const btCollisionObject* obj, int shapeRow, const BtgShap
         flags |= BTG_BODY_CUSTOM_MATERIAL;
     if (rb) {
         if (rb->getFlags() & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY) flags |= BTG_BODY_GYRO;
+        if (rb->getFlags() & BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT) flags |= BTG_BODY_GYRO_EXPLICIT;
+        if (rb->getFlags() & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD) flags |= BTG_BODY_GYRO_WORLD;
         p.invMass = (flags & BTG_BODY_DYNAMIC) ? rb->getInvMass() : 0.0f;
         p.invInertiaLocal = f4(rb->getInvInertiaDiagLocal());
         p.linearFactor = f4(rb->getLinearFactor());

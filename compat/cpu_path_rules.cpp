@@ -291,8 +291,8 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
     // m_restingContactRestitutionThreshold ("unused as of 2.81"),
     // m_singleAxisRollingFrictionThreshold, the m_deformable_* fields, m_articulatedWarmstartingFactor,
     // m_jointFeedback*, m_reportSolverAnalytics, m_numNonContactInnerIterations (multibody and
-    // soft only). m_frictionERP only acts on friction anchors and m_maxGyroscopicForce only on
-    // BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT bodies, both body rules. m_minimumSolverBatchSize only
+    // soft only). m_frictionERP only acts on friction anchors (a body rule); m_maxGyroscopicForce bounds
+    // BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT bodies' term (BtgStepParams). m_minimumSolverBatchSize only
     // groups independent islands into one solve, which changes no island's result.
     const btContactSolverInfo& info = world.getSolverInfo();
     static const btContactSolverInfo stock;
@@ -382,8 +382,7 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     // Continuous collision detection (setCcdMotionThreshold) is served step by step: the GPU path
     // where stock's sweeps hit nothing (they then change nothing), the CPU path for a step where
     // one hits (ccd_steps.h; GpuWorld gathers the bodies).
-    if (rb->getFlags() & (BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT | BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD))
-        return "explicit or world-frame gyroscopic term (BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT, _IMPLICIT_WORLD)";
+    // All three gyroscopic terms (explicit, implicit world and body frame) are apply_forces'.
     return "";
 }
 

@@ -189,7 +189,8 @@ void GpuWorld::makePlan()
         b.movable = !o->isStaticObject() || o->isKinematicObject() || ghost;
         b.dynamic = !o->isStaticOrKinematicObject() && !ghost;
         const btRigidBody* rb = btRigidBody::upcast(o);
-        b.gyroscopic = rb && (rb->getFlags() & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);
+        b.gyroscopic = rb && (rb->getFlags() & (BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY | BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT |
+                                               BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD));
         in.bodies.push_back(b);
     }
     DerivedPlan d = derivePlan(in);
@@ -309,6 +310,7 @@ StepSettings GpuWorld::settings(int substeps, btScalar dt) const
         p.solverFlags |= BTG_SOLVER_VELOCITY_INDEPENDENT_FRICTION;
     p.sor = info.m_sor;
     p.globalCfm = info.m_globalCfm;
+    p.maxGyroscopicForce = info.m_maxGyroscopicForce;
     s.substeps = substeps;
     s.iterations = std::max(info.m_numIterations, 1);
     s.maxColors = std::max(m_config.maxColors, 2);

@@ -26,7 +26,7 @@ __kernel void apply_forces(int n, __global const BtgFloat4* restrict rot, __glob
                            __global const BtgFloat4* restrict extForce, __global const BtgFloat4* restrict extTorque,
                            __global BtgFloat4* invInertiaWorld, __global BtgFloat4* linVel0, __global BtgFloat4* angVel0,
                            __global BtgFloat4* linVel, __global BtgFloat4* angVel, __global BtgFloat4* pushLin,
-                           __global BtgFloat4* pushAng, float dt)
+                           __global BtgFloat4* pushAng, float dt, float maxGyroscopicForce)
 {
     int i = get_global_id(0);
     if (i >= n) return;
@@ -46,7 +46,7 @@ __kernel void apply_forces(int n, __global const BtgFloat4* restrict rot, __glob
     pushAng[i] = btgZero4();
     if (!btgIsMoving(p.flags)) return;
     linVel[i] = btgApplyLinearForces(v, extForce[i], p, dt);
-    angVel[i] = btgApplyAngularForces(w, extTorque[i], q, iw, p, dt);
+    angVel[i] = btgApplyAngularForces(w, extTorque[i], q, iw, p, dt, maxGyroscopicForce);
 }
 
 __kernel void integrate_transforms(int n, __global const BtgBodyProps* restrict props,

@@ -51,7 +51,7 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
             break;
         case Stage::NarrowphaseMesh: narrowphaseMesh(w, plan.kinds); break;
         case Stage::FilterPairs: filterPairs(w); break;
-        case Stage::ApplyForces: applyForces(w, p.dt); break;
+        case Stage::ApplyForces: applyForces(w, p.dt, p.maxGyroscopicForce); break;
         case Stage::ContactCache: buildContacts(w, p); break;
         case Stage::PrepareContacts: prepareContacts(w, p); break;
         case Stage::ContactCallbacks: applyContactMaterials(w, p); break;

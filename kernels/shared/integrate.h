@@ -53,17 +53,23 @@ static inline BtgFloat4 btgApplyLinearForces(BtgFloat4 linVel, BtgFloat4 force, 
 }
 
 /* Angular velocity after app torque (factor already applied by applyTorque) and, when asked,
- * Bullet's implicit body-frame gyroscopic term computed from the pre-torque velocity. */
+ * Bullet's gyroscopic terms computed from the pre-torque velocity, in convertBodies' order:
+ * explicit (as a torque, bounded by maxGyro), implicit world frame, implicit body frame. */
 static inline BtgFloat4 btgApplyAngularForces(BtgFloat4 angVel, BtgFloat4 torque, BtgFloat4 rot, BtgMat3 invIw,
-                                             BtgBodyProps p, float dt)
+                                             BtgBodyProps p, float dt, float maxGyro)
 {
     BtgFloat4 w = btgXyz(angVel) + btgMat3MulVec(invIw, torque) * dt;
-    if (p.flags & BTG_BODY_GYRO) {
-        BtgFloat4 ii = p.invInertiaLocal;
-        BtgFloat4 inertia = btgMake4(ii.x != 0.0f ? 1.0f / ii.x : 0.0f, ii.y != 0.0f ? 1.0f / ii.y : 0.0f,
-                                     ii.z != 0.0f ? 1.0f / ii.z : 0.0f, 0.0f);
-        w += btgGyroscopicImpulse(rot, angVel, inertia, dt);
+    if (!(p.flags & (BTG_BODY_GYRO | BTG_BODY_GYRO_EXPLICIT | BTG_BODY_GYRO_WORLD))) return w;
+    /* getLocalInertia: the inverse of the inverse, 0 where that is 0. */
+    BtgFloat4 ii = p.invInertiaLocal;
+    BtgFloat4 inertia = btgMake4(ii.x != 0.0f ? 1.0f / ii.x : 0.0f, ii.y != 0.0f ? 1.0f / ii.y : 0.0f,
+                                 ii.z != 0.0f ? 1.0f / ii.z : 0.0f, 0.0f);
+    if (p.flags & (BTG_BODY_GYRO_EXPLICIT | BTG_BODY_GYRO_WORLD)) {
+        BtgMat3 iw = btgInvInertiaWorld(rot, inertia); /* R diag(I) R^T */
+        if (p.flags & BTG_BODY_GYRO_EXPLICIT) w -= btgMat3MulVec(invIw, btgGyroscopicForceExplicit(iw, angVel, maxGyro)) * dt;
+        if (p.flags & BTG_BODY_GYRO_WORLD) w += btgGyroscopicImpulseWorld(iw, angVel, dt);
     }
+    if (p.flags & BTG_BODY_GYRO) w += btgGyroscopicImpulse(rot, angVel, inertia, dt);
     return w;
 }
 

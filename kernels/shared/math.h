@@ -136,6 +136,32 @@ static inline BtgMat3 btgSkew(BtgFloat4 v)
     m.r2 = btgMake4(-v.y, v.x, 0.0f, 0.0f);
     return m;
 }
+/* Bullet's implicit world-frame gyroscopic term (computeGyroscopicImpulseImplicit_World): the
+ * same Newton step with the world inertia tensor iw (R diag(I) R^T). */
+static inline BtgFloat4 btgGyroscopicImpulseWorld(BtgMat3 iw, BtgFloat4 angVel, float dt)
+{
+    BtgFloat4 w = btgXyz(angVel);
+    BtgFloat4 iwo = btgMat3MulVec(iw, w);
+    /* evalEulerEqn at w1 = w0 without torque: I w1 + w1 x I w1 dt - I w0. */
+    BtgFloat4 f = iwo + btgCross3(w, iwo) * dt - iwo;
+    BtgMat3 s0i = btgMat3Mul(btgSkew(w), iw);
+    BtgMat3 s1 = btgSkew(iwo);
+    BtgMat3 j;
+    j.r0 = iw.r0 + (s0i.r0 - s1.r0) * dt;
+    j.r1 = iw.r1 + (s0i.r1 - s1.r1) * dt;
+    j.r2 = iw.r2 + (s0i.r2 - s1.r2) * dt;
+    return -btgSolve33(j, f);
+}
+/* Bullet's explicit gyroscopic force (computeGyroscopicForceExplicit): w x I w with the world
+ * inertia tensor, its length bounded by maxForce. */
+static inline BtgFloat4 btgGyroscopicForceExplicit(BtgMat3 iw, BtgFloat4 angVel, float maxForce)
+{
+    BtgFloat4 w = btgXyz(angVel);
+    BtgFloat4 gf = btgCross3(w, btgMat3MulVec(iw, w));
+    float l2 = btgDot3(gf, gf);
+    if (l2 > maxForce * maxForce) gf = gf * (1.0f / btgSqrt(l2) * maxForce);
+    return gf;
+}
 /* Bullet's implicit body-frame gyroscopic term (computeGyroscopicImpulseImplicit_Body):
  * one Newton step on the Euler equation, returns the change of world angular velocity. */
 static inline BtgFloat4 btgGyroscopicImpulse(BtgFloat4 rot, BtgFloat4 angVel, BtgFloat4 localInertia, float dt)

@@ -22,6 +22,8 @@
 #define BTG_BODY_ANISOTROPIC 2048u        /* CF_ANISOTROPIC_FRICTION: friction directions scaled */
 #define BTG_BODY_ANISOTROPIC_ROLLING 4096u /* CF_ANISOTROPIC_ROLLING_FRICTION: rolling axes scaled */
 #define BTG_BODY_ADDITIONAL_DAMPING 8192u  /* m_additionalDamping: applyDamping's extra damping of slow bodies */
+#define BTG_BODY_GYRO_EXPLICIT 16384u     /* BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT (bounded by m_maxGyroscopicForce) */
+#define BTG_BODY_GYRO_WORLD 32768u        /* BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD */
 
 /* Shape kinds (BtgShape.type). Which pairs of them collide, and how, is the pair-kind table
  * (pair_kinds.h), which follows stock's choice of algorithm per pair: BOX is a btBoxShape (a
@@ -380,6 +382,8 @@ typedef struct {
                                     Bullet's default is 1 (a zeroed BtgStepParams must set it) */
     float globalCfm;             /* m_globalCfm (contacts; the joints take theirs from BtgJointStepParams) */
     int pad0;
+    float maxGyroscopicForce;    /* m_maxGyroscopicForce: bounds the explicit gyroscopic term, N m */
+    int pad1, pad2, pad3;
 } BtgStepParams;
 /* BtgStepParams.solverFlags */
 #define BTG_SOLVER_VELOCITY_INDEPENDENT_FRICTION 1u /* SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION:
@@ -410,7 +414,7 @@ static_assert(sizeof(BtgRollingContact) == 16 * 5 + 32, "BtgRollingContact layou
 static_assert(sizeof(BtgFrictionDirs) == 32 * BTG_MAX_POINTS, "BtgFrictionDirs layout");
 static_assert(sizeof(BtgCachedContact) == 16 * (BTG_MAX_POINTS + 2 * BTG_WARMSTART_FRICTION) + 4 * BTG_MAX_POINTS + 32,
               "BtgCachedContact layout");
-static_assert(sizeof(BtgStepParams) == 64, "BtgStepParams layout");
+static_assert(sizeof(BtgStepParams) == 80, "BtgStepParams layout");
 static_assert(sizeof(BtgPersistentManifold) == 16 * 3 * BTG_MAX_POINTS + 4 * BTG_MAX_POINTS + 32,
               "BtgPersistentManifold layout");
 #endif

@@ -15,7 +15,7 @@ void predictMotion(Bodies& b, float dt)
     }
 }
 
-void applyForces(Bodies& b, float dt, std::vector<BtgFloat4>& iw)
+void applyForces(Bodies& b, float dt, std::vector<BtgFloat4>& iw, float maxGyroscopicForce)
 {
     iw.assign(3 * b.props.size(), btgZero4());
     for (size_t i = 0; i < b.props.size(); ++i) {
@@ -28,7 +28,7 @@ void applyForces(Bodies& b, float dt, std::vector<BtgFloat4>& iw)
         if (!btgIsMoving(p.flags)) continue;
         BtgFloat4 w = b.angVel[i];
         b.linVel[i] = btgApplyLinearForces(b.linVel[i], b.extForce[i], p, dt);
-        b.angVel[i] = btgApplyAngularForces(w, b.extTorque[i], b.rot[i], m, p, dt);
+        b.angVel[i] = btgApplyAngularForces(w, b.extTorque[i], b.rot[i], m, p, dt, maxGyroscopicForce);
     }
 }
 

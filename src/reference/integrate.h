@@ -15,7 +15,7 @@ struct Bodies {
 
 void predictMotion(Bodies& b, float dt);
 // Also returns the world inverse inertia rows (3 per body).
-void applyForces(Bodies& b, float dt, std::vector<BtgFloat4>& invInertiaWorld);
+void applyForces(Bodies& b, float dt, std::vector<BtgFloat4>& invInertiaWorld, float maxGyroscopicForce = 100.0f);
 void integrateTransforms(Bodies& b, float dt, float turnErp);
 
 }  // namespace btgpu::reference

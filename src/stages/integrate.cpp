@@ -10,11 +10,12 @@ void predictMotion(DeviceWorld& w, float dt)
         .run(w.numBodies);
 }
 
-void applyForces(DeviceWorld& w, float dt)
+void applyForces(DeviceWorld& w, float dt, float maxGyroscopicForce)
 {
     cl::Launch(w.ctx, w.ctx.program("integrate").kernel("apply_forces"), &w.profiler)
         .arg(w.numBodies).arg(w.rot).arg(w.props).arg(w.extForce).arg(w.extTorque).arg(w.invInertiaWorld)
         .arg(w.linVel0).arg(w.angVel0).arg(w.linVel).arg(w.angVel).arg(w.pushLin).arg(w.pushAng).arg(dt)
+        .arg(maxGyroscopicForce)
         .run(w.numBodies);
 }
 

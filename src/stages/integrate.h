@@ -7,6 +7,6 @@
 
 namespace btgpu {
 void predictMotion(DeviceWorld& w, float dt);
-void applyForces(DeviceWorld& w, float dt);
+void applyForces(DeviceWorld& w, float dt, float maxGyroscopicForce = 100.0f);  // m_maxGyroscopicForce
 void integrateTransforms(DeviceWorld& w, float dt, float splitTurnErp);
 }  // namespace btgpu

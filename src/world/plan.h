@@ -67,7 +67,7 @@ struct Plan {
     bool hasDynamic = false;   // anything to integrate
     bool hasLarge = false;     // bodies outside the uniform grid
     bool hasPlanes = false;
-    bool gyroscopic = false;   // some body asks for the implicit gyroscopic term
+    bool gyroscopic = false;   // some body asks for a gyroscopic term
     bool hasJoints = false;    // the app added joints (served ones: the rules send the rest away)
     bool hasIgnoredPairs = false;  // objects ignore each other's collision check (filter_pairs)
     bool hasCompounds = false;     // compound bodies (expand_compounds)
@@ -92,7 +92,7 @@ struct PlanBody {
     float size = 0.0f;       // m: bounding diameter about the body origin (planes: 0)
     bool movable = false;    // not static (dynamic or kinematic)
     bool dynamic = false;    // moved by the solver
-    bool gyroscopic = false;  // asks for the implicit gyroscopic term
+    bool gyroscopic = false;  // asks for a gyroscopic term (explicit, implicit world or body frame)
     bool live = true;        // false: a retired row (no body), ignored
 };
 struct PlanInput {

@@ -221,12 +221,6 @@ std::vector<Rule> rules()
              s.body(3)->setCcdSweptSphereRadius(0);
              s.world().getPairCache()->setOverlapFilterCallback(nullptr);
          }},
-        {"explicit gyroscopic term", "gyroscopic",
-         [](Scene& s) { s.body(1)->setFlags(s.body(1)->getFlags() | BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT); },
-         [](Scene& s) { s.body(1)->setFlags(s.body(1)->getFlags() & ~BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT); }},
-        {"world-frame gyroscopic term", "gyroscopic",
-         [](Scene& s) { s.body(1)->setFlags(s.body(1)->getFlags() | BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD); },
-         [](Scene& s) { s.body(1)->setFlags(s.body(1)->getFlags() & ~BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD); }},
         {"shape swapped for a convex mesh with polyhedral features", "polyhedral features",
          [](Scene& s) { s.body(2)->setCollisionShape(&featured); },
          [](Scene& s) { s.body(2)->setCollisionShape(s.body(1)->getCollisionShape()); }},

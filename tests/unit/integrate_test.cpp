@@ -2,10 +2,13 @@
 // free fall follows x = x0 + v t + g t^2 / 2 in Bullet's symplectic form, damping decays as
 // (1 - d)^t, a torque-free spin about a principal axis keeps its rate.
 #include "reference/integrate.h"
+#include "shared/integrate.h"
 #include "stages/integrate.h"
 #include "stages/sync_bodies.h"
 #include "test_device.h"
 #include "tolerances.h"
+
+#include <btBulletDynamicsCommon.h>
 
 #include <cmath>
 #include <gtest/gtest.h>
@@ -39,6 +42,8 @@ reference::Bodies randomBodies(int n, unsigned seed)
         p.gravity = btgMake4(0, -10, 0, 0);
         p.friction = 0.5f;
         p.flags = (i % 7 == 0) ? BTG_BODY_STATIC : BTG_BODY_DYNAMIC | (i % 2 ? BTG_BODY_GYRO : 0u);
+        if (i % 5 == 2) p.flags |= BTG_BODY_GYRO_EXPLICIT;
+        if (i % 4 == 3) p.flags |= BTG_BODY_GYRO_WORLD;
         if (i % 3 == 1) {
             // Additional damping with thresholds that catch some of these velocities and a
             // damping coefficient above some speeds (applyDamping's cut).
@@ -87,14 +92,14 @@ TEST(Integrate, MatchesReference)
     DeviceWorld w(test::context());
     upload(w, ref);
     predictMotion(w, dt);
-    applyForces(w, dt);
+    applyForces(w, dt, 2.0f);  // a bound some explicit terms reach
     // The solver would fill the push velocities; the test sets them directly.
     w.pushLin.upload(w.ctx, ref.pushLin);
     w.pushAng.upload(w.ctx, ref.pushAng);
     integrateTransforms(w, dt, 0.1f);
     std::vector<BtgFloat4> iw;
     reference::predictMotion(ref, dt);
-    reference::applyForces(ref, dt, iw);
+    reference::applyForces(ref, dt, iw, 2.0f);
     reference::integrateTransforms(ref, dt, 0.1f);
     auto pos = w.pos.download(w.ctx, n), rot = w.rot.download(w.ctx, n);
     auto lin = w.linVel.download(w.ctx, n), ang = w.angVel.download(w.ctx, n);
@@ -161,4 +166,54 @@ TEST(Integrate, OverflowingSpinKeepsTheOrientation)
     BtgFloat4 q = btgIntegrateRotation(rot, btgMake4(0, 3, 0, 0), 1.0f / 60.0f);
     EXPECT_NEAR(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w, 1.0f, 1e-6f);
     EXPECT_GT(std::fabs(q.y - rot.y), 1e-3f);
+}
+
+// The three gyroscopic terms against Bullet's own btRigidBody functions for the same body
+// (computeGyroscopicForceExplicit applied as convertBodies applies it, and the two implicit
+// impulses), each alone and all together, on random anisotropic bodies.
+TEST(Integrate, GyroscopicTermsAsBullet)
+{
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    const float dt = 1.0f / 60.0f, maxGyro = 3.0f;
+    btBoxShape shape(btVector3(0.1f, 0.5f, 1.0f));
+    int bounded = 0;
+    for (int i = 0; i < 200; ++i) {
+        btVector3 inertia(0.2f + u(rng) * 0.1f, 1.0f + u(rng) * 0.5f, 3.0f + u(rng));
+        btRigidBody::btRigidBodyConstructionInfo info(2.0f, nullptr, &shape, inertia);
+        btRigidBody body(info);
+        btQuaternion q(u(rng), u(rng), u(rng), 2.0f + u(rng));
+        q.normalize();
+        body.setWorldTransform(btTransform(q, btVector3(0, 0, 0)));
+        body.updateInertiaTensor();
+        const btVector3 w0(4 * u(rng), 4 * u(rng), 4 * u(rng));
+        body.setAngularVelocity(w0);
+        const btMatrix3x3& invIw = body.getInvInertiaTensorWorld();
+        btVector3 gf = body.computeGyroscopicForceExplicit(maxGyro);
+        bounded += gf.length() > maxGyro * 0.999f;
+        const btVector3 expect[3] = {-(gf * invIw) * dt, body.computeGyroscopicImpulseImplicit_World(dt),
+                                     body.computeGyroscopicImpulseImplicit_Body(dt)};
+        const uint flags[3] = {BTG_BODY_GYRO_EXPLICIT, BTG_BODY_GYRO_WORLD, BTG_BODY_GYRO};
+        BtgBodyProps p{};
+        const btVector3 ii = body.getInvInertiaDiagLocal();
+        p.invInertiaLocal = btgMake4(ii.x(), ii.y(), ii.z(), 0);
+        const BtgFloat4 rot = btgMake4(q.x(), q.y(), q.z(), q.w()), w = btgMake4(w0.x(), w0.y(), w0.z(), 0);
+        const BtgMat3 m = btgInvInertiaWorld(rot, p.invInertiaLocal);
+        btVector3 all(0, 0, 0);
+        for (int k = 0; k < 3; ++k) {
+            p.flags = BTG_BODY_DYNAMIC | flags[k];
+            const BtgFloat4 got = btgApplyAngularForces(w, btgZero4(), rot, m, p, dt, maxGyro) - w;
+            const float scale = std::max(1e-3f, expect[k].length());
+            EXPECT_NEAR(got.x, expect[k].x(), 2e-4f * scale + 1e-6f) << "body " << i << " term " << k;
+            EXPECT_NEAR(got.y, expect[k].y(), 2e-4f * scale + 1e-6f) << "body " << i << " term " << k;
+            EXPECT_NEAR(got.z, expect[k].z(), 2e-4f * scale + 1e-6f) << "body " << i << " term " << k;
+            all += expect[k];
+        }
+        p.flags = BTG_BODY_DYNAMIC | BTG_BODY_GYRO | BTG_BODY_GYRO_EXPLICIT | BTG_BODY_GYRO_WORLD;
+        const BtgFloat4 got = btgApplyAngularForces(w, btgZero4(), rot, m, p, dt, maxGyro) - w;
+        const BtgFloat4 d = got - btgMake4(all.x(), all.y(), all.z(), 0);
+        EXPECT_NEAR(std::sqrt(btgDot3(d, d)), 0.0f, 5e-4f * std::max(1e-3f, all.length()) + 1e-6f)
+            << "body " << i;
+    }
+    EXPECT_GT(bounded, 10);  // the bound is exercised
 }
