@@ -31,6 +31,7 @@ BtgBodyProps bodyProps(const btCollisionObject* obj, int shapeRow, const BtgShap
     else if (obj->isStaticObject() || !rb) flags |= BTG_BODY_STATIC;
     else flags |= BTG_BODY_DYNAMIC;
     if (!obj->hasContactResponse()) flags |= BTG_BODY_NO_RESPONSE;
+    if (obj->getCollisionShape()->getShapeType() == EMPTY_SHAPE_PROXYTYPE) flags |= BTG_BODY_NO_SHAPE;
     int state = obj->getActivationState();
     if (state == ISLAND_SLEEPING) flags |= BTG_BODY_SLEEPING;
     // A ghost's overlaps come from the host broadphase (ghost_objects.h). One with contact

@@ -65,7 +65,7 @@ bool servedShapeType(int type)
     return type == BOX_SHAPE_PROXYTYPE || type == CONVEX_HULL_SHAPE_PROXYTYPE ||
            type == CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE || type == SPHERE_SHAPE_PROXYTYPE ||
            type == STATIC_PLANE_PROXYTYPE || isSupportShapeType(type) || isMeshType(type) ||
-           type == COMPOUND_SHAPE_PROXYTYPE;
+           type == COMPOUND_SHAPE_PROXYTYPE || type == EMPTY_SHAPE_PROXYTYPE;
 }
 
 // Bit t for proxy type t of the shape and, for a compound, of its children (whose pairs run
@@ -181,6 +181,8 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, ShapeTables* s
         const int row = shapes->add(o->getCollisionShape(), &why);
         if (row < 0) return "body " + std::to_string(i) + ": " + why;
         if (ghost && !o->hasContactResponse()) continue;  // its shape is never paired on the device
+        // A btEmptyShape meets nothing (its row is never paired: BTG_BODY_NO_SHAPE).
+        if (o->getCollisionShape()->getShapeType() == EMPTY_SHAPE_PROXYTYPE) continue;
         const BtgShape& shape = shapes->shapes[size_t(row)];
         unsigned kindBit = 1u << shape.type;
         // A compound's pairs are its leaves' (expand_compounds): those kinds must have rows.

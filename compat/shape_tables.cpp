@@ -183,6 +183,11 @@ bool ShapeTables::flatten(const btCompoundShape* compound, const btTransform& to
             *whyNot = which + "is a compound nested more than 8 deep or a subclass of btCompoundShape";
             return false;
         }
+        // The body flag that keeps an empty shape out of every pair is a body's, not a child's.
+        if (child->getShapeType() == EMPTY_SHAPE_PROXYTYPE) {
+            *whyNot = which + "is a btEmptyShape";
+            return false;
+        }
         // A nested compound is a node with a row of its own (its box for the level's tests).
         const int row = add(child, whyNot);
         if (row < 0) {
@@ -233,7 +238,7 @@ int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
     const btHeightfieldTerrainShape* heightfield = heightfieldOf(shape);
     const bool known = type == BOX_SHAPE_PROXYTYPE || type == SPHERE_SHAPE_PROXYTYPE || type == STATIC_PLANE_PROXYTYPE ||
                        type == CONVEX_HULL_SHAPE_PROXYTYPE || type == CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE ||
-                       isSupportShapeType(type) || mesh || heightfield ||
+                       isSupportShapeType(type) || mesh || heightfield || type == EMPTY_SHAPE_PROXYTYPE ||
                        (type == COMPOUND_SHAPE_PROXYTYPE && typeid(*shape) == typeid(btCompoundShape));
     s.mesh = -1;
     if (!known) {
@@ -263,6 +268,13 @@ int ShapeTables::add(const btCollisionShape* shape, std::string* whyNot)
         s.param = btgMake4(sphere->getRadius(), 0, 0, 0);
         s.margin = 0.0f;
         s.convexFlags = BTG_CONVEX_FLAG_SPHERE;  // Bullet's capsule-sphere closed form takes btSphereShape
+        setLocalAabb(s, shape);
+    } else if (type == EMPTY_SHAPE_PROXYTYPE) {
+        // btEmptyShape collides with nothing (its bodies are BTG_BODY_NO_SHAPE); its AABB, the
+        // origin grown by its margin, is a sphere row's of that radius.
+        s.type = BTG_SHAPE_SPHERE;
+        s.param = btgMake4(shape->getMargin(), 0, 0, 0);
+        s.margin = 0.0f;
         setLocalAabb(s, shape);
     } else if (type == STATIC_PLANE_PROXYTYPE) {
         auto* plane = static_cast<const btStaticPlaneShape*>(shape);

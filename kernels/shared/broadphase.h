@@ -24,7 +24,7 @@ static inline float btgFloor(float x) { return std::floor(x); }
  * an excluded row may have no shape (shape -1). */
 static inline int btgGridded(BtgBodyProps p, BTG_CONST_GLOBAL BtgShape* shapes)
 {
-    uint skip = BTG_BODY_LARGE | BTG_BODY_EXCLUDED;
+    uint skip = BTG_BODY_LARGE | BTG_BODY_EXCLUDED | BTG_BODY_NO_SHAPE;
     return !(p.flags & skip) && shapes[p.shape].type != BTG_SHAPE_PLANE;
 }
 
@@ -35,7 +35,9 @@ static inline int btgGridded(BtgBodyProps p, BTG_CONST_GLOBAL BtgShape* shapes)
  * static bodies apart; custom ones may ask for those pairs. */
 static inline int btgPairAllowed(BtgBodyProps a, BtgBodyProps b)
 {
-    if ((a.flags | b.flags) & BTG_BODY_EXCLUDED) return 0;
+    /* A btEmptyShape is concave to Bullet's dispatcher: against it a convex shape's algorithm
+       walks no triangles, two concave shapes get the empty algorithm. */
+    if ((a.flags | b.flags) & (BTG_BODY_EXCLUDED | BTG_BODY_NO_SHAPE)) return 0;
     uint moving = BTG_BODY_DYNAMIC | BTG_BODY_KINEMATIC;
     int aActive = (a.flags & moving) && !(a.flags & BTG_BODY_SLEEPING);
     int bActive = (b.flags & moving) && !(b.flags & BTG_BODY_SLEEPING);

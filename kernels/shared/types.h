@@ -24,6 +24,8 @@
 #define BTG_BODY_ADDITIONAL_DAMPING 8192u  /* m_additionalDamping: applyDamping's extra damping of slow bodies */
 #define BTG_BODY_GYRO_EXPLICIT 16384u     /* BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT (bounded by m_maxGyroscopicForce) */
 #define BTG_BODY_GYRO_WORLD 32768u        /* BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD */
+#define BTG_BODY_NO_SHAPE 65536u          /* btEmptyShape: moves and takes joints, never collides (stock's algorithms
+                                             for it find no contacts); its row's shape only gives its AABB */
 
 /* Shape kinds (BtgShape.type). Which pairs of them collide, and how, is the pair-kind table
  * (pair_kinds.h), which follows stock's choice of algorithm per pair: BOX is a btBoxShape (a

@@ -168,3 +168,51 @@ TEST(ConvexShapes, MixedPileWithinStockChaos)
         EXPECT_TRUE(bands[k].admits(values[k])) << bands[k].name << ": btgpu " << values[k] << ", stock "
                                                 << bands[k].stockMean << " +- " << bands[k].bound();
 }
+
+// btEmptyShape (game code's bodies without collision: anchors, particles, placeholders): such a
+// body moves and takes joints but collides with nothing, as on stock, where its concave type
+// gets no contact from any algorithm. A free one falls through the ground box; one hung from a
+// box by a point-to-point joint swings below it; a box dropped onto a static empty-shape body
+// falls through its spot onto the ground. No point with one of them on either world.
+TEST(ConvexShapes, EmptyShapeBodiesCollideWithNothingAsStock)
+{
+    auto make = [](WorldKind k, const Config& c) {
+        auto s = std::make_unique<Scene>(k, c, "empty_shapes");
+        s->addBody(s->boxShape(btVector3(10, 0.5f, 10)), 0, btVector3(0, -0.5f, 0));     // 0: ground
+        btEmptyShape* empty = s->ownShape(new btEmptyShape());
+        btRigidBody* free = s->addBody(empty, 1, btVector3(-3, 2, 0));                   // 1
+        btRigidBody* bob = s->addBody(empty, 1, btVector3(0, 3, 1.0f));                  // 2
+        btRigidBody* box = s->addBody(s->boxShape(btVector3(0.5f, 0.5f, 0.5f)), 1, btVector3(0, 3, 0));  // 3
+        s->addBody(empty, 0, btVector3(3, 0.5f, 0));                                     // 4: static
+        s->addBody(s->boxShape(btVector3(0.3f, 0.3f, 0.3f)), 1, btVector3(3, 2, 0));      // 5: falls onto 4
+        for (btRigidBody* b : {free, bob}) b->setMassProps(1, btVector3(0.1f, 0.1f, 0.1f));
+        s->addJoint(new btPoint2PointConstraint(*box, *bob, btVector3(0, 0, 0.5f), btVector3(0, 0, -0.5f)));
+        box->setActivationState(DISABLE_DEACTIVATION);
+        return ScenePtr(std::move(s));
+    };
+    SideBySide s(make);
+    int stockPoints = 0, gpuPoints = 0;
+    auto points = [](Scene& sc) {
+        int n = 0;
+        btDispatcher* d = sc.world().getDispatcher();
+        for (int i = 0; i < d->getNumManifolds(); ++i) {
+            const btPersistentManifold* m = d->getManifoldByIndexInternal(i);
+            const bool withEmpty = m->getBody0()->getCollisionShape()->getShapeType() == EMPTY_SHAPE_PROXYTYPE ||
+                                   m->getBody1()->getCollisionShape()->getShapeType() == EMPTY_SHAPE_PROXYTYPE;
+            if (withEmpty) n += m->getNumContacts();
+        }
+        return n;
+    };
+    for (int step = 0; step < 120; ++step) {
+        s.step();
+        ASSERT_TRUE(s.onGpu()) << step << " " << s.gpu->report()->cpuPathReason;
+        stockPoints += points(*s.stock);
+        gpuPoints += points(*s.gpu);
+        for (int b : {1, 2, 3, 5}) ASSERT_LT(s.distance(b), 1e-3) << "body " << b << " step " << step;
+    }
+    EXPECT_EQ(stockPoints, 0);
+    EXPECT_EQ(gpuPoints, 0);
+    EXPECT_LT(s.gpuY(1), -10.0);  // fell through the ground
+    EXPECT_NEAR(s.gpuY(5), 0.3, 0.01);  // through the static empty shape's spot, onto the ground
+    EXPECT_LT(s.gpuY(2), 0.5);          // the bob hangs below its pivot, through the ground
+}
