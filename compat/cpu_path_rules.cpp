@@ -278,10 +278,11 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
     // host between the contacts and the solve), but for the cases contact_callbacks.h names.
     // The contact stiffness and damping combiners only run for CF_HAS_CONTACT_STIFFNESS_DAMPING
     // bodies, a body rule.
-    // Bullet's breaking threshold is the GPU path's contact threshold; an app that changes both
-    // alike keeps the GPU path, one that changes only Bullet's does not.
+    // Bullet's breaking threshold is the GPU path's contact threshold: GpuWorld follows a changed
+    // gContactBreakingThreshold while Config::contactThreshold is left at its default; the two
+    // set to different values fall back.
     if (gContactBreakingThreshold != btScalar(0.02) && gContactBreakingThreshold != config.contactThreshold)
-        return "gContactBreakingThreshold changed from 0.02 (set Config::contactThreshold to the same value)";
+        return "gContactBreakingThreshold changed from 0.02 and Config::contactThreshold set to another value";
 
     // btContactSolverInfo, against Bullet 3.24's defaults, exactly. m_erp and m_damping are
     // read by the joints (BtgJointStepParams), m_globalCfm by the joints and the contacts'

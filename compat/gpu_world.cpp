@@ -34,7 +34,10 @@ double msBetween(Clock::time_point a, Clock::time_point b)
 
 }  // namespace
 
-GpuWorld::GpuWorld(btGpuDynamicsWorld& world, const Config& config) : m_config(config), m_world(world) {}
+GpuWorld::GpuWorld(btGpuDynamicsWorld& world, const Config& config)
+    : m_config(config), m_appThreshold(config.contactThreshold), m_world(world)
+{
+}
 
 GpuWorld::~GpuWorld()
 {
@@ -94,6 +97,12 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
     *bodyIndex = -1;
     // The scene's make-up changes only when something is added or removed: checked then, and
     // the verdict kept. World and body settings can change between any two steps.
+    // An app that changes Bullet's gContactBreakingThreshold (and leaves Config::contactThreshold
+    // at its default) gets it as the GPU path's threshold, from the next step on, as stock's
+    // next manifolds and AABBs take it.
+    m_config.contactThreshold = (m_appThreshold == 0.02f && gContactBreakingThreshold != btScalar(0.02))
+                                    ? float(gContactBreakingThreshold)
+                                    : m_appThreshold;
     // Contact breaking thresholds, per shape as Bullet's dispatcher sets them up (its flags can
     // change between steps: the tables follow).
     const auto* dispatcher = dynamic_cast<const btCollisionDispatcher*>(m_world.getDispatcher());

@@ -55,6 +55,7 @@ public:
 
     Report m_report;
     Config m_config;
+    float m_appThreshold;  // Config::contactThreshold as the app gave it (m_config's follows gContactBreakingThreshold)
 
 private:
     struct Mirror {  // what the device holds for a row, as last written or read back

@@ -91,7 +91,8 @@ struct Config {
     // stepSimulation call in profileEvery (events cost host time on every launch).
     bool profile = false;
     int profileEvery = 1;
-    // m: points closer than this become contacts (Bullet's gContactBreakingThreshold).
+    // m: points closer than this become contacts (Bullet's gContactBreakingThreshold). Left at
+    // 0.02, the world follows gContactBreakingThreshold when the app changes it.
     float contactThreshold = 0.02f;
     SolverKind solver = SolverKind::BatchedPgs;
     SoftStepConfig softStep;

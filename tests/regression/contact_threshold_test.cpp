@@ -46,3 +46,35 @@ TEST(ContactThreshold, RelativeAndAbsoluteAsStock)
         EXPECT_NEAR(s.gpuY(1), s.stockY(1), 5e-3) << "btgpu " << s.gpuY(1) << ", stock " << s.stockY(1);
     }
 }
+
+// An app that changes gContactBreakingThreshold (Config::contactThreshold left at its default)
+// keeps the GPU path, which follows it as stock does: with one absolute threshold of 10 mm the
+// sphere 15 mm up gets no contact this step and sinks in on both; with 50 mm it is held. Set to
+// differ from Config::contactThreshold, it falls back naming both.
+TEST(ContactThreshold, FollowsGContactBreakingThresholdAsStock)
+{
+    const btScalar saved = gContactBreakingThreshold;
+    for (float threshold : {0.01f, 0.05f}) {
+        SCOPED_TRACE(threshold);
+        gContactBreakingThreshold = threshold;
+        SideBySide s([&](WorldKind kind, const Config& config) { return coastingSphere(kind, config, false); });
+        s.step();
+        ASSERT_TRUE(s.onGpu()) << s.gpu->report()->cpuPathReason;
+        if (threshold < 0.015f) EXPECT_LT(s.stockY(1), 0.08);
+        else EXPECT_GT(s.stockY(1), 0.095);
+        EXPECT_NEAR(s.gpuY(1), s.stockY(1), 2e-3) << "btgpu " << s.gpuY(1) << ", stock " << s.stockY(1);
+        s.step(30);
+        ASSERT_TRUE(s.onGpu()) << s.gpu->report()->cpuPathReason;
+        EXPECT_NEAR(s.gpuY(1), s.stockY(1), 5e-3) << "btgpu " << s.gpuY(1) << ", stock " << s.stockY(1);
+    }
+    {
+        gContactBreakingThreshold = 0.05f;
+        Config config;
+        config.contactThreshold = 0.03f;
+        ScenePtr scene = coastingSphere(WorldKind::Gpu, config, false);
+        scene->step();
+        EXPECT_FALSE(scene->report()->gpuPath);
+        EXPECT_NE(scene->report()->cpuPathReason.find("gContactBreakingThreshold"), std::string::npos);
+    }
+    gContactBreakingThreshold = saved;
+}
