@@ -289,9 +289,12 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
                     const btScalar breaking = sync.manifold(side)->getContactBreakingThreshold();
                     const btVector3 drift =
                         pre.m_positionWorldOnB - (pre.m_positionWorldOnA - pre.m_normalWorldOnB * pre.m_distance1);
+                    // Each refresh before the child collides calls it (two for nested compounds).
                     if (pre.m_distance1 <= breaking && drift.length2() <= breaking * breaking) {
-                        gContactProcessedCallback(pre, (void*)o0, (void*)o1);
-                        ++m_calls;
+                        for (int r = 1; r < side.refreshes; ++r) {
+                            gContactProcessedCallback(pre, (void*)o0, (void*)o1);
+                            ++m_calls;
+                        }
                         preCalled = true;
                     }
                 }

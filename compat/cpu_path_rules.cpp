@@ -166,7 +166,7 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, ShapeTables* s
     const btCollisionObjectArray& objs = world.getCollisionObjectArray();
     shapes->beginReferences();
     bool featuredBox = false, plainBox = false;
-    int compounds = 0, dynamicCompounds = 0, apartFromCompounds = 0;
+    int compounds = 0, dynamicCompounds = 0, nestedCompounds = 0;
     unsigned presentKinds = 0, dynamicKinds = 0;  // bit per BTG_SHAPE_*
     for (int i = 0; i < objs.size(); ++i) {
         const btCollisionObject* o = objs[i];
@@ -189,7 +189,6 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, ShapeTables* s
         if (shape.type == BTG_SHAPE_COMPOUND) {
             if (!o->isStaticOrKinematicObject() && !ghost) ++dynamicCompounds;
             ++compounds;
-            if (!static_cast<const btCompoundShape*>(o->getCollisionShape())->getDynamicAabbTree()) ++apartFromCompounds;
             kindBit = 0;
             bool nested = false;
             for (int k = 0; k < shape.numChildren; ++k) {
@@ -197,7 +196,7 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, ShapeTables* s
                 kindBit |= 1u << shapes->shapes[size_t(leaf.shape)].type;
                 nested |= leaf.parent >= 0;
             }
-            apartFromCompounds += nested;
+            nestedCompounds += nested;
         }
         presentKinds |= kindBit;
         // (a dynamic mesh or heightfield has its own rule, in bodiesReason)
@@ -210,11 +209,11 @@ std::string structureReason(const btDiscreteDynamicsWorld& world, ShapeTables* s
     // the rest); against a box without features stock still runs btBoxBoxDetector.
     if (featuredBox && plainBox)
         return "boxes with polyhedral features (initializePolyhedralFeatures) beside boxes without";
-    // Two compounds meet by btCompoundCompoundCollisionAlgorithm's tree-tree walk, which
-    // expand_compounds follows; without a tree on both stock nests btCompoundCollisionAlgorithm.
-    if (dynamicCompounds >= 1 && compounds >= 2 && apartFromCompounds > 0)
-        return "a compound shape without a dynamic AABB tree (btCompoundShape(false)) or with nested compounds "
-               "meeting another compound is not on the GPU path yet";
+    // Two compounds meet by btCompoundCompoundCollisionAlgorithm's tree-tree walk, or, where one
+    // has no tree (btCompoundShape(false)), by its base class's nested walk: expand_compounds
+    // follows both for compounds without nested ones.
+    if (dynamicCompounds >= 1 && compounds >= 2 && nestedCompounds > 0)
+        return "a compound shape with nested compounds meeting another compound is not on the GPU path yet";
     // Every pair of shape kinds that can meet (a dynamic body against anything) needs a row of
     // the pair-kind table; one without would be a pair the GPU path silently never collides.
     for (int a = 0; a < BTG_NUM_SHAPE_KINDS; ++a)

@@ -75,11 +75,28 @@ constexpr int kNewTag = 1 << 21;
 
 }  // namespace
 
+namespace {
+
+// Two compounds of which one has no dynamic AABB tree: btCompoundCompoundCollisionAlgorithm
+// runs its base class, whose child algorithms are compound algorithms in turn (compound.h).
+bool nestedCompounds(const btCollisionShape* a, const btCollisionShape* b)
+{
+    return a->isCompound() && b->isCompound() &&
+           (!static_cast<const btCompoundShape*>(a)->getDynamicAabbTree() ||
+            !static_cast<const btCompoundShape*>(b)->getDynamicAabbTree());
+}
+
+}  // namespace
+
 int ManifoldSync::refreshesPerStep(const btCollisionObject* body0, const btCollisionObject* body1)
 {
     // btCompoundCollisionAlgorithm and btCompoundCompoundCollisionAlgorithm::processCollision
-    // (3.24): "we need to refresh all contact manifolds" of their child algorithms, then collide.
-    return body0->getCollisionShape()->isCompound() || body1->getCollisionShape()->isCompound() ? 2 : 1;
+    // (3.24): "we need to refresh all contact manifolds" of their child algorithms, then collide;
+    // where a compound's child algorithm is itself a compound algorithm (nestedCompounds) that
+    // refreshes them once more.
+    const btCollisionShape *a = body0->getCollisionShape(), *b = body1->getCollisionShape();
+    if (nestedCompounds(a, b)) return 3;
+    return a->isCompound() || b->isCompound() ? 2 : 1;
 }
 
 ManifoldSync::Side ManifoldSync::orient(const RowMap& rows, int bodyA, int bodyB, int indexA, int indexB,
@@ -103,13 +120,15 @@ ManifoldSync::Side ManifoldSync::orient(const RowMap& rows, int bodyA, int bodyB
     bool swap;
     if (concA != concB) swap = concA;
     else if (compA != compB) swap = compB;
+    // Nested compound algorithms: the innermost child algorithm takes B's leaf, then A's.
+    else if (nestedCompounds(oA->getCollisionShape(), oB->getCollisionShape())) swap = proxyId(oA) < proxyId(oB);
     else swap = proxyId(oA) > proxyId(oB);
     out.valid = true;
     out.swap = swap;
     out.spheres = tA == SPHERE_SHAPE_PROXYTYPE && tB == SPHERE_SHAPE_PROXYTYPE;
     out.concaveA = concA ? leafA : nullptr;
     out.concaveB = concB ? leafB : nullptr;
-    out.refreshes = compA || compB ? 2 : 1;
+    out.refreshes = refreshesPerStep(oA, oB);
     out.key = swap ? Key{oB, oA, sideKey(oB, leafB, indexB), sideKey(oA, leafA, indexA)}
                    : Key{oA, oB, sideKey(oA, leafA, indexA), sideKey(oB, leafB, indexB)};
     return out;

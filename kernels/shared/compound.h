@@ -2,7 +2,8 @@
  * one leaf of its compound at body * leaf transform), and the expansion of a body pair that
  * holds a compound into its leaf pairs with stock btCompoundCollisionAlgorithm's culling (the
  * dynamic AABB tree's query in the compound's frame, then ProcessChildShape's world AABB test;
- * two compounds as btCompoundCompoundCollisionAlgorithm's tree-tree walk). Shared by
+ * two compounds as btCompoundCompoundCollisionAlgorithm's tree-tree walk, or its base class's
+ * nested walk where one has no tree). Shared by
  * expand_compounds, every narrowphase kernel and their CPU references.
  *
  * One deviation: stock grows neither test (m_closestPointDistanceThreshold is 0 in a dynamics
@@ -175,6 +176,68 @@ static inline uint btgExpandCompoundCompound(BtgPair p, BtgShape sa, BtgShape sb
     return n;
 }
 
+/* Whether leaf c of a compound (at body pose pos/rot) passes btCompoundLeafCallback's tests against
+ * another collider: its holder's tree query with the other's box in the compound's frame
+ * (otherLocal), then its world AABB against the other's (other, both boxes grown as above). */
+static inline int btgLeafMeets(BtgChild c, BtgFloat4 pos, BtgFloat4 rot, BtgAabb otherLocal, BtgAabb other,
+                               BTG_CONST_GLOBAL BtgShape* shapes, BtgAabb* leafBox)
+{
+    if (c.useTree && !btgAabbOverlap(c.treeAabbMin, c.treeAabbMax, otherLocal.lo, otherLocal.hi)) return 0;
+    BtgFloat4 wp, wq;
+    btgChildWorld(pos, rot, c, &wp, &wq);
+    *leafBox = btgStockAabb(wp, wq, shapes[c.shape]);
+    return btgAabbOverlap(leafBox->lo, leafBox->hi, other.lo, other.hi);
+}
+
+/* Two compounds of which one has no dynamic AABB tree (btCompoundShape(false); neither nested:
+ * the CPU-path rules send those away): btCompoundCompoundCollisionAlgorithm then runs its base
+ * btCompoundCollisionAlgorithm, whose child algorithm for leaf i of A (body 0) is a compound
+ * algorithm over B's leaves against that leaf. So leaf i when it meets B's whole box, then leaf j
+ * of B when it meets leaf i, in (i, j) order; the manifold is the innermost algorithm's, B's leaf
+ * first (ManifoldSync::orient). */
+static inline uint btgExpandCompoundNested(BtgPair p, BtgShape sa, BtgShape sb, BTG_CONST_GLOBAL BtgFloat4* pos,
+                                           BTG_CONST_GLOBAL BtgFloat4* rot, BTG_CONST_GLOBAL BtgShape* shapes,
+                                           BTG_CHILD_TABLE, BTG_GLOBAL BtgPair* out, uint first, uint capacity)
+{
+    const float t = btgPairThreshold(sa, sb);
+    const BtgFloat4 qa = rot[p.a], qb = rot[p.b];
+    const BtgAabb wholeB = btgGrown(btgStockAabb(pos[p.b], qb, sb), t);
+    const BtgAabb bInA = btgGrown(btgStockAabb(btgQuatRotate(btgQuatConj(qa), btgXyz(pos[p.b] - pos[p.a])),
+                                               btgQuatMul(btgQuatConj(qa), qb), sb),
+                                  t);
+    uint n = 0u;
+    for (int i = 0; i < sa.numChildren; ++i) {
+        const BtgChild ca = children[sa.firstChild + i];
+        BtgAabb boxA;
+        if (!btgLeafMeets(ca, pos[p.a], qa, bInA, wholeB, shapes, &boxA)) continue;
+        /* Leaf i as the other collider of B's compound algorithm. */
+        BtgFloat4 wpa, wqa;
+        btgChildWorld(pos[p.a], qa, ca, &wpa, &wqa);
+        const BtgAabb other = btgGrown(boxA, t);
+        const BtgAabb aInB = btgGrown(btgStockAabb(btgQuatRotate(btgQuatConj(qb), btgXyz(wpa - pos[p.b])),
+                                                   btgQuatMul(btgQuatConj(qb), wqa), shapes[ca.shape]),
+                                      t);
+        for (int j = 0; j < sb.numChildren; ++j) {
+            BtgAabb boxB;
+            if (!btgLeafMeets(children[sb.firstChild + j], pos[p.b], qb, aInB, other, shapes, &boxB)) continue;
+            if (out && first + n < capacity) {
+                BtgPair q = p;
+                q.childA = sa.firstChild + i + 1;
+                q.childB = sb.firstChild + j + 1;
+                out[first + n] = q;
+            }
+            ++n;
+        }
+    }
+    return n;
+}
+
+/* A compound's own dynamic AABB tree (its leaves' holder is it: none is nested here). */
+static inline int btgCompoundHasTree(BtgShape s, BTG_CHILD_TABLE)
+{
+    return s.numChildren == 0 || children[s.firstChild].useTree;
+}
+
 /* The leaf pairs of body pair p (a < b) with a compound side: those stock processes, in child
  * order. Writes them to out[first, capacity) when out is given; returns how many. A pair with
  * no compound is itself. */
@@ -188,8 +251,11 @@ static inline uint btgExpandPair(BtgPair p, BTG_CONST_GLOBAL BtgFloat4* pos, BTG
         if (out && first < capacity) out[first] = p;
         return 1u;
     }
-    if (compoundIsA && sb.type == BTG_SHAPE_COMPOUND)
-        return btgExpandCompoundCompound(p, sa, sb, pos, rot, shapes, children, out, first, capacity);
+    if (compoundIsA && sb.type == BTG_SHAPE_COMPOUND) {
+        if (btgCompoundHasTree(sa, children) && btgCompoundHasTree(sb, children))
+            return btgExpandCompoundCompound(p, sa, sb, pos, rot, shapes, children, out, first, capacity);
+        return btgExpandCompoundNested(p, sa, sb, pos, rot, shapes, children, out, first, capacity);
+    }
     const int cb = compoundIsA ? p.a : p.b, ob = compoundIsA ? p.b : p.a;
     const BtgShape cs = compoundIsA ? sa : sb, os = compoundIsA ? sb : sa;
     /* The other body's boxes grown by the pair's threshold (see the deviation above). */

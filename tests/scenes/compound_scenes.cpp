@@ -19,10 +19,11 @@ btRigidBody* boxGround(Scene& scene)
     return scene.addBody(scene.boxShape(btVector3(50, 50, 50)), 0, btVector3(0, -50, 0));
 }
 
-// A compound of a spec's children, each child shape owned by the scene.
-btCompoundShape* compoundOf(Scene& scene, const spec::CompoundSpec& c)
+// A compound of a spec's children, each child shape owned by the scene; with or without its
+// dynamic AABB tree.
+btCompoundShape* compoundOf(Scene& scene, const spec::CompoundSpec& c, bool dynamicTree = true)
 {
-    auto* shape = scene.ownShape(new btCompoundShape());
+    auto* shape = scene.ownShape(new btCompoundShape(dynamicTree));
     for (const spec::ChildSpec& ch : c.children) {
         btCollisionShape* child =
             ch.shape == spec::ShapeKind::Sphere
@@ -39,15 +40,27 @@ btCompoundShape* dumbbellShape(Scene& scene) { return compoundOf(scene, spec::du
 
 }  // namespace
 
-btCompoundShape* tableShape(Scene& scene) { return compoundOf(scene, spec::tableSpec()); }
+btCompoundShape* tableShape(Scene& scene, bool dynamicTree) { return compoundOf(scene, spec::tableSpec(), dynamicTree); }
 
-ScenePtr tableStack(WorldKind kind, const Config& config, int count)
+ScenePtr tableStack(WorldKind kind, const Config& config, int count, bool dynamicTree)
 {
     auto scene = std::make_unique<Scene>(kind, config, "table_stack");
     boxGround(*scene);
-    btCompoundShape* table = tableShape(*scene);
+    btCompoundShape* table = tableShape(*scene, dynamicTree);
     for (int i = 0; i < count; ++i)
         scene->addBody(table, 1, btVector3(0, btScalar(kTableFootDepth + (kTableHeight + .01) * i + .01), 0));
+    return scene;
+}
+
+ScenePtr wrappedBoxStack(WorldKind kind, const Config& config, int count)
+{
+    auto scene = std::make_unique<Scene>(kind, config, "wrapped_box_stack");
+    boxGround(*scene);
+    btBoxShape* box = scene->boxShape(btVector3(0.5f, 0.5f, 0.5f));
+    // The engine's pattern: one child, shifted so that the body's origin is its centre of mass.
+    auto* wrapper = scene->ownShape(new btCompoundShape(false, 1));
+    wrapper->addChildShape(btTransform(btQuaternion::getIdentity(), btVector3(0.1f, -0.2f, 0)), box);
+    for (int i = 0; i < count; ++i) scene->addBody(wrapper, 1, btVector3(btScalar(-0.1 + 0.02 * i), btScalar(0.71 + 1.01 * i), 0));
     return scene;
 }
 

@@ -10,13 +10,18 @@ namespace btgpu::scenes {
 // A table (scene_specs.h tableSpec): a top box (half extents 0.6, 0.05, 0.4) at y = 0.35 on four legs (half extents 0.05,
 // 0.3, 0.05) at x = +-0.5, z = +-0.3, y = 0; the body's origin 0.35 m above the legs' feet
 // would stand at y = 0.3 on a ground whose top is y = 0. Owned by the scene.
-btCompoundShape* tableShape(Scene& scene);
+btCompoundShape* tableShape(Scene& scene, bool dynamicTree = true);
 constexpr double kTableFootDepth = 0.3;  // m, from the body's origin down to the feet
 constexpr double kTableHeight = 0.7;     // m, feet to top
 
 // `count` tables stacked, each released 1 cm above the one below (the first 1 cm above a box
-// ground); bodies 1..count, body 0 the ground.
-ScenePtr tableStack(WorldKind kind, const Config& config = Config(), int count = 1);
+// ground); bodies 1..count, body 0 the ground. Without their dynamic AABB trees
+// (btCompoundShape(false)) two tables meet by stock's nested compound algorithms.
+ScenePtr tableStack(WorldKind kind, const Config& config = Config(), int count = 1, bool dynamicTree = true);
+// `count` unit boxes, each wrapped as game engines wrap a body to put its centre of mass at its
+// origin (a btCompoundShape(false) of one child, shifted by (0.1, -0.2, 0)), stacked 1 cm apart
+// on a box ground, each 2 cm further along x than the one below (bodies 1..count).
+ScenePtr wrappedBoxStack(WorldKind kind, const Config& config = Config(), int count = 4);
 // A table 1 cm above a flat triangle-mesh ground, or a flat heightfield (body 1; body 0 the ground).
 // A table resting on a box ground and a ball resting beside one of its legs, 6 cm from it but
 // inside the leg's AABB: stock holds an empty manifold for that child pair.
