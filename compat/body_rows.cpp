@@ -65,6 +65,7 @@ BtgBodyProps bodyProps(const btCollisionObject* obj, int shapeRow, const BtgShap
     p.spinningFriction = obj->getSpinningFriction();
     p.contactStiffness = obj->getContactStiffness();
     p.contactDamping = obj->getContactDamping();
+    p.contactProcessingThreshold = obj->getContactProcessingThreshold();
     p.friction = obj->getFriction();
     p.restitution = obj->getRestitution();
     p.shape = shapeRow;

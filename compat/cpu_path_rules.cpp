@@ -409,8 +409,11 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     // the cases that still fall back.
     if (context.jacobi && o->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION))
         return "anisotropic friction (setAnisotropicFriction) with Config::solver = JacobiMassSplitting";
-    if (o->getContactProcessingThreshold() < btScalar(BT_LARGE_FLOAT))
-        return "contact processing threshold (setContactProcessingThreshold)";
+    // A contact processing threshold leaves a manifold's points farther apart than the smaller of
+    // its bodies' unsolved (convertContacts), served by the PGS solver's rows (btgPrepareContact;
+    // the soft step's rule is GpuWorld::softStepReason).
+    if (context.jacobi && o->getContactProcessingThreshold() < btScalar(BT_LARGE_FLOAT))
+        return "contact processing threshold (setContactProcessingThreshold) with Config::solver = JacobiMassSplitting";
     const btRigidBody* rb = btRigidBody::upcast(o);
     if (!rb || rb->isStaticOrKinematicObject()) return "";
     if (isMeshType(o->getCollisionShape()->getShapeType()))
@@ -465,6 +468,8 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
             }
             if (o->getCollisionFlags() & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING)
                 f.solverFlags |= BTG_SOLVER_SOFT_CONTACTS;
+            if (o->getContactProcessingThreshold() < btScalar(BT_LARGE_FLOAT))
+                f.solverFlags |= BTG_SOLVER_PROCESSING_THRESHOLD;
             // Stock's CCD sweeps only dynamic bodies with a convex shape (a compound has none).
             const btRigidBody* rb = btRigidBody::upcast(o);
             if (ccdBodies && context.continuous && rb && !rb->isStaticOrKinematicObject() &&

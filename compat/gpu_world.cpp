@@ -153,6 +153,8 @@ std::string GpuWorld::softStepReason() const
         return "anisotropic friction with Config::solver = SoftStep";
     if (m_solverFlags & BTG_SOLVER_SOFT_CONTACTS)
         return "contact stiffness and damping (CF_HAS_CONTACT_STIFFNESS_DAMPING) with Config::solver = SoftStep";
+    if (m_solverFlags & BTG_SOLVER_PROCESSING_THRESHOLD)
+        return "contact processing threshold (setContactProcessingThreshold) with Config::solver = SoftStep";
     const btContactSolverInfo& info = m_world.getSolverInfo();
     if (info.m_sor != btScalar(1) || info.m_globalCfm != btScalar(0))
         return "btContactSolverInfo::m_sor or m_globalCfm changed with Config::solver = SoftStep";

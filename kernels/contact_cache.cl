@@ -4,7 +4,8 @@
  * work-groups whose size the host passes as the local-memory scan size; scan_blocks as one
  * work-item; store_contact_cache one work-item per contact slot.
  * Reads pairManifolds (each pair's range of manifolds with points), manifolds,
- * counters[kPairCount, kPrevContactCount, kStatus], pos, rot, contactCache.
+ * counters[kPairCount, kPrevContactCount, kStatus], pos, rot, props (contact processing
+ * thresholds, BTG_SOLVER_PROCESSING_THRESHOLD only), contactCache.
  * Writes blockSums (scratch), contacts and contactManifolds (the manifold slot of each),
  * counters[kContactCount], counters[kStatus]; then contactCache and counters[kPrevContactCount]. */
 #include "shared/counters.h"
@@ -65,6 +66,7 @@ __kernel void write_contacts(__global const BtgManifoldRange* restrict pairManif
                              __global const BtgManifold* restrict manifolds, __global const uint* restrict counters,
                              int pairCapacity, __global const uint* restrict blockSums,
                              __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,
+                             __global const BtgBodyProps* restrict props,
                              __global const BtgCachedContact* restrict cache, int cacheCapacity,
                              __global BtgContact* contacts, __global uint* restrict contactManifolds, int contactCapacity,
                              BtgStepParams params, __local uint* tmp)
@@ -83,7 +85,11 @@ __kernel void write_contacts(__global const BtgManifoldRange* restrict pairManif
         BtgManifold m = manifolds[slot];
         BtgContact c = btgContactFromManifold(m, pos[m.bodyA], pos[m.bodyB]);
         int prev = btgFindPrevContact(cache, prevCount, m);
-        if (prev >= 0) btgWarmStartFrom(&c, rot[m.bodyA], m, cache[prev], params.warmstartFactor);
+        /* the manifold's processing threshold only where a body has one (props untouched otherwise) */
+        const float processing = (params.solverFlags & BTG_SOLVER_PROCESSING_THRESHOLD)
+                                     ? btgProcessingThreshold(props[m.bodyA], props[m.bodyB])
+                                     : BTG_NO_PROCESSING_THRESHOLD;
+        if (prev >= 0) btgWarmStartFrom(&c, rot[m.bodyA], m, cache[prev], params.warmstartFactor, processing);
         contacts[dst] = c;
         contactManifolds[dst] = slot;
     }

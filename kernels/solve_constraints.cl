@@ -72,7 +72,7 @@ static void solve_contact(int i, int mode, int rows, __global BtgContact* contac
     }
     else if (mode == BTG_PASS_ROLLING) {
         BtgRollingContact r = rolling[i];
-        btgRollingSolve(&r, c.normal, c.normalImpulse, c.numPoints, a, b, &va, &vb);
+        btgRollingSolve(&r, c.normal, btgSolvedNormalImpulse(&c), c.numPoints, a, b, &va, &vb);
         rolling[i].spinImpulse = r.spinImpulse;
         rolling[i].roll1Impulse = r.roll1Impulse;
         rolling[i].roll2Impulse = r.roll2Impulse;

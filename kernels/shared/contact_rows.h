@@ -47,8 +47,26 @@ typedef struct {
     int stiffnessDamping;  /* either body has CF_HAS_CONTACT_STIFFNESS_DAMPING */
     float stiffness;       /* combined: 1 / (1/k_A + 1/k_B), N/m */
     float damping;         /* combined: d_A + d_B, N s/m */
-    int pad0;
+    float processingThreshold; /* m: the manifold's contact processing threshold (btgProcessingThreshold),
+                                  BTG_NO_PROCESSING_THRESHOLD without BTG_SOLVER_PROCESSING_THRESHOLD */
 } BtgPairMaterial;
+
+/* A manifold's contact processing threshold is the smaller of its bodies' (getNewManifold);
+ * without one on any body no point is compared with it (BTG_NO_PROCESSING_THRESHOLD, which
+ * every finite distance is below: the rows are what they were before the setting existed). */
+#define BTG_NO_PROCESSING_THRESHOLD 1e18f /* Bullet's BT_LARGE_FLOAT, its default */
+static inline float btgProcessingThreshold(BtgBodyProps a, BtgBodyProps b)
+{
+    return a.contactProcessingThreshold < b.contactProcessingThreshold ? a.contactProcessingThreshold
+                                                                       : b.contactProcessingThreshold;
+}
+/* convertContacts solves a point only while getDistance() <= the manifold's threshold; the
+ * point stays in the manifold (callbacks and the app see it) with the impulses it had. Written
+ * as "not farther" so that a NaN distance is taken as it was before the setting existed. */
+static inline int btgPointProcessed(float distance, float threshold)
+{
+    return !(distance > threshold);
+}
 
 /* A contact's two bodies as the kernels that prepare its rows read them: their rows, solver
  * bodies, and velocities before (0: restitution) and after (1: friction directions) this
@@ -239,9 +257,10 @@ static inline void btgMatchPoints(BtgManifold m, const BtgFloat4* keys, BtgCache
 }
 
 /* The warm start: each new point's impulses start from those of the old point it continues
- * (btgMatchPoints), scaled by the warm-start factor. rotA: A's rotation now (the new points'
- * keys). */
-static inline void btgWarmStartFrom(BtgContact* c, BtgFloat4 rotA, BtgManifold m, BtgCachedContact old, float factor)
+ * (btgMatchPoints), scaled by the warm-start factor but for the points beyond the manifold's
+ * processing threshold. rotA: A's rotation now (the new points' keys). */
+static inline void btgWarmStartFrom(BtgContact* c, BtgFloat4 rotA, BtgManifold m, BtgCachedContact old, float factor,
+                                    float processingThreshold)
 {
     BtgMat3 ra = btgQuatToMat3(rotA);
     BtgFloat4 keys[BTG_MAX_POINTS];
@@ -251,10 +270,13 @@ static inline void btgWarmStartFrom(BtgContact* c, BtgFloat4 rotA, BtgManifold m
     for (int k = 0; k < c->numPoints; ++k) {
         int found = match[k];
         if (found < 0) continue;
-        btgSetLane(&c->normalImpulse, k, old.point[found].w * factor);
+        /* a point beyond the processing threshold is not converted: its btManifoldPoint keeps
+         * the impulses unscaled (stock warm-starts from them again once it is solved) */
+        const float f = btgPointProcessed(btgLane(c->separation, k), processingThreshold) ? factor : 1.0f;
+        btgSetLane(&c->normalImpulse, k, old.point[found].w * f);
 #if BTG_WARMSTART_FRICTION
-        btgSetLane(&c->friction1Impulse, k, btgLane(old.friction1Impulse, found) * factor);
-        btgSetLane(&c->friction2Impulse, k, btgLane(old.friction2Impulse, found) * factor);
+        btgSetLane(&c->friction1Impulse, k, btgLane(old.friction1Impulse, found) * f);
+        btgSetLane(&c->friction2Impulse, k, btgLane(old.friction2Impulse, found) * f);
 #endif
     }
 }
@@ -304,7 +326,7 @@ static inline BtgPairMaterial btgPairMaterial(BtgBodyProps a, BtgBodyProps b)
     m.stiffnessDamping = ((a.flags | b.flags) & BTG_BODY_STIFFNESS_DAMPING) != 0u;
     m.stiffness = 1.0f / (1.0f / a.contactStiffness + 1.0f / b.contactStiffness);
     m.damping = a.contactDamping + b.contactDamping;
-    m.pad0 = 0;
+    m.processingThreshold = btgProcessingThreshold(a, b);
     return m;
 }
 
@@ -381,7 +403,12 @@ static inline void btgPrepareContact(BtgContact* c, BtgSolverBody a, BtgSolverBo
         BtgFloat4 rA = btgXyz(c->rA[k]);
         BtgFloat4 rB = btgXyz(c->rB[k]);
         float target = 0.0f, push = 0.0f;
-        if (k < c->numPoints && solvable) {
+        const int processed =
+            !(p.solverFlags & BTG_SOLVER_PROCESSING_THRESHOLD) ||
+            btgPointProcessed(btgLane(c->separation, k), mat.processingThreshold);
+        if (k < c->numPoints && solvable && !processed) {
+            /* not converted: no rows, its impulses kept (btgWarmStartFrom) */
+        } else if (k < c->numPoints && solvable) {
             const BtgFloat4 d1 = btgFrictionDir1(c, k);
             const float normalMass = btgPointRowMassRelaxed(btgPointJacobian(n, rA, rB, a, b), rA, rB, a, b, p.sor, cfm);
             btgSetLane(&c->normalMass, k, normalMass);
@@ -574,6 +601,15 @@ static inline int btgContactHasPush(BTG_CONST_GLOBAL BtgContact* contacts, int i
     for (int k = 0; k < n; ++k)
         if (btgLane(target, k) != 0.0f && btgLane(mass, k) != 0.0f) return 1;
     return 0;
+}
+/* The normal impulses of the points that have rows (the rolling rows are convertContact's for
+ * converted points only): lanes without a normal row read 0. */
+static inline BtgFloat4 btgSolvedNormalImpulse(const BtgContact* c)
+{
+    BtgFloat4 n = c->normalImpulse;
+    for (int k = 0; k < BTG_MAX_POINTS; ++k)
+        if (btgLane(c->normalMass, k) == 0.0f) btgSetLane(&n, k, 0.0f);
+    return n;
 }
 /* One split-impulse iteration (resolveSplitPenetrationImpulse) on push/turn velocities. */
 static inline void btgContactSolvePush(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* pa, BtgBodyVel* pb)

@@ -99,6 +99,12 @@ typedef struct {
     float spinningFriction;    /* coefficient (m_spinningFriction) */
     float contactStiffness;    /* N/m (m_contactStiffness; read with BTG_BODY_STIFFNESS_DAMPING) */
     float contactDamping;      /* N s/m (m_contactDamping) */
+    float contactProcessingThreshold; /* m: m_contactProcessingThreshold (BT_LARGE_FLOAT unless set): a
+                                         manifold's points farther apart than the smaller of its two
+                                         bodies' stay unsolved (read with BTG_SOLVER_PROCESSING_THRESHOLD) */
+    float pad0;
+    float pad1;
+    float pad2;
 } BtgBodyProps;
 
 /* One collision shape; hull data live in the shared vertex/face/index/edge tables. */
@@ -381,6 +387,7 @@ typedef struct {
 #define BTG_SOLVER_ROLLING_FRICTION 2u /* some body has rolling friction: prepare writes BtgRollingContact rows */
 #define BTG_SOLVER_SOFT_CONTACTS 4u    /* some body has contact stiffness and damping */
 #define BTG_SOLVER_ANISOTROPIC_FRICTION 8u /* a body has anisotropic friction: prepare writes BtgFrictionDirs */
+#define BTG_SOLVER_PROCESSING_THRESHOLD 16u /* a body has a contact processing threshold (setContactProcessingThreshold) */
 
 /* Device status flags (one uint, read back with the transforms). */
 #define BTG_STATUS_PAIR_OVERFLOW 1u
@@ -390,7 +397,7 @@ typedef struct {
 #define BTG_STATUS_SUB_PAIR_OVERFLOW 16u   /* the midphase found more triangles than subPairs holds */
 
 #ifndef __OPENCL_C_VERSION__
-static_assert(sizeof(BtgBodyProps) == 144, "BtgBodyProps layout");
+static_assert(sizeof(BtgBodyProps) == 160, "BtgBodyProps layout");
 static_assert(sizeof(BtgShape) == 112, "BtgShape layout");
 static_assert(sizeof(BtgFace) == 32, "BtgFace layout");
 static_assert(sizeof(BtgPair) == 16, "BtgPair layout");

@@ -42,7 +42,7 @@ void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>&
                 else if (mode == BTG_PASS_NORMALS) btgContactSolveNormals(&c, a, b, &va, &vb);
                 else if (mode == BTG_PASS_FRICTION) btgContactSolveFrictionDirs(&c, d, a, b, &va, &vb, rows);
                 else if (mode == BTG_PASS_ROLLING)
-                    btgRollingSolve(&(*rolling)[e], c.normal, c.normalImpulse, c.numPoints, a, b, &va, &vb);
+                    btgRollingSolve(&(*rolling)[e], c.normal, btgSolvedNormalImpulse(&c), c.numPoints, a, b, &va, &vb);
                 else btgContactSolvePush(&c, a, b, &va, &vb);
                 if (a.dynamic) {
                     lin[c.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, lin[c.bodyA].w);

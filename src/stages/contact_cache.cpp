@@ -43,7 +43,7 @@ void buildContacts(DeviceWorld& w, const BtgStepParams& params)
         .arg(contactCapacity).run(1, 1);
     if (numBlocks > 0)
         cl::Launch(ctx, write, &w.profiler).arg(w.pairManifolds).arg(w.manifolds).arg(w.counters).arg(pairCapacity)
-            .arg(w.solverScratch.blockSums).arg(w.pos).arg(w.rot).arg(w.contactCache).arg(cacheCapacity)
+            .arg(w.solverScratch.blockSums).arg(w.pos).arg(w.rot).arg(w.props).arg(w.contactCache).arg(cacheCapacity)
             .arg(w.contacts).arg(w.contactManifolds).arg(contactCapacity).arg(params).local(group * sizeof(cl_uint))
             .run(numBlocks * group, group);
 }

@@ -202,9 +202,8 @@ std::vector<Rule> rules()
                                                          SOLVER_USE_2_FRICTION_DIRECTIONS |
                                                          SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION);
          }},
-        {"contact processing threshold", "contact processing threshold",
-         [](Scene& s) { s.body(1)->setContactProcessingThreshold(0); },
-         [](Scene& s) { s.body(1)->setContactProcessingThreshold(BT_LARGE_FLOAT); }},
+        // A contact processing threshold is served by the PGS solver (solver_features_test.cpp);
+        // the Jacobi and soft solvers fall back (JacobiSolverFallsBackForRowsItLacks).
         // CCD is served step by step (ccd_test.cpp); beside an overlap filter a step it acts in
         // would ask the filter again.
         {"CCD beside an overlap filter", "continuous collision detection (setCcdMotionThreshold) beside",
@@ -234,6 +233,12 @@ std::vector<Rule> rules()
          [](Scene& s) { s.body(2)->setCollisionShape(&compound); },
          [](Scene& s) { s.body(2)->setCollisionShape(s.body(1)->getCollisionShape()); }},
     };
+}
+
+Rule processingThreshold(const char* expect)
+{
+    return {"contact processing threshold", expect, [](Scene& s) { s.body(1)->setContactProcessingThreshold(0); },
+            [](Scene& s) { s.body(1)->setContactProcessingThreshold(BT_LARGE_FLOAT); }};
 }
 
 bool hasFallbackIssue(const Report& r, const std::string& reason)
@@ -292,8 +297,31 @@ TEST(CpuPathRules, JacobiSolverFallsBackForRowsItLacks)
         {"anisotropic friction", "anisotropic friction (setAnisotropicFriction) with Config::solver = JacobiMassSplitting",
          [](Scene& s) { s.body(1)->setAnisotropicFriction(btVector3(1, btScalar(0.5), 1)); },
          [](Scene& s) { s.body(1)->setAnisotropicFriction(btVector3(1, 1, 1)); }},
+        processingThreshold("setContactProcessingThreshold) with Config::solver = JacobiMassSplitting"),
     };
     for (const Rule& rule : jacobiRules) {
+        SCOPED_TRACE(rule.name);
+        rule.set(*scene);
+        scene->step();
+        EXPECT_FALSE(r.gpuPath);
+        EXPECT_NE(r.cpuPathReason.find(rule.expect), std::string::npos) << r.cpuPathReason;
+        rule.reset(*scene);
+        scene->step();
+        EXPECT_TRUE(r.gpuPath) << r.cpuPathReason;
+    }
+}
+
+// The soft step's contacts are its own springs: the Bullet settings its rows do not follow send
+// the world to the CPU path, naming the mode.
+TEST(CpuPathRules, SoftStepFallsBackForRowsItLacks)
+{
+    Config config;
+    config.solver = SolverKind::SoftStep;
+    ScenePtr scene = scenes::dropRow(WorldKind::Gpu, config);
+    scene->step();
+    const Report& r = *scene->report();
+    ASSERT_TRUE(r.gpuPath) << r.cpuPathReason;
+    for (const Rule& rule : {processingThreshold("setContactProcessingThreshold) with Config::solver = SoftStep")}) {
         SCOPED_TRACE(rule.name);
         rule.set(*scene);
         scene->step();

@@ -403,3 +403,77 @@ TEST(SolverFeatures, SoftStepFallsBackForTheBulletModesContactFeatures)
         EXPECT_TRUE(gpu->gpuWorld()->isGpuPath()) << name << ": " << gpu->report()->cpuPathReason;
     }
 }
+
+namespace {
+// Contact points the app sees in the dispatcher's manifolds, and how many of them lie farther
+// apart than `threshold`.
+struct SeenPoints {
+    int points = 0;
+    int beyond = 0;
+};
+SeenPoints seenPoints(Scene& s, btScalar threshold)
+{
+    SeenPoints seen;
+    btDispatcher* d = s.world().getDispatcher();
+    for (int m = 0; m < d->getNumManifolds(); ++m) {
+        const btPersistentManifold* pm = d->getManifoldByIndexInternal(m);
+        for (int k = 0; k < pm->getNumContacts(); ++k) {
+            ++seen.points;
+            seen.beyond += pm->getContactPoint(k).getDistance() > threshold;
+        }
+    }
+    return seen;
+}
+double gap(const Scene& s) { return s.body(2)->getWorldTransform().getOrigin().y() - s.body(1)->getWorldTransform().getOrigin().y() - 1; }
+}  // namespace
+
+// setContactProcessingThreshold: convertContacts solves a manifold's points only while they are
+// no farther apart than the smaller of its bodies' thresholds. A sphere dropped 5 cm onto a box
+// with a 1 mm threshold: the point it finds on the way down (up to the breaking threshold apart,
+// which would slow it before it touches) is not solved, it lands and rests as stock's, step for
+// step within 1 mm; the unsolved points stay in the manifolds the app reads, as many as stock's.
+// (Box pairs find penetrating points only: the box on box below.)
+TEST(SolverFeatures, ProcessingThresholdLandsAsStock)
+{
+    const btScalar threshold = btScalar(0.001);
+    SideBySide s(
+        [&](WorldKind k, const Config& c) { return features::thresholdStack(k, c, threshold, btScalar(0.05), true); });
+    ScenePtr plain = features::thresholdStack(WorldKind::Stock, Config(), btScalar(BT_LARGE_FLOAT), btScalar(0.05), true);
+    int beyondSeen = 0;
+    double apart = 0, plainApart = 0;
+    for (int i = 0; i < 90; ++i) {
+        s.step();
+        plain->step();
+        ASSERT_TRUE(s.onGpu()) << "step " << i << ": " << s.gpu->report()->cpuPathReason;
+        EXPECT_NEAR(s.gpuY(2), s.stockY(2), tol::kRestHeight) << "step " << i;
+        apart = std::max(apart, std::fabs(s.gpuY(2) - s.stockY(2)));
+        plainApart = std::max(plainApart, std::fabs(plain->body(2)->getWorldTransform().getOrigin().y() - s.stockY(2)));
+        const SeenPoints gpu = seenPoints(*s.gpu, threshold), stock = seenPoints(*s.stock, threshold);
+        EXPECT_EQ(gpu.points, stock.points) << "step " << i;
+        beyondSeen += gpu.beyond;
+    }
+    EXPECT_GT(beyondSeen, 0);  // the scene did have unsolved points to keep
+    // the threshold changes stock's landing by more than the bound the GPU path keeps
+    EXPECT_GT(plainApart, tol::kRestHeight) << "btgpu within " << apart << " m";
+    EXPECT_NEAR(gap(*s.gpu), gap(*s.stock), tol::kRestHeight);
+}
+
+// A threshold below zero leaves the box's points unsolved until they are that deep: the box sinks
+// about 1 cm into the one below on stock (against under 1 mm without it), and as deep on the GPU
+// path (within 1 mm after 2 s).
+TEST(SolverFeatures, NegativeProcessingThresholdSinksAsStock)
+{
+    const btScalar threshold = btScalar(-0.01);
+    SideBySide s([&](WorldKind k, const Config& c) { return features::thresholdStack(k, c, threshold); });
+    ScenePtr plain = features::thresholdStack(WorldKind::Stock, Config(), btScalar(BT_LARGE_FLOAT));
+    for (int i = 0; i < 120; ++i) {
+        s.step();
+        plain->step();
+        ASSERT_TRUE(s.onGpu()) << "step " << i << ": " << s.gpu->report()->cpuPathReason;
+    }
+    EXPECT_LT(gap(*s.stock), -0.005) << "stock's box sinks";
+    EXPECT_GT(gap(*plain), -0.001) << "without the threshold it does not";
+    EXPECT_NEAR(gap(*s.gpu), gap(*s.stock), tol::kRestHeight)
+        << "stock " << gap(*s.stock) << ", without the threshold " << gap(*plain);
+    EXPECT_EQ(seenPoints(*s.gpu, threshold).points, seenPoints(*s.stock, threshold).points);
+}

@@ -103,4 +103,16 @@ ScenePtr anisotropicBox(WorldKind kind, const Config& config)
     return scene;
 }
 
+ScenePtr thresholdStack(WorldKind kind, const Config& config, btScalar threshold, btScalar drop, bool sphere)
+{
+    auto scene = std::make_unique<Scene>(kind, config, "threshold_stack");
+    ground(*scene);
+    btBoxShape* box = scene->boxShape(btVector3(.5, .5, .5));
+    scene->addBody(box, 1, btVector3(0, .5, 0));
+    btCollisionShape* topShape = sphere ? static_cast<btCollisionShape*>(scene->sphereShape(btScalar(0.5))) : box;
+    btRigidBody* top = scene->addBody(topShape, 1, btVector3(0, btScalar(1.5) + drop, 0));
+    top->setContactProcessingThreshold(threshold);
+    return scene;
+}
+
 }  // namespace btgpu::scenes::features

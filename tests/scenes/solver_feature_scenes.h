@@ -31,5 +31,11 @@ ScenePtr anisotropicBox(WorldKind kind, const Config& config);
 // 0.35 rad about y with friction (1, 1, 0.2) on its own axes; body 2 anisotropicBox's box
 // (friction (1, 1, 0.1), turned 30 degrees) resting on the slab, given (2, 0, 2) m/s.
 ScenePtr anisotropicPair(WorldKind kind, const Config& config);
+// Two unit boxes of mass 1 on the ground (or a sphere of radius 0.5 on top with `sphere`): body 1
+// resting on it, body 2 `drop` m above resting on body 1, with contact processing threshold
+// `threshold` (setContactProcessingThreshold; the pair of the two takes it, the ground's pair
+// keeps the default).
+ScenePtr thresholdStack(WorldKind kind, const Config& config, btScalar threshold, btScalar drop = 0,
+                        bool sphere = false);
 
 }  // namespace btgpu::scenes::features

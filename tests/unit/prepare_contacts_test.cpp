@@ -401,3 +401,55 @@ TEST(PrepareContacts, MatchesBulletConvertContact)
         }
     }
 }
+
+// setContactProcessingThreshold: a manifold's points farther apart than the smaller of its
+// bodies' thresholds get no rows (convertContacts skips them) and keep the impulses their
+// btManifoldPoint had, unscaled by the warm start; the nearer ones are prepared as always.
+// Device and reference alike, bit for bit; without BTG_SOLVER_PROCESSING_THRESHOLD every point
+// has rows.
+TEST(PrepareContacts, ProcessingThresholdLeavesFartherPointsUnsolved)
+{
+    ref::ContactBodies b;
+    int ground = test::addBody(b, btgZero4(), 0.0f, btgZero4(), BTG_BODY_STATIC, 0.5f);
+    int box = test::addBody(b, btgMake4(0, 0.5f, 0, 0), 1.0f, btgMake4(6, 6, 6, 0), BTG_BODY_DYNAMIC, 0.5f);
+    b.props[box].contactProcessingThreshold = 0.0f;
+    BtgStepParams p = test::defaultParams(2);
+    p.warmstartFactor = 0.85f;
+    p.solverFlags |= BTG_SOLVER_PROCESSING_THRESHOLD;
+    BtgManifold m = test::boxOnPlane(box, ground, b.pos[box], 0.5f, 0.0f);
+    const float d[4] = {-0.01f, -0.002f, 0.003f, 0.01f};
+    for (int k = 0; k < 4; ++k) {
+        m.points[k].distance = d[k];
+        m.points[k].py = b.pos[box].y - 0.5f - d[k];
+    }
+    const std::vector<BtgManifold> ms = {m};
+    std::vector<BtgContact> prev = ref::buildContacts(ms, 1, b, {}, p);
+    prev[0].normalImpulse = btgMake4(1.0f, 2.0f, 3.0f, 4.0f);
+    for (bool flag : {true, false}) {
+        SCOPED_TRACE(flag);
+        BtgStepParams q = p;
+        if (!flag) q.solverFlags &= ~BTG_SOLVER_PROCESSING_THRESHOLD;
+        std::vector<BtgContact> expect = ref::buildContacts(ms, 1, b, prev, q);
+        ref::prepareContacts(expect, b, q);
+        DeviceWorld w(test::context());
+        test::uploadWorld(w, b, ms, 1, prev, 5);
+        buildContacts(w, q);
+        prepareContacts(w, q);
+        std::vector<BtgContact> got = test::downloadContacts(w);
+        ASSERT_EQ(got.size(), 1u);
+        for (int k = 0; k < 4; ++k) {
+            const bool solved = !flag || d[k] <= 0.0f;
+            EXPECT_EQ(btgLane(got[0].normalMass, k) != 0.0f, solved) << k;
+            EXPECT_EQ(btgLane(got[0].friction1Mass, k) != 0.0f, solved) << k;
+            const float old = btgLane(prev[0].normalImpulse, k);
+            EXPECT_EQ(btgLane(got[0].normalImpulse, k), solved ? old * q.warmstartFactor : old) << k;
+            EXPECT_EQ(btgLane(got[0].normalImpulse, k), btgLane(expect[0].normalImpulse, k)) << k;
+            EXPECT_EQ(btgLane(got[0].normalMass, k), btgLane(expect[0].normalMass, k)) << k;
+            EXPECT_EQ(btgLane(got[0].normalTarget, k), btgLane(expect[0].normalTarget, k)) << k;
+            if (!solved) {
+                EXPECT_EQ(btgLane(got[0].normalTarget, k), 0.0f) << k;
+                EXPECT_EQ(btgLane(got[0].pushTarget, k), 0.0f) << k;
+            }
+        }
+    }
+}
