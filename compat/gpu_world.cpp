@@ -134,10 +134,10 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
         // from the changed friction and restitution, but not the rows prepare_contacts adds for
         // rolling friction or anisotropic friction directions.
         if (why.empty() && ContactCallbacks::wanted(m_world) &&
-            (m_solverFlags & (BTG_SOLVER_ROLLING_FRICTION | BTG_SOLVER_ANISOTROPIC_FRICTION)))
+            (m_solverFlags & (BTG_SOLVER_ROLLING_FRICTION | BTG_SOLVER_ANISOTROPIC_FRICTION | BTG_SOLVER_FRICTION_ANCHORS)))
             why = "contact callbacks that run before the solve (gContactAddedCallback on a CF_CUSTOM_MATERIAL_CALLBACK "
                   "body, gContactProcessedCallback, a custom combiner) beside rolling, spinning or anisotropic "
-                  "friction (their rows are not prepared again with the callbacks' changes)";
+                  "friction or friction anchors (their rows are not prepared again with the callbacks' changes)";
     }
     if (why.empty() && m_config.solver == SolverKind::SoftStep) why = softStepReason();
     return why;
@@ -155,6 +155,8 @@ std::string GpuWorld::softStepReason() const
         return "contact stiffness and damping (CF_HAS_CONTACT_STIFFNESS_DAMPING) with Config::solver = SoftStep";
     if (m_solverFlags & BTG_SOLVER_PROCESSING_THRESHOLD)
         return "contact processing threshold (setContactProcessingThreshold) with Config::solver = SoftStep";
+    if (m_solverFlags & BTG_SOLVER_FRICTION_ANCHORS)
+        return "friction anchors (CF_HAS_FRICTION_ANCHOR) with Config::solver = SoftStep";
     const btContactSolverInfo& info = m_world.getSolverInfo();
     if (info.m_sor != btScalar(1) || info.m_globalCfm != btScalar(0))
         return "btContactSolverInfo::m_sor or m_globalCfm changed with Config::solver = SoftStep";
@@ -311,6 +313,7 @@ StepSettings GpuWorld::settings(int substeps, btScalar dt) const
         p.solverFlags |= BTG_SOLVER_VELOCITY_INDEPENDENT_FRICTION;
     p.sor = info.m_sor;
     p.globalCfm = info.m_globalCfm;
+    p.frictionErp = info.m_frictionERP;
     s.substeps = substeps;
     s.iterations = std::max(info.m_numIterations, 1);
     s.maxColors = std::max(m_config.maxColors, 2);

@@ -18,7 +18,8 @@
  * Reads counters[kEdgeCount, kContactCount, kColorsUsed, kLeftovers], edgeColor, props,
  * invInertiaWorld, contacts (a pass reads the fields of its rows only, see BtgContact),
  * rolling (rows & BTG_ROWS_ROLLING; else a placeholder), frictionDirs (rows & BTG_ROWS_ANISOTROPIC;
- * else a placeholder), joints, jointState (rows built).
+ * else a placeholder), anchors (rows & BTG_ROWS_ANCHORS; else a placeholder), joints, jointState
+ * (rows built).
  * Writes contacts, rolling and jointRows (accumulated impulses),
  * linVel, angVel (modes 0, 1) or pushLin, pushAng (mode 2), dynamic bodies only. */
 #include "shared/types.h"
@@ -45,7 +46,7 @@ static BtgSolverBody load_body(__global const BtgBodyProps* restrict props,
  * them between work-groups across its grid barriers, where a non-coherent cache must not
  * serve a stale copy. The arithmetic is the same for every caller. */
 static void solve_contact(int i, int mode, int rows, __global BtgContact* contacts,
-                      __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs,
+                      __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs, __global const BtgFrictionAnchor* restrict anchors,
                       __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
                       BTG_SHARED __global BtgFloat4* lin, BTG_SHARED __global BtgFloat4* ang)
 {
@@ -63,12 +64,17 @@ static void solve_contact(int i, int mode, int rows, __global BtgContact* contac
                              (mode == BTG_PASS_WARM_START || mode == BTG_PASS_FRICTION || mode == BTG_PASS_VELOCITY);
     if (explicitDirs) dirs = frictionDirs[i];
     const BtgFrictionDirs* d = explicitDirs ? &dirs : 0;
+    /* friction anchors: the friction rows' positional targets, for the friction passes */
+    BtgFrictionAnchor anchor;
+    const int anchored = (rows & BTG_ROWS_ANCHORS) != 0 && (mode == BTG_PASS_FRICTION || mode == BTG_PASS_VELOCITY);
+    if (anchored) anchor = anchors[i];
+    const BtgFrictionAnchor* f = anchored ? &anchor : 0;
     if (mode == BTG_PASS_WARM_START) btgContactWarmStartDirs(&c, d, a, b, &va, &vb, rows);
     else if (mode == BTG_PASS_NORMALS) btgContactSolveNormals(&c, a, b, &va, &vb);
-    else if (mode == BTG_PASS_FRICTION) btgContactSolveFrictionDirs(&c, d, a, b, &va, &vb, rows);
+    else if (mode == BTG_PASS_FRICTION) btgContactSolveFrictionAnchored(&c, d, f, a, b, &va, &vb, rows);
     else if (mode == BTG_PASS_VELOCITY) {
         btgContactSolveNormals(&c, a, b, &va, &vb);
-        btgContactSolveFrictionDirs(&c, d, a, b, &va, &vb, rows);
+        btgContactSolveFrictionAnchored(&c, d, f, a, b, &va, &vb, rows);
     }
     else if (mode == BTG_PASS_ROLLING) {
         BtgRollingContact r = rolling[i];
@@ -92,11 +98,11 @@ static void solve_contact(int i, int mode, int rows, __global BtgContact* contac
 /* One edge of the graph: the contacts are the edges [0, contacts); a constraint kind with
  * edges after them is solved here by its own rows. */
 static void solve_edge(int e, int mode, int rows, __global BtgContact* contacts,
-                       __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs,
+                       __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs, __global const BtgFrictionAnchor* restrict anchors,
                        __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
                        BTG_SHARED __global BtgFloat4* lin, BTG_SHARED __global BtgFloat4* ang)
 {
-    solve_contact(e, mode, rows, contacts, rolling, frictionDirs, props, invInertiaWorld, lin, ang);
+    solve_contact(e, mode, rows, contacts, rolling, frictionDirs, anchors, props, invInertiaWorld, lin, ang);
 }
 
 static int edge_count(__global const uint* restrict counters, int edgeCapacity)
@@ -151,13 +157,13 @@ static void solve_joint(int j, int iteration, JOINT_ARGS, __global const BtgBody
 /* One edge of the phase: a joint edge (phase 1) or a contact (phase 0). */
 static void solve_phase_edge(int e, int phase, int contacts, int iteration, int mode, int rows,
                              __global BtgContact* contactRows, __global BtgRollingContact* rolling,
-                             __global const BtgFrictionDirs* restrict frictionDirs, JOINT_ARGS,
+                             __global const BtgFrictionDirs* restrict frictionDirs, __global const BtgFrictionAnchor* restrict anchors, JOINT_ARGS,
                              __global const BtgBodyProps* restrict props,
                              __global const BtgFloat4* restrict invInertiaWorld, BTG_SHARED __global BtgFloat4* lin,
                              BTG_SHARED __global BtgFloat4* ang)
 {
     if (phase) solve_joint(e - contacts, iteration, JOINT_PASS, props, invInertiaWorld, lin, ang);
-    else solve_edge(e, mode, rows, contactRows, rolling, frictionDirs, props, invInertiaWorld, lin, ang);
+    else solve_edge(e, mode, rows, contactRows, rolling, frictionDirs, anchors, props, invInertiaWorld, lin, ang);
 }
 
 /* Whether edge e has a split-impulse row (only contacts do: Bullet pushes contacts only). */
@@ -167,7 +173,7 @@ static int edge_has_push(__global const BtgContact* restrict contacts, int e)
 }
 
 __kernel void solve_color_serial(__global const int* restrict edgeColor, __global BtgContact* contacts,
-                                 __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs,
+                                 __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs, __global const BtgFrictionAnchor* restrict anchors,
                                  __global const uint* restrict counters, int edgeCapacity,
                                  __global const BtgBodyProps* restrict props,
                                  __global const BtgFloat4* restrict invInertiaWorld, __global BtgFloat4* lin,
@@ -182,7 +188,7 @@ __kernel void solve_color_serial(__global const int* restrict edgeColor, __globa
     const int nc = contact_edges(counters, edgeCapacity, numJoints);
     for (int i = phase ? nc : 0; i < (phase ? n : min(n, nc)); ++i)
         if (edgeColor[i] >= color)
-            solve_phase_edge(i, phase, nc, iteration, mode, rows, contacts, rolling, frictionDirs, JOINT_PASS, props,
+            solve_phase_edge(i, phase, nc, iteration, mode, rows, contacts, rolling, frictionDirs, anchors, JOINT_PASS, props,
                              invInertiaWorld, lin, ang);
 }
 
@@ -252,7 +258,7 @@ __kernel void color_fill(__global const int* restrict edgeColor, __global const 
  * work-items the host launched (it does not know the range's length; a launch over every
  * edge slot cost a CPU device hundreds of empty work-groups per color). */
 __kernel void solve_color_range(__global BtgContact* contacts, __global BtgRollingContact* rolling,
-                                __global const BtgFrictionDirs* restrict frictionDirs,
+                                __global const BtgFrictionDirs* restrict frictionDirs, __global const BtgFrictionAnchor* restrict anchors,
                                 __global const uint* restrict colorStart,
                                 __global const int* restrict colorOrder, __global const BtgBodyProps* restrict props,
                                 __global const BtgFloat4* restrict invInertiaWorld, __global BtgFloat4* lin,
@@ -266,7 +272,7 @@ __kernel void solve_color_range(__global BtgContact* contacts, __global BtgRolli
     const int nc = phase ? contact_edges(counters, edgeCapacity, numJoints) : 0;
     for (int k = begin + (int)get_global_id(0); k < end; k += (int)get_global_size(0))
         solve_phase_edge(colorOrder[list * orderStride + k], phase, nc, iteration, mode, rows, contacts, rolling,
-                         frictionDirs, JOINT_PASS, props, invInertiaWorld, lin, ang);
+                         frictionDirs, anchors, JOINT_PASS, props, invInertiaWorld, lin, ang);
 }
 
 /* solve_resident: every pass and color in ONE launch over resident work-groups (GPUs), with a
@@ -278,7 +284,7 @@ __kernel void solve_color_range(__global BtgContact* contacts, __global BtgRolli
  * for bit. A batching that timed out at its own barrier leaves nothing to solve: the step is redone. */
 
 __kernel void solve_resident(__global const int* restrict edgeColor, __global BtgContact* contacts,
-                             __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs,
+                             __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs, __global const BtgFrictionAnchor* restrict anchors,
                              __global uint* counters, int edgeCapacity,
                              __global const uint* restrict colorStart, __global const int* restrict colorOrder,
                              __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
@@ -318,7 +324,7 @@ __kernel void solve_resident(__global const int* restrict edgeColor, __global Bt
                     const int end = (int)colorStart[list * (numColors + 1) + color + 1];
                     for (int k = begin + gid; k < end; k += gsize)
                         solve_phase_edge(colorOrder[list * orderStride + k], phase, nc, iteration, m, rows,
-                                         contacts, rolling, frictionDirs, JOINT_PASS, props, invInertiaWorld, lin, ang);
+                                         contacts, rolling, frictionDirs, anchors, JOINT_PASS, props, invInertiaWorld, lin, ang);
                     if (btgGridBarrier(bar, spinLimit, &quit)) {
                         if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
                         return;
@@ -328,7 +334,7 @@ __kernel void solve_resident(__global const int* restrict edgeColor, __global Bt
                     if (gid == 0)
                         for (int i = phase ? nc : 0; i < (phase ? n : min(n, nc)); ++i)
                             if (edgeColor[i] >= last)
-                                solve_phase_edge(i, phase, nc, iteration, m, rows, contacts, rolling, frictionDirs, JOINT_PASS,
+                                solve_phase_edge(i, phase, nc, iteration, m, rows, contacts, rolling, frictionDirs, anchors, JOINT_PASS,
                                                  props, invInertiaWorld, lin, ang);
                     if (btgGridBarrier(bar, spinLimit, &quit)) {
                         if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);

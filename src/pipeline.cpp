@@ -66,7 +66,7 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
             // A cache stored without the persistent manifolds beside it leaves those stale.
             if (!anyPersistent(plan.kinds)) w.gjkCacheCurrent = false;
             break;
-        case Stage::StorePersistentManifolds: storePersistentManifolds(w, plan.kinds); break;
+        case Stage::StorePersistentManifolds: storePersistentManifolds(w, plan.kinds, p.solverFlags); break;
         case Stage::ReportContacts: reportContacts(w); break;
         case Stage::IntegrateTransforms: integrateTransforms(w, p.dt, p.splitTurnErp); break;
         case Stage::SoftTransforms: softTransforms(w); break;

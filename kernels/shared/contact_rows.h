@@ -25,6 +25,7 @@
 #define BTG_ROWS_CFM 2     /* normalCfm: m_globalCfm or contact stiffness and damping */
 #define BTG_ROWS_ROLLING 4 /* BtgRollingContact rows (rolling and spinning friction) */
 #define BTG_ROWS_ANISOTROPIC 8 /* friction directions from BtgFrictionDirs (anisotropic friction) */
+#define BTG_ROWS_ANCHORS 16    /* friction rows' positional targets from BtgFrictionAnchor (friction anchors) */
 
 /* The optional rows a step's solve reads. */
 static inline int btgRowFlags(BtgStepParams p)
@@ -33,6 +34,7 @@ static inline int btgRowFlags(BtgStepParams p)
     if (p.globalCfm != 0.0f || (p.solverFlags & BTG_SOLVER_SOFT_CONTACTS) != 0u) rows |= BTG_ROWS_CFM;
     if ((p.solverFlags & BTG_SOLVER_ROLLING_FRICTION) != 0u) rows |= BTG_ROWS_ROLLING;
     if ((p.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION) != 0u) rows |= BTG_ROWS_ANISOTROPIC;
+    if ((p.solverFlags & BTG_SOLVER_FRICTION_ANCHORS) != 0u) rows |= BTG_ROWS_ANCHORS;
     return rows;
 }
 
@@ -439,6 +441,48 @@ static inline void btgPrepareContact(BtgContact* c, BtgSolverBody a, BtgSolverBo
     }
 }
 
+/* ---- friction anchors (CF_HAS_FRICTION_ANCHOR) ---- */
+
+/* Whether a pair's points are friction anchors: btManifoldResult flags every point it adds
+ * (BT_CONTACT_FLAG_FRICTION_ANCHOR) when either body has CF_HAS_FRICTION_ANCHOR. */
+static inline int btgAnchoredPair(uint flagsA, uint flagsB)
+{
+    return ((flagsA | flagsB) & BTG_BODY_FRICTION_ANCHOR) != 0u;
+}
+/* A persistent manifold's contact takes its points on A from the manifold's body-frame points
+ * (refreshContactPoints' m_positionWorldOnA = trA(m_localPointA)), not from the point on B and
+ * the distance: a kept anchor drifts sideways, and that drift is what its friction rows pull
+ * back. pm is the pair's manifold as the narrowphase left it (its points in the contact's
+ * order), posA/rotA A's pose. */
+static inline void btgAnchorLeverArms(BtgContact* c, BtgPersistentManifold pm, BtgFloat4 posA, BtgFloat4 rotA)
+{
+    if (pm.numPoints != c->numPoints || pm.bodyA != c->bodyA || pm.bodyB != c->bodyB) return;
+    const BtgMat3 r = btgQuatToMat3(rotA);
+    for (int k = 0; k < c->numPoints; ++k) {
+        const BtgFloat4 worldA = btgXyz(posA) + btgMat3MulVec(r, pm.localA[k]);
+        c->rA[k] = worldA - btgXyz(posA);
+    }
+}
+/* setupFrictionConstraint's positional error of an anchored point: -(pA - pB).dir m_frictionERP
+ * / dt joins each friction row's velocity target (dirs: anisotropic friction's explicit
+ * directions, or none). Zero targets for a pair without anchors or a point without rows. */
+static inline BtgFrictionAnchor btgPrepareFrictionAnchor(const BtgContact* c, const BtgFrictionDirs* dirs, BtgFloat4 posA,
+                                                         BtgFloat4 posB, int anchored, BtgStepParams p)
+{
+    BtgFrictionAnchor f;
+    f.target1 = btgZero4();
+    f.target2 = btgZero4();
+    if (!anchored) return f;
+    const float rate = p.frictionErp / p.dt;
+    for (int k = 0; k < c->numPoints; ++k) {
+        if (btgLane(c->friction1Mass, k) == 0.0f && btgLane(c->friction2Mass, k) == 0.0f) continue;
+        const BtgFloat4 d = (btgXyz(posA) + btgXyz(c->rA[k])) - (btgXyz(posB) + btgXyz(c->rB[k]));
+        btgSetLane(&f.target1, k, -btgDot3(d, btgFrictionDir1Of(c, dirs, k)) * rate);
+        if (p.twoFrictionDirections) btgSetLane(&f.target2, k, -btgDot3(d, btgFrictionDir2Of(c, dirs, k)) * rate);
+    }
+    return f;
+}
+
 /* ---- solve (one contact, bodies loaded by the caller) ---- */
 
 /* What pass `mode` reads of contact i (see BtgContact), the rest zero: a solver pass loads
@@ -506,11 +550,11 @@ static inline BtgSolverRow btgContactNormalRow(const BtgContact* c, int k, BtgSo
     return r;
 }
 static inline BtgSolverRow btgContactFrictionRow(const BtgContact* c, int k, BtgFloat4 dir, float mass, float impulse,
-                                                 BtgSolverBody a, BtgSolverBody b)
+                                                 float target, BtgSolverBody a, BtgSolverBody b)
 {
     BtgFloat4 rA = btgXyz(c->rA[k]), rB = btgXyz(c->rB[k]);
     float lim = c->friction * btgLane(c->normalImpulse, k);
-    return btgMakeSolverRow(btgPointJacobian(dir, rA, rB, a, b), mass, 0.0f, -lim, lim, impulse);
+    return btgMakeSolverRow(btgPointJacobian(dir, rA, rB, a, b), mass, target, -lim, lim, impulse);
 }
 static inline BtgSolverRow btgContactPushRow(const BtgContact* c, int k, BtgSolverBody a, BtgSolverBody b)
 {
@@ -558,27 +602,33 @@ static inline void btgContactSolveNormals(BtgContact* c, BtgSolverBody a, BtgSol
 }
 /* Its friction rows (directions 1 and 2 per point) whose normal impulse is positive
  * (BTG_PASS_FRICTION). */
-static inline void btgContactSolveFrictionDirs(BtgContact* c, const BtgFrictionDirs* dirs, BtgSolverBody a,
-                                               BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb, int rows)
+static inline void btgContactSolveFrictionAnchored(BtgContact* c, const BtgFrictionDirs* dirs,
+                                                   const BtgFrictionAnchor* anchor, BtgSolverBody a, BtgSolverBody b,
+                                                   BtgBodyVel* va, BtgBodyVel* vb, int rows)
 {
     const int twoFriction = (rows & BTG_ROWS_TWO_FRICTION) != 0;
     for (int k = 0; k < c->numPoints; ++k) {
         if (!(btgLane(c->normalImpulse, k) > 0.0f)) continue;
         float m1 = btgLane(c->friction1Mass, k);
         if (m1 != 0.0f) {
-            BtgSolverRow r =
-                btgContactFrictionRow(c, k, btgFrictionDir1Of(c, dirs, k), m1, btgLane(c->friction1Impulse, k), a, b);
+            BtgSolverRow r = btgContactFrictionRow(c, k, btgFrictionDir1Of(c, dirs, k), m1, btgLane(c->friction1Impulse, k),
+                                                   anchor ? btgLane(anchor->target1, k) : 0.0f, a, b);
             btgRowSolve(&r, a, b, va, vb);
             btgSetLane(&c->friction1Impulse, k, r.impulse);
         }
         float m2 = twoFriction ? btgLane(c->friction2Mass, k) : 0.0f;
         if (m2 != 0.0f) {
-            BtgSolverRow r =
-                btgContactFrictionRow(c, k, btgFrictionDir2Of(c, dirs, k), m2, btgLane(c->friction2Impulse, k), a, b);
+            BtgSolverRow r = btgContactFrictionRow(c, k, btgFrictionDir2Of(c, dirs, k), m2, btgLane(c->friction2Impulse, k),
+                                                   anchor ? btgLane(anchor->target2, k) : 0.0f, a, b);
             btgRowSolve(&r, a, b, va, vb);
             btgSetLane(&c->friction2Impulse, k, r.impulse);
         }
     }
+}
+static inline void btgContactSolveFrictionDirs(BtgContact* c, const BtgFrictionDirs* dirs, BtgSolverBody a,
+                                               BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb, int rows)
+{
+    btgContactSolveFrictionAnchored(c, dirs, 0, a, b, va, vb, rows);
 }
 static inline void btgContactSolveFriction(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
                                            BtgBodyVel* vb, int rows)

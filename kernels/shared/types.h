@@ -21,6 +21,7 @@
 #define BTG_BODY_STIFFNESS_DAMPING 1024u /* CF_HAS_CONTACT_STIFFNESS_DAMPING: soft contacts */
 #define BTG_BODY_ANISOTROPIC 2048u        /* CF_ANISOTROPIC_FRICTION: friction directions scaled */
 #define BTG_BODY_ANISOTROPIC_ROLLING 4096u /* CF_ANISOTROPIC_ROLLING_FRICTION: rolling axes scaled */
+#define BTG_BODY_FRICTION_ANCHOR 8192u    /* CF_HAS_FRICTION_ANCHOR: its pairs' points are friction anchors */
 
 /* Shape kinds (BtgShape.type). Which pairs of them collide, and how, is the pair-kind table
  * (pair_kinds.h), which follows stock's choice of algorithm per pair: BOX is a btBoxShape (a
@@ -310,6 +311,14 @@ typedef struct {
     BtgFloat4 dir2[BTG_MAX_POINTS]; /* ... Dir2 (read with two friction directions) */
 } BtgFrictionDirs;
 
+/* Each point's friction rows' positional targets where its pair's points are friction anchors
+ * (setupFrictionConstraint: -(pA - pB).dir m_frictionERP / dt, the anchor's drift along each
+ * friction direction); only with BTG_SOLVER_FRICTION_ANCHORS, same index as the contact. */
+typedef struct {
+    BtgFloat4 target1; /* per point, m/s, along friction direction 1 */
+    BtgFloat4 target2; /* ... direction 2 (read with two friction directions) */
+} BtgFrictionAnchor;
+
 /* An edge of the constraint graph: one constraint between two bodies. The batching colors
  * edges and the islands walk them, whatever kind of constraint each is: edges [0, contacts)
  * are the contacts, in their order; other kinds (joints) append theirs after them. */
@@ -358,7 +367,11 @@ typedef struct {
                                          -1 for none (the points persisted from earlier substeps),
                                          -2 for several (hulls clipped, boxes: every point) */
     uint addedMask;                   /* bit id set for each point added or replaced this substep */
-    int pad1, pad2;
+    uint anchorMask;                  /* bit id set for each point its next refresh keeps as a friction
+                                         anchor (store_persistent_manifolds: a body has
+                                         CF_HAS_FRICTION_ANCHOR and the last solve left the point's
+                                         lateral impulse inside its friction cone) */
+    int pad2;
 } BtgPersistentManifold;
 
 /* Per-step scalars, passed by value to the kernels that need them. */
@@ -380,6 +393,10 @@ typedef struct {
                                     Bullet's default is 1 (a zeroed BtgStepParams must set it) */
     float globalCfm;             /* m_globalCfm (contacts; the joints take theirs from BtgJointStepParams) */
     int pad0;
+    float frictionErp;           /* m_frictionERP: friction anchors' positional error rate */
+    int pad1;
+    int pad2;
+    int pad3;
 } BtgStepParams;
 /* BtgStepParams.solverFlags */
 #define BTG_SOLVER_VELOCITY_INDEPENDENT_FRICTION 1u /* SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION:
@@ -388,6 +405,7 @@ typedef struct {
 #define BTG_SOLVER_SOFT_CONTACTS 4u    /* some body has contact stiffness and damping */
 #define BTG_SOLVER_ANISOTROPIC_FRICTION 8u /* a body has anisotropic friction: prepare writes BtgFrictionDirs */
 #define BTG_SOLVER_PROCESSING_THRESHOLD 16u /* a body has a contact processing threshold (setContactProcessingThreshold) */
+#define BTG_SOLVER_FRICTION_ANCHORS 32u /* a body has CF_HAS_FRICTION_ANCHOR: prepare writes BtgFrictionAnchor rows */
 
 /* Device status flags (one uint, read back with the transforms). */
 #define BTG_STATUS_PAIR_OVERFLOW 1u
@@ -409,9 +427,10 @@ static_assert(sizeof(BtgContact) == 16 + 16 * 24, "BtgContact layout");
 static_assert(sizeof(BtgEdge) == 8, "BtgEdge layout");
 static_assert(sizeof(BtgRollingContact) == 16 * 5 + 32, "BtgRollingContact layout");
 static_assert(sizeof(BtgFrictionDirs) == 32 * BTG_MAX_POINTS, "BtgFrictionDirs layout");
+static_assert(sizeof(BtgFrictionAnchor) == 32, "BtgFrictionAnchor layout");
 static_assert(sizeof(BtgCachedContact) == 16 * (BTG_MAX_POINTS + 2 * BTG_WARMSTART_FRICTION) + 4 * BTG_MAX_POINTS + 32,
               "BtgCachedContact layout");
-static_assert(sizeof(BtgStepParams) == 64, "BtgStepParams layout");
+static_assert(sizeof(BtgStepParams) == 80, "BtgStepParams layout");
 static_assert(sizeof(BtgPersistentManifold) == 16 * 3 * BTG_MAX_POINTS + 4 * BTG_MAX_POINTS + 32,
               "BtgPersistentManifold layout");
 #endif

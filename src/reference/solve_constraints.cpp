@@ -12,9 +12,10 @@ namespace btgpu::ref {
 
 void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>& colors, ContactBodies& bodies,
                       const BtgStepParams& params, int iterations, int numColors, std::vector<BtgRollingContact>* rolling,
-                      const std::vector<BtgFrictionDirs>* frictionDirs)
+                      const std::vector<BtgFrictionDirs>* frictionDirs, const std::vector<BtgFrictionAnchor>* anchors)
 {
-    const int rows = btgRowFlags(params) & (rolling ? ~0 : ~BTG_ROWS_ROLLING) & (frictionDirs ? ~0 : ~BTG_ROWS_ANISOTROPIC);
+    const int rows = btgRowFlags(params) & (rolling ? ~0 : ~BTG_ROWS_ROLLING) & (frictionDirs ? ~0 : ~BTG_ROWS_ANISOTROPIC) &
+                     (anchors ? ~0 : ~BTG_ROWS_ANCHORS);
     if (numColors < 1) numColors = 1;
     size_t n = bodies.props.size();
     if (params.splitImpulse) {
@@ -40,7 +41,9 @@ void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>&
                 const BtgFrictionDirs* d = (rows & BTG_ROWS_ANISOTROPIC) ? &(*frictionDirs)[e] : nullptr;
                 if (mode == BTG_PASS_WARM_START) btgContactWarmStartDirs(&c, d, a, b, &va, &vb, rows);
                 else if (mode == BTG_PASS_NORMALS) btgContactSolveNormals(&c, a, b, &va, &vb);
-                else if (mode == BTG_PASS_FRICTION) btgContactSolveFrictionDirs(&c, d, a, b, &va, &vb, rows);
+                else if (mode == BTG_PASS_FRICTION)
+                    btgContactSolveFrictionAnchored(&c, d, (rows & BTG_ROWS_ANCHORS) ? &(*anchors)[e] : nullptr, a, b, &va,
+                                                    &vb, rows);
                 else if (mode == BTG_PASS_ROLLING)
                     btgRollingSolve(&(*rolling)[e], c.normal, btgSolvedNormalImpulse(&c), c.numPoints, a, b, &va, &vb);
                 else btgContactSolvePush(&c, a, b, &va, &vb);

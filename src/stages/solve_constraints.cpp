@@ -37,6 +37,7 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     const int rows = btgRowFlags(params);
     w.rollingContacts.reserve(ctx, 1);
     w.frictionDirs.reserve(ctx, 1);
+    w.frictionAnchors.reserve(ctx, 1);
     // Edges sorted into per-color ranges once, so each color's launch reads only its own.
     SolverScratch& sc = w.solverScratch;
     // Two lists (see color_count): the contacts, and the contacts with a push target; with
@@ -72,7 +73,7 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
         cl_kernel k = prog.kernel("solve_resident");
         size_t group = std::min<size_t>(256, cl::kernelGroupLimit(ctx, k));
         size_t groups = resident ? std::max<cl_uint>(ctx.device().computeUnits, 1) : 1;
-        cl::Launch(ctx, k, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.rollingContacts).arg(w.frictionDirs)
+        cl::Launch(ctx, k, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.rollingContacts).arg(w.frictionDirs).arg(w.frictionAnchors)
             .arg(w.counters).arg(edgeCapacity)
             .arg(sc.colorStart)
             .arg(sc.colorOrder).arg(w.props).arg(w.invInertiaWorld).arg(w.linVel).arg(w.angVel).arg(w.pushLin)
@@ -92,12 +93,12 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             // then returns at once).
             if (color == numColors - 1) {
                 cl::Launch(ctx, serial, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.rollingContacts)
-                    .arg(w.frictionDirs).arg(w.counters)
+                    .arg(w.frictionDirs).arg(w.frictionAnchors).arg(w.counters)
                     .arg(edgeCapacity).arg(w.props)
                     .arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(rows).arg(w.joints)
                     .arg(w.jointState).arg(w.jointRows).arg(numJoints).arg(phase).arg(iteration).run(1, 1);
             } else {
-                cl::Launch(ctx, parallel, &w.profiler).arg(w.contacts).arg(w.rollingContacts).arg(w.frictionDirs)
+                cl::Launch(ctx, parallel, &w.profiler).arg(w.contacts).arg(w.rollingContacts).arg(w.frictionDirs).arg(w.frictionAnchors)
                     .arg(sc.colorStart)
                     .arg(sc.colorOrder)
                     .arg(w.props).arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(rows)

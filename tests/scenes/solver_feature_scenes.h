@@ -37,5 +37,10 @@ ScenePtr anisotropicPair(WorldKind kind, const Config& config);
 // keeps the default).
 ScenePtr thresholdStack(WorldKind kind, const Config& config, btScalar threshold, btScalar drop = 0,
                         bool sphere = false);
+// A unit box of mass 1 at rest on a static 10 x 1 x 10 m slab tilted `angle` rad about z
+// (friction 0.5 on both: 0.25 combined, a cone of atan 0.25 = 0.245 rad); with `anchor` the box
+// has CF_HAS_FRICTION_ANCHOR; the box never sleeps and starts sliding downhill at `speed` m/s. Body 1 the slab, body 2 the box (body 0 a
+// ground far below).
+ScenePtr anchorSlope(WorldKind kind, const Config& config, btScalar angle, bool anchor, btScalar speed = 0);
 
 }  // namespace btgpu::scenes::features
