@@ -397,11 +397,17 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
     // friction (applied to the cached directions with the body's rotation at the point's first
     // step), which then falls back (bodiesReason). Tested: stock with and without the bit step for
     // step alike (SolverFeatures.FrictionDirectionCachingIsStockNoOp).
-    const int notFollowed = SOLVER_RANDMIZE_ORDER | SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS;
+    // SOLVER_RANDMIZE_ORDER: stock shuffles its row pools every iteration with its own btRandInt2
+    // stream, which the batched solver cannot follow; the PGS solver serves the bit's intent, its
+    // solve order (each sweep's colours, each contact's points) permuted every iteration by a
+    // stream of its own (solver_rows.h), bitwise the same run to run. The Jacobi solver has no
+    // order to permute, the soft step keeps its own (GpuWorld::softStepReason).
+    if ((info.m_solverMode & SOLVER_RANDMIZE_ORDER) && jacobi)
+        return "btContactSolverInfo::m_solverMode SOLVER_RANDMIZE_ORDER with Config::solver = JacobiMassSplitting";
+    const int notFollowed = SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS;
     if ((info.m_solverMode ^ stock.m_solverMode) & notFollowed)
         return "btContactSolverInfo::m_solverMode " + std::to_string(info.m_solverMode) +
-               " sets bits the GPU path does not follow (SOLVER_RANDMIZE_ORDER: randomised row order, or "
-               "SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS)";
+               " sets bits the GPU path does not follow (SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS)";
 
     // Dispatch info. m_useContinuous only matters for CCD bodies (a body rule); the CCD fields
     // (m_allowedCcdPenetration) likewise. m_useConvexConservativeDistanceUtil and its threshold

@@ -485,6 +485,19 @@ static inline BtgFrictionAnchor btgPrepareFrictionAnchor(const BtgContact* c, co
 
 /* ---- solve (one contact, bodies loaded by the caller) ---- */
 
+/* The order key of a solver pass (solver_rows.h, SOLVER_RANDMIZE_ORDER): phase 1 the joints'
+ * edges, else the contacts' sweep `mode` of velocity iteration `iteration`; 0 for the passes whose
+ * order stays (the warm start, the rolling sweep) and without a seed. */
+static inline uint btgPassKey(uint seed, int mode, int phase, int iteration)
+{
+    if (seed == 0u) return 0u;
+    if (phase) return btgSweepKey(seed, iteration, BTG_ORDER_JOINTS);
+    if (mode == BTG_PASS_NORMALS || mode == BTG_PASS_VELOCITY) return btgSweepKey(seed, iteration, BTG_ORDER_NORMALS);
+    if (mode == BTG_PASS_FRICTION) return btgSweepKey(seed, iteration, BTG_ORDER_FRICTION);
+    if (mode == BTG_PASS_PUSH) return btgSweepKey(seed, iteration, BTG_ORDER_PUSH);
+    return 0u;
+}
+
 /* What pass `mode` reads of contact i (see BtgContact), the rest zero: a solver pass loads
  * these fields and nothing else (a copy of the whole contact would read all its bytes every
  * pass), the lever arms of the contact's points only. twoFriction: the second friction rows
@@ -590,24 +603,32 @@ static inline void btgContactWarmStart(const BtgContact* c, BtgSolverBody a, Btg
 {
     btgContactWarmStartDirs(c, 0, a, b, va, vb, rows);
 }
-/* A velocity iteration's normal rows of one contact (BTG_PASS_NORMALS). */
-static inline void btgContactSolveNormals(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb)
+/* A velocity iteration's normal rows of one contact (BTG_PASS_NORMALS), its points in the order
+ * `key` permutes them to (btgPermute; 0: in order). */
+static inline void btgContactSolveNormalsOrdered(BtgContact* c, uint key, BtgSolverBody a, BtgSolverBody b,
+                                                 BtgBodyVel* va, BtgBodyVel* vb)
 {
-    for (int k = 0; k < c->numPoints; ++k) {
+    for (int j = 0; j < c->numPoints; ++j) {
+        const int k = btgPermute(key, c->numPoints, j);
         if (btgLane(c->normalMass, k) == 0.0f) continue;
         BtgSolverRow r = btgContactNormalRow(c, k, a, b);
         btgRowSolve(&r, a, b, va, vb);
         btgSetLane(&c->normalImpulse, k, r.impulse);
     }
 }
+static inline void btgContactSolveNormals(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb)
+{
+    btgContactSolveNormalsOrdered(c, 0u, a, b, va, vb);
+}
 /* Its friction rows (directions 1 and 2 per point) whose normal impulse is positive
  * (BTG_PASS_FRICTION). */
-static inline void btgContactSolveFrictionAnchored(BtgContact* c, const BtgFrictionDirs* dirs,
-                                                   const BtgFrictionAnchor* anchor, BtgSolverBody a, BtgSolverBody b,
-                                                   BtgBodyVel* va, BtgBodyVel* vb, int rows)
+static inline void btgContactSolveFrictionOrdered(BtgContact* c, const BtgFrictionDirs* dirs,
+                                                  const BtgFrictionAnchor* anchor, uint key, BtgSolverBody a,
+                                                  BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb, int rows)
 {
     const int twoFriction = (rows & BTG_ROWS_TWO_FRICTION) != 0;
-    for (int k = 0; k < c->numPoints; ++k) {
+    for (int j = 0; j < c->numPoints; ++j) {
+        const int k = btgPermute(key, c->numPoints, j);
         if (!(btgLane(c->normalImpulse, k) > 0.0f)) continue;
         float m1 = btgLane(c->friction1Mass, k);
         if (m1 != 0.0f) {
@@ -624,6 +645,12 @@ static inline void btgContactSolveFrictionAnchored(BtgContact* c, const BtgFrict
             btgSetLane(&c->friction2Impulse, k, r.impulse);
         }
     }
+}
+static inline void btgContactSolveFrictionAnchored(BtgContact* c, const BtgFrictionDirs* dirs,
+                                                   const BtgFrictionAnchor* anchor, BtgSolverBody a, BtgSolverBody b,
+                                                   BtgBodyVel* va, BtgBodyVel* vb, int rows)
+{
+    btgContactSolveFrictionOrdered(c, dirs, anchor, 0u, a, b, va, vb, rows);
 }
 static inline void btgContactSolveFrictionDirs(BtgContact* c, const BtgFrictionDirs* dirs, BtgSolverBody a,
                                                BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb, int rows)
@@ -661,15 +688,23 @@ static inline BtgFloat4 btgSolvedNormalImpulse(const BtgContact* c)
         if (btgLane(c->normalMass, k) == 0.0f) btgSetLane(&n, k, 0.0f);
     return n;
 }
-/* One split-impulse iteration (resolveSplitPenetrationImpulse) on push/turn velocities. */
-static inline void btgContactSolvePush(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* pa, BtgBodyVel* pb)
+/* One split-impulse iteration (resolveSplitPenetrationImpulse) on push/turn velocities, the
+ * points in key's order (0: in order). */
+static inline void btgContactSolvePushOrdered(BtgContact* c, uint key, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* pa,
+                                              BtgBodyVel* pb)
 {
-    for (int k = 0; k < c->numPoints; ++k) {
+    for (int j = 0; j < c->numPoints; ++j) {
+        const int k = btgPermute(key, c->numPoints, j);
         if (btgLane(c->normalMass, k) == 0.0f || btgLane(c->pushTarget, k) == 0.0f) continue;
         BtgSolverRow r = btgContactPushRow(c, k, a, b);
         btgRowSolve(&r, a, b, pa, pb);
         btgSetLane(&c->pushImpulse, k, r.impulse);
     }
+}
+
+static inline void btgContactSolvePush(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* pa, BtgBodyVel* pb)
+{
+    btgContactSolvePushOrdered(c, 0u, a, b, pa, pb);
 }
 
 #endif

@@ -394,7 +394,7 @@ typedef struct {
     float globalCfm;             /* m_globalCfm (contacts; the joints take theirs from BtgJointStepParams) */
     int pad0;
     float frictionErp;           /* m_frictionERP: friction anchors' positional error rate */
-    int pad1;
+    uint randomSeed;             /* SOLVER_RANDMIZE_ORDER: this substep's solve-order stream; 0: off */
     int pad2;
     int pad3;
 } BtgStepParams;
