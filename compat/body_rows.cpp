@@ -74,6 +74,7 @@ BtgBodyProps bodyProps(const btCollisionObject* obj, int shapeRow, const BtgShap
         p.angularFactor = btgMake4(1, 1, 1, 0);
     }
     if (obj->getCollisionFlags() & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING) flags |= BTG_BODY_STIFFNESS_DAMPING;
+    if (obj->getCollisionFlags() & btCollisionObject::CF_HAS_FRICTION_ANCHOR) flags |= BTG_BODY_FRICTION_ANCHOR;
     if (obj->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION)) flags |= BTG_BODY_ANISOTROPIC;
     if (obj->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_ROLLING_FRICTION))
         flags |= BTG_BODY_ANISOTROPIC_ROLLING;
@@ -82,6 +83,7 @@ BtgBodyProps bodyProps(const btCollisionObject* obj, int shapeRow, const BtgShap
     p.spinningFriction = obj->getSpinningFriction();
     p.contactStiffness = obj->getContactStiffness();
     p.contactDamping = obj->getContactDamping();
+    p.contactProcessingThreshold = obj->getContactProcessingThreshold();
     p.friction = obj->getFriction();
     p.restitution = obj->getRestitution();
     p.shape = shapeRow;

@@ -80,6 +80,48 @@ std::uint64_t shapeTypeBits(const btCollisionShape* shape, int depth = 0)
     return bits;
 }
 
+// The device's shape kinds (BTG_SHAPE_*) a body's shape may take, one bit each: a hull or a
+// multi-sphere could be either of two rows (shape_tables.cpp decides), so both bits.
+unsigned deviceShapeKinds(const btCollisionShape* shape)
+{
+    const int type = shape->getShapeType();
+    auto bit = [](int kind) { return 1u << kind; };
+    if (type == SPHERE_SHAPE_PROXYTYPE) return bit(BTG_SHAPE_SPHERE);
+    if (type == MULTI_SPHERE_SHAPE_PROXYTYPE) return bit(BTG_SHAPE_SPHERE) | bit(BTG_SHAPE_CONVEX);
+    if (type == BOX_SHAPE_PROXYTYPE) return bit(BTG_SHAPE_BOX) | bit(BTG_SHAPE_HULL);
+    if (type == STATIC_PLANE_PROXYTYPE) return bit(BTG_SHAPE_PLANE);
+    if (shape->isCompound()) return bit(BTG_SHAPE_COMPOUND);
+    if (type == TERRAIN_SHAPE_PROXYTYPE) return bit(BTG_SHAPE_HEIGHTFIELD);
+    if (shape->isConcave()) return bit(BTG_SHAPE_MESH);
+    if (isSupportShapeType(type)) return bit(BTG_SHAPE_CONVEX);
+    return bit(BTG_SHAPE_HULL) | bit(BTG_SHAPE_CONVEX);
+}
+
+// Friction anchors need the pair's persistent manifold (the device keeps a point as stock's
+// replaceContactPoint does, persistent_manifold.h): "" when every pair kind an anchored body's
+// shape may form with a shape in the world keeps one, else the first that does not.
+std::string frictionAnchorReason(unsigned anchoredKinds, unsigned worldKinds)
+{
+    static const char* const kNames[BTG_NUM_SHAPE_KINDS] = {"sphere", "hull", "plane", "convex",
+                                                            "box", "mesh", "heightfield", "compound"};
+    // A shape that may take two kinds is named by the one listed first (a box as a box).
+    static const int kOrder[BTG_NUM_SHAPE_KINDS] = {BTG_SHAPE_BOX,  BTG_SHAPE_SPHERE, BTG_SHAPE_CONVEX,
+                                                    BTG_SHAPE_HULL, BTG_SHAPE_PLANE,  BTG_SHAPE_MESH,
+                                                    BTG_SHAPE_HEIGHTFIELD, BTG_SHAPE_COMPOUND};
+    for (int a : kOrder) {
+        if (!((anchoredKinds >> a) & 1u)) continue;
+        for (int w : kOrder) {
+            if (!((worldKinds >> w) & 1u)) continue;
+            const bool compound = a == BTG_SHAPE_COMPOUND || w == BTG_SHAPE_COMPOUND;
+            const int kind = btgPairKind(a, w);
+            if (compound || (kind != BTG_PAIR_NONE && !btgIsPersistentKind(kind)))
+                return std::string("friction anchors (CF_HAS_FRICTION_ANCHOR) on a ") + kNames[a] + " beside a " +
+                       kNames[w] + " (the device keeps no persistent manifold for that pair kind)";
+        }
+    }
+    return "";
+}
+
 // What a world built the stock way would use: a btDefaultCollisionConfiguration with the
 // default construction info (EPA penetration depth), pools of one element (only its create
 // functions are read).
@@ -293,8 +335,9 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
     // m_restingContactRestitutionThreshold ("unused as of 2.81"),
     // m_singleAxisRollingFrictionThreshold, the m_deformable_* fields, m_articulatedWarmstartingFactor,
     // m_jointFeedback*, m_reportSolverAnalytics, m_numNonContactInnerIterations (multibody and
-    // soft only). m_frictionERP only acts on friction anchors (a body rule); m_maxGyroscopicForce bounds
-    // BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT bodies' term (BtgStepParams). m_minimumSolverBatchSize only
+    // soft only). m_frictionERP acts on friction anchors (BtgStepParams.frictionErp) and
+    // m_maxGyroscopicForce bounds BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT bodies' term
+    // (BtgStepParams.maxGyroscopicForce). m_minimumSolverBatchSize only
     // groups independent islands into one solve, which changes no island's result.
     const btContactSolverInfo& info = world.getSolverInfo();
     static const btContactSolverInfo stock;
@@ -321,11 +364,17 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
     // friction (applied to the cached directions with the body's rotation at the point's first
     // step), which then falls back (bodiesReason). Tested: stock with and without the bit step for
     // step alike (SolverFeatures.FrictionDirectionCachingIsStockNoOp).
-    const int notFollowed = SOLVER_RANDMIZE_ORDER | SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS;
+    // SOLVER_RANDMIZE_ORDER: stock shuffles its row pools every iteration with its own btRandInt2
+    // stream, which the batched solver cannot follow; the PGS solver serves the bit's intent, its
+    // solve order (each sweep's colours, each contact's points) permuted every iteration by a
+    // stream of its own (solver_rows.h), bitwise the same run to run. The Jacobi solver has no
+    // order to permute, the soft step keeps its own (GpuWorld::softStepReason).
+    if ((info.m_solverMode & SOLVER_RANDMIZE_ORDER) && jacobi)
+        return "btContactSolverInfo::m_solverMode SOLVER_RANDMIZE_ORDER with Config::solver = JacobiMassSplitting";
+    const int notFollowed = SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS;
     if ((info.m_solverMode ^ stock.m_solverMode) & notFollowed)
         return "btContactSolverInfo::m_solverMode " + std::to_string(info.m_solverMode) +
-               " sets bits the GPU path does not follow (SOLVER_RANDMIZE_ORDER: randomised row order, or "
-               "SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS)";
+               " sets bits the GPU path does not follow (SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS)";
 
     // Dispatch info. m_useContinuous only matters for CCD bodies (a body rule); the CCD fields
     // (m_allowedCcdPenetration) likewise. m_useConvexConservativeDistanceUtil and its threshold
@@ -365,7 +414,10 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     if ((flags & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING) && context.jacobi)
         return "contact stiffness and damping (CF_HAS_CONTACT_STIFFNESS_DAMPING) with Config::solver = "
                "JacobiMassSplitting";
-    if (flags & btCollisionObject::CF_HAS_FRICTION_ANCHOR) return "friction anchors (CF_HAS_FRICTION_ANCHOR)";
+    // Friction anchors are served where the pair keeps a persistent manifold on the device
+    // (bodiesReason takes the pair kinds that do not), by the PGS solver.
+    if ((flags & btCollisionObject::CF_HAS_FRICTION_ANCHOR) && context.jacobi)
+        return "friction anchors (CF_HAS_FRICTION_ANCHOR) with Config::solver = JacobiMassSplitting";
     // Rolling and spinning friction are BtgRollingContact rows, solved in the PGS solver's
     // rolling sweep; anisotropic rolling friction scales their axes (bodiesReason takes the
     // case of two such bodies).
@@ -375,8 +427,11 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     // the cases that still fall back.
     if (context.jacobi && o->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION))
         return "anisotropic friction (setAnisotropicFriction) with Config::solver = JacobiMassSplitting";
-    if (o->getContactProcessingThreshold() < btScalar(BT_LARGE_FLOAT))
-        return "contact processing threshold (setContactProcessingThreshold)";
+    // A contact processing threshold leaves a manifold's points farther apart than the smaller of
+    // its bodies' unsolved (convertContacts), served by the PGS solver's rows (btgPrepareContact;
+    // the soft step's rule is GpuWorld::softStepReason).
+    if (context.jacobi && o->getContactProcessingThreshold() < btScalar(BT_LARGE_FLOAT))
+        return "contact processing threshold (setContactProcessingThreshold) with Config::solver = JacobiMassSplitting";
     const btRigidBody* rb = btRigidBody::upcast(o);
     if (!rb || rb->isStaticOrKinematicObject()) return "";
     if (isMeshType(o->getCollisionShape()->getShapeType()))
@@ -405,6 +460,8 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
         int anisotropicRolling = 0;  // bodies with CF_ANISOTROPIC_ROLLING_FRICTION
         int anisotropic = 0;         // bodies with CF_ANISOTROPIC_FRICTION
         int anisotropicOrdered = 0;  // of those (either kind), compound or concave ones
+        unsigned anchoredKinds = 0;  // deviceShapeKinds of the CF_HAS_FRICTION_ANCHOR bodies
+        unsigned worldKinds = 0;     // ... of every body
         std::vector<btRigidBody*> ccd;  // bodies stock's CCD looks at
     };
     std::vector<Found> found(chunkCount(n, minPerThread));
@@ -430,6 +487,14 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
             }
             if (o->getCollisionFlags() & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING)
                 f.solverFlags |= BTG_SOLVER_SOFT_CONTACTS;
+            if (o->getContactProcessingThreshold() < btScalar(BT_LARGE_FLOAT))
+                f.solverFlags |= BTG_SOLVER_PROCESSING_THRESHOLD;
+            const unsigned kinds = deviceShapeKinds(o->getCollisionShape());
+            f.worldKinds |= kinds;
+            if (o->getCollisionFlags() & btCollisionObject::CF_HAS_FRICTION_ANCHOR) {
+                f.anchoredKinds |= kinds;
+                f.solverFlags |= BTG_SOLVER_FRICTION_ANCHORS;
+            }
             // Stock's CCD sweeps only dynamic bodies with a convex shape (a compound has none).
             const btRigidBody* rb = btRigidBody::upcast(o);
             if (ccdBodies && context.continuous && rb && !rb->isStaticOrKinematicObject() &&
@@ -440,6 +505,7 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
     std::uint64_t shapeTypes = 0;
     unsigned flags = 0;
     int anisotropicRolling = 0, anisotropic = 0, anisotropicOrdered = 0;
+    unsigned anchoredKinds = 0, worldKinds = 0;
     if (ccdBodies) ccdBodies->clear();
     for (const Found& f : found) {
         if (f.index >= 0) {
@@ -452,6 +518,8 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
         anisotropicRolling += f.anisotropicRolling;
         anisotropic += f.anisotropic;
         anisotropicOrdered += f.anisotropicOrdered;
+        anchoredKinds |= f.anchoredKinds;
+        worldKinds |= f.worldKinds;
         if (ccdBodies) ccdBodies->insert(ccdBodies->end(), f.ccd.begin(), f.ccd.end());
     }
     // convertContact scales by body 0's anisotropy, then body 1's: for two convex bodies body 0 is
@@ -471,6 +539,10 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
     if (anisotropic > 0 && (world.getSolverInfo().m_solverMode & caching) == caching)
         return "anisotropic friction with friction direction caching, two friction directions and "
                "velocity-independent directions (the cached directions keep the body's first orientation)";
+    if (anchoredKinds) {
+        std::string why = frictionAnchorReason(anchoredKinds, worldKinds);
+        if (!why.empty()) return why;
+    }
     if (solverFlags) *solverFlags = flags;
     return collisionAlgorithmReason(world, shapeTypes);
 }

@@ -143,10 +143,10 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
         // from the changed friction and restitution, but not the rows prepare_contacts adds for
         // rolling friction or anisotropic friction directions.
         if (why.empty() && ContactCallbacks::wanted(m_world) &&
-            (m_solverFlags & (BTG_SOLVER_ROLLING_FRICTION | BTG_SOLVER_ANISOTROPIC_FRICTION)))
+            (m_solverFlags & (BTG_SOLVER_ROLLING_FRICTION | BTG_SOLVER_ANISOTROPIC_FRICTION | BTG_SOLVER_FRICTION_ANCHORS)))
             why = "contact callbacks that run before the solve (gContactAddedCallback on a CF_CUSTOM_MATERIAL_CALLBACK "
                   "body, gContactProcessedCallback, a custom combiner) beside rolling, spinning or anisotropic "
-                  "friction (their rows are not prepared again with the callbacks' changes)";
+                  "friction or friction anchors (their rows are not prepared again with the callbacks' changes)";
     }
     if (why.empty() && m_config.solver == SolverKind::SoftStep) why = softStepReason();
     return why;
@@ -162,9 +162,15 @@ std::string GpuWorld::softStepReason() const
         return "anisotropic friction with Config::solver = SoftStep";
     if (m_solverFlags & BTG_SOLVER_SOFT_CONTACTS)
         return "contact stiffness and damping (CF_HAS_CONTACT_STIFFNESS_DAMPING) with Config::solver = SoftStep";
+    if (m_solverFlags & BTG_SOLVER_PROCESSING_THRESHOLD)
+        return "contact processing threshold (setContactProcessingThreshold) with Config::solver = SoftStep";
+    if (m_solverFlags & BTG_SOLVER_FRICTION_ANCHORS)
+        return "friction anchors (CF_HAS_FRICTION_ANCHOR) with Config::solver = SoftStep";
     const btContactSolverInfo& info = m_world.getSolverInfo();
     if (info.m_sor != btScalar(1) || info.m_globalCfm != btScalar(0))
         return "btContactSolverInfo::m_sor or m_globalCfm changed with Config::solver = SoftStep";
+    if (info.m_solverMode & SOLVER_RANDMIZE_ORDER)
+        return "btContactSolverInfo::m_solverMode SOLVER_RANDMIZE_ORDER with Config::solver = SoftStep";
     if (ContactCallbacks::wanted(m_world))
         return "contact callbacks that run before the solve (gContactAddedCallback on a CF_CUSTOM_MATERIAL_CALLBACK body, "
                "gContactProcessedCallback, a custom combiner) with Config::solver = SoftStep";
@@ -320,6 +326,7 @@ StepSettings GpuWorld::settings(int substeps, btScalar dt) const
     p.sor = info.m_sor;
     p.globalCfm = info.m_globalCfm;
     p.maxGyroscopicForce = info.m_maxGyroscopicForce;
+    p.frictionErp = info.m_frictionERP;
     s.substeps = substeps;
     s.iterations = std::max(info.m_numIterations, 1);
     s.maxColors = std::max(m_config.maxColors, 2);
@@ -343,11 +350,16 @@ bool GpuWorld::runOnDevice(int substeps, btScalar dt, SubstepPart part, const st
     const int k = std::max(std::min(m_config.internalSubsteps, std::numeric_limits<int>::max() / std::max(substeps, 1)), 1);
     StepSettings s = settings(part == SubstepPart::ActivationOnly ? 1 : substeps * k, dt / btScalar(k));
     s.lastPart = part;
+    // SOLVER_RANDMIZE_ORDER: the solver's own stream (solver_rows.h), one seed per substep this
+    // world has run; never 0, which means off.
+    if (m_world.getSolverInfo().m_solverMode & SOLVER_RANDMIZE_ORDER)
+        s.params.randomSeed = m_orderStream == 0u ? 1u : m_orderStream;
     const CallOutcome outcome = runCall(w, m_plan, s, m_snapshot, m_readback, betweenContacts);
     for (const CallEvent& e : outcome.events)
         report({e.kind == CallEvent::Kind::Grew ? Issue::Kind::Overflow : Issue::Kind::Device, e.message});
     m_report.redoneSteps += outcome.redone;
     if (outcome.abandoned) return false;
+    if (s.params.randomSeed != 0u) m_orderStream = s.params.randomSeed + unsigned(s.substeps);
     m_rows.stepped();
     m_report.pairs = int(std::min<size_t>(m_readback.counters[kPairCount], w.pairCapacity));
     m_report.contacts = int(m_readback.counters[kContactCount]);

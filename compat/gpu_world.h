@@ -148,6 +148,7 @@ private:
     bool m_onCpuPath = false;
     float m_stepDt = 0.0f;  // the fixed step of the call being synced (the AABB overflow rule)
     long m_calls = 0;  // stepSimulation calls on the GPU path (profiling cadence)
+    unsigned m_orderStream = 1u;  // SOLVER_RANDMIZE_ORDER: the next substep's solve-order seed
     Plan m_plan;
     ShapeTables m_shapes;
     RowMap m_rows;

@@ -69,6 +69,12 @@ BtgPersistentManifold seededManifold(const StockContact& c, bool swap, int rowA,
         // unless the two are swapped.
         m.normal[k] = f4(swap ? -p.m_normalWorldOnB : p.m_normalWorldOnB, float(p.getDistance()));
         m.id[k] = uint(k);
+        // A friction anchor inside its cone is kept by the next refresh (replaceContactPoint's test).
+        const btScalar lateral = p.m_appliedImpulseLateral1 * p.m_appliedImpulseLateral1 +
+                                 p.m_appliedImpulseLateral2 * p.m_appliedImpulseLateral2;
+        const btScalar cone = p.m_combinedFriction * p.m_appliedImpulse;
+        if ((p.m_contactPointFlags & BT_CONTACT_FLAG_FRICTION_ANCHOR) && !(lateral > cone * cone))
+            m.anchorMask |= 1u << uint(k);
     }
     m.bodyA = rowA;
     m.bodyB = rowB;

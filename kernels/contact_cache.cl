@@ -4,13 +4,16 @@
  * work-groups whose size the host passes as the local-memory scan size; scan_blocks as one
  * work-item; store_contact_cache one work-item per contact slot.
  * Reads pairManifolds (each pair's range of manifolds with points), manifolds,
- * counters[kPairCount, kPrevContactCount, kStatus], pos, rot, contactCache.
+ * counters[kPairCount, kPrevContactCount, kStatus], pos, rot, props (contact processing
+ * thresholds, BTG_SOLVER_PROCESSING_THRESHOLD only; body flags, BTG_SOLVER_FRICTION_ANCHORS only),
+ * contactCache, gjkPairState (friction anchors' points on A, BTG_SOLVER_FRICTION_ANCHORS only).
  * Writes blockSums (scratch), contacts and contactManifolds (the manifold slot of each),
  * counters[kContactCount], counters[kStatus]; then contactCache and counters[kPrevContactCount]. */
 #include "shared/counters.h"
 #include "shared/types.h"
 #include "shared/math.h"
 #include "shared/contact_rows.h"
+#include "shared/pair_kinds.h"
 
 /* The contacts of this work-item's pair: its manifolds with points. */
 static uint pair_contacts(__global const BtgManifoldRange* restrict pairManifolds, __global const uint* restrict counters,
@@ -65,8 +68,10 @@ __kernel void write_contacts(__global const BtgManifoldRange* restrict pairManif
                              __global const BtgManifold* restrict manifolds, __global const uint* restrict counters,
                              int pairCapacity, __global const uint* restrict blockSums,
                              __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,
+                             __global const BtgBodyProps* restrict props,
                              __global const BtgCachedContact* restrict cache, int cacheCapacity,
                              __global BtgContact* contacts, __global uint* restrict contactManifolds, int contactCapacity,
+                             __global const BtgPersistentManifold* restrict gjkPairState, int gjkCapacity,
                              BtgStepParams params, __local uint* tmp)
 {
     uint count = pair_contacts(pairManifolds, counters, pairCapacity);
@@ -82,8 +87,15 @@ __kernel void write_contacts(__global const BtgManifoldRange* restrict pairManif
         uint slot = (uint)range.start + j;
         BtgManifold m = manifolds[slot];
         BtgContact c = btgContactFromManifold(m, pos[m.bodyA], pos[m.bodyB]);
+        if ((params.solverFlags & BTG_SOLVER_FRICTION_ANCHORS) && slot < (uint)gjkCapacity &&
+            btgAnchoredPair(props[m.bodyA].flags, props[m.bodyB].flags) && gjkPairState[slot].kind != BTG_PAIR_NONE)
+            btgAnchorLeverArms(&c, gjkPairState[slot], pos[m.bodyA], rot[m.bodyA]);
         int prev = btgFindPrevContact(cache, prevCount, m);
-        if (prev >= 0) btgWarmStartFrom(&c, rot[m.bodyA], m, cache[prev], params.warmstartFactor);
+        /* the manifold's processing threshold only where a body has one (props untouched otherwise) */
+        const float processing = (params.solverFlags & BTG_SOLVER_PROCESSING_THRESHOLD)
+                                     ? btgProcessingThreshold(props[m.bodyA], props[m.bodyB])
+                                     : BTG_NO_PROCESSING_THRESHOLD;
+        if (prev >= 0) btgWarmStartFrom(&c, rot[m.bodyA], m, cache[prev], params.warmstartFactor, processing);
         contacts[dst] = c;
         contactManifolds[dst] = slot;
     }

@@ -7,7 +7,8 @@
  * Writes contacts (friction, tangent plane and per-point friction directions, row masses,
  * normalCfm, normalTarget, pushTarget, pushImpulse zeroed; impulses of non-solvable contacts
  * zeroed), rolling[0, contacts) (BTG_SOLVER_ROLLING_FRICTION only), frictionDirs[0, contacts)
- * (BTG_SOLVER_ANISOTROPIC_FRICTION only), edges[0, contacts) (edge i: contact i's
+ * (BTG_SOLVER_ANISOTROPIC_FRICTION only), anchors[0, contacts) (BTG_SOLVER_FRICTION_ANCHORS only:
+ * the friction rows' positional targets, from pos), edges[0, contacts) (edge i: contact i's
  * bodies), counters[kEdgeCount] (= the contacts; kinds that follow append to it). */
 #include "shared/counters.h"
 #include "shared/types.h"
@@ -23,7 +24,8 @@ __kernel void prepare_contacts(__global BtgContact* contacts, __global uint* cou
                                __global const BtgFloat4* restrict linVel0, __global const BtgFloat4* restrict angVel0,
                                __global const BtgFloat4* restrict linVel, __global const BtgFloat4* restrict angVel,
                                __global BtgEdge* edges, __global BtgRollingContact* rolling,
-                               __global BtgFrictionDirs* frictionDirs, BtgStepParams params)
+                               __global BtgFrictionDirs* frictionDirs, __global const BtgFloat4* restrict pos,
+                               __global BtgFrictionAnchor* anchors, BtgStepParams params)
 {
     uint i = (uint)get_global_id(0);
     const uint n = min(counters[BTG_COUNTER_CONTACTS], (uint)contactCapacity);
@@ -38,11 +40,15 @@ __kernel void prepare_contacts(__global BtgContact* contacts, __global uint* cou
     const BtgPairMaterial mat = btgPairMaterial(pa, pb);
     const int solvable = btgContactSolvable(pa.flags, pb.flags);
     btgPrepareContact(&c, a, b, a0, b0, a1, b1, mat, solvable, params);
-    if (params.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION) {
-        BtgFrictionDirs dirs;
+    BtgFrictionDirs dirs;
+    const int anisotropic = (params.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION) != 0u;
+    if (anisotropic) {
         btgPrepareAnisotropicFriction(&c, &dirs, a, b, a1, b1, rot[c.bodyA], rot[c.bodyB], pa, pb, solvable, params);
         frictionDirs[i] = dirs;
     }
+    if (params.solverFlags & BTG_SOLVER_FRICTION_ANCHORS)
+        anchors[i] = btgPrepareFrictionAnchor(&c, anisotropic ? &dirs : 0, pos[c.bodyA], pos[c.bodyB],
+                                              btgAnchoredPair(pa.flags, pb.flags), params);
     contacts[i] = c;
     if (params.solverFlags & BTG_SOLVER_ROLLING_FRICTION)
         rolling[i] = btgPrepareRolling(&c, a, b, mat, solvable, rot[c.bodyA], rot[c.bodyB], pa, pb);

@@ -14,11 +14,13 @@
  * the host); 2: split-impulse iteration; 3, 4: a velocity iteration's normal sweep, then its
  * friction sweep over every contact (counters.h); 5: its rolling sweep (rolling friction);
  * rows: BTG_ROWS_* (contact_rows.h), which optional row fields exist (second friction rows,
- * contact cfm, rolling rows).
+ * contact cfm, rolling rows). seed: SOLVER_RANDMIZE_ORDER's stream of this substep (0: off),
+ * which permutes each sweep's colours and each contact's points (btgPassKey, btgPermute).
  * Reads counters[kEdgeCount, kContactCount, kColorsUsed, kLeftovers], edgeColor, props,
  * invInertiaWorld, contacts (a pass reads the fields of its rows only, see BtgContact),
  * rolling (rows & BTG_ROWS_ROLLING; else a placeholder), frictionDirs (rows & BTG_ROWS_ANISOTROPIC;
- * else a placeholder), joints, jointState (rows built).
+ * else a placeholder), anchors (rows & BTG_ROWS_ANCHORS; else a placeholder), joints, jointState
+ * (rows built).
  * Writes contacts, rolling and jointRows (accumulated impulses),
  * linVel, angVel (modes 0, 1) or pushLin, pushAng (mode 2), dynamic bodies only. */
 #include "shared/types.h"
@@ -45,10 +47,12 @@ static BtgSolverBody load_body(__global const BtgBodyProps* restrict props,
  * them between work-groups across its grid barriers, where a non-coherent cache must not
  * serve a stale copy. The arithmetic is the same for every caller. */
 static void solve_contact(int i, int mode, int rows, __global BtgContact* contacts,
-                      __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs,
+                      __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs, __global const BtgFrictionAnchor* restrict anchors,
                       __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
-                      BTG_SHARED __global BtgFloat4* lin, BTG_SHARED __global BtgFloat4* ang)
+                      BTG_SHARED __global BtgFloat4* lin, BTG_SHARED __global BtgFloat4* ang, uint key)
 {
+    /* SOLVER_RANDMIZE_ORDER: this contact's points in its own order within the sweep (0: in order) */
+    const uint order = btgItemKey(key, (uint)i + 1u);
     BtgContact c = btgLoadContactRows(contacts, i, mode == BTG_PASS_ROLLING ? BTG_PASS_NORMALS : mode, rows);
     BtgSolverBody a = load_body(props, invInertiaWorld, c.bodyA);
     BtgSolverBody b = load_body(props, invInertiaWorld, c.bodyB);
@@ -63,20 +67,25 @@ static void solve_contact(int i, int mode, int rows, __global BtgContact* contac
                              (mode == BTG_PASS_WARM_START || mode == BTG_PASS_FRICTION || mode == BTG_PASS_VELOCITY);
     if (explicitDirs) dirs = frictionDirs[i];
     const BtgFrictionDirs* d = explicitDirs ? &dirs : 0;
+    /* friction anchors: the friction rows' positional targets, for the friction passes */
+    BtgFrictionAnchor anchor;
+    const int anchored = (rows & BTG_ROWS_ANCHORS) != 0 && (mode == BTG_PASS_FRICTION || mode == BTG_PASS_VELOCITY);
+    if (anchored) anchor = anchors[i];
+    const BtgFrictionAnchor* f = anchored ? &anchor : 0;
     if (mode == BTG_PASS_WARM_START) btgContactWarmStartDirs(&c, d, a, b, &va, &vb, rows);
-    else if (mode == BTG_PASS_NORMALS) btgContactSolveNormals(&c, a, b, &va, &vb);
-    else if (mode == BTG_PASS_FRICTION) btgContactSolveFrictionDirs(&c, d, a, b, &va, &vb, rows);
+    else if (mode == BTG_PASS_NORMALS) btgContactSolveNormalsOrdered(&c, order, a, b, &va, &vb);
+    else if (mode == BTG_PASS_FRICTION) btgContactSolveFrictionOrdered(&c, d, f, order, a, b, &va, &vb, rows);
     else if (mode == BTG_PASS_VELOCITY) {
-        btgContactSolveNormals(&c, a, b, &va, &vb);
-        btgContactSolveFrictionDirs(&c, d, a, b, &va, &vb, rows);
+        btgContactSolveNormalsOrdered(&c, order, a, b, &va, &vb);
+        btgContactSolveFrictionOrdered(&c, d, f, order, a, b, &va, &vb, rows);
     }
     else if (mode == BTG_PASS_ROLLING) {
         BtgRollingContact r = rolling[i];
-        btgRollingSolve(&r, c.normal, c.normalImpulse, c.numPoints, a, b, &va, &vb);
+        btgRollingSolve(&r, c.normal, btgSolvedNormalImpulse(&c), c.numPoints, a, b, &va, &vb);
         rolling[i].spinImpulse = r.spinImpulse;
         rolling[i].roll1Impulse = r.roll1Impulse;
         rolling[i].roll2Impulse = r.roll2Impulse;
-    } else btgContactSolvePush(&c, a, b, &va, &vb);
+    } else btgContactSolvePushOrdered(&c, order, a, b, &va, &vb);
     /* w of the velocity columns is not the solver's: keep it. */
     if (a.dynamic) {
         lin[c.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, linA.w);
@@ -92,11 +101,11 @@ static void solve_contact(int i, int mode, int rows, __global BtgContact* contac
 /* One edge of the graph: the contacts are the edges [0, contacts); a constraint kind with
  * edges after them is solved here by its own rows. */
 static void solve_edge(int e, int mode, int rows, __global BtgContact* contacts,
-                       __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs,
+                       __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs, __global const BtgFrictionAnchor* restrict anchors,
                        __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
-                       BTG_SHARED __global BtgFloat4* lin, BTG_SHARED __global BtgFloat4* ang)
+                       BTG_SHARED __global BtgFloat4* lin, BTG_SHARED __global BtgFloat4* ang, uint key)
 {
-    solve_contact(e, mode, rows, contacts, rolling, frictionDirs, props, invInertiaWorld, lin, ang);
+    solve_contact(e, mode, rows, contacts, rolling, frictionDirs, anchors, props, invInertiaWorld, lin, ang, key);
 }
 
 static int edge_count(__global const uint* restrict counters, int edgeCapacity)
@@ -151,13 +160,13 @@ static void solve_joint(int j, int iteration, JOINT_ARGS, __global const BtgBody
 /* One edge of the phase: a joint edge (phase 1) or a contact (phase 0). */
 static void solve_phase_edge(int e, int phase, int contacts, int iteration, int mode, int rows,
                              __global BtgContact* contactRows, __global BtgRollingContact* rolling,
-                             __global const BtgFrictionDirs* restrict frictionDirs, JOINT_ARGS,
+                             __global const BtgFrictionDirs* restrict frictionDirs, __global const BtgFrictionAnchor* restrict anchors, JOINT_ARGS,
                              __global const BtgBodyProps* restrict props,
                              __global const BtgFloat4* restrict invInertiaWorld, BTG_SHARED __global BtgFloat4* lin,
-                             BTG_SHARED __global BtgFloat4* ang)
+                             BTG_SHARED __global BtgFloat4* ang, uint key)
 {
     if (phase) solve_joint(e - contacts, iteration, JOINT_PASS, props, invInertiaWorld, lin, ang);
-    else solve_edge(e, mode, rows, contactRows, rolling, frictionDirs, props, invInertiaWorld, lin, ang);
+    else solve_edge(e, mode, rows, contactRows, rolling, frictionDirs, anchors, props, invInertiaWorld, lin, ang, key);
 }
 
 /* Whether edge e has a split-impulse row (only contacts do: Bullet pushes contacts only). */
@@ -167,14 +176,15 @@ static int edge_has_push(__global const BtgContact* restrict contacts, int e)
 }
 
 __kernel void solve_color_serial(__global const int* restrict edgeColor, __global BtgContact* contacts,
-                                 __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs,
+                                 __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs, __global const BtgFrictionAnchor* restrict anchors,
                                  __global const uint* restrict counters, int edgeCapacity,
                                  __global const BtgBodyProps* restrict props,
                                  __global const BtgFloat4* restrict invInertiaWorld, __global BtgFloat4* lin,
                                  __global BtgFloat4* ang, int color, int mode, int rows, JOINT_ARGS, int phase,
-                                 int iteration)
+                                 int iteration, uint seed)
 {
     if (get_global_id(0) != 0) return;
+    const uint key = btgPassKey(seed, mode, phase, iteration);
     /* No leftovers from the batching and no color at or past this one (the usual case):
      * nothing to walk, and a GPU thread walking every edge is slow. */
     if (counters[BTG_COUNTER_LEFTOVERS] == 0u && counters[BTG_COUNTER_COLORS_USED] <= (uint)color) return;
@@ -182,8 +192,8 @@ __kernel void solve_color_serial(__global const int* restrict edgeColor, __globa
     const int nc = contact_edges(counters, edgeCapacity, numJoints);
     for (int i = phase ? nc : 0; i < (phase ? n : min(n, nc)); ++i)
         if (edgeColor[i] >= color)
-            solve_phase_edge(i, phase, nc, iteration, mode, rows, contacts, rolling, frictionDirs, JOINT_PASS, props,
-                             invInertiaWorld, lin, ang);
+            solve_phase_edge(i, phase, nc, iteration, mode, rows, contacts, rolling, frictionDirs, anchors, JOINT_PASS, props,
+                             invInertiaWorld, lin, ang, key);
 }
 
 /* Color ranges, so a color's launch touches only its own edges instead of reading every
@@ -252,21 +262,22 @@ __kernel void color_fill(__global const int* restrict edgeColor, __global const 
  * work-items the host launched (it does not know the range's length; a launch over every
  * edge slot cost a CPU device hundreds of empty work-groups per color). */
 __kernel void solve_color_range(__global BtgContact* contacts, __global BtgRollingContact* rolling,
-                                __global const BtgFrictionDirs* restrict frictionDirs,
+                                __global const BtgFrictionDirs* restrict frictionDirs, __global const BtgFrictionAnchor* restrict anchors,
                                 __global const uint* restrict colorStart,
                                 __global const int* restrict colorOrder, __global const BtgBodyProps* restrict props,
                                 __global const BtgFloat4* restrict invInertiaWorld, __global BtgFloat4* lin,
                                 __global BtgFloat4* ang, int color, int mode, int rows, int numColors,
                                 int orderStride, __global const uint* restrict counters, int edgeCapacity, JOINT_ARGS,
-                                int phase, int iteration)
+                                int phase, int iteration, uint seed)
 {
+    const uint key = btgPassKey(seed, mode, phase, iteration);
     const int list = phase ? 2 : (mode == 2 ? 1 : 0);
     const int begin = (int)colorStart[list * (numColors + 1) + color];
     const int end = (int)colorStart[list * (numColors + 1) + color + 1];
     const int nc = phase ? contact_edges(counters, edgeCapacity, numJoints) : 0;
     for (int k = begin + (int)get_global_id(0); k < end; k += (int)get_global_size(0))
         solve_phase_edge(colorOrder[list * orderStride + k], phase, nc, iteration, mode, rows, contacts, rolling,
-                         frictionDirs, JOINT_PASS, props, invInertiaWorld, lin, ang);
+                         frictionDirs, anchors, JOINT_PASS, props, invInertiaWorld, lin, ang, key);
 }
 
 /* solve_resident: every pass and color in ONE launch over resident work-groups (GPUs), with a
@@ -278,14 +289,14 @@ __kernel void solve_color_range(__global BtgContact* contacts, __global BtgRolli
  * for bit. A batching that timed out at its own barrier leaves nothing to solve: the step is redone. */
 
 __kernel void solve_resident(__global const int* restrict edgeColor, __global BtgContact* contacts,
-                             __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs,
+                             __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs, __global const BtgFrictionAnchor* restrict anchors,
                              __global uint* counters, int edgeCapacity,
                              __global const uint* restrict colorStart, __global const int* restrict colorOrder,
                              __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
                              BTG_SHARED __global BtgFloat4* linVel, BTG_SHARED __global BtgFloat4* angVel,
                              BTG_SHARED __global BtgFloat4* pushLin, BTG_SHARED __global BtgFloat4* pushAng,
                              volatile __global BtgGridBarrier* bar, int numColors, int orderStride, int iterations,
-                             int splitImpulse, int rows, int spinLimit, JOINT_ARGS, int jointIterations)
+                             int splitImpulse, int rows, int spinLimit, JOINT_ARGS, int jointIterations, uint seed)
 {
     __local int quit;
     if (counters[BTG_COUNTER_STATUS] & BTG_STATUS_GRID_BARRIER_TIMEOUT) return;
@@ -313,12 +324,15 @@ __kernel void solve_resident(__global const int* restrict edgeColor, __global Bt
             for (int sweep = 0; sweep < sweeps; ++sweep) {
                 const int m = sweeps >= 2 ? (sweep == 0 ? BTG_PASS_NORMALS : (sweep == 1 ? BTG_PASS_FRICTION : BTG_PASS_ROLLING))
                                           : mode;
-                for (int color = 0; color < last; ++color) {
+                const uint key = btgPassKey(seed, m, phase, iteration);
+                for (int ci = 0; ci < last; ++ci) {
+                    const int color = btgPermute(key, last, ci); /* SOLVER_RANDMIZE_ORDER, else ci */
                     const int begin = (int)colorStart[list * (numColors + 1) + color];
                     const int end = (int)colorStart[list * (numColors + 1) + color + 1];
                     for (int k = begin + gid; k < end; k += gsize)
                         solve_phase_edge(colorOrder[list * orderStride + k], phase, nc, iteration, m, rows,
-                                         contacts, rolling, frictionDirs, JOINT_PASS, props, invInertiaWorld, lin, ang);
+                                         contacts, rolling, frictionDirs, anchors, JOINT_PASS, props, invInertiaWorld, lin, ang,
+                                         key);
                     if (btgGridBarrier(bar, spinLimit, &quit)) {
                         if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
                         return;
@@ -328,8 +342,8 @@ __kernel void solve_resident(__global const int* restrict edgeColor, __global Bt
                     if (gid == 0)
                         for (int i = phase ? nc : 0; i < (phase ? n : min(n, nc)); ++i)
                             if (edgeColor[i] >= last)
-                                solve_phase_edge(i, phase, nc, iteration, m, rows, contacts, rolling, frictionDirs, JOINT_PASS,
-                                                 props, invInertiaWorld, lin, ang);
+                                solve_phase_edge(i, phase, nc, iteration, m, rows, contacts, rolling, frictionDirs, anchors, JOINT_PASS,
+                                                 props, invInertiaWorld, lin, ang, key);
                     if (btgGridBarrier(bar, spinLimit, &quit)) {
                         if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
                         return;

@@ -66,7 +66,7 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
             // A cache stored without the persistent manifolds beside it leaves those stale.
             if (!anyPersistent(plan.kinds)) w.gjkCacheCurrent = false;
             break;
-        case Stage::StorePersistentManifolds: storePersistentManifolds(w, plan.kinds); break;
+        case Stage::StorePersistentManifolds: storePersistentManifolds(w, plan.kinds, p.solverFlags); break;
         case Stage::ReportContacts: reportContacts(w); break;
         case Stage::IntegrateTransforms: integrateTransforms(w, p.dt, p.splitTurnErp); break;
         case Stage::SoftTransforms: softTransforms(w); break;
@@ -131,8 +131,13 @@ void runSubsteps(DeviceWorld& w, const Plan& plan, const StepSettings& s)
         w.gjkCacheAtCall.release();
     }
     const std::vector<Stage> stages = plan.substep();
-    for (int i = 0; i < s.substeps; ++i)
-        runSubstep(w, plan, stages, s, i == s.substeps - 1 ? s.lastPart : SubstepPart::Whole, i == s.substeps - 1);
+    // SOLVER_RANDMIZE_ORDER: each substep its own solve-order stream, the call's seed onwards
+    // (the host advances it by the call's substeps once the call is done, so a redo repeats it).
+    StepSettings sub = s;
+    for (int i = 0; i < s.substeps; ++i) {
+        if (s.params.randomSeed != 0u) sub.params.randomSeed = s.params.randomSeed + uint(i);
+        runSubstep(w, plan, stages, sub, i == s.substeps - 1 ? s.lastPart : SubstepPart::Whole, i == s.substeps - 1);
+    }
 }
 
 void resetStatus(DeviceWorld& w)

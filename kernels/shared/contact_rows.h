@@ -25,6 +25,7 @@
 #define BTG_ROWS_CFM 2     /* normalCfm: m_globalCfm or contact stiffness and damping */
 #define BTG_ROWS_ROLLING 4 /* BtgRollingContact rows (rolling and spinning friction) */
 #define BTG_ROWS_ANISOTROPIC 8 /* friction directions from BtgFrictionDirs (anisotropic friction) */
+#define BTG_ROWS_ANCHORS 16    /* friction rows' positional targets from BtgFrictionAnchor (friction anchors) */
 
 /* The optional rows a step's solve reads. */
 static inline int btgRowFlags(BtgStepParams p)
@@ -33,6 +34,7 @@ static inline int btgRowFlags(BtgStepParams p)
     if (p.globalCfm != 0.0f || (p.solverFlags & BTG_SOLVER_SOFT_CONTACTS) != 0u) rows |= BTG_ROWS_CFM;
     if ((p.solverFlags & BTG_SOLVER_ROLLING_FRICTION) != 0u) rows |= BTG_ROWS_ROLLING;
     if ((p.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION) != 0u) rows |= BTG_ROWS_ANISOTROPIC;
+    if ((p.solverFlags & BTG_SOLVER_FRICTION_ANCHORS) != 0u) rows |= BTG_ROWS_ANCHORS;
     return rows;
 }
 
@@ -47,8 +49,26 @@ typedef struct {
     int stiffnessDamping;  /* either body has CF_HAS_CONTACT_STIFFNESS_DAMPING */
     float stiffness;       /* combined: 1 / (1/k_A + 1/k_B), N/m */
     float damping;         /* combined: d_A + d_B, N s/m */
-    int pad0;
+    float processingThreshold; /* m: the manifold's contact processing threshold (btgProcessingThreshold),
+                                  BTG_NO_PROCESSING_THRESHOLD without BTG_SOLVER_PROCESSING_THRESHOLD */
 } BtgPairMaterial;
+
+/* A manifold's contact processing threshold is the smaller of its bodies' (getNewManifold);
+ * without one on any body no point is compared with it (BTG_NO_PROCESSING_THRESHOLD, which
+ * every finite distance is below: the rows are what they were before the setting existed). */
+#define BTG_NO_PROCESSING_THRESHOLD 1e18f /* Bullet's BT_LARGE_FLOAT, its default */
+static inline float btgProcessingThreshold(BtgBodyProps a, BtgBodyProps b)
+{
+    return a.contactProcessingThreshold < b.contactProcessingThreshold ? a.contactProcessingThreshold
+                                                                       : b.contactProcessingThreshold;
+}
+/* convertContacts solves a point only while getDistance() <= the manifold's threshold; the
+ * point stays in the manifold (callbacks and the app see it) with the impulses it had. Written
+ * as "not farther" so that a NaN distance is taken as it was before the setting existed. */
+static inline int btgPointProcessed(float distance, float threshold)
+{
+    return !(distance > threshold);
+}
 
 /* A contact's two bodies as the kernels that prepare its rows read them: their rows, solver
  * bodies, and velocities before (0: restitution) and after (1: friction directions) this
@@ -239,9 +259,10 @@ static inline void btgMatchPoints(BtgManifold m, const BtgFloat4* keys, BtgCache
 }
 
 /* The warm start: each new point's impulses start from those of the old point it continues
- * (btgMatchPoints), scaled by the warm-start factor. rotA: A's rotation now (the new points'
- * keys). */
-static inline void btgWarmStartFrom(BtgContact* c, BtgFloat4 rotA, BtgManifold m, BtgCachedContact old, float factor)
+ * (btgMatchPoints), scaled by the warm-start factor but for the points beyond the manifold's
+ * processing threshold. rotA: A's rotation now (the new points' keys). */
+static inline void btgWarmStartFrom(BtgContact* c, BtgFloat4 rotA, BtgManifold m, BtgCachedContact old, float factor,
+                                    float processingThreshold)
 {
     BtgMat3 ra = btgQuatToMat3(rotA);
     BtgFloat4 keys[BTG_MAX_POINTS];
@@ -251,10 +272,13 @@ static inline void btgWarmStartFrom(BtgContact* c, BtgFloat4 rotA, BtgManifold m
     for (int k = 0; k < c->numPoints; ++k) {
         int found = match[k];
         if (found < 0) continue;
-        btgSetLane(&c->normalImpulse, k, old.point[found].w * factor);
+        /* a point beyond the processing threshold is not converted: its btManifoldPoint keeps
+         * the impulses unscaled (stock warm-starts from them again once it is solved) */
+        const float f = btgPointProcessed(btgLane(c->separation, k), processingThreshold) ? factor : 1.0f;
+        btgSetLane(&c->normalImpulse, k, old.point[found].w * f);
 #if BTG_WARMSTART_FRICTION
-        btgSetLane(&c->friction1Impulse, k, btgLane(old.friction1Impulse, found) * factor);
-        btgSetLane(&c->friction2Impulse, k, btgLane(old.friction2Impulse, found) * factor);
+        btgSetLane(&c->friction1Impulse, k, btgLane(old.friction1Impulse, found) * f);
+        btgSetLane(&c->friction2Impulse, k, btgLane(old.friction2Impulse, found) * f);
 #endif
     }
 }
@@ -304,7 +328,7 @@ static inline BtgPairMaterial btgPairMaterial(BtgBodyProps a, BtgBodyProps b)
     m.stiffnessDamping = ((a.flags | b.flags) & BTG_BODY_STIFFNESS_DAMPING) != 0u;
     m.stiffness = 1.0f / (1.0f / a.contactStiffness + 1.0f / b.contactStiffness);
     m.damping = a.contactDamping + b.contactDamping;
-    m.pad0 = 0;
+    m.processingThreshold = btgProcessingThreshold(a, b);
     return m;
 }
 
@@ -381,7 +405,12 @@ static inline void btgPrepareContact(BtgContact* c, BtgSolverBody a, BtgSolverBo
         BtgFloat4 rA = btgXyz(c->rA[k]);
         BtgFloat4 rB = btgXyz(c->rB[k]);
         float target = 0.0f, push = 0.0f;
-        if (k < c->numPoints && solvable) {
+        const int processed =
+            !(p.solverFlags & BTG_SOLVER_PROCESSING_THRESHOLD) ||
+            btgPointProcessed(btgLane(c->separation, k), mat.processingThreshold);
+        if (k < c->numPoints && solvable && !processed) {
+            /* not converted: no rows, its impulses kept (btgWarmStartFrom) */
+        } else if (k < c->numPoints && solvable) {
             const BtgFloat4 d1 = btgFrictionDir1(c, k);
             const float normalMass = btgPointRowMassRelaxed(btgPointJacobian(n, rA, rB, a, b), rA, rB, a, b, p.sor, cfm);
             btgSetLane(&c->normalMass, k, normalMass);
@@ -412,7 +441,62 @@ static inline void btgPrepareContact(BtgContact* c, BtgSolverBody a, BtgSolverBo
     }
 }
 
+/* ---- friction anchors (CF_HAS_FRICTION_ANCHOR) ---- */
+
+/* Whether a pair's points are friction anchors: btManifoldResult flags every point it adds
+ * (BT_CONTACT_FLAG_FRICTION_ANCHOR) when either body has CF_HAS_FRICTION_ANCHOR. */
+static inline int btgAnchoredPair(uint flagsA, uint flagsB)
+{
+    return ((flagsA | flagsB) & BTG_BODY_FRICTION_ANCHOR) != 0u;
+}
+/* A persistent manifold's contact takes its points on A from the manifold's body-frame points
+ * (refreshContactPoints' m_positionWorldOnA = trA(m_localPointA)), not from the point on B and
+ * the distance: a kept anchor drifts sideways, and that drift is what its friction rows pull
+ * back. pm is the pair's manifold as the narrowphase left it (its points in the contact's
+ * order), posA/rotA A's pose. */
+static inline void btgAnchorLeverArms(BtgContact* c, BtgPersistentManifold pm, BtgFloat4 posA, BtgFloat4 rotA)
+{
+    if (pm.numPoints != c->numPoints || pm.bodyA != c->bodyA || pm.bodyB != c->bodyB) return;
+    const BtgMat3 r = btgQuatToMat3(rotA);
+    for (int k = 0; k < c->numPoints; ++k) {
+        const BtgFloat4 worldA = btgXyz(posA) + btgMat3MulVec(r, pm.localA[k]);
+        c->rA[k] = worldA - btgXyz(posA);
+    }
+}
+/* setupFrictionConstraint's positional error of an anchored point: -(pA - pB).dir m_frictionERP
+ * / dt joins each friction row's velocity target (dirs: anisotropic friction's explicit
+ * directions, or none). Zero targets for a pair without anchors or a point without rows. */
+static inline BtgFrictionAnchor btgPrepareFrictionAnchor(const BtgContact* c, const BtgFrictionDirs* dirs, BtgFloat4 posA,
+                                                         BtgFloat4 posB, int anchored, BtgStepParams p)
+{
+    BtgFrictionAnchor f;
+    f.target1 = btgZero4();
+    f.target2 = btgZero4();
+    if (!anchored) return f;
+    const float rate = p.frictionErp / p.dt;
+    for (int k = 0; k < c->numPoints; ++k) {
+        if (btgLane(c->friction1Mass, k) == 0.0f && btgLane(c->friction2Mass, k) == 0.0f) continue;
+        const BtgFloat4 d = (btgXyz(posA) + btgXyz(c->rA[k])) - (btgXyz(posB) + btgXyz(c->rB[k]));
+        btgSetLane(&f.target1, k, -btgDot3(d, btgFrictionDir1Of(c, dirs, k)) * rate);
+        if (p.twoFrictionDirections) btgSetLane(&f.target2, k, -btgDot3(d, btgFrictionDir2Of(c, dirs, k)) * rate);
+    }
+    return f;
+}
+
 /* ---- solve (one contact, bodies loaded by the caller) ---- */
+
+/* The order key of a solver pass (solver_rows.h, SOLVER_RANDMIZE_ORDER): phase 1 the joints'
+ * edges, else the contacts' sweep `mode` of velocity iteration `iteration`; 0 for the passes whose
+ * order stays (the warm start, the rolling sweep) and without a seed. */
+static inline uint btgPassKey(uint seed, int mode, int phase, int iteration)
+{
+    if (seed == 0u) return 0u;
+    if (phase) return btgSweepKey(seed, iteration, BTG_ORDER_JOINTS);
+    if (mode == BTG_PASS_NORMALS || mode == BTG_PASS_VELOCITY) return btgSweepKey(seed, iteration, BTG_ORDER_NORMALS);
+    if (mode == BTG_PASS_FRICTION) return btgSweepKey(seed, iteration, BTG_ORDER_FRICTION);
+    if (mode == BTG_PASS_PUSH) return btgSweepKey(seed, iteration, BTG_ORDER_PUSH);
+    return 0u;
+}
 
 /* What pass `mode` reads of contact i (see BtgContact), the rest zero: a solver pass loads
  * these fields and nothing else (a copy of the whole contact would read all its bytes every
@@ -479,11 +563,11 @@ static inline BtgSolverRow btgContactNormalRow(const BtgContact* c, int k, BtgSo
     return r;
 }
 static inline BtgSolverRow btgContactFrictionRow(const BtgContact* c, int k, BtgFloat4 dir, float mass, float impulse,
-                                                 BtgSolverBody a, BtgSolverBody b)
+                                                 float target, BtgSolverBody a, BtgSolverBody b)
 {
     BtgFloat4 rA = btgXyz(c->rA[k]), rB = btgXyz(c->rB[k]);
     float lim = c->friction * btgLane(c->normalImpulse, k);
-    return btgMakeSolverRow(btgPointJacobian(dir, rA, rB, a, b), mass, 0.0f, -lim, lim, impulse);
+    return btgMakeSolverRow(btgPointJacobian(dir, rA, rB, a, b), mass, target, -lim, lim, impulse);
 }
 static inline BtgSolverRow btgContactPushRow(const BtgContact* c, int k, BtgSolverBody a, BtgSolverBody b)
 {
@@ -519,39 +603,59 @@ static inline void btgContactWarmStart(const BtgContact* c, BtgSolverBody a, Btg
 {
     btgContactWarmStartDirs(c, 0, a, b, va, vb, rows);
 }
-/* A velocity iteration's normal rows of one contact (BTG_PASS_NORMALS). */
-static inline void btgContactSolveNormals(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb)
+/* A velocity iteration's normal rows of one contact (BTG_PASS_NORMALS), its points in the order
+ * `key` permutes them to (btgPermute; 0: in order). */
+static inline void btgContactSolveNormalsOrdered(BtgContact* c, uint key, BtgSolverBody a, BtgSolverBody b,
+                                                 BtgBodyVel* va, BtgBodyVel* vb)
 {
-    for (int k = 0; k < c->numPoints; ++k) {
+    for (int j = 0; j < c->numPoints; ++j) {
+        const int k = btgPermute(key, c->numPoints, j);
         if (btgLane(c->normalMass, k) == 0.0f) continue;
         BtgSolverRow r = btgContactNormalRow(c, k, a, b);
         btgRowSolve(&r, a, b, va, vb);
         btgSetLane(&c->normalImpulse, k, r.impulse);
     }
 }
+static inline void btgContactSolveNormals(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb)
+{
+    btgContactSolveNormalsOrdered(c, 0u, a, b, va, vb);
+}
 /* Its friction rows (directions 1 and 2 per point) whose normal impulse is positive
  * (BTG_PASS_FRICTION). */
-static inline void btgContactSolveFrictionDirs(BtgContact* c, const BtgFrictionDirs* dirs, BtgSolverBody a,
-                                               BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb, int rows)
+static inline void btgContactSolveFrictionOrdered(BtgContact* c, const BtgFrictionDirs* dirs,
+                                                  const BtgFrictionAnchor* anchor, uint key, BtgSolverBody a,
+                                                  BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb, int rows)
 {
     const int twoFriction = (rows & BTG_ROWS_TWO_FRICTION) != 0;
-    for (int k = 0; k < c->numPoints; ++k) {
+    for (int j = 0; j < c->numPoints; ++j) {
+        const int k = btgPermute(key, c->numPoints, j);
         if (!(btgLane(c->normalImpulse, k) > 0.0f)) continue;
         float m1 = btgLane(c->friction1Mass, k);
         if (m1 != 0.0f) {
-            BtgSolverRow r =
-                btgContactFrictionRow(c, k, btgFrictionDir1Of(c, dirs, k), m1, btgLane(c->friction1Impulse, k), a, b);
+            BtgSolverRow r = btgContactFrictionRow(c, k, btgFrictionDir1Of(c, dirs, k), m1, btgLane(c->friction1Impulse, k),
+                                                   anchor ? btgLane(anchor->target1, k) : 0.0f, a, b);
             btgRowSolve(&r, a, b, va, vb);
             btgSetLane(&c->friction1Impulse, k, r.impulse);
         }
         float m2 = twoFriction ? btgLane(c->friction2Mass, k) : 0.0f;
         if (m2 != 0.0f) {
-            BtgSolverRow r =
-                btgContactFrictionRow(c, k, btgFrictionDir2Of(c, dirs, k), m2, btgLane(c->friction2Impulse, k), a, b);
+            BtgSolverRow r = btgContactFrictionRow(c, k, btgFrictionDir2Of(c, dirs, k), m2, btgLane(c->friction2Impulse, k),
+                                                   anchor ? btgLane(anchor->target2, k) : 0.0f, a, b);
             btgRowSolve(&r, a, b, va, vb);
             btgSetLane(&c->friction2Impulse, k, r.impulse);
         }
     }
+}
+static inline void btgContactSolveFrictionAnchored(BtgContact* c, const BtgFrictionDirs* dirs,
+                                                   const BtgFrictionAnchor* anchor, BtgSolverBody a, BtgSolverBody b,
+                                                   BtgBodyVel* va, BtgBodyVel* vb, int rows)
+{
+    btgContactSolveFrictionOrdered(c, dirs, anchor, 0u, a, b, va, vb, rows);
+}
+static inline void btgContactSolveFrictionDirs(BtgContact* c, const BtgFrictionDirs* dirs, BtgSolverBody a,
+                                               BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb, int rows)
+{
+    btgContactSolveFrictionAnchored(c, dirs, 0, a, b, va, vb, rows);
 }
 static inline void btgContactSolveFriction(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
                                            BtgBodyVel* vb, int rows)
@@ -575,15 +679,32 @@ static inline int btgContactHasPush(BTG_CONST_GLOBAL BtgContact* contacts, int i
         if (btgLane(target, k) != 0.0f && btgLane(mass, k) != 0.0f) return 1;
     return 0;
 }
-/* One split-impulse iteration (resolveSplitPenetrationImpulse) on push/turn velocities. */
-static inline void btgContactSolvePush(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* pa, BtgBodyVel* pb)
+/* The normal impulses of the points that have rows (the rolling rows are convertContact's for
+ * converted points only): lanes without a normal row read 0. */
+static inline BtgFloat4 btgSolvedNormalImpulse(const BtgContact* c)
 {
-    for (int k = 0; k < c->numPoints; ++k) {
+    BtgFloat4 n = c->normalImpulse;
+    for (int k = 0; k < BTG_MAX_POINTS; ++k)
+        if (btgLane(c->normalMass, k) == 0.0f) btgSetLane(&n, k, 0.0f);
+    return n;
+}
+/* One split-impulse iteration (resolveSplitPenetrationImpulse) on push/turn velocities, the
+ * points in key's order (0: in order). */
+static inline void btgContactSolvePushOrdered(BtgContact* c, uint key, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* pa,
+                                              BtgBodyVel* pb)
+{
+    for (int j = 0; j < c->numPoints; ++j) {
+        const int k = btgPermute(key, c->numPoints, j);
         if (btgLane(c->normalMass, k) == 0.0f || btgLane(c->pushTarget, k) == 0.0f) continue;
         BtgSolverRow r = btgContactPushRow(c, k, a, b);
         btgRowSolve(&r, a, b, pa, pb);
         btgSetLane(&c->pushImpulse, k, r.impulse);
     }
+}
+
+static inline void btgContactSolvePush(BtgContact* c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* pa, BtgBodyVel* pb)
+{
+    btgContactSolvePushOrdered(c, 0u, a, b, pa, pb);
 }
 
 #endif

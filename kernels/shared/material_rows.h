@@ -152,7 +152,8 @@ static inline void btgPrepareAnisotropicFriction(BtgContact* c, BtgFrictionDirs*
         d2 = btgApplyBothAnisotropies(d2, rotA, rotB, pa, pb, mode);
         dirs->dir1[k] = d1;
         dirs->dir2[k] = d2;
-        if (!solvable) continue;
+        if (!solvable || (btgLane(c->normalMass, k) == 0.0f && (p.solverFlags & BTG_SOLVER_PROCESSING_THRESHOLD) != 0u))
+            continue; /* no rows beyond the processing threshold */
         btgSetLane(&c->friction1Mass, k,
                    btgPointRowMassRelaxed(btgPointJacobian(d1, rA, rB, a, b), rA, rB, a, b, p.sor, 0.0f));
         if (p.twoFrictionDirections)

@@ -74,8 +74,26 @@ static BtgPersistentManifold btgPreviousManifold(BtgPair p, int kind, __global c
     }
 
 /* After store_contact_cache, with the same rule for a substep that must be redone: contact i's
- * pair's manifold goes to gjkCache[i], beside its warm-start entry; a contact of another kind
+ * pair's manifold goes to gjkCache[i], beside its warm-start entry, with the friction anchors
+ * the next refresh keeps (btgAnchorMask, from the solved contact); a contact of another kind
  * gets an entry no pair takes. */
+/* Which of contact c's points the next refresh keeps as friction anchors (replaceContactPoint):
+ * with either body's CF_HAS_FRICTION_ANCHOR, those whose lateral impulses l1, l2 lie inside the
+ * cone of their normal impulse n: not l1^2 + l2^2 > (mu n)^2 (eps 0, as 3.24). Bit id[k]. */
+static uint btgAnchorMask(BtgContact c, BtgPersistentManifold pm, uint flags)
+{
+    uint mask = 0u;
+    if ((flags & BTG_BODY_FRICTION_ANCHOR) == 0u) return mask;
+    for (int k = 0; k < pm.numPoints && k < c.numPoints; ++k) {
+        const float l1 = btgLane(c.friction1Impulse, k), l2 = btgLane(c.friction2Impulse, k);
+        const float a = l1 * l1 + l2 * l2;
+        float b = c.friction * btgLane(c.normalImpulse, k);
+        b = b * b;
+        if (!(a > b)) mask |= 1u << pm.id[k];
+    }
+    return mask;
+}
+
 __kernel void store_persistent_manifolds(__global const uint* restrict contactManifolds,
                                          __global const BtgManifold* restrict manifolds,
                                          __global const uint* restrict counters, int contactCapacity,
@@ -83,7 +101,8 @@ __kernel void store_persistent_manifolds(__global const uint* restrict contactMa
                                          __global const BtgShape* restrict shapes, __global const BtgPair* restrict pairs,
                                          __global const BtgChild* restrict children,
                                          __global const BtgPersistentManifold* restrict gjkPairState, int pairCapacity,
-                                         __global BtgPersistentManifold* restrict gjkCache, int gjkCapacity)
+                                         __global BtgPersistentManifold* restrict gjkCache, int gjkCapacity,
+                                         __global const BtgContact* restrict contacts, uint solverFlags)
 {
     const uint redo = BTG_STATUS_PAIR_OVERFLOW | BTG_STATUS_CONTACT_OVERFLOW | BTG_STATUS_GRID_BARRIER_TIMEOUT;
     if ((counters[BTG_COUNTER_STATUS] & redo) != 0u) return;
@@ -99,6 +118,9 @@ __kernel void store_persistent_manifolds(__global const uint* restrict contactMa
         const BtgPersistentManifold s = gjkPairState[slot];
         if (s.kind == kind && s.bodyA == m.bodyA && s.bodyB == m.bodyB) pm = s;
     }
+    pm.anchorMask = 0u;
+    if ((solverFlags & BTG_SOLVER_FRICTION_ANCHORS) != 0u && pm.kind != BTG_PAIR_NONE)
+        pm.anchorMask = btgAnchorMask(contacts[i], pm, props[m.bodyA].flags | props[m.bodyB].flags);
     gjkCache[i] = pm;
 }
 

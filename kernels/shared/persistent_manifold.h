@@ -6,7 +6,8 @@
  * frames move with them; a point farther apart than the threshold along its normal, or drifted
  * sideways by more than it, is removed, the last point taking its place). Identities (0..7)
  * carry the warm start: a replaced point keeps its impulses as in Bullet, a new one starts
- * cold. */
+ * cold; a friction anchor (CF_HAS_FRICTION_ANCHOR) inside its friction cone is not replaced at
+ * all (replaceContactPoint), so it drifts with the bodies until the refresh drops it. */
 #ifndef BTG_PERSISTENT_MANIFOLD_H
 #define BTG_PERSISTENT_MANIFOLD_H
 #include "narrowphase_common.h"
@@ -26,7 +27,8 @@ static inline BtgPersistentManifold btgEmptyPersistent(int bodyA, int bodyB, int
     m.kind = kind;
     m.added = -1;
     m.addedMask = 0u;
-    m.pad1 = m.pad2 = 0;
+    m.anchorMask = 0u;
+    m.pad2 = 0;
     return m;
 }
 
@@ -117,6 +119,14 @@ static inline void btgPersistentAdd(BtgPersistentManifold* m, float* dist, const
     uint id;
     if (slot >= 0) {
         id = m->id[slot]; /* replaceContactPoint keeps the impulses and the lifetime */
+        /* ... and a friction anchor whose lateral impulse lay inside its friction cone keeps
+         * the old point itself (its body-frame points, normal and distance); the callbacks still
+         * see it as the point this collision gave */
+        if ((prev->anchorMask >> id) & 1u) {
+            m->added = (int)id;
+            m->addedMask |= 1u << id;
+            return;
+        }
     } else if (m->numPoints < BTG_MAX_POINTS) {
         id = btgFreshId(prev, m);
         slot = m->numPoints++;

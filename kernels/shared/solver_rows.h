@@ -195,4 +195,61 @@ static inline void btgRowSolve(BtgSolverRow* r, BtgSolverBody a, BtgSolverBody b
     btgRowApply(r->jacobian, a, b, va, vb, delta);
 }
 
+/* ---- SOLVER_RANDMIZE_ORDER: the solve order permuted by the solver's own stream ----
+ * Stock shuffles its constraint pools every iteration with its btRandInt2 stream; the batched
+ * solver cannot follow that stream (its order is the colouring's), so it permutes what orders its
+ * rows instead: the colours of each sweep and the points within each contact, by a stream of
+ * its own, a pure function of the substep's seed (BtgStepParams.randomSeed, 0: off), the
+ * iteration and the sweep, so two worlds (and the host's per-colour launches and the one-launch
+ * kernel) take the same order. Integer arithmetic only. */
+static inline uint btgOrderHash(uint x)
+{
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+/* The key of one sweep (0: the unpermuted order): the velocity iterations' normal (0) and
+ * friction (1) sweeps and the joints' (2) each their own per iteration; the split-impulse
+ * iterations one order for all (stock solves them in its last shuffled order). */
+#define BTG_ORDER_NORMALS 0
+#define BTG_ORDER_FRICTION 1
+#define BTG_ORDER_JOINTS 2
+#define BTG_ORDER_PUSH 3
+static inline uint btgSweepKey(uint seed, int iteration, int sweep)
+{
+    if (seed == 0u) return 0u;
+    if (sweep == BTG_ORDER_PUSH) iteration = 0;
+    return btgOrderHash(btgOrderHash(seed) ^ (uint)(iteration * 4 + sweep + 1)) | 1u;
+}
+/* The key of one contact (or colour list) within a sweep. */
+static inline uint btgItemKey(uint sweepKey, uint item)
+{
+    return sweepKey == 0u ? 0u : btgOrderHash(sweepKey + item * 0x9e3779b9u) | 1u;
+}
+/* Position i of [0, n) under key's permutation: an affine map i -> (a i + b) mod n with a
+ * coprime to n (no table, so a kernel pays nothing for it without the bit); the identity for
+ * key 0. */
+static inline int btgPermute(uint key, int n, int i)
+{
+    if (key == 0u || n <= 1) return i;
+    const uint un = (uint)n;
+    const uint h = btgOrderHash(key);
+    uint a = 1u + h % (un - 1u);
+    for (;;) {
+        uint x = a, y = un;
+        while (y != 0u) {
+            const uint t = x % y;
+            x = y;
+            y = t;
+        }
+        if (x == 1u) break;
+        a = a % (un - 1u) + 1u;
+    }
+    const uint b = key % un;
+    return (int)((a * (uint)i + b) % un);
+}
+
 #endif

@@ -21,10 +21,11 @@
 #define BTG_BODY_STIFFNESS_DAMPING 1024u /* CF_HAS_CONTACT_STIFFNESS_DAMPING: soft contacts */
 #define BTG_BODY_ANISOTROPIC 2048u        /* CF_ANISOTROPIC_FRICTION: friction directions scaled */
 #define BTG_BODY_ANISOTROPIC_ROLLING 4096u /* CF_ANISOTROPIC_ROLLING_FRICTION: rolling axes scaled */
-#define BTG_BODY_ADDITIONAL_DAMPING 8192u  /* m_additionalDamping: applyDamping's extra damping of slow bodies */
-#define BTG_BODY_GYRO_EXPLICIT 16384u     /* BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT (bounded by m_maxGyroscopicForce) */
-#define BTG_BODY_GYRO_WORLD 32768u        /* BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD */
-#define BTG_BODY_NO_SHAPE 65536u          /* btEmptyShape: moves and takes joints, never collides (stock's algorithms
+#define BTG_BODY_FRICTION_ANCHOR 8192u    /* CF_HAS_FRICTION_ANCHOR: its pairs' points are friction anchors */
+#define BTG_BODY_ADDITIONAL_DAMPING 16384u /* m_additionalDamping: applyDamping's extra damping of slow bodies */
+#define BTG_BODY_GYRO_EXPLICIT 32768u     /* BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT (bounded by m_maxGyroscopicForce) */
+#define BTG_BODY_GYRO_WORLD 65536u        /* BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD */
+#define BTG_BODY_NO_SHAPE 131072u         /* btEmptyShape: moves and takes joints, never collides (stock's algorithms
                                              for it find no contacts); its row's shape only gives its AABB */
 
 /* Shape kinds (BtgShape.type). Which pairs of them collide, and how, is the pair-kind table
@@ -108,7 +109,9 @@ typedef struct {
     float additionalDampingFactor;      /* m_additionalDampingFactor */
     float additionalLinearThresholdSqr; /* m_additionalLinearDampingThresholdSqr, (m/s)^2 */
     float additionalAngularThresholdSqr;/* m_additionalAngularDampingThresholdSqr, (rad/s)^2 */
-    float pad0;
+    float contactProcessingThreshold; /* m: m_contactProcessingThreshold (BT_LARGE_FLOAT unless set): a
+                                         manifold's points farther apart than the smaller of its two
+                                         bodies' stay unsolved (read with BTG_SOLVER_PROCESSING_THRESHOLD) */
 } BtgBodyProps;
 
 /* One collision shape; hull data live in the shared vertex/face/index/edge tables. */
@@ -314,6 +317,14 @@ typedef struct {
     BtgFloat4 dir2[BTG_MAX_POINTS]; /* ... Dir2 (read with two friction directions) */
 } BtgFrictionDirs;
 
+/* Each point's friction rows' positional targets where its pair's points are friction anchors
+ * (setupFrictionConstraint: -(pA - pB).dir m_frictionERP / dt, the anchor's drift along each
+ * friction direction); only with BTG_SOLVER_FRICTION_ANCHORS, same index as the contact. */
+typedef struct {
+    BtgFloat4 target1; /* per point, m/s, along friction direction 1 */
+    BtgFloat4 target2; /* ... direction 2 (read with two friction directions) */
+} BtgFrictionAnchor;
+
 /* An edge of the constraint graph: one constraint between two bodies. The batching colors
  * edges and the islands walk them, whatever kind of constraint each is: edges [0, contacts)
  * are the contacts, in their order; other kinds (joints) append theirs after them. */
@@ -362,7 +373,11 @@ typedef struct {
                                          -1 for none (the points persisted from earlier substeps),
                                          -2 for several (hulls clipped, boxes: every point) */
     uint addedMask;                   /* bit id set for each point added or replaced this substep */
-    int pad1, pad2;
+    uint anchorMask;                  /* bit id set for each point its next refresh keeps as a friction
+                                         anchor (store_persistent_manifolds: a body has
+                                         CF_HAS_FRICTION_ANCHOR and the last solve left the point's
+                                         lateral impulse inside its friction cone) */
+    int pad2;
 } BtgPersistentManifold;
 
 /* Per-step scalars, passed by value to the kernels that need them. */
@@ -385,7 +400,9 @@ typedef struct {
     float globalCfm;             /* m_globalCfm (contacts; the joints take theirs from BtgJointStepParams) */
     int pad0;
     float maxGyroscopicForce;    /* m_maxGyroscopicForce: bounds the explicit gyroscopic term, N m */
-    int pad1, pad2, pad3;
+    float frictionErp;           /* m_frictionERP: friction anchors' positional error rate */
+    uint randomSeed;             /* SOLVER_RANDMIZE_ORDER: this substep's solve-order stream; 0: off */
+    int pad1;
 } BtgStepParams;
 /* BtgStepParams.solverFlags */
 #define BTG_SOLVER_VELOCITY_INDEPENDENT_FRICTION 1u /* SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION:
@@ -393,6 +410,8 @@ typedef struct {
 #define BTG_SOLVER_ROLLING_FRICTION 2u /* some body has rolling friction: prepare writes BtgRollingContact rows */
 #define BTG_SOLVER_SOFT_CONTACTS 4u    /* some body has contact stiffness and damping */
 #define BTG_SOLVER_ANISOTROPIC_FRICTION 8u /* a body has anisotropic friction: prepare writes BtgFrictionDirs */
+#define BTG_SOLVER_PROCESSING_THRESHOLD 16u /* a body has a contact processing threshold (setContactProcessingThreshold) */
+#define BTG_SOLVER_FRICTION_ANCHORS 32u /* a body has CF_HAS_FRICTION_ANCHOR: prepare writes BtgFrictionAnchor rows */
 
 /* Device status flags (one uint, read back with the transforms). */
 #define BTG_STATUS_PAIR_OVERFLOW 1u
@@ -414,6 +433,7 @@ static_assert(sizeof(BtgContact) == 16 + 16 * 24, "BtgContact layout");
 static_assert(sizeof(BtgEdge) == 8, "BtgEdge layout");
 static_assert(sizeof(BtgRollingContact) == 16 * 5 + 32, "BtgRollingContact layout");
 static_assert(sizeof(BtgFrictionDirs) == 32 * BTG_MAX_POINTS, "BtgFrictionDirs layout");
+static_assert(sizeof(BtgFrictionAnchor) == 32, "BtgFrictionAnchor layout");
 static_assert(sizeof(BtgCachedContact) == 16 * (BTG_MAX_POINTS + 2 * BTG_WARMSTART_FRICTION) + 4 * BTG_MAX_POINTS + 32,
               "BtgCachedContact layout");
 static_assert(sizeof(BtgStepParams) == 80, "BtgStepParams layout");

@@ -29,7 +29,10 @@ BuiltContacts buildContactsFromRanges(const std::vector<BtgManifoldRange>& range
             const BtgManifold& m = manifolds[slot];
             BtgContact c = btgContactFromManifold(m, bodies.pos[m.bodyA], bodies.pos[m.bodyB]);
             int prev = btgFindPrevContact(cache.data(), int(cache.size()), m);
-            if (prev >= 0) btgWarmStartFrom(&c, bodies.rot[m.bodyA], m, cache[prev], params.warmstartFactor);
+            const float processing = (params.solverFlags & BTG_SOLVER_PROCESSING_THRESHOLD)
+                                         ? btgProcessingThreshold(bodies.props[m.bodyA], bodies.props[m.bodyB])
+                                         : BTG_NO_PROCESSING_THRESHOLD;
+            if (prev >= 0) btgWarmStartFrom(&c, bodies.rot[m.bodyA], m, cache[prev], params.warmstartFactor, processing);
             out.contacts.push_back(c);
             out.manifoldOf.push_back(slot);
         }

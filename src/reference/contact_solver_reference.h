@@ -54,10 +54,12 @@ std::vector<BtgCachedContact> storeContactCache(const std::vector<BtgContact>& c
 // prepareContacts on every contact of the list; returns the contacts' edges of the constraint
 // graph (edge i: contact i), as the stage writes them. With BTG_SOLVER_ROLLING_FRICTION and
 // `rolling`, each contact's rolling rows there; with BTG_SOLVER_ANISOTROPIC_FRICTION and
-// `frictionDirs`, each contact's friction directions.
+// `frictionDirs`, each contact's friction directions; with BTG_SOLVER_FRICTION_ANCHORS and
+// `anchors`, each contact's friction anchor targets.
 std::vector<BtgEdge> prepareContacts(std::vector<BtgContact>& contacts, const ContactBodies& bodies,
                                      const BtgStepParams& params, std::vector<BtgRollingContact>* rolling = nullptr,
-                                     std::vector<BtgFrictionDirs>* frictionDirs = nullptr);
+                                     std::vector<BtgFrictionDirs>* frictionDirs = nullptr,
+                                     std::vector<BtgFrictionAnchor>* anchors = nullptr);
 
 // colorConstraints: the device's rounds replayed in order; returns every edge's color.
 std::vector<int> colorConstraints(const std::vector<BtgEdge>& edges, const ContactBodies& bodies, int maxColors);
@@ -66,10 +68,12 @@ std::vector<int> colorConstraints(const std::vector<BtgEdge>& edges, const Conta
 // are the edges'; updates linVel/angVel and (zeroed first when params.splitImpulse)
 // pushLin/pushAng.
 // With rolling rows (BTG_SOLVER_ROLLING_FRICTION) each velocity iteration ends with their sweep;
-// with frictionDirs (BTG_SOLVER_ANISOTROPIC_FRICTION) the friction rows take those directions.
+// with frictionDirs (BTG_SOLVER_ANISOTROPIC_FRICTION) the friction rows take those directions;
+// with anchors (BTG_SOLVER_FRICTION_ANCHORS) their positional targets.
 void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>& colors, ContactBodies& bodies,
                       const BtgStepParams& params, int iterations, int numColors,
                       std::vector<BtgRollingContact>* rolling = nullptr,
-                      const std::vector<BtgFrictionDirs>* frictionDirs = nullptr);
+                      const std::vector<BtgFrictionDirs>* frictionDirs = nullptr,
+                      const std::vector<BtgFrictionAnchor>* anchors = nullptr);
 
 }  // namespace btgpu::ref

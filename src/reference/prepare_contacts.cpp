@@ -13,11 +13,12 @@ BtgSolverBody solverBody(const ContactBodies& b, int i)
 
 std::vector<BtgEdge> prepareContacts(std::vector<BtgContact>& contacts, const ContactBodies& bodies,
                                      const BtgStepParams& params, std::vector<BtgRollingContact>* rolling,
-                                     std::vector<BtgFrictionDirs>* frictionDirs)
+                                     std::vector<BtgFrictionDirs>* frictionDirs, std::vector<BtgFrictionAnchor>* anchors)
 {
     std::vector<BtgEdge> edges;
     if (rolling) rolling->clear();
     if (frictionDirs) frictionDirs->clear();
+    if (anchors) anchors->clear();
     for (BtgContact& c : contacts) {
         edges.push_back(btgContactEdge(c));
         const BtgBodyProps& pa = bodies.props[c.bodyA];
@@ -30,12 +31,16 @@ std::vector<BtgEdge> prepareContacts(std::vector<BtgContact>& contacts, const Co
         const BtgPairMaterial mat = btgPairMaterial(pa, pb);
         const int solvable = btgContactSolvable(pa.flags, pb.flags);
         btgPrepareContact(&c, a, b, a0, b0, a1, b1, mat, solvable, params);
-        if (frictionDirs && (params.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION)) {
-            BtgFrictionDirs dirs;
+        BtgFrictionDirs dirs;
+        const bool anisotropic = frictionDirs && (params.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION);
+        if (anisotropic) {
             btgPrepareAnisotropicFriction(&c, &dirs, a, b, a1, b1, bodies.rot[c.bodyA], bodies.rot[c.bodyB], pa, pb,
                                           solvable, params);
             frictionDirs->push_back(dirs);
         }
+        if (anchors && (params.solverFlags & BTG_SOLVER_FRICTION_ANCHORS))
+            anchors->push_back(btgPrepareFrictionAnchor(&c, anisotropic ? &dirs : nullptr, bodies.pos[c.bodyA],
+                                                        bodies.pos[c.bodyB], btgAnchoredPair(pa.flags, pb.flags), params));
         if (rolling && (params.solverFlags & BTG_SOLVER_ROLLING_FRICTION))
             rolling->push_back(btgPrepareRolling(&c, a, b, mat, solvable, bodies.rot[c.bodyA], bodies.rot[c.bodyB], pa, pb));
     }

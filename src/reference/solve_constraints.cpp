@@ -12,9 +12,10 @@ namespace btgpu::ref {
 
 void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>& colors, ContactBodies& bodies,
                       const BtgStepParams& params, int iterations, int numColors, std::vector<BtgRollingContact>* rolling,
-                      const std::vector<BtgFrictionDirs>* frictionDirs)
+                      const std::vector<BtgFrictionDirs>* frictionDirs, const std::vector<BtgFrictionAnchor>* anchors)
 {
-    const int rows = btgRowFlags(params) & (rolling ? ~0 : ~BTG_ROWS_ROLLING) & (frictionDirs ? ~0 : ~BTG_ROWS_ANISOTROPIC);
+    const int rows = btgRowFlags(params) & (rolling ? ~0 : ~BTG_ROWS_ROLLING) & (frictionDirs ? ~0 : ~BTG_ROWS_ANISOTROPIC) &
+                     (anchors ? ~0 : ~BTG_ROWS_ANCHORS);
     if (numColors < 1) numColors = 1;
     size_t n = bodies.props.size();
     if (params.splitImpulse) {
@@ -25,11 +26,15 @@ void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>&
         return btgMakeSolverBody(bodies.props[i], bodies.invInertiaWorld[3 * i], bodies.invInertiaWorld[3 * i + 1],
                                  bodies.invInertiaWorld[3 * i + 2]);
     };
-    auto pass = [&](int mode) {
+    auto pass = [&](int mode, int iteration) {
         std::vector<BtgFloat4>& lin = mode == BTG_PASS_PUSH ? bodies.pushLin : bodies.linVel;
         std::vector<BtgFloat4>& ang = mode == BTG_PASS_PUSH ? bodies.pushAng : bodies.angVel;
-        for (int color = 0; color < numColors; ++color)
+        // SOLVER_RANDMIZE_ORDER: the sweep's colours and each contact's points permuted
+        const uint key = btgPassKey(params.randomSeed, mode, 0, iteration);
+        for (int ci = 0; ci < numColors; ++ci) {
+            const int color = ci == numColors - 1 ? ci : btgPermute(key, numColors - 1, ci);
             for (size_t e = 0; e < contacts.size(); ++e) {
+                const uint order = btgItemKey(key, uint(e) + 1u);
                 bool last = color == numColors - 1;  // the serial launch takes higher colors too
                 if (last ? colors[e] < color : colors[e] != color) continue;
                 BtgContact c = btgLoadContactRows(contacts.data(), int(e), mode == BTG_PASS_ROLLING ? BTG_PASS_NORMALS : mode, rows);
@@ -39,11 +44,13 @@ void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>&
                 BtgBodyVel vb = btgMakeBodyVel(movingB, lin[c.bodyB], ang[c.bodyB]);
                 const BtgFrictionDirs* d = (rows & BTG_ROWS_ANISOTROPIC) ? &(*frictionDirs)[e] : nullptr;
                 if (mode == BTG_PASS_WARM_START) btgContactWarmStartDirs(&c, d, a, b, &va, &vb, rows);
-                else if (mode == BTG_PASS_NORMALS) btgContactSolveNormals(&c, a, b, &va, &vb);
-                else if (mode == BTG_PASS_FRICTION) btgContactSolveFrictionDirs(&c, d, a, b, &va, &vb, rows);
+                else if (mode == BTG_PASS_NORMALS) btgContactSolveNormalsOrdered(&c, order, a, b, &va, &vb);
+                else if (mode == BTG_PASS_FRICTION)
+                    btgContactSolveFrictionOrdered(&c, d, (rows & BTG_ROWS_ANCHORS) ? &(*anchors)[e] : nullptr, order, a,
+                                                   b, &va, &vb, rows);
                 else if (mode == BTG_PASS_ROLLING)
-                    btgRollingSolve(&(*rolling)[e], c.normal, c.normalImpulse, c.numPoints, a, b, &va, &vb);
-                else btgContactSolvePush(&c, a, b, &va, &vb);
+                    btgRollingSolve(&(*rolling)[e], c.normal, btgSolvedNormalImpulse(&c), c.numPoints, a, b, &va, &vb);
+                else btgContactSolvePushOrdered(&c, order, a, b, &va, &vb);
                 if (a.dynamic) {
                     lin[c.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, lin[c.bodyA].w);
                     ang[c.bodyA] = btgMake4(va.ang.x, va.ang.y, va.ang.z, ang[c.bodyA].w);
@@ -54,15 +61,16 @@ void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>&
                 }
                 if (mode != BTG_PASS_ROLLING) btgStoreContactImpulses(contacts.data(), int(e), &c, mode, rows);
             }
+        }
     };
-    pass(BTG_PASS_WARM_START);
+    pass(BTG_PASS_WARM_START, -1);
     for (int it = 0; it < iterations; ++it) {
-        pass(BTG_PASS_NORMALS);
-        pass(BTG_PASS_FRICTION);
-        if (rows & BTG_ROWS_ROLLING) pass(BTG_PASS_ROLLING);
+        pass(BTG_PASS_NORMALS, it);
+        pass(BTG_PASS_FRICTION, it);
+        if (rows & BTG_ROWS_ROLLING) pass(BTG_PASS_ROLLING, it);
     }
     if (params.splitImpulse)
-        for (int it = 0; it < iterations; ++it) pass(BTG_PASS_PUSH);
+        for (int it = 0; it < iterations; ++it) pass(BTG_PASS_PUSH, iterations + it);
 }
 
 void solveConstraints(std::vector<BtgContact>& contacts, JointTables& t, const std::vector<int>& colors,

@@ -33,6 +33,7 @@ void buildContacts(DeviceWorld& w, const BtgStepParams& params)
     w.contacts.reserveExact(ctx, std::max<size_t>(w.contactCapacity, 1));
     w.contactManifolds.reserveExact(ctx, std::max<size_t>(w.contactCapacity, 1));
     w.contactCache.reserveExact(ctx, 1, true);
+    w.gjkPairState.reserve(ctx, 1);  // read only with friction anchors, whose pairs wrote it
     int contactCapacity = int(std::min({w.contactCapacity, w.contacts.capacity(), w.contactManifolds.capacity()}));
     int cacheCapacity = int(w.contactCache.capacity());
 
@@ -43,8 +44,9 @@ void buildContacts(DeviceWorld& w, const BtgStepParams& params)
         .arg(contactCapacity).run(1, 1);
     if (numBlocks > 0)
         cl::Launch(ctx, write, &w.profiler).arg(w.pairManifolds).arg(w.manifolds).arg(w.counters).arg(pairCapacity)
-            .arg(w.solverScratch.blockSums).arg(w.pos).arg(w.rot).arg(w.contactCache).arg(cacheCapacity)
-            .arg(w.contacts).arg(w.contactManifolds).arg(contactCapacity).arg(params).local(group * sizeof(cl_uint))
+            .arg(w.solverScratch.blockSums).arg(w.pos).arg(w.rot).arg(w.props).arg(w.contactCache).arg(cacheCapacity)
+            .arg(w.contacts).arg(w.contactManifolds).arg(contactCapacity).arg(w.gjkPairState)
+            .arg(int(w.gjkPairState.capacity())).arg(params).local(group * sizeof(cl_uint))
             .run(numBlocks * group, group);
 }
 

@@ -63,7 +63,7 @@ void narrowphasePersistent(DeviceWorld& w, const PairKinds& kinds, const char* k
     }
 }
 
-void storePersistentManifolds(DeviceWorld& w, const PairKinds& kinds)
+void storePersistentManifolds(DeviceWorld& w, const PairKinds& kinds, unsigned solverFlags)
 {
     // Both programs hold the same store kernel: the one the plan builds anyway.
     const char* kProgram = kinds.anyIn(kPersistentPrograms[0]) ? kPersistentPrograms[0] : kPersistentPrograms[1];
@@ -72,6 +72,7 @@ void storePersistentManifolds(DeviceWorld& w, const PairKinds& kinds)
     cl::Launch(w.ctx, w.ctx.program(kProgram).kernel("store_persistent_manifolds"), &w.profiler)
         .arg(w.contactManifolds).arg(w.manifolds).arg(w.counters).arg(contactCapacity).arg(w.props).arg(w.shapes)
         .arg(w.pairs).arg(w.children).arg(w.gjkPairState).arg(int(w.gjkPairState.capacity())).arg(w.gjkCache).arg(int(w.gjkCache.capacity()))
+        .arg(w.contacts).arg(cl_uint(solverFlags))
         .run(size_t(std::max(contactCapacity, 1)));
 }
 

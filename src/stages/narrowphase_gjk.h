@@ -5,7 +5,7 @@
 // algorithms and btPersistentManifold; after the solve, the manifolds kept for the next substep.
 // Reads pairs, pairOrder, pairKindRanges, pos, rot, props, shapes, hullVertices, counters,
 // contactCache, gjkCache. Writes manifolds, pairManifolds and gjkPairState of those pairs;
-// storePersistentManifolds writes gjkCache (contact order).
+// storePersistentManifolds reads contacts (friction anchors) and writes gjkCache (contact order).
 #pragma once
 #include "world/device_world.h"
 #include "world/pair_kinds.h"
@@ -15,6 +15,7 @@ namespace btgpu {
 bool anyPersistent(const PairKinds& kinds);
 // The kernels of `program` (one of those two) for the kinds in `kinds`.
 void narrowphasePersistent(DeviceWorld& w, const PairKinds& kinds, const char* program);
-// After storeContactCache: contact i's persistent manifold to gjkCache[i].
-void storePersistentManifolds(DeviceWorld& w, const PairKinds& kinds);
+// After storeContactCache: contact i's persistent manifold to gjkCache[i], with the friction
+// anchors the next refresh keeps (solverFlags: BtgStepParams.solverFlags).
+void storePersistentManifolds(DeviceWorld& w, const PairKinds& kinds, unsigned solverFlags);
 }  // namespace btgpu

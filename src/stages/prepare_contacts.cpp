@@ -20,10 +20,11 @@ void prepareContacts(DeviceWorld& w, const BtgStepParams& params)
     const size_t rows = size_t(std::max(contactCapacity, 1));
     w.rollingContacts.reserve(w.ctx, (params.solverFlags & BTG_SOLVER_ROLLING_FRICTION) ? rows : 1);
     w.frictionDirs.reserve(w.ctx, (params.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION) ? rows : 1);
+    w.frictionAnchors.reserve(w.ctx, (params.solverFlags & BTG_SOLVER_FRICTION_ANCHORS) ? rows : 1);
     cl::Launch(w.ctx, w.ctx.program("prepare_contacts").kernel("prepare_contacts"), &w.profiler)
         .arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props).arg(w.invInertiaWorld).arg(w.rot)
         .arg(w.linVel0).arg(w.angVel0).arg(w.linVel).arg(w.angVel).arg(w.edges).arg(w.rollingContacts)
-        .arg(w.frictionDirs).arg(params)
+        .arg(w.frictionDirs).arg(w.pos).arg(w.frictionAnchors).arg(params)
         .run(size_t(contactCapacity));
 }
 

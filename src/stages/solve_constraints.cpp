@@ -37,6 +37,7 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     const int rows = btgRowFlags(params);
     w.rollingContacts.reserve(ctx, 1);
     w.frictionDirs.reserve(ctx, 1);
+    w.frictionAnchors.reserve(ctx, 1);
     // Edges sorted into per-color ranges once, so each color's launch reads only its own.
     SolverScratch& sc = w.solverScratch;
     // Two lists (see color_count): the contacts, and the contacts with a push target; with
@@ -72,13 +73,14 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
         cl_kernel k = prog.kernel("solve_resident");
         size_t group = std::min<size_t>(256, cl::kernelGroupLimit(ctx, k));
         size_t groups = resident ? std::max<cl_uint>(ctx.device().computeUnits, 1) : 1;
-        cl::Launch(ctx, k, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.rollingContacts).arg(w.frictionDirs)
+        cl::Launch(ctx, k, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.rollingContacts).arg(w.frictionDirs).arg(w.frictionAnchors)
             .arg(w.counters).arg(edgeCapacity)
             .arg(sc.colorStart)
             .arg(sc.colorOrder).arg(w.props).arg(w.invInertiaWorld).arg(w.linVel).arg(w.angVel).arg(w.pushLin)
             .arg(w.pushAng).arg(gridBarrier(w)).arg(numColors).arg(orderStride).arg(iterations)
             .arg(params.splitImpulse ? 1 : 0).arg(rows).arg(kGridBarrierSpins).arg(w.joints).arg(w.jointState)
-            .arg(w.jointRows).arg(numJoints).arg(w.jointIterations).run(groups * group, group);
+            .arg(w.jointRows).arg(numJoints).arg(w.jointIterations).arg(cl_uint(params.randomSeed))
+            .run(groups * group, group);
         return;
     }
     // Per-color launches stride over their range: a few work-groups per compute unit.
@@ -86,23 +88,28 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     cl_kernel parallel = prog.kernel("solve_color_range");
     cl_kernel serial = prog.kernel("solve_color_serial");
     // phase 1: the joints' edges, 0: the contacts' (see solve_resident).
+    const cl_uint seed = params.randomSeed;
     auto pass = [&](int mode, int phase, int iteration, cl::DeviceArray<BtgFloat4>& lin, cl::DeviceArray<BtgFloat4>& ang) {
-        for (int color = 0; color < numColors; ++color) {
+        // SOLVER_RANDMIZE_ORDER: the sweep's colours in its permuted order (the leftovers last),
+        // as the one-launch kernel takes them
+        const uint key = btgPassKey(seed, mode, phase, iteration);
+        for (int ci = 0; ci < numColors; ++ci) {
+            const int color = ci == numColors - 1 ? ci : btgPermute(key, numColors - 1, ci);
             // The last color holds the coloring's leftovers (usually none: the serial kernel
             // then returns at once).
             if (color == numColors - 1) {
                 cl::Launch(ctx, serial, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.rollingContacts)
-                    .arg(w.frictionDirs).arg(w.counters)
+                    .arg(w.frictionDirs).arg(w.frictionAnchors).arg(w.counters)
                     .arg(edgeCapacity).arg(w.props)
                     .arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(rows).arg(w.joints)
-                    .arg(w.jointState).arg(w.jointRows).arg(numJoints).arg(phase).arg(iteration).run(1, 1);
+                    .arg(w.jointState).arg(w.jointRows).arg(numJoints).arg(phase).arg(iteration).arg(seed).run(1, 1);
             } else {
-                cl::Launch(ctx, parallel, &w.profiler).arg(w.contacts).arg(w.rollingContacts).arg(w.frictionDirs)
+                cl::Launch(ctx, parallel, &w.profiler).arg(w.contacts).arg(w.rollingContacts).arg(w.frictionDirs).arg(w.frictionAnchors)
                     .arg(sc.colorStart)
                     .arg(sc.colorOrder)
                     .arg(w.props).arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(rows)
                     .arg(numColors).arg(orderStride).arg(w.counters).arg(edgeCapacity).arg(w.joints).arg(w.jointState)
-                    .arg(w.jointRows).arg(numJoints).arg(phase).arg(iteration).run(rangeItems, 64);
+                    .arg(w.jointRows).arg(numJoints).arg(phase).arg(iteration).arg(seed).run(rangeItems, 64);
             }
         }
     };

@@ -130,6 +130,9 @@ struct DeviceWorld {
     // Per-point friction directions of anisotropic friction, likewise only while a body has it
     // (BTG_SOLVER_ANISOTROPIC_FRICTION).
     cl::DeviceArray<BtgFrictionDirs> frictionDirs;
+    // Friction anchors' positional targets, likewise only while a body has CF_HAS_FRICTION_ANCHOR
+    // (BTG_SOLVER_FRICTION_ANCHORS).
+    cl::DeviceArray<BtgFrictionAnchor> frictionAnchors;
     // The last substep's contacts packed for the app's dispatcher (stage report_contacts, only
     // while Config::fillDispatcherManifolds): read back by syncOut when written since its last read.
     cl::DeviceArray<BtgContactReport> contactReports;

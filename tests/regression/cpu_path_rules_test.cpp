@@ -135,8 +135,7 @@ std::vector<Rule> rules()
         solverInfo("m_leastSquaresResidualThreshold", "m_leastSquaresResidualThreshold",
                    [](btContactSolverInfo& i) { i.m_leastSquaresResidualThreshold = btScalar(1e-6); }),
         solverInfo("no iterations", "m_numIterations", [](btContactSolverInfo& i) { i.m_numIterations = 0; }),
-        solverInfo("randomised order", "m_solverMode",
-                   [](btContactSolverInfo& i) { i.m_solverMode |= SOLVER_RANDMIZE_ORDER; }),
+        // SOLVER_RANDMIZE_ORDER is served by the PGS solver's own order (solver_features_test.cpp).
         solverInfo("interleaving", "m_solverMode",
                    [](btContactSolverInfo& i) {
                        i.m_solverMode |= SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS;
@@ -158,7 +157,18 @@ std::vector<Rule> rules()
                  BOX_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE,
                  configuration(s).getCollisionAlgorithmCreateFunc(BOX_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE));
          }},
-        flag("friction anchor", "CF_HAS_FRICTION_ANCHOR", btCollisionObject::CF_HAS_FRICTION_ANCHOR),
+        // Friction anchors are served where the pairs keep persistent manifolds
+        // (solver_features_test.cpp); a sphere's pairs with boxes keep none on the device.
+        {"friction anchor beside a sphere", "friction anchors (CF_HAS_FRICTION_ANCHOR) on a box beside a sphere",
+         [](Scene& s) {
+             static btSphereShape ball(btScalar(0.5));
+             s.body(1)->setCollisionFlags(s.body(1)->getCollisionFlags() | btCollisionObject::CF_HAS_FRICTION_ANCHOR);
+             s.body(2)->setCollisionShape(&ball);
+         },
+         [](Scene& s) {
+             s.body(1)->setCollisionFlags(s.body(1)->getCollisionFlags() & ~btCollisionObject::CF_HAS_FRICTION_ANCHOR);
+             s.body(2)->setCollisionShape(s.body(1)->getCollisionShape());
+         }},
         // Two anisotropic bodies are served (solver_features_test.cpp) unless one is a compound or
         // concave, whose manifolds' body order is its algorithm's (here body 2 made a compound).
         {"anisotropic rolling friction on two bodies, one a compound", "anisotropic rolling friction on more than one body",
@@ -202,9 +212,8 @@ std::vector<Rule> rules()
                                                          SOLVER_USE_2_FRICTION_DIRECTIONS |
                                                          SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION);
          }},
-        {"contact processing threshold", "contact processing threshold",
-         [](Scene& s) { s.body(1)->setContactProcessingThreshold(0); },
-         [](Scene& s) { s.body(1)->setContactProcessingThreshold(BT_LARGE_FLOAT); }},
+        // A contact processing threshold is served by the PGS solver (solver_features_test.cpp);
+        // the Jacobi and soft solvers fall back (JacobiSolverFallsBackForRowsItLacks).
         // CCD is served step by step (ccd_test.cpp); beside an overlap filter a step it acts in
         // would ask the filter again.
         {"CCD beside an overlap filter", "continuous collision detection (setCcdMotionThreshold) beside",
@@ -228,6 +237,12 @@ std::vector<Rule> rules()
          [](Scene& s) { s.body(2)->setCollisionShape(&compound); },
          [](Scene& s) { s.body(2)->setCollisionShape(s.body(1)->getCollisionShape()); }},
     };
+}
+
+Rule processingThreshold(const char* expect)
+{
+    return {"contact processing threshold", expect, [](Scene& s) { s.body(1)->setContactProcessingThreshold(0); },
+            [](Scene& s) { s.body(1)->setContactProcessingThreshold(BT_LARGE_FLOAT); }};
 }
 
 bool hasFallbackIssue(const Report& r, const std::string& reason)
@@ -286,8 +301,39 @@ TEST(CpuPathRules, JacobiSolverFallsBackForRowsItLacks)
         {"anisotropic friction", "anisotropic friction (setAnisotropicFriction) with Config::solver = JacobiMassSplitting",
          [](Scene& s) { s.body(1)->setAnisotropicFriction(btVector3(1, btScalar(0.5), 1)); },
          [](Scene& s) { s.body(1)->setAnisotropicFriction(btVector3(1, 1, 1)); }},
+        processingThreshold("setContactProcessingThreshold) with Config::solver = JacobiMassSplitting"),
+        flag("friction anchors", "CF_HAS_FRICTION_ANCHOR) with Config::solver = JacobiMassSplitting",
+             btCollisionObject::CF_HAS_FRICTION_ANCHOR),
+        solverInfo("randomised order", "SOLVER_RANDMIZE_ORDER with Config::solver = JacobiMassSplitting",
+                   [](btContactSolverInfo& i) { i.m_solverMode |= SOLVER_RANDMIZE_ORDER; }),
     };
     for (const Rule& rule : jacobiRules) {
+        SCOPED_TRACE(rule.name);
+        rule.set(*scene);
+        scene->step();
+        EXPECT_FALSE(r.gpuPath);
+        EXPECT_NE(r.cpuPathReason.find(rule.expect), std::string::npos) << r.cpuPathReason;
+        rule.reset(*scene);
+        scene->step();
+        EXPECT_TRUE(r.gpuPath) << r.cpuPathReason;
+    }
+}
+
+// The soft step's contacts are its own springs: the Bullet settings its rows do not follow send
+// the world to the CPU path, naming the mode.
+TEST(CpuPathRules, SoftStepFallsBackForRowsItLacks)
+{
+    Config config;
+    config.solver = SolverKind::SoftStep;
+    ScenePtr scene = scenes::dropRow(WorldKind::Gpu, config);
+    scene->step();
+    const Report& r = *scene->report();
+    ASSERT_TRUE(r.gpuPath) << r.cpuPathReason;
+    for (const Rule& rule : {processingThreshold("setContactProcessingThreshold) with Config::solver = SoftStep"),
+                             flag("friction anchors", "CF_HAS_FRICTION_ANCHOR) with Config::solver = SoftStep",
+                                  btCollisionObject::CF_HAS_FRICTION_ANCHOR),
+                             solverInfo("randomised order", "SOLVER_RANDMIZE_ORDER with Config::solver = SoftStep",
+                                        [](btContactSolverInfo& i) { i.m_solverMode |= SOLVER_RANDMIZE_ORDER; })}) {
         SCOPED_TRACE(rule.name);
         rule.set(*scene);
         scene->step();
@@ -304,7 +350,7 @@ TEST(CpuPathRules, ComingBackAgreesWithStock)
     // Set while the boxes fall: they land on the CPU path; set back, the GPU path must go on from
     // where the CPU path left every row (not from its own last upload) and stay with stock.
     std::vector<Rule> all = rules();
-    for (const char* name : {"friction anchor", "randomised order", "near callback", "m_linearSlop"}) {
+    for (const char* name : {"interleaving", "m_linearSlop", "near callback", "m_leastSquaresResidualThreshold"}) {
         SCOPED_TRACE(name);
         const Rule& rule = *std::find_if(all.begin(), all.end(), [&](const Rule& r) { return r.name == name; });
         SideBySide s(scenes::dropRow);
@@ -330,7 +376,7 @@ TEST(CpuPathRules, ComingBackAgreesWithStock)
 TEST(CpuPathRules, GoingToTheCpuPathAfterLandingFindsTheGroundPairs)
 {
     std::vector<Rule> all = rules();
-    const Rule& rule = *std::find_if(all.begin(), all.end(), [](const Rule& r) { return r.name == std::string("friction anchor"); });
+    const Rule& rule = *std::find_if(all.begin(), all.end(), [](const Rule& r) { return r.name == std::string("interleaving"); });
     // Released 4 m up: no broadphase pair with the ground when they are added.
     auto make = [](WorldKind kind, const Config& config) {
         auto scene = std::make_unique<Scene>(kind, config, "high_drop");

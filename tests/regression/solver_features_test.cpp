@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "scenes/solver_feature_scenes.h"
+#include "scenes/stability_scenes.h"
 #include "scenes/stock_chaos.h"
 #include "side_by_side.h"
 
@@ -401,5 +402,167 @@ TEST(SolverFeatures, SoftStepFallsBackForTheBulletModesContactFeatures)
         set(*gpu, false);
         gpu->step();
         EXPECT_TRUE(gpu->gpuWorld()->isGpuPath()) << name << ": " << gpu->report()->cpuPathReason;
+    }
+}
+
+namespace {
+// Contact points the app sees in the dispatcher's manifolds, and how many of them lie farther
+// apart than `threshold`.
+struct SeenPoints {
+    int points = 0;
+    int beyond = 0;
+};
+SeenPoints seenPoints(Scene& s, btScalar threshold)
+{
+    SeenPoints seen;
+    btDispatcher* d = s.world().getDispatcher();
+    for (int m = 0; m < d->getNumManifolds(); ++m) {
+        const btPersistentManifold* pm = d->getManifoldByIndexInternal(m);
+        for (int k = 0; k < pm->getNumContacts(); ++k) {
+            ++seen.points;
+            seen.beyond += pm->getContactPoint(k).getDistance() > threshold;
+        }
+    }
+    return seen;
+}
+double gap(const Scene& s) { return s.body(2)->getWorldTransform().getOrigin().y() - s.body(1)->getWorldTransform().getOrigin().y() - 1; }
+}  // namespace
+
+// setContactProcessingThreshold: convertContacts solves a manifold's points only while they are
+// no farther apart than the smaller of its bodies' thresholds. A sphere dropped 5 cm onto a box
+// with a 1 mm threshold: the point it finds on the way down (up to the breaking threshold apart,
+// which would slow it before it touches) is not solved, it lands and rests as stock's, step for
+// step within 1 mm; the unsolved points stay in the manifolds the app reads, as many as stock's.
+// (Box pairs find penetrating points only: the box on box below.)
+TEST(SolverFeatures, ProcessingThresholdLandsAsStock)
+{
+    const btScalar threshold = btScalar(0.001);
+    SideBySide s(
+        [&](WorldKind k, const Config& c) { return features::thresholdStack(k, c, threshold, btScalar(0.05), true); });
+    ScenePtr plain = features::thresholdStack(WorldKind::Stock, Config(), btScalar(BT_LARGE_FLOAT), btScalar(0.05), true);
+    int beyondSeen = 0;
+    double apart = 0, plainApart = 0;
+    for (int i = 0; i < 90; ++i) {
+        s.step();
+        plain->step();
+        ASSERT_TRUE(s.onGpu()) << "step " << i << ": " << s.gpu->report()->cpuPathReason;
+        EXPECT_NEAR(s.gpuY(2), s.stockY(2), tol::kRestHeight) << "step " << i;
+        apart = std::max(apart, std::fabs(s.gpuY(2) - s.stockY(2)));
+        plainApart = std::max(plainApart, std::fabs(plain->body(2)->getWorldTransform().getOrigin().y() - s.stockY(2)));
+        const SeenPoints gpu = seenPoints(*s.gpu, threshold), stock = seenPoints(*s.stock, threshold);
+        EXPECT_EQ(gpu.points, stock.points) << "step " << i;
+        beyondSeen += gpu.beyond;
+    }
+    EXPECT_GT(beyondSeen, 0);  // the scene did have unsolved points to keep
+    // the threshold changes stock's landing by more than the bound the GPU path keeps
+    EXPECT_GT(plainApart, tol::kRestHeight) << "btgpu within " << apart << " m";
+    EXPECT_NEAR(gap(*s.gpu), gap(*s.stock), tol::kRestHeight);
+}
+
+// A threshold below zero leaves the box's points unsolved until they are that deep: the box sinks
+// about 1 cm into the one below on stock (against under 1 mm without it), and as deep on the GPU
+// path (within 1 mm after 2 s).
+TEST(SolverFeatures, NegativeProcessingThresholdSinksAsStock)
+{
+    const btScalar threshold = btScalar(-0.01);
+    SideBySide s([&](WorldKind k, const Config& c) { return features::thresholdStack(k, c, threshold); });
+    ScenePtr plain = features::thresholdStack(WorldKind::Stock, Config(), btScalar(BT_LARGE_FLOAT));
+    for (int i = 0; i < 120; ++i) {
+        s.step();
+        plain->step();
+        ASSERT_TRUE(s.onGpu()) << "step " << i << ": " << s.gpu->report()->cpuPathReason;
+    }
+    EXPECT_LT(gap(*s.stock), -0.005) << "stock's box sinks";
+    EXPECT_GT(gap(*plain), -0.001) << "without the threshold it does not";
+    EXPECT_NEAR(gap(*s.gpu), gap(*s.stock), tol::kRestHeight)
+        << "stock " << gap(*s.stock) << ", without the threshold " << gap(*plain);
+    EXPECT_EQ(seenPoints(*s.gpu, threshold).points, seenPoints(*s.stock, threshold).points);
+}
+
+namespace {
+// How far body 2 moved along the slope's downhill direction (a slope tilted `angle` about z).
+double downhill(const Scene& s, const btVector3& start, btScalar angle)
+{
+    const btVector3 down = quatRotate(btQuaternion(btVector3(0, 0, 1), angle), btVector3(-1, 0, 0));
+    return (s.body(2)->getWorldTransform().getOrigin() - start).dot(down);
+}
+}  // namespace
+
+// CF_HAS_FRICTION_ANCHOR: btManifoldResult flags the box's points, replaceContactPoint keeps an
+// old point while its lateral impulse lies inside the friction cone (a sliding point's, clamped
+// to the cone's edge, is inside: 3.24's eps is 0), and setupFrictionConstraint pulls each anchor
+// back along the friction directions (m_frictionERP). A box at rest on a slab tilted just inside
+// its friction cone (0.24 rad of 0.245) creeps 0.661 mm in 4 s with anchors on stock and on the
+// GPU path alike (0.761 mm without). A box sliding at 1 m/s, on the flat slab and down one tilted
+// 0.2 rad, keeps its anchors while it slides and stops 10.7 mm and 25.6 mm sooner on stock: the
+// GPU path with anchors stops within 1 mm of stock's, and its anchors change its own slide by
+// more than five times that.
+TEST(SolverFeatures, FrictionAnchorsHoldAndSlideAsStock)
+{
+    for (auto [angle, speed] : std::vector<std::pair<btScalar, btScalar>>{{0.24f, 0.0f}, {0.0f, 1.0f}, {0.2f, 1.0f}}) {
+        SCOPED_TRACE(testing::Message() << "angle " << angle << ", speed " << speed);
+        SideBySide s([&](WorldKind k, const Config& c) { return features::anchorSlope(k, c, angle, true, speed); });
+        ScenePtr plain = features::anchorSlope(WorldKind::Stock, Config(), angle, false, speed);
+        ScenePtr plainGpu = features::anchorSlope(WorldKind::Gpu, Config(), angle, false, speed);
+        const btVector3 start = s.stock->body(2)->getWorldTransform().getOrigin();
+        for (int i = 0; i < 240; ++i) {
+            s.step();
+            plain->step();
+            plainGpu->step();
+            ASSERT_TRUE(s.onGpu()) << "step " << i << ": " << s.gpu->report()->cpuPathReason;
+            ASSERT_TRUE(plainGpu->gpuWorld()->isGpuPath());
+        }
+        const double stock = downhill(*s.stock, start, angle), gpu = downhill(*s.gpu, start, angle);
+        const double without = downhill(*plain, start, angle), gpuWithout = downhill(*plainGpu, start, angle);
+        if (speed == 0) {
+            EXPECT_NEAR(gpu, stock, tol::kAnchorCreep) << "without anchors: stock " << without << ", btgpu " << gpuWithout;
+            continue;
+        }
+        EXPECT_NEAR(gpu, stock, tol::kAnchorSlide) << "without anchors: stock " << without << ", btgpu " << gpuWithout;
+        EXPECT_GT(std::fabs(without - stock), 5 * tol::kAnchorSlide) << "stock " << stock << ", without " << without;
+        EXPECT_GT(std::fabs(gpuWithout - gpu), 5 * tol::kAnchorSlide) << "btgpu " << gpu << ", without " << gpuWithout;
+    }
+}
+
+// SOLVER_RANDMIZE_ORDER: stock shuffles its row pools every iteration with its own btRandInt2
+// stream; the batched solver permutes its own solve order (each sweep's colours, each contact's
+// points) by a stream of its own at the same iterations. A pyramid of 10 (55 boxes) and a
+// collapsing 4x4x4 pile with the bit on both: btgpu stays on the GPU path and within stock's own
+// chaos with the bit (mean height, spread, kinetic energy after 3 s); the bit is not a no-op (the
+// state differs from the same world's without it), and two worlds with it step bitwise alike.
+TEST(SolverFeatures, RandomizedOrderPyramidAndPileLikeStock)
+{
+    const int steps = 180;
+    const std::vector<std::pair<std::string, SceneBuilder>> scenesToRun = {
+        {"pyramid", [](WorldKind k, const Config& c) { return scenes::stability::pyramid(k, c, 10); }},
+        {"pile", [](WorldKind k, const Config& c) { return features::boxPile(k, c, 4); }}};
+    for (const auto& [name, plainMake] : scenesToRun) {
+        SCOPED_TRACE(name);
+        auto make = with(plainMake, solverMode(SOLVER_RANDMIZE_ORDER));
+        auto measure = [](const Scene& s) {
+            scenes::Aggregates a = scenes::aggregates(s);
+            return std::vector<double>{a.meanHeight, a.spread, a.kineticEnergy};
+        };
+        const std::vector<std::string> names = {"mean height", "spread", "kinetic energy"};
+        std::vector<scenes::ChaosBand> bands = scenes::stockChaos(
+            [&](WorldKind k) { return make(k, Config()); }, steps, measure, names,
+            {tol::kChaosHeightFloor, tol::kChaosSpreadFloor, tol::kChaosEnergyFloor});
+        SideBySide s(make);
+        ScenePtr twin = make(WorldKind::Gpu, Config());
+        ScenePtr inOrder = plainMake(WorldKind::Gpu, Config());
+        bool differs = false;
+        for (int i = 0; i < steps; ++i) {
+            s.step();
+            twin->step();
+            inOrder->step();
+            ASSERT_TRUE(s.onGpu()) << "step " << i << ": " << s.gpu->report()->cpuPathReason;
+            ASSERT_EQ(s.gpu->gpuWorld()->stateHash(), twin->gpuWorld()->stateHash()) << "step " << i;
+            differs = differs || s.gpu->gpuWorld()->stateHash() != inOrder->gpuWorld()->stateHash();
+        }
+        EXPECT_TRUE(differs) << "the bit changed nothing";
+        std::vector<double> v = measure(*s.gpu);
+        for (size_t k = 0; k < bands.size(); ++k)
+            EXPECT_TRUE(bands[k].admits(v[k])) << bands[k].name << ": btgpu " << v[k] << ", stock " << bands[k].stockMean
+                                               << " +- " << bands[k].bound();
     }
 }

@@ -103,4 +103,30 @@ ScenePtr anisotropicBox(WorldKind kind, const Config& config)
     return scene;
 }
 
+ScenePtr thresholdStack(WorldKind kind, const Config& config, btScalar threshold, btScalar drop, bool sphere)
+{
+    auto scene = std::make_unique<Scene>(kind, config, "threshold_stack");
+    ground(*scene);
+    btBoxShape* box = scene->boxShape(btVector3(.5, .5, .5));
+    scene->addBody(box, 1, btVector3(0, .5, 0));
+    btCollisionShape* topShape = sphere ? static_cast<btCollisionShape*>(scene->sphereShape(btScalar(0.5))) : box;
+    btRigidBody* top = scene->addBody(topShape, 1, btVector3(0, btScalar(1.5) + drop, 0));
+    top->setContactProcessingThreshold(threshold);
+    return scene;
+}
+
+ScenePtr anchorSlope(WorldKind kind, const Config& config, btScalar angle, bool anchor, btScalar speed)
+{
+    auto scene = std::make_unique<Scene>(kind, config, "anchor_slope");
+    scene->addBody(scene->boxShape(btVector3(50, 50, 50)), 0, btVector3(0, -60, 0));
+    const btQuaternion tilt(btVector3(0, 0, 1), angle);
+    const btVector3 up = quatRotate(tilt, btVector3(0, 1, 0));
+    scene->addBody(scene->boxShape(btVector3(5, .5, 5)), 0, btTransform(tilt, btVector3(0, 0, 0)));
+    btRigidBody* box = scene->addBody(scene->boxShape(btVector3(.5, .5, .5)), 1, btTransform(tilt, up * btScalar(1.0)));
+    box->setActivationState(DISABLE_DEACTIVATION);  // asleep it would stop creeping either way
+    box->setLinearVelocity(quatRotate(tilt, btVector3(-speed, 0, 0)));
+    if (anchor) box->setCollisionFlags(box->getCollisionFlags() | btCollisionObject::CF_HAS_FRICTION_ANCHOR);
+    return scene;
+}
+
 }  // namespace btgpu::scenes::features

@@ -31,5 +31,16 @@ ScenePtr anisotropicBox(WorldKind kind, const Config& config);
 // 0.35 rad about y with friction (1, 1, 0.2) on its own axes; body 2 anisotropicBox's box
 // (friction (1, 1, 0.1), turned 30 degrees) resting on the slab, given (2, 0, 2) m/s.
 ScenePtr anisotropicPair(WorldKind kind, const Config& config);
+// Two unit boxes of mass 1 on the ground (or a sphere of radius 0.5 on top with `sphere`): body 1
+// resting on it, body 2 `drop` m above resting on body 1, with contact processing threshold
+// `threshold` (setContactProcessingThreshold; the pair of the two takes it, the ground's pair
+// keeps the default).
+ScenePtr thresholdStack(WorldKind kind, const Config& config, btScalar threshold, btScalar drop = 0,
+                        bool sphere = false);
+// A unit box of mass 1 at rest on a static 10 x 1 x 10 m slab tilted `angle` rad about z
+// (friction 0.5 on both: 0.25 combined, a cone of atan 0.25 = 0.245 rad); with `anchor` the box
+// has CF_HAS_FRICTION_ANCHOR; the box never sleeps and starts sliding downhill at `speed` m/s. Body 1 the slab, body 2 the box (body 0 a
+// ground far below).
+ScenePtr anchorSlope(WorldKind kind, const Config& config, btScalar angle, bool anchor, btScalar speed = 0);
 
 }  // namespace btgpu::scenes::features

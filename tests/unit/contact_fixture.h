@@ -47,6 +47,7 @@ inline int addBody(ref::ContactBodies& b, BtgFloat4 pos, float invMass, BtgFloat
     p.flags = flags;
     p.contactStiffness = 1e18f;  // btCollisionObject's defaults (BT_LARGE_FLOAT, 0.1)
     p.contactDamping = 0.1f;
+    p.contactProcessingThreshold = 1e18f;
     b.props.push_back(p);
     b.pos.push_back(pos);
     b.rot.push_back(btgMake4(0, 0, 0, 1));

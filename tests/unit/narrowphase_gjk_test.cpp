@@ -387,6 +387,38 @@ TEST(NarrowphaseGjk, PersistentManifoldKeepsFourByArea)
     EXPECT_EQ(m.numPoints, 0);
 }
 
+// A friction anchor (btPersistentManifold::replaceContactPoint with BT_CONTACT_FLAG_FRICTION_ANCHOR):
+// a new point matching an old one whose identity the last solve marked inside its friction
+// cone (anchorMask) leaves the old point as it was, body-frame points and all, and still counts
+// as this step's added point; without the mark the new point replaces it as always.
+TEST(NarrowphaseGjk, FrictionAnchorKeepsTheOldPoint)
+{
+    BtgPose pa, pb;
+    pa.pos = btgMake4(0, 1, 0, 0);
+    pa.rot = btgQuatToMat3(btgMake4(0, 0, 0, 1));
+    pb.pos = btgZero4();
+    pb.rot = pa.rot;
+    const float t = 0.02f;
+    float dist[BTG_MAX_POINTS];
+    BtgPersistentManifold m = btgEmptyPersistent(0, 1, BTG_PAIR_HULL_CONVEX);
+    m = btgPersistentStep(m, btgMakeConvexPoint(btgMake4(0, 1, 0, 0), btgMake4(0.3f, 0, 0.2f, 0), -0.001f), pa, pb, t, dist);
+    ASSERT_EQ(m.numPoints, 1);
+    const BtgPersistentManifold first = m;
+    // the same feature found 5 mm along x
+    const BtgConvexPoint moved = btgMakeConvexPoint(btgMake4(0, 1, 0, 0), btgMake4(0.305f, 0, 0.2f, 0), -0.001f);
+    for (bool anchored : {true, false}) {
+        SCOPED_TRACE(anchored);
+        BtgPersistentManifold prev = first;
+        prev.anchorMask = anchored ? 1u << first.id[0] : 0u;
+        BtgPersistentManifold next = btgPersistentStep(prev, moved, pa, pb, t, dist);
+        ASSERT_EQ(next.numPoints, 1);
+        EXPECT_EQ(next.id[0], first.id[0]);
+        EXPECT_EQ(next.added, int(first.id[0]));
+        EXPECT_EQ(next.localB[0].x, anchored ? first.localB[0].x : 0.305f);
+        EXPECT_EQ(next.localA[0].x, anchored ? first.localA[0].x : 0.305f);
+    }
+}
+
 namespace {
 
 // Bullet's algorithm for the pair in this pose, run once from an empty manifold as the

@@ -4,6 +4,7 @@
 // restitution curve (2:1 masses) and the effective mass; and the rows against the ones
 // Bullet's own convertContact builds (relaxation, cfm, soft contacts, rolling rows).
 #include "contact_fixture.h"
+#include "shared/persistent_manifold.h"
 #include "stages/contact_cache.h"
 #include "stages/prepare_contacts.h"
 #include "test_device.h"
@@ -399,5 +400,108 @@ TEST(PrepareContacts, MatchesBulletConvertContact)
             EXPECT_NEAR(rolling[0].spinningFriction, spin.m_friction, 1e-7f);
             EXPECT_NEAR(rolling[0].rollingFriction, r1.m_friction, 1e-7f);
         }
+    }
+}
+
+// setContactProcessingThreshold: a manifold's points farther apart than the smaller of its
+// bodies' thresholds get no rows (convertContacts skips them) and keep the impulses their
+// btManifoldPoint had, unscaled by the warm start; the nearer ones are prepared as always.
+// Device and reference alike, bit for bit; without BTG_SOLVER_PROCESSING_THRESHOLD every point
+// has rows.
+TEST(PrepareContacts, ProcessingThresholdLeavesFartherPointsUnsolved)
+{
+    ref::ContactBodies b;
+    int ground = test::addBody(b, btgZero4(), 0.0f, btgZero4(), BTG_BODY_STATIC, 0.5f);
+    int box = test::addBody(b, btgMake4(0, 0.5f, 0, 0), 1.0f, btgMake4(6, 6, 6, 0), BTG_BODY_DYNAMIC, 0.5f);
+    b.props[box].contactProcessingThreshold = 0.0f;
+    BtgStepParams p = test::defaultParams(2);
+    p.warmstartFactor = 0.85f;
+    p.solverFlags |= BTG_SOLVER_PROCESSING_THRESHOLD;
+    BtgManifold m = test::boxOnPlane(box, ground, b.pos[box], 0.5f, 0.0f);
+    const float d[4] = {-0.01f, -0.002f, 0.003f, 0.01f};
+    for (int k = 0; k < 4; ++k) {
+        m.points[k].distance = d[k];
+        m.points[k].py = b.pos[box].y - 0.5f - d[k];
+    }
+    const std::vector<BtgManifold> ms = {m};
+    std::vector<BtgContact> prev = ref::buildContacts(ms, 1, b, {}, p);
+    prev[0].normalImpulse = btgMake4(1.0f, 2.0f, 3.0f, 4.0f);
+    for (bool flag : {true, false}) {
+        SCOPED_TRACE(flag);
+        BtgStepParams q = p;
+        if (!flag) q.solverFlags &= ~BTG_SOLVER_PROCESSING_THRESHOLD;
+        std::vector<BtgContact> expect = ref::buildContacts(ms, 1, b, prev, q);
+        ref::prepareContacts(expect, b, q);
+        DeviceWorld w(test::context());
+        test::uploadWorld(w, b, ms, 1, prev, 5);
+        buildContacts(w, q);
+        prepareContacts(w, q);
+        std::vector<BtgContact> got = test::downloadContacts(w);
+        ASSERT_EQ(got.size(), 1u);
+        for (int k = 0; k < 4; ++k) {
+            const bool solved = !flag || d[k] <= 0.0f;
+            EXPECT_EQ(btgLane(got[0].normalMass, k) != 0.0f, solved) << k;
+            EXPECT_EQ(btgLane(got[0].friction1Mass, k) != 0.0f, solved) << k;
+            const float old = btgLane(prev[0].normalImpulse, k);
+            EXPECT_EQ(btgLane(got[0].normalImpulse, k), solved ? old * q.warmstartFactor : old) << k;
+            EXPECT_EQ(btgLane(got[0].normalImpulse, k), btgLane(expect[0].normalImpulse, k)) << k;
+            EXPECT_EQ(btgLane(got[0].normalMass, k), btgLane(expect[0].normalMass, k)) << k;
+            EXPECT_EQ(btgLane(got[0].normalTarget, k), btgLane(expect[0].normalTarget, k)) << k;
+            if (!solved) {
+                EXPECT_EQ(btgLane(got[0].normalTarget, k), 0.0f) << k;
+                EXPECT_EQ(btgLane(got[0].pushTarget, k), 0.0f) << k;
+            }
+        }
+    }
+}
+
+// Friction anchors (BTG_SOLVER_FRICTION_ANCHORS, a body with BTG_BODY_FRICTION_ANCHOR): the
+// contact's points on A come from the pair's persistent manifold (here each kept 3 mm along +x
+// from where the point on B and the distance put it), and each friction row's target is
+// setupFrictionConstraint's -(pA - pB).dir m_frictionERP / dt. Without the body flag the rows are
+// as always: lever arms from the manifold, no targets.
+TEST(PrepareContacts, FrictionAnchorTargetsPullTheDriftBack)
+{
+    for (bool anchored : {true, false}) {
+        SCOPED_TRACE(anchored);
+        ref::ContactBodies b;
+        int ground = test::addBody(b, btgZero4(), 0.0f, btgZero4(), BTG_BODY_STATIC, 0.5f);
+        int box = test::addBody(b, btgMake4(0, 0.5f, 0, 0), 1.0f, btgMake4(6, 6, 6, 0),
+                                BTG_BODY_DYNAMIC | (anchored ? BTG_BODY_FRICTION_ANCHOR : 0u), 0.5f);
+        BtgStepParams p = test::defaultParams(2);
+        p.solverFlags |= BTG_SOLVER_FRICTION_ANCHORS | BTG_SOLVER_VELOCITY_INDEPENDENT_FRICTION;
+        p.twoFrictionDirections = 1;
+        p.frictionErp = 0.2f;
+        const BtgManifold m = test::boxOnPlane(box, ground, b.pos[box], 0.5f, -0.001f);
+        BtgPersistentManifold pm = btgEmptyPersistent(box, ground, BTG_PAIR_PLANE_BOX);
+        pm.numPoints = m.numPoints;
+        const float drift = 0.003f;
+        for (int k = 0; k < m.numPoints; ++k) {
+            const BtgManifoldPoint& q = m.points[k];
+            const BtgFloat4 onA = btgMake4(q.px, q.py + q.distance, q.pz, 0);  // normal +y
+            pm.localA[k] = onA - btgXyz(b.pos[box]) + btgMake4(drift, 0, 0, 0);
+            pm.localB[k] = btgMake4(q.px, q.py, q.pz, 0);
+            pm.id[k] = uint(k);
+        }
+        DeviceWorld w(test::context());
+        test::uploadWorld(w, b, {m}, 1, {}, 5);
+        w.gjkPairState.upload(w.ctx, std::vector<BtgPersistentManifold>{pm});
+        buildContacts(w, p);
+        prepareContacts(w, p);
+        const std::vector<BtgContact> got = test::downloadContacts(w);
+        const std::vector<BtgFrictionAnchor> anchors = w.frictionAnchors.download(w.ctx, 1);
+        ASSERT_EQ(got.size(), 1u);
+        const BtgContact& c = got[0];
+        for (int k = 0; k < 4; ++k) {
+            const BtgManifoldPoint& q = m.points[k];
+            const float rx = q.px - b.pos[box].x + (anchored ? drift : 0.0f);
+            EXPECT_NEAR(c.rA[k].x, rx, 1e-6f) << k;
+            const float rate = p.frictionErp / p.dt;
+            const float want1 = anchored ? -drift * c.tangent1.x * rate : 0.0f;
+            const float want2 = anchored ? -drift * c.tangent2.x * rate : 0.0f;
+            EXPECT_NEAR(btgLane(anchors[0].target1, k), want1, 1e-5f) << k;
+            EXPECT_NEAR(btgLane(anchors[0].target2, k), want2, 1e-5f) << k;
+        }
+        if (anchored) EXPECT_GT(std::fabs(btgLane(anchors[0].target1, 0)) + std::fabs(btgLane(anchors[0].target2, 0)), 0.03f);
     }
 }

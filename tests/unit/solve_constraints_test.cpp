@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <set>
 #include <string>
 #include <gtest/gtest.h>
 
@@ -420,5 +421,65 @@ TEST(SolveConstraints, AnisotropicFrictionMatchesReference)
                 test::expectNear4(d.frictionDirs[i].dir1[k], r.frictionDirs[i].dir1[k], tol::kStageAbs, "dir1", i);
                 if (two) test::expectNear4(d.frictionDirs[i].dir2[k], r.frictionDirs[i].dir2[k], tol::kStageAbs, "dir2", i);
             }
+    }
+}
+
+// SOLVER_RANDMIZE_ORDER (BtgStepParams.randomSeed): each sweep's colours and each contact's
+// points in the solver's own permuted order. The device follows the reference (within the same
+// rounding bound as in order), the one-work-group launch and the resident launch take the same
+// order as one launch per colour (bitwise), two runs are bitwise alike, and the order is not a
+// no-op: velocities differ from the unpermuted solve's, and another seed's.
+TEST(SolveConstraints, RandomizedOrderMatchesReferenceAndDiffers)
+{
+    test::StackScene s = test::stackScene(6, 4, 9);
+    BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
+    p.splitImpulse = 1;
+    for (int maxColors : {3, 16}) {
+        SCOPED_TRACE(maxColors);
+        BtgStepParams q = p;
+        q.randomSeed = 12345u;
+        Result d1 = runDevice(s.bodies, s.manifolds, {}, q, maxColors);
+        Result r1 = runReference(s.bodies, s.manifolds, {}, q, maxColors);
+        Result d = runDevice(s.bodies, s.manifolds, d1.contacts, q, maxColors);
+        Result r = runReference(s.bodies, s.manifolds, r1.contacts, q, maxColors);
+        test::expectSolvedAlike(d.bodies, d.contacts, r.bodies, r.contacts, 10 * tol::kStageAbs);
+        const size_t n = d.bodies.linVel.size() * sizeof(BtgFloat4);
+        Result again = runDevice(s.bodies, s.manifolds, d1.contacts, q, maxColors);
+        EXPECT_EQ(0, std::memcmp(again.bodies.linVel.data(), d.bodies.linVel.data(), n));
+        Result fused = runDevice(s.bodies, s.manifolds, d1.contacts, q, maxColors, true);
+        EXPECT_EQ(0, std::memcmp(fused.bodies.linVel.data(), d.bodies.linVel.data(), n));
+        EXPECT_EQ(0, std::memcmp(fused.bodies.pushLin.data(), d.bodies.pushLin.data(), n));
+        Result resident = runDevice(s.bodies, s.manifolds, d1.contacts, q, maxColors, false, DeviceWorld::Resident::On);
+        if (!(resident.status & BTG_STATUS_GRID_BARRIER_TIMEOUT))
+            EXPECT_EQ(0, std::memcmp(resident.bodies.linVel.data(), d.bodies.linVel.data(), n));
+        Result inOrder = runDevice(s.bodies, s.manifolds, d1.contacts, p, maxColors);
+        EXPECT_NE(0, std::memcmp(inOrder.bodies.linVel.data(), d.bodies.linVel.data(), n));
+        BtgStepParams other = q;
+        other.randomSeed = 777u;
+        Result otherSeed = runDevice(s.bodies, s.manifolds, d1.contacts, other, maxColors);
+        EXPECT_NE(0, std::memcmp(otherSeed.bodies.linVel.data(), d.bodies.linVel.data(), n));
+    }
+}
+
+// The permutation itself: a bijection of [0, n) for every n the solver permutes (points 1-4,
+// colours up to 63), the identity for key 0, and more than one order over keys.
+TEST(SolveConstraints, PermutationIsABijection)
+{
+    for (int n = 1; n <= 63; ++n) {
+        std::set<std::vector<int>> orders;
+        for (uint key : {0u, 1u, 3u, 12345u, 0xdeadbeefu, btgSweepKey(7u, 2, BTG_ORDER_FRICTION)}) {
+            std::vector<int> seen(size_t(n), 0), order;
+            for (int i = 0; i < n; ++i) {
+                const int j = btgPermute(key, n, i);
+                ASSERT_GE(j, 0);
+                ASSERT_LT(j, n);
+                ++seen[size_t(j)];
+                order.push_back(j);
+                if (key == 0u) EXPECT_EQ(j, i);
+            }
+            for (int c : seen) EXPECT_EQ(c, 1) << "n " << n << " key " << key;
+            orders.insert(order);
+        }
+        if (n >= 3) EXPECT_GT(orders.size(), 2u) << n;
     }
 }
