@@ -66,6 +66,11 @@ public:
     // of pairs that left. Without a call before a fill, only manifolds with points are held.
     void notePairs(btDispatcher* dispatcher, btOverlappingPairCache* cache, const RowMap& rows,
                    const std::unordered_set<const btCollisionObject*>& removed);
+    // The same from the device's leaf pairs (rows; leaf_pairs.h), noted after the step's device
+    // call and before its write-back: the bodies still hold the step's start (transforms,
+    // activation), what stock's near callback saw.
+    void noteLeafPairs(btDispatcher* dispatcher, const std::vector<BtgPair>& pairs, const RowMap& rows,
+                       const std::unordered_set<const btCollisionObject*>& removed);
     // Those of an object leaving the world (stock: removeRigidBody → cleanProxyFromPairs).
     void removed(btDispatcher* dispatcher, const btCollisionObject* object);
     size_t size() const { return m_map.size() - m_dead.size(); }
@@ -185,6 +190,14 @@ private:
     // stays (its pair still stock's), and empty manifolds for the noted pairs that have none.
     bool stockHolds(const Key& key) const { return m_wantedSet.count(key) > 0; }
     void holdStockPairs(btDispatcher* dispatcher, const std::unordered_set<const btCollisionObject*>& removed);
+    // One broadphase pair: its objects in the cache's order and its id (the proxies' unique ids).
+    struct StockPair {
+        const btCollisionObject* a;
+        const btCollisionObject* b;
+        unsigned long long id;
+    };
+    void notePairList(btDispatcher* dispatcher, bool valid, const std::vector<StockPair>& pairs, const RowMap& rows,
+                      const std::unordered_set<const btCollisionObject*>& removed);
 
     std::unordered_map<Key, Entry, KeyHash> m_map;
     std::vector<btTransform> m_collidedAt;  // per row (noteCollidedAt)

@@ -2,7 +2,8 @@
 // stock's dispatcher has collided, touching or not, as stock's collision algorithms hold one from
 // their pair's first collision until the pair leaves the pair cache (per compound child whose AABB
 // overlaps the other side's), so that getNumManifolds() is stock's count. The pairs are read from
-// Bullet's own pair cache, updated as stock's at the internal step's start (ghost_objects.cpp).
+// Bullet's own pair cache, updated as stock's at the internal step's start (ghost_objects.cpp,
+// Config::stockEmptyManifolds), or from the device's leaf pairs (leaf_pairs.h, the default).
 #include "manifold_sync.h"
 
 #include <btBulletCollisionCommon.h>
@@ -24,9 +25,47 @@ btVector3 childAabb(const btCollisionObject* o, int child, btVector3* max)
 void ManifoldSync::notePairs(btDispatcher* dispatcher, btOverlappingPairCache* cache, const RowMap& rows,
                              const std::unordered_set<const btCollisionObject*>& removed)
 {
+    std::vector<StockPair> list;
+    if (dispatcher && cache) {
+        const btBroadphasePairArray& pairs = cache->getOverlappingPairArray();
+        list.reserve(size_t(pairs.size()));
+        for (int i = 0; i < pairs.size(); ++i) {
+            const btBroadphasePair& pair = pairs[i];
+            list.push_back({static_cast<const btCollisionObject*>(pair.m_pProxy0->m_clientObject),
+                            static_cast<const btCollisionObject*>(pair.m_pProxy1->m_clientObject),
+                            (static_cast<unsigned long long>(unsigned(pair.m_pProxy0->m_uniqueId)) << 32) |
+                                unsigned(pair.m_pProxy1->m_uniqueId)});
+        }
+    }
+    notePairList(dispatcher, dispatcher && cache, list, rows, removed);
+}
+
+void ManifoldSync::noteLeafPairs(btDispatcher* dispatcher, const std::vector<BtgPair>& pairs, const RowMap& rows,
+                                 const std::unordered_set<const btCollisionObject*>& removed)
+{
+    // The pair cache's (proxy0, proxy1) order: the lower unique id first.
+    std::vector<StockPair> list;
+    list.reserve(pairs.size());
+    for (const BtgPair& p : pairs) {
+        const btCollisionObject* a = rows.at(size_t(p.a));
+        const btCollisionObject* b = rows.at(size_t(p.b));
+        if (!a || !b || !a->getBroadphaseHandle() || !b->getBroadphaseHandle()) continue;
+        unsigned ia = unsigned(a->getBroadphaseHandle()->m_uniqueId), ib = unsigned(b->getBroadphaseHandle()->m_uniqueId);
+        if (ia > ib) {
+            std::swap(a, b);
+            std::swap(ia, ib);
+        }
+        list.push_back({a, b, (static_cast<unsigned long long>(ia) << 32) | ib});
+    }
+    notePairList(dispatcher, dispatcher != nullptr, list, rows, removed);
+}
+
+void ManifoldSync::notePairList(btDispatcher* dispatcher, bool valid, const std::vector<StockPair>& pairs,
+                                const RowMap& rows, const std::unordered_set<const btCollisionObject*>& removed)
+{
     m_wanted.clear();
     m_wantedSet.clear();
-    m_wantedValid = dispatcher && cache;
+    m_wantedValid = valid;
     if (!m_wantedValid) {
         m_stockPairs.clear();
         return;
@@ -82,14 +121,11 @@ void ManifoldSync::notePairs(btDispatcher* dispatcher, btOverlappingPairCache* c
     // collisions not ignored); an algorithm made once lives on with its manifolds, untouched
     // while the pair is not collided (two sleeping bodies).
     std::unordered_map<unsigned long long, std::vector<Key>> next;
-    const btBroadphasePairArray& pairs = cache->getOverlappingPairArray();
-    for (int i = 0; i < pairs.size(); ++i) {
-        const btBroadphasePair& pair = pairs[i];
-        const auto* a = static_cast<const btCollisionObject*>(pair.m_pProxy0->m_clientObject);
-        const auto* b = static_cast<const btCollisionObject*>(pair.m_pProxy1->m_clientObject);
+    for (const StockPair& pair : pairs) {
+        const btCollisionObject* a = pair.a;
+        const btCollisionObject* b = pair.b;
         if (!a || !b || (!removed.empty() && (removed.count(a) || removed.count(b)))) continue;
-        const unsigned long long id =
-            (static_cast<unsigned long long>(unsigned(pair.m_pProxy0->m_uniqueId)) << 32) | unsigned(pair.m_pProxy1->m_uniqueId);
+        const unsigned long long id = pair.id;
         std::vector<Key> keys;
         if (dispatcher->needsCollision(a, b)) {
             keys = collided(a, b);
