@@ -2,6 +2,8 @@
  * btDbvtBroadphase keeps it (shared/broadphase_leaves.h), the pairs whose leaves overlap (a
  * sweep along x over the leaves sorted by their lower bound), sorted by (a, b), and what changed
  * against the last call's list, compacted in list order so that only that travels to the host.
+ * When no leaf moved in the call the pairs are the last call's (as stock adds pairs only for
+ * leaves that moved, and drops them only then): the kernels after the update return at once.
  * Stage: broadphase_leaves (only while the fill wants stock's empty manifolds). Launch: per
  * kernel below. Reads: pos, rot, linVel, angVel (damped: right after predict_motion), props,
  * shapes. Writes: the LeafBuffers columns (src/world/leaf_buffers.h) and their counts. */
@@ -48,12 +50,12 @@ __kernel void leaves_sweep_keys(int n, __global const BtgBodyProps* restrict pro
 {
     int i = (int)get_global_id(0);
     if (i >= n) return;
-    keys[i] = (props[i].flags & BTG_BODY_EXCLUDED) ? 0xffffffffu : btgLeafSweepKey(leafMin[i].x);
+    keys[i] = (props[i].flags & BTG_BODY_EXCLUDED) ? (1u << BTG_LEAF_SWEEP_BITS) - 1u : btgLeafSweepKey(leafMin[i].x);
     rows[i] = (uint)i;
 }
 
 /* Launch: one work-item per sorted leaf: it against the leaves after it until one starts past
- * its upper x bound. Every overlap counts towards m_newpairs once per moved side (stock's tree
+ * its upper x bound (by sweep key). Every overlap counts towards m_newpairs once per moved side (stock's tree
  * collider counts before the pair cache filters); the allowed ones are appended. */
 __kernel void leaves_sweep(int n, __global const uint* restrict rows, __global const BtgBodyProps* restrict props,
                            __global const BtgFloat4* restrict leafMin, __global const BtgFloat4* restrict leafMax,
@@ -61,7 +63,7 @@ __kernel void leaves_sweep(int n, __global const uint* restrict rows, __global c
                            uint capacity)
 {
     int i = (int)get_global_id(0);
-    if (i >= n) return;
+    if (i >= n || counts[BTG_LEAF_MOVED] == 0u) return;
     int r = (int)rows[i];
     BtgBodyProps pr = props[r];
     if (pr.flags & BTG_BODY_EXCLUDED) return;
@@ -69,6 +71,7 @@ __kernel void leaves_sweep(int n, __global const uint* restrict rows, __global c
     lr.lo = leafMin[r];
     lr.hi = leafMax[r];
     uint movedR = moved[r];
+    uint last = btgLeafSweepKey(lr.hi.x);
     uint newPairs = 0u;
     for (int j = i + 1; j < n; ++j) {
         int s = (int)rows[j];
@@ -77,7 +80,7 @@ __kernel void leaves_sweep(int n, __global const uint* restrict rows, __global c
         BtgAabb ls;
         ls.lo = leafMin[s];
         ls.hi = leafMax[s];
-        if (ls.lo.x > lr.hi.x) break;
+        if (btgLeafSweepKey(ls.lo.x) > last) break;
         if (!btgLeafMeets(lr, ls)) continue;
         newPairs += movedR + moved[s];
         if (!btgLeafPairAllowed(pr, ps)) continue;
@@ -124,7 +127,7 @@ __kernel void leaves_pairs_write(__global const BtgPair* restrict raw, __global 
                                  __global const uint* restrict counts, __global BtgPair* next, uint capacity)
 {
     uint i = (uint)get_global_id(0);
-    if (i >= min(counts[BTG_LEAF_FOUND], capacity)) return;
+    if (i >= min(counts[BTG_LEAF_FOUND], capacity) || counts[BTG_LEAF_MOVED] == 0u) return;
     next[i] = raw[order[i]];
 }
 
@@ -135,7 +138,7 @@ __kernel void leaves_diff_flags(__global const BtgPair* restrict next, __global 
                                 uint capacity)
 {
     uint i = (uint)get_global_id(0);
-    if (i >= 2u * capacity) return;
+    if (i >= 2u * capacity || counts[BTG_LEAF_MOVED] == 0u) return;
     int numNext = (int)min(counts[BTG_LEAF_FOUND], capacity);
     int numPrev = (int)counts[BTG_LEAF_PREV];
     uint f = 0u;
@@ -148,10 +151,10 @@ __kernel void leaves_diff_flags(__global const BtgPair* restrict next, __global 
 /* Launch: one work-item per slot of both lists (2 x capacity), after the scan of offsets. */
 __kernel void leaves_diff_write(__global const BtgPair* restrict next, __global const BtgPair* restrict prev,
                                 __global const uint* restrict flags, __global const uint* restrict offsets,
-                                __global BtgPair* changes, uint capacity)
+                                __global const uint* restrict counts, __global BtgPair* changes, uint capacity)
 {
     uint i = (uint)get_global_id(0);
-    if (i >= 2u * capacity || !flags[i]) return;
+    if (i >= 2u * capacity || counts[BTG_LEAF_MOVED] == 0u || !flags[i]) return;
     BtgPair q = i < capacity ? next[i] : prev[i - capacity];
     q.childA = i < capacity ? 1 : 0;
     changes[offsets[i]] = q;
@@ -162,6 +165,11 @@ __kernel void leaves_diff_count(__global const uint* restrict flags, __global co
                                 __global uint* counts, uint capacity)
 {
     if (get_global_id(0) != 0) return;
+    if (counts[BTG_LEAF_MOVED] == 0u) {
+        counts[BTG_LEAF_ADDED] = 0u;
+        counts[BTG_LEAF_REMOVED] = 0u;
+        return;
+    }
     uint last = 2u * capacity - 1u;
     uint total = offsets[last] + flags[last];
     counts[BTG_LEAF_ADDED] = offsets[capacity];

@@ -97,11 +97,16 @@ static inline uint btgFloatBits(float x)
 }
 #endif
 
-/* Sort key of a leaf's lower x bound: the float's order as an unsigned integer. */
+/* Sweep key of an x bound: the float's order as an unsigned integer, its top 16 bits (half the
+ * sort's passes; a bucket is 1/128 of the value's binade). The sweep stops at the first leaf whose
+ * lower bound's key passes the upper bound's: every later leaf's bound is past it too, so no
+ * overlap is missed, and leaves of the same bucket are only tested more. 0xffff: no leaf. */
+#define BTG_LEAF_SWEEP_BITS 16
 static inline uint btgLeafSweepKey(float x)
 {
     uint u = btgFloatBits(x);
-    return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
+    u = (u & 0x80000000u) ? ~u : (u | 0x80000000u);
+    return u >> (32 - BTG_LEAF_SWEEP_BITS);
 }
 
 static inline int btgLeafPairLess(BtgPair p, BtgPair q) { return p.a < q.a || (p.a == q.a && p.b < q.b); }

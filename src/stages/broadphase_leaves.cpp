@@ -40,7 +40,7 @@ void startLeafCall(DeviceWorld& w)
     if (l.reset) l.counts.fill(w.ctx, 0u, 0, BTG_LEAF_NUM_COUNTS);  // no last list
     else l.counts.fill(w.ctx, 0u, BTG_LEAF_ADDED, BTG_LEAF_NUM_COUNTS - BTG_LEAF_ADDED);
     l.moved.fill(w.ctx, 0u, 0, n);
-    if (l.capacity == 0) reserveLeafPairs(w, std::max<size_t>(256, 8 * n));
+    if (l.capacity == 0) reserveLeafPairs(w, std::max<size_t>(256, 4 * n));  // as the pair list starts
 }
 
 void updateLeaves(DeviceWorld& w, float threshold, float dt)
@@ -70,7 +70,7 @@ void leafPairs(DeviceWorld& w)
         cl::Launch(ctx, prog.kernel("leaves_sweep_keys"), &w.profiler)
             .arg(cl_int(n)).arg(w.props).arg(l.leafMin).arg(l.sweepKeys).arg(l.sweepRows)
             .run(n);
-        radixSort(ctx, &w.profiler, l.sweepKeys, l.sweepRows, n, 32, l.sort);
+        radixSort(ctx, &w.profiler, l.sweepKeys, l.sweepRows, n, BTG_LEAF_SWEEP_BITS, l.sort);
         cl::Launch(ctx, prog.kernel("leaves_sweep"), &w.profiler)
             .arg(cl_int(n)).arg(l.sweepRows).arg(w.props).arg(l.leafMin).arg(l.leafMax).arg(l.moved).arg(l.raw)
             .arg(l.counts).arg(capacity)
@@ -102,7 +102,7 @@ void leafPairs(DeviceWorld& w)
         .run(2 * size_t(capacity));
     exclusiveScan(ctx, &w.profiler, l.offsets, 2 * size_t(capacity), l.scan);
     cl::Launch(ctx, prog.kernel("leaves_diff_write"), &w.profiler)
-        .arg(next).arg(prev).arg(l.flags).arg(l.offsets).arg(l.changes).arg(capacity)
+        .arg(next).arg(prev).arg(l.flags).arg(l.offsets).arg(l.counts).arg(l.changes).arg(capacity)
         .run(2 * size_t(capacity));
     cl::Launch(ctx, prog.kernel("leaves_diff_count"), &w.profiler)
         .arg(l.flags).arg(l.offsets).arg(l.counts).arg(capacity)
@@ -115,6 +115,11 @@ LeafChanges readLeafChanges(DeviceWorld& w)
     LeafChanges c;
     uint counts[BTG_LEAF_NUM_COUNTS];
     l.counts.download(w.ctx, counts, BTG_LEAF_NUM_COUNTS);
+    if (counts[BTG_LEAF_MOVED] == 0) {
+        // Nothing moved: no list was made; the last one stays.
+        c.pairs = counts[BTG_LEAF_PREV];
+        return c;
+    }
     if (counts[BTG_LEAF_FOUND] > l.capacity) {
         // The leaves stay as the call left them: only the list is made again, in a bigger buffer.
         const size_t found = counts[BTG_LEAF_FOUND];

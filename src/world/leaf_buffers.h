@@ -12,7 +12,7 @@ struct LeafBuffers {
     cl::DeviceArray<BtgFloat4> leafMin;  // N: m, each row's leaf volume
     cl::DeviceArray<BtgFloat4> leafMax;
     cl::DeviceArray<uint> moved;         // N: 1 when the row's leaf moved in this call
-    cl::DeviceArray<uint> sweepKeys;     // N: leaf min x as an ordered uint (0xffffffff: no leaf)
+    cl::DeviceArray<uint> sweepKeys;     // N: leaf min x's sweep key (btgLeafSweepKey; all ones: no leaf)
     cl::DeviceArray<uint> sweepRows;     // N: row, sorted with sweepKeys
     RadixScratch sort;
     cl::DeviceArray<BtgPair> raw;        // capacity: overlapping leaf pairs as appended (a < b)

@@ -2,7 +2,8 @@
 // after several calls of moving bodies (within the stage bounds: the predicted rotation's sin and
 // cos may round differently; exactly without rotation), and, on the device's own leaves, the
 // overlapping pairs, m_newpairs and the added/removed lists exactly, also after the list
-// overflowed and was made again; and the leaf rules themselves as btDbvtBroadphase::setAabb.
+// overflowed and was made again, and no list made while no leaf moves; and the leaf rules
+// themselves as btDbvtBroadphase::setAabb.
 #include "broadphase_scene.h"
 #include "reference/broadphase_leaves.h"
 #include "shared/broadphase_leaves.h"
@@ -12,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 using namespace btgpu;
@@ -97,6 +99,46 @@ void runCalls(bool rotate, size_t startCapacity)
     EXPECT_GT(prev.size(), 500u);  // the scene has pairs to lose and gain
     EXPECT_GT(changes, 100u);
     if (startCapacity) EXPECT_TRUE(redone);
+    // Everything stops: every AABB is inside its leaf, no leaf moves, and the pairs stay the
+    // last list's (no list is made: stock collides only leaves that moved). Not after the rotating
+    // calls: their bodies never took the rotations their leaves were predicted with.
+    if (rotate) return;
+    std::fill(lin.begin(), lin.end(), btgZero4());
+    std::fill(ang.begin(), ang.end(), btgZero4());
+    w.linVel.upload(w.ctx, lin);
+    w.angVel.upload(w.ctx, ang);
+    for (int call = 0; call < 2; ++call) {
+        startLeafCall(w);
+        updateLeaves(w, threshold, dt);
+        leafPairs(w);
+        const LeafChanges c = readLeafChanges(w);
+        EXPECT_EQ(c.moved, 0u);
+        EXPECT_EQ(c.pairs, prev.size());
+        EXPECT_TRUE(c.added.empty() && c.removed.empty());
+        EXPECT_TRUE(samePairs(w.leaves.lists[w.leaves.current].download(w.ctx, c.pairs), prev));
+    }
+    // One body moves again: its leaf moves and the list is made anew, the same pairs or its own changed.
+    for (size_t i = 0; i < s.pos.size(); ++i)
+        if (s.props[i].flags == BTG_BODY_DYNAMIC) {
+            s.pos[i] = btgXyz(s.pos[i]) + btgMake4(0.5f, 0, 0, 0);
+            break;
+        }
+    w.pos.upload(w.ctx, s.pos);
+    startLeafCall(w);
+    updateLeaves(w, threshold, dt);
+    leafPairs(w);
+    const LeafChanges c = readLeafChanges(w);
+    EXPECT_EQ(c.moved, 1u);
+    const std::vector<BtgFloat4> gotMin = w.leaves.leafMin.download(w.ctx, s.pos.size());
+    const std::vector<BtgFloat4> gotMax = w.leaves.leafMax.download(w.ctx, s.pos.size());
+    unsigned newPairs = 0;
+    const std::vector<BtgPair> pairs =
+        ref::leafPairs(s.props, gotMin, gotMax, w.leaves.moved.download(w.ctx, s.pos.size()), &newPairs);
+    std::vector<BtgPair> added, removed;
+    ref::leafDiff(pairs, prev, &added, &removed);
+    EXPECT_TRUE(samePairs(c.added, added));
+    EXPECT_TRUE(samePairs(c.removed, removed));
+    EXPECT_EQ(c.newPairs, newPairs);
 }
 
 }  // namespace
