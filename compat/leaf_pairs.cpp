@@ -17,10 +17,12 @@ void LeafPairCache::clear()
     m_index.clear();
     m_overlapping.clear();
     m_cid = 0;
+    m_cleared = true;
 }
 
 void LeafPairCache::removeAt(size_t at)
 {
+    m_left.push_back(m_pairs[at]);
     m_index.erase(key(m_pairs[at]));
     if (at + 1 != m_pairs.size()) {
         m_pairs[at] = m_pairs.back();
@@ -31,11 +33,18 @@ void LeafPairCache::removeAt(size_t at)
 
 void LeafPairCache::apply(const LeafChanges& changes, int steps)
 {
+    m_joined.clear();
+    m_left.clear();
+    m_fresh = m_cleared;
+    m_cleared = false;
     for (const BtgPair& p : changes.removed) m_overlapping.erase(key(p));
     // setAabb's tree collisions add the pairs before collide() cleans up.
     for (const BtgPair& p : changes.added) {
         m_overlapping.insert(key(p));
-        if (m_index.emplace(key(p), m_pairs.size()).second) m_pairs.push_back({p.a, p.b, 0, 0});
+        if (m_index.emplace(key(p), m_pairs.size()).second) {
+            m_pairs.push_back({p.a, p.b, 0, 0});
+            m_joined.push_back(m_pairs.back());
+        }
     }
     // m_needcleanup: some leaf moved (a pair can only stop overlapping then).
     if (changes.moved == 0) return;
@@ -79,7 +88,10 @@ void GpuWorld::noteLeafPairs(int steps)
 {
     const LeafChanges changes = readLeafChanges(*m_dev);
     m_leafPairs.apply(changes, steps);
-    m_manifolds.noteLeafPairs(m_world.getDispatcher(), m_leafPairs.pairs(), m_rows, m_removed);
+    if (m_leafPairs.fresh())
+        m_manifolds.noteLeafPairs(m_world.getDispatcher(), m_leafPairs.pairs(), m_rows, m_removed);
+    else
+        m_manifolds.noteLeafChanges(m_world.getDispatcher(), m_leafPairs.joined(), m_leafPairs.left(), m_rows, m_removed);
 }
 
 }  // namespace btgpu

@@ -22,6 +22,11 @@ public:
     // The pair array (rows, a < b) in stock's cache order as far as it is followed: new pairs at
     // the end, removals filled from the end.
     const std::vector<BtgPair>& pairs() const { return m_pairs; }
+    // The last apply's pairs that joined and left the cache (in that order), and whether it was
+    // the first since clear() (every pair joined).
+    const std::vector<BtgPair>& joined() const { return m_joined; }
+    const std::vector<BtgPair>& left() const { return m_left; }
+    bool fresh() const { return m_fresh; }
 
 private:
     static std::uint64_t key(const BtgPair& p) { return (std::uint64_t(unsigned(p.a)) << 32) | unsigned(p.b); }
@@ -31,6 +36,8 @@ private:
     std::unordered_map<std::uint64_t, size_t> m_index;  // place of each pair in m_pairs
     std::unordered_set<std::uint64_t> m_overlapping;    // pairs whose leaves overlap (the device's list)
     int m_cid = 0;  // btDbvtBroadphase::m_cid
+    std::vector<BtgPair> m_joined, m_left;
+    bool m_cleared = true, m_fresh = false;
 };
 
 }  // namespace btgpu

@@ -1,6 +1,6 @@
 /* broadphase_leaves.cl — stock's broadphase pairs on the device: each row's Dbvt leaf as
- * btDbvtBroadphase keeps it (shared/broadphase_leaves.h), the pairs whose leaves overlap (a
- * sweep along x over the leaves sorted by their lower bound), sorted by (a, b), and what changed
+ * btDbvtBroadphase keeps it (shared/broadphase_leaves.h), the pairs whose leaves overlap (a grid
+ * of (y, z) cells, each swept along x; rows too big for it against every row), sorted by (a, b), and what changed
  * against the last call's list, compacted in list order so that only that travels to the host.
  * When no leaf moved in the call the pairs are the last call's (as stock adds pairs only for
  * leaves that moved, and drops them only then): the kernels after the update return at once.
@@ -44,55 +44,124 @@ __kernel void leaves_update(int n, __global const BtgFloat4* restrict pos, __glo
     leafMax[i] = leaf.hi;
 }
 
-/* Launch: one work-item per body row. */
-__kernel void leaves_sweep_keys(int n, __global const BtgBodyProps* restrict props,
-                                __global const BtgFloat4* restrict leafMin, __global uint* keys, __global uint* rows)
+/* Appends the pair (r, s) of overlapping leaves when the filter allows it (every slot counted). */
+static inline void btgLeafAppend(__global BtgPair* raw, volatile __global uint* counts, uint capacity, int r, int s)
 {
-    int i = (int)get_global_id(0);
-    if (i >= n) return;
-    keys[i] = (props[i].flags & BTG_BODY_EXCLUDED) ? (1u << BTG_LEAF_SWEEP_BITS) - 1u : btgLeafSweepKey(leafMin[i].x);
-    rows[i] = (uint)i;
+    uint slot = atomic_inc(&counts[BTG_LEAF_FOUND]);
+    if (slot < capacity) {
+        BtgPair q;
+        q.a = r < s ? r : s;
+        q.b = r < s ? s : r;
+        q.childA = BTG_WHOLE_BODY;
+        q.childB = BTG_WHOLE_BODY;
+        raw[slot] = q;
+    }
 }
 
-/* Launch: one work-item per sorted leaf: it against the leaves after it until one starts past
- * its upper x bound (by sweep key). Every overlap counts towards m_newpairs once per moved side (stock's tree
- * collider counts before the pair cache filters); the allowed ones are appended. */
-__kernel void leaves_sweep(int n, __global const uint* restrict rows, __global const BtgBodyProps* restrict props,
-                           __global const BtgFloat4* restrict leafMin, __global const BtgFloat4* restrict leafMax,
-                           __global const uint* restrict moved, __global BtgPair* raw, volatile __global uint* counts,
-                           uint capacity)
+/* Launch: one work-item per body row. Its entries (4 slots a row): one per (y, z) cell its leaf
+ * overlaps, key (cell hash, sweep key of the leaf's lower x), value 4 row + which of its cells;
+ * unused slots sort last. A row whose leaf spans more than two cells on y or z (a ground, a
+ * plane, a large row) has none and joins the large list instead. */
+__kernel void leaves_entries(int n, __global const BtgBodyProps* restrict props,
+                             __global const BtgShape* restrict shapes, __global const BtgFloat4* restrict leafMin,
+                             __global const BtgFloat4* restrict leafMax, __global uint* keys, __global uint* values,
+                             __global int* large, __global uint* isLarge, volatile __global uint* counts,
+                             float invCell)
+{
+    int r = (int)get_global_id(0);
+    if (r >= n) return;
+    for (int k = 0; k < 4; ++k) {
+        keys[4 * r + k] = BTG_LEAF_NO_ENTRY;
+        values[4 * r + k] = (uint)(4 * r + k);
+    }
+    isLarge[r] = 0u;
+    BtgBodyProps p = props[r];
+    if (counts[BTG_LEAF_MOVED] == 0u || (p.flags & BTG_BODY_EXCLUDED)) return;
+    BtgFloat4 lo = leafMin[r], hi = leafMax[r];
+    BtgInt4 c0 = btgLeafCell(lo, invCell), c1 = btgLeafCell(hi, invCell);
+    if ((p.flags & BTG_BODY_LARGE) || shapes[p.shape].type == BTG_SHAPE_PLANE || c1.y - c0.y > 1 || c1.z - c0.z > 1) {
+        isLarge[r] = 1u;
+        large[atomic_inc(&counts[BTG_LEAF_LARGE])] = r;
+        return;
+    }
+    uint x = btgLeafSweepKey(lo.x);
+    for (int k = 0; k < 4; ++k) {
+        int cy = c0.y + (k & 1), cz = c0.z + (k >> 1);
+        if (cy <= c1.y && cz <= c1.z) keys[4 * r + k] = (btgLeafCellHash(cy, cz) << BTG_LEAF_SWEEP_BITS) | x;
+    }
+}
+
+/* Launch: one work-item per sorted entry: it against the entries after it in its cell until one
+ * starts past its upper x bound (by sweep key). A pair is taken in one cell only, the one holding
+ * the lower corner of the leaves' overlap in y and z (both leaves have an entry there), so it is
+ * found once. Every overlap counts towards m_newpairs once per moved side (stock's tree collider
+ * counts before the pair cache filters); the allowed ones are appended. */
+__kernel void leaves_sweep(int numEntries, __global const uint* restrict keys, __global const uint* restrict values,
+                           __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict leafMin,
+                           __global const BtgFloat4* restrict leafMax, __global const uint* restrict moved,
+                           __global BtgPair* raw, volatile __global uint* counts, uint capacity, float invCell)
 {
     int i = (int)get_global_id(0);
-    if (i >= n || counts[BTG_LEAF_MOVED] == 0u) return;
-    int r = (int)rows[i];
+    if (i >= numEntries || counts[BTG_LEAF_MOVED] == 0u) return;
+    uint key = keys[i];
+    if (key == BTG_LEAF_NO_ENTRY) return;
+    uint v = values[i];
+    int r = (int)(v >> 2);
     BtgBodyProps pr = props[r];
-    if (pr.flags & BTG_BODY_EXCLUDED) return;
     BtgAabb lr;
     lr.lo = leafMin[r];
     lr.hi = leafMax[r];
-    uint movedR = moved[r];
+    BtgInt4 c0 = btgLeafCell(lr.lo, invCell);
+    int cy = c0.y + (int)(v & 1u), cz = c0.z + (int)((v >> 1) & 1u);
+    uint cell = key >> BTG_LEAF_SWEEP_BITS;
     uint last = btgLeafSweepKey(lr.hi.x);
+    uint movedR = moved[r];
     uint newPairs = 0u;
-    for (int j = i + 1; j < n; ++j) {
-        int s = (int)rows[j];
-        BtgBodyProps ps = props[s];
-        if (ps.flags & BTG_BODY_EXCLUDED) break; /* they sort last */
+    for (int j = i + 1; j < numEntries; ++j) {
+        uint kj = keys[j];
+        if ((kj >> BTG_LEAF_SWEEP_BITS) != cell || (kj & ((1u << BTG_LEAF_SWEEP_BITS) - 1u)) > last) break;
+        uint vj = values[j];
+        int s = (int)(vj >> 2);
+        if (s == r) continue; /* two of its cells share a hash */
         BtgAabb ls;
         ls.lo = leafMin[s];
         ls.hi = leafMax[s];
-        if (btgLeafSweepKey(ls.lo.x) > last) break;
         if (!btgLeafMeets(lr, ls)) continue;
+        BtgInt4 corner = btgLeafCell(btgMake4(0.0f, btgMax(lr.lo.y, ls.lo.y), btgMax(lr.lo.z, ls.lo.z), 0.0f), invCell);
+        BtgInt4 s0 = btgLeafCell(ls.lo, invCell);
+        int sy = s0.y + (int)(vj & 1u), sz = s0.z + (int)((vj >> 1) & 1u);
+        if (corner.y != cy || corner.z != cz || corner.y != sy || corner.z != sz) continue;
         newPairs += movedR + moved[s];
-        if (!btgLeafPairAllowed(pr, ps)) continue;
-        uint slot = atomic_inc(&counts[BTG_LEAF_FOUND]);
-        if (slot < capacity) {
-            BtgPair q;
-            q.a = r < s ? r : s;
-            q.b = r < s ? s : r;
-            q.childA = BTG_WHOLE_BODY;
-            q.childB = BTG_WHOLE_BODY;
-            raw[slot] = q;
-        }
+        if (btgLeafPairAllowed(pr, props[s])) btgLeafAppend(raw, counts, capacity, r, s);
+    }
+    if (newPairs) atomic_add(&counts[BTG_LEAF_NEWPAIRS], newPairs);
+}
+
+/* Launch: one work-item per body row: it against every large row (a pair of two large rows taken
+ * by the higher one). */
+__kernel void leaves_large(int n, __global const int* restrict large, __global const uint* restrict isLarge,
+                           __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict leafMin,
+                           __global const BtgFloat4* restrict leafMax, __global const uint* restrict moved,
+                           __global BtgPair* raw, volatile __global uint* counts, uint capacity)
+{
+    int s = (int)get_global_id(0);
+    if (s >= n || counts[BTG_LEAF_MOVED] == 0u) return;
+    BtgBodyProps ps = props[s];
+    if (ps.flags & BTG_BODY_EXCLUDED) return;
+    BtgAabb ls;
+    ls.lo = leafMin[s];
+    ls.hi = leafMax[s];
+    int numLarge = (int)counts[BTG_LEAF_LARGE];
+    uint newPairs = 0u;
+    for (int k = 0; k < numLarge; ++k) {
+        int r = large[k];
+        if (r == s || (isLarge[s] && s < r)) continue;
+        BtgAabb lr;
+        lr.lo = leafMin[r];
+        lr.hi = leafMax[r];
+        if (!btgLeafMeets(lr, ls)) continue;
+        newPairs += moved[r] + moved[s];
+        if (btgLeafPairAllowed(props[r], ps)) btgLeafAppend(raw, counts, capacity, r, s);
     }
     if (newPairs) atomic_add(&counts[BTG_LEAF_NEWPAIRS], newPairs);
 }

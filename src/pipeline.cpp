@@ -103,7 +103,7 @@ void runSubstep(DeviceWorld& w, const Plan& plan, const std::vector<Stage>& stag
         if (stage == Stage::ReportContacts && !last) continue;  // the app sees the call's last substep
         w.profiler.stage = stageName(stage);
         runStage(stage, w, plan, s);
-        if (stage == Stage::BroadphaseLeaves && last) leafPairs(w);  // the pairs the app sees: the call's last substep's
+        if (stage == Stage::BroadphaseLeaves && last) leafPairs(w, 2.0f * plan.cellSize);  // the pairs the app sees: the call's last substep's
     }
 }
 

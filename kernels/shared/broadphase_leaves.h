@@ -7,6 +7,7 @@
 #ifndef BTG_BROADPHASE_LEAVES_H
 #define BTG_BROADPHASE_LEAVES_H
 #include "aabb.h"
+#include "broadphase.h"
 #include "math.h"
 #include "types.h"
 #ifndef __OPENCL_C_VERSION__
@@ -20,6 +21,7 @@
 #define BTG_LEAF_REMOVED 3  /* pairs in the previous list and not in this one */
 #define BTG_LEAF_NEWPAIRS 4 /* btDbvtBroadphase::m_newpairs: overlaps met by the leaves that moved */
 #define BTG_LEAF_MOVED 5    /* leaves that moved in this call (setAabb's docollide) */
+#define BTG_LEAF_LARGE 6    /* rows in the large list (too big for the sweep's cells) */
 #define BTG_LEAF_NUM_COUNTS 8
 
 #define BTG_DBVT_MARGIN 0.05f   /* gDbvtMargin */
@@ -108,6 +110,21 @@ static inline uint btgLeafSweepKey(float x)
     u = (u & 0x80000000u) ? ~u : (u | 0x80000000u);
     return u >> (32 - BTG_LEAF_SWEEP_BITS);
 }
+
+/* The sweep's (y, z) cells: an entry's key is its cell's hash (BTG_LEAF_CELL_BITS) above the
+ * sweep key; all ones (a NaN bound's only) marks no entry. */
+#define BTG_LEAF_CELL_BITS 12
+#define BTG_LEAF_NO_ENTRY ((1u << (BTG_LEAF_CELL_BITS + BTG_LEAF_SWEEP_BITS)) - 1u)
+static inline BtgInt4 btgLeafCell(BtgFloat4 p, float invCell)
+{
+    BtgInt4 c;
+    c.x = 0;
+    c.y = btgGridCoord(p.y, invCell);
+    c.z = btgGridCoord(p.z, invCell);
+    c.w = 0;
+    return c;
+}
+static inline uint btgLeafCellHash(int y, int z) { return btgGridHash(0, y, z, (1u << BTG_LEAF_CELL_BITS) - 1u); }
 
 static inline int btgLeafPairLess(BtgPair p, BtgPair q) { return p.a < q.a || (p.a == q.a && p.b < q.b); }
 

@@ -1,5 +1,6 @@
 // broadphase_leaves.cpp — host launcher of kernels/broadphase_leaves.cl: the leaves' update each
-// substep; in the last, the sweep (the leaves sorted by lower x bound with prims/radix_sort), the
+// substep; in the last, the sweep (the leaves' (y, z) cell entries sorted by cell and lower x
+// bound with prims/radix_sort, each cell swept; the large rows against every row), the
 // found pairs sorted by (a, b) as find_pairs sorts its own, and the difference with the last
 // list compacted by a scan. Counts stay on the device until readLeafChanges.
 #include "stages/broadphase_leaves.h"
@@ -55,7 +56,7 @@ void updateLeaves(DeviceWorld& w, float threshold, float dt)
     l.reset = false;
 }
 
-void leafPairs(DeviceWorld& w)
+void leafPairs(DeviceWorld& w, float cellSize)
 {
     LeafBuffers& l = w.leaves;
     cl::Context& ctx = w.ctx;
@@ -64,16 +65,26 @@ void leafPairs(DeviceWorld& w)
     const cl_uint capacity = cl_uint(l.capacity);
     l.counts.fill(ctx, 0u, BTG_LEAF_FOUND, 1);
     l.counts.fill(ctx, 0u, BTG_LEAF_NEWPAIRS, 1);
+    l.cell = cellSize;
+    const float invCell = 1.0f / cellSize;
+    l.counts.fill(ctx, 0u, BTG_LEAF_LARGE, 1);
     if (n > 0) {
-        l.sweepKeys.reserve(ctx, n);
-        l.sweepRows.reserve(ctx, n);
-        cl::Launch(ctx, prog.kernel("leaves_sweep_keys"), &w.profiler)
-            .arg(cl_int(n)).arg(w.props).arg(l.leafMin).arg(l.sweepKeys).arg(l.sweepRows)
+        l.sweepKeys.reserve(ctx, 4 * n);
+        l.sweepRows.reserve(ctx, 4 * n);
+        l.large.reserve(ctx, n);
+        l.isLarge.reserve(ctx, n);
+        cl::Launch(ctx, prog.kernel("leaves_entries"), &w.profiler)
+            .arg(cl_int(n)).arg(w.props).arg(w.shapes).arg(l.leafMin).arg(l.leafMax).arg(l.sweepKeys).arg(l.sweepRows)
+            .arg(l.large).arg(l.isLarge).arg(l.counts).arg(invCell)
             .run(n);
-        radixSort(ctx, &w.profiler, l.sweepKeys, l.sweepRows, n, BTG_LEAF_SWEEP_BITS, l.sort);
+        radixSort(ctx, &w.profiler, l.sweepKeys, l.sweepRows, 4 * n, BTG_LEAF_CELL_BITS + BTG_LEAF_SWEEP_BITS, l.sort);
         cl::Launch(ctx, prog.kernel("leaves_sweep"), &w.profiler)
-            .arg(cl_int(n)).arg(l.sweepRows).arg(w.props).arg(l.leafMin).arg(l.leafMax).arg(l.moved).arg(l.raw)
-            .arg(l.counts).arg(capacity)
+            .arg(cl_int(4 * n)).arg(l.sweepKeys).arg(l.sweepRows).arg(w.props).arg(l.leafMin).arg(l.leafMax).arg(l.moved)
+            .arg(l.raw).arg(l.counts).arg(capacity).arg(invCell)
+            .run(4 * n);
+        cl::Launch(ctx, prog.kernel("leaves_large"), &w.profiler)
+            .arg(cl_int(n)).arg(l.large).arg(l.isLarge).arg(w.props).arg(l.leafMin).arg(l.leafMax).arg(l.moved)
+            .arg(l.raw).arg(l.counts).arg(capacity)
             .run(n);
     }
     const cl_uint rowBits = cl_uint(radixBitsFor(n > 1 ? cl_uint(n - 1) : 0u));
@@ -124,7 +135,7 @@ LeafChanges readLeafChanges(DeviceWorld& w)
         // The leaves stay as the call left them: only the list is made again, in a bigger buffer.
         const size_t found = counts[BTG_LEAF_FOUND];
         reserveLeafPairs(w, std::max(l.capacity + l.capacity / 4, found + found / 4 + 64));
-        leafPairs(w);
+        leafPairs(w, l.cell);
         l.counts.download(w.ctx, counts, BTG_LEAF_NUM_COUNTS);
         c.redone = true;
     }

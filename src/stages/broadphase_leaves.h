@@ -28,7 +28,9 @@ void startLeafCall(DeviceWorld& w);
 // Each substep right after predict_motion: threshold is the contact breaking threshold (m).
 void updateLeaves(DeviceWorld& w, float threshold, float dt);
 // The call's last substep: the overlapping pairs, sorted, and their difference with the last list.
-void leafPairs(DeviceWorld& w);
+// cellSize (m): the sweep's (y, z) cells, about twice the largest small leaf (bigger leaves, two
+// cells or more, are paired against every row).
+void leafPairs(DeviceWorld& w, float cellSize);
 // After the call: the difference (the list grown and made again if it overflowed); this call's
 // list becomes the one the next call is compared with.
 LeafChanges readLeafChanges(DeviceWorld& w);

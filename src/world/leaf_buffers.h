@@ -12,8 +12,11 @@ struct LeafBuffers {
     cl::DeviceArray<BtgFloat4> leafMin;  // N: m, each row's leaf volume
     cl::DeviceArray<BtgFloat4> leafMax;
     cl::DeviceArray<uint> moved;         // N: 1 when the row's leaf moved in this call
-    cl::DeviceArray<uint> sweepKeys;     // N: leaf min x's sweep key (btgLeafSweepKey; all ones: no leaf)
-    cl::DeviceArray<uint> sweepRows;     // N: row, sorted with sweepKeys
+    cl::DeviceArray<uint> sweepKeys;     // 4N: entries' (cell hash, leaf min x) keys (BTG_LEAF_NO_ENTRY: none)
+    cl::DeviceArray<uint> sweepRows;     // 4N: 4 row + which of its cells, sorted with sweepKeys
+    cl::DeviceArray<int> large;          // N: rows too big for the cells (BTG_LEAF_LARGE of them)
+    cl::DeviceArray<uint> isLarge;       // N: 1 for those
+    float cell = 1.0f;                   // m: the cells' side
     RadixScratch sort;
     cl::DeviceArray<BtgPair> raw;        // capacity: overlapping leaf pairs as appended (a < b)
     cl::DeviceArray<uint> keys;          // capacity: their sort keys

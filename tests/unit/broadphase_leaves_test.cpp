@@ -39,8 +39,9 @@ bool samePairs(const std::vector<BtgPair>& x, const std::vector<BtgPair>& y)
     return true;
 }
 
-// Calls of one substep over a scene whose bodies drift, checked against the reference each call.
-void runCalls(bool rotate, size_t startCapacity)
+// Calls of one substep over a scene whose bodies drift, checked against the reference each call;
+// the sweep's cells cellFactor x the largest small body.
+void runCalls(bool rotate, size_t startCapacity, float cellFactor = 2.0f)
 {
     test::BroadphaseScene s = test::makeBroadphaseScene(1500, 16.0f, 23);
     std::mt19937 rng(5);
@@ -57,6 +58,7 @@ void runCalls(bool rotate, size_t startCapacity)
     w.angVel.upload(w.ctx, ang);
     if (startCapacity) reserveLeafPairs(w, startCapacity);
     const float threshold = 0.02f, dt = 1.0f / 60.0f;
+    const float cell = cellFactor * (s.maxSmallExtent + 2 * threshold);
     std::vector<BtgFloat4> refMin, refMax;
     std::vector<BtgPair> prev;
     bool reset = true, redone = false;
@@ -64,7 +66,7 @@ void runCalls(bool rotate, size_t startCapacity)
     for (int call = 0; call < 12; ++call) {
         startLeafCall(w);
         updateLeaves(w, threshold, dt);
-        leafPairs(w);
+        leafPairs(w, cell);
         std::vector<unsigned> refMoved(s.pos.size(), 0u);
         const int refMovedCount = ref::updateLeaves(s.pos, s.rot, lin, ang, s.props, s.shapes, threshold, dt, true,
                                                     reset, refMin, refMax, refMoved);
@@ -110,7 +112,7 @@ void runCalls(bool rotate, size_t startCapacity)
     for (int call = 0; call < 2; ++call) {
         startLeafCall(w);
         updateLeaves(w, threshold, dt);
-        leafPairs(w);
+        leafPairs(w, cell);
         const LeafChanges c = readLeafChanges(w);
         EXPECT_EQ(c.moved, 0u);
         EXPECT_EQ(c.pairs, prev.size());
@@ -126,7 +128,7 @@ void runCalls(bool rotate, size_t startCapacity)
     w.pos.upload(w.ctx, s.pos);
     startLeafCall(w);
     updateLeaves(w, threshold, dt);
-    leafPairs(w);
+    leafPairs(w, cell);
     const LeafChanges c = readLeafChanges(w);
     EXPECT_EQ(c.moved, 1u);
     const std::vector<BtgFloat4> gotMin = w.leaves.leafMin.download(w.ctx, s.pos.size());
@@ -147,7 +149,8 @@ TEST(BroadphaseLeaves, MatchesReferenceWithoutRotation) { runCalls(false, 0); }
 
 TEST(BroadphaseLeaves, MatchesReferenceRotating) { runCalls(true, 0); }
 
-TEST(BroadphaseLeaves, OverflowGrowsAndMakesTheListAgain) { runCalls(false, 16); }
+// Small cells besides: many leaves span three and go to the large pass.
+TEST(BroadphaseLeaves, OverflowGrowsAndMakesTheListAgain) { runCalls(false, 16, 0.6f); }
 
 TEST(BroadphaseLeaves, LeafRulesAsSetAabb)
 {
