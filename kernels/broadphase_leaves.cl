@@ -1,9 +1,9 @@
 /* broadphase_leaves.cl — stock's broadphase pairs on the device: each row's Dbvt leaf as
  * btDbvtBroadphase keeps it (shared/broadphase_leaves.h), the pairs whose leaves overlap (a grid
- * of (y, z) cells, each swept along x; rows too big for it against every row), sorted by (a, b), and what changed
- * against the last call's list, compacted in list order so that only that travels to the host.
- * When no leaf moved in the call the pairs are the last call's (as stock adds pairs only for
- * leaves that moved, and drops them only then): the kernels after the update return at once.
+ * of (y, z) cells, each swept along x; rows too big for it against every row), sorted by (a, b),
+ * and what changed against the last call's list, appended apart so that only that travels to
+ * the host. When no leaf moved in the call the pairs are the last call's (as stock adds pairs
+ * only for leaves that moved, and drops them only then): the kernels after the update return.
  * Stage: broadphase_leaves (only while the fill wants stock's empty manifolds). Launch: per
  * kernel below. Reads: pos, rot, linVel, angVel (damped: right after predict_motion), props,
  * shapes. Writes: the LeafBuffers columns (src/world/leaf_buffers.h) and their counts. */
@@ -201,46 +201,25 @@ __kernel void leaves_pairs_write(__global const BtgPair* restrict raw, __global 
 }
 
 /* Launch: one work-item per slot of both lists (2 x capacity): this list's pairs the last one
- * lacks, then the last list's pairs this one lacks. */
-__kernel void leaves_diff_flags(__global const BtgPair* restrict next, __global const BtgPair* restrict prev,
-                                __global const uint* restrict counts, __global uint* flags, __global uint* offsets,
-                                uint capacity)
+ * lacks are appended to changes[0, capacity), the last list's pairs this one lacks to
+ * changes[capacity, 2 capacity); the host puts each part in (a, b) order (they are few). */
+__kernel void leaves_diff(__global const BtgPair* restrict next, __global const BtgPair* restrict prev,
+                          volatile __global uint* counts, __global BtgPair* changes, uint capacity)
 {
     uint i = (uint)get_global_id(0);
     if (i >= 2u * capacity || counts[BTG_LEAF_MOVED] == 0u) return;
     int numNext = (int)min(counts[BTG_LEAF_FOUND], capacity);
     int numPrev = (int)counts[BTG_LEAF_PREV];
-    uint f = 0u;
-    if (i < capacity) f = (int)i < numNext && !btgLeafPairIn(prev, numPrev, next[i]);
-    else f = (int)(i - capacity) < numPrev && !btgLeafPairIn(next, numNext, prev[i - capacity]);
-    flags[i] = f;
-    offsets[i] = f;
-}
-
-/* Launch: one work-item per slot of both lists (2 x capacity), after the scan of offsets. */
-__kernel void leaves_diff_write(__global const BtgPair* restrict next, __global const BtgPair* restrict prev,
-                                __global const uint* restrict flags, __global const uint* restrict offsets,
-                                __global const uint* restrict counts, __global BtgPair* changes, uint capacity)
-{
-    uint i = (uint)get_global_id(0);
-    if (i >= 2u * capacity || counts[BTG_LEAF_MOVED] == 0u || !flags[i]) return;
-    BtgPair q = i < capacity ? next[i] : prev[i - capacity];
-    q.childA = i < capacity ? 1 : 0;
-    changes[offsets[i]] = q;
-}
-
-/* Launch: one work-item. */
-__kernel void leaves_diff_count(__global const uint* restrict flags, __global const uint* restrict offsets,
-                                __global uint* counts, uint capacity)
-{
-    if (get_global_id(0) != 0) return;
-    if (counts[BTG_LEAF_MOVED] == 0u) {
-        counts[BTG_LEAF_ADDED] = 0u;
-        counts[BTG_LEAF_REMOVED] = 0u;
-        return;
+    if (i < capacity) {
+        if ((int)i >= numNext || btgLeafPairIn(prev, numPrev, next[i])) return;
+        BtgPair q = next[i];
+        q.childA = 1;
+        changes[atomic_inc(&counts[BTG_LEAF_ADDED])] = q;
+    } else {
+        uint j = i - capacity;
+        if ((int)j >= numPrev || btgLeafPairIn(next, numNext, prev[j])) return;
+        BtgPair q = prev[j];
+        q.childA = 0;
+        changes[capacity + atomic_inc(&counts[BTG_LEAF_REMOVED])] = q;
     }
-    uint last = 2u * capacity - 1u;
-    uint total = offsets[last] + flags[last];
-    counts[BTG_LEAF_ADDED] = offsets[capacity];
-    counts[BTG_LEAF_REMOVED] = total - offsets[capacity];
 }

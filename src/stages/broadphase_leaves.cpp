@@ -2,7 +2,7 @@
 // substep; in the last, the sweep (the leaves' (y, z) cell entries sorted by cell and lower x
 // bound with prims/radix_sort, each cell swept; the large rows against every row), the
 // found pairs sorted by (a, b) as find_pairs sorts its own, and the difference with the last
-// list compacted by a scan. Counts stay on the device until readLeafChanges.
+// list appended (few), put in order by the host. Counts stay on the device until readLeafChanges.
 #include "stages/broadphase_leaves.h"
 
 #include "cl/program.h"
@@ -22,8 +22,6 @@ void reserveLeafPairs(DeviceWorld& w, size_t capacity)
     l.order.reserveExact(w.ctx, capacity);
     l.lists[0].reserveExact(w.ctx, capacity, true);  // the last list is compared with the next one
     l.lists[1].reserveExact(w.ctx, capacity, true);
-    l.flags.reserveExact(w.ctx, 2 * capacity);
-    l.offsets.reserveExact(w.ctx, 2 * capacity);
     l.changes.reserveExact(w.ctx, 2 * capacity);
 }
 
@@ -108,16 +106,10 @@ void leafPairs(DeviceWorld& w, float cellSize)
     cl::Launch(ctx, prog.kernel("leaves_pairs_write"), &w.profiler)
         .arg(l.raw).arg(l.order).arg(l.counts).arg(next).arg(capacity)
         .run(capacity);
-    cl::Launch(ctx, prog.kernel("leaves_diff_flags"), &w.profiler)
-        .arg(next).arg(prev).arg(l.counts).arg(l.flags).arg(l.offsets).arg(capacity)
+    l.counts.fill(ctx, 0u, BTG_LEAF_ADDED, 2);
+    cl::Launch(ctx, prog.kernel("leaves_diff"), &w.profiler)
+        .arg(next).arg(prev).arg(l.counts).arg(l.changes).arg(capacity)
         .run(2 * size_t(capacity));
-    exclusiveScan(ctx, &w.profiler, l.offsets, 2 * size_t(capacity), l.scan);
-    cl::Launch(ctx, prog.kernel("leaves_diff_write"), &w.profiler)
-        .arg(next).arg(prev).arg(l.flags).arg(l.offsets).arg(l.counts).arg(l.changes).arg(capacity)
-        .run(2 * size_t(capacity));
-    cl::Launch(ctx, prog.kernel("leaves_diff_count"), &w.profiler)
-        .arg(l.flags).arg(l.offsets).arg(l.counts).arg(capacity)
-        .run(1, 1);
 }
 
 LeafChanges readLeafChanges(DeviceWorld& w)
@@ -143,11 +135,14 @@ LeafChanges readLeafChanges(DeviceWorld& w)
     c.newPairs = counts[BTG_LEAF_NEWPAIRS];
     c.moved = counts[BTG_LEAF_MOVED];
     const size_t added = counts[BTG_LEAF_ADDED], removed = counts[BTG_LEAF_REMOVED];
-    if (added + removed > 0) {
-        std::vector<BtgPair> all = l.changes.download(w.ctx, added + removed);
-        c.added.assign(all.begin(), all.begin() + long(added));
-        c.removed.assign(all.begin() + long(added), all.end());
-    }
+    // Appended in any order on the device: put in (a, b) order, as the lists hold them.
+    auto less = [](const BtgPair& x, const BtgPair& y) { return x.a < y.a || (x.a == y.a && x.b < y.b); };
+    c.added.resize(added);
+    c.removed.resize(removed);
+    if (added > 0) l.changes.download(w.ctx, c.added.data(), added);
+    if (removed > 0) l.changes.download(w.ctx, c.removed.data(), removed, l.capacity);
+    std::sort(c.added.begin(), c.added.end(), less);
+    std::sort(c.removed.begin(), c.removed.end(), less);
     l.current = 1 - l.current;
     l.counts.fill(w.ctx, c.pairs, BTG_LEAF_PREV, 1);
     return c;

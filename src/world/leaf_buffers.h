@@ -23,10 +23,7 @@ struct LeafBuffers {
     cl::DeviceArray<uint> order;         // capacity: raw slots in (a, b) order
     cl::DeviceArray<BtgPair> lists[2];   // capacity each: sorted by (a, b); lists[current] the last call's
     int current = 0;
-    cl::DeviceArray<uint> flags;         // 2 x capacity: added (this list), then removed (the last one)
-    cl::DeviceArray<uint> offsets;       // 2 x capacity: their exclusive scan
-    ScanScratch scan;
-    cl::DeviceArray<BtgPair> changes;    // 2 x capacity: added pairs (childA 1), then removed ones (childA 0)
+    cl::DeviceArray<BtgPair> changes;    // 2 x capacity: added pairs (childA 1) from 0, removed ones (childA 0) from capacity
     cl::DeviceArray<uint> counts;        // BTG_LEAF_NUM_COUNTS
     size_t capacity = 0;                 // pairs each list holds
     bool reset = true;                   // the next update starts every leaf afresh (rows re-uploaded)
