@@ -46,6 +46,13 @@ void LeafPairCache::apply(const LeafChanges& changes, int steps)
             m_joined.push_back(m_pairs.back());
         }
     }
+    // Met only on the way (a moved leaf against a neighbour's old one): in the cache, for the
+    // cleanup to drop.
+    for (const BtgPair& p : changes.transient)
+        if (m_index.emplace(key(p), m_pairs.size()).second) {
+            m_pairs.push_back({p.a, p.b, 0, 0});
+            m_joined.push_back(m_pairs.back());
+        }
     // m_needcleanup: some leaf moved (a pair can only stop overlapping then).
     if (changes.moved == 0) return;
     for (int step = 0; step < std::max(steps, 1); ++step) {

@@ -15,16 +15,17 @@
 __kernel void leaves_update(int n, __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,
                             __global const BtgFloat4* restrict linVel, __global const BtgFloat4* restrict angVel,
                             __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes,
-                            __global BtgFloat4* leafMin, __global BtgFloat4* leafMax, __global uint* moved,
-                            volatile __global uint* counts, float threshold, float dt, int continuous, int reset)
+                            __global BtgFloat4* leafMin, __global BtgFloat4* leafMax, __global BtgFloat4* oldMin,
+                            __global BtgFloat4* oldMax, __global uint* moved, volatile __global uint* counts,
+                            float threshold, float dt, int continuous, int reset)
 {
     int i = (int)get_global_id(0);
     if (i >= n) return;
     BtgBodyProps p = props[i];
     if (p.flags & BTG_BODY_EXCLUDED) {
         BtgAabb e = btgEmptyAabb();
-        leafMin[i] = e.lo;
-        leafMax[i] = e.hi;
+        leafMin[i] = oldMin[i] = e.lo;
+        leafMax[i] = oldMax[i] = e.hi;
         return;
     }
     BtgShape s = shapes[p.shape];
@@ -35,6 +36,8 @@ __kernel void leaves_update(int n, __global const BtgFloat4* restrict pos, __glo
         leaf.lo = leafMin[i];
         leaf.hi = leafMax[i];
     }
+    oldMin[i] = leaf.lo; /* as the rows updated before this one in stock's pass meet it */
+    oldMax[i] = leaf.hi;
     BtgAabb a = btgStockAabb(pos[i], rot[i], linVel[i], angVel[i], s, p.flags, threshold, dt, continuous);
     if (btgLeafUpdate(&leaf, a)) {
         moved[i] = 1u;
@@ -44,10 +47,11 @@ __kernel void leaves_update(int n, __global const BtgFloat4* restrict pos, __glo
     leafMax[i] = leaf.hi;
 }
 
-/* Appends the pair (r, s) of overlapping leaves when the filter allows it (every slot counted). */
-static inline void btgLeafAppend(__global BtgPair* raw, volatile __global uint* counts, uint capacity, int r, int s)
+/* Appends the pair (r, s) to a list counted in counts[slot] (every pair counted, stored while it fits). */
+static inline void btgLeafAppend(__global BtgPair* raw, volatile __global uint* counts, int countSlot, uint capacity,
+                                 int r, int s)
 {
-    uint slot = atomic_inc(&counts[BTG_LEAF_FOUND]);
+    uint slot = atomic_inc(&counts[countSlot]);
     if (slot < capacity) {
         BtgPair q;
         q.a = r < s ? r : s;
@@ -58,13 +62,38 @@ static inline void btgLeafAppend(__global BtgPair* raw, volatile __global uint* 
     }
 }
 
+/* A candidate pair (its boxes old and new leaf together meet): what stock's pass of setAabb
+ * calls made of it. btgLeafJudge (shared) gives its m_newpairs share; the pair goes to the list
+ * when its leaves meet now, to the transient list when only a moved leaf met the other's then. */
+static inline uint btgLeafTake(int r, int s, __global const BtgFloat4* leafMin, __global const BtgFloat4* leafMax,
+                               __global const BtgFloat4* oldMin, __global const BtgFloat4* oldMax,
+                               __global const uint* moved, __global const BtgBodyProps* props, __global BtgPair* raw,
+                               __global BtgPair* transient, volatile __global uint* counts, uint capacity)
+{
+    int p = r < s ? r : s, q = r < s ? s : r;
+    BtgAabb np, nq, oq;
+    np.lo = leafMin[p];
+    np.hi = leafMax[p];
+    nq.lo = leafMin[q];
+    nq.hi = leafMax[q];
+    oq.lo = oldMin[q];
+    oq.hi = oldMax[q];
+    int meets = 0;
+    uint share = btgLeafJudge(np, nq, oq, moved[p], moved[q], &meets);
+    if (!btgLeafPairAllowed(props[p], props[q])) return share;
+    if (meets) btgLeafAppend(raw, counts, BTG_LEAF_FOUND, capacity, p, q);
+    else if (share) btgLeafAppend(transient, counts, BTG_LEAF_TRANSIENT, capacity, p, q);
+    return share;
+}
+
 /* Launch: one work-item per body row. Its entries (4 slots a row): one per (y, z) cell its leaf
  * overlaps, key (cell hash, sweep key of the leaf's lower x), value 4 row + which of its cells;
  * unused slots sort last. A row whose leaf spans more than two cells on y or z (a ground, a
  * plane, a large row) has none and joins the large list instead. */
 __kernel void leaves_entries(int n, __global const BtgBodyProps* restrict props,
                              __global const BtgShape* restrict shapes, __global const BtgFloat4* restrict leafMin,
-                             __global const BtgFloat4* restrict leafMax, __global uint* keys, __global uint* values,
+                             __global const BtgFloat4* restrict leafMax, __global const BtgFloat4* restrict oldMin,
+                             __global const BtgFloat4* restrict oldMax, __global uint* keys, __global uint* values,
                              __global int* large, __global uint* isLarge, volatile __global uint* counts,
                              float invCell)
 {
@@ -77,7 +106,8 @@ __kernel void leaves_entries(int n, __global const BtgBodyProps* restrict props,
     isLarge[r] = 0u;
     BtgBodyProps p = props[r];
     if (counts[BTG_LEAF_MOVED] == 0u || (p.flags & BTG_BODY_EXCLUDED)) return;
-    BtgFloat4 lo = leafMin[r], hi = leafMax[r];
+    BtgAabb u = btgLeafUnion(leafMin[r], leafMax[r], oldMin[r], oldMax[r]);
+    BtgFloat4 lo = u.lo, hi = u.hi;
     BtgInt4 c0 = btgLeafCell(lo, invCell), c1 = btgLeafCell(hi, invCell);
     if ((p.flags & BTG_BODY_LARGE) || shapes[p.shape].type == BTG_SHAPE_PLANE || c1.y - c0.y > 1 || c1.z - c0.z > 1) {
         isLarge[r] = 1u;
@@ -98,8 +128,10 @@ __kernel void leaves_entries(int n, __global const BtgBodyProps* restrict props,
  * counts before the pair cache filters); the allowed ones are appended. */
 __kernel void leaves_sweep(int numEntries, __global const uint* restrict keys, __global const uint* restrict values,
                            __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict leafMin,
-                           __global const BtgFloat4* restrict leafMax, __global const uint* restrict moved,
-                           __global BtgPair* raw, volatile __global uint* counts, uint capacity, float invCell)
+                           __global const BtgFloat4* restrict leafMax, __global const BtgFloat4* restrict oldMin,
+                           __global const BtgFloat4* restrict oldMax, __global const uint* restrict moved,
+                           __global BtgPair* raw, __global BtgPair* transient, volatile __global uint* counts,
+                           uint capacity, float invCell)
 {
     int i = (int)get_global_id(0);
     if (i >= numEntries || counts[BTG_LEAF_MOVED] == 0u) return;
@@ -107,15 +139,11 @@ __kernel void leaves_sweep(int numEntries, __global const uint* restrict keys, _
     if (key == BTG_LEAF_NO_ENTRY) return;
     uint v = values[i];
     int r = (int)(v >> 2);
-    BtgBodyProps pr = props[r];
-    BtgAabb lr;
-    lr.lo = leafMin[r];
-    lr.hi = leafMax[r];
-    BtgInt4 c0 = btgLeafCell(lr.lo, invCell);
+    BtgAabb ur = btgLeafUnion(leafMin[r], leafMax[r], oldMin[r], oldMax[r]);
+    BtgInt4 c0 = btgLeafCell(ur.lo, invCell);
     int cy = c0.y + (int)(v & 1u), cz = c0.z + (int)((v >> 1) & 1u);
     uint cell = key >> BTG_LEAF_SWEEP_BITS;
-    uint last = btgLeafSweepKey(lr.hi.x);
-    uint movedR = moved[r];
+    uint last = btgLeafSweepKey(ur.hi.x);
     uint newPairs = 0u;
     for (int j = i + 1; j < numEntries; ++j) {
         uint kj = keys[j];
@@ -123,16 +151,13 @@ __kernel void leaves_sweep(int numEntries, __global const uint* restrict keys, _
         uint vj = values[j];
         int s = (int)(vj >> 2);
         if (s == r) continue; /* two of its cells share a hash */
-        BtgAabb ls;
-        ls.lo = leafMin[s];
-        ls.hi = leafMax[s];
-        if (!btgLeafMeets(lr, ls)) continue;
-        BtgInt4 corner = btgLeafCell(btgMake4(0.0f, btgMax(lr.lo.y, ls.lo.y), btgMax(lr.lo.z, ls.lo.z), 0.0f), invCell);
-        BtgInt4 s0 = btgLeafCell(ls.lo, invCell);
+        BtgAabb us = btgLeafUnion(leafMin[s], leafMax[s], oldMin[s], oldMax[s]);
+        if (!btgLeafMeets(ur, us)) continue;
+        BtgInt4 corner = btgLeafCell(btgMake4(0.0f, btgMax(ur.lo.y, us.lo.y), btgMax(ur.lo.z, us.lo.z), 0.0f), invCell);
+        BtgInt4 s0 = btgLeafCell(us.lo, invCell);
         int sy = s0.y + (int)(vj & 1u), sz = s0.z + (int)((vj >> 1) & 1u);
         if (corner.y != cy || corner.z != cz || corner.y != sy || corner.z != sz) continue;
-        newPairs += movedR + moved[s];
-        if (btgLeafPairAllowed(pr, props[s])) btgLeafAppend(raw, counts, capacity, r, s);
+        newPairs += btgLeafTake(r, s, leafMin, leafMax, oldMin, oldMax, moved, props, raw, transient, counts, capacity);
     }
     if (newPairs) atomic_add(&counts[BTG_LEAF_NEWPAIRS], newPairs);
 }
@@ -141,27 +166,22 @@ __kernel void leaves_sweep(int numEntries, __global const uint* restrict keys, _
  * by the higher one). */
 __kernel void leaves_large(int n, __global const int* restrict large, __global const uint* restrict isLarge,
                            __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict leafMin,
-                           __global const BtgFloat4* restrict leafMax, __global const uint* restrict moved,
-                           __global BtgPair* raw, volatile __global uint* counts, uint capacity)
+                           __global const BtgFloat4* restrict leafMax, __global const BtgFloat4* restrict oldMin,
+                           __global const BtgFloat4* restrict oldMax, __global const uint* restrict moved,
+                           __global BtgPair* raw, __global BtgPair* transient, volatile __global uint* counts,
+                           uint capacity)
 {
     int s = (int)get_global_id(0);
     if (s >= n || counts[BTG_LEAF_MOVED] == 0u) return;
-    BtgBodyProps ps = props[s];
-    if (ps.flags & BTG_BODY_EXCLUDED) return;
-    BtgAabb ls;
-    ls.lo = leafMin[s];
-    ls.hi = leafMax[s];
+    if (props[s].flags & BTG_BODY_EXCLUDED) return;
+    BtgAabb us = btgLeafUnion(leafMin[s], leafMax[s], oldMin[s], oldMax[s]);
     int numLarge = (int)counts[BTG_LEAF_LARGE];
     uint newPairs = 0u;
     for (int k = 0; k < numLarge; ++k) {
         int r = large[k];
         if (r == s || (isLarge[s] && s < r)) continue;
-        BtgAabb lr;
-        lr.lo = leafMin[r];
-        lr.hi = leafMax[r];
-        if (!btgLeafMeets(lr, ls)) continue;
-        newPairs += moved[r] + moved[s];
-        if (btgLeafPairAllowed(props[r], ps)) btgLeafAppend(raw, counts, capacity, r, s);
+        if (!btgLeafMeets(btgLeafUnion(leafMin[r], leafMax[r], oldMin[r], oldMax[r]), us)) continue;
+        newPairs += btgLeafTake(r, s, leafMin, leafMax, oldMin, oldMax, moved, props, raw, transient, counts, capacity);
     }
     if (newPairs) atomic_add(&counts[BTG_LEAF_NEWPAIRS], newPairs);
 }

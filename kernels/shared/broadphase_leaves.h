@@ -22,6 +22,7 @@
 #define BTG_LEAF_NEWPAIRS 4 /* btDbvtBroadphase::m_newpairs: overlaps met by the leaves that moved */
 #define BTG_LEAF_MOVED 5    /* leaves that moved in this call (setAabb's docollide) */
 #define BTG_LEAF_LARGE 6    /* rows in the large list (too big for the sweep's cells) */
+#define BTG_LEAF_TRANSIENT 7 /* pairs stock's pass added whose leaves no longer meet at its end */
 #define BTG_LEAF_NUM_COUNTS 8
 
 #define BTG_DBVT_MARGIN 0.05f   /* gDbvtMargin */
@@ -79,6 +80,29 @@ static inline int btgLeafUpdate(BtgAabb* leaf, BtgAabb a)
     leaf->lo = a.lo - m;
     leaf->hi = a.hi + m;
     return 1;
+}
+
+/* A row's old and new leaf together: every pair stock's pass of setAabb calls can meet has
+ * meeting boxes. */
+static inline BtgAabb btgLeafUnion(BtgFloat4 lo, BtgFloat4 hi, BtgFloat4 oldLo, BtgFloat4 oldHi)
+{
+    BtgAabb u;
+    u.lo = btgMake4(btgMin(lo.x, oldLo.x), btgMin(lo.y, oldLo.y), btgMin(lo.z, oldLo.z), 0.0f);
+    u.hi = btgMake4(btgMax(hi.x, oldHi.x), btgMax(hi.y, oldHi.y), btgMax(hi.z, oldHi.z), 0.0f);
+    return u;
+}
+
+/* Stock's pass updates the rows in order (the collision-object array's; rows keep it): a moved
+ * leaf of the earlier row p is collided against q's leaf before q's update, a moved leaf of q
+ * against p's new one; each overlap met counts towards m_newpairs and is added to the pair
+ * cache. The pair's share of m_newpairs; *meets: the new leaves meet (the pair is in the list). */
+static inline uint btgLeafJudge(BtgAabb newP, BtgAabb newQ, BtgAabb oldQ, uint movedP, uint movedQ, int* meets)
+{
+    *meets = btgLeafMeets(newP, newQ);
+    uint share = 0u;
+    if (movedP && btgLeafMeets(newP, oldQ)) ++share;
+    if (movedQ && *meets) ++share;
+    return share;
 }
 
 /* btHashedOverlappingPairCache::needsBroadphaseCollision with the rows' group and mask. */

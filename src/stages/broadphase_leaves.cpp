@@ -18,6 +18,7 @@ void reserveLeafPairs(DeviceWorld& w, size_t capacity)
     LeafBuffers& l = w.leaves;
     l.capacity = capacity;
     l.raw.reserveExact(w.ctx, capacity);
+    l.transient.reserveExact(w.ctx, capacity);
     l.keys.reserveExact(w.ctx, capacity);
     l.order.reserveExact(w.ctx, capacity);
     l.lists[0].reserveExact(w.ctx, capacity, true);  // the last list is compared with the next one
@@ -33,6 +34,8 @@ void startLeafCall(DeviceWorld& w)
     if (l.leafMin.capacity() < n || l.reset) {
         l.leafMin.reserve(w.ctx, n);
         l.leafMax.reserve(w.ctx, n);
+        l.oldMin.reserve(w.ctx, n);
+        l.oldMax.reserve(w.ctx, n);
         l.moved.reserve(w.ctx, n);
         l.reset = true;
     }
@@ -48,7 +51,7 @@ void updateLeaves(DeviceWorld& w, float threshold, float dt)
     if (w.numBodies <= 0) return;
     cl::Launch(w.ctx, w.ctx.program("broadphase_leaves").kernel("leaves_update"), &w.profiler)
         .arg(cl_int(w.numBodies)).arg(w.pos).arg(w.rot).arg(w.linVel).arg(w.angVel).arg(w.props).arg(w.shapes)
-        .arg(l.leafMin).arg(l.leafMax).arg(l.moved).arg(l.counts).arg(threshold).arg(dt)
+        .arg(l.leafMin).arg(l.leafMax).arg(l.oldMin).arg(l.oldMax).arg(l.moved).arg(l.counts).arg(threshold).arg(dt)
         .arg(cl_int(l.continuous ? 1 : 0)).arg(cl_int(l.reset ? 1 : 0))
         .run(size_t(w.numBodies));
     l.reset = false;
@@ -65,24 +68,25 @@ void leafPairs(DeviceWorld& w, float cellSize)
     l.counts.fill(ctx, 0u, BTG_LEAF_NEWPAIRS, 1);
     l.cell = cellSize;
     const float invCell = 1.0f / cellSize;
-    l.counts.fill(ctx, 0u, BTG_LEAF_LARGE, 1);
+    l.counts.fill(ctx, 0u, BTG_LEAF_LARGE, 2);  // and the transient pairs
     if (n > 0) {
         l.sweepKeys.reserve(ctx, 4 * n);
         l.sweepRows.reserve(ctx, 4 * n);
         l.large.reserve(ctx, n);
         l.isLarge.reserve(ctx, n);
         cl::Launch(ctx, prog.kernel("leaves_entries"), &w.profiler)
-            .arg(cl_int(n)).arg(w.props).arg(w.shapes).arg(l.leafMin).arg(l.leafMax).arg(l.sweepKeys).arg(l.sweepRows)
+            .arg(cl_int(n)).arg(w.props).arg(w.shapes).arg(l.leafMin).arg(l.leafMax).arg(l.oldMin).arg(l.oldMax)
+            .arg(l.sweepKeys).arg(l.sweepRows)
             .arg(l.large).arg(l.isLarge).arg(l.counts).arg(invCell)
             .run(n);
         radixSort(ctx, &w.profiler, l.sweepKeys, l.sweepRows, 4 * n, BTG_LEAF_CELL_BITS + BTG_LEAF_SWEEP_BITS, l.sort);
         cl::Launch(ctx, prog.kernel("leaves_sweep"), &w.profiler)
-            .arg(cl_int(4 * n)).arg(l.sweepKeys).arg(l.sweepRows).arg(w.props).arg(l.leafMin).arg(l.leafMax).arg(l.moved)
-            .arg(l.raw).arg(l.counts).arg(capacity).arg(invCell)
+            .arg(cl_int(4 * n)).arg(l.sweepKeys).arg(l.sweepRows).arg(w.props).arg(l.leafMin).arg(l.leafMax)
+            .arg(l.oldMin).arg(l.oldMax).arg(l.moved).arg(l.raw).arg(l.transient).arg(l.counts).arg(capacity).arg(invCell)
             .run(4 * n);
         cl::Launch(ctx, prog.kernel("leaves_large"), &w.profiler)
-            .arg(cl_int(n)).arg(l.large).arg(l.isLarge).arg(w.props).arg(l.leafMin).arg(l.leafMax).arg(l.moved)
-            .arg(l.raw).arg(l.counts).arg(capacity)
+            .arg(cl_int(n)).arg(l.large).arg(l.isLarge).arg(w.props).arg(l.leafMin).arg(l.leafMax).arg(l.oldMin)
+            .arg(l.oldMax).arg(l.moved).arg(l.raw).arg(l.transient).arg(l.counts).arg(capacity)
             .run(n);
     }
     const cl_uint rowBits = cl_uint(radixBitsFor(n > 1 ? cl_uint(n - 1) : 0u));
@@ -123,9 +127,9 @@ LeafChanges readLeafChanges(DeviceWorld& w)
         c.pairs = counts[BTG_LEAF_PREV];
         return c;
     }
-    if (counts[BTG_LEAF_FOUND] > l.capacity) {
+    if (counts[BTG_LEAF_FOUND] > l.capacity || counts[BTG_LEAF_TRANSIENT] > l.capacity) {
         // The leaves stay as the call left them: only the list is made again, in a bigger buffer.
-        const size_t found = counts[BTG_LEAF_FOUND];
+        const size_t found = std::max(counts[BTG_LEAF_FOUND], counts[BTG_LEAF_TRANSIENT]);
         reserveLeafPairs(w, std::max(l.capacity + l.capacity / 4, found + found / 4 + 64));
         leafPairs(w, l.cell);
         l.counts.download(w.ctx, counts, BTG_LEAF_NUM_COUNTS);
@@ -143,6 +147,9 @@ LeafChanges readLeafChanges(DeviceWorld& w)
     if (removed > 0) l.changes.download(w.ctx, c.removed.data(), removed, l.capacity);
     std::sort(c.added.begin(), c.added.end(), less);
     std::sort(c.removed.begin(), c.removed.end(), less);
+    c.transient.resize(counts[BTG_LEAF_TRANSIENT]);
+    if (!c.transient.empty()) l.transient.download(w.ctx, c.transient.data(), c.transient.size());
+    std::sort(c.transient.begin(), c.transient.end(), less);
     l.current = 1 - l.current;
     l.counts.fill(w.ctx, c.pairs, BTG_LEAF_PREV, 1);
     return c;

