@@ -212,6 +212,9 @@ void GpuWorld::makePlan()
     m_plan = d.plan;
     m_plan.hasIgnoredPairs = m_ignored.any();
     m_plan.reportContacts = m_config.fillDispatcherManifolds;
+    m_plan.broadphaseLeaves = deviceLeafPairs();
+    m_dev->leaves.reset = true;  // rows may have moved: every leaf and the pair list start afresh
+    m_leafPairs.clear();
     m_plan.contactCallbacks = ContactCallbacks::wanted(m_world);
     m_large.assign(m_rows.size(), false);
     for (int r : d.largeRows) m_large[size_t(r)] = true;
@@ -547,6 +550,13 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
     } else if (m_rowsStale) {
         followRows();
     }
+    // Ghosts, an overlap filter or the host's exact mode may come and go between plans.
+    if (deviceLeafPairs() != m_plan.broadphaseLeaves) {
+        m_plan.broadphaseLeaves = !m_plan.broadphaseLeaves;
+        m_report.stages = m_plan.stages();
+        m_dev->leaves.reset = true;
+        m_leafPairs.clear();
+    }
     m_onCpuPath = false;
     m_report.cpuPathReason.clear();
     m_report.checkMs = msBetween(checkStart, Clock::now());
@@ -684,8 +694,10 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
                 return btVector3(v.x, v.y, v.z);
             };
             auto clampedByCcd = [&] { return ccd && ccdSweepHits(m_world, m_ccdBodies, fixedTimeStep, solved, &ccdHit); };
+            if (m_plan.broadphaseLeaves) startLeafPairs();
             if (actions) {
                 if (!runOnDevice(perBatch, fixedTimeStep, SubstepPart::BeforeActivation, betweenContacts)) return abandoned();
+                if (m_plan.broadphaseLeaves) noteLeafPairs(perBatch);
                 if (clampedByCcd()) {
                     cpuPathFrom(b, batches, fixedTimeStep, ccdHit, true);
                     *substepsDone = numSubSteps;
@@ -698,6 +710,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
                 runOnDevice(1, fixedTimeStep, SubstepPart::ActivationOnly);
             } else {
                 if (!runOnDevice(perBatch, fixedTimeStep, SubstepPart::Whole, betweenContacts)) return abandoned();
+                if (m_plan.broadphaseLeaves) noteLeafPairs(perBatch);
                 if (clampedByCcd()) {
                     cpuPathFrom(b, batches, fixedTimeStep, ccdHit, true);
                     *substepsDone = numSubSteps;

@@ -8,6 +8,7 @@
 #include "cpu_path_guard.h"
 #include "ignored_pairs.h"
 #include "joint_rows.h"
+#include "leaf_pairs.h"
 #include "manifold_sync.h"
 #include "row_map.h"
 #include "pipeline.h"
@@ -117,6 +118,18 @@ private:
     {
         return !m_ghosts.empty() || m_overlapFilter || (m_config.fillDispatcherManifolds && m_config.stockEmptyManifolds);
     }
+    // Stock's empty manifolds from the device's leaf pairs (Config::deviceEmptyManifolds): while
+    // the fill wants them and nothing else decides the pairs (Bullet's broadphase on the host for
+    // ghosts, an overlap filter or stockEmptyManifolds; an app that turned off
+    // m_forceUpdateAllAabbs, whose resting leaves stock moves to its fixed tree).
+    bool deviceLeafPairs() const;
+    // Before a device call with the stage: the leaves' settings as stock's world has them.
+    void startLeafPairs();
+    // After it, before the write-back: the leaf pairs' change read back, stock's pair cache
+    // followed, the fill's pairs noted (the bodies as the step found them, as stock's near
+    // callback sees them).
+    void noteLeafPairs(int steps);
+    LeafPairCache m_leafPairs;
     // The app's dispatcher manifolds from the readback just taken (Config::fillDispatcherManifolds).
     void fillManifolds();
     // The CPU path runs next: our manifolds go back to the dispatcher's pool (its algorithms

@@ -614,6 +614,8 @@ void ManifoldSync::releaseAll(btDispatcher* dispatcher)
     m_dead.clear();
     m_pending.clear();
     m_stockPairs.clear();
+    m_uncollided.clear();
+    m_compoundPairs.clear();
     m_wanted.clear();
     m_wantedSet.clear();
     m_wantedValid = false;

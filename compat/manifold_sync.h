@@ -66,6 +66,14 @@ public:
     // of pairs that left. Without a call before a fill, only manifolds with points are held.
     void notePairs(btDispatcher* dispatcher, btOverlappingPairCache* cache, const RowMap& rows,
                    const std::unordered_set<const btCollisionObject*>& removed);
+    // The same from the device's leaf pairs (rows; leaf_pairs.h), noted after the step's device
+    // call and before its write-back: the bodies still hold the step's start (transforms,
+    // activation), what stock's near callback saw. The whole list after the cache started afresh;
+    // then only the pairs that joined and left it (the cost follows what changed).
+    void noteLeafPairs(btDispatcher* dispatcher, const std::vector<BtgPair>& pairs, const RowMap& rows,
+                       const std::unordered_set<const btCollisionObject*>& removed);
+    void noteLeafChanges(btDispatcher* dispatcher, const std::vector<BtgPair>& joined, const std::vector<BtgPair>& left,
+                         const RowMap& rows, const std::unordered_set<const btCollisionObject*>& removed);
     // Those of an object leaving the world (stock: removeRigidBody → cleanProxyFromPairs).
     void removed(btDispatcher* dispatcher, const btCollisionObject* object);
     size_t size() const { return m_map.size() - m_dead.size(); }
@@ -185,6 +193,24 @@ private:
     // stays (its pair still stock's), and empty manifolds for the noted pairs that have none.
     bool stockHolds(const Key& key) const { return m_wantedSet.count(key) > 0; }
     void holdStockPairs(btDispatcher* dispatcher, const std::unordered_set<const btCollisionObject*>& removed);
+    // One broadphase pair: its objects in the cache's order and its id (the proxies' unique ids).
+    struct StockPair {
+        const btCollisionObject* a;
+        const btCollisionObject* b;
+        unsigned long long id;
+    };
+    void notePairList(btDispatcher* dispatcher, bool valid, const std::vector<StockPair>& pairs, const RowMap& rows,
+                      const std::unordered_set<const btCollisionObject*>& removed);
+    void notePairChanges(btDispatcher* dispatcher, const std::vector<StockPair>& joined,
+                         const std::vector<unsigned long long>& left, const RowMap& rows,
+                         const std::unordered_set<const btCollisionObject*>& removed);
+    // The manifold keys of a pair's algorithm as its collision this step leaves them.
+    std::vector<Key> algorithmKeys(const btCollisionObject* a, const btCollisionObject* b, const RowMap& rows,
+                                   const std::unordered_set<const btCollisionObject*>& removed) const;
+    // Pairs noted but never collided (both bodies asleep since they joined), and those with a
+    // compound side, by id (notePairChanges looks at these each step).
+    std::unordered_map<unsigned long long, StockPair> m_uncollided;
+    std::unordered_map<unsigned long long, StockPair> m_compoundPairs;
 
     std::unordered_map<Key, Entry, KeyHash> m_map;
     std::vector<btTransform> m_collidedAt;  // per row (noteCollidedAt)

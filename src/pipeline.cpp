@@ -5,6 +5,7 @@
 // absent from the plan are neither built nor launched.
 #include "pipeline.h"
 
+#include "stages/broadphase_leaves.h"
 #include "stages/color_constraints.h"
 #include "stages/contact_cache.h"
 #include "stages/contact_callbacks.h"
@@ -37,6 +38,7 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
     const BtgStepParams& p = s.params;
     switch (stage) {
         case Stage::Integrate: predictMotion(w, p.dt); break;
+        case Stage::BroadphaseLeaves: updateLeaves(w, w.leaves.threshold, p.dt); break;
         case Stage::UpdateAabbs: updateAabbs(w, p.contactThreshold); break;
         case Stage::UniformGrid:
         case Stage::SortSweep: smallBodyPairs(w, plan.broadphase, plan.cellSize); break;
@@ -101,6 +103,7 @@ void runSubstep(DeviceWorld& w, const Plan& plan, const std::vector<Stage>& stag
         if (stage == Stage::ReportContacts && !last) continue;  // the app sees the call's last substep
         w.profiler.stage = stageName(stage);
         runStage(stage, w, plan, s);
+        if (stage == Stage::BroadphaseLeaves && last) leafPairs(w, 2.0f * plan.cellSize);  // the pairs the app sees: the call's last substep's
     }
 }
 

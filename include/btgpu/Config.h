@@ -76,9 +76,12 @@ struct Config {
     // With the fill on: also hold stock's empty manifolds, one for every broadphase pair its
     // dispatcher has collided (its algorithm's, made at the pair's first collision and given back
     // when the pair leaves the pair cache; per compound child whose AABB overlaps), so that
-    // getNumManifolds() is stock's count. It runs Bullet's own broadphase on the host at each
-    // internal step (stock's cost for it: about 1 ms at 1,000 boxes on one core, tens at 30,000),
-    // so it is off by default: without it the dispatcher holds the manifolds with points only.
+    // getNumManifolds() is stock's count. By default (deviceEmptyManifolds) the pairs are stock's
+    // Dbvt leaves' overlaps found on the device (stage broadphase_leaves), stock's lazy removal of
+    // pairs emulated on the host; stockEmptyManifolds instead runs Bullet's own broadphase on the
+    // host at each internal step (exact, at stock's cost for it: about 1 ms at 1,000 boxes on one
+    // core, hundreds at 30,000). With both off the dispatcher holds the manifolds with points only.
+    bool deviceEmptyManifolds = true;
     bool stockEmptyManifolds = false;
     // Ghost objects' overlaps on the GPU path come from Bullet's own broadphase, updated on the
     // host at each internal step. In a world of up to this many collision objects it is stock's

@@ -12,6 +12,7 @@
 #include "shared/joint_rows.h"
 #include "shared/types.h"
 #include "world/broadphase_scratch.h"
+#include "world/leaf_buffers.h"
 #include "world/solver_scratch.h"
 #include "stages/prims/scan.h"
 
@@ -98,6 +99,9 @@ struct DeviceWorld {
     cl::DeviceArray<uint> pairKindRanges;  // BTG_KIND_RANGES_SIZE
     bool pairKindsIndirect = false;
     BroadphaseScratch broadphase;      // find_pairs' own temporaries
+    // Stock's Dbvt leaves and the pairs they overlap in (broadphase_leaves: only while the fill
+    // wants stock's empty manifolds).
+    LeafBuffers leaves;
 
     // --- expand_compounds: each pair with a compound side becomes its leaf pairs ---
     // compoundOffsets (pairCapacity + 1): per pair its first leaf pair, the last the total;

@@ -12,6 +12,7 @@ const char* stageName(Stage stage)
 {
     switch (stage) {
         case Stage::Integrate: return "integrate";
+        case Stage::BroadphaseLeaves: return "broadphase_leaves";
         case Stage::UpdateAabbs: return "update_aabbs";
         case Stage::UniformGrid: return "uniform_grid";
         case Stage::SortSweep: return "sort_sweep";
@@ -59,6 +60,8 @@ const char* narrowphaseProgramOf(Stage stage)
 std::vector<Stage> Plan::substep() const
 {
     std::vector<Stage> s = {Stage::Integrate};
+    // Right after the damping, as stock's predictUnconstraintMotion precedes its AABB update.
+    if (broadphaseLeaves) s.push_back(Stage::BroadphaseLeaves);
     const bool collide = kinds.any();
     if (collide) {
         s.push_back(Stage::UpdateAabbs);

@@ -22,6 +22,7 @@ enum class Broadphase { UniformGrid, SortAndSweep };
 // named by stageName.
 enum class Stage {
     Integrate,            // damping and the predicted motion (predictMotion)
+    BroadphaseLeaves,     // stock's Dbvt leaves and their pairs (the fill's empty manifolds only)
     UpdateAabbs,
     UniformGrid,          // small bodies' pairs, by grid ...
     SortSweep,            // ... or by sort-and-sweep
@@ -72,6 +73,7 @@ struct Plan {
     bool hasIgnoredPairs = false;  // objects ignore each other's collision check (filter_pairs)
     bool hasCompounds = false;     // compound bodies (expand_compounds)
     bool reportContacts = false;   // Config::fillDispatcherManifolds (report_contacts)
+    bool broadphaseLeaves = false; // the fill holds stock's empty manifolds from the device (broadphase_leaves)
     // The app's gContactAddedCallback runs on the host between a substep's contacts and its
     // contact list (a CF_CUSTOM_MATERIAL_CALLBACK body is in the scene): contact_callbacks runs.
     bool contactCallbacks = false;

@@ -28,6 +28,7 @@ struct Options {
     bool noSleep = false;           // disable Bullet's deactivation on every dynamic body
     bool noManifolds = false;       // btgpu: Config::fillDispatcherManifolds off (apps that never read contacts)
     bool emptyManifolds = false;    // btgpu: Config::stockEmptyManifolds (stock's empty manifolds too)
+    bool noEmptyManifolds = false;  // btgpu: Config::deviceEmptyManifolds off (manifolds with points only)
     // btgpu: the app's contact callbacks' cost: "ground" (gContactAddedCallback, the first static
     // body CF_CUSTOM_MATERIAL_CALLBACK), "all" (every body flagged), "processed"
     // (gContactProcessedCallback); empty: none.

@@ -41,6 +41,7 @@ public:
         if (m_noAabbSync) n += "; Config::syncBroadphaseAabbs off";
         if (m_noManifolds) n += "; Config::fillDispatcherManifolds off";
         if (m_emptyManifolds) n += "; Config::stockEmptyManifolds (Bullet's broadphase on the host: Report::ghostBroadphaseMs)";
+        if (m_noEmptyManifolds) n += "; Config::deviceEmptyManifolds off (manifolds with points only)";
         if (!m_callback.empty()) n += "; contact callback: " + m_callback + " (host part: Report::callbackMs)";
         if (m_jacobi) n += "; Jacobi with mass splitting";
         if (m_soft) n += "; soft step";
@@ -64,6 +65,8 @@ public:
         m_noManifolds = options.noManifolds;
         config.stockEmptyManifolds = options.emptyManifolds;
         m_emptyManifolds = options.emptyManifolds;
+        config.deviceEmptyManifolds = !options.noEmptyManifolds;
+        m_noEmptyManifolds = options.noEmptyManifolds;
         if (options.jacobi) config.solver = btgpu::SolverKind::JacobiMassSplitting;
         m_jacobi = options.jacobi;
         if (options.soft) config.solver = btgpu::SolverKind::SoftStep;
@@ -137,6 +140,7 @@ private:
     bool m_noAabbSync = false;
     bool m_noManifolds = false;
     bool m_emptyManifolds = false;
+    bool m_noEmptyManifolds = false;
     bool m_jacobi = false;
     bool m_soft = false;
     std::string m_callback;  // Options::contactCallback (its globals put back in the destructor)

@@ -25,7 +25,7 @@ const char* kUsage =
     "                   [--ragdolls COUNT (ragdolls of 11 capsules and 10 joints; default 100)]\n"
     "                   pile, stacks, hulls: BenchmarkDemo's tests 1, 2 and 4 (3,008 boxes, 1,076 boxes, 960 barrels)\n"
     "                   [--frames F] [--backends btgpu,bullet,b3gpu] [--csv PATH] [--budget-s S]\n"
-    "                   [--no-sleep] [--no-aabb-sync] [--no-manifolds] [--empty-manifolds] [--contact-callback ground|all|processed] [--jacobi] [--soft] [--b3-native-inertia] [--absolute-thresholds] [--smoke]\n"
+    "                   [--no-sleep] [--no-aabb-sync] [--no-manifolds] [--empty-manifolds] [--no-empty-manifolds] [--contact-callback ground|all|processed] [--jacobi] [--soft] [--b3-native-inertia] [--absolute-thresholds] [--smoke]\n"
     "  BTGPU_DEVICE=gpu|cpu|<name substring> picks the OpenCL device (btgpu and b3gpu alike).\n";
 
 [[noreturn]] void usage(const char* why)
@@ -112,6 +112,7 @@ int main(int argc, char** argv)
         else if (a == "--no-aabb-sync") options.noAabbSync = true;
         else if (a == "--no-manifolds") options.noManifolds = true;
         else if (a == "--empty-manifolds") options.emptyManifolds = true;
+        else if (a == "--no-empty-manifolds") options.noEmptyManifolds = true;
         else if (a == "--contact-callback" && i + 1 < argc) options.contactCallback = argv[++i];
         else if (a == "--jacobi") options.jacobi = true;
         else if (a == "--soft") options.soft = true;

@@ -169,7 +169,10 @@ bool onTriangle(const btCollisionObject* mesh, int part, int index, const btVect
 // nudged runs' largest distance plus a floor) where that is wider; 5% on the mean.
 TEST(Manifolds, BoxPileCountsAsStock)
 {
-    auto make = [](WorldKind k) { return scenes::cubes(k, 4, 4, 4, Config()); };
+    // The manifolds with points only (stock's empty ones too by default: empty_manifolds_test.cpp).
+    Config withPoints;
+    withPoints.deviceEmptyManifolds = false;
+    auto make = [&](WorldKind k) { return scenes::cubes(k, 4, 4, 4, withPoints); };
     const int steps = 240, first = 40;
     // Stock's own chaos, per step: the lowest and highest count of the nudged runs.
     std::vector<Counts> lo(steps), hi(steps);
@@ -456,7 +459,7 @@ TEST(Manifolds, HeightfieldPointsNameTheirCell)
     }
 }
 
-// Config::fillDispatcherManifolds off: no report stage, and the dispatcher stays empty.
+// Config::fillDispatcherManifolds off: no report stage, no leaf pairs, and the dispatcher stays empty.
 TEST(Manifolds, SwitchOffLeavesTheDispatcherEmpty)
 {
     Config off;
@@ -466,6 +469,7 @@ TEST(Manifolds, SwitchOffLeavesTheDispatcherEmpty)
         sb.step();
         ASSERT_TRUE(sb.onGpu()) << step;
         EXPECT_FALSE(hasStage(*sb.gpu, "report_contacts"));
+        EXPECT_FALSE(hasStage(*sb.gpu, "broadphase_leaves"));  // nor the empty manifolds' pairs
         EXPECT_EQ(sb.gpu->world().getDispatcher()->getNumManifolds(), 0) << step;
     }
     EXPECT_EQ(counts(*sb.stock).touching, 4);

@@ -307,6 +307,22 @@ ScenePtr spheres(WorldKind kind, int nx, int ny, int nz, const Config& config)
     return makeLattice(kind, nx, ny, nz, config, false);
 }
 
+ScenePtr dispersingSpheres(WorldKind kind, const Config& config)
+{
+    auto scene = std::make_unique<Scene>(kind, config, "dispersing_spheres");
+    scene->world().setGravity(btVector3(0, 0, 0));
+    btSphereShape* ball = scene->sphereShape(btScalar(0.5));
+    const btScalar pitch = btScalar(1.06);
+    for (int i = 0; i < 5; ++i)
+        for (int j = 0; j < 5; ++j)
+            for (int k = 0; k < 5; ++k) {
+                const btVector3 offset(btScalar(i - 2) * pitch, btScalar(j - 2) * pitch, btScalar(k - 2) * pitch);
+                btRigidBody* body = scene->addBody(ball, 1, offset + btVector3(0, 10, 0));
+                body->setLinearVelocity(offset);
+            }
+    return scene;
+}
+
 // --- catalog -----------------------------------------------------------------------------------
 
 const std::vector<SceneEntry>& catalog()

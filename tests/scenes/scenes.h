@@ -151,6 +151,10 @@ constexpr double kPusherSeconds = 4.0;  // s, then it stops
 ScenePtr cubes(WorldKind kind, int nx, int ny, int nz, const Config& config = Config());
 // The same lattice of spheres of radius 1.
 ScenePtr spheres(WorldKind kind, int nx, int ny, int nz, const Config& config = Config());
+// 5x5x5 spheres of radius 0.5, 6 cm apart, without gravity, flying apart from the centre one
+// (velocity = 1/s x offset): no contacts ever, only broadphase pairs that come apart (stock's
+// empty manifolds and its lazy pair removal).
+ScenePtr dispersingSpheres(WorldKind kind, const Config& config = Config());
 
 // --- by name, for the benchmark, demos and tests that run every scene. ---
 struct SceneEntry {

@@ -1,0 +1,104 @@
+// leaf_pairs.cpp — stock's pair cache from the device's leaf-pair changes, with the timing of
+// btDbvtBroadphase's lazy removal (collide(): m_cupdates 10 %, m_newpairs, round robin from m_cid),
+// and the world's use of it around a device call (GpuWorld::startLeafPairs, noteLeafPairs).
+#include "leaf_pairs.h"
+
+#include "gpu_world.h"
+
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+
+namespace btgpu {
+
+void LeafPairCache::clear()
+{
+    m_pairs.clear();
+    m_index.clear();
+    m_overlapping.clear();
+    m_cid = 0;
+    m_cleared = true;
+}
+
+void LeafPairCache::removeAt(size_t at)
+{
+    m_left.push_back(m_pairs[at]);
+    m_index.erase(key(m_pairs[at]));
+    if (at + 1 != m_pairs.size()) {
+        m_pairs[at] = m_pairs.back();
+        m_index[key(m_pairs[at])] = at;
+    }
+    m_pairs.pop_back();
+}
+
+void LeafPairCache::apply(const LeafChanges& changes, int steps)
+{
+    m_joined.clear();
+    m_left.clear();
+    m_fresh = m_cleared;
+    m_cleared = false;
+    for (const BtgPair& p : changes.removed) m_overlapping.erase(key(p));
+    // setAabb's tree collisions add the pairs before collide() cleans up.
+    for (const BtgPair& p : changes.added) {
+        m_overlapping.insert(key(p));
+        if (m_index.emplace(key(p), m_pairs.size()).second) {
+            m_pairs.push_back({p.a, p.b, 0, 0});
+            m_joined.push_back(m_pairs.back());
+        }
+    }
+    // Met only on the way (a moved leaf against a neighbour's old one): in the cache, for the
+    // cleanup to drop.
+    for (const BtgPair& p : changes.transient)
+        if (m_index.emplace(key(p), m_pairs.size()).second) {
+            m_pairs.push_back({p.a, p.b, 0, 0});
+            m_joined.push_back(m_pairs.back());
+        }
+    // m_needcleanup: some leaf moved (a pair can only stop overlapping then).
+    if (changes.moved == 0) return;
+    for (int step = 0; step < std::max(steps, 1); ++step) {
+        int size = int(m_pairs.size());
+        if (size == 0) {
+            m_cid = 0;
+            return;
+        }
+        // The last step's overlaps are the counted ones (a call's earlier steps start at 1).
+        const int newPairs = 1 + (step == steps - 1 ? int(changes.newPairs) : 0);
+        int ni = std::min(size, std::max(newPairs, (size * 10) / 100));
+        for (int i = 0; i < ni; ++i) {
+            const size_t at = size_t((m_cid + i) % int(m_pairs.size()));
+            if (!m_overlapping.count(key(m_pairs[at]))) {
+                removeAt(at);
+                --ni;
+                --i;
+                if (m_pairs.empty()) break;
+            }
+        }
+        m_cid = m_pairs.empty() ? 0 : (m_cid + ni) % int(m_pairs.size());
+    }
+}
+
+bool GpuWorld::deviceLeafPairs() const
+{
+    return m_config.fillDispatcherManifolds && m_config.deviceEmptyManifolds && !broadphaseAsStock() &&
+           m_world.getForceUpdateAllAabbs();
+}
+
+void GpuWorld::startLeafPairs()
+{
+    LeafBuffers& l = m_dev->leaves;
+    l.continuous = m_world.getDispatchInfo().m_useContinuous;
+    l.threshold = float(gContactBreakingThreshold);
+    startLeafCall(*m_dev);
+}
+
+void GpuWorld::noteLeafPairs(int steps)
+{
+    const LeafChanges changes = readLeafChanges(*m_dev);
+    m_leafPairs.apply(changes, steps);
+    if (m_leafPairs.fresh())
+        m_manifolds.noteLeafPairs(m_world.getDispatcher(), m_leafPairs.pairs(), m_rows, m_removed);
+    else
+        m_manifolds.noteLeafChanges(m_world.getDispatcher(), m_leafPairs.joined(), m_leafPairs.left(), m_rows, m_removed);
+}
+
+}  // namespace btgpu
