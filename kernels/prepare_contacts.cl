@@ -40,15 +40,18 @@ __kernel void prepare_contacts(__global BtgContact* contacts, __global uint* cou
     const BtgPairMaterial mat = btgPairMaterial(pa, pb);
     const int solvable = btgContactSolvable(pa.flags, pb.flags);
     btgPrepareContact(&c, a, b, a0, b0, a1, b1, mat, solvable, params);
-    BtgFrictionDirs dirs;
-    const int anisotropic = (params.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION) != 0u;
-    if (anisotropic) {
+    const int anchored = (params.solverFlags & BTG_SOLVER_FRICTION_ANCHORS) != 0u;
+    if (params.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION) {
+        BtgFrictionDirs dirs;
         btgPrepareAnisotropicFriction(&c, &dirs, a, b, a1, b1, rot[c.bodyA], rot[c.bodyB], pa, pb, solvable, params);
         frictionDirs[i] = dirs;
+        if (anchored)
+            anchors[i] = btgPrepareFrictionAnchor(&c, &dirs, pos[c.bodyA], pos[c.bodyB],
+                                                  btgAnchoredPair(pa.flags, pb.flags), params);
+    } else if (anchored) {
+        anchors[i] = btgPrepareFrictionAnchor(&c, 0, pos[c.bodyA], pos[c.bodyB], btgAnchoredPair(pa.flags, pb.flags),
+                                              params);
     }
-    if (params.solverFlags & BTG_SOLVER_FRICTION_ANCHORS)
-        anchors[i] = btgPrepareFrictionAnchor(&c, anisotropic ? &dirs : 0, pos[c.bodyA], pos[c.bodyB],
-                                              btgAnchoredPair(pa.flags, pb.flags), params);
     contacts[i] = c;
     if (params.solverFlags & BTG_SOLVER_ROLLING_FRICTION)
         rolling[i] = btgPrepareRolling(&c, a, b, mat, solvable, rot[c.bodyA], rot[c.bodyB], pa, pb);

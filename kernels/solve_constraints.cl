@@ -72,8 +72,13 @@ static void solve_contact(int i, int mode, int rows, __global BtgContact* contac
     const int anchored = (rows & BTG_ROWS_ANCHORS) != 0 && (mode == BTG_PASS_FRICTION || mode == BTG_PASS_VELOCITY);
     if (anchored) anchor = anchors[i];
     const BtgFrictionAnchor* f = anchored ? &anchor : 0;
+    /* key is the same for every work-item of the launch: without SOLVER_RANDMIZE_ORDER the
+     * unpermuted loops, with no permutation code in them */
     if (mode == BTG_PASS_WARM_START) btgContactWarmStartDirs(&c, d, a, b, &va, &vb, rows);
+    else if (mode == BTG_PASS_NORMALS && key == 0u) btgContactSolveNormals(&c, a, b, &va, &vb);
     else if (mode == BTG_PASS_NORMALS) btgContactSolveNormalsOrdered(&c, order, a, b, &va, &vb);
+    else if (mode == BTG_PASS_FRICTION && key == 0u && !anchored) btgContactSolveFrictionDirs(&c, d, a, b, &va, &vb, rows);
+    else if (mode == BTG_PASS_FRICTION && key == 0u) btgContactSolveFrictionAnchored(&c, d, f, a, b, &va, &vb, rows);
     else if (mode == BTG_PASS_FRICTION) btgContactSolveFrictionOrdered(&c, d, f, order, a, b, &va, &vb, rows);
     else if (mode == BTG_PASS_VELOCITY) {
         btgContactSolveNormalsOrdered(&c, order, a, b, &va, &vb);
@@ -85,7 +90,8 @@ static void solve_contact(int i, int mode, int rows, __global BtgContact* contac
         rolling[i].spinImpulse = r.spinImpulse;
         rolling[i].roll1Impulse = r.roll1Impulse;
         rolling[i].roll2Impulse = r.roll2Impulse;
-    } else btgContactSolvePushOrdered(&c, order, a, b, &va, &vb);
+    } else if (key == 0u) btgContactSolvePush(&c, a, b, &va, &vb);
+    else btgContactSolvePushOrdered(&c, order, a, b, &va, &vb);
     /* w of the velocity columns is not the solver's: keep it. */
     if (a.dynamic) {
         lin[c.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, linA.w);

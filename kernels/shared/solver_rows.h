@@ -229,26 +229,20 @@ static inline uint btgItemKey(uint sweepKey, uint item)
 {
     return sweepKey == 0u ? 0u : btgOrderHash(sweepKey + item * 0x9e3779b9u) | 1u;
 }
-/* Position i of [0, n) under key's permutation: an affine map i -> (a i + b) mod n with a
- * coprime to n (no table, so a kernel pays nothing for it without the bit); the identity for
- * key 0. */
+/* Position i of [0, n) under key's permutation: an affine map i -> (a i + b) mod n, a a power of
+ * the prime 67 (coprime to every n the solver permutes: up to 4 points, 63 colours) or its
+ * reflection; no table and no loop, so a kernel that never permutes (key 0: the identity) keeps
+ * its shape. */
 static inline int btgPermute(uint key, int n, int i)
 {
     if (key == 0u || n <= 1) return i;
     const uint un = (uint)n;
     const uint h = btgOrderHash(key);
-    uint a = 1u + h % (un - 1u);
-    for (;;) {
-        uint x = a, y = un;
-        while (y != 0u) {
-            const uint t = x % y;
-            x = y;
-            y = t;
-        }
-        if (x == 1u) break;
-        a = a % (un - 1u) + 1u;
-    }
-    const uint b = key % un;
+    const uint p1 = 67u % un, p2 = (p1 * p1) % un, p3 = (p2 * p1) % un, p4 = (p2 * p2) % un;
+    const uint pick = h & 3u;
+    uint a = pick == 0u ? p1 : (pick == 1u ? p2 : (pick == 2u ? p3 : p4));
+    if ((h >> 2) & 1u) a = un - a; /* the reflection: still coprime to n */
+    const uint b = (h >> 3) % un;
     return (int)((a * (uint)i + b) % un);
 }
 
