@@ -80,7 +80,7 @@ void LeafPairCache::apply(const LeafChanges& changes, int steps)
 bool GpuWorld::deviceLeafPairs() const
 {
     return m_config.fillDispatcherManifolds && m_config.deviceEmptyManifolds && !broadphaseAsStock() &&
-           m_world.getForceUpdateAllAabbs();
+           m_world.getForceUpdateAllAabbs() && m_world.getNumCollisionObjects() <= m_config.deviceEmptyManifoldsUpTo;
 }
 
 void GpuWorld::startLeafPairs()

@@ -315,3 +315,25 @@ TEST(EmptyManifolds, LazyPairRemovalAsStock)
     EXPECT_NEAR(double(sums[1]), double(sums[0]), 0.2 * double(sums[0]));
     EXPECT_NEAR(lastGpu, lastStock, 3);
 }
+
+// Above Config::deviceEmptyManifoldsUpTo collision objects the device mode stays off (its host
+// cost grows with the world): no broadphase_leaves stage, and the dispatcher holds the manifolds
+// with points only, as stock's with points; raised again, the stage and the empty ones come back.
+TEST(EmptyManifolds, BigWorldsHoldPointsOnly)
+{
+    Config capped;
+    capped.deviceEmptyManifoldsUpTo = 100;  // BasicDemo has 126 collision objects
+    ScenePtr s = scenes::basicDemo(WorldKind::Gpu, capped);
+    for (int step = 0; step < 80; ++step) {
+        s->step();
+        ASSERT_TRUE(s->gpuWorld()->isGpuPath()) << step;
+        ASSERT_FALSE(hasStage(*s, "broadphase_leaves")) << step;
+        const Held h = held(*s);
+        ASSERT_EQ(h.manifolds, h.touching) << step;
+    }
+    EXPECT_GT(held(*s).touching, 100);
+    ScenePtr open = scenes::basicDemo(WorldKind::Gpu, Config());
+    for (int step = 0; step < 80; ++step) open->step();
+    EXPECT_TRUE(hasStage(*open, "broadphase_leaves"));
+    EXPECT_GT(held(*open).manifolds, held(*open).touching);
+}
