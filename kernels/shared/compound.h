@@ -134,6 +134,18 @@ static inline BtgAabb btgTransformBox(BtgFloat4 lo, BtgFloat4 hi, BtgFloat4 pos,
     return out;
 }
 
+/* Leaf pair (leaf rows ra of A, rb of B) of body pair p written to out[at] when it fits; 1. */
+static inline uint btgEmitLeafPair(BtgPair p, int ra, int rb, BTG_GLOBAL BtgPair* out, uint at, uint capacity)
+{
+    if (out && at < capacity) {
+        BtgPair q = p;
+        q.childA = ra + 1;
+        q.childB = rb + 1;
+        out[at] = q;
+    }
+    return 1u;
+}
+
 /* Two compounds (btCompoundCompoundCollisionAlgorithm, both with trees and neither nested: the
  * CPU-path rules send the others away): leaf i of A and leaf j of B, in (i, j) order, when B's tree leaf carried
  * into A's frame overlaps A's (MycollideTT's MyIntersect, A being stock's body 0: the lower
@@ -164,13 +176,7 @@ static inline uint btgExpandCompoundCompound(BtgPair p, BtgShape sa, BtgShape sb
             btgChildWorld(pos[p.b], qb, cb, &wpb, &wqb);
             const BtgAabb boxB = btgStockAabb(wpb, wqb, shapes[cb.shape]);
             if (!btgAabbOverlap(boxA.lo, boxA.hi, boxB.lo, boxB.hi)) continue;
-            if (out && first + n < capacity) {
-                BtgPair q = p;
-                q.childA = sa.firstChild + i + 1;
-                q.childB = sb.firstChild + j + 1;
-                out[first + n] = q;
-            }
-            ++n;
+            n += btgEmitLeafPair(p, sa.firstChild + i, sb.firstChild + j, out, first + n, capacity);
         }
     }
     return n;
@@ -220,13 +226,7 @@ static inline uint btgExpandCompoundNested(BtgPair p, BtgShape sa, BtgShape sb, 
         for (int j = 0; j < sb.numChildren; ++j) {
             BtgAabb boxB;
             if (!btgLeafMeets(children[sb.firstChild + j], pos[p.b], qb, aInB, other, shapes, &boxB)) continue;
-            if (out && first + n < capacity) {
-                BtgPair q = p;
-                q.childA = sa.firstChild + i + 1;
-                q.childB = sb.firstChild + j + 1;
-                out[first + n] = q;
-            }
-            ++n;
+            n += btgEmitLeafPair(p, sa.firstChild + i, sb.firstChild + j, out, first + n, capacity);
         }
     }
     return n;

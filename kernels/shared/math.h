@@ -136,21 +136,26 @@ static inline BtgMat3 btgSkew(BtgFloat4 v)
     m.r2 = btgMake4(-v.y, v.x, 0.0f, 0.0f);
     return m;
 }
-/* Bullet's implicit world-frame gyroscopic term (computeGyroscopicImpulseImplicit_World): the
- * same Newton step with the world inertia tensor iw (R diag(I) R^T). */
+/* One Newton step on Euler's equation without torque, as Bullet's implicit gyroscopic terms take
+ * it (evalEulerEqn, evalEulerEqnDeriv at w1 = w0): the correction dw to subtract from w, for the
+ * inertia tensor in w's frame. */
+static inline BtgFloat4 btgEulerNewtonStep(BtgMat3 inertia, BtgFloat4 w, float dt)
+{
+    BtgFloat4 iw = btgMat3MulVec(inertia, w);
+    BtgFloat4 f = btgCross3(w, iw) * dt;
+    BtgMat3 s0i = btgMat3Mul(btgSkew(w), inertia);
+    BtgMat3 s1 = btgSkew(iw);
+    BtgMat3 j;
+    j.r0 = inertia.r0 + (s0i.r0 - s1.r0) * dt;
+    j.r1 = inertia.r1 + (s0i.r1 - s1.r1) * dt;
+    j.r2 = inertia.r2 + (s0i.r2 - s1.r2) * dt;
+    return btgSolve33(j, f);
+}
+/* Bullet's implicit world-frame gyroscopic term (computeGyroscopicImpulseImplicit_World), with the
+ * world inertia tensor iw (R diag(I) R^T): the change of angular velocity. */
 static inline BtgFloat4 btgGyroscopicImpulseWorld(BtgMat3 iw, BtgFloat4 angVel, float dt)
 {
-    BtgFloat4 w = btgXyz(angVel);
-    BtgFloat4 iwo = btgMat3MulVec(iw, w);
-    /* evalEulerEqn at w1 = w0 without torque: I w1 + w1 x I w1 dt - I w0. */
-    BtgFloat4 f = iwo + btgCross3(w, iwo) * dt - iwo;
-    BtgMat3 s0i = btgMat3Mul(btgSkew(w), iw);
-    BtgMat3 s1 = btgSkew(iwo);
-    BtgMat3 j;
-    j.r0 = iw.r0 + (s0i.r0 - s1.r0) * dt;
-    j.r1 = iw.r1 + (s0i.r1 - s1.r1) * dt;
-    j.r2 = iw.r2 + (s0i.r2 - s1.r2) * dt;
-    return -btgSolve33(j, f);
+    return -btgEulerNewtonStep(iw, btgXyz(angVel), dt);
 }
 /* Bullet's explicit gyroscopic force (computeGyroscopicForceExplicit): w x I w with the world
  * inertia tensor, its length bounded by maxForce. */
@@ -162,8 +167,8 @@ static inline BtgFloat4 btgGyroscopicForceExplicit(BtgMat3 iw, BtgFloat4 angVel,
     if (l2 > maxForce * maxForce) gf = gf * (1.0f / btgSqrt(l2) * maxForce);
     return gf;
 }
-/* Bullet's implicit body-frame gyroscopic term (computeGyroscopicImpulseImplicit_Body):
- * one Newton step on the Euler equation, returns the change of world angular velocity. */
+/* Bullet's implicit body-frame gyroscopic term (computeGyroscopicImpulseImplicit_Body): the step
+ * in the body's frame; returns the change of world angular velocity. */
 static inline BtgFloat4 btgGyroscopicImpulse(BtgFloat4 rot, BtgFloat4 angVel, BtgFloat4 localInertia, float dt)
 {
     BtgFloat4 omegab = btgQuatRotate(btgQuatConj(rot), angVel);
@@ -171,15 +176,7 @@ static inline BtgFloat4 btgGyroscopicImpulse(BtgFloat4 rot, BtgFloat4 angVel, Bt
     ib.r0 = btgMake4(localInertia.x, 0.0f, 0.0f, 0.0f);
     ib.r1 = btgMake4(0.0f, localInertia.y, 0.0f, 0.0f);
     ib.r2 = btgMake4(0.0f, 0.0f, localInertia.z, 0.0f);
-    BtgFloat4 ibo = btgMat3MulVec(ib, omegab);
-    BtgFloat4 f = btgCross3(omegab, ibo) * dt;
-    BtgMat3 s0i = btgMat3Mul(btgSkew(omegab), ib);
-    BtgMat3 s1 = btgSkew(ibo);
-    BtgMat3 j;
-    j.r0 = ib.r0 + (s0i.r0 - s1.r0) * dt;
-    j.r1 = ib.r1 + (s0i.r1 - s1.r1) * dt;
-    j.r2 = ib.r2 + (s0i.r2 - s1.r2) * dt;
-    omegab = omegab - btgSolve33(j, f);
+    omegab = omegab - btgEulerNewtonStep(ib, omegab, dt);
     return btgQuatRotate(rot, omegab) - btgXyz(angVel);
 }
 
