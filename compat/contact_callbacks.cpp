@@ -207,6 +207,9 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
         const btScalar deviceFriction = btManifoldResult::calculateCombinedFriction(sA.object, sB.object);
         const btScalar deviceRestitution = sA.object->getRestitution() * sB.object->getRestitution();
         const int n = std::min(m.numPoints, int(BTG_MAX_POINTS));
+        // A convex–concave pair's points carry their triangles' keys: its added points are named
+        // by place (their identities would match by feature id points of one triangle alike).
+        const bool byPosition = g.added != -2 && (unsigned(g.added) & BTG_ADDED_BY_POSITION) != 0u;
         // Stock's box–box algorithm (the dispatcher's for two btBoxShape leaves, a compound's
         // child boxes too: the GPU path requires Bullet's default algorithms) reports a point only
         // while the boxes overlap and only with depth >= 0 (dBoxBox2); a speculative device point
@@ -271,7 +274,7 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
             bool oldMoved = false;
             const btManifoldPoint* old =
                 sync.continued(side, p.featureId, cp.m_index0, cp.m_partId1, cp.m_index1, cp.m_localPointA, &oldMoved,
-                               g.added != -2);
+                               g.added != -2 && !byPosition);
             // Where a body is a compound, stock's compound algorithm refreshes the child manifold
             // before the child collides (ManifoldSync::refreshesPerStep): the old point, aged and
             // at this step's transforms, goes to the processed callback first, and the point that
@@ -314,7 +317,8 @@ bool ContactCallbacks::run(DeviceWorld& w, const RowMap& rows, const std::unorde
             // A GJK pair's manifold persists its points (stock's convex–convex algorithm adds one
             // a step): only the one this substep added or replaced is called; the others are kept
             // points, as the box–box ones above.
-            const bool persisted = g.added != -2 && !((unsigned(g.added) >> (p.featureId & 7u)) & 1u);
+            const unsigned bit = byPosition ? unsigned(k) : (p.featureId & 7u);
+            const bool persisted = g.added != -2 && !((unsigned(g.added) >> bit) & 1u);
             const bool kept = flagged && ((boxBox && p.distance > 0) || persisted) && old && !oldMoved;
             if (kept) {
                 cp.m_combinedFriction = (preCalled ? pre : *old).m_combinedFriction;

@@ -114,7 +114,7 @@ std::string frictionAnchorReason(unsigned anchoredKinds, unsigned worldKinds)
             if (!((worldKinds >> w) & 1u)) continue;
             const bool compound = a == BTG_SHAPE_COMPOUND || w == BTG_SHAPE_COMPOUND;
             const int kind = btgPairKind(a, w);
-            if (compound || (kind != BTG_PAIR_NONE && !btgIsPersistentKind(kind)))
+            if (compound || (kind != BTG_PAIR_NONE && (!btgIsPersistentKind(kind) || btgIsConcaveKind(kind))))
                 return std::string("friction anchors (CF_HAS_FRICTION_ANCHOR) on a ") + kNames[a] + " beside a " +
                        kNames[w] + " (the device keeps no persistent manifold for that pair kind)";
         }

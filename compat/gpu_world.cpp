@@ -567,7 +567,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
                 m_report.ghostBroadphaseMs += msBetween(g0, Clock::now());
             }
             syncIn(*m_dev, changedRows(false));
-            resetRows(*m_dev, takeWoken());
+            afterSyncIn();
             m_joints.upload(m_world, m_rows, *m_dev);  // limits, pivots, enabled, ... as the app left them
             if (m_ignored.update(m_rows, *m_dev)) {
                 m_plan.hasIgnoredPairs = m_ignored.any();
@@ -637,7 +637,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         // made bad is named now, as on the CPU path, not at the next call that steps.
         Clock::time_point t0 = Clock::now();
         syncIn(*m_dev, changedRows(false));
-        resetRows(*m_dev, takeWoken());
+        afterSyncIn();
         m_report.syncInMs += msBetween(t0, Clock::now());
     }
     *substepsDone = numSubSteps;

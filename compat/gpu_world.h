@@ -174,7 +174,9 @@ private:
     // Per row, set by compareRow: the app woke this sleeping body (activate()), which restarts
     // its deactivation timer in Bullet; the device's timers are reset to match.
     std::vector<char> m_woken;
-    std::vector<int> takeWoken();
+    std::vector<char> m_reshaped;  // per row: its mesh or heightfield was edited (compareRow)
+    // After a syncIn: the woken rows' timers reset, the edited concave rows' kept points dropped.
+    void afterSyncIn();
     ManifoldSync m_manifolds;   // the app's dispatcher manifolds on the GPU path
     ContactCallbacks m_callbacks;  // the app's callbacks between the contacts and the solve
     // A change the callbacks made that the device cannot carry: the world stays on the CPU path

@@ -104,7 +104,7 @@ void GpuWorld::runActions(btScalar dt)
     // they added or removed joins or leaves the rows at the next internal step (removed
     // objects are skipped until then).
     syncIn(*m_dev, changedRows(false));
-    resetRows(*m_dev, takeWoken());
+    afterSyncIn();
 }
 
 bool GpuWorld::followWithinCall(int batch, int batches, btScalar fixedTimeStep)

@@ -143,12 +143,18 @@ const btManifoldPoint* ManifoldSync::continued(const Side& side, unsigned featur
     const Entry& e = it->second;
     const btPersistentManifold* m = e.manifold;
     const btScalar thr2 = m->getContactBreakingThreshold() * m->getContactBreakingThreshold();
+    // By identity the first with the feature id; else (a triangle's key may name several points)
+    // the nearest of those within the threshold.
     int match = -1;
-    for (int j = 0; j < m->getNumContacts() && match < 0; ++j) {
+    btScalar nearest = thr2;
+    for (int j = 0; j < m->getNumContacts() && !(identities && match >= 0); ++j) {
         const btManifoldPoint& o = m->getContactPoint(j);
+        const btScalar d2 = (o.m_localPointA - localA).length2();
         if (featureId != BTG_FEATURE_UNKNOWN && e.ids[j] == featureId && o.m_index1 == index1 && o.m_partId1 == partId1 &&
-            o.m_index0 == index0 && (identities || (o.m_localPointA - localA).length2() < thr2))
+            o.m_index0 == index0 && (identities || d2 < nearest)) {
             match = j;
+            nearest = d2;
+        }
     }
     if (match < 0) {
         btScalar best = thr2;

@@ -7,6 +7,8 @@
 #include "cpu_path_rules.h"
 #include "parallel_rows.h"
 #include "shared/integrate.h"
+#include "stages/narrowphase_gjk.h"
+#include "stages/sync_bodies.h"
 
 #include <algorithm>
 #include <cstring>
@@ -104,6 +106,7 @@ std::vector<BodyRowUpdate> GpuWorld::changedRows(bool all)
     const int chunks = chunkCount(n, minPerThread);
     std::vector<std::vector<BodyRowUpdate>> found(chunks);
     m_woken.assign(n, 0);
+    m_reshaped.assign(n, 0);
     std::vector<std::vector<std::pair<size_t, std::string>>> newlyBad(chunks);
     forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
         for (size_t r = begin; r < end; ++r) {
@@ -134,13 +137,18 @@ std::vector<BodyRowUpdate> GpuWorld::changedRows(bool all)
     return out;
 }
 
-std::vector<int> GpuWorld::takeWoken()
+void GpuWorld::afterSyncIn()
 {
     std::vector<int> rows;
     for (size_t r = 0; r < m_woken.size(); ++r)
         if (m_woken[r]) rows.push_back(int(r));
     m_woken.clear();
-    return rows;
+    resetRows(*m_dev, rows);
+    rows.clear();
+    for (size_t r = 0; r < m_reshaped.size(); ++r)
+        if (m_reshaped[r]) rows.push_back(int(r));
+    m_reshaped.clear();
+    forgetConcaveManifolds(*m_dev, rows);
 }
 
 bool GpuWorld::compareRow(size_t r, bool all, BodyRowUpdate* u, std::string* newlyBad)
@@ -174,6 +182,12 @@ bool GpuWorld::compareRow(size_t r, bool all, BodyRowUpdate* u, std::string* new
     if (excluded && !m.excluded) *newlyBad = bad;
     if (!all && m.props.flags != 0xffffffffu && (m.props.flags & BTG_BODY_SLEEPING) && !(props.flags & BTG_BODY_SLEEPING))
         m_woken[r] = 1;
+    // A mesh or heightfield the app edited in place is read again into a new row: the points the
+    // device keeps against the old surface go, as stock's go when the app cleans the pair (it
+    // must: its manifolds too hold the old surface's points) or the pair's AABBs part.
+    if (m.props.flags != 0xffffffffu && m.props.shape != props.shape &&
+        btgIsConcave(m_shapes.shapes[size_t(shapeRow)].type))
+        m_reshaped[r] = 1;
     BodyState s = bodyState(o);
     u->row = int(r);
     u->pos = finiteOrZero(s.pos);

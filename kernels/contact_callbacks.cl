@@ -6,8 +6,9 @@
  * With an overlap filter callback the host first empties the ranges of the pairs Bullet's pair
  * cache does not hold (clear_pair_ranges, one work-item per refused pair).
  * Launch: gather_callback_manifolds one work-item per pair slot (pairCapacity), each gathered
- * manifold with the points its persistent pair added this substep (gjkPairState.addedMask;
- * -2: not persistent, all its points are this substep's);
+ * manifold with the points its persistent pair added this substep (gjkPairState.addedMask by
+ * id, a convex–concave pair's addedPoints by place with BTG_ADDED_BY_POSITION; -2: not
+ * persistent, all its points are this substep's);
  * scatter_callback_manifolds one per changed manifold; apply_contact_materials one per contact
  * slot (contactCapacity), right after prepare_contacts.
  * Reads pairManifolds, manifolds, props (BTG_BODY_CUSTOM_MATERIAL), counters[kPairCount,
@@ -42,10 +43,17 @@ __kernel void gather_callback_manifolds(__global const BtgManifoldRange* restric
      * (the points the app's added callback is called for), from the pair's state the
      * narrowphase left, as a mask of their identities. */
     int addedId = -2;
-    if ((int)i < gjkCapacity && btgHasPersistentState(pairs[i], gjkPairState[i], props, shapes, children))
+    uint byPosition = 0u; /* a convex–concave pair's: its points' feature ids are triangle keys */
+    if ((int)i < gjkCapacity && btgHasPersistentState(pairs[i], gjkPairState[i], props, shapes, children)) {
         addedId = (int)gjkPairState[i].addedMask;
+        if (btgIsConcaveKind(gjkPairState[i].kind)) byPosition = gjkPairState[i].addedPoints;
+    }
+    int emitted = 0;
     for (int j = r.start; j < r.start + r.count; ++j) {
         BtgManifold m = manifolds[j];
+        if (addedId != -2 && btgIsConcaveKind(gjkPairState[i].kind))
+            addedId = (int)(BTG_ADDED_BY_POSITION | ((byPosition >> emitted) & 0xfu));
+        emitted += m.numPoints;
         if (m.numPoints <= 0) continue;
         if (!all && !((props[m.bodyA].flags | props[m.bodyB].flags) & BTG_BODY_CUSTOM_MATERIAL)) continue;
         uint k = atomic_inc(gatherCount);

@@ -28,7 +28,7 @@ __kernel void midphase_count(__global const BtgPair* restrict pairs, __global co
                              __global const int* restrict parts, __global const BtgTriangle* restrict triangles,
                              __global const BtgFloat4* restrict meshVerts,
                              __global const BtgHeightfield* restrict heightfields, __global const float* restrict heights,
-                             __global uint* restrict counts, uint countSlots)
+                             __global uint* restrict counts, uint countSlots, int persistent)
 {
     uint start, end;
     btgMeshPairRange(kindRanges, &start, &end);
@@ -37,7 +37,7 @@ __kernel void midphase_count(__global const BtgPair* restrict pairs, __global co
         if (start + i < end) {
             uint slot = midphase_slot(i, start, kindOrder, indirect);
             c = btgMidphasePair(pairs[slot], (int)slot, pos, rot, props, shapes, children, BTG_CONCAVE_TABLE_ARGS, 0, 0u,
-                                0u);
+                                0u, persistent);
         }
         counts[i] = c;
     }
@@ -62,7 +62,7 @@ __kernel void midphase_write(__global const BtgPair* restrict pairs, __global co
                              __global const BtgFloat4* restrict meshVerts,
                              __global const BtgHeightfield* restrict heightfields, __global const float* restrict heights,
                              __global const uint* restrict offsets,
-                             uint countSlots, __global BtgSubPair* restrict subPairs, uint capacity)
+                             uint countSlots, __global BtgSubPair* restrict subPairs, uint capacity, int persistent)
 {
     uint start, end;
     btgMeshPairRange(kindRanges, &start, &end);
@@ -71,6 +71,6 @@ __kernel void midphase_write(__global const BtgPair* restrict pairs, __global co
         if (offsets[i + 1u] == first || first >= capacity) continue;
         uint slot = midphase_slot(i, start, kindOrder, indirect);
         btgMidphasePair(pairs[slot], (int)slot, pos, rot, props, shapes, children, BTG_CONCAVE_TABLE_ARGS, subPairs,
-                        first, capacity);
+                        first, capacity, persistent);
     }
 }

@@ -4,13 +4,14 @@
  * Launch: one work-item per contact slot (contactCapacity), after store_contact_cache and before
  * integrate_transforms (the bodies still where the contacts were built).
  * Reads contacts, contactManifolds, manifolds, counters[kContactCount], pos, rot; pairs, props,
- * shapes, children and gjkPairState to mark a GJK pair's persistent manifold.
+ * shapes, children, gjkPairState and subPairs to mark a persistent pair's manifold.
  * Writes reports[0, min(count, capacity)). */
 #include "shared/counters.h"
 #include "shared/types.h"
 #include "shared/contact_report.h"
 #include "shared/compound.h"
 #include "shared/pair_kinds.h"
+#include "shared/mesh.h"
 
 __kernel void report_contacts(__global const BtgContact* restrict contacts,
                               __global const uint* restrict contactManifolds,
@@ -19,7 +20,8 @@ __kernel void report_contacts(__global const BtgContact* restrict contacts,
                               __global const BtgFloat4* restrict rot, __global BtgContactReport* reports,
                               __global const BtgPair* restrict pairs, __global const BtgBodyProps* restrict props,
                               __global const BtgShape* restrict shapes, __global const BtgChild* restrict children,
-                              __global const BtgPersistentManifold* restrict gjkPairState, int gjkCapacity)
+                              __global const BtgPersistentManifold* restrict gjkPairState, int gjkCapacity,
+                              uint base, __global const BtgSubPair* restrict subPairs, uint subPairCapacity)
 {
     uint i = (uint)get_global_id(0);
     uint n = min(counters[BTG_COUNTER_CONTACTS], (uint)contactCapacity);
@@ -28,8 +30,11 @@ __kernel void report_contacts(__global const BtgContact* restrict contacts,
     const uint slot = contactManifolds[i];
     BtgManifold m = manifolds[slot];
     BtgContactReport r = btgContactReportFrom(&c, m, pos[m.bodyA], rot[m.bodyA], pos[m.bodyB], rot[m.bodyB]);
-    /* A GJK pair's manifold is its pair's slot (narrowphase_gjk), its state the one the
-     * narrowphase left there (as store_persistent_manifolds finds it). */
-    if (slot < (uint)gjkCapacity) r.persistent = btgHasPersistentState(pairs[slot], gjkPairState[slot], props, shapes, children);
+    /* A persistent pair's state is the one the narrowphase left at its pair's slot (as
+     * store_persistent_manifolds finds it): the manifold's own slot, or for a convex–concave
+     * pair's group the slot of its sub-pairs' pair. */
+    const uint pairSlot = btgManifoldPair(slot, base, subPairs, subPairCapacity);
+    if (pairSlot < (uint)gjkCapacity)
+        r.persistent = btgHasPersistentState(pairs[pairSlot], gjkPairState[pairSlot], props, shapes, children);
     reports[i] = r;
 }

@@ -44,14 +44,20 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::SortSweep: smallBodyPairs(w, plan.broadphase, plan.cellSize); break;
         case Stage::FindPairs: finishPairs(w, plan.kinds, !plan.hasCompounds); break;
         case Stage::ExpandCompounds: expandCompounds(w, plan.kinds); break;
-        case Stage::Midphase: midphase(w); break;
+        case Stage::Midphase:
+            w.speculativeBoxes = plan.solver == SolverKind::SoftStep;
+            midphase(w);
+            break;
         case Stage::Narrowphase:
         case Stage::NarrowphaseSat:
         case Stage::NarrowphaseGjk:
             w.speculativeBoxes = plan.solver == SolverKind::SoftStep;
             narrowphaseProgram(w, plan.kinds, narrowphaseProgramOf(stage));
             break;
-        case Stage::NarrowphaseMesh: narrowphaseMesh(w, plan.kinds); break;
+        case Stage::NarrowphaseMesh:
+            w.speculativeBoxes = plan.solver == SolverKind::SoftStep;
+            narrowphaseMesh(w, plan.kinds);
+            break;
         case Stage::FilterPairs: filterPairs(w); break;
         case Stage::ApplyForces: applyForces(w, p.dt, p.maxGyroscopicForce); break;
         case Stage::ContactCache: buildContacts(w, p); break;

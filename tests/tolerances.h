@@ -39,6 +39,9 @@ constexpr double kAnchorSlide = 1e-3;        // m
 // sideways drift over 5 s on the GPU path (stock's boxes, one GJK point a frame, rock and slide
 // up to 28 cm on a mesh, 13 cm on a heightfield); 1 cm bounds it.
 constexpr double kMeshDrift = 0.01;          // m
+// m: a body's rest height against stock's on a mesh, where either may rest on one GJK point a
+// triangle a few mm deep (stock's btConvexConcaveCollisionAlgorithm, followed by both)
+constexpr double kMeshRestHeight = 0.005;
 // A bounce's apex depends on the impact speed at the step the contact appears and on the
 // restitution threshold: 5 % of stock's apex.
 constexpr double kBounceApexRel = 0.05;

@@ -334,7 +334,8 @@ static inline BtgPersistentManifold btgBoxBoxStep(BtgPersistentManifold prev, Bt
     btgPersistentBegin(&m, dist);
     const BtgBoxBoxPoints pts = btgBoxBoxPoints(a, b);
     for (int k = 0; k < pts.count; ++k)
-        btgPersistentAdd(&m, dist, &prev, pts.normal, pts.pointB[k], pts.distance[k], a.pose, b.pose, threshold);
+        btgPersistentAdd(&m, dist, &prev, pts.normal, pts.pointB[k], pts.distance[k], a.pose, b.pose, threshold,
+                         BTG_FEATURE_UNKNOWN);
     if (pts.count > 1) m.added = -2; /* several added this step */
     btgPersistentRefresh(&m, dist, a.pose, b.pose, threshold);
     return m;

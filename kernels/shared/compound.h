@@ -42,12 +42,14 @@ static inline int btgPairKindOf(BtgPair p, BTG_CONST_GLOBAL BtgBodyProps* props,
 }
 
 /* Whether the GJK state the narrowphase left at pair p's slot is p's own of this substep (a kind
- * with a persistent manifold, p's bodies): the contact report and the callbacks' gather read it. */
+ * with a persistent manifold, p's bodies, a convex–concave pair's with the convex first): the
+ * contact report and the callbacks' gather read it. */
 static inline int btgHasPersistentState(BtgPair p, BtgPersistentManifold s, BTG_CONST_GLOBAL BtgBodyProps* props,
                                         BTG_CONST_GLOBAL BtgShape* shapes, BTG_CHILD_TABLE)
 {
     const int kind = btgPairKindOf(p, props, shapes, children);
-    return btgIsPersistentKind(kind) && s.kind == kind && s.bodyA == p.a && s.bodyB == p.b;
+    return btgIsPersistentKind(kind) && s.kind == kind &&
+           ((s.bodyA == p.a && s.bodyB == p.b) || (btgIsConcaveKind(kind) && s.bodyA == p.b && s.bodyB == p.a));
 }
 
 /* A leaf's world pose as a position and quaternion (Bullet's body * child transform). */

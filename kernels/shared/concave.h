@@ -17,13 +17,14 @@
 static inline int btgIsConcave(int type) { return type == BTG_SHAPE_MESH || type == BTG_SHAPE_HEIGHTFIELD; }
 
 /* The midphase of one broadphase pair: 0 unless exactly one side is concave and the other a
- * convex; else the convex's box (btgMidphaseBox with the pair's threshold) walked through the
+ * convex; else the convex's box (btgMidphaseBox with the pair's threshold, none when `persistent`)
+ * walked through the
  * mesh's BVH or over the heightfield's cells. The convex may be a compound's leaf, at its own
  * pose. */
 static inline uint btgMidphasePair(BtgPair p, int slot, BTG_CONST_GLOBAL BtgFloat4* pos, BTG_CONST_GLOBAL BtgFloat4* rot,
                                    BTG_CONST_GLOBAL BtgBodyProps* props, BTG_CONST_GLOBAL BtgShape* shapes,
                                    BTG_CHILD_TABLE, BTG_CONCAVE_TABLES, BTG_GLOBAL BtgSubPair* out, uint first,
-                                   uint capacity)
+                                   uint capacity, int persistent)
 {
     (void)triangles;
     (void)meshVerts;
@@ -33,7 +34,8 @@ static inline uint btgMidphasePair(BtgPair p, int slot, BTG_CONST_GLOBAL BtgFloa
     if (!btgIsConcave(ms.type) || btgIsConcave(cs.type) || cs.type == BTG_SHAPE_PLANE) return 0u;
     int c = concaveIsA ? p.b : p.a, mb = concaveIsA ? p.a : p.b;
     int child = concaveIsA ? p.childB : p.childA;
-    float t = sa.breakingThreshold < sb.breakingThreshold ? sa.breakingThreshold : sb.breakingThreshold;
+    /* the bullet mode's manifolds persist, as stock's: its box is stock's, grown by no threshold */
+    float t = persistent ? 0.0f : (sa.breakingThreshold < sb.breakingThreshold ? sa.breakingThreshold : sb.breakingThreshold);
     BtgFloat4 cp = pos[c], cq = rot[c];
     if (child != BTG_WHOLE_BODY) btgChildWorld(pos[c], rot[c], children[child - 1], &cp, &cq);
     BtgAabb box = btgMidphaseBox(cp, cq, cs, pos[mb], rot[mb], ms, t);

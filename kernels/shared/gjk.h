@@ -441,16 +441,21 @@ static inline int btgEpa(BtgCollider a, BtgCollider b, BTG_CONST_GLOBAL BtgFloat
     BtgEpaFace f = faces[best];
     BtgFloat4 q = btgXyz(f.n) * f.n.w;
     BtgFloat4 w0 = vs[f.v0].w, w1 = vs[f.v1].w, w2 = vs[f.v2].w;
-    BtgFloat4 e0 = w1 - w0, e1 = w2 - w0, e2 = q - w0;
-    float d00 = btgDot3(e0, e0), d01 = btgDot3(e0, e1), d11 = btgDot3(e1, e1);
-    float d20 = btgDot3(e2, e0), d21 = btgDot3(e2, e1);
-    float denom = d00 * d11 - d01 * d01;
-    float l1 = 0.0f, l2 = 0.0f;
-    if (btgAbs(denom) > 1e-20f) {
-        l1 = (d11 * d20 - d01 * d21) / denom;
-        l2 = (d00 * d21 - d01 * d20) / denom;
+    /* btGjkEpa2::Penetration's weights: the unsigned areas the projection makes with each edge,
+     * normalized, so the witness stays within the face's support points even where the
+     * projection falls outside the face (a flat contact, a triangle's zero thickness): signed
+     * barycentrics there put it metres away on the surface's plane. */
+    float l0 = btgLength3(btgCross3(w1 - q, w2 - q)), l1 = btgLength3(btgCross3(w2 - q, w0 - q)),
+          l2 = btgLength3(btgCross3(w0 - q, w1 - q));
+    const float sum = l0 + l1 + l2;
+    if (sum > 0.0f) {
+        l0 = l0 / sum;
+        l1 = l1 / sum;
+        l2 = l2 / sum;
+    } else {
+        l0 = 1.0f;
+        l1 = l2 = 0.0f;
     }
-    float l0 = 1.0f - l1 - l2;
     *pa = vs[f.v0].a * l0 + vs[f.v1].a * l1 + vs[f.v2].a * l2;
     *pb = *pa - q;
     return 1;

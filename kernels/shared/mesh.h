@@ -57,6 +57,14 @@ typedef struct {
     int index;    /* Bullet's m_index: the triangle within its part */
 } BtgSubPair;
 
+/* The pair slot whose manifold lies at `slot`: its own (slot < base, the pair slots), or a
+ * convex–concave pair's group manifold in the sub-pair region (base + s: sub-pair s's pair). */
+static inline uint btgManifoldPair(uint slot, uint base, BTG_CONST_GLOBAL BtgSubPair* subPairs, uint subPairCapacity)
+{
+    if (slot < base) return slot;
+    return slot - base < subPairCapacity ? (uint)subPairs[slot - base].pair : 0xffffffffu;
+}
+
 /* A quantized box: min xyz and max xyz. */
 typedef struct {
     uint lo[3];
@@ -95,19 +103,14 @@ static inline int btgNodeOverlaps(BtgBvhNode n, BtgQuantizedBox q)
            q.hi[2] >= minZ;
 }
 
-/* The box the midphase queries, in the mesh's unscaled BVH frame: the convex's local AABB
- * (margin included) carried into the mesh body's frame (btTransformAabb of T_mesh^-1 T_convex,
- * as btConvexTriangleCallback::setTimeStepAndCounters), grown by the triangles' margin and by
- * `threshold`, then divided by a scaled wrapper's scaling (btScaledBvhTriangleMeshShape::
- * processAllTriangles, negative scaling included). Bullet grows by the margin only and its
- * persistent manifold keeps earlier points while they stay within the breaking threshold; the
- * GPU path builds each manifold afresh, so it finds those points by growing the box by the
- * pair's threshold (the triangles' contacts are still kept only below it). */
-static inline BtgAabb btgMidphaseBox(BtgFloat4 convexPos, BtgFloat4 convexRot, BtgShape convex, BtgFloat4 meshPos,
-                                     BtgFloat4 meshRot, BtgShape mesh, float threshold)
+/* The convex's box in the concave body's frame before a scaled wrapper's scaling is undone (the
+ * box btConvexTriangleCallback tests each triangle against, TestTriangleAgainstAabb2), from the
+ * rotation matrices of the two poses; grown by the triangles' margin and by `threshold`. */
+static inline BtgAabb btgConvexBoxInConcave(BtgFloat4 convexPos, BtgMat3 convexRot, BtgShape convex, BtgFloat4 meshPos,
+                                            BtgMat3 meshRot, BtgShape mesh, float threshold)
 {
-    BtgMat3 rm = btgQuatToMat3(meshRot);
-    BtgMat3 rel = btgMat3Mul(btgMat3Transpose(rm), btgQuatToMat3(convexRot));
+    BtgMat3 rm = meshRot;
+    BtgMat3 rel = btgMat3Mul(btgMat3Transpose(rm), convexRot);
     BtgFloat4 t = btgMat3TMulVec(rm, btgXyz(convexPos - meshPos));
     BtgFloat4 halfExt = btgXyz(convex.localAabbMax - convex.localAabbMin) * 0.5f;
     BtgFloat4 localCentre = btgXyz(convex.localAabbMax + convex.localAabbMin) * 0.5f;
@@ -125,6 +128,22 @@ static inline BtgAabb btgMidphaseBox(BtgFloat4 convexPos, BtgFloat4 convexRot, B
     BtgAabb box;
     box.lo = centre - extent;
     box.hi = centre + extent;
+    return box;
+}
+
+/* The box the midphase queries, in the mesh's unscaled BVH frame: the convex's local AABB
+ * (margin included) carried into the mesh body's frame (btTransformAabb of T_mesh^-1 T_convex,
+ * as btConvexTriangleCallback::setTimeStepAndCounters), grown by the triangles' margin and by
+ * `threshold`, then divided by a scaled wrapper's scaling (btScaledBvhTriangleMeshShape::
+ * processAllTriangles, negative scaling included). Bullet grows by the margin only, and so does
+ * the bullet mode, whose manifolds persist as stock's (threshold 0); the soft step builds each
+ * manifold afresh, so it finds the points stock's manifold would keep by growing the box by the
+ * pair's threshold (the triangles' contacts are still kept only below it). */
+static inline BtgAabb btgMidphaseBox(BtgFloat4 convexPos, BtgFloat4 convexRot, BtgShape convex, BtgFloat4 meshPos,
+                                     BtgFloat4 meshRot, BtgShape mesh, float threshold)
+{
+    BtgAabb box = btgConvexBoxInConcave(convexPos, btgQuatToMat3(convexRot), convex, meshPos, btgQuatToMat3(meshRot), mesh,
+                                        threshold);
     /* times 1/s, as Bullet computes it (exact for the usual scaling of 1) */
     BtgFloat4 s = mesh.param;
     BtgFloat4 inv = btgMake4(1.0f / s.x, 1.0f / s.y, 1.0f / s.z, 0.0f);

@@ -91,8 +91,9 @@
  * kernel strides over the sub-pairs of its kind. Boxes and hulls (a box's row holds its hull)
  * take the same routine; convex shapes known only by their support function take GJK against
  * the triangle (btgCollideConvexTriangle: stock's one point per triangle per step). The mesh
- * program rebuilds each pair's manifold every step from its triangles' points (it keeps none
- * across steps), so these pairs hold this step's points only, not stock's accumulated ones. */
+ * bullet mode takes one point per triangle for every row (btgCollideTrianglePoint: stock's
+ * algorithms) into the pair's persistent manifold (concave_manifold.h); the rows' routines
+ * clip each triangle for the soft step, whose pairs keep nothing across steps. */
 #define BTG_PAIR_KINDS_NARROWPHASE_MESH(X)                                                                    \
     X(narrowphase_mesh, BTG_PAIR_SPHERE_MESH, BTG_SHAPE_SPHERE, BTG_SHAPE_MESH, btgCollideSphereTriangle,     \
       collide_sphere_triangles)                                                                               \
@@ -129,17 +130,22 @@ static inline int btgPairKind(int ta, int tb)
 }
 #undef BTG_PAIR_KIND_IF_ROW
 
-/* Whether a kind's pairs keep a persistent manifold (the box and GJK programs'). */
+/* Whether a kind's pairs keep a persistent manifold (the box and GJK programs'; the mesh
+ * program's in the bullet mode, whose manifold is kept with the convex as A). */
 #define BTG_PAIR_KIND_CASE(program, kind, shapeA, shapeB, routine, kernel) case (kind):
 static inline int btgIsPersistentKind(int kind)
 {
     switch (kind) {
         BTG_PAIR_KINDS_NARROWPHASE_SAT(BTG_PAIR_KIND_CASE)
         BTG_PAIR_KINDS_NARROWPHASE_GJK(BTG_PAIR_KIND_CASE)
+        BTG_PAIR_KINDS_NARROWPHASE_MESH(BTG_PAIR_KIND_CASE)
         return 1;
         default: return 0;
     }
 }
 #undef BTG_PAIR_KIND_CASE
+
+/* Whether a kind is a convex against a mesh or heightfield. */
+static inline int btgIsConcaveKind(int kind) { return kind >= BTG_FIRST_MESH_PAIR_KIND && kind <= BTG_LAST_MESH_PAIR_KIND; }
 
 #endif

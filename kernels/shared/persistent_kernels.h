@@ -8,6 +8,7 @@
 #define BTG_PERSISTENT_KERNELS_H
 #include "contact_rows.h"
 #include "compound.h"
+#include "mesh.h"
 #include "persistent_manifold.h"
 
 /* The manifold the pair kept last substep: found through the warm-start cache (the contacts in
@@ -102,7 +103,8 @@ __kernel void store_persistent_manifolds(__global const uint* restrict contactMa
                                          __global const BtgChild* restrict children,
                                          __global const BtgPersistentManifold* restrict gjkPairState, int pairCapacity,
                                          __global BtgPersistentManifold* restrict gjkCache, int gjkCapacity,
-                                         __global const BtgContact* restrict contacts, uint solverFlags)
+                                         __global const BtgContact* restrict contacts, uint solverFlags, uint base,
+                                         __global const BtgSubPair* restrict subPairs, uint subPairCapacity)
 {
     const uint redo = BTG_STATUS_PAIR_OVERFLOW | BTG_STATUS_CONTACT_OVERFLOW | BTG_STATUS_GRID_BARRIER_TIMEOUT;
     if ((counters[BTG_COUNTER_STATUS] & redo) != 0u) return;
@@ -112,11 +114,12 @@ __kernel void store_persistent_manifolds(__global const uint* restrict contactMa
     const uint slot = contactManifolds[i];
     const BtgManifold m = manifolds[slot];
     BtgPersistentManifold pm = btgEmptyPersistent(m.bodyA, m.bodyB, BTG_PAIR_NONE);
-    if (slot < (uint)pairCapacity) {
-        /* the kind of the (leaf) pair in this slot, which wrote gjkPairState[slot] if a GJK kind */
-        const int kind = btgPairKindOf(pairs[slot], props, shapes, children);
-        const BtgPersistentManifold s = gjkPairState[slot];
-        if (s.kind == kind && s.bodyA == m.bodyA && s.bodyB == m.bodyB) pm = s;
+    /* the (leaf) pair whose manifold this is: its own slot, or a convex–concave pair's group */
+    const uint pairSlot = btgManifoldPair(slot, base, subPairs, subPairCapacity);
+    if (pairSlot < (uint)pairCapacity) {
+        /* the kind of the pair, which wrote gjkPairState[pairSlot] if a persistent kind */
+        const BtgPair p = pairs[pairSlot];
+        if (btgHasPersistentState(p, gjkPairState[pairSlot], props, shapes, children)) pm = gjkPairState[pairSlot];
     }
     pm.anchorMask = 0u;
     if ((solverFlags & BTG_SOLVER_FRICTION_ANCHORS) != 0u && pm.kind != BTG_PAIR_NONE)

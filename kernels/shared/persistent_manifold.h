@@ -20,6 +20,7 @@ static inline BtgPersistentManifold btgEmptyPersistent(int bodyA, int bodyB, int
         m.localB[k] = btgZero4();
         m.normal[k] = btgMake4(0.0f, 1.0f, 0.0f, 0.0f);
         m.id[k] = 0u;
+        m.subShape[k] = BTG_FEATURE_UNKNOWN;
     }
     m.bodyA = bodyA;
     m.bodyB = bodyB;
@@ -28,7 +29,7 @@ static inline BtgPersistentManifold btgEmptyPersistent(int bodyA, int bodyB, int
     m.added = -1;
     m.addedMask = 0u;
     m.anchorMask = 0u;
-    m.pad2 = 0;
+    m.addedPoints = 0u;
     return m;
 }
 
@@ -84,6 +85,7 @@ static inline void btgRemovePersistentPoint(BtgPersistentManifold* m, float* dis
         m->localB[i] = m->localB[last];
         m->normal[i] = m->normal[last];
         m->id[i] = m->id[last];
+        m->subShape[i] = m->subShape[last];
         dist[i] = dist[last];
     }
     m->numPoints = last;
@@ -98,10 +100,11 @@ static inline void btgPersistentBegin(const BtgPersistentManifold* m, float* dis
 }
 
 /* btManifoldResult::addContactPoint: one point (normal from B towards A, the point on B, its
- * signed distance) into the manifold, prev being the manifold as the step began. */
+ * signed distance, its sub-shape key: a triangle's for a concave pair, else BTG_FEATURE_UNKNOWN)
+ * into the manifold, prev being the manifold as the step began. */
 static inline void btgPersistentAdd(BtgPersistentManifold* m, float* dist, const BtgPersistentManifold* prev,
                                     BtgFloat4 normal, BtgFloat4 pointB, float distance, BtgPose pa, BtgPose pb,
-                                    float threshold)
+                                    float threshold, uint subShape)
 {
     if (distance > threshold) return;
     BtgFloat4 worldA = pointB + normal * distance;
@@ -138,6 +141,7 @@ static inline void btgPersistentAdd(BtgPersistentManifold* m, float* dist, const
     m->localB[slot] = lb;
     m->normal[slot] = btgXyz(normal);
     m->id[slot] = id;
+    m->subShape[slot] = subShape;
     m->added = (int)id;
     m->addedMask |= 1u << id;
     dist[slot] = distance;
@@ -172,7 +176,7 @@ static inline BtgPersistentManifold btgPersistentStep(BtgPersistentManifold prev
     m.added = -1;
     m.addedMask = 0u;
     btgPersistentBegin(&m, dist);
-    if (p.valid) btgPersistentAdd(&m, dist, &prev, p.normal, p.pointB, p.distance, pa, pb, threshold);
+    if (p.valid) btgPersistentAdd(&m, dist, &prev, p.normal, p.pointB, p.distance, pa, pb, threshold, BTG_FEATURE_UNKNOWN);
     btgPersistentRefresh(&m, dist, pa, pb, threshold);
     return m;
 }

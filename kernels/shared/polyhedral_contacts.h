@@ -93,7 +93,7 @@ static inline void btgClipHullsIntoManifold(BtgPersistentManifold* m, float* dis
     for (int i = 0; i < count; ++i) {
         float depth = btgDot3(normalA, in[i]) + planeE;
         if (depth <= minDist) depth = minDist;
-        if (depth <= maxDist) btgPersistentAdd(m, dist, prev, n, in[i], depth, a.pose, b.pose, maxDist);
+        if (depth <= maxDist) btgPersistentAdd(m, dist, prev, n, in[i], depth, a.pose, b.pose, maxDist, BTG_FEATURE_UNKNOWN);
     }
 }
 
@@ -109,7 +109,7 @@ static inline BtgPersistentManifold btgPolyhedralStep(BtgPersistentManifold prev
     if (g.valid) {
         const float d = g.distance + a.shape.margin + b.shape.margin;
         btgPersistentAdd(&m, dist, &prev, g.normal, g.pointB - g.normal * b.shape.margin, d, a.pose, b.pose,
-                         threshold);
+                         threshold, BTG_FEATURE_UNKNOWN);
         if (d < 0.0f) {
             btgClipHullsIntoManifold(&m, dist, &prev, a, b, verts, faces, indices, edges, g.normal, d - threshold,
                                      threshold);

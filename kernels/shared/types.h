@@ -364,6 +364,10 @@ typedef struct {
     BtgFloat4 normal[BTG_MAX_POINTS]; /* xyz world unit normal from B towards A (m_normalWorldOnB);
                                          w: distance at the last refresh, m (m_distance1) */
     uint id[BTG_MAX_POINTS];          /* the point's identity, 0..7 (its featureId's low bits) */
+    uint subShape[BTG_MAX_POINTS];    /* a convex–concave pair's: the point's triangle key
+                                         (btgTriangleKey: Bullet's m_partId/m_index on the concave
+                                         side), its manifold point's featureId; else
+                                         BTG_FEATURE_UNKNOWN */
     int bodyA;
     int bodyB;
     int numPoints;
@@ -377,8 +381,17 @@ typedef struct {
                                          anchor (store_persistent_manifolds: a body has
                                          CF_HAS_FRICTION_ANCHOR and the last solve left the point's
                                          lateral impulse inside its friction cone) */
-    int pad2;
+    uint addedPoints;                 /* a convex–concave pair's: bit e set for the e-th point of
+                                         the pair's manifolds (in their range's order) that this
+                                         substep added or replaced (the callbacks' gather reads it:
+                                         those points' feature ids are triangle keys, not ids) */
 } BtgPersistentManifold;
+
+/* The callbacks' gather (contact_callbacks.cl) names the points a persistent pair added this
+ * substep by a mask of their ids (bit featureId & 7); a convex–concave pair's points carry
+ * triangle keys instead, so its mask is by their places in the gathered manifold (bit k: point
+ * k), flagged with this bit. */
+#define BTG_ADDED_BY_POSITION 0x100u
 
 /* Per-step scalars, passed by value to the kernels that need them. */
 typedef struct {
@@ -437,7 +450,7 @@ static_assert(sizeof(BtgFrictionAnchor) == 32, "BtgFrictionAnchor layout");
 static_assert(sizeof(BtgCachedContact) == 16 * (BTG_MAX_POINTS + 2 * BTG_WARMSTART_FRICTION) + 4 * BTG_MAX_POINTS + 32,
               "BtgCachedContact layout");
 static_assert(sizeof(BtgStepParams) == 80, "BtgStepParams layout");
-static_assert(sizeof(BtgPersistentManifold) == 16 * 3 * BTG_MAX_POINTS + 4 * BTG_MAX_POINTS + 32,
+static_assert(sizeof(BtgPersistentManifold) == 16 * 3 * BTG_MAX_POINTS + 8 * BTG_MAX_POINTS + 32,
               "BtgPersistentManifold layout");
 #endif
 

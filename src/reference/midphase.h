@@ -19,9 +19,11 @@ struct MeshTablesView {
 };
 
 // The sub-pairs of each (slot, pair) in the order given (the device's: the mesh kinds' range of
-// the kind-grouped pairs), each pair's triangles in the BVH walk's order.
+// the kind-grouped pairs), each pair's triangles in the BVH walk's order; `persistent`: the
+// bullet mode's box (stock's, grown by no threshold), else the soft step's.
 std::vector<BtgSubPair> referenceMidphase(const std::vector<int>& slots, const BtgPair* pairs, const BtgFloat4* pos,
                                           const BtgFloat4* rot, const BtgBodyProps* props, const BtgShape* shapes,
-                                          const MeshTablesView& m, const BtgChild* children = nullptr);
+                                          const MeshTablesView& m, const BtgChild* children = nullptr,
+                                          bool persistent = false);
 
 }  // namespace btgpu::ref

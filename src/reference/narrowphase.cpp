@@ -5,6 +5,7 @@
 
 #include "shared/clip.h"
 #include "shared/compound.h"
+#include "shared/concave_manifold.h"
 #include "shared/polyhedral_contacts.h"
 #include "shared/simple_contacts.h"
 #include "shared/triangle_contacts.h"
@@ -49,7 +50,7 @@ std::vector<BtgManifold> referenceNarrowphase(const std::vector<BtgPair>& pairs,
 
 BtgManifold referenceTriangleContact(const BtgSubPair& sp, const BtgPair* pairs, const BtgFloat4* pos,
                                      const BtgFloat4* rot, const BtgBodyProps* props, const ShapeTablesView& t,
-                                     const MeshTablesView& mt)
+                                     const MeshTablesView& mt, bool persistent)
 {
     const BtgPair p = pairs[sp.pair];
     BtgCollider a = btgLoadPairCollider(p, 0, pos, rot, props, t.shapes, t.children);
@@ -64,7 +65,11 @@ BtgManifold referenceTriangleContact(const BtgSubPair& sp, const BtgPair* pairs,
     const BtgFloat4* meshVerts = mt.vertices;
     const BtgHeightfield* heightfields = mt.heightfields;
     const float* heights = mt.heights;
-    switch (btgPairKind(a.shape.type, b.shape.type)) {
+    const int kind = btgPairKind(a.shape.type, b.shape.type);
+    if (persistent && btgIsConcaveKind(kind))
+        return btgWithChildKeys(btgTriangleManifold(a, b, sp, verts, faces, indices, edges, btgCollideTrianglePoint), p,
+                                t.children);
+    switch (kind) {
 #define BTGPU_REFERENCE_TRIANGLE_ROW(program, kind, shapeA, shapeB, routine, kernel) \
     case kind: return btgWithChildKeys(btgTriangleManifold(a, b, sp, verts, faces, indices, edges, routine), p, t.children);
         BTG_PAIR_KINDS_NARROWPHASE_MESH(BTGPU_REFERENCE_TRIANGLE_ROW)
@@ -78,10 +83,36 @@ std::vector<BtgManifold> referenceMeshPair(const std::vector<BtgSubPair>& subPai
                                            const ShapeTablesView& t, const MeshTablesView& m)
 {
     std::vector<BtgManifold> region;
-    for (const BtgSubPair& sp : subPairs) region.push_back(referenceTriangleContact(sp, pairs, pos, rot, props, t, m));
+    for (const BtgSubPair& sp : subPairs) region.push_back(referenceTriangleContact(sp, pairs, pos, rot, props, t, m, false));
     if (region.empty()) return region;
     region.resize(size_t(btgGatherMeshManifolds(region.data(), 0, int(region.size()))));
     return region;
+}
+
+ConcavePairResult referenceConcavePair(const std::vector<BtgSubPair>& subPairs, int slot, const BtgPair* pairs,
+                                       const BtgFloat4* pos, const BtgFloat4* rot, const BtgBodyProps* props,
+                                       const ShapeTablesView& t, const MeshTablesView& m,
+                                       const BtgPersistentManifold& prev)
+{
+    // The device's layout in small: slot 0 the pair's, the sub-pairs' region from 1 on.
+    std::vector<BtgManifold> region(1 + subPairs.size());
+    for (size_t s = 0; s < subPairs.size(); ++s)
+        region[1 + s] = referenceTriangleContact(subPairs[s], pairs, pos, rot, props, t, m, true);
+    const BtgPair p = pairs[slot];
+    const BtgCollider a = btgLoadPairCollider(p, 0, pos, rot, props, t.shapes, t.children);
+    const BtgCollider b = btgLoadPairCollider(p, 1, pos, rot, props, t.shapes, t.children);
+    const int concaveIsA = btgIsConcave(a.shape.type);
+    const BtgCollider cv = concaveIsA ? b : a, cc = concaveIsA ? a : b;
+    const float threshold = btgPairThreshold(a.shape, b.shape);
+    float dist[BTG_MAX_POINTS];
+    const int n = int(subPairs.size());
+    ConcavePairResult out;
+    out.state = btgConcaveStep(prev, cv, cc, region.data() + 1, 0, n, concaveIsA,
+                               (concaveIsA ? p.childB : p.childA) != BTG_WHOLE_BODY, threshold, dist);
+    const BtgManifoldRange r = btgConcaveWrite(&out.state, dist, p, 0u, 0u, uint(n), cc.pose, concaveIsA, threshold,
+                                               t.children, region.data(), 1u);
+    for (int k = 0; k < r.count; ++k) out.manifolds.push_back(region[size_t(r.start + k)]);
+    return out;
 }
 
 }  // namespace btgpu::ref

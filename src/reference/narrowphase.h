@@ -37,9 +37,22 @@ std::vector<BtgManifold> referenceMeshPair(const std::vector<BtgSubPair>& subPai
                                            const BtgFloat4* pos, const BtgFloat4* rot, const BtgBodyProps* props,
                                            const ShapeTablesView& t, const MeshTablesView& m);
 
-// The manifold of one sub-pair (before gathering), as the triangle kernels write it.
+// The manifold of one sub-pair (before gathering), as the triangle kernels write it: the row's
+// routine (the soft step's clip) or, `persistent` (the bullet mode), stock's one point.
 BtgManifold referenceTriangleContact(const BtgSubPair& sp, const BtgPair* pairs, const BtgFloat4* pos,
                                      const BtgFloat4* rot, const BtgBodyProps* props, const ShapeTablesView& t,
-                                     const MeshTablesView& m);
+                                     const MeshTablesView& m, bool persistent);
+
+// One convex–concave pair (slot `slot`) in the bullet mode, as gather_mesh_manifolds steps it:
+// prev (the manifold it kept, convex first; btgEmptyPersistent for a new pair), then its
+// sub-pairs' points, refreshed; its manifolds in range order and its state (convex first).
+struct ConcavePairResult {
+    std::vector<BtgManifold> manifolds;
+    BtgPersistentManifold state;
+};
+ConcavePairResult referenceConcavePair(const std::vector<BtgSubPair>& subPairs, int slot, const BtgPair* pairs,
+                                       const BtgFloat4* pos, const BtgFloat4* rot, const BtgBodyProps* props,
+                                       const ShapeTablesView& t, const MeshTablesView& m,
+                                       const BtgPersistentManifold& prev);
 
 }  // namespace btgpu::ref

@@ -24,11 +24,13 @@ void midphase(DeviceWorld& w)
     const size_t items = std::min(slots, size_t(std::max<cl_uint>(ctx.device().computeUnits, 1)) * 1024);
     const cl_int indirect = w.pairKindsIndirect ? 1 : 0;
     const cl_uint countSlots = cl_uint(slots), capacity = cl_uint(w.subPairCapacity);
+    // The bullet mode's manifolds persist as stock's: its box is stock's (no threshold).
+    const cl_int persistent = w.speculativeBoxes ? 0 : 1;
     cl::Program& prog = ctx.program("midphase");
     cl::Launch(ctx, prog.kernel("midphase_count"), &w.profiler)
         .arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)
         .arg(w.shapes).arg(w.children).arg(w.meshes).arg(w.meshNodes).arg(w.meshParts).arg(w.meshTriangles).arg(w.meshVertices)
-        .arg(w.heightfields).arg(w.heightfieldHeights).arg(w.subPairOffsets).arg(countSlots)
+        .arg(w.heightfields).arg(w.heightfieldHeights).arg(w.subPairOffsets).arg(countSlots).arg(persistent)
         .run(items);
     exclusiveScan(ctx, &w.profiler, w.subPairOffsets, slots, w.subPairScan);
     cl::Launch(ctx, prog.kernel("midphase_total"), &w.profiler)
@@ -37,7 +39,7 @@ void midphase(DeviceWorld& w)
         .arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)
         .arg(w.shapes).arg(w.children).arg(w.meshes).arg(w.meshNodes).arg(w.meshParts).arg(w.meshTriangles).arg(w.meshVertices)
         .arg(w.heightfields).arg(w.heightfieldHeights).arg(w.subPairOffsets).arg(countSlots)
-        .arg(w.subPairs).arg(capacity)
+        .arg(w.subPairs).arg(capacity).arg(persistent)
         .run(items);
 }
 

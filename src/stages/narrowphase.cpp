@@ -43,23 +43,33 @@ void narrowphaseMesh(DeviceWorld& w, const PairKinds& kinds)
     if (!kinds.anyIn(program) || w.pairCapacity == 0) return;
     cl::Context& ctx = w.ctx;
     w.pairManifolds.reserveExact(ctx, w.pairCapacity);
+    preparePersistent(w);
+    // The bullet mode steps each pair's persistent manifold as stock's; the soft step clips afresh.
+    const cl_int persistent = w.speculativeBoxes ? 0 : 1;
     const size_t units = size_t(std::max<cl_uint>(ctx.device().computeUnits, 1)) * 1024;
     const cl_uint capacity = cl_uint(w.subPairCapacity), base = cl_uint(w.pairCapacity);
     const cl_uint countSlots = cl_uint(w.pairCapacity + 1);
     cl::Program& prog = ctx.program(program);
-    for (int r = 0; r < kNumPairKindRows; ++r) {
-        const PairKindRow& row = kPairKindRows[r];
-        if (!kinds.has(row.kind) || std::strcmp(row.program, program) != 0) continue;
-        cl::Launch(ctx, prog.kernel(row.kernel), &w.profiler)
+    auto triangles = [&](const char* kernel) {
+        cl::Launch(ctx, prog.kernel(kernel), &w.profiler)
             .arg(w.subPairs).arg(w.counters).arg(capacity).arg(w.pairs).arg(w.pos).arg(w.rot).arg(w.props)
             .arg(w.shapes).arg(w.children).arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges)
             .arg(w.meshes).arg(w.meshNodes).arg(w.meshParts).arg(w.meshTriangles).arg(w.meshVertices)
             .arg(w.heightfields).arg(w.heightfieldHeights).arg(w.manifolds).arg(base)
             .run(std::min(w.subPairCapacity, units));
+    };
+    // The bullet mode's one point a triangle is one routine for every kind: one launch.
+    if (persistent) triangles("collide_triangle_points");
+    for (int r = 0; r < kNumPairKindRows && !persistent; ++r) {
+        const PairKindRow& row = kPairKindRows[r];
+        if (kinds.has(row.kind) && std::strcmp(row.program, program) == 0) triangles(row.kernel);
     }
     cl::Launch(ctx, prog.kernel("gather_mesh_manifolds"), &w.profiler)
         .arg(w.pairKindRanges).arg(w.pairOrder).arg(cl_int(w.pairKindsIndirect ? 1 : 0)).arg(w.pairs)
         .arg(w.subPairOffsets).arg(countSlots).arg(capacity).arg(w.manifolds).arg(base).arg(w.pairManifolds)
+        .arg(persistent).arg(w.pos).arg(w.rot).arg(w.props).arg(w.shapes).arg(w.children).arg(w.counters)
+        .arg(w.contactCache).arg(int(w.contactCache.capacity())).arg(w.gjkCache).arg(int(w.gjkCache.capacity()))
+        .arg(w.gjkPairState)
         .run(std::min(w.pairCapacity, units));
 }
 

@@ -14,7 +14,7 @@
 namespace btgpu {
 
 namespace {
-constexpr const char* kPersistentPrograms[] = {"narrowphase_sat", "narrowphase_gjk"};
+constexpr const char* kPersistentPrograms[] = {"narrowphase_sat", "narrowphase_gjk", "narrowphase_mesh"};
 
 void reserveGjk(DeviceWorld& w)
 {
@@ -22,6 +22,19 @@ void reserveGjk(DeviceWorld& w)
     w.gjkCache.reserveExact(w.ctx, std::max<size_t>(w.contactCache.capacity(), 1), true);
 }
 }  // namespace
+
+void preparePersistent(DeviceWorld& w)
+{
+    w.contactCache.reserveExact(w.ctx, std::max<size_t>(w.contactCache.capacity(), 1), true);
+    reserveGjk(w);
+    if (!w.gjkCacheCurrent) {
+        // Entries no store of this kind wrote (a fresh buffer, or one left from before the plan
+        // last had these kinds) must match no pair: kind 0 is BTG_PAIR_NONE.
+        std::vector<BtgPersistentManifold> none(w.gjkCache.capacity(), BtgPersistentManifold{});
+        w.gjkCache.upload(w.ctx, none);
+        w.gjkCacheCurrent = true;
+    }
+}
 
 bool anyPersistent(const PairKinds& kinds)
 {
@@ -35,15 +48,7 @@ void narrowphasePersistent(DeviceWorld& w, const PairKinds& kinds, const char* k
     if (!kinds.anyIn(kProgram) || w.pairCapacity == 0) return;
     w.manifolds.reserveExact(w.ctx, w.pairCapacity);
     w.pairManifolds.reserveExact(w.ctx, w.pairCapacity);
-    w.contactCache.reserveExact(w.ctx, std::max<size_t>(w.contactCache.capacity(), 1), true);
-    reserveGjk(w);
-    if (!w.gjkCacheCurrent) {
-        // Entries no store of this kind wrote (a fresh buffer, or one left from before the plan
-        // last had these kinds) must match no pair: kind 0 is BTG_PAIR_NONE.
-        std::vector<BtgPersistentManifold> none(w.gjkCache.capacity(), BtgPersistentManifold{});
-        w.gjkCache.upload(w.ctx, none);
-        w.gjkCacheCurrent = true;
-    }
+    preparePersistent(w);
     const size_t items = std::min(w.pairCapacity, size_t(std::max<cl_uint>(w.ctx.device().computeUnits, 1)) * 1024);
     const cl_int indirect = w.pairKindsIndirect ? 1 : 0;
     const int cacheCapacity = int(w.contactCache.capacity());
@@ -65,15 +70,37 @@ void narrowphasePersistent(DeviceWorld& w, const PairKinds& kinds, const char* k
 
 void storePersistentManifolds(DeviceWorld& w, const PairKinds& kinds, unsigned solverFlags)
 {
-    // Both programs hold the same store kernel: the one the plan builds anyway.
-    const char* kProgram = kinds.anyIn(kPersistentPrograms[0]) ? kPersistentPrograms[0] : kPersistentPrograms[1];
+    // Each program holds the same store kernel: the first the plan builds anyway.
+    const char* kProgram = kPersistentPrograms[0];
+    for (const char* program : kPersistentPrograms)
+        if (kinds.anyIn(program)) {
+            kProgram = program;
+            break;
+        }
     reserveGjk(w);
+    w.subPairs.reserve(w.ctx, 1);  // read only for a manifold past the pair slots: a convex–concave group
     const int contactCapacity = int(std::min({w.contactCapacity, w.contacts.capacity(), w.contactManifolds.capacity()}));
     cl::Launch(w.ctx, w.ctx.program(kProgram).kernel("store_persistent_manifolds"), &w.profiler)
         .arg(w.contactManifolds).arg(w.manifolds).arg(w.counters).arg(contactCapacity).arg(w.props).arg(w.shapes)
         .arg(w.pairs).arg(w.children).arg(w.gjkPairState).arg(int(w.gjkPairState.capacity())).arg(w.gjkCache).arg(int(w.gjkCache.capacity()))
-        .arg(w.contacts).arg(cl_uint(solverFlags))
+        .arg(w.contacts).arg(cl_uint(solverFlags)).arg(cl_uint(w.pairCapacity)).arg(w.subPairs)
+        .arg(cl_uint(w.subPairCapacity))
         .run(size_t(std::max(contactCapacity, 1)));
+}
+
+void forgetConcaveManifolds(DeviceWorld& w, const std::vector<int>& rows)
+{
+    // Rare (an app's terrain edit): the whole cache down and up, no kernel of its own.
+    if (rows.empty() || w.gjkCache.capacity() == 0 || !w.gjkCacheCurrent) return;
+    std::vector<BtgPersistentManifold> cache = w.gjkCache.download(w.ctx, w.gjkCache.capacity());
+    bool any = false;
+    for (BtgPersistentManifold& m : cache)
+        if (btgIsConcaveKind(m.kind) && (std::find(rows.begin(), rows.end(), m.bodyA) != rows.end() ||
+                                         std::find(rows.begin(), rows.end(), m.bodyB) != rows.end())) {
+            m.kind = BTG_PAIR_NONE;
+            any = true;
+        }
+    if (any) w.gjkCache.upload(w.ctx, cache);
 }
 
 }  // namespace btgpu

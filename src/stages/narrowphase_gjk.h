@@ -3,19 +3,28 @@
 // GJK/EPA, the capsule closed form or the plane's support point) and two boxes (stock's box
 // detector's points, program narrowphase_sat), into the pair's persistent manifold as Bullet's
 // algorithms and btPersistentManifold; after the solve, the manifolds kept for the next substep.
-// Reads pairs, pairOrder, pairKindRanges, pos, rot, props, shapes, hullVertices, counters,
+// (Convex–concave pairs: narrowphase.cpp's narrowphaseMesh.) Reads pairs, pairOrder, pairKindRanges, pos, rot, props, shapes, hullVertices, counters,
 // contactCache, gjkCache. Writes manifolds, pairManifolds and gjkPairState of those pairs;
 // storePersistentManifolds reads contacts (friction anchors) and writes gjkCache (contact order).
 #pragma once
 #include "world/device_world.h"
 #include "world/pair_kinds.h"
 
+#include <vector>
+
 namespace btgpu {
-// Whether any kind in `kinds` keeps a persistent manifold (programs narrowphase_sat, narrowphase_gjk).
+// Whether any kind in `kinds` keeps a persistent manifold (programs narrowphase_sat,
+// narrowphase_gjk, and narrowphase_mesh's convex–concave pairs in the bullet mode).
 bool anyPersistent(const PairKinds& kinds);
+// The buffers a narrowphase with persistent manifolds reads and writes, sized, and the GJK
+// cache's stale entries cleared (once after it was left unstored).
+void preparePersistent(DeviceWorld& w);
 // The kernels of `program` (one of those two) for the kinds in `kinds`.
 void narrowphasePersistent(DeviceWorld& w, const PairKinds& kinds, const char* program);
 // After storeContactCache: contact i's persistent manifold to gjkCache[i], with the friction
 // anchors the next refresh keeps (solverFlags: BtgStepParams.solverFlags).
 void storePersistentManifolds(DeviceWorld& w, const PairKinds& kinds, unsigned solverFlags);
+// The convex–concave manifolds kept against these body rows' meshes or heightfields are
+// forgotten (the next substep starts those pairs afresh): the app edited the shapes.
+void forgetConcaveManifolds(DeviceWorld& w, const std::vector<int>& rows);
 }  // namespace btgpu

@@ -13,10 +13,12 @@ void reportContacts(DeviceWorld& w)
     cl::Context& ctx = w.ctx;
     const int contactCapacity = int(std::min({w.contactCapacity, w.contacts.capacity(), w.contactManifolds.capacity()}));
     w.contactReports.reserveExact(ctx, size_t(std::max(contactCapacity, 1)));
+    w.subPairs.reserve(ctx, 1);  // read only for a manifold past the pair slots: a convex–concave group
     cl::Launch(ctx, ctx.program("report_contacts").kernel("report_contacts"), &w.profiler)
         .arg(w.contacts).arg(w.contactManifolds).arg(w.manifolds).arg(w.counters).arg(contactCapacity).arg(w.pos)
         .arg(w.rot).arg(w.contactReports).arg(w.pairs).arg(w.props).arg(w.shapes).arg(w.children).arg(w.gjkPairState)
         .arg(int(std::min({w.gjkPairState.capacity(), w.pairCapacity, w.pairs.capacity()})))
+        .arg(cl_uint(w.pairCapacity)).arg(w.subPairs).arg(cl_uint(w.subPairCapacity))
         .run(size_t(std::max(contactCapacity, 1)));
     w.contactReportsWritten = true;
 }

@@ -424,6 +424,70 @@ TEST(Manifolds, MeshPairsAsStock)
     }
 }
 
+// Convex bodies on a triangle mesh and a heightfield, step by step against stock: the manifolds
+// with points and their points. Both collide a convex with a concave shape as stock's
+// btConvexConcaveCollisionAlgorithm does (one point a triangle a frame into the pair's
+// persistent manifold, reduced to 4 by sortCachedPoints, refreshed): a leg of a table on a mesh
+// holds 3 or 4 of its corners as stock's does, by the order its points came. Bound per step after
+// the bodies land: 5% of stock's count, or stock's own chaos (its nudged runs' spread) where that
+// is wider; the same on the sums.
+TEST(Manifolds, MeshPointCountsAsStock)
+{
+    using Make = std::function<ScenePtr(WorldKind)>;
+    const std::vector<std::pair<const char*, Make>> cases = {
+        {"box and sphere on a mesh", [](WorldKind k) { return scenes::restOnMesh(k); }},
+        {"table on a mesh", [](WorldKind k) { return scenes::tableOnMesh(k); }},
+        {"100 bodies on a mesh", [](WorldKind k) { return scenes::dropOnMesh(k); }},
+        {"100 bodies on a heightfield", [](WorldKind k) { return scenes::dropOnHeightfield(k); }},
+    };
+    const int steps = 150, first = 60;
+    for (const auto& [name, make] : cases) {
+        SCOPED_TRACE(name);
+        std::vector<Counts> lo(steps), hi(steps);
+        double sumLo = 0, sumHi = 0;  // the nudged runs' sums of points
+        for (int run = 0; run < tol::kChaosRuns; ++run) {
+            ScenePtr s = make(WorldKind::Stock);
+            scenes::nudge(*s, 2000u + unsigned(run), tol::kChaosNudge);
+            double sum = 0;
+            for (int step = 0; step < steps; ++step) {
+                s->step();
+                const Counts c = counts(*s);
+                if (step >= first) sum += c.points;
+                if (run == 0 || c.touching < lo[step].touching) lo[step].touching = c.touching;
+                if (run == 0 || c.points < lo[step].points) lo[step].points = c.points;
+                if (run == 0 || c.touching > hi[step].touching) hi[step].touching = c.touching;
+                if (run == 0 || c.points > hi[step].points) hi[step].points = c.points;
+            }
+            sumLo = run == 0 ? sum : std::min(sumLo, sum);
+            sumHi = run == 0 ? sum : std::max(sumHi, sum);
+        }
+        auto bound = [](double stock, double chaos) {
+            return std::max(0.05 * stock, tol::kChaosFactor * chaos + tol::kChaosContactsFloor);
+        };
+        SideBySide sb([&make](WorldKind k, const Config&) { return make(k); });
+        double sumStockM = 0, sumGpuM = 0, sumStockP = 0, sumGpuP = 0;
+        for (int step = 0; step < steps; ++step) {
+            sb.step();
+            ASSERT_TRUE(sb.onGpu()) << step;
+            expectConsistent(*sb.gpu);
+            if (step < first) continue;
+            const Counts a = counts(*sb.stock), b = counts(*sb.gpu);
+            EXPECT_NEAR(b.touching, a.touching, bound(a.touching, hi[step].touching - lo[step].touching)) << step;
+            EXPECT_NEAR(b.points, a.points, bound(a.points, hi[step].points - lo[step].points)) << step;
+            sumStockM += a.touching;
+            sumGpuM += b.touching;
+            sumStockP += a.points;
+            sumGpuP += b.points;
+        }
+        std::printf("%s, steps %d-%d: manifolds with points %.0f (stock %.0f), points %.0f (stock %.0f, its nudged runs "
+                    "%.0f-%.0f)\n",
+                    name, first, steps - 1, sumGpuM, sumStockM, sumGpuP, sumStockP, sumLo, sumHi);
+        EXPECT_GT(sumStockP, 0.0);
+        EXPECT_NEAR(sumGpuM, sumStockM, 0.05 * sumStockM);
+        EXPECT_NEAR(sumGpuP, sumStockP, bound(sumStockP, sumHi - sumLo));
+    }
+}
+
 // A box and a sphere on a flat 17 x 17 heightfield (1 m cells, centred): each point's
 // m_partId1 / 2 is its cell's column and m_index1 its row, as Bullet's processAllTriangles
 // numbers them (part 2x + t, index j), on both worlds.

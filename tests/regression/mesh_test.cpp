@@ -46,10 +46,11 @@ void stepOnGpu(SideBySide& run, int steps)
 
 // Where the btgpu world's bodies started, for their horizontal drift.
 struct Starts {
-    std::vector<btVector3> gpu;
+    std::vector<btVector3> gpu, stock;
     explicit Starts(const SideBySide& run)
     {
         for (btRigidBody* b : run.gpu->bodies()) gpu.push_back(b->getWorldTransform().getOrigin());
+        for (btRigidBody* b : run.stock->bodies()) stock.push_back(b->getWorldTransform().getOrigin());
     }
 };
 double drift(const scenes::Scene& s, const std::vector<btVector3>& starts, int i)
@@ -59,13 +60,51 @@ double drift(const scenes::Scene& s, const std::vector<btVector3>& starts, int i
     return d.length();
 }
 
-// Each body's rest height within 1 mm of stock's; sideways it stays within kMeshDrift of where it
-// started (stock's boxes, landing on one GJK point a frame, rock and slide much further).
-void expectRestHeights(const SideBySide& run, const Starts& starts, int first, int last)
+// Each body's rest height within 1 mm of stock's; sideways it stays within `driftBound` of where
+// it started. Both engines collide a convex with a mesh as stock's btConvexConcaveCollisionAlgorithm
+// (one point a triangle into a persistent manifold), so a body landing on a mesh rocks a little
+// on both; where many bodies land, their drift is judged against stock's own chaos instead
+// (expectDriftWithinStocksChaos).
+void expectRestHeights(const SideBySide& run, const Starts& starts, int first, int last,
+                       double driftBound = tol::kMeshDrift, double heightBound = tol::kRestHeight)
 {
     for (int i = first; i <= last; ++i) {
-        EXPECT_NEAR(run.gpuY(i), run.stockY(i), tol::kRestHeight) << "body " << i;
-        EXPECT_LE(drift(*run.gpu, starts.gpu, i), tol::kMeshDrift) << "body " << i;
+        EXPECT_NEAR(run.gpuY(i), run.stockY(i), heightBound) << "body " << i;
+        EXPECT_LE(drift(*run.gpu, starts.gpu, i), driftBound) << "body " << i;
+    }
+}
+
+// The mean and largest sideways drift of bodies [first, last] after `steps`, within stock's own
+// chaos (its nudged runs of the same scene); starts are the unnudged scene's (0.1 mm apart).
+void expectDriftWithinStocksChaos(const std::function<ScenePtr(WorldKind)>& make, int steps, const SideBySide& run,
+                                  const Starts& starts, int first, int last)
+{
+    auto measure = [&starts, first, last](const scenes::Scene& s) {
+        double sum = 0.0, most = 0.0;
+        for (int i = first; i <= last; ++i) {
+            const double d = drift(s, starts.stock, i);
+            sum += d;
+            most = std::max(most, d);
+        }
+        return std::vector<double>{sum / double(last - first + 1), most};
+    };
+    const auto bands = scenes::stockChaos(make, steps, measure, {"mean drift", "largest drift"},
+                                          {tol::kChaosPositionFloor, tol::kChaosPositionFloor});
+    std::vector<double> got;
+    {
+        double sum = 0.0, most = 0.0;
+        for (int i = first; i <= last; ++i) {
+            const double d = drift(*run.gpu, starts.gpu, i);
+            sum += d;
+            most = std::max(most, d);
+        }
+        got = {sum / double(last - first + 1), most};
+    }
+    for (size_t k = 0; k < bands.size(); ++k) {
+        std::printf("%s %s: btgpu %.4f, stock %.4f +- %.4f\n", run.gpu->name().c_str(), bands[k].name.c_str(), got[k],
+                    bands[k].stockMean, bands[k].bound());
+        EXPECT_TRUE(bands[k].admits(got[k])) << bands[k].name << ": btgpu " << got[k] << ", stock " << bands[k].stockMean
+                                             << " +- " << bands[k].bound();
     }
 }
 
@@ -107,7 +146,10 @@ TEST(Mesh, HundredBodiesDroppedApartRestAsOnStock)
     SideBySide run(scenes::dropOnMesh);
     Starts starts(run);
     stepOnGpu(run, 150);
-    expectRestHeights(run, starts, 1, 100);
+    // A body resting on one point a triangle may sink a few mm where stock's rests at contact
+    // (both: up to 2 cm on a fine mesh, SubPairOverflowGrowsAndRedoesTheStep).
+    expectRestHeights(run, starts, 1, 100, 1.0, tol::kMeshRestHeight);
+    expectDriftWithinStocksChaos([](WorldKind k) { return scenes::dropOnMesh(k); }, 150, run, starts, 1, 100);
 }
 
 TEST(Mesh, OneMeshOnTwoBodies)
@@ -139,29 +181,37 @@ TEST(Mesh, ScaledWrapperOfAMesh)
 
 TEST(Mesh, EditedVerticesAndRefittedTreeArePickedUp)
 {
-    // The app lowers the whole mesh by 0.3 m and refits its BVH: the bodies on it fall onto it
-    // on both worlds (the GPU path reads the mesh again: its fingerprint changed).
-    SideBySide run(scenes::restOnMesh);
+    // The app lowers the whole mesh by 0.3 m and refits its BVH after 1 s: the bodies on it fall
+    // onto it on both worlds (the GPU path reads the mesh again: its fingerprint changed).
+    auto make = [](WorldKind kind, const Config& config) {
+        ScenePtr scene = scenes::restOnMesh(kind, config);
+        scene->beforeStep = [done = false](scenes::Scene& s, double end) mutable {
+            if (done || end < 1.0 + 1e-9) return;
+            done = true;
+            auto* mesh = static_cast<btBvhTriangleMeshShape*>(s.body(0)->getCollisionShape());
+            btStridingMeshInterface* iface = mesh->getMeshInterface();
+            for (int p = 0; p < iface->getNumSubParts(); ++p) {
+                unsigned char *vb, *ib;
+                int nv, stride, istride, nf;
+                PHY_ScalarType vt, it;
+                iface->getLockedVertexIndexBase(&vb, nv, vt, stride, &ib, istride, nf, it, p);
+                for (int i = 0; i < nv; ++i) reinterpret_cast<float*>(vb + i * stride)[1] -= 0.3f;
+                iface->unLockVertexBase(p);
+            }
+            btVector3 lo, hi;
+            iface->calculateAabbBruteForce(lo, hi);
+            mesh->refitTree(lo, hi);
+            for (int i = 1; i <= 2; ++i) s.body(i)->activate(true);
+        };
+        return scene;
+    };
+    SideBySide run(make);
     Starts starts(run);
-    stepOnGpu(run, 60);
-    run.both([](scenes::Scene& s) {
-        auto* mesh = static_cast<btBvhTriangleMeshShape*>(s.body(0)->getCollisionShape());
-        btStridingMeshInterface* iface = mesh->getMeshInterface();
-        for (int p = 0; p < iface->getNumSubParts(); ++p) {
-            unsigned char *vb, *ib;
-            int nv, stride, istride, nf;
-            PHY_ScalarType vt, it;
-            iface->getLockedVertexIndexBase(&vb, nv, vt, stride, &ib, istride, nf, it, p);
-            for (int i = 0; i < nv; ++i) reinterpret_cast<float*>(vb + i * stride)[1] -= 0.3f;
-            iface->unLockVertexBase(p);
-        }
-        btVector3 lo, hi;
-        iface->calculateAabbBruteForce(lo, hi);
-        mesh->refitTree(lo, hi);
-        for (int i = 1; i <= 2; ++i) s.body(i)->activate(true);
-    });
-    stepOnGpu(run, 90);
-    expectRestHeights(run, starts, 1, 2);
+    stepOnGpu(run, 150);
+    // The box lands on the lowered mesh from 0.3 m on one point a triangle and rocks sideways:
+    // its drift judged against stock's own chaos.
+    expectRestHeights(run, starts, 1, 2, 1.0);
+    expectDriftWithinStocksChaos([&make](WorldKind k) { return make(k, Config()); }, 150, run, starts, 1, 2);
     EXPECT_NEAR(run.gpuY(1), 0.2, 0.01);
 }
 
@@ -201,7 +251,8 @@ TEST(Heightfield, HundredBodiesDroppedApartRestAsOnStock)
     SideBySide run(scenes::dropOnHeightfield);
     Starts starts(run);
     stepOnGpu(run, 150);
-    expectRestHeights(run, starts, 1, 100);
+    expectRestHeights(run, starts, 1, 100, 1.0, tol::kMeshRestHeight);
+    expectDriftWithinStocksChaos([](WorldKind k) { return scenes::dropOnHeightfield(k); }, 150, run, starts, 1, 100);
 }
 
 TEST(Heightfield, HeightsChangedByTheAppArePickedUp)
@@ -295,8 +346,8 @@ TEST(Mesh, SubPairOverflowGrowsAndRedoesTheStep)
 {
     // A fine mesh (10 cm cells) under 25 boxes: each meets ~300 triangles, far past the
     // midphase's first buffer; the step is redone with a bigger one (reported), nothing dropped:
-    // every box rests at its half height. (Stock's boxes sink 2 to 20 mm here: one GJK point per
-    // triangle a frame, replacing each other in a manifold of 4.)
+    // every box rests on the mesh as stock's, which sink 2 to 75 mm into it here on both engines
+    // (one GJK point per triangle a frame, replacing each other in a manifold of 4).
     std::vector<Issue> issues;
     Config config;
     config.onIssue = [&issues](const Issue& i) { issues.push_back(i); };
@@ -311,9 +362,10 @@ TEST(Mesh, SubPairOverflowGrowsAndRedoesTheStep)
     };
     SideBySide run(make, config);
     stepOnGpu(run, 90);
+    for (int i = 1; i <= 25; ++i) std::printf("fine mesh box %d: btgpu %.4f stock %.4f\n", i, run.gpuY(i), run.stockY(i));
     for (int i = 1; i <= 25; ++i) {
-        EXPECT_NEAR(run.gpuY(i), 0.3, tol::kRestHeight) << "body " << i;
-        EXPECT_LE(run.gpuY(i), run.stockY(i) + 0.025) << "body " << i;
+        EXPECT_NEAR(run.gpuY(i), run.stockY(i), 0.03) << "body " << i;
+        EXPECT_GT(run.gpuY(i), 0.2) << "body " << i;  // on the mesh, not through it
     }
     bool grew = false;
     for (const Issue& i : issues) grew = grew || (i.kind == Issue::Kind::Overflow && i.message.find("sub-pair") != std::string::npos);
@@ -321,11 +373,13 @@ TEST(Mesh, SubPairOverflowGrowsAndRedoesTheStep)
     EXPECT_GT(run.gpu->report()->redoneSteps, 0);
 }
 
-TEST(Mesh, BoxSlidesDownAnInclinedMeshAsTheAnalyticSolution)
+TEST(Mesh, BoxSlidesDownAnInclinedMeshAsOnStock)
 {
     // A unit box released on a flat mesh tilted 20 degrees (combined friction 0.25 < tan 20):
-    // s = g (sin - mu cos) t^2 / 2 = 1.205 m in 1.5 s. The GPU's box slides as on a tilted box
-    // ground; stock's, on the mesh, falls 6 % short (per-triangle GJK, one point a frame).
+    // s = g (sin - mu cos) t^2 / 2 = 1.205 m in 1.5 s. On a tilted box ground both engines slide
+    // it that far (within 2%). On the mesh both collide as stock's btConvexConcaveCollisionAlgorithm
+    // (one GJK point a triangle a frame, kept in a persistent manifold): the box rocks from corner
+    // to corner and falls short on both; btgpu's slide within stock's own chaos (its nudged runs).
     const float theta = 0.349066f;
     auto make = [theta](bool mesh) {
         return [theta, mesh](WorldKind kind, const Config& c) {
@@ -344,22 +398,33 @@ TEST(Mesh, BoxSlidesDownAnInclinedMeshAsTheAnalyticSolution)
         };
     };
     const double analytic = 0.5 * 10.0 * (std::sin(double(theta)) - 0.25 * std::cos(double(theta))) * 1.5 * 1.5;
+    const int steps = 90;
     double slid[2][2];  // [mesh][gpu]
+    btVector3 start;
     for (int mesh = 0; mesh < 2; ++mesh) {
         SideBySide run(make(mesh != 0));
         const btVector3 s0 = run.stock->body(1)->getWorldTransform().getOrigin();
         const btVector3 g0 = run.gpu->body(1)->getWorldTransform().getOrigin();
-        for (int i = 0; i < 90; ++i) {
+        start = s0;
+        for (int i = 0; i < steps; ++i) {
             run.step();
             ASSERT_TRUE(run.onGpu()) << run.gpu->report()->cpuPathReason;
         }
         slid[mesh][0] = (run.stock->body(1)->getWorldTransform().getOrigin() - s0).length();
         slid[mesh][1] = (run.gpu->body(1)->getWorldTransform().getOrigin() - g0).length();
     }
-    std::printf("incline: analytic %.4f m; box ground stock %.4f btgpu %.4f; mesh ground stock %.4f btgpu %.4f\n", analytic,
-                slid[0][0], slid[0][1], slid[1][0], slid[1][1]);
-    EXPECT_NEAR(slid[1][1], analytic, 0.02 * analytic);
-    EXPECT_NEAR(slid[1][1], slid[0][1], 0.01);  // a mesh slope acts as a box slope
+    const auto bands = scenes::stockChaos([&make](WorldKind k) { return make(true)(k, Config()); }, steps,
+                                          [start](const scenes::Scene& s) {
+                                              return std::vector<double>{
+                                                  (s.body(1)->getWorldTransform().getOrigin() - start).length()};
+                                          },
+                                          {"slid"}, {tol::kChaosPositionFloor});
+    std::printf("incline: analytic %.4f m; box ground stock %.4f btgpu %.4f; mesh ground stock %.4f btgpu %.4f "
+                "(stock's chaos %.4f +- %.4f)\n",
+                analytic, slid[0][0], slid[0][1], slid[1][0], slid[1][1], bands[0].stockMean, bands[0].bound());
+    EXPECT_NEAR(slid[0][1], analytic, 0.02 * analytic);
+    EXPECT_TRUE(bands[0].admits(slid[1][1])) << "btgpu " << slid[1][1] << ", stock " << bands[0].stockMean << " +- "
+                                             << bands[0].bound();
 }
 
 // Bullet's bench 5 (a convex mix on the rolling mesh landscape), 200 bodies for 4 s, against

@@ -64,11 +64,13 @@ struct DeviceResult {
     uint total = 0, status = 0;
 };
 
-DeviceResult runMidphase(const MeshScene& s, size_t capacity)
+// `persistent`: the bullet mode's box (no threshold), else the soft step's (the reference's default).
+DeviceResult runMidphase(const MeshScene& s, size_t capacity, bool persistent = false)
 {
     cl::Context& ctx = test::context();
     DeviceWorld w(ctx);
     s.upload(w, capacity);
+    w.speculativeBoxes = !persistent;
     midphase(w);
     DeviceResult r;
     std::vector<uint> counters = w.counters.download(ctx, kNumCounters);

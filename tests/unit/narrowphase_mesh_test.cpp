@@ -8,9 +8,11 @@
 #include "../compat/shape_tables.h"
 #include "mesh_scene.h"
 #include "reference/midphase.h"
+#include "reference/narrowphase.h"
 #include "shared/math.h"
 #include "shared/narrowphase_common.h"
 #include "shared/triangle_contacts.h"
+#include "shared/persistent_manifold.h"
 #include "stages/midphase.h"
 #include "stages/narrowphase.h"
 #include "test_device.h"
@@ -47,17 +49,23 @@ struct PairResult {
     std::vector<BtgManifold> manifolds;
 };
 
-std::vector<PairResult> runDevice(const MeshScene& s)
+// `persistent`: the bullet mode (stock's one point a triangle into each pair's persistent
+// manifold, a first step: no manifold kept yet), else the soft step's clip, each triangle's
+// manifold merged afresh. *states: the pairs' persistent manifolds (gjkPairState).
+std::vector<PairResult> runDevice(const MeshScene& s, bool persistent = false,
+                                  std::vector<BtgPersistentManifold>* states = nullptr)
 {
     cl::Context& ctx = test::context();
     DeviceWorld w(ctx);
     s.upload(w, 1 << 12);
+    w.speculativeBoxes = !persistent;
     midphase(w);
     narrowphaseMesh(w, s.kinds());
     std::vector<BtgManifoldRange> ranges = w.pairManifolds.download(ctx, s.pairs.size());
     std::vector<BtgManifold> all = w.manifolds.download(ctx, w.pairCapacity + w.subPairCapacity);
     std::vector<uint> counters = w.counters.download(ctx, kNumCounters);
     EXPECT_EQ(counters[kStatus], 0u);
+    if (states) *states = w.gjkPairState.download(ctx, s.pairs.size());
     std::vector<PairResult> out(s.pairs.size());
     for (size_t i = 0; i < s.pairs.size(); ++i)
         for (int k = 0; k < ranges[i].count; ++k) out[i].manifolds.push_back(all[size_t(ranges[i].start + k)]);
@@ -278,7 +286,7 @@ void compareWithStock(const BulletMesh& mesh, const std::vector<Case>& cases)
                                                                  s.props.data(), s.t.shapes.data(), s.meshView());
             for (const BtgSubPair& sp : sub) {
                 BtgManifold m = ref::referenceTriangleContact(sp, s.pairs.data(), s.pos.data(), s.rot.data(),
-                                                              s.props.data(), s.t.view(), s.meshView());
+                                                              s.props.data(), s.t.view(), s.meshView(), false);
                 printf("case %zu tri %d/%d points %d", i, sp.partId, sp.index, m.numPoints);
                 for (int k = 0; k < m.numPoints; ++k)
                     printf(" (%.3f %.3f %.3f; %.4f)", m.points[k].px, m.points[k].py, m.points[k].pz, m.points[k].distance);
@@ -447,4 +455,148 @@ TEST(NarrowphaseMesh, SupportShapesAgainstTrianglesAsStock)
         else curvedCases.push_back({&capsule, btgMake4(px, h + 0.8f - sink(rng), pz, 0), kIdentity, true});
     }
     compareConvexWithStock(*curved, curvedCases);
+}
+
+namespace {
+
+// Stock's manifold of one (convex, mesh) pair after colliding it at each of `poses` in turn with
+// one algorithm (its manifold persisting between them), the dispatcher's defaults (no SAT).
+std::vector<Point> stockSteps(btCollisionShape* convex, const std::vector<btTransform>& poses, btCollisionShape* mesh)
+{
+    static btDefaultCollisionConfiguration config;
+    static btCollisionDispatcher dispatcher(&config);
+    btCollisionObject a, b;
+    a.setCollisionShape(convex);
+    b.setCollisionShape(mesh);
+    b.setWorldTransform(btTransform::getIdentity());
+    btCollisionObjectWrapper wb(nullptr, mesh, &b, b.getWorldTransform(), -1, -1);
+    btCollisionAlgorithm* algo = nullptr;
+    btDispatcherInfo info;
+    for (const btTransform& x : poses) {
+        a.setWorldTransform(x);
+        btCollisionObjectWrapper wa(nullptr, convex, &a, x, -1, -1);
+        if (!algo) algo = dispatcher.findAlgorithm(&wa, &wb, nullptr, BT_CONTACT_POINT_ALGORITHMS);
+        btManifoldResult result(&wa, &wb);
+        algo->processCollision(&wa, &wb, info, &result);
+    }
+    std::vector<Point> out;
+    btManifoldArray manifolds;
+    algo->getAllContactManifolds(manifolds);
+    for (int m = 0; m < manifolds.size(); ++m)
+        for (int k = 0; k < manifolds[m]->getNumContacts(); ++k) {
+            const btManifoldPoint& p = manifolds[m]->getContactPoint(k);
+            out.push_back({p.getPositionWorldOnB(), p.m_normalWorldOnB, p.getDistance()});
+        }
+    algo->~btCollisionAlgorithm();
+    dispatcher.freeCollisionAlgorithm(algo);
+    return out;
+}
+
+// As many points as stock's, and each of stock's has one of ours of its normal and depth, within
+// `place` of it (where a flat contact's GJK point lies is its path's choice, and which points a
+// manifold then keeps follows from it: after several steps only normals and depths compare).
+void expectStockPoints(const std::vector<Point>& stock, const std::vector<Point>& ours, float place)
+{
+    EXPECT_EQ(ours.size(), stock.size());
+    for (const Point& sp : stock) {
+        bool found = false;
+        for (const Point& gp : ours)
+            found = found || ((gp.onMesh - sp.onMesh).length() < place && gp.normal.dot(sp.normal) >= tol::kStockNormalDot &&
+                              std::fabs(gp.distance - sp.distance) <= tol::kStockDepth);
+        EXPECT_TRUE(found) << "stock point (" << sp.onMesh.x() << ", " << sp.onMesh.y() << ", " << sp.onMesh.z() << ") d "
+                           << sp.distance << " has no match";
+    }
+}
+
+// A pair's points from its manifolds (the mesh A), on the mesh with the normal towards the convex.
+std::vector<Point> meshPoints(const std::vector<BtgManifold>& manifolds)
+{
+    PairResult r{manifolds};
+    std::vector<int> manifoldOf;
+    return gpuContact(r, &manifoldOf);
+}
+
+}  // namespace
+
+// The bullet mode's convex–mesh manifold (shared/concave_manifold.h): boxes without polyhedral
+// features and spheres on a flat and a curved mesh. A first step on the device equals the
+// reference (the same shared functions) and holds stock's points (btConvexConcaveCollisionAlgorithm
+// with the dispatcher's defaults: one point a triangle, GJK, reduced by sortCachedPoints); three
+// steps of a body moving over the mesh, the manifold kept in between, hold stock's points too.
+TEST(NarrowphaseMesh, PersistentManifoldAsStocksAlgorithm)
+{
+    btBoxShape box(btVector3(0.5f, 0.3f, 0.7f));  // no polyhedral features: GJK on stock
+    btSphereShape sphere(0.4f);
+    auto flat = BulletMesh::terrain(8, 1.0f, true);
+    auto curved = BulletMesh::terrain(12, 0.5f, false);
+    const BtgFloat4 tilt = axisAngle(btgMake4(1, 0, 1, 0), 0.5f);
+    struct Pose {
+        bool isBox;
+        BtgFloat4 pos, rot;
+        bool flat;  // a face on the mesh: every point of it is deepest, GJK's path picks one
+    };
+    for (int m = 0; m < 2; ++m) {
+        const BulletMesh& mesh = m == 0 ? *flat : *curved;
+        std::vector<Pose> poses = {{true, btgMake4(-1.7f, 0.295f, -1.3f, 0), kIdentity, true},
+                                   {true, btgMake4(1.6f, 0.296f, 0.4f, 0), axisAngle(btgMake4(0, 1, 0, 0), 0.3f), true},
+                                   {true, btgMake4(3.0f, 0.72f, -2.0f, 0), tilt, m == 1},
+                                   {false, btgMake4(-2.5f, 0.392f, 0.5f, 0), kIdentity, false}};
+        if (m == 1)
+            for (Pose& p : poses) p.pos.y += BulletMesh::height(p.pos.x, p.pos.z) - (p.isBox ? 0.004f : 0.002f);
+        MeshScene s;
+        // The world's own rows of these shapes (the box's margin, its GJK core, as Bullet's).
+        ::btgpu::ShapeTables rows;
+        std::string why;
+        const int sphereRow = int(s.t.shapes.size());
+        s.t.shapes.push_back(rows.shapes[size_t(rows.add(&sphere, &why))]);
+        const int boxRow = int(s.t.shapes.size());
+        BtgShape boxShape = rows.shapes[size_t(rows.add(&box, &why))];
+        boxShape.numFaces = boxShape.numEdges = 0;  // its hull's faces are the SAT's: GJK reads the box's size
+        boxShape.numVertices = 0;
+        s.t.shapes.push_back(boxShape);
+        const int meshRow = s.addMesh(mesh.shape.get());
+        s.body(meshRow, btgMake4(0, 0, 0, 0), kIdentity, BTG_BODY_STATIC);
+        for (const Pose& p : poses) s.pairs.push_back(BtgPair{0, s.body(p.isBox ? boxRow : sphereRow, p.pos, p.rot, BTG_BODY_DYNAMIC)});
+        std::vector<BtgPersistentManifold> states;
+        std::vector<PairResult> dev = runDevice(s, true, &states);
+        int touching = 0;
+        for (size_t i = 0; i < poses.size(); ++i) {
+            SCOPED_TRACE("mesh " + std::to_string(m) + " pose " + std::to_string(i));
+            std::vector<BtgSubPair> sub = ref::referenceMidphase({int(i)}, s.pairs.data(), s.pos.data(), s.rot.data(),
+                                                                 s.props.data(), s.t.shapes.data(), s.meshView(), nullptr, true);
+            const BtgPersistentManifold none = btgEmptyPersistent(s.pairs[i].b, s.pairs[i].a, BTG_PAIR_NONE);
+            ref::ConcavePairResult r = ref::referenceConcavePair(sub, int(i), s.pairs.data(), s.pos.data(), s.rot.data(),
+                                                                 s.props.data(), s.t.view(), s.meshView(), none);
+            ASSERT_EQ(dev[i].manifolds.size(), r.manifolds.size());
+            for (size_t k = 0; k < r.manifolds.size(); ++k) expectSameManifold(dev[i].manifolds[k], r.manifolds[k]);
+            EXPECT_EQ(states[i].numPoints, r.state.numPoints);
+            EXPECT_EQ(states[i].bodyA, s.pairs[i].b);  // kept with the convex first
+            btCollisionShape* shape = poses[i].isBox ? static_cast<btCollisionShape*>(&box) : &sphere;
+            const std::vector<Point> stock = stockSteps(shape, {xf(poses[i].pos, poses[i].rot)}, mesh.shape.get());
+            touching += !stock.empty();
+            expectStockPoints(stock, meshPoints(dev[i].manifolds), poses[i].flat ? 1e9f : 2e-3f);
+            // Two more steps, the body slid 3 mm and 6 mm along x and turned a little: the
+            // reference keeps its manifold between them as the device does, stock its own.
+            std::vector<btTransform> moved = {xf(poses[i].pos, poses[i].rot)};
+            BtgPersistentManifold prev = r.state;
+            for (int step = 1; step <= 2; ++step) {
+                MeshScene t = s;
+                t.pos[size_t(s.pairs[i].b)].x += 0.003f * float(step);
+                t.rot[size_t(s.pairs[i].b)] = btgQuatMul(axisAngle(btgMake4(0, 1, 0, 0), 0.01f * float(step)), poses[i].rot);
+                moved.push_back(xf(t.pos[size_t(s.pairs[i].b)], t.rot[size_t(s.pairs[i].b)]));
+                std::vector<BtgSubPair> sub2 = ref::referenceMidphase({int(i)}, t.pairs.data(), t.pos.data(), t.rot.data(),
+                                                                      t.props.data(), t.t.shapes.data(), t.meshView(), nullptr, true);
+                r = ref::referenceConcavePair(sub2, int(i), t.pairs.data(), t.pos.data(), t.rot.data(), t.props.data(),
+                                              t.t.view(), t.meshView(), prev);
+                prev = r.state;
+            }
+            // Which points the manifold keeps then follows from where each step's points fell:
+            // as many as stock's, the deepest as deep.
+            const std::vector<Point> after = stockSteps(shape, moved, mesh.shape.get()), ours = meshPoints(r.manifolds);
+            EXPECT_EQ(ours.size(), after.size());
+            if (!after.empty() && !ours.empty())
+                EXPECT_NEAR(ours[size_t(deepest(ours))].distance, after[size_t(deepest(after))].distance, tol::kStockDepth);
+        }
+        EXPECT_GE(touching, 3);
+    }
 }
