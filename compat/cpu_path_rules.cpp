@@ -114,9 +114,10 @@ std::string frictionAnchorReason(unsigned anchoredKinds, unsigned worldKinds)
             if (!((worldKinds >> w) & 1u)) continue;
             const bool compound = a == BTG_SHAPE_COMPOUND || w == BTG_SHAPE_COMPOUND;
             const int kind = btgPairKind(a, w);
+            // A convex–concave pair's manifold persists too, but split by normal: its anchors are not kept.
             if (compound || (kind != BTG_PAIR_NONE && (!btgIsPersistentKind(kind) || btgIsConcaveKind(kind))))
                 return std::string("friction anchors (CF_HAS_FRICTION_ANCHOR) on a ") + kNames[a] + " beside a " +
-                       kNames[w] + " (the device keeps no persistent manifold for that pair kind)";
+                       kNames[w] + " (the device keeps no friction anchor for that pair kind)";
         }
     }
     return "";

@@ -456,8 +456,20 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
     } else if (m_rowsStale) {
         followRows();
     }
+    // Past Config::deviceEmptyManifoldsUpTo the dispatcher holds no empty manifolds, where stock
+    // holds one per broadphase pair: said once each time the world grows past it.
+    const bool emptyCapped = m_config.fillDispatcherManifolds && m_config.deviceEmptyManifolds &&
+                             !m_config.stockEmptyManifolds &&
+                             m_world.getNumCollisionObjects() > m_config.deviceEmptyManifoldsUpTo;
+    if (emptyCapped && !m_emptyCapReported)
+        report({Issue::Kind::Difference,
+                "the dispatcher holds the contact manifolds with points only (stock also holds an empty one per "
+                "broadphase pair): " + std::to_string(m_world.getNumCollisionObjects()) +
+                    " collision objects, more than Config::deviceEmptyManifoldsUpTo (" +
+                    std::to_string(m_config.deviceEmptyManifoldsUpTo) + ")"});
+    m_emptyCapReported = emptyCapped;
     // Ghosts, an overlap filter or the host's exact mode may come and go between plans.
-    if (deviceLeafPairs() != m_plan.broadphaseLeaves) {
+    if ((deviceLeafPairs() || ghostsFromDevice()) != m_plan.broadphaseLeaves) {
         m_plan.broadphaseLeaves = !m_plan.broadphaseLeaves;
         m_report.stages = m_plan.stages();
         m_dev->leaves.reset = true;

@@ -116,8 +116,17 @@ private:
     std::string ccdReason() const;
     bool broadphaseAsStock() const
     {
-        return !m_ghosts.empty() || m_overlapFilter || (m_config.fillDispatcherManifolds && m_config.stockEmptyManifolds);
+        return (!m_ghosts.empty() && !ghostsFromDevice()) || m_overlapFilter ||
+               (m_config.fillDispatcherManifolds && m_config.stockEmptyManifolds);
     }
+    // Triggers in a big world (Config::ghostPairsFromDevice, past ghostPairsExactUpTo): their pairs
+    // from the device's Dbvt leaves and the host's follow of stock's pair cache (leaf_pairs.cpp),
+    // added to and removed from Bullet's pair cache, whose ghost callback fills the ghosts' lists;
+    // no broadphase work on the host.
+    bool ghostsFromDevice() const;
+    // After a device call with the leaf stage, for ghostsFromDevice: the ghost pairs that joined
+    // and left stock's pair cache, through Bullet's pair cache; the bodies held awake by them.
+    void followGhostPairs();
     // Stock's empty manifolds from the device's leaf pairs (Config::deviceEmptyManifolds): while
     // the fill wants them and nothing else decides the pairs (Bullet's broadphase on the host for
     // ghosts, an overlap filter or stockEmptyManifolds; an app that turned off
@@ -175,6 +184,7 @@ private:
     // its deactivation timer in Bullet; the device's timers are reset to match.
     std::vector<char> m_woken;
     std::vector<char> m_reshaped;  // per row: its mesh or heightfield was edited (compareRow)
+    bool m_emptyCapReported = false;  // the Difference issue of Config::deviceEmptyManifoldsUpTo was made
     // After a syncIn: the woken rows' timers reset, the edited concave rows' kept points dropped.
     void afterSyncIn();
     ManifoldSync m_manifolds;   // the app's dispatcher manifolds on the GPU path

@@ -3,11 +3,13 @@
 // and the world's use of it around a device call (GpuWorld::startLeafPairs, noteLeafPairs).
 #include "leaf_pairs.h"
 
+#include "ghost_objects.h"
 #include "gpu_world.h"
 
 #include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
+#include <set>
 
 namespace btgpu {
 
@@ -95,10 +97,72 @@ void GpuWorld::noteLeafPairs(int steps)
 {
     const LeafChanges changes = readLeafChanges(*m_dev);
     m_leafPairs.apply(changes, steps);
+    if (ghostsFromDevice()) followGhostPairs();
+    if (!deviceLeafPairs()) return;  // the stage runs for the ghosts only: no empty manifolds
     if (m_leafPairs.fresh())
         m_manifolds.noteLeafPairs(m_world.getDispatcher(), m_leafPairs.pairs(), m_rows, m_removed);
     else
         m_manifolds.noteLeafChanges(m_world.getDispatcher(), m_leafPairs.joined(), m_leafPairs.left(), m_rows, m_removed);
+}
+
+bool GpuWorld::ghostsFromDevice() const
+{
+    // Triggers only (ghosts without contact response): a character's ghost is moved by its action,
+    // whose setAabb calls move stock's Dbvt leaf within the step (Bullet's immediate pair test,
+    // and the leaf the next step's update starts from), which the device's leaves do not follow.
+    const bool triggers = std::none_of(m_ghostResponds.begin(), m_ghostResponds.end(), [](char r) { return r != 0; });
+    return !m_ghosts.empty() && triggers && m_config.ghostPairsFromDevice && !m_overlapFilter &&
+           !(m_config.fillDispatcherManifolds && m_config.stockEmptyManifolds) && dbvtBroadphase() &&
+           m_world.getForceUpdateAllAabbs() && m_world.getNumCollisionObjects() > m_config.ghostPairsExactUpTo;
+}
+
+void GpuWorld::followGhostPairs()
+{
+    btOverlappingPairCache* cache = m_world.getPairCache();
+    btDispatcher* dispatcher = m_world.getDispatcher();
+    auto object = [&](int row) -> btCollisionObject* {
+        btCollisionObject* o = row >= 0 && size_t(row) < m_rows.size() ? m_rows.at(size_t(row)) : nullptr;
+        return o && !m_removed.count(o) && o->getBroadphaseHandle() ? o : nullptr;
+    };
+    auto ghost = [](const btCollisionObject* o) { return o->getInternalType() == btCollisionObject::CO_GHOST_OBJECT; };
+    // As stock's tree collider hands a pair to the cache (DBVT_BP_SORTPAIRS): the cache orders the
+    // proxies itself, filters by group and mask, and calls the ghost callback for a new pair.
+    auto each = [&](const std::vector<BtgPair>& pairs, bool add) {
+        for (const BtgPair& p : pairs) {
+            btCollisionObject *a = object(p.a), *b = object(p.b);
+            if (!a || !b || (!ghost(a) && !ghost(b))) continue;
+            btBroadphaseProxy *pa = a->getBroadphaseHandle(), *pb = b->getBroadphaseHandle();
+            if (pa > pb) std::swap(pa, pb);
+            if (add) cache->addOverlappingPair(pa, pb);
+            else cache->removeOverlappingPair(pa, pb, dispatcher);
+        }
+    };
+    if (m_leafPairs.fresh()) {
+        // The leaves started afresh (rows re-uploaded, or this mode just began): a ghost pair
+        // Bullet's cache holds that the device's pairs do not goes.
+        using ProxyPair = std::pair<const btBroadphaseProxy*, const btBroadphaseProxy*>;
+        auto ordered = [](const btBroadphaseProxy* x, const btBroadphaseProxy* y) {
+            return x < y ? ProxyPair(x, y) : ProxyPair(y, x);
+        };
+        std::set<ProxyPair> now;
+        for (const BtgPair& p : m_leafPairs.pairs()) {
+            btCollisionObject *a = object(p.a), *b = object(p.b);
+            if (a && b) now.insert(ordered(a->getBroadphaseHandle(), b->getBroadphaseHandle()));
+        }
+        std::vector<std::pair<btBroadphaseProxy*, btBroadphaseProxy*>> gone;
+        const btBroadphasePairArray& held = cache->getOverlappingPairArray();
+        for (int i = 0; i < held.size(); ++i) {
+            btBroadphaseProxy *pa = held[i].m_pProxy0, *pb = held[i].m_pProxy1;
+            auto *a = static_cast<btCollisionObject*>(pa->m_clientObject), *b = static_cast<btCollisionObject*>(pb->m_clientObject);
+            if ((ghost(a) || ghost(b)) && !now.count(ordered(pa, pb))) gone.push_back({pa, pb});
+        }
+        for (const auto& [pa, pb] : gone) cache->removeOverlappingPair(pa, pb, dispatcher);
+    }
+    // setAabb's tree collisions add the step's pairs before collide()'s cleanup removes.
+    each(m_leafPairs.joined(), true);
+    each(m_leafPairs.left(), false);
+    // Stock's islands: a ghost with contact response holds awake what it has a pair with.
+    heldAwakeByGhosts(m_world, m_rows, &m_heldAwake);
 }
 
 }  // namespace btgpu

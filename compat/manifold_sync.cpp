@@ -284,7 +284,8 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
     // old points nothing replaced while they stay within the breaking threshold at the
     // transforms the pair was collided at (a box tipping onto an edge of another still shows
     // four points on stock). Such a point was not in the device's solve: its impulses are 0.
-    // A GJK pair's manifold is the device's persistent one, refreshed there as stock's: its
+    // A GJK, box or (bullet mode) convex–concave pair's manifold is the device's persistent one,
+    // refreshed there as stock's (a concave pair's normal groups, consecutive reports, together): its
     // points are the whole manifold (keeping old ones here would double the refresh).
     const bool persistent = reports[g.first].persistent != 0;
     e.persistent = persistent;

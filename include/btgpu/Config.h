@@ -94,6 +94,16 @@ struct Config {
     // stock's step; one that stops overlapping goes at once, where stock's lazy cleanup takes up to
     // ~10 steps), so a character or trigger in a big world does not cost stock's broadphase.
     int ghostPairsExactUpTo = 4096;
+    // ... and in a bigger world whose ghosts are all triggers (no contact response; a
+    // character's ghost, moved inside the step by its action's setAabb, keeps the tree) the
+    // ghosts' pairs come from the device: the Dbvt leaves stage
+    // broadphase_leaves keeps as stock's setAabb does, stock's pair cache followed on the host
+    // with its lazy cleanup (pairs join at stock's step; the cache's order is not stock's, so a
+    // pair may leave a few steps apart from stock's), the ghost pairs added to and removed from
+    // Bullet's pair cache (its ghost callback, an app's ghost subclass, as stock's). No broadphase
+    // work on the host: a ghost costs the leaf stage and the read-back of its changes. Off: the
+    // ghosts' pairs from Bullet's own tree on the host, as above.
+    bool ghostPairsFromDevice = true;
     // Per-stage device times from OpenCL profiling events (Report::stageMs), taken on one
     // stepSimulation call in profileEvery (events cost host time on every launch).
     bool profile = false;

@@ -12,8 +12,10 @@ namespace btgpu {
 
 struct Issue {
     // BadArgument: a stepSimulation argument (the call simulated nothing) or a world setting
-    // such as a non-finite gravity.
-    enum class Kind { BadBody, OpenCL, Fallback, Overflow, Device, BadArgument };
+    // such as a non-finite gravity. Difference: the GPU path gives the app less than stock would
+    // by a Config choice (once, when it starts to; e.g. no empty manifolds past
+    // Config::deviceEmptyManifoldsUpTo collision objects).
+    enum class Kind { BadBody, OpenCL, Fallback, Overflow, Device, BadArgument, Difference };
     Kind kind;
     std::string message;
     int bodyIndex = -1;  // index in getCollisionObjectArray(), for BadBody

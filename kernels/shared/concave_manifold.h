@@ -74,12 +74,11 @@ static inline BtgPersistentManifold btgConcaveStep(BtgPersistentManifold prev, B
                                                    BTG_CONST_GLOBAL BtgManifold* region, int first, int end,
                                                    int concaveIsA, int child, float threshold, float* dist)
 {
-    BtgPersistentManifold m = prev;
+    BtgPersistentManifold m = child ? btgChildPreRefresh(prev, cv.pose, cc.pose, threshold) : prev;
     m.added = -1;
     m.addedMask = 0u;
     m.addedPoints = 0u;
     btgPersistentBegin(&m, dist);
-    if (child) btgPersistentRefresh(&m, dist, cv.pose, cc.pose, threshold);
     int adds = 0;
     for (int s = first; s < end; ++s) {
         if (region[s].numPoints <= 0) continue;

@@ -64,6 +64,8 @@ static BtgPersistentManifold btgPreviousManifold(BtgPair p, int kind, __global c
                 float dist[BTG_MAX_POINTS];                                                                           \
                 BtgPersistentManifold prev =                                                                          \
                     btgPreviousManifold(p, kind, children, counters, cache, cacheCapacity, gjkCache, gjkCapacity);      \
+                if (p.childA != BTG_WHOLE_BODY || p.childB != BTG_WHOLE_BODY)                                         \
+                    prev = btgChildPreRefresh(prev, a.pose, b.pose, t);                                               \
                 pm = BTG_PERSISTENT_STEP(prev, a, b, verts, faces, indices, edges, t, dist);                                  \
                 m = btgManifoldFromPersistent(pm, dist, b.pose);                                                      \
             }                                                                                                         \

@@ -167,6 +167,17 @@ static inline void btgPersistentRefresh(BtgPersistentManifold* m, float* dist, B
     for (int k = 0; k < m->numPoints; ++k) m->normal[k].w = dist[k];
 }
 
+/* btCompoundCollisionAlgorithm's refresh of its child algorithms' manifolds before the children
+ * collide: the points kept last substep refreshed at the poses now (a compound child's pair
+ * starts its substep from this; then its own algorithm adds and refreshes again). */
+static inline BtgPersistentManifold btgChildPreRefresh(BtgPersistentManifold m, BtgPose pa, BtgPose pb, float threshold)
+{
+    float dist[BTG_MAX_POINTS];
+    btgPersistentBegin(&m, dist);
+    btgPersistentRefresh(&m, dist, pa, pb, threshold);
+    return m;
+}
+
 /* One substep of the pair's manifold: prev (empty for a new pair), the point found now (if
  * valid), the poses now. dist receives each kept point's refreshed distance. */
 static inline BtgPersistentManifold btgPersistentStep(BtgPersistentManifold prev, BtgConvexPoint p, BtgPose pa,

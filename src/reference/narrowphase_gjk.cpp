@@ -19,6 +19,7 @@ GjkStep referenceGjkStep(const std::vector<BtgPair>& pairs, const BtgFloat4* pos
         const float threshold = btgPairThreshold(a.shape, b.shape);
         const int kind = btgPairKind(a.shape.type, b.shape.type);
         BtgPersistentManifold prev = i < previous.size() ? previous[i] : btgEmptyPersistent(p.a, p.b, kind);
+        if (p.childA != BTG_WHOLE_BODY || p.childB != BTG_WHOLE_BODY) prev = btgChildPreRefresh(prev, a.pose, b.pose, threshold);
         float dist[BTG_MAX_POINTS];
         BtgPersistentManifold pm =
             btgPairStep(prev, a, b, t.hullVertices, t.hullFaces, t.hullIndices, t.hullEdges, threshold, dist);

@@ -332,8 +332,18 @@ TEST(EmptyManifolds, BigWorldsHoldPointsOnly)
         ASSERT_EQ(h.manifolds, h.touching) << step;
     }
     EXPECT_GT(held(*s).touching, 100);
+    // Not silently: one Difference issue says so, naming the count and the setting.
+    int said = 0;
+    for (const Issue& i : s->gpuWorld()->report().issues)
+        if (i.kind == Issue::Kind::Difference) {
+            ++said;
+            EXPECT_NE(i.message.find("126 collision objects"), std::string::npos) << i.message;
+            EXPECT_NE(i.message.find("deviceEmptyManifoldsUpTo (100)"), std::string::npos) << i.message;
+        }
+    EXPECT_EQ(said, 1);
     ScenePtr open = scenes::basicDemo(WorldKind::Gpu, Config());
     for (int step = 0; step < 80; ++step) open->step();
     EXPECT_TRUE(hasStage(*open, "broadphase_leaves"));
     EXPECT_GT(held(*open).manifolds, held(*open).touching);
+    for (const Issue& i : open->gpuWorld()->report().issues) EXPECT_NE(i.kind, Issue::Kind::Difference) << i.message;
 }
