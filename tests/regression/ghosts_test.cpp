@@ -8,6 +8,7 @@
 #include "side_by_side.h"
 
 #include <algorithm>
+#include <functional>
 #include <cstdio>
 #include <map>
 #include <set>
@@ -113,6 +114,49 @@ TEST(Ghosts, TriggerCountsTheBodiesInsideAsStock)
                   tol::kRestHeight) << "body " << b;
 }
 
+namespace {
+
+// When each body entered and last was in the trigger's list (the two passes through it apart), on
+// stock and on a btgpu world run with `config`; `each` sees both sorted lists every step.
+struct TriggerTimes {
+    std::map<int, int> enteredS, enteredG, leftS, leftG;
+    int differ = 0;  // steps whose lists differ
+};
+TriggerTimes triggerTimes(const Config& config,
+                          const std::function<void(int, const std::vector<int>&, const std::vector<int>&, GhostScene&)>& each)
+{
+    auto stock = scenes::triggerFall(WorldKind::Stock);
+    auto gpu = scenes::triggerFall(WorldKind::Gpu, config);
+    TriggerTimes t;
+    for (int i = 0; i < 180; ++i) {
+        stepTriggerFall(*stock, *gpu, i);
+        if (::testing::Test::HasFatalFailure()) return t;
+        std::vector<int> s = overlapping(*stock), g = overlapping(*gpu);
+        std::sort(s.begin(), s.end());
+        std::sort(g.begin(), g.end());
+        t.differ += s != g;
+        each(i, s, g, *gpu);
+        const int pass = i < 100 ? 0 : 1000;
+        for (int b : s) {
+            t.enteredS.emplace(pass + b, i);
+            t.leftS[pass + b] = i;
+        }
+        for (int b : g) {
+            t.enteredG.emplace(pass + b, i);
+            t.leftG[pass + b] = i;
+        }
+    }
+    std::printf("trigger (%s): %d of 180 steps differ from stock's list; host broadphase %.3f ms a call\n",
+                config.ghostPairsFromDevice ? "from the device" : "from the tree", t.differ,
+                gpu->scene->report()->ghostBroadphaseMs);
+    EXPECT_EQ(t.enteredG.size(), t.enteredS.size());
+    EXPECT_EQ(t.enteredG.size(), 16u);  // eight boxes, twice
+    for (const auto& [b, step] : t.enteredS) EXPECT_EQ(t.enteredG[b], step) << "body " << b;
+    return t;
+}
+
+}  // namespace
+
 // The same trigger as a big world would run it (Config::ghostPairsExactUpTo 0): only the ghost's
 // pairs updated, from Bullet's own tree. Each body enters the trigger's list at stock's step
 // (the same leaves), and leaves it at most 10 steps before stock's (whose lazy cleanup keeps a
@@ -122,35 +166,12 @@ TEST(Ghosts, TriggerInABigWorldFromTheTree)
     Config big;
     big.ghostPairsExactUpTo = 0;
     big.ghostPairsFromDevice = false;
-    auto stock = scenes::triggerFall(WorldKind::Stock);
-    auto gpu = scenes::triggerFall(WorldKind::Gpu, big);
-    std::map<int, int> enteredS, enteredG, leftS, leftG;  // body: first / last step listed
-    int differ = 0;
-    for (int i = 0; i < 180; ++i) {
-        ASSERT_NO_FATAL_FAILURE(stepTriggerFall(*stock, *gpu, i));
-        std::vector<int> s = overlapping(*stock), g = overlapping(*gpu);
-        std::sort(s.begin(), s.end());
-        std::sort(g.begin(), g.end());
-        differ += s != g;
+    const TriggerTimes t = triggerTimes(big, [](int i, const std::vector<int>& s, const std::vector<int>& g, GhostScene&) {
         for (int b : g) EXPECT_TRUE(std::binary_search(s.begin(), s.end(), b)) << "step " << i << " body " << b;
-        const int pass = i < 100 ? 0 : 1000;  // the two passes through it, apart
-        for (int b : s) {
-            enteredS.emplace(pass + b, i);
-            leftS[pass + b] = i;
-        }
-        for (int b : g) {
-            enteredG.emplace(pass + b, i);
-            leftG[pass + b] = i;
-        }
-    }
-    std::printf("trigger from the tree: %d of 180 steps differ from stock's list; host broadphase %.3f ms a call\n",
-                differ, gpu->scene->report()->ghostBroadphaseMs);
-    EXPECT_EQ(enteredG.size(), enteredS.size());
-    EXPECT_EQ(enteredG.size(), 16u);  // eight boxes, twice
-    for (const auto& [b, step] : enteredS) {
-        EXPECT_EQ(enteredG[b], step) << "body " << b;
-        EXPECT_LE(leftG[b], leftS[b]) << "body " << b;
-        EXPECT_GE(leftG[b], leftS[b] - 10) << "body " << b;
+    });
+    for (const auto& [b, step] : t.leftS) {
+        EXPECT_LE(t.leftG.at(b), step) << "body " << b;
+        EXPECT_GE(t.leftG.at(b), step - 10) << "body " << b;
     }
 }
 
@@ -165,39 +186,15 @@ TEST(Ghosts, TriggerInABigWorldFromTheDevice)
 {
     Config big;
     big.ghostPairsExactUpTo = 0;
-    auto stock = scenes::triggerFall(WorldKind::Stock);
-    auto gpu = scenes::triggerFall(WorldKind::Gpu, big);
-    std::map<int, int> enteredS, enteredG, leftS, leftG;  // body: first / last step listed
-    int differ = 0;
-    for (int i = 0; i < 180; ++i) {
-        ASSERT_NO_FATAL_FAILURE(stepTriggerFall(*stock, *gpu, i));
-        EXPECT_TRUE(std::find(gpu->scene->report()->stages.begin(), gpu->scene->report()->stages.end(),
-                              "broadphase_leaves") != gpu->scene->report()->stages.end()) << "step " << i;
-        std::vector<int> s = overlapping(*stock), g = overlapping(*gpu);
-        std::sort(s.begin(), s.end());
-        std::sort(g.begin(), g.end());
-        differ += s != g;
-        const std::vector<std::pair<int, int>> pairs = cachedPairs(*gpu);
-        EXPECT_EQ(pairs.size(), g.size()) << "step " << i;
-        const int pass = i < 100 ? 0 : 1000;
-        for (int b : s) {
-            enteredS.emplace(pass + b, i);
-            leftS[pass + b] = i;
-        }
-        for (int b : g) {
-            enteredG.emplace(pass + b, i);
-            leftG[pass + b] = i;
-        }
-    }
-    std::printf("trigger from the device: %d of 180 steps differ from stock's list; host broadphase %.3f ms a call\n",
-                differ, gpu->scene->report()->ghostBroadphaseMs);
-    EXPECT_EQ(enteredG.size(), enteredS.size());
-    EXPECT_EQ(enteredG.size(), 16u);  // eight boxes, twice
-    for (const auto& [b, step] : enteredS) {
-        EXPECT_EQ(enteredG[b], step) << "body " << b;
-        EXPECT_NEAR(leftG[b], leftS[b], 10) << "body " << b;
-    }
-    EXPECT_EQ(gpu->scene->report()->ghostBroadphaseMs, 0.0);  // nothing of Bullet's broadphase ran
+    double hostMs = 0.0;
+    const TriggerTimes t = triggerTimes(big, [&hostMs](int i, const std::vector<int>&, const std::vector<int>& g, GhostScene& gpu) {
+        const std::vector<std::string>& stages = gpu.scene->report()->stages;
+        EXPECT_NE(std::find(stages.begin(), stages.end(), "broadphase_leaves"), stages.end()) << "step " << i;
+        EXPECT_EQ(cachedPairs(gpu).size(), g.size()) << "step " << i;
+        hostMs += gpu.scene->report()->ghostBroadphaseMs;
+    });
+    for (const auto& [b, step] : t.leftS) EXPECT_NEAR(t.leftG.at(b), step, 10) << "body " << b;
+    EXPECT_EQ(hostMs, 0.0);  // nothing of Bullet's broadphase ran
 }
 
 // An app's ghost subclass with its own addOverlappingObjectInternal and
