@@ -3,8 +3,9 @@
  * scaled convex) against any convex or a plane: the one point Bullet's algorithm adds a step
  * (shared/gjk.h) into the pair's persistent manifold (shared/persistent_manifold.h); and,
  * after the solve, store_persistent_manifolds keeps those manifolds for the next substep.
- * Launch: collide_* any number of work-items, striding over the kind's range of the
- * kind-grouped pairs; store_persistent_manifolds one work-item per contact slot.
+ * Launch: collide_persistent, one kernel for every kind of the sub-table, any number of work-items
+ * striding over the kinds' ranges of the kind-grouped pairs laid end to end;
+ * store_persistent_manifolds one work-item per contact slot.
  * Reads pairs, kindOrder, kindRanges, pos, rot, props, shapes, hull vertices/faces/indices, counters
  * [kPrevContactCount], contactCache (to find a pair's previous manifold), gjkCache.
  * Writes manifolds[slot], pairManifolds[slot] and gjkPairState[slot] of the kind's pairs;
@@ -14,5 +15,5 @@
 #define BTG_SPECULATIVE_COLLIDE btgCollideGjk /* the host never asks it of these kinds */
 #include "shared/persistent_kernels.h"
 
-BTG_PAIR_KINDS_NARROWPHASE_GJK(BTG_PERSISTENT_KERNEL)
+BTG_PERSISTENT_PROGRAM_KERNEL(BTG_PAIR_KINDS_NARROWPHASE_GJK)
 

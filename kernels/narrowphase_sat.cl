@@ -5,7 +5,7 @@
  * (shared/persistent_kernels.h), as the GJK program does for its kinds. The soft step
  * (speculative 1) takes each step's SAT clip with its speculative points up to the breaking
  * threshold instead (shared/clip.h), which its substeps need, and keeps no manifold.
- * Launch: collide_box_box any number of work-items, striding over the kind's range of the
+ * Launch: collide_persistent (the table's one row) any number of work-items, striding over the kind's range of the
  * kind-grouped pairs (kindRanges[BTG_KIND_RANGE_*(BTG_PAIR_BOX_BOX)], read on the device);
  * store_persistent_manifolds one work-item per contact slot.
  * Reads pairs, kindOrder, kindRanges, pos, rot, props (shape), shapes, children, hull tables,
@@ -18,4 +18,4 @@
 #define BTG_SPECULATIVE_COLLIDE btgCollideHullHull
 #include "shared/persistent_kernels.h"
 
-BTG_PAIR_KINDS_NARROWPHASE_SAT(BTG_PERSISTENT_KERNEL)
+BTG_PERSISTENT_PROGRAM_KERNEL(BTG_PAIR_KINDS_NARROWPHASE_SAT)

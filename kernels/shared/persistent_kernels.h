@@ -1,6 +1,6 @@
 /* persistent_kernels.h — the kernels of the narrowphase programs whose pairs keep a persistent
  * manifold (narrowphase_gjk.cl: the GJK kinds; narrowphase_sat.cl: two boxes): each collide
- * kernel reads the manifold its pair kept last substep, steps it (BTG_PERSISTENT_STEP, which the
+ * kernel (collide_persistent, one a program) reads the manifold its pair kept last substep, steps it (BTG_PERSISTENT_STEP, which the
  * program defines before including this) and writes it beside the pair's manifold, or with
  * `speculative` collides the pair afresh (BTG_SPECULATIVE_COLLIDE) and keeps nothing; after the
  * solve, store_persistent_manifolds keeps those manifolds for the next substep. OpenCL only. */
@@ -32,23 +32,45 @@ static BtgPersistentManifold btgPreviousManifold(BtgPair p, int kind, __global c
     return btgEmptyPersistent(p.a, p.b, kind);
 }
 
-#define BTG_PERSISTENT_KERNEL(program, kind, shapeA, shapeB, routine, kernel)                                               \
-    __kernel void kernel(__global const BtgPair* restrict pairs, __global const uint* restrict kindOrder,            \
-                         __global const uint* restrict kindRanges, int indirect,                                      \
-                         __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,              \
-                         __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes,       \
-                         __global const BtgChild* restrict children,                                                  \
-                         __global const BtgFloat4* restrict verts, __global const BtgFace* restrict faces,            \
-                         __global const int* restrict indices, __global const BtgFloat4* restrict edges,              \
-                         __global const uint* restrict counters,                                                      \
-                         __global const BtgCachedContact* restrict cache, int cacheCapacity,                          \
-                         __global const BtgPersistentManifold* restrict gjkCache, int gjkCapacity,                    \
-                         __global BtgManifold* restrict manifolds, __global BtgManifoldRange* restrict pairManifolds, \
-                         __global BtgPersistentManifold* restrict gjkPairState, int speculative)                      \
+/* The program's one collide kernel, collide_persistent, for every kind of its sub-table TABLE:
+ * a work-item strides over the kinds' ranges laid end to end, so the step (GJK and EPA, the
+ * featured hulls' clip, the box detector) is compiled once, not once a kind (NVIDIA's compiler
+ * took minutes over the nine copies). */
+#define BTG_PERSISTENT_KIND_ITEM(program, kind, shapeA, shapeB, routine, kernel) kind,
+#define BTG_PERSISTENT_PROGRAM_KERNEL(TABLE)                                                                         \
+    __kernel void collide_persistent(__global const BtgPair* restrict pairs, __global const uint* restrict kindOrder, \
+                                     __global const uint* restrict kindRanges, int indirect,                          \
+                                     __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,  \
+                                     __global const BtgBodyProps* restrict props,                                     \
+                                     __global const BtgShape* restrict shapes,                                        \
+                                     __global const BtgChild* restrict children,                                      \
+                                     __global const BtgFloat4* restrict verts, __global const BtgFace* restrict faces, \
+                                     __global const int* restrict indices, __global const BtgFloat4* restrict edges,  \
+                                     __global const uint* restrict counters,                                          \
+                                     __global const BtgCachedContact* restrict cache, int cacheCapacity,              \
+                                     __global const BtgPersistentManifold* restrict gjkCache, int gjkCapacity,        \
+                                     __global BtgManifold* restrict manifolds,                                        \
+                                     __global BtgManifoldRange* restrict pairManifolds,                               \
+                                     __global BtgPersistentManifold* restrict gjkPairState, int speculative)          \
     {                                                                                                                 \
-        const uint end = kindRanges[BTG_KIND_RANGE_END(kind)];                                                        \
-        for (uint i = kindRanges[BTG_KIND_RANGE_START(kind)] + (uint)get_global_id(0); i < end;                      \
-             i += (uint)get_global_size(0)) {                                                                        \
+        const int kinds[] = {TABLE(BTG_PERSISTENT_KIND_ITEM)};                                                        \
+        const int numKinds = (int)(sizeof(kinds) / sizeof(kinds[0]));                                                \
+        uint total = 0u;                                                                                              \
+        for (int k = 0; k < numKinds; ++k)                                                                            \
+            total += kindRanges[BTG_KIND_RANGE_END(kinds[k])] - kindRanges[BTG_KIND_RANGE_START(kinds[k])];           \
+        for (uint idx = (uint)get_global_id(0); idx < total; idx += (uint)get_global_size(0)) {                      \
+            int kind = BTG_PAIR_NONE;                                                                                 \
+            uint i = 0u, rest = idx;                                                                                  \
+            for (int k = 0; k < numKinds && kind == BTG_PAIR_NONE; ++k) {                                            \
+                const uint first = kindRanges[BTG_KIND_RANGE_START(kinds[k])];                                        \
+                const uint n = kindRanges[BTG_KIND_RANGE_END(kinds[k])] - first;                                      \
+                if (rest < n) {                                                                                       \
+                    kind = kinds[k];                                                                                  \
+                    i = first + rest;                                                                                 \
+                } else {                                                                                              \
+                    rest -= n;                                                                                        \
+                }                                                                                                     \
+            }                                                                                                         \
             const uint slot = indirect ? kindOrder[i] : i;                                                            \
             const BtgPair p = pairs[slot];                                                                            \
             BtgCollider a = btgLoadPairCollider(p, 0, pos, rot, props, shapes, children);                             \
@@ -56,17 +78,17 @@ static BtgPersistentManifold btgPreviousManifold(BtgPair p, int kind, __global c
             const float t = btgPairThreshold(a.shape, b.shape);                                                       \
             BtgPersistentManifold pm = btgEmptyPersistent(p.a, p.b, kind);                                           \
             BtgManifold m = btgEmptyManifold(p.a, p.b);                                                               \
-            if (btgPairKind(a.shape.type, b.shape.type) == (kind) && speculative) {                                   \
+            if (btgPairKind(a.shape.type, b.shape.type) == kind && speculative) {                                     \
                 /* this step's own points, no manifold kept: kind NONE, which no pair takes */                        \
                 m = BTG_SPECULATIVE_COLLIDE(a, b, verts, faces, indices, edges, t);                                   \
                 pm = btgEmptyPersistent(p.a, p.b, BTG_PAIR_NONE);                                                     \
-            } else if (btgPairKind(a.shape.type, b.shape.type) == (kind)) {                                           \
+            } else if (btgPairKind(a.shape.type, b.shape.type) == kind) {                                             \
                 float dist[BTG_MAX_POINTS];                                                                           \
                 BtgPersistentManifold prev =                                                                          \
                     btgPreviousManifold(p, kind, children, counters, cache, cacheCapacity, gjkCache, gjkCapacity);      \
                 if (p.childA != BTG_WHOLE_BODY || p.childB != BTG_WHOLE_BODY)                                         \
                     prev = btgChildPreRefresh(prev, a.pose, b.pose, t);                                               \
-                pm = BTG_PERSISTENT_STEP(prev, a, b, verts, faces, indices, edges, t, dist);                                  \
+                pm = BTG_PERSISTENT_STEP(prev, a, b, verts, faces, indices, edges, t, dist);                          \
                 m = btgManifoldFromPersistent(pm, dist, b.pose);                                                      \
             }                                                                                                         \
             m = btgWithChildKeys(btgWithThreshold(m, t), p, children);                                                \

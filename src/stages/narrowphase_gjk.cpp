@@ -53,19 +53,15 @@ void narrowphasePersistent(DeviceWorld& w, const PairKinds& kinds, const char* k
     const cl_int indirect = w.pairKindsIndirect ? 1 : 0;
     const int cacheCapacity = int(w.contactCache.capacity());
     const int gjkCapacity = int(w.gjkCache.capacity());
-    cl::Program& prog = w.ctx.program(kProgram);
-    for (int r = 0; r < kNumPairKindRows; ++r) {
-        const PairKindRow& row = kPairKindRows[r];
-        if (!kinds.has(row.kind) || std::strcmp(row.program, kProgram) != 0) continue;
-        // Only the box program clips speculatively, for the soft step.
-        const cl_int speculative = std::strcmp(kProgram, "narrowphase_sat") == 0 && w.speculativeBoxes ? 1 : 0;
-        cl::Launch(w.ctx, prog.kernel(row.kernel), &w.profiler)
-            .arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)
-            .arg(w.shapes).arg(w.children).arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges)
-            .arg(w.counters).arg(w.contactCache).arg(cacheCapacity)
-            .arg(w.gjkCache).arg(gjkCapacity).arg(w.manifolds).arg(w.pairManifolds).arg(w.gjkPairState).arg(speculative)
-            .run(items);
-    }
+    // Only the box program clips speculatively, for the soft step.
+    const cl_int speculative = std::strcmp(kProgram, "narrowphase_sat") == 0 && w.speculativeBoxes ? 1 : 0;
+    // One kernel strides over all the program's kinds (collide_persistent).
+    cl::Launch(w.ctx, w.ctx.program(kProgram).kernel("collide_persistent"), &w.profiler)
+        .arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)
+        .arg(w.shapes).arg(w.children).arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges)
+        .arg(w.counters).arg(w.contactCache).arg(cacheCapacity)
+        .arg(w.gjkCache).arg(gjkCapacity).arg(w.manifolds).arg(w.pairManifolds).arg(w.gjkPairState).arg(speculative)
+        .run(items);
 }
 
 void storePersistentManifolds(DeviceWorld& w, const PairKinds& kinds, unsigned solverFlags)

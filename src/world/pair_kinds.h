@@ -11,7 +11,7 @@ namespace btgpu {
 struct PairKindRow {
     int kind;             // BTG_PAIR_*
     int shapeA, shapeB;   // BTG_SHAPE_*, shapeA <= shapeB
-    const char* kernel;   // in `program`
+    const char* kernel;   // in `program`; the persistent programs' rows share collide_persistent
     const char* program;  // kernels/<program>.cl
 };
 
