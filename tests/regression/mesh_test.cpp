@@ -346,7 +346,7 @@ TEST(Mesh, SubPairOverflowGrowsAndRedoesTheStep)
 {
     // A fine mesh (10 cm cells) under 25 boxes: each meets ~300 triangles, far past the
     // midphase's first buffer; the step is redone with a bigger one (reported), nothing dropped:
-    // every box rests on the mesh as stock's, which sink 2 to 75 mm into it here on both engines
+    // every box rests on the mesh as stock's, both engines' sinking up to about 2 cm into it here
     // (one GJK point per triangle a frame, replacing each other in a manifold of 4).
     std::vector<Issue> issues;
     Config config;
