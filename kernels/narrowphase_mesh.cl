@@ -22,6 +22,9 @@
 #include "shared/concave_manifold.h"
 #include "shared/persistent_kernels.h"
 
+/* A kind no pair has: the kernel takes every sub-pair (collide_triangle_points). */
+#define BTG_ANY_MESH_KIND (-1)
+
 #define BTG_TRIANGLE_KERNEL(program, kind, shapeA, shapeB, routine, kernel)                                        \
     __kernel void kernel(__global const BtgSubPair* restrict subPairs, __global const uint* restrict counters,      \
                          uint capacity, __global const BtgPair* restrict pairs,                                     \
@@ -42,7 +45,7 @@
             const BtgPair p = pairs[sp.pair];                                                                       \
             BtgCollider a = btgLoadPairCollider(p, 0, pos, rot, props, shapes, children);                           \
             BtgCollider b = btgLoadPairCollider(p, 1, pos, rot, props, shapes, children);                           \
-            if (btgPairKind(a.shape.type, b.shape.type) != (kind)) continue;                                       \
+            if ((kind) != BTG_ANY_MESH_KIND && btgPairKind(a.shape.type, b.shape.type) != (kind)) continue;        \
             manifolds[base + s] = btgWithChildKeys(btgTriangleManifold(a, b, sp, verts, faces, indices, edges, routine), \
                                                    p, children);                                                    \
         }                                                                                                           \
@@ -52,30 +55,7 @@ BTG_PAIR_KINDS_NARROWPHASE_MESH(BTG_TRIANGLE_KERNEL)
 
 /* The bullet mode's triangles, every mesh kind in one kernel: each the one point stock's algorithm
  * for it adds (btgCollideTrianglePoint; GJK compiled once, not once a kind). */
-__kernel void collide_triangle_points(__global const BtgSubPair* restrict subPairs, __global const uint* restrict counters,
-                                      uint capacity, __global const BtgPair* restrict pairs,
-                                      __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,
-                                      __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes,
-                                      __global const BtgChild* restrict children,
-                                      __global const BtgFloat4* restrict verts, __global const BtgFace* restrict faces,
-                                      __global const int* restrict indices, __global const BtgFloat4* restrict edges,
-                                      __global const BtgMesh* restrict meshes, __global const BtgBvhNode* restrict nodes,
-                                      __global const int* restrict parts, __global const BtgTriangle* restrict triangles,
-                                      __global const BtgFloat4* restrict meshVerts,
-                                      __global const BtgHeightfield* restrict heightfields,
-                                      __global const float* restrict heights, __global BtgManifold* restrict manifolds,
-                                      uint base)
-{
-    const uint n = min(counters[BTG_COUNTER_SUB_PAIRS], capacity);
-    for (uint s = (uint)get_global_id(0); s < n; s += (uint)get_global_size(0)) {
-        const BtgSubPair sp = subPairs[s];
-        const BtgPair p = pairs[sp.pair];
-        BtgCollider a = btgLoadPairCollider(p, 0, pos, rot, props, shapes, children);
-        BtgCollider b = btgLoadPairCollider(p, 1, pos, rot, props, shapes, children);
-        manifolds[base + s] =
-            btgWithChildKeys(btgTriangleManifold(a, b, sp, verts, faces, indices, edges, btgCollideTrianglePoint), p, children);
-    }
-}
+BTG_TRIANGLE_KERNEL(narrowphase_mesh, BTG_ANY_MESH_KIND, 0, 0, btgCollideTrianglePoint, collide_triangle_points)
 
 /* One mesh pair's manifold stepped as stock's (the bullet mode), written as btgConcaveWrite lays
  * it out, its state at its slot for the store and the report. */

@@ -44,20 +44,11 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::SortSweep: smallBodyPairs(w, plan.broadphase, plan.cellSize); break;
         case Stage::FindPairs: finishPairs(w, plan.kinds, !plan.hasCompounds); break;
         case Stage::ExpandCompounds: expandCompounds(w, plan.kinds); break;
-        case Stage::Midphase:
-            w.speculativeBoxes = plan.solver == SolverKind::SoftStep;
-            midphase(w);
-            break;
+        case Stage::Midphase: midphase(w); break;
         case Stage::Narrowphase:
         case Stage::NarrowphaseSat:
-        case Stage::NarrowphaseGjk:
-            w.speculativeBoxes = plan.solver == SolverKind::SoftStep;
-            narrowphaseProgram(w, plan.kinds, narrowphaseProgramOf(stage));
-            break;
-        case Stage::NarrowphaseMesh:
-            w.speculativeBoxes = plan.solver == SolverKind::SoftStep;
-            narrowphaseMesh(w, plan.kinds);
-            break;
+        case Stage::NarrowphaseGjk: narrowphaseProgram(w, plan.kinds, narrowphaseProgramOf(stage)); break;
+        case Stage::NarrowphaseMesh: narrowphaseMesh(w, plan.kinds); break;
         case Stage::FilterPairs: filterPairs(w); break;
         case Stage::ApplyForces: applyForces(w, p.dt, p.maxGyroscopicForce); break;
         case Stage::ContactCache: buildContacts(w, p); break;
@@ -94,6 +85,7 @@ void runSubstep(DeviceWorld& w, const Plan& plan, const std::vector<Stage>& stag
     }
     // The second half of a split substep goes on from the contact list with the counts the
     // first half left.
+    w.speculativeContacts = plan.solver == SolverKind::SoftStep;  // the midphase and narrowphase read it
     bool running = s.split != ContactsSplit::FromContacts;
     if (running) {
         fillCounters(w, kPairCount, 2, 0u);  // pair and contact counts

@@ -25,7 +25,7 @@ void midphase(DeviceWorld& w)
     const cl_int indirect = w.pairKindsIndirect ? 1 : 0;
     const cl_uint countSlots = cl_uint(slots), capacity = cl_uint(w.subPairCapacity);
     // The bullet mode's manifolds persist as stock's: its box is stock's (no threshold).
-    const cl_int persistent = w.speculativeBoxes ? 0 : 1;
+    const cl_int persistent = w.speculativeContacts ? 0 : 1;
     cl::Program& prog = ctx.program("midphase");
     cl::Launch(ctx, prog.kernel("midphase_count"), &w.profiler)
         .arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)

@@ -45,7 +45,7 @@ void narrowphaseMesh(DeviceWorld& w, const PairKinds& kinds)
     w.pairManifolds.reserveExact(ctx, w.pairCapacity);
     preparePersistent(w);
     // The bullet mode steps each pair's persistent manifold as stock's; the soft step clips afresh.
-    const cl_int persistent = w.speculativeBoxes ? 0 : 1;
+    const cl_int persistent = w.speculativeContacts ? 0 : 1;
     const size_t units = size_t(std::max<cl_uint>(ctx.device().computeUnits, 1)) * 1024;
     const cl_uint capacity = cl_uint(w.subPairCapacity), base = cl_uint(w.pairCapacity);
     const cl_uint countSlots = cl_uint(w.pairCapacity + 1);

@@ -165,10 +165,12 @@ struct DeviceWorld {
     cl::DeviceArray<BtgPersistentManifold> gjkPairState;
     cl::DeviceArray<BtgPersistentManifold> gjkCache;
     cl::DeviceArray<BtgPersistentManifold> gjkCacheAtCall;
-    bool gjkCacheCurrent = false;
-    // Box pairs take each step's SAT clip with speculative points (the soft step's substeps need
-    // them) instead of stock's box detector into a persistent manifold (narrowphase_sat.cl).
-    bool speculativeBoxes = false;  // gjkCache was stored by the last substep that stored the cache
+    bool gjkCacheCurrent = false;  // gjkCache was stored by the last substep that stored the cache
+    // The soft step's contacts: box pairs take each step's SAT clip with speculative points, and
+    // convex–mesh pairs each triangle's clip with the pair's threshold (its substeps need this
+    // step's points), instead of stock's algorithms into persistent manifolds (narrowphase_sat.cl,
+    // narrowphase_mesh.cl). Set by the pipeline each substep from the plan's solver.
+    bool speculativeContacts = false;
 
     // --- the constraint graph: one edge (body A, body B) per constraint of any kind ---
     // Rebuilt every substep; the batching colors it and the islands walk it. Edge e below the

@@ -70,7 +70,7 @@ DeviceResult runMidphase(const MeshScene& s, size_t capacity, bool persistent = 
     cl::Context& ctx = test::context();
     DeviceWorld w(ctx);
     s.upload(w, capacity);
-    w.speculativeBoxes = !persistent;
+    w.speculativeContacts = !persistent;
     midphase(w);
     DeviceResult r;
     std::vector<uint> counters = w.counters.download(ctx, kNumCounters);

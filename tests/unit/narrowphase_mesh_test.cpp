@@ -58,7 +58,7 @@ std::vector<PairResult> runDevice(const MeshScene& s, bool persistent = false,
     cl::Context& ctx = test::context();
     DeviceWorld w(ctx);
     s.upload(w, 1 << 12);
-    w.speculativeBoxes = !persistent;
+    w.speculativeContacts = !persistent;
     midphase(w);
     narrowphaseMesh(w, s.kinds());
     std::vector<BtgManifoldRange> ranges = w.pairManifolds.download(ctx, s.pairs.size());
