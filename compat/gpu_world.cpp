@@ -361,6 +361,7 @@ bool GpuWorld::runOnDevice(int substeps, btScalar dt, SubstepPart part, const st
     for (const CallEvent& e : outcome.events)
         report({e.kind == CallEvent::Kind::Grew ? Issue::Kind::Overflow : Issue::Kind::Device, e.message});
     m_report.redoneSteps += outcome.redone;
+    m_report.softSubsteps = w.lastSoftSubsteps;
     if (outcome.abandoned) return false;
     if (s.params.randomSeed != 0u) m_orderStream = s.params.randomSeed + unsigned(s.substeps);
     m_rows.stepped();

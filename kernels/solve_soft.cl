@@ -10,9 +10,10 @@
  * soft_resident: all of the stage in one launch (resident groups on GPUs, one group for small
  * scenes on CPUs); soft_transforms (Stage soft_transforms, after the cache is stored): one per
  * body row.
- * Reads counters[kEdgeCount, kContactCount, kColorsUsed, kLeftovers], edgeColor, props,
+ * Reads counters[kEdgeCount, kContactCount, kColorsUsed, kLeftovers], edges, edgeColor, props,
  * invInertiaWorld, linVel0, angVel0, contacts, joints, jointState, jointRows.
- * Writes softContacts (a held pair's pass also its support's impulses), softBodies (scratch: the
+ * Writes counters[kSoftMassRatio] (soft_color_count: the largest mass ratio of an edge between two
+ * dynamic bodies, which sets the step's substeps), softContacts (a held pair's pass also its support's impulses), softBodies (scratch: the
  * deltas, force shares and, prepared color by color with heldMassRatio, supports), linVel, angVel (dynamic rows), contacts (impulses,
  * tangents), jointRows (impulses: a step's, substep's times substeps), and in soft_transforms
  * pos, rot and NaN status. */
@@ -28,9 +29,9 @@
     __global const BtgFloat4* restrict linVel0, __global const BtgFloat4* restrict angVel0, \
     BTG_SHARED __global BtgFloat4* lin, BTG_SHARED __global BtgFloat4* ang, BTG_SHARED __global BtgFloat4* softBodies, \
     __global const BtgJoint* restrict joints, __global const BtgJointState* restrict jointState, \
-    __global BtgJointRow* jointRows, BtgSoftParams params
+    __global BtgJointRow* jointRows, __global uint* counters, BtgSoftParams params
 #define SOFT_PASS contacts, softContacts, props, invInertiaWorld, linVel0, angVel0, lin, ang, softBodies, joints, \
-    jointState, jointRows, params
+    jointState, jointRows, counters, params
 
 static BtgSolverBody load_body(__global const BtgBodyProps* restrict props,
                                __global const BtgFloat4* restrict invInertiaWorld, int i)
@@ -204,13 +205,22 @@ static void soft_body(int i, int mode, SOFT_ARGS)
 /* One list of color ranges over every edge (contacts and joints alike): count per color,
  * offsets, fill. Within a range the order is the atomics', which does not matter: edges of one
  * color share no dynamic body. */
-__kernel void soft_color_count(__global const int* restrict edgeColor, __global const uint* restrict counters,
-                               int edgeCapacity, __global uint* colorCount, int numColors)
+__kernel void soft_color_count(__global const int* restrict edgeColor, __global uint* counters, int edgeCapacity,
+                               __global uint* colorCount, int numColors, __global const BtgEdge* restrict edges,
+                               __global const BtgBodyProps* restrict props)
 {
     int i = (int)get_global_id(0);
     if (i >= edge_count(counters, edgeCapacity)) return;
     int c = edgeColor[i];
     if (c >= 0 && c < numColors - 1) atomic_inc(&colorCount[c]);
+    /* The step's substeps follow its largest edge mass ratio (btgSoftSubstepsFor): positive
+     * floats order as their bits. */
+    const BtgEdge e = edges[i];
+    if (e.bodyA >= 0 && e.bodyB >= 0) {
+        const float ratio = btgSoftMassRatio(props[e.bodyA].flags, props[e.bodyA].invMass, props[e.bodyB].flags,
+                                             props[e.bodyB].invMass);
+        if (ratio > 1.0f) atomic_max(&counters[BTG_COUNTER_SOFT_MASS_RATIO], as_uint(ratio));
+    }
 }
 
 __kernel void soft_color_offsets(__global uint* colorCount, __global uint* colorStart, int numColors)
@@ -242,8 +252,7 @@ __kernel void soft_bodies(int n, int mode, SOFT_ARGS)
 }
 
 __kernel void soft_color_range(__global const uint* restrict colorStart, __global const int* restrict colorOrder,
-                               __global const uint* restrict counters, int edgeCapacity, int numJoints, int color,
-                               int mode, SOFT_ARGS)
+                               int edgeCapacity, int numJoints, int color, int mode, SOFT_ARGS)
 {
     const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
     const int nc = contact_edges(counters, edgeCapacity, numJoints);
@@ -251,8 +260,8 @@ __kernel void soft_color_range(__global const uint* restrict colorStart, __globa
         soft_edge(colorOrder[k], nc, mode, SOFT_PASS);
 }
 
-__kernel void soft_color_serial(__global const int* restrict edgeColor, __global const uint* restrict counters,
-                                int edgeCapacity, int numJoints, int color, int mode, SOFT_ARGS)
+__kernel void soft_color_serial(__global const int* restrict edgeColor, int edgeCapacity, int numJoints, int color,
+                                int mode, SOFT_ARGS)
 {
     if (get_global_id(0) != 0) return;
     if (counters[BTG_COUNTER_LEFTOVERS] == 0u && counters[BTG_COUNTER_COLORS_USED] <= (uint)color) return;
@@ -271,7 +280,7 @@ __kernel void soft_color_serial(__global const int* restrict edgeColor, __global
         return;                                                                                           \
     }
 
-__kernel void soft_resident(__global const int* restrict edgeColor, __global uint* counters, int edgeCapacity,
+__kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapacity,
                             __global const uint* restrict colorStart, __global const int* restrict colorOrder,
                             volatile __global BtgGridBarrier* bar, int numColors, int numJoints, int numBodies,
                             int spinLimit, SOFT_ARGS)
@@ -282,6 +291,9 @@ __kernel void soft_resident(__global const int* restrict edgeColor, __global uin
     const int n = edge_count(counters, edgeCapacity), nc = contact_edges(counters, edgeCapacity, numJoints);
     const int last = numColors - 1;
     const int walkLast = counters[BTG_COUNTER_LEFTOVERS] != 0u || counters[BTG_COUNTER_COLORS_USED] > (uint)last;
+    /* the substeps this step's mass ratio needs (soft_color_count noted it) */
+    const int substeps = btgSoftSubstepsFor(params, as_float(counters[BTG_COUNTER_SOFT_MASS_RATIO]));
+    if (substeps != params.substeps) params = btgSoftParamsWith(params, substeps);
     /* pass list: prepare; per substep velocity, warm start, solve, position, relax; restitution; store */
     const int passes = 2 + 5 * params.substeps + 2;
     for (int pass = 0; pass < passes; ++pass) {

@@ -26,6 +26,7 @@
 #include "stages/update_activation.h"
 
 #include <algorithm>
+#include <cstring>
 
 namespace btgpu {
 
@@ -59,7 +60,11 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::ColorConstraints: colorConstraints(w, s.maxColors); break;
         case Stage::SolveConstraints: solveConstraints(w, p, s.iterations, w.numColors); break;
         case Stage::SolveJacobi: solveJacobi(w, p, s.iterations); break;
-        case Stage::SolveSoft: solveSoft(w, makeSoftParams(s.soft, p, s.iterations), w.numColors); break;
+        case Stage::SolveSoft: {
+            w.softParams = makeSoftParams(s.soft, p, s.iterations);
+            solveSoft(w, w.softParams, w.numColors);
+            break;
+        }
         case Stage::StoreContactCache:
             storeContactCache(w);
             // A cache stored without the persistent manifolds beside it leaves those stale.
@@ -90,6 +95,7 @@ void runSubstep(DeviceWorld& w, const Plan& plan, const std::vector<Stage>& stag
     if (running) {
         fillCounters(w, kPairCount, 2, 0u);  // pair and contact counts
         fillCounters(w, kEdgeCount, 1, 0u);  // the constraint graph, rebuilt by the stages that add edges
+        fillCounters(w, kSoftMassRatio, 1, 0u);  // noted afresh by the soft step's prepare
     }
     for (Stage stage : stages) {
         if (stage == Stage::ContactCache) {
@@ -284,6 +290,9 @@ CallOutcome runCall(DeviceWorld& w, const Plan& plan, const StepSettings& s, Sna
     if (rb.counters[kLeftovers] > 0) rounds = std::max(rounds, 2 * w.colorRounds);
     w.colorRounds = std::min(rounds, std::max(s.maxColors - 1, 1));
     w.lastContactCount = int(rb.counters[kContactCount]);
+    float ratio = 0.0f;
+    std::memcpy(&ratio, &rb.counters[kSoftMassRatio], sizeof ratio);
+    w.lastSoftSubsteps = plan.solver == SolverKind::SoftStep ? btgSoftSubstepsFor(w.softParams, ratio) : 0;
     return out;
 }
 

@@ -42,6 +42,16 @@ typedef struct {
     float omega2Contact;         /* (rad/s)^2 of the two springs */
     float omega2Fixed;
     float heldMassRatio;         /* SoftStepConfig::heldMassRatio: a pair whose inverse masses differ more holds its light body (0: never) */
+    /* What the scalars above derive from, for a step that takes more substeps than the host
+     * chose (btgSoftSubstepsFor, btgSoftParamsWith) */
+    float dt;                    /* s: the fixed step */
+    float hertz;                 /* SoftStepConfig::contactHertz, uncapped */
+    float zeta;                  /* SoftStepConfig::dampingRatio */
+    float warmstartFactor;       /* btContactSolverInfo::m_warmstartingFactor */
+    float rootRatioSubsteps;     /* SoftStepConfig::substepsPerRootMassRatio (0: substeps stay) */
+    int maxSubsteps;             /* at most this many however heavy */
+    int pad0;
+    int pad1;
 } BtgSoftParams;
 
 /* One contact manifold as the soft step solves it (Box2D's b2ContactConstraint). */
@@ -95,7 +105,7 @@ typedef struct {
 
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(BtgSoftness) == 16, "BtgSoftness layout");
-static_assert(sizeof(BtgSoftParams) == 80, "BtgSoftParams layout");
+static_assert(sizeof(BtgSoftParams) == 112, "BtgSoftParams layout");
 static_assert(sizeof(BtgSoftContact) == 16 * (15 + 2 * BTG_MAX_POINTS) + 32, "BtgSoftContact layout");
 #endif
 
@@ -119,6 +129,46 @@ static inline BtgSoftness btgMakeSoftness(float hertz, float zeta, float h)
     s.impulseScale = a3;
     s.stiffness = a2;
     return s;
+}
+
+/* The step's scalars for `substeps` substeps of p.dt (p's settings kept). Box2D caps the
+ * spring at an eighth of the substep rate: stiffer than that and one substep cannot follow it. */
+static inline BtgSoftParams btgSoftParamsWith(BtgSoftParams p, int substeps)
+{
+    p.substeps = substeps;
+    p.h = p.dt / (float)substeps;
+    p.invH = p.h > 0.0f ? 1.0f / p.h : 0.0f;
+    const float hertz = btgMin(btgMax(p.hertz, 0.0f), 0.125f * p.invH);
+    p.contact = btgMakeSoftness(hertz, p.zeta, p.h);
+    p.fixed = btgMakeSoftness(2.0f * hertz, p.zeta, p.h);
+    p.warmScale = p.warmstartFactor > 0.0f ? 1.0f / ((float)substeps * p.warmstartFactor) : 0.0f;
+    p.jointBoundScale = 1.0f / (float)substeps;
+    const float omega = 2.0f * 3.14159265359f * hertz;
+    p.omega2Contact = omega * omega;
+    p.omega2Fixed = 4.0f * omega * omega;
+    return p;
+}
+
+/* Heavier over lighter of an edge's two bodies, 1 unless both are dynamic (flags, inverse masses). */
+static inline float btgSoftMassRatio(uint flagsA, float invMassA, uint flagsB, float invMassB)
+{
+    if (!btgIsSolverDynamic(flagsA) || !btgIsSolverDynamic(flagsB) || !(invMassA > 0.0f) || !(invMassB > 0.0f))
+        return 1.0f;
+    return btgMax(invMassA, invMassB) / btgMin(invMassA, invMassB);
+}
+
+/* Substeps for a step whose largest edge mass ratio is `ratio`: p.substeps, raised to the least
+ * n with n^2 >= (rootRatioSubsteps)^2 ratio, at most maxSubsteps. Gauss-Seidel hands a heavy
+ * body on a light one only the light one's share of each correction: the stack needs about
+ * 1.3 sqrt(ratio) substeps to stand (tests/stability/soft_mass_ratio_model.py). Products, not
+ * sqrt, so that host and device agree on every n. */
+static inline int btgSoftSubstepsFor(BtgSoftParams p, float ratio)
+{
+    int n = p.substeps;
+    if (!(p.rootRatioSubsteps > 0.0f) || !(ratio > 1.0f)) return n;
+    const float need = p.rootRatioSubsteps * p.rootRatioSubsteps * ratio;
+    while (n < p.maxSubsteps && (float)n * (float)n < need) ++n;
+    return n;
 }
 
 /* ---- bodies ---- */

@@ -5,13 +5,24 @@
 
 #include "shared/integrate.h"
 
+#include <algorithm>
+
 namespace btgpu::ref {
 
 std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::vector<int>& colors,
-                                 ContactBodies& bodies, const BtgSoftParams& params, int numColors)
+                                 ContactBodies& bodies, BtgSoftParams params, int numColors)
 {
     if (numColors < 1) numColors = 1;
     const size_t n = bodies.props.size();
+    // As soft_color_count and the stage: the substeps the largest edge mass ratio needs.
+    float ratio = 0.0f;
+    for (const BtgContact& c : contacts) {
+        const BtgBodyProps &pa = bodies.props[size_t(c.bodyA)], &pb = bodies.props[size_t(c.bodyB)];
+        const float r = btgSoftMassRatio(pa.flags, pa.invMass, pb.flags, pb.invMass);
+        if (r > 1.0f) ratio = std::max(ratio, r);
+    }
+    const int substeps = btgSoftSubstepsFor(params, ratio);
+    if (substeps != params.substeps) params = btgSoftParamsWith(params, substeps);
     std::vector<BtgFloat4> rows(BTG_SOFT_BODY_ROWS * n);
     std::vector<BtgSoftContact> soft(contacts.size());
     auto body = [&](int i) {

@@ -7,11 +7,12 @@
 
 namespace btgpu::ref {
 
-// solveSoft: bodies begin, contacts prepare, `params.substeps` substeps (velocities, warm
+// solveSoft: bodies begin, contacts prepare, `params.substeps` substeps (raised as the stage
+// raises them for the largest mass ratio, btgSoftSubstepsFor) (velocities, warm
 // start, solve, positions, relax), restitution, store. Updates linVel/angVel and the contacts'
 // impulses; returns the bodies' soft rows (BTG_SOFT_BODY_ROWS each) for softTransforms.
 std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::vector<int>& colors,
-                                 ContactBodies& bodies, const BtgSoftParams& params, int numColors);
+                                 ContactBodies& bodies, BtgSoftParams params, int numColors);
 // softTransforms: the poses of the bodies the integrator moves, from their rows.
 void softTransforms(ContactBodies& bodies, const std::vector<BtgFloat4>& rows);
 

@@ -7,6 +7,7 @@
 #include "stages/resident.h"
 
 #include <algorithm>
+#include <cstring>
 
 namespace btgpu {
 
@@ -15,38 +16,45 @@ namespace {
 // launch on one work-group.
 constexpr int kOneGroupMaxContacts = 4096;
 constexpr int kMaxSubsteps = 256;
+
+// An explicit substep count is kept; m_numIterations' grows with the mass ratio unless the
+// light bodies are held (the other cure: held at 64 substeps a 1,000:1 pair sinks metres).
+float rootRatioSubsteps(const SoftStepConfig& c)
+{
+    if (c.substeps > 0 || c.heldMassRatio > 0.0f) return 0.0f;
+    return std::max(c.substepsPerRootMassRatio, 0.0f);
+}
+
 }  // namespace
 
-int softSubsteps(const SoftStepConfig& c, int iterations)
+int softSubsteps(const SoftStepConfig& c, int iterations, float massRatio)
 {
-    return std::clamp(c.substeps > 0 ? c.substeps : iterations, 1, kMaxSubsteps);
+    BtgSoftParams p{};
+    p.substeps = std::clamp(c.substeps > 0 ? c.substeps : iterations, 1, kMaxSubsteps);
+    p.rootRatioSubsteps = rootRatioSubsteps(c);
+    p.maxSubsteps = std::clamp(c.maxSubsteps, p.substeps, kMaxSubsteps);
+    return btgSoftSubstepsFor(p, massRatio);
 }
 
 BtgSoftParams makeSoftParams(const SoftStepConfig& c, const BtgStepParams& params, int iterations)
 {
     BtgSoftParams p{};
+    p.dt = params.dt;
+    p.hertz = c.contactHertz;
+    p.zeta = c.dampingRatio;
+    p.warmstartFactor = params.warmstartFactor;
     p.substeps = softSubsteps(c, iterations);
-    p.h = params.dt / float(p.substeps);
-    p.invH = p.h > 0.0f ? 1.0f / p.h : 0.0f;
-    // Box2D caps the spring at an eighth of the substep rate: stiffer than that and one substep
-    // cannot follow it.
-    const float hertz = std::min(std::max(c.contactHertz, 0.0f), 0.125f * p.invH);
-    p.contact = btgMakeSoftness(hertz, c.dampingRatio, p.h);
-    p.fixed = btgMakeSoftness(2.0f * hertz, c.dampingRatio, p.h);
+    p.rootRatioSubsteps = rootRatioSubsteps(c);
+    p.maxSubsteps = std::clamp(c.maxSubsteps, p.substeps, kMaxSubsteps);
     p.pushSpeed = c.pushSpeed;
     p.restitutionThreshold = params.restitutionThreshold;
-    p.warmScale = params.warmstartFactor > 0.0f ? 1.0f / (float(p.substeps) * params.warmstartFactor) : 0.0f;
-    p.jointBoundScale = 1.0f / float(p.substeps);
     p.frictionInSolve = c.frictionInSolve ? 1 : 0;
     p.maxSag = std::max(c.maxSag, 0.0f);
     p.heldMassRatio = std::max(c.heldMassRatio, 0.0f);
-    const float omega = 2.0f * 3.14159265359f * hertz;
-    p.omega2Contact = omega * omega;
-    p.omega2Fixed = 4.0f * omega * omega;
-    return p;
+    return btgSoftParamsWith(p, p.substeps);
 }
 
-void solveSoft(DeviceWorld& w, const BtgSoftParams& params, int numColors)
+void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
 {
     cl::Context& ctx = w.ctx;
     const size_t slots = std::min({w.edgeCapacity, w.edges.capacity(), w.edgeColor.capacity()});
@@ -66,7 +74,7 @@ void solveSoft(DeviceWorld& w, const BtgSoftParams& params, int numColors)
     auto soft = [&](cl::Launch& l) -> cl::Launch& {
         return l.arg(w.contacts).arg(sc.softContacts).arg(w.props).arg(w.invInertiaWorld).arg(w.linVel0)
             .arg(w.angVel0).arg(w.linVel).arg(w.angVel).arg(sc.softBodies).arg(w.joints).arg(w.jointState)
-            .arg(w.jointRows).arg(params);
+            .arg(w.jointRows).arg(w.counters).arg(params);
     };
     cl_kernel bodies = prog.kernel("soft_bodies");
     auto bodyPass = [&](int mode) {
@@ -89,7 +97,7 @@ void solveSoft(DeviceWorld& w, const BtgSoftParams& params, int numColors)
     sc.colorCount.zero(ctx, size_t(numColors) + 1);
     const int numJoints = w.numJoints;
     cl::Launch(ctx, prog.kernel("soft_color_count"), &w.profiler).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity)
-        .arg(sc.colorCount).arg(numColors).run(slots);
+        .arg(sc.colorCount).arg(numColors).arg(w.edges).arg(w.props).run(slots);
     cl::Launch(ctx, prog.kernel("soft_color_offsets"), &w.profiler).arg(sc.colorCount).arg(sc.colorStart)
         .arg(numColors).run(1, 1);
     cl::Launch(ctx, prog.kernel("soft_color_fill"), &w.profiler).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity)
@@ -100,10 +108,20 @@ void solveSoft(DeviceWorld& w, const BtgSoftParams& params, int numColors)
         const size_t group = std::min<size_t>(256, cl::kernelGroupLimit(ctx, k));
         const size_t groups = resident ? std::max<cl_uint>(ctx.device().computeUnits, 1) : 1;
         cl::Launch l(ctx, k, &w.profiler);
-        l.arg(w.edgeColor).arg(w.counters).arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorOrder).arg(gridBarrier(w))
+        l.arg(w.edgeColor).arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorOrder).arg(gridBarrier(w))
             .arg(numColors).arg(numJoints).arg(numBodies).arg(kGridBarrierSpins);
         soft(l).run(groups * group, group);
         return;
+    }
+    // Launch by launch, the host enqueues the substeps: it waits for the mass ratio the count
+    // noted (soft_resident reads it on the device).
+    if (params.rootRatioSubsteps > 0.0f) {
+        uint bits = 0u;
+        w.counters.download(ctx, &bits, 1, kSoftMassRatio);
+        float ratio = 0.0f;
+        std::memcpy(&ratio, &bits, sizeof ratio);
+        const int substeps = btgSoftSubstepsFor(params, ratio);
+        if (substeps != params.substeps) params = btgSoftParamsWith(params, substeps);
     }
     const size_t rangeItems = std::min(slots, size_t(std::max<cl_uint>(ctx.device().computeUnits, 1)) * 256);
     cl_kernel range = prog.kernel("soft_color_range"), serial = prog.kernel("soft_color_serial");
@@ -111,12 +129,11 @@ void solveSoft(DeviceWorld& w, const BtgSoftParams& params, int numColors)
         for (int color = 0; color < numColors; ++color) {
             if (color == numColors - 1) {
                 cl::Launch l(ctx, serial, &w.profiler);
-                l.arg(w.edgeColor).arg(w.counters).arg(edgeCapacity).arg(numJoints).arg(color).arg(mode);
+                l.arg(w.edgeColor).arg(edgeCapacity).arg(numJoints).arg(color).arg(mode);
                 soft(l).run(1, 1);
             } else {
                 cl::Launch l(ctx, range, &w.profiler);
-                l.arg(sc.colorStart).arg(sc.colorOrder).arg(w.counters).arg(edgeCapacity).arg(numJoints).arg(color)
-                    .arg(mode);
+                l.arg(sc.colorStart).arg(sc.colorOrder).arg(edgeCapacity).arg(numJoints).arg(color).arg(mode);
                 soft(l).run(rangeItems, 64);
             }
         }

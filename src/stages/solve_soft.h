@@ -11,12 +11,15 @@
 
 namespace btgpu {
 
-// Substeps of a fixed step: SoftStepConfig::substeps, or m_numIterations when that is 0.
-int softSubsteps(const SoftStepConfig& c, int iterations);
-// The kernels' scalars for a fixed step of params.dt.
+// Substeps of a fixed step: SoftStepConfig::substeps; when that is 0, m_numIterations, raised
+// to what the largest mass ratio of the step's edges (massRatio) needs.
+int softSubsteps(const SoftStepConfig& c, int iterations, float massRatio = 0.0f);
+// The kernels' scalars for a fixed step of params.dt at softSubsteps(c, iterations); the stage
+// raises them to what this step's mass ratio needs (btgSoftSubstepsFor).
 BtgSoftParams makeSoftParams(const SoftStepConfig& c, const BtgStepParams& params, int iterations);
 
-void solveSoft(DeviceWorld& w, const BtgSoftParams& params, int numColors);
+// Takes more substeps than params' where the step's edges need them (btgSoftSubstepsFor).
+void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors);
 void softTransforms(DeviceWorld& w);
 
 }  // namespace btgpu

@@ -10,6 +10,7 @@
 #include "shared/contact_material.h"
 #include "shared/contact_report.h"
 #include "shared/joint_rows.h"
+#include "shared/soft_rows.h"
 #include "shared/types.h"
 #include "world/broadphase_scratch.h"
 #include "world/leaf_buffers.h"
@@ -30,6 +31,7 @@ enum Counter : int {
     kLeftovers = BTG_COUNTER_LEFTOVERS,           // edges it left to the solver's serial pass
     kEdgeCount = BTG_COUNTER_EDGES,               // constraint-graph edges (contacts first, then other kinds)
     kSubPairCount = BTG_COUNTER_SUB_PAIRS,        // midphase sub-pairs (may exceed subPairCapacity: overflow)
+    kSoftMassRatio = BTG_COUNTER_SOFT_MASS_RATIO, // the soft step's largest edge mass ratio (float bits)
     kNumCounters = BTG_NUM_COUNTERS
 };
 
@@ -181,6 +183,8 @@ struct DeviceWorld {
     int numColors = 0;                       // batches the solver launches (host estimate)
     int colorRounds = 8;                     // coloring rounds to run: set from the last readback
     int lastContactCount = 1 << 30;          // contacts at the last readback (chooses launch shapes)
+    BtgSoftParams softParams{};              // the soft step's scalars as the host chose them, last step
+    int lastSoftSubsteps = 0;                // substeps the soft step took at the last readback (its mass ratio's)
     SolverScratch solverScratch;             // contact stages' scratch (block sums, claims)
     // Batching and solve in one launch each over resident work-groups (stages/resident.h):
     // Auto takes it on GPUs; set Off for good when a grid barrier timed out on this device (the

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
@@ -86,38 +87,19 @@ TEST(SolverModes, MassRatioHundred)
     runModes("mass ratio 100:1, 10 s", [](WorldKind k, const Config& c) { return st::massRatio(k, c, 100); }, target(),
              Earned::Yes);
 }
-// 10 substeps: the light box rings under the heavy one and it falls off (88-108 mm, 1.5-2 m;
-// the 1-D model tests/stability/soft_mass_ratio_model.py shows why); held, it stands (below).
+// Without more substeps (SoftStepConfig::substepsPerRootMassRatio 0) the light box rings under
+// the heavy one at 10 substeps and it falls off (88-108 mm, 1.5-2 m; the 1-D model
+// tests/stability/soft_mass_ratio_model.py shows why); the default takes 64 and it stands.
 TEST(SolverModes, MassRatioThousand)
 {
     runModes("mass ratio 1000:1, 10 s", [](WorldKind k, const Config& c) { return st::massRatio(k, c, 1000); },
-             target(), Earned::No);
+             target(), Earned::Yes);
 }
 TEST(SolverModes, HeavyPlank)
 {
-    // 10 substeps: 16 mm into the boxes, the plank rocking 12 cm; 20 substeps hold it, and so
-    // does holding the light boxes (HeavyPlankHeld).
-    runModes("plank 400 kg on 2 boxes, 10 s", st::heavyPlank, target(), Earned::No);
-}
-// What more substeps earn (SoftStepConfig::substeps; the app's steps unchanged).
-void runSoftWithSubsteps(const std::string& name, const Builder& make, int substeps)
-{
-    Config config = modeConfig(SolverKind::SoftStep);
-    config.softStep.substeps = substeps;
-    const Outcome soft = run(make, WorldKind::Gpu, target(), config);
-    recordAs(name, "btgpu soft, " + std::to_string(substeps) + " substeps", soft, figure(soft));
-    EXPECT_TRUE(soft.gpuEveryStep) << name;
-    EXPECT_TRUE(soft.pass) << name << ", soft mode with " << substeps << " substeps: " << soft.why;
-}
-
-TEST(SolverModes, HeavyPlankWithTwentySubsteps)
-{
-    runSoftWithSubsteps("plank 400 kg on 2 boxes, 10 s", st::heavyPlank, 20);
-}
-TEST(SolverModes, MassRatioThousandWithFortySubsteps)
-{
-    runSoftWithSubsteps("mass ratio 1000:1, 10 s", [](WorldKind k, const Config& c) { return st::massRatio(k, c, 1000); },
-                        40);
+    // At 10 substeps 16 mm into the boxes, the plank rocking 12 cm; the default takes 40 for
+    // its 400:1 and holds it, and so does holding the light boxes (HeavyPlankHeld).
+    runModes("plank 400 kg on 2 boxes, 10 s", st::heavyPlank, target(), Earned::Yes);
 }
 
 // What holding the light body earns at the default 10 substeps (SoftStepConfig::heldMassRatio
@@ -126,6 +108,7 @@ void runSoftHeld(const std::string& name, const Builder& make)
 {
     Config config = modeConfig(SolverKind::SoftStep);
     config.softStep.heldMassRatio = 100.0f;
+    config.softStep.substepsPerRootMassRatio = 0.0f;  // 10 substeps, however heavy
     const Outcome soft = run(make, WorldKind::Gpu, target(), config);
     recordAs(name, "btgpu soft, held", soft, figure(soft));
     EXPECT_TRUE(soft.gpuEveryStep) << name;
@@ -237,28 +220,65 @@ TEST(SolverModes, SoftStepIsDeterministic)
     }
 }
 
-// Known failure of the held light body (why heldMassRatio is opt-in): a 1,000 kg box dropped
-// 5 cm onto a 1 kg box 45 cm off its centre (its centre still over the light box) should land
-// and stay, the light box where it was; held, the heavy box tips off and the light box is
-// thrown (tens of m/s) and falls through the ground. Run with --gtest_also_run_disabled_tests.
-TEST(SolverModes, DISABLED_HeldHeavyDroppedNearTheEdge)
+// A 1,000 kg box dropped 5 cm onto a 1 kg box 45 cm off its centre (its centre still over the
+// light box, 5 cm from its edge).
+struct EdgeDrop {
+    double fastestLight = 0;  // m/s: the light box's fastest
+    double lowestLight = 1;   // m: the light box's centre at its lowest (0.5 resting on the ground)
+    double lastSpeed = 0;     // m/s: the faster of the two at the end
+    double heavyHeight = 0;   // m: the heavy box's centre at the end
+    int substeps = 0;         // the most Report::softSubsteps took
+};
+EdgeDrop dropHeavyNearTheEdge(const Config& config)
 {
-    Config config = modeConfig(SolverKind::SoftStep);
-    config.softStep.heldMassRatio = 100.0f;
     scenes::ScenePtr s = st::massRatio(WorldKind::Gpu, config, 1000);
     btTransform t = s->body(2)->getWorldTransform();
     t.setOrigin(t.getOrigin() + btVector3(btScalar(0.45), btScalar(0.05), 0));
     s->body(2)->setCenterOfMassTransform(t);
     s->body(2)->getMotionState()->setWorldTransform(t);
     for (btRigidBody* b : s->bodies()) b->setActivationState(DISABLE_DEACTIVATION);
-    const btVector3 start = s->body(1)->getWorldTransform().getOrigin();
-    double fastest = 0;
+    EdgeDrop d;
     for (int step = 0; step < 600; ++step) {
         s->step(btScalar(1) / 60, 1, btScalar(1) / 60);
-        ASSERT_TRUE(s->report()->gpuPath);
-        fastest = std::max(fastest, double(s->body(1)->getLinearVelocity().length()));
+        EXPECT_TRUE(s->report()->gpuPath);
+        if (!s->report()->gpuPath) break;
+        d.substeps = std::max(d.substeps, s->report()->softSubsteps);
+        d.fastestLight = std::max(d.fastestLight, double(s->body(1)->getLinearVelocity().length()));
+        d.lowestLight = std::min(d.lowestLight, double(s->body(1)->getWorldTransform().getOrigin().y()));
     }
-    EXPECT_LT(fastest, 2.0) << "the light box was thrown";
-    EXPECT_LT((s->body(1)->getWorldTransform().getOrigin() - start).length(), 0.05);
-    EXPECT_GT(s->body(2)->getWorldTransform().getOrigin().y(), 1.4) << "the heavy box tipped off";
+    for (int i : {1, 2})
+        d.lastSpeed = std::max({d.lastSpeed, double(s->body(i)->getLinearVelocity().length()),
+                                double(s->body(i)->getAngularVelocity().length())});
+    d.heavyHeight = double(s->body(2)->getWorldTransform().getOrigin().y());
+    std::printf("heavy box dropped near the light one's edge: light box fastest %.3f m/s, lowest %.4f m; at 10 s "
+                "the fastest body %.4f m/s (or rad/s), the heavy box at %.3f m; %d substeps\n",
+                d.fastestLight, d.lowestLight, d.lastSpeed, d.heavyHeight, d.substeps);
+    return d;
+}
+
+// The default soft step takes the substeps the mass ratio needs (64 for 1,000:1) and the drop
+// ends at rest, the light box neither thrown nor pressed into the ground. Whether the heavy box
+// stays on or tips off this close to the edge is not asserted: at 42 substeps it stays on but
+// the pair rocks and walks a metre in 10 s; at 64 and more (84, 168) it tips off, as stock
+// does at 1/600 s and 200 iterations.
+TEST(SolverModes, HeavyDroppedNearTheEdgeSettles)
+{
+    const EdgeDrop d = dropHeavyNearTheEdge(modeConfig(SolverKind::SoftStep));
+    EXPECT_EQ(64, d.substeps) << "the least n with n^2 >= 2^2 x 1000";
+    EXPECT_LT(d.fastestLight, 2.0) << "the light box was thrown";
+    EXPECT_GT(d.lowestLight, 0.49) << "the light box was pressed into the ground";
+    EXPECT_LT(d.lastSpeed, 0.01) << "still moving after 10 s";
+}
+
+// Known failure of the held light body (why heldMassRatio is opt-in): held at 10 substeps, the
+// heavy box tips off and the light box is thrown (tens of m/s) and falls through the ground.
+// Run with --gtest_also_run_disabled_tests.
+TEST(SolverModes, DISABLED_HeldHeavyDroppedNearTheEdge)
+{
+    Config config = modeConfig(SolverKind::SoftStep);
+    config.softStep.heldMassRatio = 100.0f;
+    config.softStep.substepsPerRootMassRatio = 0.0f;
+    const EdgeDrop d = dropHeavyNearTheEdge(config);
+    EXPECT_LT(d.fastestLight, 2.0) << "the light box was thrown";
+    EXPECT_GT(d.lowestLight, 0.49) << "the light box was pressed into the ground";
 }
