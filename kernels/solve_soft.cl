@@ -4,7 +4,7 @@
  * integrate positions (deltas only), relax (unbiased); then restitution and store. Edge e below
  * the contact count is contact e, edge contacts + j is joint j.
  * Launch: soft_color_count / soft_color_fill: one work-item per edge slot, edge indices into
- * per-color ranges (soft_color_offsets: one work-item); soft_bodies: one per body row;
+ * per-color ranges (and each contact's soft data at its place there, edgeSlot) (soft_color_offsets: one work-item); soft_bodies: one per body row;
  * soft_color_range: a color's range strided over the launch; soft_color_serial: one work-item,
  * every edge of the last color or higher in index order (the coloring's leftovers);
  * soft_resident: all of the stage in one launch (resident groups on GPUs, one group for small
@@ -97,32 +97,37 @@ static BtgSoftContact load_soft(__global const BtgSoftContact* softContacts, int
     return s;
 }
 
-static void soft_contact(int i, int mode, SOFT_ARGS)
+/* Contact i's soft data lives at `slot`: its place in the color order (soft_color_fill), so
+ * that a color's pass reads them one after another. */
+static void soft_contact(int i, int slot, int mode, SOFT_ARGS)
 {
     if (mode == BTG_SOFT_STORE) {
-        BtgSoftContact s = softContacts[i];
+        BtgSoftContact s = softContacts[slot];
         btgSoftStore(contacts, i, &s);
         return;
     }
-    const int bodyA = contacts[i].bodyA, bodyB = contacts[i].bodyB;
+    /* the passes after prepare take the bodies from the soft contact: one struct a pass, not two */
+    const int prepare = mode == BTG_SOFT_PREPARE;
+    const int bodyA = prepare ? contacts[i].bodyA : softContacts[slot].bodyA;
+    const int bodyB = prepare ? contacts[i].bodyB : softContacts[slot].bodyB;
     BtgSolverBody a = load_body(props, invInertiaWorld, bodyA);
     BtgSolverBody b = load_body(props, invInertiaWorld, bodyB);
     if (mode == BTG_SOFT_PREPARE) {
         BtgBodyProps pa = props[bodyA], pb = props[bodyB];
         BtgBodyVel a0 = btgMakeBodyVel(a.moving, linVel0[bodyA], angVel0[bodyA]);
         BtgBodyVel b0 = btgMakeBodyVel(b.moving, linVel0[bodyB], angVel0[bodyB]);
-        softContacts[i] = btgSoftPrepare(contacts[i], a, b, a0, b0, pa.restitution * pb.restitution,
+        softContacts[slot] = btgSoftPrepare(contacts[i], a, b, a0, b0, pa.restitution * pb.restitution,
                                          btgContactSolvable(pa.flags, pb.flags), params);
         if (params.heldMassRatio > 0.0f) {
             const int fixed = a.dynamic != b.dynamic && btgContactSolvable(pa.flags, pb.flags);
             const int light = btgSoftLightSide(a, b, params);
             const int rowA = BTG_SOFT_BODY_ROWS * bodyA + BTG_SOFT_SUPPORT, rowB = BTG_SOFT_BODY_ROWS * bodyB + BTG_SOFT_SUPPORT;
-            if (a.dynamic) softBodies[rowA] = btgSoftNoteSupport(softBodies[rowA], fixed, light == 1, i);
-            if (b.dynamic) softBodies[rowB] = btgSoftNoteSupport(softBodies[rowB], fixed, light == 2, i);
+            if (a.dynamic) softBodies[rowA] = btgSoftNoteSupport(softBodies[rowA], fixed, light == 1, slot);
+            if (b.dynamic) softBodies[rowB] = btgSoftNoteSupport(softBodies[rowB], fixed, light == 2, slot);
         }
         return;
     }
-    BtgSoftContact s = load_soft(softContacts, i, mode, params.frictionInSolve);
+    BtgSoftContact s = load_soft(softContacts, slot, mode, params.frictionInSolve);
     BtgBodyVel va = load_vel(a.moving, lin, ang, bodyA), vb = load_vel(b.moving, lin, ang, bodyB);
     if (mode == BTG_SOFT_WARM_START) {
         btgSoftWarmStart(&s, a, b, &va, &vb);
@@ -148,13 +153,13 @@ static void soft_contact(int i, int mode, SOFT_ARGS)
     }
     if (a.dynamic) store_vel(va, lin, ang, bodyA);
     if (b.dynamic) store_vel(vb, lin, ang, bodyB);
-    softContacts[i].normalImpulse = s.normalImpulse;
-    softContacts[i].totalNormal = s.totalNormal;
+    softContacts[slot].normalImpulse = s.normalImpulse;
+    softContacts[slot].totalNormal = s.totalNormal;
     if (mode == BTG_SOFT_WARM_START || mode == BTG_SOFT_RELAX || (mode == BTG_SOFT_SOLVE && params.frictionInSolve)) {
-        softContacts[i].tangent1Impulse = s.tangent1Impulse;
-        softContacts[i].tangent2Impulse = s.tangent2Impulse;
-        softContacts[i].total1 = s.total1;
-        softContacts[i].total2 = s.total2;
+        softContacts[slot].tangent1Impulse = s.tangent1Impulse;
+        softContacts[slot].tangent2Impulse = s.tangent2Impulse;
+        softContacts[slot].total1 = s.total1;
+        softContacts[slot].total2 = s.total2;
     }
 }
 
@@ -178,9 +183,9 @@ static void soft_joint(int j, int mode, SOFT_ARGS)
     if (b.dynamic) store_vel(vb, lin, ang, joint.bodyB);
 }
 
-static void soft_edge(int e, int nc, int mode, SOFT_ARGS)
+static void soft_edge(int e, int slot, int nc, int mode, SOFT_ARGS)
 {
-    if (e < nc) soft_contact(e, mode, SOFT_PASS);
+    if (e < nc) soft_contact(e, slot, mode, SOFT_PASS);
     else soft_joint(e - nc, mode, SOFT_PASS);
 }
 
@@ -212,7 +217,7 @@ __kernel void soft_color_count(__global const int* restrict edgeColor, __global 
     int i = (int)get_global_id(0);
     if (i >= edge_count(counters, edgeCapacity)) return;
     int c = edgeColor[i];
-    if (c >= 0 && c < numColors - 1) atomic_inc(&colorCount[c]);
+    if (c >= 0) atomic_inc(&colorCount[min(c, numColors - 1)]);
     /* The step's substeps follow its largest edge mass ratio (btgSoftSubstepsFor): positive
      * floats order as their bits. */
     const BtgEdge e = edges[i];
@@ -229,20 +234,26 @@ __kernel void soft_color_offsets(__global uint* colorCount, __global uint* color
     uint sum = 0u;
     for (int c = 0; c < numColors; ++c) {
         colorStart[c] = sum;
-        sum += c < numColors - 1 ? colorCount[c] : 0u;
+        sum += colorCount[c];
         colorCount[c] = 0u; /* the fill cursor */
     }
     colorStart[numColors] = sum;
 }
 
+/* Each colored edge's slot: its place in its color's range (the last range: the leftovers,
+ * walked in index order, their slots only storage). */
 __kernel void soft_color_fill(__global const int* restrict edgeColor, __global const uint* restrict counters,
                               int edgeCapacity, __global const uint* restrict colorStart, __global uint* colorCursor,
-                              __global int* colorOrder, int numColors)
+                              __global int* colorOrder, int numColors, __global int* edgeSlot)
 {
     int i = (int)get_global_id(0);
     if (i >= edge_count(counters, edgeCapacity)) return;
     int c = edgeColor[i];
-    if (c >= 0 && c < numColors - 1) colorOrder[colorStart[c] + atomic_inc(&colorCursor[c])] = i;
+    if (c < 0) return;
+    c = min(c, numColors - 1);
+    const int k = (int)(colorStart[c] + atomic_inc(&colorCursor[c]));
+    colorOrder[k] = i;
+    edgeSlot[i] = k;
 }
 
 __kernel void soft_bodies(int n, int mode, SOFT_ARGS)
@@ -257,17 +268,17 @@ __kernel void soft_color_range(__global const uint* restrict colorStart, __globa
     const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
     const int nc = contact_edges(counters, edgeCapacity, numJoints);
     for (int k = begin + (int)get_global_id(0); k < end; k += (int)get_global_size(0))
-        soft_edge(colorOrder[k], nc, mode, SOFT_PASS);
+        soft_edge(colorOrder[k], k, nc, mode, SOFT_PASS);
 }
 
-__kernel void soft_color_serial(__global const int* restrict edgeColor, int edgeCapacity, int numJoints, int color,
-                                int mode, SOFT_ARGS)
+__kernel void soft_color_serial(__global const int* restrict edgeColor, __global const int* restrict edgeSlot,
+                                int edgeCapacity, int numJoints, int color, int mode, SOFT_ARGS)
 {
     if (get_global_id(0) != 0) return;
     if (counters[BTG_COUNTER_LEFTOVERS] == 0u && counters[BTG_COUNTER_COLORS_USED] <= (uint)color) return;
     const int n = edge_count(counters, edgeCapacity), nc = contact_edges(counters, edgeCapacity, numJoints);
     for (int i = 0; i < n; ++i)
-        if (edgeColor[i] >= color) soft_edge(i, nc, mode, SOFT_PASS);
+        if (edgeColor[i] >= color) soft_edge(i, edgeSlot[i], nc, mode, SOFT_PASS);
 }
 
 /* Every pass of the stage in one launch, a grid barrier where the per-color path has a kernel
@@ -280,7 +291,7 @@ __kernel void soft_color_serial(__global const int* restrict edgeColor, int edge
         return;                                                                                           \
     }
 
-__kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapacity,
+__kernel void soft_resident(__global const int* restrict edgeColor, __global const int* restrict edgeSlot, int edgeCapacity,
                             __global const uint* restrict colorStart, __global const int* restrict colorOrder,
                             volatile __global BtgGridBarrier* bar, int numColors, int numJoints, int numBodies,
                             int spinLimit, SOFT_ARGS)
@@ -319,12 +330,12 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
         const int independent = (mode == BTG_SOFT_PREPARE && !(params.heldMassRatio > 0.0f)) || mode == BTG_SOFT_STORE;
         for (int color = 0; color < last; ++color) {
             const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
-            for (int k = begin + gid; k < end; k += gsize) soft_edge(colorOrder[k], nc, mode, SOFT_PASS);
+            for (int k = begin + gid; k < end; k += gsize) soft_edge(colorOrder[k], k, nc, mode, SOFT_PASS);
             if (!independent) SOFT_BARRIER();
         }
         if (walkLast && gid == 0)
             for (int i = 0; i < n; ++i)
-                if (edgeColor[i] >= last) soft_edge(i, nc, mode, SOFT_PASS);
+                if (edgeColor[i] >= last) soft_edge(i, edgeSlot[i], nc, mode, SOFT_PASS);
         SOFT_BARRIER();
     }
 }

@@ -100,15 +100,16 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
         .arg(sc.colorCount).arg(numColors).arg(w.edges).arg(w.props).run(slots);
     cl::Launch(ctx, prog.kernel("soft_color_offsets"), &w.profiler).arg(sc.colorCount).arg(sc.colorStart)
         .arg(numColors).run(1, 1);
+    sc.edgeSlot.reserve(ctx, slots);
     cl::Launch(ctx, prog.kernel("soft_color_fill"), &w.profiler).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity)
-        .arg(sc.colorStart).arg(sc.colorCount).arg(sc.colorOrder).arg(numColors).run(slots);
+        .arg(sc.colorStart).arg(sc.colorCount).arg(sc.colorOrder).arg(numColors).arg(sc.edgeSlot).run(slots);
     const bool resident = useResident(w);
     if (resident || w.lastContactCount <= kOneGroupMaxContacts) {
         cl_kernel k = prog.kernel("soft_resident");
         const size_t group = std::min<size_t>(256, cl::kernelGroupLimit(ctx, k));
         const size_t groups = resident ? std::max<cl_uint>(ctx.device().computeUnits, 1) : 1;
         cl::Launch l(ctx, k, &w.profiler);
-        l.arg(w.edgeColor).arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorOrder).arg(gridBarrier(w))
+        l.arg(w.edgeColor).arg(sc.edgeSlot).arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorOrder).arg(gridBarrier(w))
             .arg(numColors).arg(numJoints).arg(numBodies).arg(kGridBarrierSpins);
         soft(l).run(groups * group, group);
         return;
@@ -129,7 +130,7 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
         for (int color = 0; color < numColors; ++color) {
             if (color == numColors - 1) {
                 cl::Launch l(ctx, serial, &w.profiler);
-                l.arg(w.edgeColor).arg(edgeCapacity).arg(numJoints).arg(color).arg(mode);
+                l.arg(w.edgeColor).arg(sc.edgeSlot).arg(edgeCapacity).arg(numJoints).arg(color).arg(mode);
                 soft(l).run(1, 1);
             } else {
                 cl::Launch l(ctx, range, &w.profiler);

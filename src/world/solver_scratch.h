@@ -21,8 +21,10 @@ struct SolverScratch {
     cl::DeviceArray<uint> gridBarrier; // solve_resident's arrival count, generation, timeout flag
     // solve_soft (SolverKind::SoftStep): each contact slot's soft rows, and BTG_SOFT_BODY_ROWS per
     // body (position and rotation deltas, the forces' velocity change per substep); the color
-    // ranges above hold one list there, over every edge
+    // ranges above hold one list there, over every edge (the last range the leftovers);
+    // a contact's soft rows sit at its place in that list (edgeSlot), read in color order
     cl::DeviceArray<BtgSoftContact> softContacts;
+    cl::DeviceArray<int> edgeSlot;
     cl::DeviceArray<BtgFloat4> softBodies;
     // solve_jacobi: body b's contacts are jacobiEntries[jacobiStart[b], jacobiStart[b + 1]),
     // each 2 * contact + side, in increasing order; jacobiDeltas holds 4 per contact slot
