@@ -372,10 +372,13 @@ std::string worldReason(btDiscreteDynamicsWorld& world, const Config& config)
     // order to permute, the soft step keeps its own (GpuWorld::softStepReason).
     if ((info.m_solverMode & SOLVER_RANDMIZE_ORDER) && jacobi)
         return "btContactSolverInfo::m_solverMode SOLVER_RANDMIZE_ORDER with Config::solver = JacobiMassSplitting";
-    const int notFollowed = SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS;
-    if ((info.m_solverMode ^ stock.m_solverMode) & notFollowed)
-        return "btContactSolverInfo::m_solverMode " + std::to_string(info.m_solverMode) +
-               " sets bits the GPU path does not follow (SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS)";
+    // SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS: the PGS solver's velocity iteration is
+    // then one sweep, each point's friction rows right after its normal row (BTG_ROWS_INTERLEAVE);
+    // the Jacobi solver solves each contact whole, the soft step its friction in the relax
+    // (GpuWorld::softStepReason).
+    if ((info.m_solverMode & SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS) && jacobi)
+        return "btContactSolverInfo::m_solverMode SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS with "
+               "Config::solver = JacobiMassSplitting";
 
     // Dispatch info. m_useContinuous only matters for CCD bodies (a body rule); the CCD fields
     // (m_allowedCcdPenetration) likewise. m_useConvexConservativeDistanceUtil and its threshold

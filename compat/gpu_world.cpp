@@ -171,6 +171,9 @@ std::string GpuWorld::softStepReason() const
         return "btContactSolverInfo::m_sor or m_globalCfm changed with Config::solver = SoftStep";
     if (info.m_solverMode & SOLVER_RANDMIZE_ORDER)
         return "btContactSolverInfo::m_solverMode SOLVER_RANDMIZE_ORDER with Config::solver = SoftStep";
+    if (info.m_solverMode & SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS)
+        return "btContactSolverInfo::m_solverMode SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS with "
+               "Config::solver = SoftStep (its friction rows are solved in the relax, after every normal)";
     if (ContactCallbacks::wanted(m_world))
         return "contact callbacks that run before the solve (gContactAddedCallback on a CF_CUSTOM_MATERIAL_CALLBACK body, "
                "gContactProcessedCallback, a custom combiner) with Config::solver = SoftStep";
@@ -326,6 +329,7 @@ StepSettings GpuWorld::settings(int substeps, btScalar dt) const
     p.solverFlags = m_solverFlags;
     if (info.m_solverMode & SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION)
         p.solverFlags |= BTG_SOLVER_VELOCITY_INDEPENDENT_FRICTION;
+    if (info.m_solverMode & SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS) p.solverFlags |= BTG_SOLVER_INTERLEAVE;
     p.sor = info.m_sor;
     p.globalCfm = info.m_globalCfm;
     p.maxGyroscopicForce = info.m_maxGyroscopicForce;

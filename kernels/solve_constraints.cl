@@ -80,10 +80,7 @@ static void solve_contact(int i, int mode, int rows, __global BtgContact* contac
     else if (mode == BTG_PASS_FRICTION && key == 0u && !anchored) btgContactSolveFrictionDirs(&c, d, a, b, &va, &vb, rows);
     else if (mode == BTG_PASS_FRICTION && key == 0u) btgContactSolveFrictionAnchored(&c, d, f, a, b, &va, &vb, rows);
     else if (mode == BTG_PASS_FRICTION) btgContactSolveFrictionOrdered(&c, d, f, order, a, b, &va, &vb, rows);
-    else if (mode == BTG_PASS_VELOCITY) {
-        btgContactSolveNormalsOrdered(&c, order, a, b, &va, &vb);
-        btgContactSolveFrictionOrdered(&c, d, f, order, a, b, &va, &vb, rows);
-    }
+    else if (mode == BTG_PASS_VELOCITY) btgContactSolveInterleavedOrdered(&c, d, f, order, a, b, &va, &vb, rows);
     else if (mode == BTG_PASS_ROLLING) {
         BtgRollingContact r = rolling[i];
         btgRollingSolve(&r, c.normal, btgSolvedNormalImpulse(&c), c.numPoints, a, b, &va, &vb);
@@ -326,10 +323,15 @@ __kernel void solve_resident(__global const int* restrict edgeColor, __global Bt
             if (phase == 0 && mode == BTG_PASS_VELOCITY && iteration >= iterations) break;
             /* push passes: only contacts with a push target */
             const int list = phase ? 2 : (mode == 2 ? 1 : 0);
-            const int sweeps = phase == 0 && mode == BTG_PASS_VELOCITY ? ((rows & BTG_ROWS_ROLLING) ? 3 : 2) : 1;
+            /* the contacts' velocity sweeps: normals, friction (interleaved: both in one), rolling */
+            const int split = phase == 0 && mode == BTG_PASS_VELOCITY;
+            const int interleave = (rows & BTG_ROWS_INTERLEAVE) != 0;
+            const int sweeps = split ? (interleave ? 1 : 2) + ((rows & BTG_ROWS_ROLLING) ? 1 : 0) : 1;
             for (int sweep = 0; sweep < sweeps; ++sweep) {
-                const int m = sweeps >= 2 ? (sweep == 0 ? BTG_PASS_NORMALS : (sweep == 1 ? BTG_PASS_FRICTION : BTG_PASS_ROLLING))
-                                          : mode;
+                const int m = !split ? mode
+                                     : (sweep == sweeps - 1 && (rows & BTG_ROWS_ROLLING)) ? BTG_PASS_ROLLING
+                                     : interleave ? BTG_PASS_VELOCITY
+                                     : (sweep == 0 ? BTG_PASS_NORMALS : BTG_PASS_FRICTION);
                 const uint key = btgPassKey(seed, m, phase, iteration);
                 for (int ci = 0; ci < last; ++ci) {
                     const int color = btgPermute(key, last, ci); /* SOLVER_RANDMIZE_ORDER, else ci */

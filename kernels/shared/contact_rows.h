@@ -26,6 +26,8 @@
 #define BTG_ROWS_ROLLING 4 /* BtgRollingContact rows (rolling and spinning friction) */
 #define BTG_ROWS_ANISOTROPIC 8 /* friction directions from BtgFrictionDirs (anisotropic friction) */
 #define BTG_ROWS_ANCHORS 16    /* friction rows' positional targets from BtgFrictionAnchor (friction anchors) */
+#define BTG_ROWS_INTERLEAVE 32 /* a velocity iteration is one sweep, each point's normal then friction rows
+                                  (BTG_PASS_VELOCITY), not a normal sweep and a friction sweep */
 
 /* The optional rows a step's solve reads. */
 static inline int btgRowFlags(BtgStepParams p)
@@ -35,6 +37,7 @@ static inline int btgRowFlags(BtgStepParams p)
     if ((p.solverFlags & BTG_SOLVER_ROLLING_FRICTION) != 0u) rows |= BTG_ROWS_ROLLING;
     if ((p.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION) != 0u) rows |= BTG_ROWS_ANISOTROPIC;
     if ((p.solverFlags & BTG_SOLVER_FRICTION_ANCHORS) != 0u) rows |= BTG_ROWS_ANCHORS;
+    if ((p.solverFlags & BTG_SOLVER_INTERLEAVE) != 0u) rows |= BTG_ROWS_INTERLEAVE;
     return rows;
 }
 
@@ -622,28 +625,49 @@ static inline void btgContactSolveNormals(BtgContact* c, BtgSolverBody a, BtgSol
 }
 /* Its friction rows (directions 1 and 2 per point) whose normal impulse is positive
  * (BTG_PASS_FRICTION). */
+static inline void btgContactSolvePointFriction(BtgContact* c, int k, const BtgFrictionDirs* dirs,
+                                                const BtgFrictionAnchor* anchor, BtgSolverBody a, BtgSolverBody b,
+                                                BtgBodyVel* va, BtgBodyVel* vb, int rows)
+{
+    if (!(btgLane(c->normalImpulse, k) > 0.0f)) return;
+    float m1 = btgLane(c->friction1Mass, k);
+    if (m1 != 0.0f) {
+        BtgSolverRow r = btgContactFrictionRow(c, k, btgFrictionDir1Of(c, dirs, k), m1, btgLane(c->friction1Impulse, k),
+                                               anchor ? btgLane(anchor->target1, k) : 0.0f, a, b);
+        btgRowSolve(&r, a, b, va, vb);
+        btgSetLane(&c->friction1Impulse, k, r.impulse);
+    }
+    float m2 = (rows & BTG_ROWS_TWO_FRICTION) != 0 ? btgLane(c->friction2Mass, k) : 0.0f;
+    if (m2 != 0.0f) {
+        BtgSolverRow r = btgContactFrictionRow(c, k, btgFrictionDir2Of(c, dirs, k), m2, btgLane(c->friction2Impulse, k),
+                                               anchor ? btgLane(anchor->target2, k) : 0.0f, a, b);
+        btgRowSolve(&r, a, b, va, vb);
+        btgSetLane(&c->friction2Impulse, k, r.impulse);
+    }
+}
 static inline void btgContactSolveFrictionOrdered(BtgContact* c, const BtgFrictionDirs* dirs,
                                                   const BtgFrictionAnchor* anchor, uint key, BtgSolverBody a,
                                                   BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb, int rows)
 {
-    const int twoFriction = (rows & BTG_ROWS_TWO_FRICTION) != 0;
+    for (int j = 0; j < c->numPoints; ++j)
+        btgContactSolvePointFriction(c, btgPermute(key, c->numPoints, j), dirs, anchor, a, b, va, vb, rows);
+}
+/* SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS (BTG_PASS_VELOCITY): each point's normal
+ * row, then at once its friction rows bounded by the impulse just found, as 3.24's
+ * solveSingleIteration walks its pools in that mode (friction of the point whose normal impulse
+ * is positive only). */
+static inline void btgContactSolveInterleavedOrdered(BtgContact* c, const BtgFrictionDirs* dirs,
+                                                     const BtgFrictionAnchor* anchor, uint key, BtgSolverBody a,
+                                                     BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb, int rows)
+{
     for (int j = 0; j < c->numPoints; ++j) {
         const int k = btgPermute(key, c->numPoints, j);
-        if (!(btgLane(c->normalImpulse, k) > 0.0f)) continue;
-        float m1 = btgLane(c->friction1Mass, k);
-        if (m1 != 0.0f) {
-            BtgSolverRow r = btgContactFrictionRow(c, k, btgFrictionDir1Of(c, dirs, k), m1, btgLane(c->friction1Impulse, k),
-                                                   anchor ? btgLane(anchor->target1, k) : 0.0f, a, b);
+        if (btgLane(c->normalMass, k) != 0.0f) {
+            BtgSolverRow r = btgContactNormalRow(c, k, a, b);
             btgRowSolve(&r, a, b, va, vb);
-            btgSetLane(&c->friction1Impulse, k, r.impulse);
+            btgSetLane(&c->normalImpulse, k, r.impulse);
         }
-        float m2 = twoFriction ? btgLane(c->friction2Mass, k) : 0.0f;
-        if (m2 != 0.0f) {
-            BtgSolverRow r = btgContactFrictionRow(c, k, btgFrictionDir2Of(c, dirs, k), m2, btgLane(c->friction2Impulse, k),
-                                                   anchor ? btgLane(anchor->target2, k) : 0.0f, a, b);
-            btgRowSolve(&r, a, b, va, vb);
-            btgSetLane(&c->friction2Impulse, k, r.impulse);
-        }
+        btgContactSolvePointFriction(c, k, dirs, anchor, a, b, va, vb, rows);
     }
 }
 static inline void btgContactSolveFrictionAnchored(BtgContact* c, const BtgFrictionDirs* dirs,

@@ -425,6 +425,8 @@ typedef struct {
 #define BTG_SOLVER_ANISOTROPIC_FRICTION 8u /* a body has anisotropic friction: prepare writes BtgFrictionDirs */
 #define BTG_SOLVER_PROCESSING_THRESHOLD 16u /* a body has a contact processing threshold (setContactProcessingThreshold) */
 #define BTG_SOLVER_FRICTION_ANCHORS 32u /* a body has CF_HAS_FRICTION_ANCHOR: prepare writes BtgFrictionAnchor rows */
+#define BTG_SOLVER_INTERLEAVE 64u /* SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS: each point's friction
+                                     rows right after its normal row */
 
 /* Device status flags (one uint, read back with the transforms). */
 #define BTG_STATUS_PAIR_OVERFLOW 1u

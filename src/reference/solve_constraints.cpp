@@ -1,5 +1,6 @@
 // solve_constraints.cpp — CPU reference of the solve stage: the same passes as the device
-// (warm start, velocity iterations of a normal and a friction sweep, split-impulse iterations),
+// (warm start, velocity iterations of a normal and a friction sweep, or one interleaved sweep,
+// split-impulse iterations),
 // colors in order and the edges (contacts) of a color in index order, which is what the batched
 // launches compute; with joints, each velocity iteration walks the joints' edges (colors in
 // order) before the contacts'.
@@ -48,6 +49,9 @@ void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>&
                 else if (mode == BTG_PASS_FRICTION)
                     btgContactSolveFrictionOrdered(&c, d, (rows & BTG_ROWS_ANCHORS) ? &(*anchors)[e] : nullptr, order, a,
                                                    b, &va, &vb, rows);
+                else if (mode == BTG_PASS_VELOCITY)
+                    btgContactSolveInterleavedOrdered(&c, d, (rows & BTG_ROWS_ANCHORS) ? &(*anchors)[e] : nullptr, order,
+                                                      a, b, &va, &vb, rows);
                 else if (mode == BTG_PASS_ROLLING)
                     btgRollingSolve(&(*rolling)[e], c.normal, btgSolvedNormalImpulse(&c), c.numPoints, a, b, &va, &vb);
                 else btgContactSolvePushOrdered(&c, order, a, b, &va, &vb);
@@ -65,8 +69,12 @@ void solveConstraints(std::vector<BtgContact>& contacts, const std::vector<int>&
     };
     pass(BTG_PASS_WARM_START, -1);
     for (int it = 0; it < iterations; ++it) {
-        pass(BTG_PASS_NORMALS, it);
-        pass(BTG_PASS_FRICTION, it);
+        if (rows & BTG_ROWS_INTERLEAVE) {
+            pass(BTG_PASS_VELOCITY, it);
+        } else {
+            pass(BTG_PASS_NORMALS, it);
+            pass(BTG_PASS_FRICTION, it);
+        }
         if (rows & BTG_ROWS_ROLLING) pass(BTG_PASS_ROLLING, it);
     }
     if (params.splitImpulse)

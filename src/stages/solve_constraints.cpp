@@ -117,9 +117,14 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     for (int it = 0; it < velocityPasses; ++it) {
         if (numJoints > 0) pass(BTG_PASS_VELOCITY, 1, it, w.linVel, w.angVel);
         if (it < iterations) {
-            // every contact's normal rows, then every friction row (counters.h)
-            pass(BTG_PASS_NORMALS, 0, it, w.linVel, w.angVel);
-            pass(BTG_PASS_FRICTION, 0, it, w.linVel, w.angVel);
+            // every contact's normal rows, then every friction row (counters.h); interleaved,
+            // each point's friction right after its normal
+            if (rows & BTG_ROWS_INTERLEAVE) {
+                pass(BTG_PASS_VELOCITY, 0, it, w.linVel, w.angVel);
+            } else {
+                pass(BTG_PASS_NORMALS, 0, it, w.linVel, w.angVel);
+                pass(BTG_PASS_FRICTION, 0, it, w.linVel, w.angVel);
+            }
             if (rows & BTG_ROWS_ROLLING) pass(BTG_PASS_ROLLING, 0, it, w.linVel, w.angVel);
         }
     }

@@ -105,6 +105,43 @@ TEST(SolverFeatures, FrictionDirectionCachingPileLikeStock)
                                            << " +- " << bands[k].bound();
 }
 
+// SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS: each velocity iteration one sweep, each
+// point's friction rows right after its normal row (device against reference: unit
+// SolveConstraints.InterleavedMatchesReferenceAndDiffers). With the bit on both worlds, on the
+// GPU path every step: the box pile within stock's chaos (mean height, spread, kinetic energy
+// after 3 s), and the sliding box's travel within 5% of stock's, with one and two friction
+// directions.
+TEST(SolverFeatures, InterleavedFrictionAsStock)
+{
+    const int steps = 180;
+    auto make = with([](WorldKind k, const Config& c) { return features::boxPile(k, c, 4); },
+                     solverMode(SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS));
+    auto measure = [](const Scene& s) {
+        scenes::Aggregates a = scenes::aggregates(s);
+        return std::vector<double>{a.meanHeight, a.spread, a.kineticEnergy};
+    };
+    const std::vector<std::string> names = {"mean height", "spread", "kinetic energy"};
+    std::vector<scenes::ChaosBand> bands = scenes::stockChaos(
+        [&](WorldKind k) { return make(k, Config()); }, steps, measure, names,
+        {tol::kChaosHeightFloor, tol::kChaosSpreadFloor, tol::kChaosEnergyFloor});
+    SideBySide pile(make);
+    stepOnGpu(pile, steps);
+    std::vector<double> v = measure(*pile.gpu);
+    for (size_t k = 0; k < bands.size(); ++k)
+        EXPECT_TRUE(bands[k].admits(v[k])) << bands[k].name << ": btgpu " << v[k] << ", stock " << bands[k].stockMean
+                                           << " +- " << bands[k].bound();
+    for (int mode : {int(SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS),
+                     SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS | SOLVER_USE_2_FRICTION_DIRECTIONS}) {
+        SCOPED_TRACE(mode);
+        SideBySide s(with(features::slidingBox, solverMode(mode)));
+        const btVector3 start = s.stock->body(1)->getWorldTransform().getOrigin();
+        stepOnGpu(s, 90);
+        const btVector3 stock = travel(*s.stock, 1, start), gpu = travel(*s.gpu, 1, start);
+        EXPECT_LT((gpu - stock).length(), tol::kRollDistanceRel * stock.length())
+            << "stock (" << stock.x() << ", " << stock.z() << "), btgpu (" << gpu.x() << ", " << gpu.z() << ")";
+    }
+}
+
 // SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION: friction along btPlaneSpace1's axes
 // whatever the slip. With one direction that is world x for the ground's normal: a box
 // sliding diagonally stops along x and keeps going along z (with the default it stops along
