@@ -1,10 +1,13 @@
 /* solve_soft.cl — Stage: soft step (SolverKind::SoftStep, Box2D v3's solver on the colored
  * constraint graph; shared/soft_rows.h). Per step: bodies begin (velocities before forces),
- * contacts prepare; per substep: integrate velocities, warm start, solve (soft, biased),
- * integrate positions (deltas only), relax (unbiased); then restitution and store. Edge e below
+ * contacts prepare; per substep: integrate velocities and warm start (one body pass: each body
+ * gathers its edges' impulses), solve (soft, biased), integrate positions (deltas only), relax
+ * (unbiased); then restitution and store. Edge e below
  * the contact count is contact e, edge contacts + j is joint j.
  * Launch: soft_color_count / soft_color_fill: one work-item per edge slot, edge indices into
- * per-color ranges (and each contact's soft data at its place there, edgeSlot) (soft_color_offsets: one work-item); soft_bodies: one per body row;
+ * per-color ranges (and each contact's soft data at its place there, edgeSlot) (soft_color_offsets:
+ * one work-item); soft_list_count / soft_list_fill: one per edge slot, soft_list_sort one per
+ * body row (the bodies' edge lists the warm start gathers over); soft_bodies: one per body row;
  * soft_color_range: a color's range strided over the launch; soft_color_serial: one work-item,
  * every edge of the last color or higher in index order (the coloring's leftovers);
  * soft_resident: all of the stage in one launch (resident groups on GPUs, one group for small
@@ -29,9 +32,10 @@
     __global const BtgFloat4* restrict linVel0, __global const BtgFloat4* restrict angVel0, \
     BTG_SHARED __global BtgFloat4* lin, BTG_SHARED __global BtgFloat4* ang, BTG_SHARED __global BtgFloat4* softBodies, \
     __global const BtgJoint* restrict joints, __global const BtgJointState* restrict jointState, \
-    __global BtgJointRow* jointRows, __global uint* counters, BtgSoftParams params
+    __global BtgJointRow* jointRows, __global const uint* restrict listStart, __global const uint* restrict listEntries, \
+    __global const int* restrict slotOf, __global uint* counters, BtgSoftParams params
 #define SOFT_PASS contacts, softContacts, props, invInertiaWorld, linVel0, angVel0, lin, ang, softBodies, joints, \
-    jointState, jointRows, counters, params
+    jointState, jointRows, listStart, listEntries, slotOf, counters, params
 
 static BtgSolverBody load_body(__global const BtgBodyProps* restrict props,
                                __global const BtgFloat4* restrict invInertiaWorld, int i)
@@ -129,9 +133,7 @@ static void soft_contact(int i, int slot, int mode, SOFT_ARGS)
     }
     BtgSoftContact s = load_soft(softContacts, slot, mode, params.frictionInSolve);
     BtgBodyVel va = load_vel(a.moving, lin, ang, bodyA), vb = load_vel(b.moving, lin, ang, bodyB);
-    if (mode == BTG_SOFT_WARM_START) {
-        btgSoftWarmStart(&s, a, b, &va, &vb);
-    } else if (mode == BTG_SOFT_RESTITUTION) {
+    if (mode == BTG_SOFT_RESTITUTION) {
         btgSoftRestitution(&s, a, b, &va, &vb, params);
     } else {
         const int rA = BTG_SOFT_BODY_ROWS * bodyA, rB = BTG_SOFT_BODY_ROWS * bodyB;
@@ -155,7 +157,7 @@ static void soft_contact(int i, int slot, int mode, SOFT_ARGS)
     if (b.dynamic) store_vel(vb, lin, ang, bodyB);
     softContacts[slot].normalImpulse = s.normalImpulse;
     softContacts[slot].totalNormal = s.totalNormal;
-    if (mode == BTG_SOFT_WARM_START || mode == BTG_SOFT_RELAX || (mode == BTG_SOFT_SOLVE && params.frictionInSolve)) {
+    if (mode == BTG_SOFT_RELAX || (mode == BTG_SOFT_SOLVE && params.frictionInSolve)) {
         softContacts[slot].tangent1Impulse = s.tangent1Impulse;
         softContacts[slot].tangent2Impulse = s.tangent2Impulse;
         softContacts[slot].total1 = s.total1;
@@ -177,8 +179,7 @@ static void soft_joint(int j, int mode, SOFT_ARGS)
     BtgBodyVel va = btgMakeBodyVel(0, btgZero4(), btgZero4()), vb = va;
     if (joint.bodyA >= 0) va = load_vel(a.moving, lin, ang, joint.bodyA);
     if (joint.bodyB >= 0) vb = load_vel(b.moving, lin, ang, joint.bodyB);
-    if (mode == BTG_SOFT_WARM_START) btgSoftJointWarmStart(jointRows, joint.firstRow, rows, a, b, &va, &vb);
-    else btgSoftJointSolve(jointRows, joint.firstRow, rows, a, b, &va, &vb, params.jointBoundScale);
+    btgSoftJointSolve(jointRows, joint.firstRow, rows, a, b, &va, &vb, params.jointBoundScale);
     if (a.dynamic) store_vel(va, lin, ang, joint.bodyA);
     if (b.dynamic) store_vel(vb, lin, ang, joint.bodyB);
 }
@@ -200,6 +201,31 @@ static void soft_body(int i, int mode, SOFT_ARGS)
     if (mode == BTG_SOFT_BODY_BEGIN) btgSoftBodyBegin(flags, &v, &w, linVel0[i], angVel0[i], rows, params.substeps);
     else if (mode == BTG_SOFT_BODY_VELOCITY) btgSoftBodyVelocity(flags, &v, &w, rows);
     else btgSoftBodyPosition(flags, v, w, rows, params.h);
+    if (mode == BTG_SOFT_BODY_VELOCITY && btgIsSolverDynamic(flags)) {
+        /* the substep's warm start, gathered from the body's edges in list order */
+        const BtgSolverBody body = load_body(props, invInertiaWorld, i);
+        BtgBodyVel vel = btgMakeBodyVel(1, v, w);
+        for (uint q = listStart[i]; q < listStart[i + 1]; ++q) {
+            const uint entry = listEntries[q];
+            const int side = (int)(entry & 1u);
+            if (entry & BTG_SOFT_ENTRY_JOINT) {
+                const int j = (int)((entry & ~BTG_SOFT_ENTRY_JOINT) >> 2);
+                btgSoftJointWarmStartSide(jointRows, joints[j].firstRow, jointState[j].numRows, side, body, &vel);
+                continue;
+            }
+            const int slot = slotOf[entry >> 2];
+            BtgSoftContact s = load_soft(softContacts, slot, BTG_SOFT_WARM_START, params.frictionInSolve);
+            btgSoftWarmStartSide(&s, side, body, &vel);
+            if (entry & 2u) {
+                btgSoftWarmTotals(&s);
+                softContacts[slot].totalNormal = s.totalNormal;
+                softContacts[slot].total1 = s.total1;
+                softContacts[slot].total2 = s.total2;
+            }
+        }
+        v = btgMake4(vel.lin.x, vel.lin.y, vel.lin.z, v.w);
+        w = btgMake4(vel.ang.x, vel.ang.y, vel.ang.z, w.w);
+    }
     for (int r = 0; r < used; ++r) softBodies[BTG_SOFT_BODY_ROWS * i + r] = rows[r];
     if (btgIsSolverDynamic(flags)) {
         lin[i] = v;
@@ -256,6 +282,76 @@ __kernel void soft_color_fill(__global const int* restrict edgeColor, __global c
     edgeSlot[i] = k;
 }
 
+/* The bodies' edge lists for the warm start (btgSoftContactEntry, btgSoftJointEntry): count
+ * per body, then (after an exclusive scan of the counts into listStart) fill, then each list
+ * sorted. Only dynamic sides are listed. */
+static int list_side(__global const BtgBodyProps* restrict props, int body)
+{
+    return body >= 0 && btgIsSolverDynamic(props[body].flags);
+}
+static void list_edge(int e, int nc, __global const int* restrict edgeColor, __global const BtgEdge* restrict edges,
+                      __global const BtgJoint* restrict joints,
+                      __global const BtgJointState* restrict jointState, __global const BtgBodyProps* restrict props,
+                      __global uint* cursor, __global const uint* restrict start, __global uint* entries)
+{
+    if (edgeColor[e] < 0) return; /* never solved: no soft rows (soft_color_fill gave it no slot) */
+    int a, b;
+    if (e < nc) {
+        a = edges[e].bodyA;
+        b = edges[e].bodyB;
+    } else {
+        const int j = e - nc;
+        if (jointState[j].numRows == 0) return;
+        a = joints[j].bodyA;
+        b = joints[j].bodyB;
+    }
+    const int listA = list_side(props, a), listB = list_side(props, b) && b != a;
+    for (int side = 0; side < 2; ++side) {
+        if (!(side ? listB : listA)) continue;
+        const int body = side ? b : a;
+        const uint k = atomic_inc(&cursor[body]);
+        if (start) entries[start[body] + k] = e < nc ? btgSoftContactEntry(e, side == 0 || !listA, side)
+                                                     : btgSoftJointEntry(e - nc, side);
+    }
+}
+__kernel void soft_list_count(__global const uint* restrict counters, int edgeCapacity, int numJoints,
+                              __global const int* restrict edgeColor, __global const BtgEdge* restrict edges, __global const BtgJoint* restrict joints,
+                              __global const BtgJointState* restrict jointState,
+                              __global const BtgBodyProps* restrict props, __global uint* cursor)
+{
+    const int e = (int)get_global_id(0);
+    if (e >= edge_count(counters, edgeCapacity)) return;
+    list_edge(e, contact_edges(counters, edgeCapacity, numJoints), edgeColor, edges, joints, jointState, props, cursor,
+              0, 0);
+}
+__kernel void soft_list_fill(__global const uint* restrict counters, int edgeCapacity, int numJoints,
+                             __global const int* restrict edgeColor, __global const BtgEdge* restrict edges, __global const BtgJoint* restrict joints,
+                             __global const BtgJointState* restrict jointState,
+                             __global const BtgBodyProps* restrict props, __global uint* cursor,
+                             __global const uint* restrict start, __global uint* entries)
+{
+    const int e = (int)get_global_id(0);
+    if (e >= edge_count(counters, edgeCapacity)) return;
+    list_edge(e, contact_edges(counters, edgeCapacity, numJoints), edgeColor, edges, joints, jointState, props, cursor,
+              start, entries);
+}
+/* Insertion sort of one body's list: short (the edges touching one body). */
+__kernel void soft_list_sort(int numBodies, __global const uint* restrict start, __global uint* entries)
+{
+    const int b = (int)get_global_id(0);
+    if (b >= numBodies) return;
+    const uint lo = start[b], hi = start[b + 1];
+    for (uint i = lo + 1u; i < hi; ++i) {
+        const uint e = entries[i];
+        uint j = i;
+        while (j > lo && entries[j - 1u] > e) {
+            entries[j] = entries[j - 1u];
+            --j;
+        }
+        entries[j] = e;
+    }
+}
+
 __kernel void soft_bodies(int n, int mode, SOFT_ARGS)
 {
     int i = (int)get_global_id(0);
@@ -271,14 +367,14 @@ __kernel void soft_color_range(__global const uint* restrict colorStart, __globa
         soft_edge(colorOrder[k], k, nc, mode, SOFT_PASS);
 }
 
-__kernel void soft_color_serial(__global const int* restrict edgeColor, __global const int* restrict edgeSlot,
-                                int edgeCapacity, int numJoints, int color, int mode, SOFT_ARGS)
+__kernel void soft_color_serial(__global const int* restrict edgeColor, int edgeCapacity, int numJoints, int color,
+                                int mode, SOFT_ARGS)
 {
     if (get_global_id(0) != 0) return;
     if (counters[BTG_COUNTER_LEFTOVERS] == 0u && counters[BTG_COUNTER_COLORS_USED] <= (uint)color) return;
     const int n = edge_count(counters, edgeCapacity), nc = contact_edges(counters, edgeCapacity, numJoints);
     for (int i = 0; i < n; ++i)
-        if (edgeColor[i] >= color) soft_edge(i, edgeSlot[i], nc, mode, SOFT_PASS);
+        if (edgeColor[i] >= color) soft_edge(i, slotOf[i], nc, mode, SOFT_PASS);
 }
 
 /* Every pass of the stage in one launch, a grid barrier where the per-color path has a kernel
@@ -291,7 +387,7 @@ __kernel void soft_color_serial(__global const int* restrict edgeColor, __global
         return;                                                                                           \
     }
 
-__kernel void soft_resident(__global const int* restrict edgeColor, __global const int* restrict edgeSlot, int edgeCapacity,
+__kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapacity,
                             __global const uint* restrict colorStart, __global const int* restrict colorOrder,
                             volatile __global BtgGridBarrier* bar, int numColors, int numJoints, int numBodies,
                             int spinLimit, SOFT_ARGS)
@@ -305,8 +401,9 @@ __kernel void soft_resident(__global const int* restrict edgeColor, __global con
     /* the substeps this step's mass ratio needs (soft_color_count noted it) */
     const int substeps = btgSoftSubstepsFor(params, as_float(counters[BTG_COUNTER_SOFT_MASS_RATIO]));
     if (substeps != params.substeps) params = btgSoftParamsWith(params, substeps);
-    /* pass list: prepare; per substep velocity, warm start, solve, position, relax; restitution; store */
-    const int passes = 2 + 5 * params.substeps + 2;
+    /* pass list: prepare; per substep velocity and warm start (bodies), solve, position, relax;
+     * restitution; store */
+    const int passes = 2 + 4 * params.substeps + 2;
     for (int pass = 0; pass < passes; ++pass) {
         int bodyMode = -1, mode = -1;
         if (pass == 0) bodyMode = BTG_SOFT_BODY_BEGIN;
@@ -314,11 +411,10 @@ __kernel void soft_resident(__global const int* restrict edgeColor, __global con
         else if (pass == passes - 1) mode = BTG_SOFT_STORE;
         else if (pass == passes - 2) mode = BTG_SOFT_RESTITUTION;
         else {
-            const int q = (pass - 2) % 5;
+            const int q = (pass - 2) % 4;
             if (q == 0) bodyMode = BTG_SOFT_BODY_VELOCITY;
-            else if (q == 1) mode = BTG_SOFT_WARM_START;
-            else if (q == 2) mode = BTG_SOFT_SOLVE;
-            else if (q == 3) bodyMode = BTG_SOFT_BODY_POSITION;
+            else if (q == 1) mode = BTG_SOFT_SOLVE;
+            else if (q == 2) bodyMode = BTG_SOFT_BODY_POSITION;
             else mode = BTG_SOFT_RELAX;
         }
         if (bodyMode >= 0) {
@@ -335,7 +431,7 @@ __kernel void soft_resident(__global const int* restrict edgeColor, __global con
         }
         if (walkLast && gid == 0)
             for (int i = 0; i < n; ++i)
-                if (edgeColor[i] >= last) soft_edge(i, edgeSlot[i], nc, mode, SOFT_PASS);
+                if (edgeColor[i] >= last) soft_edge(i, slotOf[i], nc, mode, SOFT_PASS);
         SOFT_BARRIER();
     }
 }

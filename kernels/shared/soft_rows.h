@@ -279,19 +279,51 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
     return s;
 }
 
-/* WarmStart: this substep starts from the last one's impulses, each point's three applied as
- * one impulse vector (the rows' effect is linear in it: one Jacobian instead of three). */
-static inline void btgSoftWarmStart(BtgSoftContact* s, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
-                                    BtgBodyVel* vb)
+/* ---- the warm start body by body ----
+ * Each substep's warm start is gathered by the bodies (in the pass that adds the forces' share)
+ * rather than swept over the colours: one pass instead of a sweep of every color. A body's
+ * list holds an entry per edge it is a dynamic side of, in increasing order (so the sums are
+ * the same every run): contact e's side (0: A, 1: B) and whether this side adds the contact's
+ * warm start to its totals (its first dynamic side: once a contact), or joint j's side. */
+#define BTG_SOFT_ENTRY_JOINT 0x80000000u
+static inline uint btgSoftContactEntry(int e, int owner, int side)
+{
+    return ((uint)e << 2) | ((uint)owner << 1) | (uint)side;
+}
+static inline uint btgSoftJointEntry(int j, int side)
+{
+    return BTG_SOFT_ENTRY_JOINT | ((uint)j << 2) | (uint)side;
+}
+/* btgRowApply's half for one body (side 0: A, 1: B): linear the row's direction on A, response
+ * that body's angular velocity per N s (already times its angular factor). */
+static inline void btgSoftApplySide(BtgFloat4 linear, BtgFloat4 response, int side, BtgSolverBody body,
+                                    BtgBodyVel* v, float impulse)
+{
+    const BtgFloat4 l = side ? -linear : linear;
+    v->lin = v->lin + (l * body.invMassLin) * impulse * body.linFactor;
+    v->ang = v->ang + response * (body.angFactor * impulse);
+}
+/* WarmStart: this substep starts from the last one's impulses, each point's three applied as one
+ * impulse vector (the rows' effect is linear in it), on one of the contact's bodies (its totals:
+ * btgSoftWarmTotals). */
+static inline void btgSoftWarmStartSide(const BtgSoftContact* s, int side, BtgSolverBody body, BtgBodyVel* v)
 {
     for (int k = 0; k < s->numPoints; ++k) {
         if (btgLane(s->normalMass, k) == 0.0f) continue;
         float ln = btgLane(s->normalImpulse, k), l1 = btgLane(s->tangent1Impulse, k), l2 = btgLane(s->tangent2Impulse, k);
-        BtgFloat4 impulse = s->normal * ln + s->tangent1 * l1 + s->tangent2 * l2;
-        btgRowApply(btgPointJacobian(impulse, s->rA[k], s->rB[k], a, b), a, b, va, vb, 1.0f);
-        btgSetLane(&s->totalNormal, k, btgLane(s->totalNormal, k) + ln);
-        btgSetLane(&s->total1, k, btgLane(s->total1, k) + l1);
-        btgSetLane(&s->total2, k, btgLane(s->total2, k) + l2);
+        BtgFloat4 impulse = btgXyz(s->normal * ln + s->tangent1 * l1 + s->tangent2 * l2);
+        BtgFloat4 angular = side ? -btgCross3(s->rB[k], impulse) : btgCross3(s->rA[k], impulse);
+        btgSoftApplySide(impulse, btgMat3MulVec(body.invI, angular) * body.angFactor, side, body, v, 1.0f);
+    }
+}
+/* What a substep's warm start adds to the contact's step totals. */
+static inline void btgSoftWarmTotals(BtgSoftContact* s)
+{
+    for (int k = 0; k < s->numPoints; ++k) {
+        if (btgLane(s->normalMass, k) == 0.0f) continue;
+        btgSetLane(&s->totalNormal, k, btgLane(s->totalNormal, k) + btgLane(s->normalImpulse, k));
+        btgSetLane(&s->total1, k, btgLane(s->total1, k) + btgLane(s->tangent1Impulse, k));
+        btgSetLane(&s->total2, k, btgLane(s->total2, k) + btgLane(s->tangent2Impulse, k));
     }
 }
 
@@ -590,11 +622,15 @@ static inline void btgSoftStore(BTG_GLOBAL BtgContact* contacts, int i, const Bt
 
 /* ---- joints (their Bullet rows, built once a step by prepare_joints) ---- */
 
-/* Warm start: the rows' impulses of the last substep (zero at the step's start). */
-static inline void btgSoftJointWarmStart(BTG_CONST_GLOBAL BtgJointRow* rows, int first, int count, BtgSolverBody a,
-                                         BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb)
+/* Warm start: the joint rows' impulses of the last substep (zero at the step's start) on one of
+ * the joint's bodies. */
+static inline void btgSoftJointWarmStartSide(BTG_CONST_GLOBAL BtgJointRow* rows, int first, int count, int side,
+                                             BtgSolverBody body, BtgBodyVel* v)
 {
-    for (int k = 0; k < count; ++k) btgRowApply(rows[first + k].jacobian, a, b, va, vb, rows[first + k].impulse);
+    for (int k = 0; k < count; ++k) {
+        const BtgJacobian j = rows[first + k].jacobian;
+        btgSoftApplySide(j.linear, side ? j.responseB : j.responseA, side, body, v, rows[first + k].impulse);
+    }
 }
 /* One Gauss-Seidel step on each row, its bounds (N s a step) scaled to a substep. The rows'
  * targets keep their Bullet bias in the relax too: they carry motors and limits as well as the

@@ -1,5 +1,6 @@
 // solve_soft.cpp — CPU reference of the soft step: the device's passes in its order (bodies,
-// then per color the edges of that color in index order; the last color takes the leftovers),
+// each gathering its warm start from its edges in index order; then per color the edges of that
+// color in index order; the last color takes the leftovers),
 // on contacts only (joints are compared through scenes).
 #include "reference/solve_soft.h"
 
@@ -29,6 +30,16 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
         return btgMakeSolverBody(bodies.props[i], bodies.invInertiaWorld[3 * i], bodies.invInertiaWorld[3 * i + 1],
                                  bodies.invInertiaWorld[3 * i + 2]);
     };
+    // As soft_list_*: each body's edges (dynamic sides of colored contacts), in edge order.
+    std::vector<std::vector<uint>> lists(n);
+    for (size_t e = 0; e < contacts.size(); ++e) {
+        if (colors[e] < 0) continue;
+        const int a = contacts[e].bodyA, b = contacts[e].bodyB;
+        const bool listA = btgIsSolverDynamic(bodies.props[size_t(a)].flags) != 0;
+        const bool listB = btgIsSolverDynamic(bodies.props[size_t(b)].flags) != 0 && b != a;
+        if (listA) lists[size_t(a)].push_back(btgSoftContactEntry(int(e), 1, 0));
+        if (listB) lists[size_t(b)].push_back(btgSoftContactEntry(int(e), listA ? 0 : 1, 1));
+    }
     auto bodyPass = [&](int mode) {
         for (size_t i = 0; i < n; ++i) {
             const uint flags = bodies.props[i].flags;
@@ -40,6 +51,18 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
                 btgSoftBodyVelocity(flags, &v, &w, r);
             else
                 btgSoftBodyPosition(flags, v, w, r, params.h);
+            if (mode == BTG_SOFT_BODY_VELOCITY && btgIsSolverDynamic(flags)) {
+                // the substep's warm start, gathered as soft_bodies does
+                const BtgSolverBody self = body(int(i));
+                BtgBodyVel vel = btgMakeBodyVel(1, v, w);
+                for (uint entry : lists[i]) {
+                    BtgSoftContact& c = soft[entry >> 2];
+                    btgSoftWarmStartSide(&c, int(entry & 1u), self, &vel);
+                    if (entry & 2u) btgSoftWarmTotals(&c);
+                }
+                v = btgMake4(vel.lin.x, vel.lin.y, vel.lin.z, v.w);
+                w = btgMake4(vel.ang.x, vel.ang.y, vel.ang.z, w.w);
+            }
             if (btgIsSolverDynamic(flags)) {
                 bodies.linVel[i] = v;
                 bodies.angVel[i] = w;
@@ -71,9 +94,7 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
         }
         BtgBodyVel va = btgMakeBodyVel(a.moving, bodies.linVel[ia], bodies.angVel[ia]);
         BtgBodyVel vb = btgMakeBodyVel(b.moving, bodies.linVel[ib], bodies.angVel[ib]);
-        if (mode == BTG_SOFT_WARM_START) {
-            btgSoftWarmStart(&soft[e], a, b, &va, &vb);
-        } else if (mode == BTG_SOFT_RESTITUTION) {
+        if (mode == BTG_SOFT_RESTITUTION) {
             btgSoftRestitution(&soft[e], a, b, &va, &vb, params);
         } else {
             const BtgFloat4* ra = rows.data() + BTG_SOFT_BODY_ROWS * ia;
@@ -116,8 +137,7 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
     bodyPass(BTG_SOFT_BODY_BEGIN);
     edgePass(BTG_SOFT_PREPARE);
     for (int s = 0; s < params.substeps; ++s) {
-        bodyPass(BTG_SOFT_BODY_VELOCITY);
-        edgePass(BTG_SOFT_WARM_START);
+        bodyPass(BTG_SOFT_BODY_VELOCITY);  // and the warm start
         edgePass(BTG_SOFT_SOLVE);
         bodyPass(BTG_SOFT_BODY_POSITION);
         edgePass(BTG_SOFT_RELAX);

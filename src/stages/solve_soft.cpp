@@ -4,6 +4,7 @@
 #include "stages/solve_soft.h"
 
 #include "cl/program.h"
+#include "stages/prims/scan.h"
 #include "stages/resident.h"
 
 #include <algorithm>
@@ -71,10 +72,16 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     w.joints.reserve(ctx, 1);
     w.jointState.reserve(ctx, 1);
     w.jointRows.reserve(ctx, 1);
+    // The bodies' edge lists (the warm start's gather): none until the edges are listed below.
+    sc.softListStart.reserve(ctx, size_t(numBodies) + 1);
+    sc.softListStart.zero(ctx, size_t(numBodies) + 1);
+    sc.softListCursor.reserve(ctx, size_t(numBodies));
+    sc.softListEntries.reserve(ctx, 2 * std::max<size_t>(slots, 1));
+    sc.edgeSlot.reserve(ctx, std::max<size_t>(slots, 1));
     auto soft = [&](cl::Launch& l) -> cl::Launch& {
         return l.arg(w.contacts).arg(sc.softContacts).arg(w.props).arg(w.invInertiaWorld).arg(w.linVel0)
             .arg(w.angVel0).arg(w.linVel).arg(w.angVel).arg(sc.softBodies).arg(w.joints).arg(w.jointState)
-            .arg(w.jointRows).arg(w.counters).arg(params);
+            .arg(w.jointRows).arg(sc.softListStart).arg(sc.softListEntries).arg(sc.edgeSlot).arg(w.counters).arg(params);
     };
     cl_kernel bodies = prog.kernel("soft_bodies");
     auto bodyPass = [&](int mode) {
@@ -95,21 +102,32 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     sc.colorStart.reserve(ctx, size_t(numColors) + 1);
     sc.colorOrder.reserve(ctx, slots);
     sc.colorCount.zero(ctx, size_t(numColors) + 1);
-    const int numJoints = w.numJoints;
     cl::Launch(ctx, prog.kernel("soft_color_count"), &w.profiler).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity)
         .arg(sc.colorCount).arg(numColors).arg(w.edges).arg(w.props).run(slots);
     cl::Launch(ctx, prog.kernel("soft_color_offsets"), &w.profiler).arg(sc.colorCount).arg(sc.colorStart)
         .arg(numColors).run(1, 1);
-    sc.edgeSlot.reserve(ctx, slots);
     cl::Launch(ctx, prog.kernel("soft_color_fill"), &w.profiler).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity)
         .arg(sc.colorStart).arg(sc.colorCount).arg(sc.colorOrder).arg(numColors).arg(sc.edgeSlot).run(slots);
+    // Each body's edges, sorted: count, scan, fill, sort.
+    const int numJoints = w.numJoints;
+    sc.softListCursor.zero(ctx, size_t(numBodies));
+    cl::Launch(ctx, prog.kernel("soft_list_count"), &w.profiler).arg(w.counters).arg(edgeCapacity).arg(numJoints)
+        .arg(w.edgeColor).arg(w.edges).arg(w.joints).arg(w.jointState).arg(w.props).arg(sc.softListCursor).run(slots);
+    sc.softListStart.copyRangeFrom(ctx, sc.softListCursor, size_t(numBodies));
+    exclusiveScan(ctx, &w.profiler, sc.softListStart, size_t(numBodies) + 1, sc.softListScan);
+    sc.softListCursor.zero(ctx, size_t(numBodies));
+    cl::Launch(ctx, prog.kernel("soft_list_fill"), &w.profiler).arg(w.counters).arg(edgeCapacity).arg(numJoints)
+        .arg(w.edgeColor).arg(w.edges).arg(w.joints).arg(w.jointState).arg(w.props).arg(sc.softListCursor)
+        .arg(sc.softListStart).arg(sc.softListEntries).run(slots);
+    cl::Launch(ctx, prog.kernel("soft_list_sort"), &w.profiler).arg(numBodies).arg(sc.softListStart)
+        .arg(sc.softListEntries).run(size_t(numBodies));
     const bool resident = useResident(w);
     if (resident || w.lastContactCount <= kOneGroupMaxContacts) {
         cl_kernel k = prog.kernel("soft_resident");
         const size_t group = std::min<size_t>(256, cl::kernelGroupLimit(ctx, k));
         const size_t groups = resident ? std::max<cl_uint>(ctx.device().computeUnits, 1) : 1;
         cl::Launch l(ctx, k, &w.profiler);
-        l.arg(w.edgeColor).arg(sc.edgeSlot).arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorOrder).arg(gridBarrier(w))
+        l.arg(w.edgeColor).arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorOrder).arg(gridBarrier(w))
             .arg(numColors).arg(numJoints).arg(numBodies).arg(kGridBarrierSpins);
         soft(l).run(groups * group, group);
         return;
@@ -130,7 +148,7 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
         for (int color = 0; color < numColors; ++color) {
             if (color == numColors - 1) {
                 cl::Launch l(ctx, serial, &w.profiler);
-                l.arg(w.edgeColor).arg(sc.edgeSlot).arg(edgeCapacity).arg(numJoints).arg(color).arg(mode);
+                l.arg(w.edgeColor).arg(edgeCapacity).arg(numJoints).arg(color).arg(mode);
                 soft(l).run(1, 1);
             } else {
                 cl::Launch l(ctx, range, &w.profiler);
@@ -142,8 +160,7 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     bodyPass(BTG_SOFT_BODY_BEGIN);
     edgePass(BTG_SOFT_PREPARE);
     for (int s = 0; s < params.substeps; ++s) {
-        bodyPass(BTG_SOFT_BODY_VELOCITY);
-        edgePass(BTG_SOFT_WARM_START);
+        bodyPass(BTG_SOFT_BODY_VELOCITY);  // and the warm start
         edgePass(BTG_SOFT_SOLVE);
         bodyPass(BTG_SOFT_BODY_POSITION);
         edgePass(BTG_SOFT_RELAX);

@@ -25,6 +25,12 @@ struct SolverScratch {
     // a contact's soft rows sit at its place in that list (edgeSlot), read in color order
     cl::DeviceArray<BtgSoftContact> softContacts;
     cl::DeviceArray<int> edgeSlot;
+    // each body's edges (dynamic sides only, sorted), the warm start's gather:
+    // softListEntries[softListStart[b], softListStart[b + 1])
+    cl::DeviceArray<uint> softListStart;   // N + 1
+    cl::DeviceArray<uint> softListCursor;  // N: counts, then fill cursors
+    cl::DeviceArray<uint> softListEntries; // 2 per edge slot
+    ScanScratch softListScan;
     cl::DeviceArray<BtgFloat4> softBodies;
     // solve_jacobi: body b's contacts are jacobiEntries[jacobiStart[b], jacobiStart[b + 1]),
     // each 2 * contact + side, in increasing order; jacobiDeltas holds 4 per contact slot
