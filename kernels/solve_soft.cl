@@ -63,6 +63,51 @@ static void store_vel(BtgBodyVel v, BTG_SHARED __global BtgFloat4* lin, BTG_SHAR
     ang[i] = btgMake4(v.ang.x, v.ang.y, v.ang.z, ang[i].w);
 }
 
+/* The soft contacts as the bodies' warm-start gather shares them across work-groups: each
+ * contact's passes stay with one work-item, but the gather reads its impulses from another
+ * (and its owner side writes its totals), so those go through BTG_SHARED (volatile on GPUs,
+ * whose per-compute-unit caches are not coherent across a grid barrier). */
+static BTG_SHARED __global BtgSoftContact* shared_soft(__global BtgSoftContact* p)
+{
+    return (BTG_SHARED __global BtgSoftContact*)p;
+}
+
+/* What the gather reads of soft contact i: its points' lever arms on `side`, directions, masses
+ * and impulses; and, for the side that adds the warm start to the totals, the totals. */
+static BtgSoftContact load_soft_gather(__global BtgSoftContact* softContacts, int i, int side, int totals)
+{
+    BTG_SHARED __global BtgSoftContact* sc = shared_soft(softContacts);
+    BtgSoftContact s;
+    s.bodyA = 0;
+    s.bodyB = 0;
+    s.numPoints = sc[i].numPoints;
+    s.fixed = 0;
+    s.friction = 0.0f;
+    s.restitution = 0.0f;
+    s.pad0 = 0;
+    s.pad1 = 0;
+    s.normal = sc[i].normal;
+    s.tangent1 = sc[i].tangent1;
+    s.tangent2 = sc[i].tangent2;
+    for (int k = 0; k < BTG_MAX_POINTS; ++k) {
+        s.rA[k] = k < s.numPoints && side == 0 ? sc[i].rA[k] : btgZero4();
+        s.rB[k] = k < s.numPoints && side == 1 ? sc[i].rB[k] : btgZero4();
+    }
+    s.normalMass = sc[i].normalMass;
+    s.normalImpulse = sc[i].normalImpulse;
+    s.tangent1Impulse = sc[i].tangent1Impulse;
+    s.tangent2Impulse = sc[i].tangent2Impulse;
+    s.totalNormal = totals ? sc[i].totalNormal : btgZero4();
+    s.total1 = totals ? sc[i].total1 : btgZero4();
+    s.total2 = totals ? sc[i].total2 : btgZero4();
+    s.tangent1Mass = btgZero4();
+    s.tangent2Mass = btgZero4();
+    s.baseSeparation = btgZero4();
+    s.stiffening = btgZero4();
+    s.relativeVelocity = btgZero4();
+    return s;
+}
+
 /* What pass `mode` reads of soft contact i, the rest zero: a pass loads its rows' fields only
  * (a copy of all 416 bytes every pass would read the friction rows in the solve, the
  * separations in the warm start, ...), the lever arms of the contact's points only. */
@@ -84,7 +129,7 @@ static BtgSoftContact load_soft(__global const BtgSoftContact* softContacts, int
     }
     s.normalMass = softContacts[i].normalMass;
     s.normalImpulse = softContacts[i].normalImpulse;
-    s.totalNormal = softContacts[i].totalNormal;
+    s.totalNormal = shared_soft(softContacts)[i].totalNormal; /* the gather's owner side adds to the totals */
     const int friction = mode == BTG_SOFT_WARM_START || mode == BTG_SOFT_RELAX || (mode == BTG_SOFT_SOLVE && frictionInSolve);
     const int separation = mode == BTG_SOFT_SOLVE || mode == BTG_SOFT_RELAX;
     s.tangent1 = friction ? softContacts[i].tangent1 : btgZero4();
@@ -93,8 +138,8 @@ static BtgSoftContact load_soft(__global const BtgSoftContact* softContacts, int
     s.tangent2Mass = friction ? softContacts[i].tangent2Mass : btgZero4();
     s.tangent1Impulse = friction ? softContacts[i].tangent1Impulse : btgZero4();
     s.tangent2Impulse = friction ? softContacts[i].tangent2Impulse : btgZero4();
-    s.total1 = friction ? softContacts[i].total1 : btgZero4();
-    s.total2 = friction ? softContacts[i].total2 : btgZero4();
+    s.total1 = friction ? shared_soft(softContacts)[i].total1 : btgZero4();
+    s.total2 = friction ? shared_soft(softContacts)[i].total2 : btgZero4();
     s.baseSeparation = separation ? softContacts[i].baseSeparation : btgZero4();
     s.stiffening = separation ? softContacts[i].stiffening : btgZero4();
     s.relativeVelocity = mode == BTG_SOFT_RESTITUTION ? softContacts[i].relativeVelocity : btgZero4();
@@ -213,14 +258,14 @@ static void soft_body(int i, int mode, SOFT_ARGS)
                 btgSoftJointWarmStartSide(jointRows, joints[j].firstRow, jointState[j].numRows, side, body, &vel);
                 continue;
             }
-            const int slot = slotOf[entry >> 2];
-            BtgSoftContact s = load_soft(softContacts, slot, BTG_SOFT_WARM_START, params.frictionInSolve);
+            const int slot = slotOf[entry >> 2], owner = (entry & 2u) != 0u;
+            BtgSoftContact s = load_soft_gather(softContacts, slot, side, owner);
             btgSoftWarmStartSide(&s, side, body, &vel);
-            if (entry & 2u) {
+            if (owner) {
                 btgSoftWarmTotals(&s);
-                softContacts[slot].totalNormal = s.totalNormal;
-                softContacts[slot].total1 = s.total1;
-                softContacts[slot].total2 = s.total2;
+                shared_soft(softContacts)[slot].totalNormal = s.totalNormal;
+                shared_soft(softContacts)[slot].total1 = s.total1;
+                shared_soft(softContacts)[slot].total2 = s.total2;
             }
         }
         v = btgMake4(vel.lin.x, vel.lin.y, vel.lin.z, v.w);
@@ -379,8 +424,9 @@ __kernel void soft_color_serial(__global const int* restrict edgeColor, int edge
 
 /* Every pass of the stage in one launch, a grid barrier where the per-color path has a kernel
  * boundary; the same arithmetic in the same color order, so the same results bit for bit.
- * Each edge stays with one work-item for the launch (its soft contact needs no sharing); body
- * velocities and deltas go through BTG_SHARED pointers. */
+ * Each edge stays with one work-item for the launch; body velocities and deltas, and what the
+ * bodies' warm-start gather shares of the soft contacts (shared_soft), go through BTG_SHARED
+ * pointers. */
 #define SOFT_BARRIER()                                                                                    \
     if (btgGridBarrier(bar, spinLimit, &quit)) {                                                          \
         if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);          \
