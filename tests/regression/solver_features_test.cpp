@@ -59,6 +59,41 @@ btVector3 travel(const Scene& s, int body, const btVector3& start)
     return s.body(body)->getWorldTransform().getOrigin() - start;
 }
 
+// A 4 x 4 x 4 box pile with m_solverMode bits `bits` on both worlds, 3 s: btgpu on the GPU
+// path every step and within stock's chaos (mean height, spread, kinetic energy).
+void expectPileWithinStocksChaos(int bits)
+{
+    const int steps = 180;
+    auto make = with([](WorldKind k, const Config& c) { return features::boxPile(k, c, 4); }, solverMode(bits));
+    auto measure = [](const Scene& s) {
+        scenes::Aggregates a = scenes::aggregates(s);
+        return std::vector<double>{a.meanHeight, a.spread, a.kineticEnergy};
+    };
+    const std::vector<std::string> names = {"mean height", "spread", "kinetic energy"};
+    std::vector<scenes::ChaosBand> bands = scenes::stockChaos(
+        [&](WorldKind k) { return make(k, Config()); }, steps, measure, names,
+        {tol::kChaosHeightFloor, tol::kChaosSpreadFloor, tol::kChaosEnergyFloor});
+    SideBySide s(make);
+    stepOnGpu(s, steps);
+    std::vector<double> v = measure(*s.gpu);
+    for (size_t k = 0; k < bands.size(); ++k)
+        EXPECT_TRUE(bands[k].admits(v[k])) << bands[k].name << ": btgpu " << v[k] << ", stock " << bands[k].stockMean
+                                           << " +- " << bands[k].bound();
+}
+
+// The sliding box with m_solverMode bits `mode` on both worlds, 1.5 s on the GPU path: its
+// travel within 5% of stock's; returns stock's.
+btVector3 expectSlideAsStock(int mode)
+{
+    SideBySide s(with(features::slidingBox, solverMode(mode)));
+    const btVector3 start = s.stock->body(1)->getWorldTransform().getOrigin();
+    stepOnGpu(s, 90);
+    const btVector3 stock = travel(*s.stock, 1, start), gpu = travel(*s.gpu, 1, start);
+    EXPECT_LT((gpu - stock).length(), tol::kRollDistanceRel * stock.length())
+        << "stock (" << stock.x() << ", " << stock.z() << "), btgpu (" << gpu.x() << ", " << gpu.z() << ")";
+    return stock;
+}
+
 }  // namespace
 
 // SOLVER_ENABLE_FRICTION_DIRECTION_CACHING (BenchmarkDemo sets it) is served by following
@@ -86,23 +121,7 @@ TEST(SolverFeatures, FrictionDirectionCachingIsStockNoOp)
 // chaos (mean height, spread, kinetic energy after 3 s).
 TEST(SolverFeatures, FrictionDirectionCachingPileLikeStock)
 {
-    const int steps = 180;
-    auto make = with([](WorldKind k, const Config& c) { return features::boxPile(k, c, 4); },
-                     solverMode(SOLVER_ENABLE_FRICTION_DIRECTION_CACHING));
-    auto measure = [](const Scene& s) {
-        scenes::Aggregates a = scenes::aggregates(s);
-        return std::vector<double>{a.meanHeight, a.spread, a.kineticEnergy};
-    };
-    const std::vector<std::string> names = {"mean height", "spread", "kinetic energy"};
-    std::vector<scenes::ChaosBand> bands = scenes::stockChaos(
-        [&](WorldKind k) { return make(k, Config()); }, steps, measure, names,
-        {tol::kChaosHeightFloor, tol::kChaosSpreadFloor, tol::kChaosEnergyFloor});
-    SideBySide s(make);
-    stepOnGpu(s, steps);
-    std::vector<double> v = measure(*s.gpu);
-    for (size_t k = 0; k < bands.size(); ++k)
-        EXPECT_TRUE(bands[k].admits(v[k])) << bands[k].name << ": btgpu " << v[k] << ", stock " << bands[k].stockMean
-                                           << " +- " << bands[k].bound();
+    expectPileWithinStocksChaos(SOLVER_ENABLE_FRICTION_DIRECTION_CACHING);
 }
 
 // SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS: each velocity iteration one sweep, each
@@ -113,32 +132,11 @@ TEST(SolverFeatures, FrictionDirectionCachingPileLikeStock)
 // directions.
 TEST(SolverFeatures, InterleavedFrictionAsStock)
 {
-    const int steps = 180;
-    auto make = with([](WorldKind k, const Config& c) { return features::boxPile(k, c, 4); },
-                     solverMode(SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS));
-    auto measure = [](const Scene& s) {
-        scenes::Aggregates a = scenes::aggregates(s);
-        return std::vector<double>{a.meanHeight, a.spread, a.kineticEnergy};
-    };
-    const std::vector<std::string> names = {"mean height", "spread", "kinetic energy"};
-    std::vector<scenes::ChaosBand> bands = scenes::stockChaos(
-        [&](WorldKind k) { return make(k, Config()); }, steps, measure, names,
-        {tol::kChaosHeightFloor, tol::kChaosSpreadFloor, tol::kChaosEnergyFloor});
-    SideBySide pile(make);
-    stepOnGpu(pile, steps);
-    std::vector<double> v = measure(*pile.gpu);
-    for (size_t k = 0; k < bands.size(); ++k)
-        EXPECT_TRUE(bands[k].admits(v[k])) << bands[k].name << ": btgpu " << v[k] << ", stock " << bands[k].stockMean
-                                           << " +- " << bands[k].bound();
+    expectPileWithinStocksChaos(SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS);
     for (int mode : {int(SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS),
                      SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS | SOLVER_USE_2_FRICTION_DIRECTIONS}) {
         SCOPED_TRACE(mode);
-        SideBySide s(with(features::slidingBox, solverMode(mode)));
-        const btVector3 start = s.stock->body(1)->getWorldTransform().getOrigin();
-        stepOnGpu(s, 90);
-        const btVector3 stock = travel(*s.stock, 1, start), gpu = travel(*s.gpu, 1, start);
-        EXPECT_LT((gpu - stock).length(), tol::kRollDistanceRel * stock.length())
-            << "stock (" << stock.x() << ", " << stock.z() << "), btgpu (" << gpu.x() << ", " << gpu.z() << ")";
+        expectSlideAsStock(mode);
     }
 }
 
@@ -151,12 +149,7 @@ TEST(SolverFeatures, VelocityIndependentFrictionSlidesAsStock)
     for (int mode : {int(SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION),
                      SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION | SOLVER_USE_2_FRICTION_DIRECTIONS}) {
         SCOPED_TRACE(mode);
-        SideBySide s(with(features::slidingBox, solverMode(mode)));
-        const btVector3 start = s.stock->body(1)->getWorldTransform().getOrigin();
-        stepOnGpu(s, 90);
-        const btVector3 stock = travel(*s.stock, 1, start), gpu = travel(*s.gpu, 1, start);
-        EXPECT_LT((gpu - stock).length(), tol::kRollDistanceRel * stock.length())
-            << "stock (" << stock.x() << ", " << stock.z() << "), btgpu (" << gpu.x() << ", " << gpu.z() << ")";
+        const btVector3 stock = expectSlideAsStock(mode);
         if (!(mode & SOLVER_USE_2_FRICTION_DIRECTIONS)) {
             // the mode's own signature: x stopped early, z slid on
             EXPECT_GT(stock.z(), 1.2 * stock.x());

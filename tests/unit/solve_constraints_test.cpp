@@ -424,6 +424,38 @@ TEST(SolveConstraints, AnisotropicFrictionMatchesReference)
     }
 }
 
+namespace {
+
+// A cold then a warm-started solve of s with q, on the device (per-color launches) and in the
+// reference: the warm-started ones within tolerance of each other, and the device's bitwise
+// the same again, in one work-group and in one resident launch (push velocities too).
+struct Warmed {
+    Result firstDevice, firstReference, device, reference;
+};
+Warmed solveWarmedEveryWay(const test::StackScene& s, const BtgStepParams& q, int maxColors)
+{
+    Warmed w;
+    w.firstDevice = runDevice(s.bodies, s.manifolds, {}, q, maxColors);
+    w.firstReference = runReference(s.bodies, s.manifolds, {}, q, maxColors);
+    w.device = runDevice(s.bodies, s.manifolds, w.firstDevice.contacts, q, maxColors);
+    w.reference = runReference(s.bodies, s.manifolds, w.firstReference.contacts, q, maxColors);
+    const Result& d = w.device;
+    test::expectSolvedAlike(d.bodies, d.contacts, w.reference.bodies, w.reference.contacts, 10 * tol::kStageAbs);
+    const size_t n = d.bodies.linVel.size() * sizeof(BtgFloat4);
+    Result again = runDevice(s.bodies, s.manifolds, w.firstDevice.contacts, q, maxColors);
+    EXPECT_EQ(0, std::memcmp(again.bodies.linVel.data(), d.bodies.linVel.data(), n));
+    Result fused = runDevice(s.bodies, s.manifolds, w.firstDevice.contacts, q, maxColors, true);
+    EXPECT_EQ(0, std::memcmp(fused.bodies.linVel.data(), d.bodies.linVel.data(), n));
+    EXPECT_EQ(0, std::memcmp(fused.bodies.pushLin.data(), d.bodies.pushLin.data(), n));
+    Result resident =
+        runDevice(s.bodies, s.manifolds, w.firstDevice.contacts, q, maxColors, false, DeviceWorld::Resident::On);
+    if (!(resident.status & BTG_STATUS_GRID_BARRIER_TIMEOUT))
+        EXPECT_EQ(0, std::memcmp(resident.bodies.linVel.data(), d.bodies.linVel.data(), n));
+    return w;
+}
+
+}  // namespace
+
 // SOLVER_RANDMIZE_ORDER (BtgStepParams.randomSeed): each sweep's colours and each contact's
 // points in the solver's own permuted order. The device follows the reference (within the same
 // rounding bound as in order), the one-work-group launch and the resident launch take the same
@@ -438,20 +470,9 @@ TEST(SolveConstraints, RandomizedOrderMatchesReferenceAndDiffers)
         SCOPED_TRACE(maxColors);
         BtgStepParams q = p;
         q.randomSeed = 12345u;
-        Result d1 = runDevice(s.bodies, s.manifolds, {}, q, maxColors);
-        Result r1 = runReference(s.bodies, s.manifolds, {}, q, maxColors);
-        Result d = runDevice(s.bodies, s.manifolds, d1.contacts, q, maxColors);
-        Result r = runReference(s.bodies, s.manifolds, r1.contacts, q, maxColors);
-        test::expectSolvedAlike(d.bodies, d.contacts, r.bodies, r.contacts, 10 * tol::kStageAbs);
+        const Warmed w = solveWarmedEveryWay(s, q, maxColors);
+        const Result &d1 = w.firstDevice, &d = w.device;
         const size_t n = d.bodies.linVel.size() * sizeof(BtgFloat4);
-        Result again = runDevice(s.bodies, s.manifolds, d1.contacts, q, maxColors);
-        EXPECT_EQ(0, std::memcmp(again.bodies.linVel.data(), d.bodies.linVel.data(), n));
-        Result fused = runDevice(s.bodies, s.manifolds, d1.contacts, q, maxColors, true);
-        EXPECT_EQ(0, std::memcmp(fused.bodies.linVel.data(), d.bodies.linVel.data(), n));
-        EXPECT_EQ(0, std::memcmp(fused.bodies.pushLin.data(), d.bodies.pushLin.data(), n));
-        Result resident = runDevice(s.bodies, s.manifolds, d1.contacts, q, maxColors, false, DeviceWorld::Resident::On);
-        if (!(resident.status & BTG_STATUS_GRID_BARRIER_TIMEOUT))
-            EXPECT_EQ(0, std::memcmp(resident.bodies.linVel.data(), d.bodies.linVel.data(), n));
         Result inOrder = runDevice(s.bodies, s.manifolds, d1.contacts, p, maxColors);
         EXPECT_NE(0, std::memcmp(inOrder.bodies.linVel.data(), d.bodies.linVel.data(), n));
         BtgStepParams other = q;
@@ -485,19 +506,8 @@ TEST(SolveConstraints, InterleavedMatchesReferenceAndDiffers)
         BtgStepParams q = split;
         q.solverFlags |= BTG_SOLVER_INTERLEAVE;
         const int maxColors = 16;
-        Result d1 = runDevice(s.bodies, s.manifolds, {}, q, maxColors);
-        Result r1 = runReference(s.bodies, s.manifolds, {}, q, maxColors);
-        Result d = runDevice(s.bodies, s.manifolds, d1.contacts, q, maxColors);
-        Result r = runReference(s.bodies, s.manifolds, r1.contacts, q, maxColors);
-        test::expectSolvedAlike(d.bodies, d.contacts, r.bodies, r.contacts, 10 * tol::kStageAbs);
-        const size_t n = d.bodies.linVel.size() * sizeof(BtgFloat4);
-        Result again = runDevice(s.bodies, s.manifolds, d1.contacts, q, maxColors);
-        EXPECT_EQ(0, std::memcmp(again.bodies.linVel.data(), d.bodies.linVel.data(), n));
-        Result fused = runDevice(s.bodies, s.manifolds, d1.contacts, q, maxColors, true);
-        EXPECT_EQ(0, std::memcmp(fused.bodies.linVel.data(), d.bodies.linVel.data(), n));
-        Result resident = runDevice(s.bodies, s.manifolds, d1.contacts, q, maxColors, false, DeviceWorld::Resident::On);
-        if (!(resident.status & BTG_STATUS_GRID_BARRIER_TIMEOUT))
-            EXPECT_EQ(0, std::memcmp(resident.bodies.linVel.data(), d.bodies.linVel.data(), n));
+        const Warmed w = solveWarmedEveryWay(s, q, maxColors);
+        const Result &d1 = w.firstDevice, &r1 = w.firstReference, &d = w.device, &r = w.reference;
         // the split sweeps' answer differs, on the device and in the reference alike
         Result splitD = runDevice(s.bodies, s.manifolds, d1.contacts, split, maxColors);
         Result splitR = runReference(s.bodies, s.manifolds, r1.contacts, split, maxColors);
