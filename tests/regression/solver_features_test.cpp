@@ -59,26 +59,37 @@ btVector3 travel(const Scene& s, int body, const btVector3& start)
     return s.body(body)->getWorldTransform().getOrigin() - start;
 }
 
+// The aggregates a pile is judged by against stock's chaos, stock's band of each over `steps`
+// steps of `make`'s scene, and the check of btgpu's against them.
+std::vector<double> pileAggregates(const Scene& s)
+{
+    scenes::Aggregates a = scenes::aggregates(s);
+    return std::vector<double>{a.meanHeight, a.spread, a.kineticEnergy};
+}
+std::vector<scenes::ChaosBand> pileBands(const SceneBuilder& make, int steps)
+{
+    return scenes::stockChaos([&](WorldKind k) { return make(k, Config()); }, steps, pileAggregates,
+                              {"mean height", "spread", "kinetic energy"},
+                              {tol::kChaosHeightFloor, tol::kChaosSpreadFloor, tol::kChaosEnergyFloor});
+}
+void expectWithinBands(const std::vector<scenes::ChaosBand>& bands, const Scene& gpu)
+{
+    const std::vector<double> v = pileAggregates(gpu);
+    for (size_t k = 0; k < bands.size(); ++k)
+        EXPECT_TRUE(bands[k].admits(v[k])) << bands[k].name << ": btgpu " << v[k] << ", stock " << bands[k].stockMean
+                                           << " +- " << bands[k].bound();
+}
+
 // A 4 x 4 x 4 box pile with m_solverMode bits `bits` on both worlds, 3 s: btgpu on the GPU
 // path every step and within stock's chaos (mean height, spread, kinetic energy).
 void expectPileWithinStocksChaos(int bits)
 {
     const int steps = 180;
     auto make = with([](WorldKind k, const Config& c) { return features::boxPile(k, c, 4); }, solverMode(bits));
-    auto measure = [](const Scene& s) {
-        scenes::Aggregates a = scenes::aggregates(s);
-        return std::vector<double>{a.meanHeight, a.spread, a.kineticEnergy};
-    };
-    const std::vector<std::string> names = {"mean height", "spread", "kinetic energy"};
-    std::vector<scenes::ChaosBand> bands = scenes::stockChaos(
-        [&](WorldKind k) { return make(k, Config()); }, steps, measure, names,
-        {tol::kChaosHeightFloor, tol::kChaosSpreadFloor, tol::kChaosEnergyFloor});
+    const std::vector<scenes::ChaosBand> bands = pileBands(make, steps);
     SideBySide s(make);
     stepOnGpu(s, steps);
-    std::vector<double> v = measure(*s.gpu);
-    for (size_t k = 0; k < bands.size(); ++k)
-        EXPECT_TRUE(bands[k].admits(v[k])) << bands[k].name << ": btgpu " << v[k] << ", stock " << bands[k].stockMean
-                                           << " +- " << bands[k].bound();
+    expectWithinBands(bands, *s.gpu);
 }
 
 // The sliding box with m_solverMode bits `mode` on both worlds, 1.5 s on the GPU path: its
@@ -569,14 +580,7 @@ TEST(SolverFeatures, RandomizedOrderPyramidAndPileLikeStock)
     for (const auto& [name, plainMake] : scenesToRun) {
         SCOPED_TRACE(name);
         auto make = with(plainMake, solverMode(SOLVER_RANDMIZE_ORDER));
-        auto measure = [](const Scene& s) {
-            scenes::Aggregates a = scenes::aggregates(s);
-            return std::vector<double>{a.meanHeight, a.spread, a.kineticEnergy};
-        };
-        const std::vector<std::string> names = {"mean height", "spread", "kinetic energy"};
-        std::vector<scenes::ChaosBand> bands = scenes::stockChaos(
-            [&](WorldKind k) { return make(k, Config()); }, steps, measure, names,
-            {tol::kChaosHeightFloor, tol::kChaosSpreadFloor, tol::kChaosEnergyFloor});
+        const std::vector<scenes::ChaosBand> bands = pileBands(make, steps);
         SideBySide s(make);
         ScenePtr twin = make(WorldKind::Gpu, Config());
         ScenePtr inOrder = plainMake(WorldKind::Gpu, Config());
@@ -590,9 +594,6 @@ TEST(SolverFeatures, RandomizedOrderPyramidAndPileLikeStock)
             differs = differs || s.gpu->gpuWorld()->stateHash() != inOrder->gpuWorld()->stateHash();
         }
         EXPECT_TRUE(differs) << "the bit changed nothing";
-        std::vector<double> v = measure(*s.gpu);
-        for (size_t k = 0; k < bands.size(); ++k)
-            EXPECT_TRUE(bands[k].admits(v[k])) << bands[k].name << ": btgpu " << v[k] << ", stock " << bands[k].stockMean
-                                               << " +- " << bands[k].bound();
+        expectWithinBands(bands, *s.gpu);
     }
 }
