@@ -366,6 +366,19 @@ bool GpuWorld::runOnDevice(int substeps, btScalar dt, SubstepPart part, const st
         report({e.kind == CallEvent::Kind::Grew ? Issue::Kind::Overflow : Issue::Kind::Device, e.message});
     m_report.redoneSteps += outcome.redone;
     m_report.softSubsteps = w.lastSoftSubsteps;
+    // A mass ratio that needs more substeps than SoftStepConfig::maxSubsteps gives: said once
+    // each time the world comes to one.
+    BtgSoftParams uncapped = w.softParams;
+    uncapped.maxSubsteps = 1 << 16;
+    const bool softCapped = w.lastSoftSubsteps > 0 && btgSoftSubstepsFor(uncapped, w.lastSoftMassRatio) > w.lastSoftSubsteps;
+    if (softCapped && !m_softCapReported)
+        report({Issue::Kind::Difference,
+                "the soft step's substeps are capped at SoftStepConfig::maxSubsteps (" +
+                    std::to_string(w.lastSoftSubsteps) + "): a contact or joint of mass ratio " +
+                    std::to_string(w.lastSoftMassRatio) + " needs " +
+                    std::to_string(btgSoftSubstepsFor(uncapped, w.lastSoftMassRatio)) +
+                    " to hold a heavy body on a light one"});
+    m_softCapReported = softCapped;
     if (outcome.abandoned) return false;
     if (s.params.randomSeed != 0u) m_orderStream = s.params.randomSeed + unsigned(s.substeps);
     m_rows.stepped();

@@ -184,6 +184,7 @@ private:
     // its deactivation timer in Bullet; the device's timers are reset to match.
     std::vector<char> m_woken;
     std::vector<char> m_reshaped;  // per row: its mesh or heightfield was edited (compareRow)
+    bool m_softCapReported = false;   // the Difference issue of SoftStepConfig::maxSubsteps was made
     bool m_emptyCapReported = false;  // the Difference issue of Config::deviceEmptyManifoldsUpTo was made
     // After a syncIn: the woken rows' timers reset, the edited concave rows' kept points dropped.
     void afterSyncIn();

@@ -293,6 +293,7 @@ CallOutcome runCall(DeviceWorld& w, const Plan& plan, const StepSettings& s, Sna
     float ratio = 0.0f;
     std::memcpy(&ratio, &rb.counters[kSoftMassRatio], sizeof ratio);
     w.lastSoftSubsteps = plan.solver == SolverKind::SoftStep ? btgSoftSubstepsFor(w.softParams, ratio) : 0;
+    w.lastSoftMassRatio = plan.solver == SolverKind::SoftStep ? ratio : 0.0f;
     return out;
 }
 

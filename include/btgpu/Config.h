@@ -40,8 +40,9 @@ struct SoftStepConfig {
     // walks, at 64 it settles). Each step takes the least n >= m_numIterations with n^2 >=
     // (this)^2 r, up to maxSubsteps, where r is the largest mass ratio (heavier over lighter) of
     // a contact or joint between two dynamic bodies in this step (Report::softSubsteps says what
-    // the last step took). 0: always m_numIterations; so it is with heldMassRatio on (the other
-    // cure: held at 64 substeps, a 1,000:1 pair sinks metres).
+    // the last step took; a ratio that needs more than maxSubsteps is reported once, an
+    // Issue::Kind::Difference). 0: always m_numIterations; so it is with heldMassRatio on (the
+    // other cure: held at 64 substeps, a 1,000:1 pair sinks metres).
     float substepsPerRootMassRatio = 2.0f;
     int maxSubsteps = 128;
     // Hz: the contacts' spring (capped at an eighth of the substep rate; twice this against a

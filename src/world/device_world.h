@@ -185,6 +185,7 @@ struct DeviceWorld {
     int lastContactCount = 1 << 30;          // contacts at the last readback (chooses launch shapes)
     BtgSoftParams softParams{};              // the soft step's scalars as the host chose them, last step
     int lastSoftSubsteps = 0;                // substeps the soft step took at the last readback (its mass ratio's)
+    float lastSoftMassRatio = 0.0f;          // the largest edge mass ratio it saw then
     SolverScratch solverScratch;             // contact stages' scratch (block sums, claims)
     // Batching and solve in one launch each over resident work-groups (stages/resident.h):
     // Auto takes it on GPUs; set Off for good when a grid barrier timed out on this device (the

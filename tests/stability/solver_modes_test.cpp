@@ -202,6 +202,24 @@ TEST(SolverModes, RagdollsLandInSoftMode)
     EXPECT_LT(soft.finalKePerMass, 1e-3);
 }
 
+// A mass ratio past what SoftStepConfig::maxSubsteps (128) holds (100,000:1 needs 633): the
+// step takes the cap and says so once (Issue::Kind::Difference), on the GPU path.
+TEST(SolverModes, SubstepCapIsReported)
+{
+    scenes::ScenePtr s = st::massRatio(WorldKind::Gpu, modeConfig(SolverKind::SoftStep), 100000);
+    for (int step = 0; step < 5; ++step) {
+        s->step(btScalar(1) / 60, 1, btScalar(1) / 60);
+        ASSERT_TRUE(s->report()->gpuPath) << s->report()->cpuPathReason;
+    }
+    EXPECT_EQ(128, s->report()->softSubsteps);
+    int said = 0;
+    for (const Issue& i : s->report()->issues)
+        if (i.kind == Issue::Kind::Difference && i.message.find("SoftStepConfig::maxSubsteps (128)") != std::string::npos &&
+            i.message.find(" needs 633 ") != std::string::npos)
+            ++said;
+    EXPECT_EQ(1, said);
+}
+
 // Same scene, device and binary: the soft step's states are bitwise the same, step by step (two
 // worlds of a pyramid side by side, 120 steps). Of base 30 (465 bodies): on a GPU its bodies
 // span more than one work-group, so the warm-start gather reads soft contacts another compute
