@@ -128,8 +128,9 @@ static BtgSoftContact load_soft(__global const BtgSoftContact* softContacts, int
         s.rB[k] = k < s.numPoints ? softContacts[i].rB[k] : btgZero4();
     }
     s.normalMass = softContacts[i].normalMass;
-    s.normalImpulse = softContacts[i].normalImpulse;
-    s.totalNormal = shared_soft(softContacts)[i].totalNormal; /* the gather's owner side adds to the totals */
+    /* a held pair writes its support's impulses and totals, the gather's owner side the totals */
+    s.normalImpulse = shared_soft(softContacts)[i].normalImpulse;
+    s.totalNormal = shared_soft(softContacts)[i].totalNormal;
     const int friction = mode == BTG_SOFT_WARM_START || mode == BTG_SOFT_RELAX || (mode == BTG_SOFT_SOLVE && frictionInSolve);
     const int separation = mode == BTG_SOFT_SOLVE || mode == BTG_SOFT_RELAX;
     s.tangent1 = friction ? softContacts[i].tangent1 : btgZero4();
@@ -189,7 +190,7 @@ static void soft_contact(int i, int slot, int mode, SOFT_ARGS)
             const int light = btgSoftLightSide(a, b, params);
             if (light) {
                 const BtgFloat4 support = softBodies[(light == 1 ? rA : rB) + BTG_SOFT_SUPPORT];
-                if (support.x == 1.0f && btgSoftHeldNormals(&s, light == 1, softContacts + (int)support.y, a, b, &va,
+                if (support.x == 1.0f && btgSoftHeldNormals(&s, light == 1, shared_soft(softContacts) + (int)support.y, a, b, &va,
                                                             &vb, dpA, dqA, dpB, dqB, mode == BTG_SOFT_SOLVE, params))
                     normals = 0;
             } else if (a.dynamic != b.dynamic && softBodies[(a.dynamic ? rA : rB) + BTG_SOFT_SUPPORT].z == 1.0f) {

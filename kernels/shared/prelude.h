@@ -12,6 +12,12 @@ typedef float4 BtgFloat4;
 typedef int4 BtgInt4;
 #define BTG_GLOBAL __global
 #define BTG_CONST_GLOBAL __global const
+/* global memory another work-group writes within one launch (BTG_SHARED: volatile on GPUs,
+ * see grid_barrier.h) */
+#ifndef BTG_SHARED
+#define BTG_SHARED volatile
+#endif
+#define BTG_SHARED_GLOBAL BTG_SHARED __global
 #define BTG_INLINE inline
 #define BTG_STATIC_ASSERT(cond, msg)
 static inline BtgFloat4 btgMake4(float x, float y, float z, float w) { return (float4)(x, y, z, w); }
@@ -39,6 +45,7 @@ struct alignas(16) BtgInt4 {
 };
 #define BTG_GLOBAL
 #define BTG_CONST_GLOBAL const
+#define BTG_SHARED_GLOBAL
 #define BTG_INLINE inline
 #define BTG_STATIC_ASSERT(cond, msg) static_assert(cond, msg)
 static inline BtgFloat4 btgMake4(float x, float y, float z, float w) { return BtgFloat4{x, y, z, w}; }

@@ -394,7 +394,8 @@ typedef struct {
     int points;
 } BtgSoftShare;
 
-static inline int btgSoftMakeShare(BtgSoftShare* h, BTG_GLOBAL const BtgSoftContact* support, int light, BtgFloat4 dt)
+static inline int btgSoftMakeShare(BtgSoftShare* h, BTG_SHARED_GLOBAL const BtgSoftContact* support, int light,
+                                   BtgFloat4 dt)
 {
     const int supportA = support->bodyA == light;
     h->dg = supportA ? support->normal : -support->normal;
@@ -435,7 +436,7 @@ static inline int btgSoftMakeShare(BtgSoftShare* h, BTG_GLOBAL const BtgSoftCont
  * it: least norm, and of four points the free share (the null vector of the three sums) taken
  * nearest zero that keeps every point's impulse (from `base`) at or above zero, so that no
  * clamp breaks the balance (a lone loaded corner above would otherwise ask one below to pull). */
-static inline void btgSoftShareOut(const BtgSoftShare* h, BTG_GLOBAL const BtgSoftContact* support, BtgFloat4 base,
+static inline void btgSoftShareOut(const BtgSoftShare* h, BTG_SHARED_GLOBAL const BtgSoftContact* support, BtgFloat4 base,
                                    float force, BtgFloat4 dt, BtgFloat4 torque, float* delta)
 {
     const float b0 = -force * btgDot3(dt, h->dg), b1 = -btgDot3(torque, h->e1), b2 = -btgDot3(torque, h->e2);
@@ -475,7 +476,7 @@ static inline void btgSoftShareOut(const BtgSoftShare* h, BTG_GLOBAL const BtgSo
  * support, shared out (btgSoftShareOut) so that force and torque on the light body balance when
  * the next substep warm-starts both: the light body is never kicked, so nothing has to catch
  * it. Returns 0 (rows left to btgSoftSolve) where btgSoftMakeShare finds no valid support. */
-static inline int btgSoftHeldNormals(BtgSoftContact* s, int lightIsA, BTG_GLOBAL BtgSoftContact* support,
+static inline int btgSoftHeldNormals(BtgSoftContact* s, int lightIsA, BTG_SHARED_GLOBAL BtgSoftContact* support,
                                      BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb, BtgFloat4 dpA,
                                      BtgFloat4 dqA, BtgFloat4 dpB, BtgFloat4 dqB, int useBias, BtgSoftParams p)
 {
