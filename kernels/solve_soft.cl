@@ -131,7 +131,7 @@ static BtgSoftContact load_soft(__global const BtgSoftContact* softContacts, int
     /* a held pair writes its support's impulses and totals, the gather's owner side the totals */
     s.normalImpulse = shared_soft(softContacts)[i].normalImpulse;
     s.totalNormal = shared_soft(softContacts)[i].totalNormal;
-    const int friction = mode == BTG_SOFT_WARM_START || mode == BTG_SOFT_RELAX || (mode == BTG_SOFT_SOLVE && frictionInSolve);
+    const int friction = mode == BTG_SOFT_RELAX || (mode == BTG_SOFT_SOLVE && frictionInSolve);
     const int separation = mode == BTG_SOFT_SOLVE || mode == BTG_SOFT_RELAX;
     s.tangent1 = friction ? softContacts[i].tangent1 : btgZero4();
     s.tangent2 = friction ? softContacts[i].tangent2 : btgZero4();

@@ -92,9 +92,9 @@ typedef struct {
 #define BTG_SOFT_FORCE_ANG 3 /* rad/s per substep */
 #define BTG_SOFT_SUPPORT 4   /* x: its contacts with fixed bodies, y: the last one's index, z: 1 if a pair holds it (floats) */
 
-/* Edge passes and body passes of the soft solve. */
+/* Edge passes and body passes of the soft solve (the warm start is the velocity body pass's:
+ * the bodies gather it). */
 #define BTG_SOFT_PREPARE 0
-#define BTG_SOFT_WARM_START 1
 #define BTG_SOFT_SOLVE 2
 #define BTG_SOFT_RELAX 3
 #define BTG_SOFT_RESTITUTION 4
