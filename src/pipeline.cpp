@@ -95,7 +95,7 @@ void runSubstep(DeviceWorld& w, const Plan& plan, const std::vector<Stage>& stag
     if (running) {
         fillCounters(w, kPairCount, 2, 0u);  // pair and contact counts
         fillCounters(w, kEdgeCount, 1, 0u);  // the constraint graph, rebuilt by the stages that add edges
-        fillCounters(w, kSoftMassRatio, 1, 0u);  // noted afresh by the soft step's prepare
+        fillCounters(w, kSoftMassRatio, 1, 0u);  // noted afresh by the soft step's soft_color_count
     }
     for (Stage stage : stages) {
         if (stage == Stage::ContactCache) {

@@ -18,35 +18,32 @@ namespace {
 constexpr int kOneGroupMaxContacts = 4096;
 constexpr int kMaxSubsteps = 256;
 
-// An explicit substep count is kept; m_numIterations' grows with the mass ratio unless the
-// light bodies are held (the other cure: held at 64 substeps a 1,000:1 pair sinks metres).
-float rootRatioSubsteps(const SoftStepConfig& c)
+// The substep fields of the step's scalars: the base count, and how it grows with the mass
+// ratio. An explicit substep count is kept; m_numIterations' grows unless the light bodies are
+// held (the other cure: held at 64 substeps a 1,000:1 pair sinks metres).
+BtgSoftParams substepFields(const SoftStepConfig& c, int iterations)
 {
-    if (c.substeps > 0 || c.heldMassRatio > 0.0f) return 0.0f;
-    return std::max(c.substepsPerRootMassRatio, 0.0f);
+    BtgSoftParams p{};
+    p.substeps = std::clamp(c.substeps > 0 ? c.substeps : iterations, 1, kMaxSubsteps);
+    p.rootRatioSubsteps = c.substeps > 0 || c.heldMassRatio > 0.0f ? 0.0f : std::max(c.substepsPerRootMassRatio, 0.0f);
+    p.maxSubsteps = std::clamp(c.maxSubsteps, p.substeps, kMaxSubsteps);
+    return p;
 }
 
 }  // namespace
 
 int softSubsteps(const SoftStepConfig& c, int iterations, float massRatio)
 {
-    BtgSoftParams p{};
-    p.substeps = std::clamp(c.substeps > 0 ? c.substeps : iterations, 1, kMaxSubsteps);
-    p.rootRatioSubsteps = rootRatioSubsteps(c);
-    p.maxSubsteps = std::clamp(c.maxSubsteps, p.substeps, kMaxSubsteps);
-    return btgSoftSubstepsFor(p, massRatio);
+    return btgSoftSubstepsFor(substepFields(c, iterations), massRatio);
 }
 
 BtgSoftParams makeSoftParams(const SoftStepConfig& c, const BtgStepParams& params, int iterations)
 {
-    BtgSoftParams p{};
+    BtgSoftParams p = substepFields(c, iterations);
     p.dt = params.dt;
     p.hertz = c.contactHertz;
     p.zeta = c.dampingRatio;
     p.warmstartFactor = params.warmstartFactor;
-    p.substeps = softSubsteps(c, iterations);
-    p.rootRatioSubsteps = rootRatioSubsteps(c);
-    p.maxSubsteps = std::clamp(c.maxSubsteps, p.substeps, kMaxSubsteps);
     p.pushSpeed = c.pushSpeed;
     p.restitutionThreshold = params.restitutionThreshold;
     p.frictionInSolve = c.frictionInSolve ? 1 : 0;
