@@ -365,6 +365,7 @@ bool GpuWorld::runOnDevice(int substeps, btScalar dt, SubstepPart part, const st
     for (const CallEvent& e : outcome.events)
         report({e.kind == CallEvent::Kind::Grew ? Issue::Kind::Overflow : Issue::Kind::Device, e.message});
     m_report.redoneSteps += outcome.redone;
+    m_report.colors = w.lastColorsUsed;
     m_report.softSubsteps = w.lastSoftSubsteps;
     // A mass ratio that needs more substeps than SoftStepConfig::maxSubsteps gives: said once
     // each time the world comes to one.

@@ -337,6 +337,9 @@ __kernel void solve_resident(__global const int* restrict edgeColor, __global Bt
                     const int color = btgPermute(key, last, ci); /* SOLVER_RANDMIZE_ORDER, else ci */
                     const int begin = (int)colorStart[list * (numColors + 1) + color];
                     const int end = (int)colorStart[list * (numColors + 1) + color + 1];
+                    /* an empty colour (the coloring's slack, a list's unused colours) needs no
+                     * barrier: every work-item reads the same range */
+                    if (begin == end) continue;
                     for (int k = begin + gid; k < end; k += gsize)
                         solve_phase_edge(colorOrder[list * orderStride + k], phase, nc, iteration, m, rows,
                                          contacts, rolling, frictionDirs, anchors, JOINT_PASS, props, invInertiaWorld, lin, ang,

@@ -63,6 +63,17 @@ static void store_vel(BtgBodyVel v, BTG_SHARED __global BtgFloat4* lin, BTG_SHAR
     ang[i] = btgMake4(v.ang.x, v.ang.y, v.ang.z, ang[i].w);
 }
 
+/* What a contact's rows read of body row r's motion so far (soft_body's position pass wrote it). */
+static BtgSoftDelta load_delta(BTG_SHARED __global BtgFloat4* softBodies, int r)
+{
+    BtgSoftDelta d;
+    d.pos = softBodies[r + BTG_SOFT_DELTA_POS];
+    d.rot.r0 = softBodies[r + BTG_SOFT_DELTA_MAT];
+    d.rot.r1 = softBodies[r + BTG_SOFT_DELTA_MAT + 1];
+    d.rot.r2 = softBodies[r + BTG_SOFT_DELTA_MAT + 2];
+    return d;
+}
+
 /* The soft contacts as the bodies' warm-start gather shares them across work-groups: each
  * contact's passes stay with one work-item, but the gather reads its impulses from another
  * (and its owner side writes its totals), so those go through BTG_SHARED (volatile on GPUs,
@@ -183,21 +194,20 @@ static void soft_contact(int i, int slot, int mode, SOFT_ARGS)
         btgSoftRestitution(&s, a, b, &va, &vb, params);
     } else {
         const int rA = BTG_SOFT_BODY_ROWS * bodyA, rB = BTG_SOFT_BODY_ROWS * bodyB;
-        const BtgFloat4 dpA = softBodies[rA + BTG_SOFT_DELTA_POS], dqA = softBodies[rA + BTG_SOFT_DELTA_ROT];
-        const BtgFloat4 dpB = softBodies[rB + BTG_SOFT_DELTA_POS], dqB = softBodies[rB + BTG_SOFT_DELTA_ROT];
+        const BtgSoftDelta dA = load_delta(softBodies, rA), dB = load_delta(softBodies, rB);
         int normals = 1;
         if (params.heldMassRatio > 0.0f) {
             const int light = btgSoftLightSide(a, b, params);
             if (light) {
                 const BtgFloat4 support = softBodies[(light == 1 ? rA : rB) + BTG_SOFT_SUPPORT];
                 if (support.x == 1.0f && btgSoftHeldNormals(&s, light == 1, shared_soft(softContacts) + (int)support.y, a, b, &va,
-                                                            &vb, dpA, dqA, dpB, dqB, mode == BTG_SOFT_SOLVE, params))
+                                                            &vb, dA, dB, mode == BTG_SOFT_SOLVE, params))
                     normals = 0;
             } else if (a.dynamic != b.dynamic && softBodies[(a.dynamic ? rA : rB) + BTG_SOFT_SUPPORT].z == 1.0f) {
                 normals = 3;
             }
         }
-        btgSoftSolve(&s, a, b, &va, &vb, dpA, dqA, dpB, dqB, mode == BTG_SOFT_SOLVE, normals, params);
+        btgSoftSolve(&s, a, b, &va, &vb, dA, dB, mode == BTG_SOFT_SOLVE, normals, params);
     }
     if (a.dynamic) store_vel(va, lin, ang, bodyA);
     if (b.dynamic) store_vel(vb, lin, ang, bodyB);
@@ -239,10 +249,15 @@ static void soft_edge(int e, int slot, int nc, int mode, SOFT_ARGS)
 static void soft_body(int i, int mode, SOFT_ARGS)
 {
     const uint flags = props[i].flags;
-    /* the substeps' passes leave the support row alone (prepare's, between them) */
+    /* Each pass reads and writes only its rows: begin writes them all; the velocity pass reads
+     * the forces' share; the position pass moves the deltas (and their matrix). The support row
+     * (prepare's, between them) the substeps' passes leave alone. */
     BtgFloat4 rows[BTG_SOFT_BODY_ROWS];
-    const int used = mode == BTG_SOFT_BODY_BEGIN ? BTG_SOFT_BODY_ROWS : BTG_SOFT_SUPPORT;
-    for (int r = 0; r < BTG_SOFT_BODY_ROWS; ++r) rows[r] = r < used ? softBodies[BTG_SOFT_BODY_ROWS * i + r] : btgZero4();
+    for (int r = 0; r < BTG_SOFT_BODY_ROWS; ++r) {
+        const int read = (mode == BTG_SOFT_BODY_VELOCITY && (r == BTG_SOFT_FORCE_LIN || r == BTG_SOFT_FORCE_ANG)) ||
+                         (mode == BTG_SOFT_BODY_POSITION && (r == BTG_SOFT_DELTA_POS || r == BTG_SOFT_DELTA_ROT));
+        rows[r] = read ? softBodies[BTG_SOFT_BODY_ROWS * i + r] : btgZero4();
+    }
     BtgFloat4 v = lin[i], w = ang[i];
     if (mode == BTG_SOFT_BODY_BEGIN) btgSoftBodyBegin(flags, &v, &w, linVel0[i], angVel0[i], rows, params.substeps);
     else if (mode == BTG_SOFT_BODY_VELOCITY) btgSoftBodyVelocity(flags, &v, &w, rows);
@@ -272,7 +287,12 @@ static void soft_body(int i, int mode, SOFT_ARGS)
         v = btgMake4(vel.lin.x, vel.lin.y, vel.lin.z, v.w);
         w = btgMake4(vel.ang.x, vel.ang.y, vel.ang.z, w.w);
     }
-    for (int r = 0; r < used; ++r) softBodies[BTG_SOFT_BODY_ROWS * i + r] = rows[r];
+    for (int r = 0; r < BTG_SOFT_BODY_ROWS; ++r) {
+        const int written = mode == BTG_SOFT_BODY_BEGIN ||
+                            (mode == BTG_SOFT_BODY_POSITION && btgIsSolverMoving(flags) &&
+                             (r == BTG_SOFT_DELTA_POS || r == BTG_SOFT_DELTA_ROT || r >= BTG_SOFT_DELTA_MAT));
+        if (written) softBodies[BTG_SOFT_BODY_ROWS * i + r] = rows[r];
+    }
     if (btgIsSolverDynamic(flags)) {
         lin[i] = v;
         ang[i] = w;
@@ -473,6 +493,7 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
         const int independent = (mode == BTG_SOFT_PREPARE && !(params.heldMassRatio > 0.0f)) || mode == BTG_SOFT_STORE;
         for (int color = 0; color < last; ++color) {
             const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
+            if (begin == end) continue; /* the coloring's slack: every work-item reads the same range */
             for (int k = begin + gid; k < end; k += gsize) soft_edge(colorOrder[k], k, nc, mode, SOFT_PASS);
             if (!independent) SOFT_BARRIER();
         }
@@ -492,7 +513,8 @@ __kernel void soft_transforms(int n, __global const BtgBodyProps* restrict props
     if (i >= n) return;
     if (!btgIsMoving(props[i].flags)) return;
     BtgFloat4 rows[BTG_SOFT_BODY_ROWS];
-    for (int r = 0; r < BTG_SOFT_BODY_ROWS; ++r) rows[r] = softBodies[BTG_SOFT_BODY_ROWS * i + r];
+    for (int r = 0; r < BTG_SOFT_BODY_ROWS; ++r)
+        rows[r] = r == BTG_SOFT_DELTA_POS || r == BTG_SOFT_DELTA_ROT ? softBodies[BTG_SOFT_BODY_ROWS * i + r] : btgZero4();
     BtgFloat4 x = pos[i], q = rot[i];
     btgSoftBodyFinish(&x, &q, rows);
     if (!btgIsFinite4(x) || !btgIsFinite4(q) || !btgIsFinite4(linVel[i]) || !btgIsFinite4(angVel[i])) {

@@ -286,6 +286,7 @@ CallOutcome runCall(DeviceWorld& w, const Plan& plan, const StepSettings& s, Sna
     // The next call colors as many rounds as this one needed plus slack; leftovers (solved
     // serially, slow on a GPU) double the rounds.
     const int used = int(rb.counters[kColorsUsed]);
+    w.lastColorsUsed = used;
     int rounds = std::max(used + 2, 4);
     if (rb.counters[kLeftovers] > 0) rounds = std::max(rounds, 2 * w.colorRounds);
     w.colorRounds = std::min(rounds, std::max(s.maxColors - 1, 1));

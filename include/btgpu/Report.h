@@ -52,6 +52,7 @@ struct Report {
     int pairs = 0;                    // broadphase pairs, last substep
     int contacts = 0;                 // manifolds with points, last substep
     int redoneSteps = 0;              // steps redone after a buffer grew (since creation)
+    int colors = 0;                   // graph colors (solver batches) the last step's constraints needed
     int softSubsteps = 0;             // SolverKind::SoftStep: substeps of the last step (SoftStepConfig::substepsPerRootMassRatio)
     std::vector<Issue> issues;        // every issue so far (also passed to Config::onIssue)
 };

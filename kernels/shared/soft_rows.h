@@ -83,14 +83,23 @@ typedef struct {
     int pad1;
 } BtgSoftContact;
 
-/* Per body, five rows of the soft scratch (BTG_SOFT_BODY_ROWS x numBodies): the position and
- * rotation moved so far this step, and the velocity change the step's forces make per substep. */
-#define BTG_SOFT_BODY_ROWS 5
+/* Per body, eight rows of the soft scratch (BTG_SOFT_BODY_ROWS x numBodies): the position and
+ * rotation moved so far this step (the rotation also as its matrix, which every point's
+ * separation applies: made once a substep by the body rather than once a point by each of its
+ * contacts' rows), and the velocity change the step's forces make per substep. */
+#define BTG_SOFT_BODY_ROWS 8
 #define BTG_SOFT_DELTA_POS 0 /* m */
 #define BTG_SOFT_DELTA_ROT 1 /* unit quaternion */
 #define BTG_SOFT_FORCE_LIN 2 /* m/s per substep */
 #define BTG_SOFT_FORCE_ANG 3 /* rad/s per substep */
 #define BTG_SOFT_SUPPORT 4   /* x: its contacts with fixed bodies, y: the last one's index, z: 1 if a pair holds it (floats) */
+#define BTG_SOFT_DELTA_MAT 5 /* three rows: btgQuatToMat3 of DELTA_ROT */
+
+/* What a contact's rows read of a body's motion so far this step. */
+typedef struct {
+    BtgFloat4 pos; /* BTG_SOFT_DELTA_POS */
+    BtgMat3 rot;   /* BTG_SOFT_DELTA_MAT */
+} BtgSoftDelta;
 
 /* Edge passes and body passes of the soft solve (the warm start is the velocity body pass's:
  * the bodies gather it). */
@@ -173,6 +182,26 @@ static inline int btgSoftSubstepsFor(BtgSoftParams p, float ratio)
 
 /* ---- bodies ---- */
 
+/* The rotation matrix rows of a body's rotation delta (as btgQuatRotate forms it). */
+static inline void btgSoftSetDeltaMatrix(BtgFloat4* rows)
+{
+    const BtgMat3 m = btgQuatToMat3(rows[BTG_SOFT_DELTA_ROT]);
+    rows[BTG_SOFT_DELTA_MAT] = m.r0;
+    rows[BTG_SOFT_DELTA_MAT + 1] = m.r1;
+    rows[BTG_SOFT_DELTA_MAT + 2] = m.r2;
+}
+
+/* A body's deltas from its rows. */
+static inline BtgSoftDelta btgSoftDeltaOf(const BtgFloat4* rows)
+{
+    BtgSoftDelta d;
+    d.pos = rows[BTG_SOFT_DELTA_POS];
+    d.rot.r0 = rows[BTG_SOFT_DELTA_MAT];
+    d.rot.r1 = rows[BTG_SOFT_DELTA_MAT + 1];
+    d.rot.r2 = rows[BTG_SOFT_DELTA_MAT + 2];
+    return d;
+}
+
 /* The step's start: velocities back to before the forces (the substeps add them a share at a
  * time), nothing moved yet. v0/w0: apply_forces' linVel0/angVel0; v1/w1: after the forces. */
 static inline void btgSoftBodyBegin(uint flags, BtgFloat4* lin, BtgFloat4* ang, BtgFloat4 v0, BtgFloat4 w0,
@@ -180,6 +209,7 @@ static inline void btgSoftBodyBegin(uint flags, BtgFloat4* lin, BtgFloat4* ang, 
 {
     rows[BTG_SOFT_DELTA_POS] = btgZero4();
     rows[BTG_SOFT_DELTA_ROT] = btgMake4(0.0f, 0.0f, 0.0f, 1.0f);
+    btgSoftSetDeltaMatrix(rows);
     rows[BTG_SOFT_FORCE_LIN] = btgZero4();
     rows[BTG_SOFT_FORCE_ANG] = btgZero4();
     rows[BTG_SOFT_SUPPORT] = btgZero4();
@@ -204,6 +234,7 @@ static inline void btgSoftBodyPosition(uint flags, BtgFloat4 lin, BtgFloat4 ang,
     if (!btgIsSolverMoving(flags)) return;
     rows[BTG_SOFT_DELTA_POS] = btgXyz(rows[BTG_SOFT_DELTA_POS]) + btgXyz(lin) * h;
     rows[BTG_SOFT_DELTA_ROT] = btgIntegrateRotation(rows[BTG_SOFT_DELTA_ROT], btgXyz(ang), h);
+    btgSoftSetDeltaMatrix(rows);
 }
 /* The step's end for a body the integrator moves: its pose moved by the deltas. */
 static inline void btgSoftBodyFinish(BtgFloat4* pos, BtgFloat4* rot, const BtgFloat4* rows)
@@ -328,12 +359,11 @@ static inline void btgSoftWarmTotals(BtgSoftContact* s)
 }
 
 /* Point k's separation now: its base plus how far the anchors moved apart along the normal
- * (the normal held fixed over the step). dp/dq: the bodies' deltas (BTG_SOFT_DELTA_*). */
-static inline float btgSoftSeparation(const BtgSoftContact* s, int k, BtgFloat4 dpA, BtgFloat4 dqA, BtgFloat4 dpB,
-                                      BtgFloat4 dqB)
+ * (the normal held fixed over the step). dA/dB: the bodies' deltas. */
+static inline float btgSoftSeparation(const BtgSoftContact* s, int k, BtgSoftDelta dA, BtgSoftDelta dB)
 {
-    BtgFloat4 pA = btgXyz(dpA) + btgQuatRotate(dqA, s->rA[k]);
-    BtgFloat4 pB = btgXyz(dpB) + btgQuatRotate(dqB, s->rB[k]);
+    BtgFloat4 pA = btgXyz(dA.pos) + btgMat3MulVec(dA.rot, s->rA[k]);
+    BtgFloat4 pB = btgXyz(dB.pos) + btgMat3MulVec(dB.rot, s->rB[k]);
     return btgLane(s->baseSeparation, k) + btgDot3(pA - pB, s->normal);
 }
 
@@ -477,8 +507,8 @@ static inline void btgSoftShareOut(const BtgSoftShare* h, BTG_SHARED_GLOBAL cons
  * the next substep warm-starts both: the light body is never kicked, so nothing has to catch
  * it. Returns 0 (rows left to btgSoftSolve) where btgSoftMakeShare finds no valid support. */
 static inline int btgSoftHeldNormals(BtgSoftContact* s, int lightIsA, BTG_SHARED_GLOBAL BtgSoftContact* support,
-                                     BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb, BtgFloat4 dpA,
-                                     BtgFloat4 dqA, BtgFloat4 dpB, BtgFloat4 dqB, int useBias, BtgSoftParams p)
+                                     BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb, BtgSoftDelta dA,
+                                     BtgSoftDelta dB, int useBias, BtgSoftParams p)
 {
     const BtgSoftness soft = p.contact;
     const BtgFloat4 dt = lightIsA ? s->normal : -s->normal; /* this contact's push on the light body */
@@ -489,7 +519,7 @@ static inline int btgSoftHeldNormals(BtgSoftContact* s, int lightIsA, BTG_SHARED
     BtgFloat4 torque = btgZero4();
     for (int k = 0; k < s->numPoints; ++k) {
         if (btgLane(s->normalMass, k) == 0.0f) continue;
-        float sep = btgSoftSeparation(s, k, dpA, dqA, dpB, dqB);
+        float sep = btgSoftSeparation(s, k, dA, dB);
         float old = btgLane(s->normalImpulse, k);
         BtgJacobian j = btgPointJacobian(s->normal, s->rA[k], s->rB[k], ha, hb);
         float mass = btgPointRowMass(j, s->rA[k], s->rB[k], ha, hb);
@@ -537,14 +567,14 @@ static inline int btgSoftHeldNormals(BtgSoftContact* s, int lightIsA, BTG_SHARED
  * with frictionInSolve). Bit 1 of normals: the contact supports a held body, whose load it takes
  * within the substep, so its springs are stiffened from the impulse they carry now as well. */
 static inline void btgSoftSolve(BtgSoftContact* s, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb,
-                                BtgFloat4 dpA, BtgFloat4 dqA, BtgFloat4 dpB, BtgFloat4 dqB, int useBias, int normals,
+                                BtgSoftDelta dA, BtgSoftDelta dB, int useBias, int normals,
                                 BtgSoftParams p)
 {
     const BtgSoftness soft = s->fixed ? p.fixed : p.contact;
     for (int k = 0; k < s->numPoints && (normals & 1); ++k) {
         float mass = btgLane(s->normalMass, k);
         if (mass == 0.0f) continue;
-        float sep = btgSoftSeparation(s, k, dpA, dqA, dpB, dqB);
+        float sep = btgSoftSeparation(s, k, dA, dB);
         float old = btgLane(s->normalImpulse, k);
         float bias = 0.0f, massScale = 1.0f, impulseScale = 0.0f;
         if (sep > 0.0f) {

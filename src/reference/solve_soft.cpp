@@ -107,15 +107,14 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
                     const BtgFloat4 support = (light == 1 ? ra : rb)[BTG_SOFT_SUPPORT];
                     if (support.x == 1.0f &&
                         btgSoftHeldNormals(&soft[e], light == 1, &soft[size_t(support.y)], a, b, &va, &vb,
-                                           ra[BTG_SOFT_DELTA_POS], ra[BTG_SOFT_DELTA_ROT], rb[BTG_SOFT_DELTA_POS],
-                                           rb[BTG_SOFT_DELTA_ROT], mode == BTG_SOFT_SOLVE, params))
+                                           btgSoftDeltaOf(ra), btgSoftDeltaOf(rb), mode == BTG_SOFT_SOLVE, params))
                         normals = 0;
                 } else if (a.dynamic != b.dynamic && (a.dynamic ? ra : rb)[BTG_SOFT_SUPPORT].z == 1.0f) {
                     normals = 3;
                 }
             }
-            btgSoftSolve(&soft[e], a, b, &va, &vb, ra[BTG_SOFT_DELTA_POS], ra[BTG_SOFT_DELTA_ROT],
-                         rb[BTG_SOFT_DELTA_POS], rb[BTG_SOFT_DELTA_ROT], mode == BTG_SOFT_SOLVE, normals, params);
+            btgSoftSolve(&soft[e], a, b, &va, &vb, btgSoftDeltaOf(ra), btgSoftDeltaOf(rb), mode == BTG_SOFT_SOLVE,
+                         normals, params);
         }
         if (a.dynamic) {
             bodies.linVel[ia] = btgMake4(va.lin.x, va.lin.y, va.lin.z, bodies.linVel[ia].w);

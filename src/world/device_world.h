@@ -184,6 +184,7 @@ struct DeviceWorld {
     int colorRounds = 8;                     // coloring rounds to run: set from the last readback
     int lastContactCount = 1 << 30;          // contacts at the last readback (chooses launch shapes)
     BtgSoftParams softParams{};              // the soft step's scalars as the host chose them, last step
+    int lastColorsUsed = 0;                  // colors the last readback's coloring used
     int lastSoftSubsteps = 0;                // substeps the soft step took at the last readback (its mass ratio's)
     float lastSoftMassRatio = 0.0f;          // the largest edge mass ratio it saw then
     SolverScratch solverScratch;             // contact stages' scratch (block sums, claims)

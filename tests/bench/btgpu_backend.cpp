@@ -31,7 +31,8 @@ public:
     {
         std::string n = "btGpuDynamicsWorld, " + std::to_string(m_iterations) + " iterations, Config::profile on every 10th frame";
         if (m_world && !m_world->isGpuPath()) n += "; CPU PATH: " + m_world->report().cpuPathReason;
-        if (m_world) n += "; redone steps " + std::to_string(m_world->report().redoneSteps);
+        if (m_world) n += "; redone steps " + std::to_string(m_world->report().redoneSteps) + "; colors " +
+                          std::to_string(m_world->report().colors);
         if (m_world) {
             // Bitwise fingerprint of the final state (same scene, device and binary: same hash).
             char hash[32];
@@ -44,7 +45,7 @@ public:
         if (m_noEmptyManifolds) n += "; Config::deviceEmptyManifolds off (manifolds with points only)";
         if (!m_callback.empty()) n += "; contact callback: " + m_callback + " (host part: Report::callbackMs)";
         if (m_jacobi) n += "; Jacobi with mass splitting";
-        if (m_soft) n += "; soft step";
+        if (m_soft) n += "; soft step, " + std::to_string(m_world ? m_world->report().softSubsteps : 0) + " substeps";
         n += "; step column = sync-in of app changes + device substeps + readback (Report::syncInMs + deviceMs); "
              "write-back column = results into btRigidBody + motion states (Report::writeBackMs)";
         if (!m_noAabbSync) n += " + Bullet's broadphase AABB sync (Report::aabbSyncMs)";
@@ -70,6 +71,7 @@ public:
         if (options.jacobi) config.solver = btgpu::SolverKind::JacobiMassSplitting;
         m_jacobi = options.jacobi;
         if (options.soft) config.solver = btgpu::SolverKind::SoftStep;
+        if (options.softSubsteps > 0) config.softStep.substeps = options.softSubsteps;
         m_soft = options.soft;
         m_world.reset(new btGpuDynamicsWorld(&m_infra.dispatcher, &m_infra.broadphase, &m_infra.solver, &m_infra.config,
                                         config));
