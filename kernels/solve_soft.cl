@@ -63,6 +63,18 @@ static void store_vel(BtgBodyVel v, BTG_SHARED __global BtgFloat4* lin, BTG_SHAR
     ang[i] = btgMake4(v.ang.x, v.ang.y, v.ang.z, ang[i].w);
 }
 
+/* A soft contact as global memory keeps it: each anchor's w the point's normal mass, which
+ * the passes read there (load_soft, load_soft_gather) rather than from normalMass, as they take
+ * the tangents from the normal (btgSoftTangents): those fields stay where no pass reads them. */
+static BtgSoftContact btgSoftPack(BtgSoftContact s)
+{
+    for (int k = 0; k < BTG_MAX_POINTS; ++k) {
+        s.rA[k].w = btgLane(s.normalMass, k);
+        s.rB[k].w = btgLane(s.normalMass, k);
+    }
+    return s;
+}
+
 /* What a contact's rows read of body row r's motion so far (soft_body's position pass wrote it). */
 static BtgSoftDelta load_delta(BTG_SHARED __global BtgFloat4* softBodies, int r)
 {
@@ -98,13 +110,14 @@ static BtgSoftContact load_soft_gather(__global BtgSoftContact* softContacts, in
     s.pad0 = 0;
     s.pad1 = 0;
     s.normal = sc[i].normal;
-    s.tangent1 = sc[i].tangent1;
-    s.tangent2 = sc[i].tangent2;
+    btgSoftTangents(&s);
+    s.normalMass = btgZero4();
     for (int k = 0; k < BTG_MAX_POINTS; ++k) {
-        s.rA[k] = k < s.numPoints && side == 0 ? sc[i].rA[k] : btgZero4();
-        s.rB[k] = k < s.numPoints && side == 1 ? sc[i].rB[k] : btgZero4();
+        const BtgFloat4 r = k < s.numPoints ? (side == 0 ? sc[i].rA[k] : sc[i].rB[k]) : btgZero4();
+        s.rA[k] = side == 0 ? btgXyz(r) : btgZero4();
+        s.rB[k] = side == 1 ? btgXyz(r) : btgZero4();
+        btgSetLane(&s.normalMass, k, r.w);
     }
-    s.normalMass = sc[i].normalMass;
     s.normalImpulse = sc[i].normalImpulse;
     s.tangent1Impulse = sc[i].tangent1Impulse;
     s.tangent2Impulse = sc[i].tangent2Impulse;
@@ -134,18 +147,21 @@ static BtgSoftContact load_soft(__global const BtgSoftContact* softContacts, int
     s.pad0 = 0;
     s.pad1 = 0;
     s.normal = softContacts[i].normal;
+    s.normalMass = btgZero4();
     for (int k = 0; k < BTG_MAX_POINTS; ++k) {
-        s.rA[k] = k < s.numPoints ? softContacts[i].rA[k] : btgZero4();
-        s.rB[k] = k < s.numPoints ? softContacts[i].rB[k] : btgZero4();
+        const BtgFloat4 rA = k < s.numPoints ? softContacts[i].rA[k] : btgZero4();
+        s.rA[k] = btgXyz(rA);
+        s.rB[k] = k < s.numPoints ? btgXyz(softContacts[i].rB[k]) : btgZero4();
+        btgSetLane(&s.normalMass, k, rA.w);
     }
-    s.normalMass = softContacts[i].normalMass;
     /* a held pair writes its support's impulses and totals, the gather's owner side the totals */
     s.normalImpulse = shared_soft(softContacts)[i].normalImpulse;
     s.totalNormal = shared_soft(softContacts)[i].totalNormal;
     const int friction = mode == BTG_SOFT_RELAX || (mode == BTG_SOFT_SOLVE && frictionInSolve);
     const int separation = mode == BTG_SOFT_SOLVE || mode == BTG_SOFT_RELAX;
-    s.tangent1 = friction ? softContacts[i].tangent1 : btgZero4();
-    s.tangent2 = friction ? softContacts[i].tangent2 : btgZero4();
+    s.tangent1 = btgZero4();
+    s.tangent2 = btgZero4();
+    if (friction) btgSoftTangents(&s);
     s.tangent1Mass = friction ? softContacts[i].tangent1Mass : btgZero4();
     s.tangent2Mass = friction ? softContacts[i].tangent2Mass : btgZero4();
     s.tangent1Impulse = friction ? softContacts[i].tangent1Impulse : btgZero4();
@@ -163,7 +179,15 @@ static BtgSoftContact load_soft(__global const BtgSoftContact* softContacts, int
 static void soft_contact(int i, int slot, int mode, SOFT_ARGS)
 {
     if (mode == BTG_SOFT_STORE) {
+        /* the totals the gather wrote, the impulses a held pair may have: from other work-items */
         BtgSoftContact s = softContacts[slot];
+        BTG_SHARED __global BtgSoftContact* sc = shared_soft(softContacts);
+        s.normalImpulse = sc[slot].normalImpulse;
+        s.tangent1Impulse = sc[slot].tangent1Impulse;
+        s.tangent2Impulse = sc[slot].tangent2Impulse;
+        s.totalNormal = sc[slot].totalNormal;
+        s.total1 = sc[slot].total1;
+        s.total2 = sc[slot].total2;
         btgSoftStore(contacts, i, &s);
         return;
     }
@@ -177,8 +201,8 @@ static void soft_contact(int i, int slot, int mode, SOFT_ARGS)
         BtgBodyProps pa = props[bodyA], pb = props[bodyB];
         BtgBodyVel a0 = btgMakeBodyVel(a.moving, linVel0[bodyA], angVel0[bodyA]);
         BtgBodyVel b0 = btgMakeBodyVel(b.moving, linVel0[bodyB], angVel0[bodyB]);
-        softContacts[slot] = btgSoftPrepare(contacts[i], a, b, a0, b0, pa.restitution * pb.restitution,
-                                         btgContactSolvable(pa.flags, pb.flags), params);
+        softContacts[slot] = btgSoftPack(btgSoftPrepare(contacts[i], a, b, a0, b0, pa.restitution * pb.restitution,
+                                                        btgContactSolvable(pa.flags, pb.flags), params));
         if (params.heldMassRatio > 0.0f) {
             const int fixed = a.dynamic != b.dynamic && btgContactSolvable(pa.flags, pb.flags);
             const int light = btgSoftLightSide(a, b, params);

@@ -54,25 +54,21 @@ typedef struct {
     int pad1;
 } BtgSoftParams;
 
-/* One contact manifold as the soft step solves it (Box2D's b2ContactConstraint). */
+/* One contact manifold as the soft step solves it (Box2D's b2ContactConstraint). The fields
+ * every substep's passes read come first, those only prepare, the warm-start gather,
+ * restitution and store read last: a pass touches the struct's first cache lines only. In
+ * global memory (solve_soft.cl: btgSoftPack) each anchor's w carries the point's normal mass
+ * and the tangents are not read back (btgPlaneSpace of the normal gives them again). */
 typedef struct {
     BtgFloat4 normal;                 /* unit, from B towards A; w 0 */
-    BtgFloat4 tangent1;               /* btPlaneSpace1 of the normal: the two friction directions */
-    BtgFloat4 tangent2;
     BtgFloat4 rA[BTG_MAX_POINTS];     /* fixed anchors: point on A minus A's centre at the step's start, m */
     BtgFloat4 rB[BTG_MAX_POINTS];
     BtgFloat4 baseSeparation;         /* per point: distance - n.(rA - rB), m; plus n.(pA - pB) now = distance now */
-    BtgFloat4 normalMass;             /* per point, kg; 0: no rows */
     BtgFloat4 tangent1Mass;
     BtgFloat4 tangent2Mass;
     BtgFloat4 normalImpulse;          /* per point, accumulated this substep (warm-started from the last), N s */
     BtgFloat4 tangent1Impulse;
     BtgFloat4 tangent2Impulse;
-    BtgFloat4 totalNormal;            /* per point, applied over the whole step, N s (Bullet's m_appliedImpulse) */
-    BtgFloat4 total1;
-    BtgFloat4 total2;
-    BtgFloat4 relativeVelocity;       /* per point: normal velocity before the step's forces, m/s (restitution) */
-    BtgFloat4 stiffening;             /* per point: r >= 1, its spring's stiffness and damping factor this step */
     float friction;
     float restitution;
     int bodyA;
@@ -81,6 +77,14 @@ typedef struct {
     int fixed;                        /* 1: solved with BtgSoftParams.fixed */
     int pad0;
     int pad1;
+    BtgFloat4 stiffening;             /* per point: r >= 1, its spring's stiffness and damping factor this step (the solve's) */
+    BtgFloat4 totalNormal;            /* per point, applied over the whole step, N s (Bullet's m_appliedImpulse) */
+    BtgFloat4 total1;
+    BtgFloat4 total2;
+    BtgFloat4 relativeVelocity;       /* per point: normal velocity before the step's forces, m/s (restitution) */
+    BtgFloat4 normalMass;             /* per point, kg; 0: no rows (in global memory: the anchors' w) */
+    BtgFloat4 tangent1;               /* btPlaneSpace1 of the normal: the two friction directions */
+    BtgFloat4 tangent2;
 } BtgSoftContact;
 
 /* Per body, eight rows of the soft scratch (BTG_SOFT_BODY_ROWS x numBodies): the position and
@@ -245,6 +249,15 @@ static inline void btgSoftBodyFinish(BtgFloat4* pos, BtgFloat4* rot, const BtgFl
 
 /* ---- contacts ---- */
 
+/* The contact's two friction directions: btPlaneSpace1 of its normal. */
+static inline void btgSoftTangents(BtgSoftContact* s)
+{
+    BtgFloat4 t1, t2;
+    btgPlaneSpace(s->normal, &t1, &t2);
+    s->tangent1 = btgXyz(t1);
+    s->tangent2 = btgXyz(t2);
+}
+
 /* PrepareContacts: c as contact_cache built it (anchors from the step's start, distances, its
  * warm-start impulse: the cached step total times the warm-start factor). a0/b0: the bodies'
  * velocities before the step's forces. */
@@ -252,11 +265,9 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
                                             BtgBodyVel b0, float restitution, int solvable, BtgSoftParams p)
 {
     BtgSoftContact s;
-    BtgFloat4 n = btgXyz(c.normal), t1, t2;
-    btgPlaneSpace(n, &t1, &t2);
-    s.normal = n;
-    s.tangent1 = btgXyz(t1);
-    s.tangent2 = btgXyz(t2);
+    s.normal = btgXyz(c.normal);
+    btgSoftTangents(&s);
+    const BtgFloat4 n = s.normal;
     s.friction = c.friction;
     s.restitution = restitution;
     s.bodyA = c.bodyA;
