@@ -149,7 +149,15 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex)
                   "friction or friction anchors (their rows are not prepared again with the callbacks' changes)";
     }
     if (why.empty() && m_config.solver == SolverKind::SoftStep) why = softStepReason();
+    // Auto: what the soft step would be sent away for, the batched PGS serves.
+    m_autoReason = why.empty() && m_config.solver == SolverKind::Auto ? softStepReason() : std::string();
     return why;
+}
+
+SolverKind GpuWorld::solverToRun() const
+{
+    if (m_config.solver != SolverKind::Auto) return m_config.solver;
+    return m_autoReason.empty() ? SolverKind::SoftStep : SolverKind::BatchedPgs;
 }
 
 std::string GpuWorld::softStepReason() const
@@ -169,11 +177,6 @@ std::string GpuWorld::softStepReason() const
     const btContactSolverInfo& info = m_world.getSolverInfo();
     if (info.m_sor != btScalar(1) || info.m_globalCfm != btScalar(0))
         return "btContactSolverInfo::m_sor or m_globalCfm changed with Config::solver = SoftStep";
-    if (info.m_solverMode & SOLVER_RANDMIZE_ORDER)
-        return "btContactSolverInfo::m_solverMode SOLVER_RANDMIZE_ORDER with Config::solver = SoftStep";
-    if (info.m_solverMode & SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS)
-        return "btContactSolverInfo::m_solverMode SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS with "
-               "Config::solver = SoftStep (its friction rows are solved in the relax, after every normal)";
     if (ContactCallbacks::wanted(m_world))
         return "contact callbacks that run before the solve (gContactAddedCallback on a CF_CUSTOM_MATERIAL_CALLBACK body, "
                "gContactProcessedCallback, a custom combiner) with Config::solver = SoftStep";
@@ -184,7 +187,7 @@ void GpuWorld::makePlan()
 {
     // The plan is derived from Bullet-free facts about each row (src/world/plan.h).
     PlanInput in;
-    in.solver = m_config.solver;
+    in.solver = m_solver;
     in.largeBodyFactor = m_config.largeBodyFactor;
     in.contactThreshold = m_config.contactThreshold;
     in.numJoints = m_world.getNumConstraints();  // all served while on the GPU path
@@ -337,7 +340,7 @@ StepSettings GpuWorld::settings(int substeps, btScalar dt) const
     s.substeps = substeps;
     s.iterations = std::max(info.m_numIterations, 1);
     s.maxColors = std::max(m_config.maxColors, 2);
-    s.solver = m_config.solver;
+    s.solver = m_solver;
     s.soft = m_config.softStep;
     BtgJointStepParams& j = s.joints;
     j = BtgJointStepParams{};
@@ -461,6 +464,12 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         m_needsRebuild = true;
         return false;
     }
+    // Auto between its two solvers: the contacts start afresh (each keeps its own manifolds).
+    const SolverKind run = solverToRun();
+    const bool switched = run != m_solver;
+    m_solver = run;
+    m_report.solver = run;
+    m_report.solverReason = m_autoReason;
     if (m_needsRebuild) {
         // Stock's contacts as its algorithms leave them, continued by the device's first step.
         const std::vector<StockContact> stock = takeStockContacts(m_world.getDispatcher());
@@ -472,6 +481,8 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             return shape >= 0 && size_t(shape) < m_shapes.shapes.size() ? m_shapes.shapes[size_t(shape)].type : -1;
         });
         m_needsRebuild = false;
+    } else if (switched) {
+        rebuild();
     } else if (m_rowsStale) {
         followRows();
     }

@@ -72,6 +72,9 @@ private:
     std::string cpuPathReason(int* bodyIndex);
     // Bullet features the soft step (Config::solver = SoftStep) does not serve, "" when none.
     std::string softStepReason() const;
+    // The solver the next step runs: Config::solver, Auto resolved by the last cpuPathReason
+    // (the soft step unless m_autoReason names what only the batched PGS serves).
+    SolverKind solverToRun() const;
     // Every row from scratch: the rows, the shape tables, the plan, the device state (the
     // warm-start cache dropped). After the CPU path ran, or when retired rows pile up.
     void rebuild();
@@ -166,6 +169,8 @@ private:
     std::vector<const btCollisionObject*> m_ghosts;  // ghost objects, at that check (ghost_objects.h)
     std::vector<char> m_ghostResponds;               // each one's hasContactResponse() then
     std::vector<char> m_heldAwake;  // per row: in a broadphase pair with a ghost that merges islands
+    SolverKind m_solver = SolverKind::BatchedPgs;  // the solver the plan runs (never Auto)
+    std::string m_autoReason;       // Config::solver = Auto: why not the soft step ("" for it)
     bool m_needsRebuild = true;     // rows must be rebuilt (structure changed, or the CPU path ran)
     bool m_onCpuPath = false;
     float m_stepDt = 0.0f;  // the fixed step of the call being synced (the AABB overflow rule)

@@ -111,6 +111,13 @@ bool GpuWorld::followWithinCall(int batch, int batches, btScalar fixedTimeStep)
 {
     int bodyIndex = -1;
     std::string why = cpuPathReason(&bodyIndex);
+    // Auto's solver is chosen where a call starts: one that would change within the call's
+    // internal steps (a tick callback started or stopped using what only the batched PGS
+    // serves) hands the rest of the call to the CPU path; the next call switches.
+    if (why.empty() && solverToRun() != m_solver)
+        why = "Config::solver = Auto would switch solvers within a stepSimulation call's internal steps (" +
+              (m_autoReason.empty() ? std::string("the soft step serves the world again") : m_autoReason) +
+              "): the rest of the call runs on the CPU path, the next call on the other solver";
     if (why.empty()) {
         if (m_rowsStale) followRows();
         return true;

@@ -176,7 +176,8 @@ static BtgSoftContact load_soft(__global const BtgSoftContact* softContacts, int
 
 /* Contact i's soft data lives at `slot`: its place in the color order (soft_color_fill), so
  * that a color's pass reads them one after another. */
-static void soft_contact(int i, int slot, int mode, SOFT_ARGS)
+/* key: the sweep's order key (SOLVER_RANDMIZE_ORDER; 0: in order), which permutes the points. */
+static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
 {
     if (mode == BTG_SOFT_STORE) {
         /* the totals the gather wrote, the impulses a held pair may have: from other work-items */
@@ -231,7 +232,7 @@ static void soft_contact(int i, int slot, int mode, SOFT_ARGS)
                 normals = 3;
             }
         }
-        btgSoftSolve(&s, a, b, &va, &vb, dA, dB, mode == BTG_SOFT_SOLVE, normals, params);
+        btgSoftSolve(&s, a, b, &va, &vb, dA, dB, mode == BTG_SOFT_SOLVE, normals, params, btgItemKey(key, (uint)i + 1u));
     }
     if (a.dynamic) store_vel(va, lin, ang, bodyA);
     if (b.dynamic) store_vel(vb, lin, ang, bodyB);
@@ -264,9 +265,9 @@ static void soft_joint(int j, int mode, SOFT_ARGS)
     if (b.dynamic) store_vel(vb, lin, ang, joint.bodyB);
 }
 
-static void soft_edge(int e, int slot, int nc, int mode, SOFT_ARGS)
+static void soft_edge(int e, int slot, int nc, int mode, uint key, SOFT_ARGS)
 {
-    if (e < nc) soft_contact(e, slot, mode, SOFT_PASS);
+    if (e < nc) soft_contact(e, slot, mode, key, SOFT_PASS);
     else soft_joint(e - nc, mode, SOFT_PASS);
 }
 
@@ -449,22 +450,22 @@ __kernel void soft_bodies(int n, int mode, SOFT_ARGS)
 }
 
 __kernel void soft_color_range(__global const uint* restrict colorStart, __global const int* restrict colorOrder,
-                               int edgeCapacity, int numJoints, int color, int mode, SOFT_ARGS)
+                               int edgeCapacity, int numJoints, int color, int mode, uint key, SOFT_ARGS)
 {
     const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
     const int nc = contact_edges(counters, edgeCapacity, numJoints);
     for (int k = begin + (int)get_global_id(0); k < end; k += (int)get_global_size(0))
-        soft_edge(colorOrder[k], k, nc, mode, SOFT_PASS);
+        soft_edge(colorOrder[k], k, nc, mode, key, SOFT_PASS);
 }
 
 __kernel void soft_color_serial(__global const int* restrict edgeColor, int edgeCapacity, int numJoints, int color,
-                                int mode, SOFT_ARGS)
+                                int mode, uint key, SOFT_ARGS)
 {
     if (get_global_id(0) != 0) return;
     if (counters[BTG_COUNTER_LEFTOVERS] == 0u && counters[BTG_COUNTER_COLORS_USED] <= (uint)color) return;
     const int n = edge_count(counters, edgeCapacity), nc = contact_edges(counters, edgeCapacity, numJoints);
     for (int i = 0; i < n; ++i)
-        if (edgeColor[i] >= color) soft_edge(i, slotOf[i], nc, mode, SOFT_PASS);
+        if (edgeColor[i] >= color) soft_edge(i, slotOf[i], nc, mode, key, SOFT_PASS);
 }
 
 /* Every pass of the stage in one launch, a grid barrier where the per-color path has a kernel
@@ -515,15 +516,21 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
         }
         /* store (and prepare, unless it notes the bodies' supports) touch each edge alone: no barrier between colors */
         const int independent = (mode == BTG_SOFT_PREPARE && !(params.heldMassRatio > 0.0f)) || mode == BTG_SOFT_STORE;
-        for (int color = 0; color < last; ++color) {
+        /* SOLVER_RANDMIZE_ORDER: a substep's solve and relax sweeps take their colours (the
+         * leftovers last) and points in an order of their own */
+        const uint key = mode == BTG_SOFT_SOLVE || mode == BTG_SOFT_RELAX
+                             ? btgSoftSweepKey(params, (pass - 2) / 4, mode == BTG_SOFT_RELAX)
+                             : 0u;
+        for (int ci = 0; ci < last; ++ci) {
+            const int color = btgPermute(key, last, ci);
             const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
             if (begin == end) continue; /* the coloring's slack: every work-item reads the same range */
-            for (int k = begin + gid; k < end; k += gsize) soft_edge(colorOrder[k], k, nc, mode, SOFT_PASS);
+            for (int k = begin + gid; k < end; k += gsize) soft_edge(colorOrder[k], k, nc, mode, key, SOFT_PASS);
             if (!independent) SOFT_BARRIER();
         }
         if (walkLast && gid == 0)
             for (int i = 0; i < n; ++i)
-                if (edgeColor[i] >= last) soft_edge(i, slotOf[i], nc, mode, SOFT_PASS);
+                if (edgeColor[i] >= last) soft_edge(i, slotOf[i], nc, mode, key, SOFT_PASS);
         SOFT_BARRIER();
     }
 }

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "btgpu/Config.h"
+
 namespace btgpu {
 
 struct Issue {
@@ -52,6 +54,10 @@ struct Report {
     int pairs = 0;                    // broadphase pairs, last substep
     int contacts = 0;                 // manifolds with points, last substep
     int redoneSteps = 0;              // steps redone after a buffer grew (since creation)
+    // The solver the last step ran on the GPU path (Config::solver, Auto resolved; never Auto),
+    // and with Config::solver = Auto why it was not the soft step ("" when it was).
+    SolverKind solver = SolverKind::BatchedPgs;
+    std::string solverReason;
     int colors = 0;                   // graph colors (solver batches) the last step's constraints needed
     int softSubsteps = 0;             // SolverKind::SoftStep: substeps of the last step (SoftStepConfig::substepsPerRootMassRatio)
     std::vector<Issue> issues;        // every issue so far (also passed to Config::onIssue)

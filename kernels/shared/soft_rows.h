@@ -50,9 +50,17 @@ typedef struct {
     float warmstartFactor;       /* btContactSolverInfo::m_warmstartingFactor */
     float rootRatioSubsteps;     /* SoftStepConfig::substepsPerRootMassRatio (0: substeps stay) */
     int maxSubsteps;             /* at most this many however heavy */
-    int pad0;
-    int pad1;
+    uint orderSeed;              /* SOLVER_RANDMIZE_ORDER: BtgStepParams.randomSeed (0: off): each substep's sweeps
+                                    take their colours and points in an order of their own (btgSoftSweepKey) */
+    int interleave;              /* SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS: the relax's friction rows
+                                    point by point after its normal row */
 } BtgSoftParams;
+
+/* The order key of a substep's solve (relax 0) or relax (1) sweep (solver_rows.h). */
+static inline uint btgSoftSweepKey(BtgSoftParams p, int substep, int relax)
+{
+    return btgSweepKey(p.orderSeed, substep, relax ? BTG_ORDER_FRICTION : BTG_ORDER_NORMALS);
+}
 
 /* One contact manifold as the soft step solves it (Box2D's b2ContactConstraint). The fields
  * every substep's passes read come first, those only prepare, the warm-start gather,
@@ -577,55 +585,77 @@ static inline int btgSoftHeldNormals(BtgSoftContact* s, int lightIsA, BTG_SHARED
  * closed in one substep either way; then the friction rows (in the relax, and also in the solve
  * with frictionInSolve). Bit 1 of normals: the contact supports a held body, whose load it takes
  * within the substep, so its springs are stiffened from the impulse they carry now as well. */
-static inline void btgSoftSolve(BtgSoftContact* s, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb,
-                                BtgSoftDelta dA, BtgSoftDelta dB, int useBias, int normals,
-                                BtgSoftParams p)
+static inline void btgSoftNormalRow(BtgSoftContact* s, int k, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
+                                    BtgBodyVel* vb, BtgSoftDelta dA, BtgSoftDelta dB, int useBias, int normals,
+                                    BtgSoftParams p)
 {
     const BtgSoftness soft = s->fixed ? p.fixed : p.contact;
-    for (int k = 0; k < s->numPoints && (normals & 1); ++k) {
-        float mass = btgLane(s->normalMass, k);
-        if (mass == 0.0f) continue;
-        float sep = btgSoftSeparation(s, k, dA, dB);
-        float old = btgLane(s->normalImpulse, k);
-        float bias = 0.0f, massScale = 1.0f, impulseScale = 0.0f;
-        if (sep > 0.0f) {
-            bias = sep * p.invH;
-        } else if (useBias) {
-            massScale = soft.massScale;
-            impulseScale = soft.impulseScale;
-            float r = btgLane(s->stiffening, k);
-            if (normals & 2) {
-                const float omega2 = p.omega2Fixed;
-                float now = old / (mass * p.h * omega2 * p.maxSag);
-                r = now > r ? now : r;
-            }
-            if (r > 1.0f) {
-                float a2 = r * soft.stiffness;
-                massScale = a2 / (1.0f + a2);
-                impulseScale = 1.0f / (1.0f + a2);
-            }
-            bias = massScale * soft.biasRate * sep;
-            if (bias < -p.pushSpeed) bias = -p.pushSpeed;
+    float mass = btgLane(s->normalMass, k);
+    if (mass == 0.0f) return;
+    float sep = btgSoftSeparation(s, k, dA, dB);
+    float old = btgLane(s->normalImpulse, k);
+    float bias = 0.0f, massScale = 1.0f, impulseScale = 0.0f;
+    if (sep > 0.0f) {
+        bias = sep * p.invH;
+    } else if (useBias) {
+        massScale = soft.massScale;
+        impulseScale = soft.impulseScale;
+        float r = btgLane(s->stiffening, k);
+        if (normals & 2) {
+            const float omega2 = p.omega2Fixed;
+            float now = old / (mass * p.h * omega2 * p.maxSag);
+            r = now > r ? now : r;
         }
-        BtgJacobian j = btgPointJacobian(s->normal, s->rA[k], s->rB[k], a, b);
-        float vn = btgRowVelocity(j, *va, *vb);
-        float next = old - mass * (massScale * vn + bias) - impulseScale * old;
-        if (!(next > 0.0f)) next = 0.0f;
-        btgSetLane(&s->normalImpulse, k, next);
-        btgSetLane(&s->totalNormal, k, btgLane(s->totalNormal, k) + (next - old));
-        btgRowApply(j, a, b, va, vb, next - old);
+        if (r > 1.0f) {
+            float a2 = r * soft.stiffness;
+            massScale = a2 / (1.0f + a2);
+            impulseScale = 1.0f / (1.0f + a2);
+        }
+        bias = massScale * soft.biasRate * sep;
+        if (bias < -p.pushSpeed) bias = -p.pushSpeed;
     }
-    if (useBias && !p.frictionInSolve) return;
-    for (int k = 0; k < s->numPoints; ++k) {
-        if (btgLane(s->normalMass, k) == 0.0f) continue;
-        float o1 = btgLane(s->tangent1Impulse, k), o2 = btgLane(s->tangent2Impulse, k);
-        float n1 = btgSoftFrictionRow(s, k, s->tangent1, btgLane(s->tangent1Mass, k), o1, a, b, va, vb);
-        float n2 = btgSoftFrictionRow(s, k, s->tangent2, btgLane(s->tangent2Mass, k), o2, a, b, va, vb);
-        btgSetLane(&s->tangent1Impulse, k, n1);
-        btgSetLane(&s->tangent2Impulse, k, n2);
-        btgSetLane(&s->total1, k, btgLane(s->total1, k) + (n1 - o1));
-        btgSetLane(&s->total2, k, btgLane(s->total2, k) + (n2 - o2));
+    BtgJacobian j = btgPointJacobian(s->normal, s->rA[k], s->rB[k], a, b);
+    float vn = btgRowVelocity(j, *va, *vb);
+    float next = old - mass * (massScale * vn + bias) - impulseScale * old;
+    if (!(next > 0.0f)) next = 0.0f;
+    btgSetLane(&s->normalImpulse, k, next);
+    btgSetLane(&s->totalNormal, k, btgLane(s->totalNormal, k) + (next - old));
+    btgRowApply(j, a, b, va, vb, next - old);
+}
+static inline void btgSoftFrictionRows(BtgSoftContact* s, int k, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
+                                       BtgBodyVel* vb)
+{
+    if (btgLane(s->normalMass, k) == 0.0f) return;
+    float o1 = btgLane(s->tangent1Impulse, k), o2 = btgLane(s->tangent2Impulse, k);
+    float n1 = btgSoftFrictionRow(s, k, s->tangent1, btgLane(s->tangent1Mass, k), o1, a, b, va, vb);
+    float n2 = btgSoftFrictionRow(s, k, s->tangent2, btgLane(s->tangent2Mass, k), o2, a, b, va, vb);
+    btgSetLane(&s->tangent1Impulse, k, n1);
+    btgSetLane(&s->tangent2Impulse, k, n2);
+    btgSetLane(&s->total1, k, btgLane(s->total1, k) + (n1 - o1));
+    btgSetLane(&s->total2, k, btgLane(s->total2, k) + (n2 - o2));
+}
+/* The points in the order they are solved: SOLVER_RANDMIZE_ORDER permutes them by pointKey
+ * (btgItemKey of the sweep's key and the contact; 0: in order), as the bullet mode's sweeps do. */
+static inline void btgSoftSolve(BtgSoftContact* s, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb,
+                                BtgSoftDelta dA, BtgSoftDelta dB, int useBias, int normals,
+                                BtgSoftParams p, uint pointKey)
+{
+    const int n = s->numPoints;
+    const int friction = !useBias || p.frictionInSolve;
+    /* SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS: each point's friction rows right after
+     * its normal row, bounded by the impulse just found (as the bullet mode's interleaved sweep) */
+    if (friction && p.interleave) {
+        for (int q = 0; q < n; ++q) {
+            const int k = btgPermute(pointKey, n, q);
+            if (normals & 1) btgSoftNormalRow(s, k, a, b, va, vb, dA, dB, useBias, normals, p);
+            btgSoftFrictionRows(s, k, a, b, va, vb);
+        }
+        return;
     }
+    for (int q = 0; q < n && (normals & 1); ++q)
+        btgSoftNormalRow(s, btgPermute(pointKey, n, q), a, b, va, vb, dA, dB, useBias, normals, p);
+    if (!friction) return;
+    for (int q = 0; q < n; ++q) btgSoftFrictionRows(s, btgPermute(pointKey, n, q), a, b, va, vb);
 }
 
 /* ApplyRestitution, after the substeps: a point that approached faster than the threshold and

@@ -69,7 +69,7 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
             }
         }
     };
-    auto edge = [&](size_t e, int mode) {
+    auto edge = [&](size_t e, int mode, uint key) {
         if (mode == BTG_SOFT_STORE) {
             btgSoftStore(contacts.data(), int(e), &soft[e]);
             return;
@@ -114,7 +114,7 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
                 }
             }
             btgSoftSolve(&soft[e], a, b, &va, &vb, btgSoftDeltaOf(ra), btgSoftDeltaOf(rb), mode == BTG_SOFT_SOLVE,
-                         normals, params);
+                         normals, params, btgItemKey(key, uint(e) + 1u));
         }
         if (a.dynamic) {
             bodies.linVel[ia] = btgMake4(va.lin.x, va.lin.y, va.lin.z, bodies.linVel[ia].w);
@@ -125,24 +125,28 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
             bodies.angVel[ib] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, bodies.angVel[ib].w);
         }
     };
-    auto edgePass = [&](int mode) {
-        for (int color = 0; color < numColors; ++color)
+    // key: a solve or relax sweep's order (SOLVER_RANDMIZE_ORDER): its colours permuted, the
+    // leftovers last
+    auto edgePass = [&](int mode, uint key) {
+        for (int ci = 0; ci < numColors; ++ci) {
+            const bool last = ci == numColors - 1;
+            const int color = last ? ci : btgPermute(key, numColors - 1, ci);
             for (size_t e = 0; e < contacts.size(); ++e) {
-                const bool last = color == numColors - 1;
                 if (last ? colors[e] < color : colors[e] != color) continue;
-                edge(e, mode);
+                edge(e, mode, key);
             }
+        }
     };
     bodyPass(BTG_SOFT_BODY_BEGIN);
-    edgePass(BTG_SOFT_PREPARE);
+    edgePass(BTG_SOFT_PREPARE, 0u);
     for (int s = 0; s < params.substeps; ++s) {
         bodyPass(BTG_SOFT_BODY_VELOCITY);  // and the warm start
-        edgePass(BTG_SOFT_SOLVE);
+        edgePass(BTG_SOFT_SOLVE, btgSoftSweepKey(params, s, 0));
         bodyPass(BTG_SOFT_BODY_POSITION);
-        edgePass(BTG_SOFT_RELAX);
+        edgePass(BTG_SOFT_RELAX, btgSoftSweepKey(params, s, 1));
     }
-    edgePass(BTG_SOFT_RESTITUTION);
-    edgePass(BTG_SOFT_STORE);
+    edgePass(BTG_SOFT_RESTITUTION, 0u);
+    edgePass(BTG_SOFT_STORE, 0u);
     return rows;
 }
 

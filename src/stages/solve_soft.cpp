@@ -49,6 +49,8 @@ BtgSoftParams makeSoftParams(const SoftStepConfig& c, const BtgStepParams& param
     p.frictionInSolve = c.frictionInSolve ? 1 : 0;
     p.maxSag = std::max(c.maxSag, 0.0f);
     p.heldMassRatio = std::max(c.heldMassRatio, 0.0f);
+    p.orderSeed = params.randomSeed;
+    p.interleave = (params.solverFlags & BTG_SOLVER_INTERLEAVE) != 0u ? 1 : 0;
     return btgSoftParamsWith(p, p.substeps);
 }
 
@@ -141,29 +143,31 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     }
     const size_t rangeItems = std::min(slots, size_t(std::max<cl_uint>(ctx.device().computeUnits, 1)) * 256);
     cl_kernel range = prog.kernel("soft_color_range"), serial = prog.kernel("soft_color_serial");
-    auto edgePass = [&](int mode) {
-        for (int color = 0; color < numColors; ++color) {
-            if (color == numColors - 1) {
+    // key: a solve or relax sweep's order (SOLVER_RANDMIZE_ORDER), as soft_resident takes it
+    auto edgePass = [&](int mode, cl_uint key) {
+        for (int ci = 0; ci < numColors; ++ci) {
+            if (ci == numColors - 1) {
                 cl::Launch l(ctx, serial, &w.profiler);
-                l.arg(w.edgeColor).arg(edgeCapacity).arg(numJoints).arg(color).arg(mode);
+                l.arg(w.edgeColor).arg(edgeCapacity).arg(numJoints).arg(ci).arg(mode).arg(key);
                 soft(l).run(1, 1);
             } else {
+                const int color = btgPermute(key, numColors - 1, ci);
                 cl::Launch l(ctx, range, &w.profiler);
-                l.arg(sc.colorStart).arg(sc.colorOrder).arg(edgeCapacity).arg(numJoints).arg(color).arg(mode);
+                l.arg(sc.colorStart).arg(sc.colorOrder).arg(edgeCapacity).arg(numJoints).arg(color).arg(mode).arg(key);
                 soft(l).run(rangeItems, 64);
             }
         }
     };
     bodyPass(BTG_SOFT_BODY_BEGIN);
-    edgePass(BTG_SOFT_PREPARE);
+    edgePass(BTG_SOFT_PREPARE, 0u);
     for (int s = 0; s < params.substeps; ++s) {
         bodyPass(BTG_SOFT_BODY_VELOCITY);  // and the warm start
-        edgePass(BTG_SOFT_SOLVE);
+        edgePass(BTG_SOFT_SOLVE, btgSoftSweepKey(params, s, 0));
         bodyPass(BTG_SOFT_BODY_POSITION);
-        edgePass(BTG_SOFT_RELAX);
+        edgePass(BTG_SOFT_RELAX, btgSoftSweepKey(params, s, 1));
     }
-    edgePass(BTG_SOFT_RESTITUTION);
-    edgePass(BTG_SOFT_STORE);
+    edgePass(BTG_SOFT_RESTITUTION, 0u);
+    edgePass(BTG_SOFT_STORE, 0u);
 }
 
 void softTransforms(DeviceWorld& w)

@@ -45,7 +45,10 @@ public:
         if (m_noEmptyManifolds) n += "; Config::deviceEmptyManifolds off (manifolds with points only)";
         if (!m_callback.empty()) n += "; contact callback: " + m_callback + " (host part: Report::callbackMs)";
         if (m_jacobi) n += "; Jacobi with mass splitting";
-        if (m_soft) n += "; soft step, " + std::to_string(m_world ? m_world->report().softSubsteps : 0) + " substeps";
+        if (m_auto && m_world)
+            n += std::string("; Config::solver = Auto: ran the ") +
+                 (m_world->report().solver == btgpu::SolverKind::SoftStep ? "soft step" : "batched PGS (" + m_world->report().solverReason + ")");
+        if (m_soft || (m_auto && m_world && m_world->report().solver == btgpu::SolverKind::SoftStep)) n += "; soft step, " + std::to_string(m_world ? m_world->report().softSubsteps : 0) + " substeps";
         n += "; step column = sync-in of app changes + device substeps + readback (Report::syncInMs + deviceMs); "
              "write-back column = results into btRigidBody + motion states (Report::writeBackMs)";
         if (!m_noAabbSync) n += " + Bullet's broadphase AABB sync (Report::aabbSyncMs)";
@@ -72,6 +75,8 @@ public:
         m_jacobi = options.jacobi;
         if (options.soft) config.solver = btgpu::SolverKind::SoftStep;
         if (options.softSubsteps > 0) config.softStep.substeps = options.softSubsteps;
+        if (options.autoSolver) config.solver = btgpu::SolverKind::Auto;
+        m_auto = options.autoSolver;
         m_soft = options.soft;
         m_world.reset(new btGpuDynamicsWorld(&m_infra.dispatcher, &m_infra.broadphase, &m_infra.solver, &m_infra.config,
                                         config));
@@ -145,6 +150,7 @@ private:
     bool m_noEmptyManifolds = false;
     bool m_jacobi = false;
     bool m_soft = false;
+    bool m_auto = false;
     std::string m_callback;  // Options::contactCallback (its globals put back in the destructor)
 };
 

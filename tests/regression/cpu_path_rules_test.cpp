@@ -319,8 +319,28 @@ TEST(CpuPathRules, JacobiSolverFallsBackForRowsItLacks)
     }
 }
 
-// The soft step's contacts are its own springs: the Bullet settings its rows do not follow send
-// the world to the CPU path, naming the mode.
+// The Bullet settings the soft step's rows do not follow (its contacts are its own springs),
+// each with the words that name it; set on body 1 or the solver info.
+std::vector<Rule> softStepLacks()
+{
+    return {processingThreshold("setContactProcessingThreshold) with Config::solver = SoftStep"),
+            flag("friction anchors", "CF_HAS_FRICTION_ANCHOR) with Config::solver = SoftStep",
+                 btCollisionObject::CF_HAS_FRICTION_ANCHOR),
+            {"rolling friction", "rolling or spinning friction with Config::solver = SoftStep",
+             [](Scene& s) { s.body(1)->setRollingFriction(btScalar(0.1)); },
+             [](Scene& s) { s.body(1)->setRollingFriction(0); }},
+            {"contact stiffness and damping", "CF_HAS_CONTACT_STIFFNESS_DAMPING) with Config::solver = SoftStep",
+             [](Scene& s) { s.body(1)->setContactStiffnessAndDamping(btScalar(1e5), btScalar(100)); },
+             [](Scene& s) {
+                 s.body(1)->setContactStiffnessAndDamping(BT_LARGE_FLOAT, btScalar(0.1));
+                 s.body(1)->setCollisionFlags(s.body(1)->getCollisionFlags() &
+                                              ~btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING);
+             }},
+            solverInfo("global CFM", "m_sor or m_globalCfm changed with Config::solver = SoftStep",
+                       [](btContactSolverInfo& i) { i.m_globalCfm = btScalar(1e-4); })};
+}
+
+// A SoftStep world that meets one of them goes to the CPU path, naming the mode.
 TEST(CpuPathRules, SoftStepFallsBackForRowsItLacks)
 {
     Config config;
@@ -329,16 +349,7 @@ TEST(CpuPathRules, SoftStepFallsBackForRowsItLacks)
     scene->step();
     const Report& r = *scene->report();
     ASSERT_TRUE(r.gpuPath) << r.cpuPathReason;
-    for (const Rule& rule : {processingThreshold("setContactProcessingThreshold) with Config::solver = SoftStep"),
-                             flag("friction anchors", "CF_HAS_FRICTION_ANCHOR) with Config::solver = SoftStep",
-                                  btCollisionObject::CF_HAS_FRICTION_ANCHOR),
-                             solverInfo("randomised order", "SOLVER_RANDMIZE_ORDER with Config::solver = SoftStep",
-                                        [](btContactSolverInfo& i) { i.m_solverMode |= SOLVER_RANDMIZE_ORDER; }),
-                             solverInfo("interleaving",
-                                        "SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS with Config::solver = SoftStep",
-                                        [](btContactSolverInfo& i) {
-                                            i.m_solverMode |= SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS;
-                                        })}) {
+    for (const Rule& rule : softStepLacks()) {
         SCOPED_TRACE(rule.name);
         rule.set(*scene);
         scene->step();
@@ -348,6 +359,82 @@ TEST(CpuPathRules, SoftStepFallsBackForRowsItLacks)
         scene->step();
         EXPECT_TRUE(r.gpuPath) << r.cpuPathReason;
     }
+}
+
+// Config::solver = Auto stays on the GPU path through each of them: the batched PGS while the
+// world uses it (Report::solverReason naming it), the soft step before and after.
+TEST(CpuPathRules, AutoSolverTakesTheBatchedPgsForRowsTheSoftStepLacks)
+{
+    Config config;
+    config.solver = SolverKind::Auto;
+    ScenePtr scene = scenes::dropRow(WorldKind::Gpu, config);
+    scene->step();
+    const Report& r = *scene->report();
+    ASSERT_TRUE(r.gpuPath) << r.cpuPathReason;
+    EXPECT_EQ(SolverKind::SoftStep, r.solver);
+    EXPECT_EQ("", r.solverReason);
+    EXPECT_EQ(10, r.softSubsteps);
+    for (const Rule& rule : softStepLacks()) {
+        SCOPED_TRACE(rule.name);
+        rule.set(*scene);
+        for (int i = 0; i < 3; ++i) {
+            scene->step();
+            EXPECT_TRUE(r.gpuPath) << r.cpuPathReason;
+            EXPECT_EQ(SolverKind::BatchedPgs, r.solver);
+            EXPECT_NE(r.solverReason.find(rule.expect), std::string::npos) << r.solverReason;
+        }
+        rule.reset(*scene);
+        scene->step();
+        EXPECT_TRUE(r.gpuPath) << r.cpuPathReason;
+        EXPECT_EQ(SolverKind::SoftStep, r.solver);
+        EXPECT_EQ("", r.solverReason);
+    }
+}
+
+// A tick callback that starts rolling friction within a call of several internal steps: Auto
+// does not switch solvers inside the call (its rest runs on the CPU path, saying so); the next
+// call runs the batched PGS on the GPU path.
+TEST(CpuPathRules, AutoSolverSwitchesBetweenCalls)
+{
+    Config config;
+    config.solver = SolverKind::Auto;
+    ScenePtr scene = scenes::dropRow(WorldKind::Gpu, config);
+    scene->step();
+    const Report& r = *scene->report();
+    ASSERT_TRUE(r.gpuPath) << r.cpuPathReason;
+    ASSERT_EQ(SolverKind::SoftStep, r.solver);
+    scene->world().setInternalTickCallback(
+        [](btDynamicsWorld* world, btScalar) {
+            btRigidBody::upcast(world->getCollisionObjectArray()[1])->setRollingFriction(btScalar(0.1));
+        },
+        nullptr, false);
+    scene->step(btScalar(3) / 60, 3, btScalar(1) / 60);
+    EXPECT_FALSE(r.gpuPath);
+    EXPECT_NE(r.cpuPathReason.find("Config::solver = Auto would switch solvers"), std::string::npos) << r.cpuPathReason;
+    scene->world().setInternalTickCallback(nullptr);
+    scene->step();
+    EXPECT_TRUE(r.gpuPath) << r.cpuPathReason;
+    EXPECT_EQ(SolverKind::BatchedPgs, r.solver);
+}
+
+// What Auto runs is the chosen solver's step, bit for bit: a plain scene as SoftStep, one with
+// rolling friction as BatchedPgs.
+TEST(CpuPathRules, AutoSolverRunsTheChosenSolverBitwise)
+{
+    auto run = [](SolverKind kind, bool rolling) {
+        Config config;
+        config.solver = kind;
+        ScenePtr scene = scenes::dropRow(WorldKind::Gpu, config);
+        if (rolling) scene->body(1)->setRollingFriction(btScalar(0.1));
+        for (int i = 0; i < 30; ++i) {
+            scene->step();
+            EXPECT_TRUE(scene->report()->gpuPath) << scene->report()->cpuPathReason;
+        }
+        return scene->gpuWorld()->stateHash();
+    };
+    EXPECT_EQ(run(SolverKind::SoftStep, false), run(SolverKind::Auto, false));
+    EXPECT_EQ(run(SolverKind::BatchedPgs, true), run(SolverKind::Auto, true));
+    EXPECT_NE(run(SolverKind::BatchedPgs, false), run(SolverKind::Auto, false));
 }
 
 TEST(CpuPathRules, ComingBackAgreesWithStock)

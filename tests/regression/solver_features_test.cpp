@@ -597,3 +597,37 @@ TEST(SolverFeatures, RandomizedOrderPyramidAndPileLikeStock)
         expectWithinBands(bands, *s.gpu);
     }
 }
+
+// The soft step serves SOLVER_RANDMIZE_ORDER (each substep's solve and relax sweeps take their
+// colours and points in an order of their own, from the world's order stream) and
+// SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS (the relax's friction rows point by point
+// after the normal row): a pyramid of base 10, 3 s, on the GPU path every step, step for step
+// as a twin world, not as the plain soft step, and standing (no box 5 cm from its start).
+TEST(SolverFeatures, SoftStepServesTheOrderBits)
+{
+    Config soft;
+    soft.solver = SolverKind::SoftStep;
+    for (int bits : {int(SOLVER_RANDMIZE_ORDER), int(SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS)}) {
+        SCOPED_TRACE(bits);
+        auto make = with([](WorldKind k, const Config& c) { return scenes::stability::pyramid(k, c, 10); },
+                         solverMode(bits));
+        ScenePtr gpu = make(WorldKind::Gpu, soft), twin = make(WorldKind::Gpu, soft);
+        ScenePtr plain = scenes::stability::pyramid(WorldKind::Gpu, soft, 10);
+        std::vector<btVector3> start;
+        for (btRigidBody* b : gpu->bodies()) start.push_back(b->getWorldTransform().getOrigin());
+        bool differs = false;
+        for (int i = 0; i < 180; ++i) {
+            gpu->step();
+            twin->step();
+            plain->step();
+            ASSERT_TRUE(gpu->report()->gpuPath) << "step " << i << ": " << gpu->report()->cpuPathReason;
+            ASSERT_EQ(gpu->gpuWorld()->stateHash(), twin->gpuWorld()->stateHash()) << "step " << i;
+            differs = differs || gpu->gpuWorld()->stateHash() != plain->gpuWorld()->stateHash();
+        }
+        EXPECT_TRUE(differs) << "the bit changed nothing";
+        double farthest = 0;
+        for (size_t i = 0; i < start.size(); ++i)
+            farthest = std::max(farthest, double((gpu->bodies()[i]->getWorldTransform().getOrigin() - start[i]).length()));
+        EXPECT_LT(farthest, 0.05) << "a box left its place";
+    }
+}
