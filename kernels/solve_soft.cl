@@ -107,8 +107,8 @@ static BtgSoftContact load_soft_gather(__global BtgSoftContact* softContacts, in
     s.fixed = 0;
     s.friction = 0.0f;
     s.restitution = 0.0f;
-    s.pad0 = 0;
-    s.pad1 = 0;
+    s.springStiffness = 0.0f;
+    s.springDamping = 0.0f;
     s.normal = sc[i].normal;
     btgSoftTangents(&s);
     s.normalMass = btgZero4();
@@ -144,8 +144,8 @@ static BtgSoftContact load_soft(__global const BtgSoftContact* softContacts, int
     s.fixed = softContacts[i].fixed;
     s.friction = softContacts[i].friction;
     s.restitution = softContacts[i].restitution;
-    s.pad0 = 0;
-    s.pad1 = 0;
+    s.springStiffness = softContacts[i].springStiffness;
+    s.springDamping = softContacts[i].springDamping;
     s.normal = softContacts[i].normal;
     s.normalMass = btgZero4();
     for (int k = 0; k < BTG_MAX_POINTS; ++k) {
@@ -203,7 +203,8 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
         BtgBodyVel a0 = btgMakeBodyVel(a.moving, linVel0[bodyA], angVel0[bodyA]);
         BtgBodyVel b0 = btgMakeBodyVel(b.moving, linVel0[bodyB], angVel0[bodyB]);
         softContacts[slot] = btgSoftPack(btgSoftPrepare(contacts[i], a, b, a0, b0, pa.restitution * pb.restitution,
-                                                        btgContactSolvable(pa.flags, pb.flags), params));
+                                                        btgContactSolvable(pa.flags, pb.flags), params,
+                                                        btgPairMaterial(pa, pb)));
         if (params.heldMassRatio > 0.0f) {
             const int fixed = a.dynamic != b.dynamic && btgContactSolvable(pa.flags, pb.flags);
             const int light = btgSoftLightSide(a, b, params);

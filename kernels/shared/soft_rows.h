@@ -83,8 +83,9 @@ typedef struct {
     int bodyB;
     int numPoints;
     int fixed;                        /* 1: solved with BtgSoftParams.fixed */
-    int pad0;
-    int pad1;
+    float springStiffness;            /* N/m, with springDamping N s/m: the pair's own contact spring (Bullet's
+                                         setContactStiffnessAndDamping), 0: the soft step's (BtgSoftParams) */
+    float springDamping;
     BtgFloat4 stiffening;             /* per point: r >= 1, its spring's stiffness and damping factor this step (the solve's) */
     BtgFloat4 totalNormal;            /* per point, applied over the whole step, N s (Bullet's m_appliedImpulse) */
     BtgFloat4 total1;
@@ -270,7 +271,8 @@ static inline void btgSoftTangents(BtgSoftContact* s)
  * warm-start impulse: the cached step total times the warm-start factor). a0/b0: the bodies'
  * velocities before the step's forces. */
 static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel a0,
-                                            BtgBodyVel b0, float restitution, int solvable, BtgSoftParams p)
+                                            BtgBodyVel b0, float restitution, int solvable, BtgSoftParams p,
+                                            BtgPairMaterial mat)
 {
     BtgSoftContact s;
     s.normal = btgXyz(c.normal);
@@ -282,8 +284,13 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
     s.bodyB = c.bodyB;
     s.numPoints = c.numPoints;
     s.fixed = !(a.dynamic && b.dynamic);
-    s.pad0 = 0;
-    s.pad1 = 0;
+    s.springStiffness = 0.0f;
+    s.springDamping = 0.0f;
+    if (mat.stiffnessDamping) {
+        /* the pair's own spring, kept above Bullet's floor (setupContactConstraint's) */
+        s.springStiffness = mat.stiffness < BTG_SIMD_EPSILON ? BTG_SIMD_EPSILON : mat.stiffness;
+        s.springDamping = mat.damping < BTG_SIMD_EPSILON ? BTG_SIMD_EPSILON : mat.damping;
+    }
     s.baseSeparation = btgZero4();
     s.normalMass = btgZero4();
     s.tangent1Mass = btgZero4();
@@ -321,7 +328,7 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
          * load the point carried last step (its warm start), so that it sinks at most maxSag
          * (within the step it stays put: a stiffness following the substeps' impulses rings). */
         float m = btgLane(s.normalMass, k), load = btgLane(s.normalImpulse, k);
-        if (p.maxSag > 0.0f && m > 0.0f) {
+        if (p.maxSag > 0.0f && m > 0.0f && s.springStiffness == 0.0f) {
             float r = load / (m * p.h * omega2 * p.maxSag);
             btgSetLane(&s.stiffening, k, r > 1.0f ? r : 1.0f);
         }
@@ -597,6 +604,17 @@ static inline void btgSoftNormalRow(BtgSoftContact* s, int k, BtgSolverBody a, B
     float bias = 0.0f, massScale = 1.0f, impulseScale = 0.0f;
     if (sep > 0.0f) {
         bias = sep * p.invH;
+    } else if (useBias && s->springStiffness > 0.0f) {
+        /* the pair's own spring, stiffness k and damping c, on the point's effective mass m:
+         * omega^2 = k / m and 2 zeta omega = c / m make Box2D's a2 = h (c + h k) / m and bias
+         * rate k / (c + h k) (Bullet's erp / dt for the same k and c); it rests where the
+         * point's load is k times its depth, as stock's does */
+        const float ck = s->springDamping + p.h * s->springStiffness;
+        const float a2 = p.h * ck / mass;
+        massScale = a2 / (1.0f + a2);
+        impulseScale = 1.0f / (1.0f + a2);
+        bias = massScale * (s->springStiffness / ck) * sep;
+        if (bias < -p.pushSpeed) bias = -p.pushSpeed;
     } else if (useBias) {
         massScale = soft.massScale;
         impulseScale = soft.impulseScale;

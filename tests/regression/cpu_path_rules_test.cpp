@@ -329,13 +329,6 @@ std::vector<Rule> softStepLacks()
             {"rolling friction", "rolling or spinning friction with Config::solver = SoftStep",
              [](Scene& s) { s.body(1)->setRollingFriction(btScalar(0.1)); },
              [](Scene& s) { s.body(1)->setRollingFriction(0); }},
-            {"contact stiffness and damping", "CF_HAS_CONTACT_STIFFNESS_DAMPING) with Config::solver = SoftStep",
-             [](Scene& s) { s.body(1)->setContactStiffnessAndDamping(btScalar(1e5), btScalar(100)); },
-             [](Scene& s) {
-                 s.body(1)->setContactStiffnessAndDamping(BT_LARGE_FLOAT, btScalar(0.1));
-                 s.body(1)->setCollisionFlags(s.body(1)->getCollisionFlags() &
-                                              ~btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING);
-             }},
             solverInfo("global CFM", "m_sor or m_globalCfm changed with Config::solver = SoftStep",
                        [](btContactSolverInfo& i) { i.m_globalCfm = btScalar(1e-4); })};
 }

@@ -287,6 +287,32 @@ TEST(SolverFeatures, SoftContactRestsAtStockDepth)
     }
 }
 
+// The soft step serves them as its own spring of the pair's stiffness k and damping c
+// (soft_rows.h): the same box rests where its load is k times its depth, at stock's depth
+// within 5% as the bullet mode does; and deeper for the softer spring (about twice).
+TEST(SolverFeatures, SoftStepContactSpringRestsAtStockDepth)
+{
+    Config soft;
+    soft.solver = SolverKind::SoftStep;
+    std::vector<double> depths;
+    for (btScalar k : {btScalar(500), btScalar(1000)}) {
+        SCOPED_TRACE(k);
+        auto make = [k](WorldKind kind, const Config& c) { return features::softBox(kind, c, k); };
+        ScenePtr stock = make(WorldKind::Stock, Config()), gpu = make(WorldKind::Gpu, soft);
+        for (int i = 0; i < 120; ++i) {
+            stock->step();
+            gpu->step();
+            ASSERT_TRUE(gpu->report()->gpuPath) << "step " << i << ": " << gpu->report()->cpuPathReason;
+        }
+        const double stockDepth = restDepth(*stock), gpuDepth = restDepth(*gpu);
+        RecordProperty(std::string("soft_step_depth_") + std::to_string(int(k)), std::to_string(gpuDepth));
+        EXPECT_GT(stockDepth, 0.002);
+        EXPECT_NEAR(gpuDepth, stockDepth, tol::kSoftDepthRel * stockDepth);
+        depths.push_back(gpuDepth);
+    }
+    EXPECT_NEAR(depths[0], 2 * depths[1], 0.1 * depths[0]);
+}
+
 // m_globalCfm on the contacts: a resting box sinks to where the cfm's give balances its weight,
 // at stock's depth within 5%.
 TEST(SolverFeatures, GlobalCfmRestsAtStockDepth)
@@ -416,12 +442,6 @@ TEST(SolverFeatures, SoftStepFallsBackForTheBulletModesContactFeatures)
              s.body(1)->setAnisotropicFriction(on ? btVector3(1, btScalar(0.5), 1) : btVector3(1, 1, 1),
                                                on ? btCollisionObject::CF_ANISOTROPIC_FRICTION
                                                   : btCollisionObject::CF_ANISOTROPIC_FRICTION_DISABLED);
-         }},
-        {"contact stiffness and damping",
-         [](scenes::Scene& s, bool on) {
-             if (on) s.body(1)->setContactStiffnessAndDamping(1000, 10);
-             else s.body(1)->setCollisionFlags(s.body(1)->getCollisionFlags() &
-                                               ~btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING);
          }},
         {"m_sor or m_globalCfm",
          [](scenes::Scene& s, bool on) { s.world().getSolverInfo().m_sor = on ? btScalar(0.5) : btScalar(1); }},
