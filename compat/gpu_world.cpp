@@ -168,8 +168,6 @@ std::string GpuWorld::softStepReason() const
         return "rolling or spinning friction with Config::solver = SoftStep (the soft step has no rolling rows)";
     if (m_solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION)
         return "anisotropic friction with Config::solver = SoftStep";
-    if (m_solverFlags & BTG_SOLVER_PROCESSING_THRESHOLD)
-        return "contact processing threshold (setContactProcessingThreshold) with Config::solver = SoftStep";
     if (m_solverFlags & BTG_SOLVER_FRICTION_ANCHORS)
         return "friction anchors (CF_HAS_FRICTION_ANCHOR) with Config::solver = SoftStep";
     const btContactSolverInfo& info = m_world.getSolverInfo();

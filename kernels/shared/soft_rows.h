@@ -54,6 +54,11 @@ typedef struct {
                                     take their colours and points in an order of their own (btgSoftSweepKey) */
     int interleave;              /* SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS: the relax's friction rows
                                     point by point after its normal row */
+    int processingThreshold;     /* BTG_SOLVER_PROCESSING_THRESHOLD: a point farther apart than its pair's contact
+                                    processing threshold gets no rows and keeps its impulses (as convertContacts) */
+    int pad0;
+    int pad1;
+    int pad2;
 } BtgSoftParams;
 
 /* The order key of a substep's solve (relax 0) or relax (1) sweep (solver_rows.h). */
@@ -127,7 +132,7 @@ typedef struct {
 
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(BtgSoftness) == 16, "BtgSoftness layout");
-static_assert(sizeof(BtgSoftParams) == 112, "BtgSoftParams layout");
+static_assert(sizeof(BtgSoftParams) == 128, "BtgSoftParams layout");
 static_assert(sizeof(BtgSoftContact) == 16 * (15 + 2 * BTG_MAX_POINTS) + 32, "BtgSoftContact layout");
 #endif
 
@@ -313,6 +318,14 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
         s.rB[k] = rB;
         btgSetLane(&s.baseSeparation, k, btgLane(c.separation, k) - btgDot3(rA - rB, n));
         if (!solvable) continue;
+        if (p.processingThreshold && !btgPointProcessed(btgLane(c.separation, k), mat.processingThreshold)) {
+            /* not converted: no rows, and the step's totals (what is stored) are the impulses the
+             * point had (the cache kept them unscaled) */
+            btgSetLane(&s.totalNormal, k, btgLane(c.normalImpulse, k));
+            btgSetLane(&s.total1, k, btgLane(c.friction1Impulse, k));
+            btgSetLane(&s.total2, k, btgLane(c.friction2Impulse, k));
+            continue;
+        }
         BtgJacobian jn = btgPointJacobian(n, rA, rB, a, b);
         btgSetLane(&s.normalMass, k, btgPointRowMass(jn, rA, rB, a, b));
         btgSetLane(&s.tangent1Mass, k, btgPointRowMass(btgPointJacobian(s.tangent1, rA, rB, a, b), rA, rB, a, b));

@@ -51,6 +51,7 @@ BtgSoftParams makeSoftParams(const SoftStepConfig& c, const BtgStepParams& param
     p.heldMassRatio = std::max(c.heldMassRatio, 0.0f);
     p.orderSeed = params.randomSeed;
     p.interleave = (params.solverFlags & BTG_SOLVER_INTERLEAVE) != 0u ? 1 : 0;
+    p.processingThreshold = (params.solverFlags & BTG_SOLVER_PROCESSING_THRESHOLD) != 0u ? 1 : 0;
     return btgSoftParamsWith(p, p.substeps);
 }
 

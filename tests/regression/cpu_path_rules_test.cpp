@@ -323,8 +323,7 @@ TEST(CpuPathRules, JacobiSolverFallsBackForRowsItLacks)
 // each with the words that name it; set on body 1 or the solver info.
 std::vector<Rule> softStepLacks()
 {
-    return {processingThreshold("setContactProcessingThreshold) with Config::solver = SoftStep"),
-            flag("friction anchors", "CF_HAS_FRICTION_ANCHOR) with Config::solver = SoftStep",
+    return {flag("friction anchors", "CF_HAS_FRICTION_ANCHOR) with Config::solver = SoftStep",
                  btCollisionObject::CF_HAS_FRICTION_ANCHOR),
             {"rolling friction", "rolling or spinning friction with Config::solver = SoftStep",
              [](Scene& s) { s.body(1)->setRollingFriction(btScalar(0.1)); },

@@ -540,6 +540,31 @@ TEST(SolverFeatures, NegativeProcessingThresholdSinksAsStock)
     EXPECT_EQ(seenPoints(*s.gpu, threshold).points, seenPoints(*s.stock, threshold).points);
 }
 
+// The soft step leaves the points beyond the threshold unsolved as well: with -1 cm the box rests
+// as deep in the one below as stock's (within 1 mm after 2 s; without the threshold the soft
+// step's box rests under 2 mm deep), on the GPU path every step, the app seeing as many points.
+TEST(SolverFeatures, SoftStepNegativeProcessingThresholdSinksAsStock)
+{
+    const btScalar threshold = btScalar(-0.01);
+    Config soft;
+    soft.solver = SolverKind::SoftStep;
+    ScenePtr stock = features::thresholdStack(WorldKind::Stock, Config(), threshold);
+    ScenePtr gpu = features::thresholdStack(WorldKind::Gpu, soft, threshold);
+    ScenePtr plain = features::thresholdStack(WorldKind::Gpu, soft, btScalar(BT_LARGE_FLOAT));
+    for (int i = 0; i < 120; ++i) {
+        stock->step();
+        gpu->step();
+        plain->step();
+        ASSERT_TRUE(gpu->report()->gpuPath) << "step " << i << ": " << gpu->report()->cpuPathReason;
+        ASSERT_TRUE(plain->report()->gpuPath) << "step " << i << ": " << plain->report()->cpuPathReason;
+    }
+    EXPECT_LT(gap(*stock), -0.005) << "stock's box sinks";
+    EXPECT_GT(gap(*plain), -0.002) << "without the threshold the soft step's does not";
+    EXPECT_NEAR(gap(*gpu), gap(*stock), tol::kRestHeight) << "stock " << gap(*stock) << ", without the threshold "
+                                                          << gap(*plain);
+    EXPECT_EQ(seenPoints(*gpu, threshold).points, seenPoints(*stock, threshold).points);
+}
+
 namespace {
 // How far body 2 moved along the slope's downhill direction (a slope tilted `angle` about z).
 double downhill(const Scene& s, const btVector3& start, btScalar angle)
