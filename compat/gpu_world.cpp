@@ -171,8 +171,11 @@ std::string GpuWorld::softStepReason() const
     if (m_solverFlags & BTG_SOLVER_FRICTION_ANCHORS)
         return "friction anchors (CF_HAS_FRICTION_ANCHOR) with Config::solver = SoftStep";
     const btContactSolverInfo& info = m_world.getSolverInfo();
-    if (info.m_sor != btScalar(1) || info.m_globalCfm != btScalar(0))
-        return "btContactSolverInfo::m_sor or m_globalCfm changed with Config::solver = SoftStep";
+    if (info.m_sor != btScalar(1))
+        return "btContactSolverInfo::m_sor changed with Config::solver = SoftStep";
+    // m_globalCfm is the contacts' spring (btgSoftCfmSpring); a negative one is none
+    if (info.m_globalCfm < btScalar(0))
+        return "a negative btContactSolverInfo::m_globalCfm with Config::solver = SoftStep";
     if (ContactCallbacks::wanted(m_world))
         return "contact callbacks that run before the solve (gContactAddedCallback on a CF_CUSTOM_MATERIAL_CALLBACK body, "
                "gContactProcessedCallback, a custom combiner) with Config::solver = SoftStep";

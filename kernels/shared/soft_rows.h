@@ -56,10 +56,24 @@ typedef struct {
                                     point by point after its normal row */
     int processingThreshold;     /* BTG_SOLVER_PROCESSING_THRESHOLD: a point farther apart than its pair's contact
                                     processing threshold gets no rows and keeps its impulses (as convertContacts) */
+    float cfmStiffness;          /* N/m, with cfmDamping N s/m: m_globalCfm's spring for every contact without its own
+                                    (btgSoftCfmSpring; 0: none) */
+    float cfmDamping;
     int pad0;
-    int pad1;
-    int pad2;
 } BtgSoftParams;
+
+/* m_globalCfm as a spring: Bullet solves a contact of raw cfm and erp as the implicit spring of
+ * dt k + d = 1 / cfm and erp = dt k / (dt k + d) (setupContactConstraint, which takes exactly
+ * that cfm and erp for a contact of stiffness k and damping d), so k = erp / (dt cfm) and
+ * d = (1 - erp) / cfm, with its contacts' erp (m_erp2). */
+static inline void btgSoftCfmSpring(BtgSoftParams* p, float globalCfm, float erp, float dt)
+{
+    p->cfmStiffness = 0.0f;
+    p->cfmDamping = 0.0f;
+    if (!(globalCfm > 0.0f) || !(dt > 0.0f)) return;
+    p->cfmStiffness = erp / (dt * globalCfm);
+    p->cfmDamping = (1.0f - erp) / globalCfm;
+}
 
 /* The order key of a substep's solve (relax 0) or relax (1) sweep (solver_rows.h). */
 static inline uint btgSoftSweepKey(BtgSoftParams p, int substep, int relax)
@@ -295,6 +309,10 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
         /* the pair's own spring, kept above Bullet's floor (setupContactConstraint's) */
         s.springStiffness = mat.stiffness < BTG_SIMD_EPSILON ? BTG_SIMD_EPSILON : mat.stiffness;
         s.springDamping = mat.damping < BTG_SIMD_EPSILON ? BTG_SIMD_EPSILON : mat.damping;
+    } else if (p.cfmStiffness > 0.0f) {
+        /* m_globalCfm's, which the pair's own replaces (as in setupContactConstraint) */
+        s.springStiffness = p.cfmStiffness;
+        s.springDamping = p.cfmDamping < BTG_SIMD_EPSILON ? BTG_SIMD_EPSILON : p.cfmDamping;
     }
     s.baseSeparation = btgZero4();
     s.normalMass = btgZero4();

@@ -52,6 +52,7 @@ BtgSoftParams makeSoftParams(const SoftStepConfig& c, const BtgStepParams& param
     p.orderSeed = params.randomSeed;
     p.interleave = (params.solverFlags & BTG_SOLVER_INTERLEAVE) != 0u ? 1 : 0;
     p.processingThreshold = (params.solverFlags & BTG_SOLVER_PROCESSING_THRESHOLD) != 0u ? 1 : 0;
+    btgSoftCfmSpring(&p, params.globalCfm, params.erp2, params.dt);
     return btgSoftParamsWith(p, p.substeps);
 }
 

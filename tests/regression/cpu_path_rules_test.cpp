@@ -328,8 +328,8 @@ std::vector<Rule> softStepLacks()
             {"rolling friction", "rolling or spinning friction with Config::solver = SoftStep",
              [](Scene& s) { s.body(1)->setRollingFriction(btScalar(0.1)); },
              [](Scene& s) { s.body(1)->setRollingFriction(0); }},
-            solverInfo("global CFM", "m_sor or m_globalCfm changed with Config::solver = SoftStep",
-                       [](btContactSolverInfo& i) { i.m_globalCfm = btScalar(1e-4); })};
+            solverInfo("SOR", "m_sor changed with Config::solver = SoftStep",
+                       [](btContactSolverInfo& i) { i.m_sor = btScalar(0.5); })};
 }
 
 // A SoftStep world that meets one of them goes to the CPU path, naming the mode.
