@@ -164,8 +164,6 @@ std::string GpuWorld::softStepReason() const
 {
     // The soft step's contacts are its own springs (soft_rows.h): it builds none of the rows the
     // bullet mode adds for these Bullet features, nor takes the callbacks' per-point restitution.
-    if (m_solverFlags & BTG_SOLVER_ROLLING_FRICTION)
-        return "rolling or spinning friction with Config::solver = SoftStep (the soft step has no rolling rows)";
     if (m_solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION)
         return "anisotropic friction with Config::solver = SoftStep";
     if (m_solverFlags & BTG_SOLVER_FRICTION_ANCHORS)

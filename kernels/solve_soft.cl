@@ -33,9 +33,10 @@
     BTG_SHARED __global BtgFloat4* lin, BTG_SHARED __global BtgFloat4* ang, BTG_SHARED __global BtgFloat4* softBodies, \
     __global const BtgJoint* restrict joints, __global const BtgJointState* restrict jointState, \
     __global BtgJointRow* jointRows, __global const uint* restrict listStart, __global const uint* restrict listEntries, \
-    __global const int* restrict slotOf, __global uint* counters, BtgSoftParams params
+    __global const int* restrict slotOf, __global uint* counters, __global const BtgRollingContact* restrict rolling, \
+    BtgSoftParams params
 #define SOFT_PASS contacts, softContacts, props, invInertiaWorld, linVel0, angVel0, lin, ang, softBodies, joints, \
-    jointState, jointRows, listStart, listEntries, slotOf, counters, params
+    jointState, jointRows, listStart, listEntries, slotOf, counters, rolling, params
 
 static BtgSolverBody load_body(__global const BtgBodyProps* restrict props,
                                __global const BtgFloat4* restrict invInertiaWorld, int i)
@@ -234,6 +235,7 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
             }
         }
         btgSoftSolve(&s, a, b, &va, &vb, dA, dB, mode == BTG_SOFT_SOLVE, normals, params, btgItemKey(key, (uint)i + 1u));
+        if (params.rolling && mode == BTG_SOFT_RELAX) btgSoftRolling(rolling[i], &s, a, b, &va, &vb, params);
     }
     if (a.dynamic) store_vel(va, lin, ang, bodyA);
     if (b.dynamic) store_vel(vb, lin, ang, bodyB);

@@ -14,6 +14,7 @@
 #include "solver_rows.h"
 #include "contact_rows.h"
 #include "joint_rows.h"
+#include "material_rows.h"
 
 /* Box2D's b2Softness: a row of stiffness omega and damping ratio zeta, implicit over a substep.
  * A spring stiffer by r (k and c both times r: omega and zeta times sqrt r) keeps its bias rate
@@ -59,7 +60,7 @@ typedef struct {
     float cfmStiffness;          /* N/m, with cfmDamping N s/m: m_globalCfm's spring for every contact without its own
                                     (btgSoftCfmSpring; 0: none) */
     float cfmDamping;
-    int pad0;
+    int rolling;                 /* BTG_SOLVER_ROLLING_FRICTION: the relax solves the contacts' rolling rows (btgSoftRolling) */
 } BtgSoftParams;
 
 /* m_globalCfm as a spring: Bullet solves a contact of raw cfm and erp as the implicit spring of
@@ -705,6 +706,27 @@ static inline void btgSoftSolve(BtgSoftContact* s, BtgSolverBody a, BtgSolverBod
         btgSoftNormalRow(s, btgPermute(pointKey, n, q), a, b, va, vb, dA, dB, useBias, normals, p);
     if (!friction) return;
     for (int q = 0; q < n; ++q) btgSoftFrictionRows(s, btgPermute(pointKey, n, q), a, b, va, vb);
+}
+
+/* Rolling and spinning friction (r: prepare_contacts' BtgRollingContact of the contact, the
+ * same rows as the bullet mode's): in each relax, after the contact's friction rows, each
+ * point's torsional and two rolling rows from zero, bounded by the coefficient times the
+ * point's normal impulse of the substep and, as solveSingleIteration bounds a step's, by the
+ * coefficient itself shared out over the substeps. Bullet starts them at zero every step (it
+ * never warm-starts them); a substep is the soft step's step. */
+static inline void btgSoftRolling(BtgRollingContact r, const BtgSoftContact* s, BtgSolverBody a, BtgSolverBody b,
+                                  BtgBodyVel* va, BtgBodyVel* vb, BtgSoftParams p)
+{
+    const float n = (float)p.substeps;
+    r.spinningFriction = r.spinningFriction / n;
+    r.rollingFriction = r.rollingFriction / n;
+    r.spinImpulse = btgZero4();
+    r.roll1Impulse = btgZero4();
+    r.roll2Impulse = btgZero4();
+    BtgFloat4 normal = s->normalImpulse * n;
+    for (int k = 0; k < BTG_MAX_POINTS; ++k)
+        if (btgLane(s->normalMass, k) == 0.0f) btgSetLane(&normal, k, 0.0f);
+    btgRollingSolve(&r, s->normal, normal, s->numPoints, a, b, va, vb);
 }
 
 /* ApplyRestitution, after the substeps: a point that approached faster than the threshold and

@@ -53,6 +53,7 @@ BtgSoftParams makeSoftParams(const SoftStepConfig& c, const BtgStepParams& param
     p.interleave = (params.solverFlags & BTG_SOLVER_INTERLEAVE) != 0u ? 1 : 0;
     p.processingThreshold = (params.solverFlags & BTG_SOLVER_PROCESSING_THRESHOLD) != 0u ? 1 : 0;
     btgSoftCfmSpring(&p, params.globalCfm, params.erp2, params.dt);
+    p.rolling = (params.solverFlags & BTG_SOLVER_ROLLING_FRICTION) != 0u ? 1 : 0;
     return btgSoftParamsWith(p, p.substeps);
 }
 
@@ -73,6 +74,7 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     w.joints.reserve(ctx, 1);
     w.jointState.reserve(ctx, 1);
     w.jointRows.reserve(ctx, 1);
+    w.rollingContacts.reserve(ctx, 1);  // read with BtgSoftParams::rolling only (prepare_contacts fills it then)
     // The bodies' edge lists (the warm start's gather): none until the edges are listed below.
     sc.softListStart.reserve(ctx, size_t(numBodies) + 1);
     sc.softListStart.zero(ctx, size_t(numBodies) + 1);
@@ -82,7 +84,8 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     auto soft = [&](cl::Launch& l) -> cl::Launch& {
         return l.arg(w.contacts).arg(sc.softContacts).arg(w.props).arg(w.invInertiaWorld).arg(w.linVel0)
             .arg(w.angVel0).arg(w.linVel).arg(w.angVel).arg(sc.softBodies).arg(w.joints).arg(w.jointState)
-            .arg(w.jointRows).arg(sc.softListStart).arg(sc.softListEntries).arg(sc.edgeSlot).arg(w.counters).arg(params);
+            .arg(w.jointRows).arg(sc.softListStart).arg(sc.softListEntries).arg(sc.edgeSlot).arg(w.counters)
+            .arg(w.rollingContacts).arg(params);
     };
     cl_kernel bodies = prog.kernel("soft_bodies");
     auto bodyPass = [&](int mode) {

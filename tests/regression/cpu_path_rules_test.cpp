@@ -325,9 +325,13 @@ std::vector<Rule> softStepLacks()
 {
     return {flag("friction anchors", "CF_HAS_FRICTION_ANCHOR) with Config::solver = SoftStep",
                  btCollisionObject::CF_HAS_FRICTION_ANCHOR),
-            {"rolling friction", "rolling or spinning friction with Config::solver = SoftStep",
-             [](Scene& s) { s.body(1)->setRollingFriction(btScalar(0.1)); },
-             [](Scene& s) { s.body(1)->setRollingFriction(0); }},
+            {"anisotropic friction", "anisotropic friction with Config::solver = SoftStep",
+             [](Scene& s) {
+                 s.body(1)->setAnisotropicFriction(btVector3(1, btScalar(0.5), 1), btCollisionObject::CF_ANISOTROPIC_FRICTION);
+             },
+             [](Scene& s) {
+                 s.body(1)->setAnisotropicFriction(btVector3(1, 1, 1), btCollisionObject::CF_ANISOTROPIC_FRICTION_DISABLED);
+             }},
             solverInfo("SOR", "m_sor changed with Config::solver = SoftStep",
                        [](btContactSolverInfo& i) { i.m_sor = btScalar(0.5); })};
 }
@@ -383,7 +387,7 @@ TEST(CpuPathRules, AutoSolverTakesTheBatchedPgsForRowsTheSoftStepLacks)
     }
 }
 
-// A tick callback that starts rolling friction within a call of several internal steps: Auto
+// A tick callback that starts friction anchors within a call of several internal steps: Auto
 // does not switch solvers inside the call (its rest runs on the CPU path, saying so); the next
 // call runs the batched PGS on the GPU path.
 TEST(CpuPathRules, AutoSolverSwitchesBetweenCalls)
@@ -397,7 +401,8 @@ TEST(CpuPathRules, AutoSolverSwitchesBetweenCalls)
     ASSERT_EQ(SolverKind::SoftStep, r.solver);
     scene->world().setInternalTickCallback(
         [](btDynamicsWorld* world, btScalar) {
-            btRigidBody::upcast(world->getCollisionObjectArray()[1])->setRollingFriction(btScalar(0.1));
+            btCollisionObject* o = world->getCollisionObjectArray()[1];
+            o->setCollisionFlags(o->getCollisionFlags() | btCollisionObject::CF_HAS_FRICTION_ANCHOR);
         },
         nullptr, false);
     scene->step(btScalar(3) / 60, 3, btScalar(1) / 60);
@@ -410,14 +415,15 @@ TEST(CpuPathRules, AutoSolverSwitchesBetweenCalls)
 }
 
 // What Auto runs is the chosen solver's step, bit for bit: a plain scene as SoftStep, one with
-// rolling friction as BatchedPgs.
+// friction anchors as BatchedPgs.
 TEST(CpuPathRules, AutoSolverRunsTheChosenSolverBitwise)
 {
-    auto run = [](SolverKind kind, bool rolling) {
+    auto run = [](SolverKind kind, bool anchors) {
         Config config;
         config.solver = kind;
         ScenePtr scene = scenes::dropRow(WorldKind::Gpu, config);
-        if (rolling) scene->body(1)->setRollingFriction(btScalar(0.1));
+        if (anchors)
+            scene->body(1)->setCollisionFlags(scene->body(1)->getCollisionFlags() | btCollisionObject::CF_HAS_FRICTION_ANCHOR);
         for (int i = 0; i < 30; ++i) {
             scene->step();
             EXPECT_TRUE(scene->report()->gpuPath) << scene->report()->cpuPathReason;

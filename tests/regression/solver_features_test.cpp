@@ -239,6 +239,54 @@ TEST(SolverFeatures, SpinningSphereSpinsDownAsStock)
     EXPECT_NEAR(gpu, stock, tol::kSpinDownRel * stock);
 }
 
+// The soft step serves rolling and spinning friction with the bullet mode's rows (each relax,
+// from zero, bounded by the coefficient times the substep's normal impulse; soft_rows.h
+// btgSoftRolling): the sphere and the capsule roll to a stop as far as stock's, and the
+// spinning sphere spins down as fast (tol::kSoftRollDistanceRel; the spin within 5%).
+TEST(SolverFeatures, SoftStepRollingAndSpinningFrictionAsStock)
+{
+    Config soft;
+    soft.solver = SolverKind::SoftStep;
+    const std::vector<std::pair<std::string, SceneBuilder>> rollers = {
+        {"sphere", [](WorldKind k, const Config& c) { return features::rollingSphere(k, c); }},
+        {"capsule", SceneBuilder(features::rollingCapsule)}};
+    for (const auto& [name, make] : rollers) {
+        SCOPED_TRACE(name);
+        ScenePtr stock = make(WorldKind::Stock, Config()), gpu = make(WorldKind::Gpu, soft);
+        const btVector3 start = stock->body(1)->getWorldTransform().getOrigin();
+        int stockRest = -1, gpuRest = -1;
+        for (int i = 0; i < 900 && (stockRest < 0 || gpuRest < 0); ++i) {
+            stock->step();
+            gpu->step();
+            ASSERT_TRUE(gpu->report()->gpuPath) << "step " << i << ": " << gpu->report()->cpuPathReason;
+            if (stockRest < 0 && stock->body(1)->getLinearVelocity().length() < 0.01) stockRest = i;
+            if (gpuRest < 0 && gpu->body(1)->getLinearVelocity().length() < 0.01) gpuRest = i;
+        }
+        ASSERT_GE(stockRest, 0) << "stock's never stopped";
+        ASSERT_GE(gpuRest, 0) << "the soft step's never stopped";
+        const double stockDistance = travel(*stock, 1, start).x(), gpuDistance = travel(*gpu, 1, start).x();
+        RecordProperty(name + "_soft_step_distance", std::to_string(gpuDistance));
+        RecordProperty(name + "_soft_step_rest_step", gpuRest);
+        EXPECT_GT(stockDistance, 0.3);
+        EXPECT_NEAR(gpuDistance, stockDistance, tol::kSoftRollDistanceRel * stockDistance)
+            << "stopped at step " << gpuRest << " (stock " << stockRest << ")";
+        EXPECT_NEAR(gpuRest, stockRest, tol::kSoftRollDistanceRel * stockRest + 2);
+    }
+    ScenePtr stock = features::spinningSphere(WorldKind::Stock, Config()), gpu = features::spinningSphere(WorldKind::Gpu, soft);
+    int stockSteps = -1, gpuSteps = -1;
+    for (int i = 0; i < 900 && (stockSteps < 0 || gpuSteps < 0); ++i) {
+        stock->step();
+        gpu->step();
+        ASSERT_TRUE(gpu->report()->gpuPath) << "step " << i << ": " << gpu->report()->cpuPathReason;
+        if (stockSteps < 0 && std::fabs(stock->body(1)->getAngularVelocity().y()) < 1) stockSteps = i;
+        if (gpuSteps < 0 && std::fabs(gpu->body(1)->getAngularVelocity().y()) < 1) gpuSteps = i;
+    }
+    ASSERT_GE(gpuSteps, 0) << "the soft step's never slowed";
+    RecordProperty("spin_soft_step_steps", gpuSteps);
+    EXPECT_GT(stockSteps, 60);
+    EXPECT_NEAR(gpuSteps, stockSteps, tol::kSpinDownRel * stockSteps);
+}
+
 // Anisotropic rolling friction (CF_ANISOTROPIC_ROLLING_FRICTION) on the sphere: its rolling axis
 // (world z, which is its own z while it rolls about it) scaled by 0.2, so it rolls about five
 // times as far as without, as on stock.
@@ -457,8 +505,6 @@ TEST(SolverFeatures, SoftStepFallsBackForTheBulletModesContactFeatures)
     Config soft;
     soft.solver = SolverKind::SoftStep;
     const std::vector<std::pair<std::string, std::function<void(scenes::Scene&, bool)>>> cases = {
-        {"rolling or spinning friction",
-         [](scenes::Scene& s, bool on) { s.body(1)->setRollingFriction(on ? btScalar(0.1) : btScalar(0)); }},
         {"anisotropic friction",
          [](scenes::Scene& s, bool on) {
              s.body(1)->setAnisotropicFriction(on ? btVector3(1, btScalar(0.5), 1) : btVector3(1, 1, 1),
