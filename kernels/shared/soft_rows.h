@@ -173,6 +173,15 @@ static inline BtgSoftness btgMakeSoftness(float hertz, float zeta, float h)
     return s;
 }
 
+/* A soft row's shares of a spring of a2 = h omega (2 zeta + h omega) (btgMakeSoftness's, or one
+ * stiffened or of the pair's own k and c): the effective mass it applies, the accumulated
+ * impulse it gives up. */
+static inline void btgSoftScales(float a2, float* massScale, float* impulseScale)
+{
+    *massScale = a2 / (1.0f + a2);
+    *impulseScale = 1.0f / (1.0f + a2);
+}
+
 /* The step's scalars for `substeps` substeps of p.dt (p's settings kept). Box2D caps the
  * spring at an eighth of the substep rate: stiffer than that and one substep cannot follow it. */
 static inline BtgSoftParams btgSoftParamsWith(BtgSoftParams p, int substeps)
@@ -590,8 +599,7 @@ static inline int btgSoftHeldNormals(BtgSoftContact* s, int lightIsA, BTG_SHARED
             float r = p.maxSag > 0.0f ? old / (mass * p.h * p.omega2Contact * p.maxSag) : 1.0f;
             if (r > 1.0f) {
                 float a2 = r * soft.stiffness;
-                massScale = a2 / (1.0f + a2);
-                impulseScale = 1.0f / (1.0f + a2);
+                btgSoftScales(a2, &massScale, &impulseScale);
             }
             bias = massScale * soft.biasRate * sep;
             if (bias < -p.pushSpeed) bias = -p.pushSpeed;
@@ -643,8 +651,7 @@ static inline void btgSoftNormalRow(BtgSoftContact* s, int k, BtgSolverBody a, B
          * point's load is k times its depth, as stock's does */
         const float ck = s->springDamping + p.h * s->springStiffness;
         const float a2 = p.h * ck / mass;
-        massScale = a2 / (1.0f + a2);
-        impulseScale = 1.0f / (1.0f + a2);
+        btgSoftScales(a2, &massScale, &impulseScale);
         bias = massScale * (s->springStiffness / ck) * sep;
         if (bias < -p.pushSpeed) bias = -p.pushSpeed;
     } else if (useBias) {
@@ -658,8 +665,7 @@ static inline void btgSoftNormalRow(BtgSoftContact* s, int k, BtgSolverBody a, B
         }
         if (r > 1.0f) {
             float a2 = r * soft.stiffness;
-            massScale = a2 / (1.0f + a2);
-            impulseScale = 1.0f / (1.0f + a2);
+            btgSoftScales(a2, &massScale, &impulseScale);
         }
         bias = massScale * soft.biasRate * sep;
         if (bias < -p.pushSpeed) bias = -p.pushSpeed;

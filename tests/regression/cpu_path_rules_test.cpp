@@ -274,16 +274,23 @@ TEST(CpuPathRules, EachRuleFallsBackAndComesBack)
     EXPECT_TRUE(scenes::allFinite(*scene));
 }
 
+// A drop-row scene with Config::solver = `kind`, after a first step on the GPU path.
+ScenePtr dropRowStepped(SolverKind kind)
+{
+    Config config;
+    config.solver = kind;
+    ScenePtr scene = scenes::dropRow(WorldKind::Gpu, config);
+    scene->step();
+    EXPECT_TRUE(scene->report()->gpuPath) << scene->report()->cpuPathReason;
+    return scene;
+}
+
 // The Jacobi solver (Config::solver = JacobiMassSplitting) has plain contact rows only: the
 // rows the PGS solver adds for these settings send such a world to the CPU path, naming them.
 TEST(CpuPathRules, JacobiSolverFallsBackForRowsItLacks)
 {
-    Config config;
-    config.solver = SolverKind::JacobiMassSplitting;
-    ScenePtr scene = scenes::dropRow(WorldKind::Gpu, config);
-    scene->step();
+    ScenePtr scene = dropRowStepped(SolverKind::JacobiMassSplitting);
     const Report& r = *scene->report();
-    ASSERT_TRUE(r.gpuPath) << r.cpuPathReason;
     const std::vector<Rule> jacobiRules = {
         {"rolling friction", "rolling or spinning friction with Config::solver = JacobiMassSplitting",
          [](Scene& s) { s.body(2)->setRollingFriction(btScalar(0.1)); }, [](Scene& s) { s.body(2)->setRollingFriction(0); }},
@@ -339,12 +346,8 @@ std::vector<Rule> softStepLacks()
 // A SoftStep world that meets one of them goes to the CPU path, naming the mode.
 TEST(CpuPathRules, SoftStepFallsBackForRowsItLacks)
 {
-    Config config;
-    config.solver = SolverKind::SoftStep;
-    ScenePtr scene = scenes::dropRow(WorldKind::Gpu, config);
-    scene->step();
+    ScenePtr scene = dropRowStepped(SolverKind::SoftStep);
     const Report& r = *scene->report();
-    ASSERT_TRUE(r.gpuPath) << r.cpuPathReason;
     for (const Rule& rule : softStepLacks()) {
         SCOPED_TRACE(rule.name);
         rule.set(*scene);
@@ -357,19 +360,24 @@ TEST(CpuPathRules, SoftStepFallsBackForRowsItLacks)
     }
 }
 
+// A drop-row scene with Config::solver = Auto after its first step, which ran the soft step on
+// the GPU path.
+ScenePtr autoSolverScene()
+{
+    ScenePtr scene = dropRowStepped(SolverKind::Auto);
+    const Report& r = *scene->report();
+    EXPECT_EQ(SolverKind::SoftStep, r.solver);
+    EXPECT_EQ("", r.solverReason);
+    EXPECT_EQ(10, r.softSubsteps);
+    return scene;
+}
+
 // Config::solver = Auto stays on the GPU path through each of them: the batched PGS while the
 // world uses it (Report::solverReason naming it), the soft step before and after.
 TEST(CpuPathRules, AutoSolverTakesTheBatchedPgsForRowsTheSoftStepLacks)
 {
-    Config config;
-    config.solver = SolverKind::Auto;
-    ScenePtr scene = scenes::dropRow(WorldKind::Gpu, config);
-    scene->step();
+    ScenePtr scene = autoSolverScene();
     const Report& r = *scene->report();
-    ASSERT_TRUE(r.gpuPath) << r.cpuPathReason;
-    EXPECT_EQ(SolverKind::SoftStep, r.solver);
-    EXPECT_EQ("", r.solverReason);
-    EXPECT_EQ(10, r.softSubsteps);
     for (const Rule& rule : softStepLacks()) {
         SCOPED_TRACE(rule.name);
         rule.set(*scene);
@@ -392,13 +400,8 @@ TEST(CpuPathRules, AutoSolverTakesTheBatchedPgsForRowsTheSoftStepLacks)
 // call runs the batched PGS on the GPU path.
 TEST(CpuPathRules, AutoSolverSwitchesBetweenCalls)
 {
-    Config config;
-    config.solver = SolverKind::Auto;
-    ScenePtr scene = scenes::dropRow(WorldKind::Gpu, config);
-    scene->step();
+    ScenePtr scene = autoSolverScene();
     const Report& r = *scene->report();
-    ASSERT_TRUE(r.gpuPath) << r.cpuPathReason;
-    ASSERT_EQ(SolverKind::SoftStep, r.solver);
     scene->world().setInternalTickCallback(
         [](btDynamicsWorld* world, btScalar) {
             btCollisionObject* o = world->getCollisionObjectArray()[1];

@@ -35,6 +35,17 @@ std::function<void(Scene&)> solverMode(int bits)
     return [bits](Scene& s) { s.world().getSolverInfo().m_solverMode |= bits; };
 }
 
+// A stock world and a soft-step one side by side, `steps` steps, the GPU path asserted after
+// every step.
+void stepBesideStock(Scene& stock, Scene& soft, int steps)
+{
+    for (int i = 0; i < steps; ++i) {
+        stock.step();
+        soft.step();
+        ASSERT_TRUE(soft.report()->gpuPath) << "step " << i << ": " << soft.report()->cpuPathReason;
+    }
+}
+
 // Steps both worlds `steps` times, asserting the GPU path after every step.
 void stepOnGpu(SideBySide& s, int steps)
 {
@@ -347,11 +358,7 @@ TEST(SolverFeatures, SoftStepContactSpringRestsAtStockDepth)
         SCOPED_TRACE(k);
         auto make = [k](WorldKind kind, const Config& c) { return features::softBox(kind, c, k); };
         ScenePtr stock = make(WorldKind::Stock, Config()), gpu = make(WorldKind::Gpu, soft);
-        for (int i = 0; i < 120; ++i) {
-            stock->step();
-            gpu->step();
-            ASSERT_TRUE(gpu->report()->gpuPath) << "step " << i << ": " << gpu->report()->cpuPathReason;
-        }
+        stepBesideStock(*stock, *gpu, 120);
         const double stockDepth = restDepth(*stock), gpuDepth = restDepth(*gpu);
         RecordProperty(std::string("soft_step_depth_") + std::to_string(int(k)), std::to_string(gpuDepth));
         EXPECT_GT(stockDepth, 0.002);
@@ -386,11 +393,7 @@ TEST(SolverFeatures, SoftStepGlobalCfmRestsAtStockDepth)
     auto make = with([](WorldKind k, const Config& c) { return scenes::restingBox(k, c); },
                      [](Scene& sc) { sc.world().getSolverInfo().m_globalCfm = btScalar(0.05); });
     ScenePtr stock = make(WorldKind::Stock, Config()), gpu = make(WorldKind::Gpu, soft);
-    for (int i = 0; i < 300; ++i) {
-        stock->step();
-        gpu->step();
-        ASSERT_TRUE(gpu->report()->gpuPath) << "step " << i << ": " << gpu->report()->cpuPathReason;
-    }
+    stepBesideStock(*stock, *gpu, 300);
     const double stockDepth = restDepth(*stock), gpuDepth = restDepth(*gpu);
     RecordProperty("soft_step_depth", std::to_string(gpuDepth));
     EXPECT_GT(stockDepth, 0.002);
