@@ -174,9 +174,6 @@ std::string GpuWorld::softStepReason() const
     // m_globalCfm is the contacts' spring (btgSoftCfmSpring); a negative one is none
     if (info.m_globalCfm < btScalar(0))
         return "a negative btContactSolverInfo::m_globalCfm with Config::solver = SoftStep";
-    if (ContactCallbacks::wanted(m_world))
-        return "contact callbacks that run before the solve (gContactAddedCallback on a CF_CUSTOM_MATERIAL_CALLBACK body, "
-               "gContactProcessedCallback, a custom combiner) with Config::solver = SoftStep";
     return "";
 }
 

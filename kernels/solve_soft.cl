@@ -26,6 +26,7 @@
 #include "shared/integrate.h"
 #include "shared/counters.h"
 #include "shared/grid_barrier.h"
+#include "shared/contact_material.h"
 
 #define SOFT_ARGS __global BtgContact* contacts, __global BtgSoftContact* softContacts, \
     __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld, \
@@ -34,9 +35,10 @@
     __global const BtgJoint* restrict joints, __global const BtgJointState* restrict jointState, \
     __global BtgJointRow* jointRows, __global const uint* restrict listStart, __global const uint* restrict listEntries, \
     __global const int* restrict slotOf, __global uint* counters, __global const BtgRollingContact* restrict rolling, \
+    __global const uint* restrict contactManifolds, __global const BtgContactMaterial* restrict materials, int numMaterials, \
     BtgSoftParams params
 #define SOFT_PASS contacts, softContacts, props, invInertiaWorld, linVel0, angVel0, lin, ang, softBodies, joints, \
-    jointState, jointRows, listStart, listEntries, slotOf, counters, rolling, params
+    jointState, jointRows, listStart, listEntries, slotOf, counters, rolling, contactManifolds, materials, numMaterials, params
 
 static BtgSolverBody load_body(__global const BtgBodyProps* restrict props,
                                __global const BtgFloat4* restrict invInertiaWorld, int i)
@@ -130,6 +132,7 @@ static BtgSoftContact load_soft_gather(__global BtgSoftContact* softContacts, in
     s.baseSeparation = btgZero4();
     s.stiffening = btgZero4();
     s.relativeVelocity = btgZero4();
+    s.pointRestitution = btgZero4();
     return s;
 }
 
@@ -172,6 +175,7 @@ static BtgSoftContact load_soft(__global const BtgSoftContact* softContacts, int
     s.baseSeparation = separation ? softContacts[i].baseSeparation : btgZero4();
     s.stiffening = separation ? softContacts[i].stiffening : btgZero4();
     s.relativeVelocity = mode == BTG_SOFT_RESTITUTION ? softContacts[i].relativeVelocity : btgZero4();
+    s.pointRestitution = mode == BTG_SOFT_RESTITUTION ? softContacts[i].pointRestitution : btgZero4();
     return s;
 }
 
@@ -203,7 +207,12 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
         BtgBodyProps pa = props[bodyA], pb = props[bodyB];
         BtgBodyVel a0 = btgMakeBodyVel(a.moving, linVel0[bodyA], angVel0[bodyA]);
         BtgBodyVel b0 = btgMakeBodyVel(b.moving, linVel0[bodyB], angVel0[bodyB]);
-        softContacts[slot] = btgSoftPack(btgSoftPrepare(contacts[i], a, b, a0, b0, pa.restitution * pb.restitution,
+        /* the restitution a contact callback gave the points (contact_material.h), else the pair's */
+        const float r = pa.restitution * pb.restitution;
+        BtgFloat4 restitution = btgMake4(r, r, r, r);
+        const int m = numMaterials > 0 ? btgFindMaterial(materials, numMaterials, contactManifolds[i]) : -1;
+        if (m >= 0) restitution = materials[m].restitution;
+        softContacts[slot] = btgSoftPack(btgSoftPrepare(contacts[i], a, b, a0, b0, restitution,
                                                         btgContactSolvable(pa.flags, pb.flags), params,
                                                         btgPairMaterial(pa, pb)));
         if (params.heldMassRatio > 0.0f) {

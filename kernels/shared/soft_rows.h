@@ -114,6 +114,7 @@ typedef struct {
     BtgFloat4 normalMass;             /* per point, kg; 0: no rows (in global memory: the anchors' w) */
     BtgFloat4 tangent1;               /* btPlaneSpace1 of the normal: the two friction directions */
     BtgFloat4 tangent2;
+    BtgFloat4 pointRestitution;       /* per point: its restitution (the pair's, or a contact callback's) */
 } BtgSoftContact;
 
 /* Per body, eight rows of the soft scratch (BTG_SOFT_BODY_ROWS x numBodies): the position and
@@ -148,7 +149,7 @@ typedef struct {
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(BtgSoftness) == 16, "BtgSoftness layout");
 static_assert(sizeof(BtgSoftParams) == 128, "BtgSoftParams layout");
-static_assert(sizeof(BtgSoftContact) == 16 * (15 + 2 * BTG_MAX_POINTS) + 32, "BtgSoftContact layout");
+static_assert(sizeof(BtgSoftContact) == 16 * (16 + 2 * BTG_MAX_POINTS) + 32, "BtgSoftContact layout");
 #endif
 
 /* b2MakeSoft: hertz 0 is a rigid row. */
@@ -300,7 +301,7 @@ static inline void btgSoftTangents(BtgSoftContact* s)
  * warm-start impulse: the cached step total times the warm-start factor). a0/b0: the bodies'
  * velocities before the step's forces. */
 static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel a0,
-                                            BtgBodyVel b0, float restitution, int solvable, BtgSoftParams p,
+                                            BtgBodyVel b0, BtgFloat4 restitution, int solvable, BtgSoftParams p,
                                             BtgPairMaterial mat)
 {
     BtgSoftContact s;
@@ -308,7 +309,12 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
     btgSoftTangents(&s);
     const BtgFloat4 n = s.normal;
     s.friction = c.friction;
-    s.restitution = restitution;
+    /* restitution: per point (a contact callback's may differ); s.restitution the first nonzero
+     * one (0: the contact never bounces) */
+    s.pointRestitution = restitution;
+    s.restitution = 0.0f;
+    for (int k = 0; k < c.numPoints; ++k)
+        if (s.restitution == 0.0f) s.restitution = btgLane(restitution, k);
     s.bodyA = c.bodyA;
     s.bodyB = c.bodyB;
     s.numPoints = c.numPoints;
@@ -747,7 +753,7 @@ static inline void btgSoftRestitution(BtgSoftContact* s, BtgSolverBody a, BtgSol
         BtgJacobian j = btgPointJacobian(s->normal, s->rA[k], s->rB[k], a, b);
         float vn = btgRowVelocity(j, *va, *vb);
         float old = btgLane(s->normalImpulse, k);
-        float next = old - mass * (vn + s->restitution * rel);
+        float next = old - mass * (vn + btgLane(s->pointRestitution, k) * rel);
         if (!(next > 0.0f)) next = 0.0f;
         btgSetLane(&s->normalImpulse, k, next);
         btgSetLane(&s->totalNormal, k, btgLane(s->totalNormal, k) + (next - old));

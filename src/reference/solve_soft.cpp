@@ -81,7 +81,9 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
             const BtgBodyProps& pb = bodies.props[ib];
             soft[e] = btgSoftPrepare(contacts[e], a, b, btgMakeBodyVel(a.moving, bodies.linVel0[ia], bodies.angVel0[ia]),
                                      btgMakeBodyVel(b.moving, bodies.linVel0[ib], bodies.angVel0[ib]),
-                                     pa.restitution * pb.restitution, btgContactSolvable(pa.flags, pb.flags), params,
+                                     btgMake4(pa.restitution * pb.restitution, pa.restitution * pb.restitution,
+                                              pa.restitution * pb.restitution, pa.restitution * pb.restitution),
+                                     btgContactSolvable(pa.flags, pb.flags), params,
                                      btgPairMaterial(pa, pb));
             if (params.heldMassRatio > 0.0f) {
                 const int fixed = a.dynamic != b.dynamic && btgContactSolvable(pa.flags, pb.flags);

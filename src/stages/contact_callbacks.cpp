@@ -96,6 +96,7 @@ void clearPairRanges(DeviceWorld& w, const std::vector<uint>& pairs)
 
 void applyContactMaterials(DeviceWorld& w, const BtgStepParams& p)
 {
+    w.appliedMaterials = std::max(w.numMaterials, 0);  // the soft step's prepare reads them too
     if (w.numMaterials <= 0) return;
     cl::Context& ctx = w.ctx;
     const int contactCapacity = int(std::min({w.contactCapacity, w.contacts.capacity(), w.contactManifolds.capacity()}));

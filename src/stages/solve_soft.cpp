@@ -75,6 +75,12 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     w.jointState.reserve(ctx, 1);
     w.jointRows.reserve(ctx, 1);
     w.rollingContacts.reserve(ctx, 1);  // read with BtgSoftParams::rolling only (prepare_contacts fills it then)
+    // The contact callbacks' materials apply_contact_materials took this substep: the soft
+    // contacts take their restitution from them (their friction is already the contacts').
+    const int materials = w.appliedMaterials;
+    w.appliedMaterials = 0;
+    w.contactManifolds.reserve(ctx, 1);
+    w.contactMaterials.reserve(ctx, 1);
     // The bodies' edge lists (the warm start's gather): none until the edges are listed below.
     sc.softListStart.reserve(ctx, size_t(numBodies) + 1);
     sc.softListStart.zero(ctx, size_t(numBodies) + 1);
@@ -85,7 +91,7 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
         return l.arg(w.contacts).arg(sc.softContacts).arg(w.props).arg(w.invInertiaWorld).arg(w.linVel0)
             .arg(w.angVel0).arg(w.linVel).arg(w.angVel).arg(sc.softBodies).arg(w.joints).arg(w.jointState)
             .arg(w.jointRows).arg(sc.softListStart).arg(sc.softListEntries).arg(sc.edgeSlot).arg(w.counters)
-            .arg(w.rollingContacts).arg(params);
+            .arg(w.rollingContacts).arg(w.contactManifolds).arg(w.contactMaterials).arg(materials).arg(params);
     };
     cl_kernel bodies = prog.kernel("soft_bodies");
     auto bodyPass = [&](int mode) {

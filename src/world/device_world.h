@@ -154,6 +154,7 @@ struct DeviceWorld {
     cl::DeviceArray<int> callbackAdded;  // per gathered manifold: BtgPersistentManifold::added, -2 for none
     cl::DeviceArray<BtgContactMaterial> contactMaterials;
     int numMaterials = 0;
+    int appliedMaterials = 0;  // the materials apply_contact_materials took this substep (solve_soft reads them, then 0)
     // The warm-start cache: the last substep's solved contacts, reduced to what matching and
     // warm start read (112 bytes against a contact's 352), in the same pair order.
     cl::DeviceArray<BtgCachedContact> contactCache;

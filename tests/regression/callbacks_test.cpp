@@ -201,6 +201,53 @@ TEST(Callbacks, CustomFrictionSlidesAsStock)
     EXPECT_NEAR(pg, ps, 0.05 * ps);
 }
 
+// The soft step takes the callbacks' restitution per point (its own Box2D-style restitution,
+// from the approach speed, after the substeps) and their friction: the trampoline's apexes and
+// the slides (added and processed callbacks) as stock's, on the GPU path with the callbacks'
+// stage every step (within 10%: not stock's solver).
+TEST(Callbacks, SoftStepTakesTheCallbacksMaterial)
+{
+    Globals restore;
+    Config soft;
+    soft.solver = SolverKind::SoftStep;
+    auto side = [&](const SceneBuilder& make, int steps, const std::function<double(const Scene&)>& measure) {
+        ScenePtr stock = make(WorldKind::Stock, Config()), gpu = make(WorldKind::Gpu, soft);
+        std::vector<double> ys, yg;
+        for (int step = 0; step < steps; ++step) {
+            stock->step();
+            gpu->step();
+            EXPECT_TRUE(gpu->report()->gpuPath) << step << " " << gpu->report()->cpuPathReason;
+            EXPECT_TRUE(hasStage(*gpu, "contact_callbacks"));
+            ys.push_back(measure(*stock));
+            yg.push_back(measure(*gpu));
+        }
+        return std::make_pair(ys, yg);
+    };
+    auto height = [](const Scene& s) { return double(s.body(1)->getWorldTransform().getOrigin().y()); };
+    auto slid = [](const Scene& s) { return double(s.body(1)->getWorldTransform().getOrigin().x()) + 10; };
+    gContactAddedCallback = bouncy;
+    const auto [ys, yg] = side([](WorldKind k, const Config& c) { return scenes::trampoline(k, c); }, 240, height);
+    const std::vector<double> a = bounceApexes(ys), b = bounceApexes(yg);
+    ASSERT_GE(a.size(), 3u);
+    ASSERT_GE(b.size(), 3u);
+    for (size_t i = 0; i < 3; ++i) {
+        std::printf("soft step apex %zu: stock %.4f gpu %.4f\n", i, a[i], b[i]);
+        EXPECT_GT(b[i], 0.9) << i;  // it bounces (restitution 0 without the callback)
+        EXPECT_NEAR(b[i], a[i], 0.1 * (a[i] - 0.5)) << "apex " << i;
+    }
+    gContactAddedCallback = slippery;
+    const auto [ds, dg] = side([](WorldKind k, const Config& c) { return scenes::slidingBox(k, c); }, 180, slid);
+    gContactAddedCallback = nullptr;
+    gContactProcessedCallback = slipperyProcessed;
+    const auto [ps, pg] = side([](WorldKind k, const Config& c) { return scenes::slidingBox(k, c); }, 180, slid);
+    gContactProcessedCallback = nullptr;
+    std::printf("soft step slid: stock %.4f m, gpu %.4f m; processed: stock %.4f m, gpu %.4f m\n", ds.back(), dg.back(),
+                ps.back(), pg.back());
+    EXPECT_GT(dg.back(), 3.0);  // the callback's friction, not the bodies' (0.8 m)
+    EXPECT_NEAR(dg.back(), ds.back(), 0.1 * ds.back());
+    EXPECT_NEAR(pg.back(), ps.back(), 0.1 * ps.back());
+}
+
 // What the GPU path still leaves to the CPU path, each naming itself in the report.
 TEST(Callbacks, UnservedCasesFallBackNamingThemselves)
 {

@@ -516,11 +516,6 @@ TEST(SolverFeatures, SoftStepFallsBackForTheBulletModesContactFeatures)
          }},
         {"m_sor",
          [](scenes::Scene& s, bool on) { s.world().getSolverInfo().m_sor = on ? btScalar(0.5) : btScalar(1); }},
-        {"contact callbacks",
-         [](scenes::Scene&, bool on) {
-             ContactProcessedCallback keep = [](btManifoldPoint&, void*, void*) { return true; };
-             gContactProcessedCallback = on ? keep : nullptr;
-         }},
     };
     for (const auto& [name, set] : cases) {
         scenes::ScenePtr gpu = scenes::boxStack(WorldKind::Gpu, soft, 2);
