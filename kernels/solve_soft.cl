@@ -22,7 +22,7 @@
  * pos, rot and NaN status. */
 #include "shared/types.h"
 #include "shared/math.h"
-#include "shared/soft_rows.h"
+#include "shared/soft_held_rows.h"
 #include "shared/integrate.h"
 #include "shared/counters.h"
 #include "shared/grid_barrier.h"

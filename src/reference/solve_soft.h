@@ -3,7 +3,7 @@
 // and the edges of a color in index order (the last color takes every higher one).
 #pragma once
 #include "reference/contact_solver_reference.h"
-#include "shared/soft_rows.h"
+#include "shared/soft_held_rows.h"
 
 namespace btgpu::ref {
 
