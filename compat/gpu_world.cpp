@@ -163,7 +163,8 @@ SolverKind GpuWorld::solverToRun() const
 std::string GpuWorld::softStepReason() const
 {
     // The soft step's contacts are its own springs (soft_rows.h): it builds none of the rows the
-    // bullet mode adds for these Bullet features, nor takes the callbacks' per-point restitution.
+    // bullet mode adds for anisotropic friction and friction anchors, and has no relaxation
+    // factor (m_sor) nor a spring for a negative cfm.
     if (m_solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION)
         return "anisotropic friction with Config::solver = SoftStep";
     if (m_solverFlags & BTG_SOLVER_FRICTION_ANCHORS)
