@@ -279,6 +279,8 @@ void GpuWorld::rebuild()
     m_rowsStale = false;
     resizeBodies(w, int(m_rows.size()));
     uploadShapeTables(false);
+    // No callback materials carry over (a solver switch rebuilds: the soft step reads them).
+    w.appliedMaterials = 0;
     makePlan();
     // Rows changed meaning: the warm-start cache is dropped (one step without warm start).
     size_t n = m_rows.size();

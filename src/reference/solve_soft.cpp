@@ -79,10 +79,10 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
         if (mode == BTG_SOFT_PREPARE) {
             const BtgBodyProps& pa = bodies.props[ia];
             const BtgBodyProps& pb = bodies.props[ib];
+            const float r = pa.restitution * pb.restitution;
             soft[e] = btgSoftPrepare(contacts[e], a, b, btgMakeBodyVel(a.moving, bodies.linVel0[ia], bodies.angVel0[ia]),
                                      btgMakeBodyVel(b.moving, bodies.linVel0[ib], bodies.angVel0[ib]),
-                                     btgMake4(pa.restitution * pb.restitution, pa.restitution * pb.restitution,
-                                              pa.restitution * pb.restitution, pa.restitution * pb.restitution),
+                                     btgMake4(r, r, r, r),
                                      btgContactSolvable(pa.flags, pb.flags), params,
                                      btgPairMaterial(pa, pb));
             if (params.heldMassRatio > 0.0f) {
