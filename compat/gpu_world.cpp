@@ -163,10 +163,9 @@ SolverKind GpuWorld::solverToRun() const
 std::string GpuWorld::softStepReason() const
 {
     // The soft step's contacts are its own springs (soft_rows.h): it builds none of the rows the
-    // bullet mode adds for anisotropic friction and friction anchors, and has no relaxation
-    // factor (m_sor) nor a spring for a negative cfm.
-    if (m_solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION)
-        return "anisotropic friction with Config::solver = SoftStep";
+    // bullet mode adds for friction anchors, and has no relaxation factor (m_sor) nor a spring
+    // for a negative cfm. Anisotropic friction it serves: its friction rows then run along
+    // prepare_contacts' scaled directions (BtgSoftParams::anisotropic).
     if (m_solverFlags & BTG_SOLVER_FRICTION_ANCHORS)
         return "friction anchors (CF_HAS_FRICTION_ANCHOR) with Config::solver = SoftStep";
     const btContactSolverInfo& info = m_world.getSolverInfo();

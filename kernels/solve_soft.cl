@@ -14,7 +14,8 @@
  * scenes on CPUs); soft_transforms (Stage soft_transforms, after the cache is stored): one per
  * body row.
  * Reads counters[kEdgeCount, kContactCount, kColorsUsed, kLeftovers], edges, edgeColor, props,
- * invInertiaWorld, linVel0, angVel0, contacts, joints, jointState, jointRows.
+ * invInertiaWorld, linVel0, angVel0, contacts, joints, jointState, jointRows, frictionDirs
+ * (BtgSoftParams.anisotropic only).
  * Writes counters[kSoftMassRatio] (soft_color_count: the largest mass ratio of an edge between two
  * dynamic bodies, which sets the step's substeps), softContacts (a held pair's pass also its support's impulses), softBodies (scratch: the
  * deltas, force shares and, prepared color by color with heldMassRatio, supports), linVel, angVel (dynamic rows), contacts (impulses,
@@ -36,9 +37,10 @@
     __global BtgJointRow* jointRows, __global const uint* restrict listStart, __global const uint* restrict listEntries, \
     __global const int* restrict slotOf, __global uint* counters, __global const BtgRollingContact* restrict rolling, \
     __global const uint* restrict contactManifolds, __global const BtgContactMaterial* restrict materials, int numMaterials, \
-    BtgSoftParams params
+    __global const BtgFrictionDirs* restrict frictionDirs, BtgSoftParams params
 #define SOFT_PASS contacts, softContacts, props, invInertiaWorld, linVel0, angVel0, lin, ang, softBodies, joints, \
-    jointState, jointRows, listStart, listEntries, slotOf, counters, rolling, contactManifolds, materials, numMaterials, params
+    jointState, jointRows, listStart, listEntries, slotOf, counters, rolling, contactManifolds, materials, numMaterials, \
+    frictionDirs, params
 
 static BtgSolverBody load_body(__global const BtgBodyProps* restrict props,
                                __global const BtgFloat4* restrict invInertiaWorld, int i)
@@ -194,7 +196,7 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
         s.totalNormal = sc[slot].totalNormal;
         s.total1 = sc[slot].total1;
         s.total2 = sc[slot].total2;
-        btgSoftStore(contacts, i, &s);
+        btgSoftStore(contacts, i, &s, params.anisotropic);
         return;
     }
     /* the passes after prepare take the bodies from the soft contact: one struct a pass, not two */
@@ -212,9 +214,11 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
         BtgFloat4 restitution = btgMake4(r, r, r, r);
         const int m = numMaterials > 0 ? btgFindMaterial(materials, numMaterials, contactManifolds[i]) : -1;
         if (m >= 0) restitution = materials[m].restitution;
+        BtgFrictionDirs dirs;
+        if (params.anisotropic) dirs = frictionDirs[i];
         softContacts[slot] = btgSoftPack(btgSoftPrepare(contacts[i], a, b, a0, b0, restitution,
                                                         btgContactSolvable(pa.flags, pb.flags), params,
-                                                        btgPairMaterial(pa, pb)));
+                                                        btgPairMaterial(pa, pb), params.anisotropic ? &dirs : 0));
         if (params.heldMassRatio > 0.0f) {
             const int fixed = a.dynamic != b.dynamic && btgContactSolvable(pa.flags, pb.flags);
             const int light = btgSoftLightSide(a, b, params);
@@ -243,7 +247,12 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
                 normals = 3;
             }
         }
-        btgSoftSolve(&s, a, b, &va, &vb, dA, dB, mode == BTG_SOFT_SOLVE, normals, params, btgItemKey(key, (uint)i + 1u));
+        /* anisotropic friction: the point's scaled directions, read where friction rows run */
+        const int friction = mode == BTG_SOFT_RELAX || params.frictionInSolve;
+        BtgFrictionDirs dirs;
+        if (params.anisotropic && friction) dirs = frictionDirs[i];
+        btgSoftSolve(&s, a, b, &va, &vb, dA, dB, mode == BTG_SOFT_SOLVE, normals, params, btgItemKey(key, (uint)i + 1u),
+                     params.anisotropic && friction ? &dirs : 0);
         if (params.rolling && mode == BTG_SOFT_RELAX) btgSoftRolling(rolling[i], &s, a, b, &va, &vb, params);
     }
     if (a.dynamic) store_vel(va, lin, ang, bodyA);
@@ -313,7 +322,9 @@ static void soft_body(int i, int mode, SOFT_ARGS)
             }
             const int slot = slotOf[entry >> 2], owner = (entry & 2u) != 0u;
             BtgSoftContact s = load_soft_gather(softContacts, slot, side, owner);
-            btgSoftWarmStartSide(&s, side, body, &vel);
+            BtgFrictionDirs dirs;
+            if (params.anisotropic) dirs = frictionDirs[entry >> 2];
+            btgSoftWarmStartSide(&s, side, body, &vel, params.anisotropic ? &dirs : 0);
             if (owner) {
                 btgSoftWarmTotals(&s);
                 shared_soft(softContacts)[slot].totalNormal = s.totalNormal;

@@ -23,7 +23,7 @@ struct Issue;
 // their Bullet rows, solved each substep. Stiff scenes (mass ratios, tall stacks, pyramids)
 // stand where the batched PGS drifts; it is not stock's trajectory (see README, solver modes).
 // Auto: the soft step, or the batched PGS while the world uses a Bullet feature only the batched
-// PGS serves (anisotropic friction, friction anchors, m_sor, a negative m_globalCfm), where
+// PGS serves (friction anchors, m_sor, a negative m_globalCfm), where
 // SoftStep would send the world to the CPU path.
 // Report::solver says which ran, Report::solverReason why not the soft step. A switch between
 // them (the app starts or stops using such a feature) starts the contacts afresh, as a

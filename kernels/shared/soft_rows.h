@@ -61,6 +61,10 @@ typedef struct {
                                     (btgSoftCfmSpring; 0: none) */
     float cfmDamping;
     int rolling;                 /* BTG_SOLVER_ROLLING_FRICTION: the relax solves the contacts' rolling rows (btgSoftRolling) */
+    int anisotropic;             /* BTG_SOLVER_ANISOTROPIC_FRICTION: each point's friction rows along prepare_contacts'
+                                    BtgFrictionDirs (applyAnisotropicFriction's scaled directions), not the tangents:
+                                    1 the first only (Bullet's one direction, along the slip), 2 both
+                                    (SOLVER_USE_2_FRICTION_DIRECTIONS); 0: off */
 } BtgSoftParams;
 
 /* m_globalCfm as a spring: Bullet solves a contact of raw cfm and erp as the implicit spring of
@@ -148,7 +152,7 @@ typedef struct {
 
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(BtgSoftness) == 16, "BtgSoftness layout");
-static_assert(sizeof(BtgSoftParams) == 128, "BtgSoftParams layout");
+static_assert(sizeof(BtgSoftParams) == 132, "BtgSoftParams layout");
 static_assert(sizeof(BtgSoftContact) == 16 * (16 + 2 * BTG_MAX_POINTS) + 32, "BtgSoftContact layout");
 #endif
 
@@ -297,12 +301,26 @@ static inline void btgSoftTangents(BtgSoftContact* s)
     s->tangent2 = btgXyz(t2);
 }
 
+/* Point k's two friction directions: the contact's tangents, or with anisotropic friction
+ * (dirs given) Bullet's directions for the point as prepare_contacts scaled them
+ * (btgPrepareAnisotropicFriction: neither unit nor in the tangent plane; a row along a scaled
+ * direction bounded by friction x the normal impulse holds friction x scale along that axis, as
+ * Bullet's row does). */
+static inline BtgFloat4 btgSoftDir1(const BtgSoftContact* s, const BtgFrictionDirs* dirs, int k)
+{
+    return dirs ? btgXyz(dirs->dir1[k]) : s->tangent1;
+}
+static inline BtgFloat4 btgSoftDir2(const BtgSoftContact* s, const BtgFrictionDirs* dirs, int k)
+{
+    return dirs ? btgXyz(dirs->dir2[k]) : s->tangent2;
+}
+
 /* PrepareContacts: c as contact_cache built it (anchors from the step's start, distances, its
  * warm-start impulse: the cached step total times the warm-start factor). a0/b0: the bodies'
  * velocities before the step's forces. */
 static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel a0,
                                             BtgBodyVel b0, BtgFloat4 restitution, int solvable, BtgSoftParams p,
-                                            BtgPairMaterial mat)
+                                            BtgPairMaterial mat, const BtgFrictionDirs* dirs)
 {
     BtgSoftContact s;
     s.normal = btgXyz(c.normal);
@@ -362,11 +380,16 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
         }
         BtgJacobian jn = btgPointJacobian(n, rA, rB, a, b);
         btgSetLane(&s.normalMass, k, btgPointRowMass(jn, rA, rB, a, b));
-        btgSetLane(&s.tangent1Mass, k, btgPointRowMass(btgPointJacobian(s.tangent1, rA, rB, a, b), rA, rB, a, b));
-        btgSetLane(&s.tangent2Mass, k, btgPointRowMass(btgPointJacobian(s.tangent2, rA, rB, a, b), rA, rB, a, b));
+        const BtgFloat4 d1 = btgSoftDir1(&s, dirs, k), d2 = btgSoftDir2(&s, dirs, k);
+        btgSetLane(&s.tangent1Mass, k, btgPointRowMass(btgPointJacobian(d1, rA, rB, a, b), rA, rB, a, b));
+        /* scaled directions are not orthogonal: a second row would add friction Bullet's one
+         * direction does not have (the parallelogram of two bounded rows), so with one
+         * direction the second has no row and no impulse */
+        const int second = !dirs || p.anisotropic == 2;
+        if (second) btgSetLane(&s.tangent2Mass, k, btgPointRowMass(btgPointJacobian(d2, rA, rB, a, b), rA, rB, a, b));
         btgSetLane(&s.normalImpulse, k, btgLane(c.normalImpulse, k) * p.warmScale);
         btgSetLane(&s.tangent1Impulse, k, btgLane(c.friction1Impulse, k) * p.warmScale);
-        btgSetLane(&s.tangent2Impulse, k, btgLane(c.friction2Impulse, k) * p.warmScale);
+        btgSetLane(&s.tangent2Impulse, k, second ? btgLane(c.friction2Impulse, k) * p.warmScale : 0.0f);
         btgSetLane(&s.relativeVelocity, k, btgRowVelocity(jn, a0, b0));
         /* A spring of omega relative to the point's effective mass m sinks by
          * lambda / (m h omega^2) under the impulse lambda it carries a substep: a 1,000 kg box
@@ -410,12 +433,13 @@ static inline void btgSoftApplySide(BtgFloat4 linear, BtgFloat4 response, int si
 /* WarmStart: this substep starts from the last one's impulses, each point's three applied as one
  * impulse vector (the rows' effect is linear in it), on one of the contact's bodies (its totals:
  * btgSoftWarmTotals). */
-static inline void btgSoftWarmStartSide(const BtgSoftContact* s, int side, BtgSolverBody body, BtgBodyVel* v)
+static inline void btgSoftWarmStartSide(const BtgSoftContact* s, int side, BtgSolverBody body, BtgBodyVel* v,
+                                        const BtgFrictionDirs* dirs)
 {
     for (int k = 0; k < s->numPoints; ++k) {
         if (btgLane(s->normalMass, k) == 0.0f) continue;
         float ln = btgLane(s->normalImpulse, k), l1 = btgLane(s->tangent1Impulse, k), l2 = btgLane(s->tangent2Impulse, k);
-        BtgFloat4 impulse = btgXyz(s->normal * ln + s->tangent1 * l1 + s->tangent2 * l2);
+        BtgFloat4 impulse = btgXyz(s->normal * ln + btgSoftDir1(s, dirs, k) * l1 + btgSoftDir2(s, dirs, k) * l2);
         BtgFloat4 angular = side ? -btgCross3(s->rB[k], impulse) : btgCross3(s->rA[k], impulse);
         btgSoftApplySide(impulse, btgMat3MulVec(body.invI, angular) * body.angFactor, side, body, v, 1.0f);
     }
@@ -504,12 +528,12 @@ static inline void btgSoftNormalRow(BtgSoftContact* s, int k, BtgSolverBody a, B
     btgRowApply(j, a, b, va, vb, next - old);
 }
 static inline void btgSoftFrictionRows(BtgSoftContact* s, int k, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
-                                       BtgBodyVel* vb)
+                                       BtgBodyVel* vb, const BtgFrictionDirs* dirs)
 {
     if (btgLane(s->normalMass, k) == 0.0f) return;
     float o1 = btgLane(s->tangent1Impulse, k), o2 = btgLane(s->tangent2Impulse, k);
-    float n1 = btgSoftFrictionRow(s, k, s->tangent1, btgLane(s->tangent1Mass, k), o1, a, b, va, vb);
-    float n2 = btgSoftFrictionRow(s, k, s->tangent2, btgLane(s->tangent2Mass, k), o2, a, b, va, vb);
+    float n1 = btgSoftFrictionRow(s, k, btgSoftDir1(s, dirs, k), btgLane(s->tangent1Mass, k), o1, a, b, va, vb);
+    float n2 = btgSoftFrictionRow(s, k, btgSoftDir2(s, dirs, k), btgLane(s->tangent2Mass, k), o2, a, b, va, vb);
     btgSetLane(&s->tangent1Impulse, k, n1);
     btgSetLane(&s->tangent2Impulse, k, n2);
     btgSetLane(&s->total1, k, btgLane(s->total1, k) + (n1 - o1));
@@ -519,7 +543,7 @@ static inline void btgSoftFrictionRows(BtgSoftContact* s, int k, BtgSolverBody a
  * (btgItemKey of the sweep's key and the contact; 0: in order), as the bullet mode's sweeps do. */
 static inline void btgSoftSolve(BtgSoftContact* s, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb,
                                 BtgSoftDelta dA, BtgSoftDelta dB, int useBias, int normals,
-                                BtgSoftParams p, uint pointKey)
+                                BtgSoftParams p, uint pointKey, const BtgFrictionDirs* dirs)
 {
     const int n = s->numPoints;
     const int friction = !useBias || p.frictionInSolve;
@@ -529,14 +553,14 @@ static inline void btgSoftSolve(BtgSoftContact* s, BtgSolverBody a, BtgSolverBod
         for (int q = 0; q < n; ++q) {
             const int k = btgPermute(pointKey, n, q);
             if (normals & 1) btgSoftNormalRow(s, k, a, b, va, vb, dA, dB, useBias, normals, p);
-            btgSoftFrictionRows(s, k, a, b, va, vb);
+            btgSoftFrictionRows(s, k, a, b, va, vb, dirs);
         }
         return;
     }
     for (int q = 0; q < n && (normals & 1); ++q)
         btgSoftNormalRow(s, btgPermute(pointKey, n, q), a, b, va, vb, dA, dB, useBias, normals, p);
     if (!friction) return;
-    for (int q = 0; q < n; ++q) btgSoftFrictionRows(s, btgPermute(pointKey, n, q), a, b, va, vb);
+    for (int q = 0; q < n; ++q) btgSoftFrictionRows(s, btgPermute(pointKey, n, q), a, b, va, vb, dirs);
 }
 
 /* Rolling and spinning friction (r: prepare_contacts' BtgRollingContact of the contact, the
@@ -582,12 +606,14 @@ static inline void btgSoftRestitution(BtgSoftContact* s, BtgSolverBody a, BtgSol
 
 /* StoreImpulses into the contact list: the step's totals (what the cache warm-starts the next
  * step from and the app's manifolds report), friction along the two tangents as directions 1
- * and 2 (cos 1, sin 0). */
-static inline void btgSoftStore(BTG_GLOBAL BtgContact* contacts, int i, const BtgSoftContact* s)
+ * and 2 (cos 1, sin 0); with anisotropic friction along Bullet's directions, which
+ * prepare_contacts left in the contact as the bullet mode reports them (before the scaling). */
+static inline void btgSoftStore(BTG_GLOBAL BtgContact* contacts, int i, const BtgSoftContact* s, int anisotropic)
 {
     contacts[i].normalImpulse = s->totalNormal;
     contacts[i].friction1Impulse = s->total1;
     contacts[i].friction2Impulse = s->total2;
+    if (anisotropic) return;
     contacts[i].tangent1 = s->tangent1;
     contacts[i].tangent2 = s->tangent2;
     contacts[i].frictionCos = btgMake4(1.0f, 1.0f, 1.0f, 1.0f);

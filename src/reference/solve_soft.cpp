@@ -11,8 +11,13 @@
 namespace btgpu::ref {
 
 std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::vector<int>& colors,
-                                 ContactBodies& bodies, BtgSoftParams params, int numColors)
+                                 ContactBodies& bodies, BtgSoftParams params, int numColors,
+                                 const std::vector<BtgFrictionDirs>* frictionDirs)
 {
+    // anisotropic friction: each contact's scaled directions (prepare_contacts'), as the kernel reads them
+    auto dirsOf = [&](size_t e) -> const BtgFrictionDirs* {
+        return params.anisotropic && frictionDirs ? &(*frictionDirs)[e] : nullptr;
+    };
     if (numColors < 1) numColors = 1;
     const size_t n = bodies.props.size();
     // As soft_color_count and the stage: the substeps the largest edge mass ratio needs.
@@ -57,7 +62,7 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
                 BtgBodyVel vel = btgMakeBodyVel(1, v, w);
                 for (uint entry : lists[i]) {
                     BtgSoftContact& c = soft[entry >> 2];
-                    btgSoftWarmStartSide(&c, int(entry & 1u), self, &vel);
+                    btgSoftWarmStartSide(&c, int(entry & 1u), self, &vel, dirsOf(entry >> 2));
                     if (entry & 2u) btgSoftWarmTotals(&c);
                 }
                 v = btgMake4(vel.lin.x, vel.lin.y, vel.lin.z, v.w);
@@ -71,7 +76,7 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
     };
     auto edge = [&](size_t e, int mode, uint key) {
         if (mode == BTG_SOFT_STORE) {
-            btgSoftStore(contacts.data(), int(e), &soft[e]);
+            btgSoftStore(contacts.data(), int(e), &soft[e], params.anisotropic);
             return;
         }
         const int ia = contacts[e].bodyA, ib = contacts[e].bodyB;
@@ -84,7 +89,7 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
                                      btgMakeBodyVel(b.moving, bodies.linVel0[ib], bodies.angVel0[ib]),
                                      btgMake4(r, r, r, r),
                                      btgContactSolvable(pa.flags, pb.flags), params,
-                                     btgPairMaterial(pa, pb));
+                                     btgPairMaterial(pa, pb), dirsOf(e));
             if (params.heldMassRatio > 0.0f) {
                 const int fixed = a.dynamic != b.dynamic && btgContactSolvable(pa.flags, pb.flags);
                 const int light = btgSoftLightSide(a, b, params);
@@ -117,7 +122,7 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
                 }
             }
             btgSoftSolve(&soft[e], a, b, &va, &vb, btgSoftDeltaOf(ra), btgSoftDeltaOf(rb), mode == BTG_SOFT_SOLVE,
-                         normals, params, btgItemKey(key, uint(e) + 1u));
+                         normals, params, btgItemKey(key, uint(e) + 1u), dirsOf(e));
         }
         if (a.dynamic) {
             bodies.linVel[ia] = btgMake4(va.lin.x, va.lin.y, va.lin.z, bodies.linVel[ia].w);

@@ -10,9 +10,11 @@ namespace btgpu::ref {
 // solveSoft: bodies begin, contacts prepare, `params.substeps` substeps (raised as the stage
 // raises them for the largest mass ratio, btgSoftSubstepsFor) (velocities, warm
 // start, solve, positions, relax), restitution, store. Updates linVel/angVel and the contacts'
-// impulses; returns the bodies' soft rows (BTG_SOFT_BODY_ROWS each) for softTransforms.
+// impulses; returns the bodies' soft rows (BTG_SOFT_BODY_ROWS each) for softTransforms. frictionDirs:
+// prepare_contacts' directions per contact, read with params.anisotropic.
 std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::vector<int>& colors,
-                                 ContactBodies& bodies, BtgSoftParams params, int numColors);
+                                 ContactBodies& bodies, BtgSoftParams params, int numColors,
+                                 const std::vector<BtgFrictionDirs>* frictionDirs = nullptr);
 // softTransforms: the poses of the bodies the integrator moves, from their rows.
 void softTransforms(ContactBodies& bodies, const std::vector<BtgFloat4>& rows);
 

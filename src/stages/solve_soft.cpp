@@ -54,6 +54,7 @@ BtgSoftParams makeSoftParams(const SoftStepConfig& c, const BtgStepParams& param
     p.processingThreshold = (params.solverFlags & BTG_SOLVER_PROCESSING_THRESHOLD) != 0u ? 1 : 0;
     btgSoftCfmSpring(&p, params.globalCfm, params.erp2, params.dt);
     p.rolling = (params.solverFlags & BTG_SOLVER_ROLLING_FRICTION) != 0u ? 1 : 0;
+    p.anisotropic = (params.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION) == 0u ? 0 : (params.twoFrictionDirections ? 2 : 1);
     return btgSoftParamsWith(p, p.substeps);
 }
 
@@ -81,6 +82,7 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     w.appliedMaterials = 0;
     w.contactManifolds.reserve(ctx, 1);
     w.contactMaterials.reserve(ctx, 1);
+    w.frictionDirs.reserve(ctx, 1);  // read with BtgSoftParams::anisotropic only (prepare_contacts fills it then)
     // The bodies' edge lists (the warm start's gather): none until the edges are listed below.
     sc.softListStart.reserve(ctx, size_t(numBodies) + 1);
     sc.softListStart.zero(ctx, size_t(numBodies) + 1);
@@ -91,7 +93,8 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
         return l.arg(w.contacts).arg(sc.softContacts).arg(w.props).arg(w.invInertiaWorld).arg(w.linVel0)
             .arg(w.angVel0).arg(w.linVel).arg(w.angVel).arg(sc.softBodies).arg(w.joints).arg(w.jointState)
             .arg(w.jointRows).arg(sc.softListStart).arg(sc.softListEntries).arg(sc.edgeSlot).arg(w.counters)
-            .arg(w.rollingContacts).arg(w.contactManifolds).arg(w.contactMaterials).arg(materials).arg(params);
+            .arg(w.rollingContacts).arg(w.contactManifolds).arg(w.contactMaterials).arg(materials).arg(w.frictionDirs)
+            .arg(params);
     };
     cl_kernel bodies = prog.kernel("soft_bodies");
     auto bodyPass = [&](int mode) {

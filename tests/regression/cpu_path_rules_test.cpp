@@ -327,18 +327,12 @@ TEST(CpuPathRules, JacobiSolverFallsBackForRowsItLacks)
 }
 
 // The Bullet settings the soft step's rows do not follow (its contacts are its own springs),
-// each with the words that name it; set on body 1 or the solver info.
+// each with the words that name it; set on body 1 or the solver info. (Anisotropic friction it
+// serves: SolverFeatures.SoftStepAnisotropicFrictionAsStock.)
 std::vector<Rule> softStepLacks()
 {
     return {flag("friction anchors", "CF_HAS_FRICTION_ANCHOR) with Config::solver = SoftStep",
                  btCollisionObject::CF_HAS_FRICTION_ANCHOR),
-            {"anisotropic friction", "anisotropic friction with Config::solver = SoftStep",
-             [](Scene& s) {
-                 s.body(1)->setAnisotropicFriction(btVector3(1, btScalar(0.5), 1), btCollisionObject::CF_ANISOTROPIC_FRICTION);
-             },
-             [](Scene& s) {
-                 s.body(1)->setAnisotropicFriction(btVector3(1, 1, 1), btCollisionObject::CF_ANISOTROPIC_FRICTION_DISABLED);
-             }},
             solverInfo("SOR", "m_sor changed with Config::solver = SoftStep",
                        [](btContactSolverInfo& i) { i.m_sor = btScalar(0.5); })};
 }

@@ -79,9 +79,10 @@ Result runReference(const ref::ContactBodies& b, const std::vector<BtgManifold>&
     Result r;
     r.bodies = b;
     r.contacts = ref::buildContacts(ms, int(ms.size()), b, prev, p);
-    std::vector<BtgEdge> edges = ref::prepareContacts(r.contacts, r.bodies, p);
+    std::vector<BtgFrictionDirs> dirs;  // with BTG_SOLVER_ANISOTROPIC_FRICTION
+    std::vector<BtgEdge> edges = ref::prepareContacts(r.contacts, r.bodies, p, nullptr, &dirs);
     std::vector<int> colors = ref::colorConstraints(edges, r.bodies, maxColors);
-    std::vector<BtgFloat4> rows = ref::solveSoft(r.contacts, colors, r.bodies, sp, maxColors);
+    std::vector<BtgFloat4> rows = ref::solveSoft(r.contacts, colors, r.bodies, sp, maxColors, &dirs);
     ref::softTransforms(r.bodies, rows);
     return r;
 }
@@ -194,6 +195,46 @@ TEST(SolveSoft, OrderBitsMatchReferenceAndChangeTheAnswer)
         EXPECT_EQ(0, std::memcmp(fused.bodies.pos.data(), perColor.bodies.pos.data(), n * sizeof(BtgFloat4)));
         EXPECT_NE(0, std::memcmp(r.bodies.angVel.data(), base.bodies.angVel.data(), n * sizeof(BtgFloat4)))
             << "the order bits changed nothing";
+    }
+}
+
+// Anisotropic friction (BtgSoftParams::anisotropic: each point's friction rows along
+// prepare_contacts' scaled directions; with one direction the first alone), warm-started: the
+// device against the reference on the stack scene with every box turned and anisotropic, and
+// the directions change the answer.
+TEST(SolveSoft, AnisotropicFrictionMatchesReference)
+{
+    test::StackScene s = test::stackScene(4, 3, 5);
+    for (size_t i = 1; i < s.bodies.props.size(); ++i) {
+        s.bodies.props[i].flags |= BTG_BODY_ANISOTROPIC;
+        s.bodies.props[i].anisotropicFriction = btgMake4(1.0f, 0.6f, 0.2f, 0);
+        s.bodies.rot[i] = btgQuatNormalize(btgMake4(0.1f * float(i % 3), 0.3f, -0.05f * float(i % 2), 1.0f));
+        s.bodies.linVel[i] = btgMake4(0.5f, -0.1f, 0.3f * float(i % 2), 0.0f);  // sliding: directions along the slip
+    }
+    const BtgStepParams plain = test::defaultParams(int(s.bodies.props.size()));
+    const Result isotropic = runReference(s.bodies, s.manifolds, {}, plain, softParams(plain), 8);
+    const float tol = 30 * tol::kStageAbs;
+    for (int two : {0, 1}) {
+        SCOPED_TRACE(two);
+        BtgStepParams p = plain;
+        p.solverFlags = BTG_SOLVER_ANISOTROPIC_FRICTION;
+        p.twoFrictionDirections = two;
+        const BtgSoftParams sp = softParams(p);
+        EXPECT_EQ(two ? 2 : 1, sp.anisotropic);
+        const Result r1 = runReference(s.bodies, s.manifolds, {}, p, sp, 8);
+        const Result r = runReference(s.bodies, s.manifolds, r1.contacts, p, sp, 8);
+        for (bool fused : {true, false}) {
+            SCOPED_TRACE(fused ? "one launch" : "per-color launches");
+            const Result d1 = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, fused);
+            expectAlike(d1, r1, tol);
+            expectAlike(runDevice(s.bodies, s.manifolds, d1.contacts, p, sp, 8, fused), r, tol);
+        }
+        if (!two)
+            for (const BtgContact& c : r1.contacts)
+                for (int k = 0; k < c.numPoints; ++k) EXPECT_EQ(0.0f, btgLane(c.friction2Impulse, k));
+        const size_t n = r1.bodies.linVel.size();
+        EXPECT_NE(0, std::memcmp(r1.bodies.linVel.data(), isotropic.bodies.linVel.data(), n * sizeof(BtgFloat4)))
+            << "the anisotropy changed nothing";
     }
 }
 
