@@ -162,10 +162,11 @@ SolverKind GpuWorld::solverToRun() const
 
 std::string GpuWorld::softStepReason() const
 {
-    // The soft step's contacts are its own springs (soft_rows.h): it builds none of the rows the
-    // bullet mode adds for friction anchors, and has no relaxation factor (m_sor) nor a spring
-    // for a negative cfm. Anisotropic friction it serves: its friction rows then run along
-    // prepare_contacts' scaled directions (BtgSoftParams::anisotropic).
+    // The soft step's contacts are its own springs (soft_rows.h) on a fresh clip each step
+    // (box-box pairs keep no persistent manifold in it, so no point stays as a friction anchor),
+    // with no relaxation factor (m_sor) nor a spring for a negative cfm. Anisotropic friction it
+    // serves: a contact of an anisotropic body runs its friction rows along Bullet's scaled
+    // directions (BtgSoftParams::anisotropic).
     if (m_solverFlags & BTG_SOLVER_FRICTION_ANCHORS)
         return "friction anchors (CF_HAS_FRICTION_ANCHOR) with Config::solver = SoftStep";
     const btContactSolverInfo& info = m_world.getSolverInfo();

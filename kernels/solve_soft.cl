@@ -109,7 +109,7 @@ static BtgSoftContact load_soft_gather(__global BtgSoftContact* softContacts, in
     s.bodyA = 0;
     s.bodyB = 0;
     s.numPoints = sc[i].numPoints;
-    s.fixed = 0;
+    s.flags = sc[i].flags;
     s.friction = 0.0f;
     s.restitution = 0.0f;
     s.springStiffness = 0.0f;
@@ -147,7 +147,7 @@ static BtgSoftContact load_soft(__global const BtgSoftContact* softContacts, int
     s.bodyA = softContacts[i].bodyA;
     s.bodyB = softContacts[i].bodyB;
     s.numPoints = softContacts[i].numPoints;
-    s.fixed = softContacts[i].fixed;
+    s.flags = softContacts[i].flags;
     s.friction = softContacts[i].friction;
     s.restitution = softContacts[i].restitution;
     s.springStiffness = softContacts[i].springStiffness;
@@ -196,7 +196,7 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
         s.totalNormal = sc[slot].totalNormal;
         s.total1 = sc[slot].total1;
         s.total2 = sc[slot].total2;
-        btgSoftStore(contacts, i, &s, params.anisotropic);
+        btgSoftStore(contacts, i, &s);
         return;
     }
     /* the passes after prepare take the bodies from the soft contact: one struct a pass, not two */
@@ -214,11 +214,12 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
         BtgFloat4 restitution = btgMake4(r, r, r, r);
         const int m = numMaterials > 0 ? btgFindMaterial(materials, numMaterials, contactManifolds[i]) : -1;
         if (m >= 0) restitution = materials[m].restitution;
+        const int bullet = btgSoftTakesBulletDirections(pa.flags, pb.flags, params);
         BtgFrictionDirs dirs;
-        if (params.anisotropic) dirs = frictionDirs[i];
+        if (bullet) dirs = frictionDirs[i];
         softContacts[slot] = btgSoftPack(btgSoftPrepare(contacts[i], a, b, a0, b0, restitution,
                                                         btgContactSolvable(pa.flags, pb.flags), params,
-                                                        btgPairMaterial(pa, pb), params.anisotropic ? &dirs : 0));
+                                                        btgPairMaterial(pa, pb), bullet ? &dirs : 0));
         if (params.heldMassRatio > 0.0f) {
             const int fixed = a.dynamic != b.dynamic && btgContactSolvable(pa.flags, pb.flags);
             const int light = btgSoftLightSide(a, b, params);
@@ -247,12 +248,12 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
                 normals = 3;
             }
         }
-        /* anisotropic friction: the point's scaled directions, read where friction rows run */
-        const int friction = mode == BTG_SOFT_RELAX || params.frictionInSolve;
+        /* Bullet's directions where the contact takes them, read where friction rows run */
+        const int bullet = (s.flags & BTG_SOFT_BULLET_DIRECTIONS) && (mode == BTG_SOFT_RELAX || params.frictionInSolve);
         BtgFrictionDirs dirs;
-        if (params.anisotropic && friction) dirs = frictionDirs[i];
+        if (bullet) dirs = frictionDirs[i];
         btgSoftSolve(&s, a, b, &va, &vb, dA, dB, mode == BTG_SOFT_SOLVE, normals, params, btgItemKey(key, (uint)i + 1u),
-                     params.anisotropic && friction ? &dirs : 0);
+                     bullet ? &dirs : 0);
         if (params.rolling && mode == BTG_SOFT_RELAX) btgSoftRolling(rolling[i], &s, a, b, &va, &vb, params);
     }
     if (a.dynamic) store_vel(va, lin, ang, bodyA);
@@ -322,9 +323,10 @@ static void soft_body(int i, int mode, SOFT_ARGS)
             }
             const int slot = slotOf[entry >> 2], owner = (entry & 2u) != 0u;
             BtgSoftContact s = load_soft_gather(softContacts, slot, side, owner);
+            const int bullet = (s.flags & BTG_SOFT_BULLET_DIRECTIONS) != 0;
             BtgFrictionDirs dirs;
-            if (params.anisotropic) dirs = frictionDirs[entry >> 2];
-            btgSoftWarmStartSide(&s, side, body, &vel, params.anisotropic ? &dirs : 0);
+            if (bullet) dirs = frictionDirs[entry >> 2];
+            btgSoftWarmStartSide(&s, side, body, &vel, bullet ? &dirs : 0);
             if (owner) {
                 btgSoftWarmTotals(&s);
                 shared_soft(softContacts)[slot].totalNormal = s.totalNormal;

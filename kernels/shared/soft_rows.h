@@ -61,10 +61,11 @@ typedef struct {
                                     (btgSoftCfmSpring; 0: none) */
     float cfmDamping;
     int rolling;                 /* BTG_SOLVER_ROLLING_FRICTION: the relax solves the contacts' rolling rows (btgSoftRolling) */
-    int anisotropic;             /* BTG_SOLVER_ANISOTROPIC_FRICTION: each point's friction rows along prepare_contacts'
-                                    BtgFrictionDirs (applyAnisotropicFriction's scaled directions), not the tangents:
-                                    1 the first only (Bullet's one direction, along the slip), 2 both
-                                    (SOLVER_USE_2_FRICTION_DIRECTIONS); 0: off */
+    int anisotropic;             /* BTG_SOLVER_ANISOTROPIC_FRICTION: a contact of an anisotropic body takes Bullet's
+                                    directions (BTG_SOFT_BULLET_DIRECTIONS) from prepare_contacts' BtgFrictionDirs
+                                    (applyAnisotropicFriction's scaled directions) */
+    int twoDirections;           /* SOLVER_USE_2_FRICTION_DIRECTIONS: with Bullet's directions, both rows (else the first
+                                    alone, as Bullet's one row) */
 } BtgSoftParams;
 
 /* m_globalCfm as a spring: Bullet solves a contact of raw cfm and erp as the implicit spring of
@@ -106,7 +107,7 @@ typedef struct {
     int bodyA;
     int bodyB;
     int numPoints;
-    int fixed;                        /* 1: solved with BtgSoftParams.fixed */
+    int flags;                        /* BTG_SOFT_FIXED, BTG_SOFT_BULLET_DIRECTIONS */
     float springStiffness;            /* N/m, with springDamping N s/m: the pair's own contact spring (Bullet's
                                          setContactStiffnessAndDamping), 0: the soft step's (BtgSoftParams) */
     float springDamping;
@@ -120,6 +121,12 @@ typedef struct {
     BtgFloat4 tangent2;
     BtgFloat4 pointRestitution;       /* per point: its restitution (the pair's, or a contact callback's) */
 } BtgSoftContact;
+
+/* BtgSoftContact.flags. FIXED: solved with BtgSoftParams.fixed (against a static, kinematic or
+ * sleeping body). BULLET_DIRECTIONS: the friction rows run along Bullet's directions for each
+ * point (anisotropic friction: btgSoftTakesBulletDirections), not the tangents. */
+#define BTG_SOFT_FIXED 1
+#define BTG_SOFT_BULLET_DIRECTIONS 2
 
 /* Per body, eight rows of the soft scratch (BTG_SOFT_BODY_ROWS x numBodies): the position and
  * rotation moved so far this step (the rotation also as its matrix, which every point's
@@ -152,7 +159,7 @@ typedef struct {
 
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(BtgSoftness) == 16, "BtgSoftness layout");
-static_assert(sizeof(BtgSoftParams) == 132, "BtgSoftParams layout");
+static_assert(sizeof(BtgSoftParams) == 136, "BtgSoftParams layout");
 static_assert(sizeof(BtgSoftContact) == 16 * (16 + 2 * BTG_MAX_POINTS) + 32, "BtgSoftContact layout");
 #endif
 
@@ -301,11 +308,11 @@ static inline void btgSoftTangents(BtgSoftContact* s)
     s->tangent2 = btgXyz(t2);
 }
 
-/* Point k's two friction directions: the contact's tangents, or with anisotropic friction
- * (dirs given) Bullet's directions for the point as prepare_contacts scaled them
- * (btgPrepareAnisotropicFriction: neither unit nor in the tangent plane; a row along a scaled
- * direction bounded by friction x the normal impulse holds friction x scale along that axis, as
- * Bullet's row does). */
+/* Point k's two friction directions: the contact's tangents, or (dirs given: a contact with
+ * BTG_SOFT_BULLET_DIRECTIONS) Bullet's directions for the point, as prepare_contacts made them
+ * for the bullet mode (with anisotropic friction scaled, btgPrepareAnisotropicFriction: neither
+ * unit nor in the tangent plane; a row along a scaled direction bounded by friction x the normal
+ * impulse holds friction x scale along that axis, as Bullet's row does). */
 static inline BtgFloat4 btgSoftDir1(const BtgSoftContact* s, const BtgFrictionDirs* dirs, int k)
 {
     return dirs ? btgXyz(dirs->dir1[k]) : s->tangent1;
@@ -313,6 +320,12 @@ static inline BtgFloat4 btgSoftDir1(const BtgSoftContact* s, const BtgFrictionDi
 static inline BtgFloat4 btgSoftDir2(const BtgSoftContact* s, const BtgFrictionDirs* dirs, int k)
 {
     return dirs ? btgXyz(dirs->dir2[k]) : s->tangent2;
+}
+/* Whether a contact takes Bullet's directions: one of an anisotropic body (flagsA/B: its
+ * bodies' BtgBodyProps flags). Other contacts keep the tangents. */
+static inline int btgSoftTakesBulletDirections(uint flagsA, uint flagsB, BtgSoftParams p)
+{
+    return p.anisotropic && ((flagsA | flagsB) & BTG_BODY_ANISOTROPIC) != 0u;
 }
 
 /* PrepareContacts: c as contact_cache built it (anchors from the step's start, distances, its
@@ -336,7 +349,7 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
     s.bodyA = c.bodyA;
     s.bodyB = c.bodyB;
     s.numPoints = c.numPoints;
-    s.fixed = !(a.dynamic && b.dynamic);
+    s.flags = (a.dynamic && b.dynamic ? 0 : BTG_SOFT_FIXED) | (dirs ? BTG_SOFT_BULLET_DIRECTIONS : 0);
     s.springStiffness = 0.0f;
     s.springDamping = 0.0f;
     if (mat.stiffnessDamping) {
@@ -360,7 +373,7 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
     s.total2 = btgZero4();
     s.relativeVelocity = btgZero4();
     s.stiffening = btgMake4(1.0f, 1.0f, 1.0f, 1.0f);
-    const float omega2 = s.fixed ? p.omega2Fixed : p.omega2Contact;
+    const float omega2 = (s.flags & BTG_SOFT_FIXED) ? p.omega2Fixed : p.omega2Contact;
     for (int k = 0; k < BTG_MAX_POINTS; ++k) {
         s.rA[k] = btgZero4();
         s.rB[k] = btgZero4();
@@ -385,7 +398,7 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
         /* scaled directions are not orthogonal: a second row would add friction Bullet's one
          * direction does not have (the parallelogram of two bounded rows), so with one
          * direction the second has no row and no impulse */
-        const int second = !dirs || p.anisotropic == 2;
+        const int second = !dirs || p.twoDirections;
         if (second) btgSetLane(&s.tangent2Mass, k, btgPointRowMass(btgPointJacobian(d2, rA, rB, a, b), rA, rB, a, b));
         btgSetLane(&s.normalImpulse, k, btgLane(c.normalImpulse, k) * p.warmScale);
         btgSetLane(&s.tangent1Impulse, k, btgLane(c.friction1Impulse, k) * p.warmScale);
@@ -485,7 +498,7 @@ static inline void btgSoftNormalRow(BtgSoftContact* s, int k, BtgSolverBody a, B
                                     BtgBodyVel* vb, BtgSoftDelta dA, BtgSoftDelta dB, int useBias, int normals,
                                     BtgSoftParams p)
 {
-    const BtgSoftness soft = s->fixed ? p.fixed : p.contact;
+    const BtgSoftness soft = (s->flags & BTG_SOFT_FIXED) ? p.fixed : p.contact;
     float mass = btgLane(s->normalMass, k);
     if (mass == 0.0f) return;
     float sep = btgSoftSeparation(s, k, dA, dB);
@@ -606,14 +619,14 @@ static inline void btgSoftRestitution(BtgSoftContact* s, BtgSolverBody a, BtgSol
 
 /* StoreImpulses into the contact list: the step's totals (what the cache warm-starts the next
  * step from and the app's manifolds report), friction along the two tangents as directions 1
- * and 2 (cos 1, sin 0); with anisotropic friction along Bullet's directions, which
- * prepare_contacts left in the contact as the bullet mode reports them (before the scaling). */
-static inline void btgSoftStore(BTG_GLOBAL BtgContact* contacts, int i, const BtgSoftContact* s, int anisotropic)
+ * and 2 (cos 1, sin 0); with Bullet's directions along those, which prepare_contacts left in
+ * the contact as the bullet mode reports them (before the anisotropic scaling). */
+static inline void btgSoftStore(BTG_GLOBAL BtgContact* contacts, int i, const BtgSoftContact* s)
 {
     contacts[i].normalImpulse = s->totalNormal;
     contacts[i].friction1Impulse = s->total1;
     contacts[i].friction2Impulse = s->total2;
-    if (anisotropic) return;
+    if (s->flags & BTG_SOFT_BULLET_DIRECTIONS) return;
     contacts[i].tangent1 = s->tangent1;
     contacts[i].tangent2 = s->tangent2;
     contacts[i].frictionCos = btgMake4(1.0f, 1.0f, 1.0f, 1.0f);

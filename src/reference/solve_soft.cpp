@@ -14,9 +14,12 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
                                  ContactBodies& bodies, BtgSoftParams params, int numColors,
                                  const std::vector<BtgFrictionDirs>* frictionDirs)
 {
-    // anisotropic friction: each contact's scaled directions (prepare_contacts'), as the kernel reads them
+    // Bullet's directions of a contact that takes them (one of an anisotropic body), as the
+    // kernel reads them: prepare_contacts' scaled ones
     auto dirsOf = [&](size_t e) -> const BtgFrictionDirs* {
-        return params.anisotropic && frictionDirs ? &(*frictionDirs)[e] : nullptr;
+        const BtgBodyProps &pa = bodies.props[size_t(contacts[e].bodyA)], &pb = bodies.props[size_t(contacts[e].bodyB)];
+        if (!frictionDirs || !btgSoftTakesBulletDirections(pa.flags, pb.flags, params)) return nullptr;
+        return &(*frictionDirs)[e];
     };
     if (numColors < 1) numColors = 1;
     const size_t n = bodies.props.size();
@@ -62,7 +65,8 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
                 BtgBodyVel vel = btgMakeBodyVel(1, v, w);
                 for (uint entry : lists[i]) {
                     BtgSoftContact& c = soft[entry >> 2];
-                    btgSoftWarmStartSide(&c, int(entry & 1u), self, &vel, dirsOf(entry >> 2));
+                    btgSoftWarmStartSide(&c, int(entry & 1u), self, &vel,
+                                         (c.flags & BTG_SOFT_BULLET_DIRECTIONS) ? dirsOf(entry >> 2) : nullptr);
                     if (entry & 2u) btgSoftWarmTotals(&c);
                 }
                 v = btgMake4(vel.lin.x, vel.lin.y, vel.lin.z, v.w);
@@ -76,7 +80,7 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
     };
     auto edge = [&](size_t e, int mode, uint key) {
         if (mode == BTG_SOFT_STORE) {
-            btgSoftStore(contacts.data(), int(e), &soft[e], params.anisotropic);
+            btgSoftStore(contacts.data(), int(e), &soft[e]);
             return;
         }
         const int ia = contacts[e].bodyA, ib = contacts[e].bodyB;
@@ -122,7 +126,8 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
                 }
             }
             btgSoftSolve(&soft[e], a, b, &va, &vb, btgSoftDeltaOf(ra), btgSoftDeltaOf(rb), mode == BTG_SOFT_SOLVE,
-                         normals, params, btgItemKey(key, uint(e) + 1u), dirsOf(e));
+                         normals, params, btgItemKey(key, uint(e) + 1u),
+                         (soft[e].flags & BTG_SOFT_BULLET_DIRECTIONS) ? dirsOf(e) : nullptr);
         }
         if (a.dynamic) {
             bodies.linVel[ia] = btgMake4(va.lin.x, va.lin.y, va.lin.z, bodies.linVel[ia].w);

@@ -54,7 +54,8 @@ BtgSoftParams makeSoftParams(const SoftStepConfig& c, const BtgStepParams& param
     p.processingThreshold = (params.solverFlags & BTG_SOLVER_PROCESSING_THRESHOLD) != 0u ? 1 : 0;
     btgSoftCfmSpring(&p, params.globalCfm, params.erp2, params.dt);
     p.rolling = (params.solverFlags & BTG_SOLVER_ROLLING_FRICTION) != 0u ? 1 : 0;
-    p.anisotropic = (params.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION) == 0u ? 0 : (params.twoFrictionDirections ? 2 : 1);
+    p.anisotropic = (params.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION) != 0u ? 1 : 0;
+    p.twoDirections = params.twoFrictionDirections ? 1 : 0;
     return btgSoftParamsWith(p, p.substeps);
 }
 
