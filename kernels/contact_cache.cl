@@ -95,7 +95,8 @@ __kernel void write_contacts(__global const BtgManifoldRange* restrict pairManif
         const float processing = (params.solverFlags & BTG_SOLVER_PROCESSING_THRESHOLD)
                                      ? btgProcessingThreshold(props[m.bodyA], props[m.bodyB])
                                      : BTG_NO_PROCESSING_THRESHOLD;
-        if (prev >= 0) btgWarmStartFrom(&c, rot[m.bodyA], m, cache[prev], params.warmstartFactor, processing);
+        if (prev >= 0) btgWarmStartFrom(&c, rot[m.bodyA], m, cache[prev], params.warmstartFactor, processing,
+                                          (params.solverFlags & BTG_SOLVER_WARM_FRICTION) != 0u);
         contacts[dst] = c;
         contactManifolds[dst] = slot;
     }

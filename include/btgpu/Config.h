@@ -58,8 +58,9 @@ struct SoftStepConfig {
     float dampingRatio = 10.0f;
     // m/s: the fastest the spring pushes a penetration apart (Box2D's contactSpeed).
     float pushSpeed = 3.0f;
-    // Friction rows in the biased solve as well as the relax. Box2D v3.1 solves them in the
-    // relax only, and so does the default: with them in both, the tower of 30 rocks.
+    // Friction rows in the biased solve as well as the relax (as Box2D's current sources do).
+    // Off by default: with them in both, the tower of 30 rocks. Friction against fixed bodies is
+    // warm-started across steps either way (a box resting on a slope creeps without it).
     bool frictionInSolve = false;
     // m: the most a loaded contact spring sinks. Box2D's spring is relative to the contact
     // point's effective mass, so it sinks by its load / (effective mass x omega^2): a 1,000 kg

@@ -13,7 +13,6 @@
 #include "math.h"
 #include "solver_rows.h"
 
-/* BTG_WARMSTART_FRICTION (friction impulses kept across steps) is in types.h. */
 #define BTG_MAX_FRICTION 10.0f       /* btManifoldResult::calculateCombinedFriction's clamp */
 #define BTG_NORMAL_UPPER_LIMIT 1e10f /* setupContactConstraint's m_upperLimit */
 #define BTG_SIMD_EPSILON 1.1920929e-07f /* Bullet's SIMD_EPSILON (FLT_EPSILON) */
@@ -177,10 +176,8 @@ static inline BtgCachedContact btgCachedContactFrom(BtgContact c, BtgFloat4 rotA
             e.featureId[k] = m->points[k].featureId;
         }
     }
-#if BTG_WARMSTART_FRICTION
     e.friction1Impulse = c.friction1Impulse;
     e.friction2Impulse = c.friction2Impulse;
-#endif
     e.partIdA = m->partIdA;
     e.indexA = m->indexA;
     e.partIdB = m->partIdB;
@@ -263,9 +260,11 @@ static inline void btgMatchPoints(BtgManifold m, const BtgFloat4* keys, BtgCache
 
 /* The warm start: each new point's impulses start from those of the old point it continues
  * (btgMatchPoints), scaled by the warm-start factor but for the points beyond the manifold's
- * processing threshold. rotA: A's rotation now (the new points' keys). */
+ * processing threshold; the friction impulses too with `friction` (BTG_SOLVER_WARM_FRICTION: the
+ * soft step), else they start at zero as Bullet 3.24's. rotA: A's rotation now (the new points'
+ * keys). */
 static inline void btgWarmStartFrom(BtgContact* c, BtgFloat4 rotA, BtgManifold m, BtgCachedContact old, float factor,
-                                    float processingThreshold)
+                                    float processingThreshold, int friction)
 {
     BtgMat3 ra = btgQuatToMat3(rotA);
     BtgFloat4 keys[BTG_MAX_POINTS];
@@ -279,10 +278,10 @@ static inline void btgWarmStartFrom(BtgContact* c, BtgFloat4 rotA, BtgManifold m
          * the impulses unscaled (stock warm-starts from them again once it is solved) */
         const float f = btgPointProcessed(btgLane(c->separation, k), processingThreshold) ? factor : 1.0f;
         btgSetLane(&c->normalImpulse, k, old.point[found].w * f);
-#if BTG_WARMSTART_FRICTION
-        btgSetLane(&c->friction1Impulse, k, btgLane(old.friction1Impulse, found) * f);
-        btgSetLane(&c->friction2Impulse, k, btgLane(old.friction2Impulse, found) * f);
-#endif
+        if (friction) {
+            btgSetLane(&c->friction1Impulse, k, btgLane(old.friction1Impulse, found) * f);
+            btgSetLane(&c->friction2Impulse, k, btgLane(old.friction2Impulse, found) * f);
+        }
     }
 }
 

@@ -72,14 +72,6 @@
 
 #define BTG_MAX_POINTS 4 /* contact points per manifold, as Bullet's btPersistentManifold */
 
-/* Bullet 3.24 zeroes friction impulses at setup (setFrictionConstraintImpulse); btgpu keeps
- * them, scaled by the warm-start factor, because its friction directions are a pure function of
- * a stable normal (btgPlaneSpace) and so mean the same thing next step. 0 restores Bullet's rule.
- * Here, not in contact_rows.h, because the warm-start cache carries the friction impulses only
- * when they are used. */
-#ifndef BTG_WARMSTART_FRICTION
-#define BTG_WARMSTART_FRICTION 0
-#endif
 
 /* Static per-body properties; rewritten only when the app changes them. */
 typedef struct {
@@ -339,10 +331,9 @@ typedef struct {
 typedef struct {
     BtgFloat4 point[BTG_MAX_POINTS]; /* xyz: contact point on A in A's body frame, m (the match
                                         key); w: accumulated normal impulse, N s */
-#if BTG_WARMSTART_FRICTION
-    BtgFloat4 friction1Impulse;      /* accumulated along t1 per point, N s */
-    BtgFloat4 friction2Impulse;      /* accumulated along t2 per point, N s */
-#endif
+    BtgFloat4 friction1Impulse;      /* accumulated along direction 1 per point, N s (read back with
+                                        BTG_SOLVER_WARM_FRICTION) */
+    BtgFloat4 friction2Impulse;      /* ... direction 2 */
     uint featureId[BTG_MAX_POINTS];  /* per point, its manifold point's */
     int partIdA;                     /* the manifold's sub-shape keys */
     int indexA;
@@ -427,6 +418,10 @@ typedef struct {
 #define BTG_SOLVER_FRICTION_ANCHORS 32u /* a body has CF_HAS_FRICTION_ANCHOR: prepare writes BtgFrictionAnchor rows */
 #define BTG_SOLVER_INTERLEAVE 64u /* SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS: each point's friction
                                      rows right after its normal row */
+#define BTG_SOLVER_WARM_FRICTION 128u /* the warm start also takes the friction impulses across steps (the soft
+                                         step: its directions are a pure function of the normal, btgPlaneSpace,
+                                         and mean the same thing next step; Bullet 3.24 zeroes them at setup,
+                                         setFrictionConstraintImpulse, and so does the bullet mode) */
 
 /* Device status flags (one uint, read back with the transforms). */
 #define BTG_STATUS_PAIR_OVERFLOW 1u
@@ -449,7 +444,7 @@ static_assert(sizeof(BtgEdge) == 8, "BtgEdge layout");
 static_assert(sizeof(BtgRollingContact) == 16 * 5 + 32, "BtgRollingContact layout");
 static_assert(sizeof(BtgFrictionDirs) == 32 * BTG_MAX_POINTS, "BtgFrictionDirs layout");
 static_assert(sizeof(BtgFrictionAnchor) == 32, "BtgFrictionAnchor layout");
-static_assert(sizeof(BtgCachedContact) == 16 * (BTG_MAX_POINTS + 2 * BTG_WARMSTART_FRICTION) + 4 * BTG_MAX_POINTS + 32,
+static_assert(sizeof(BtgCachedContact) == 16 * (BTG_MAX_POINTS + 2) + 4 * BTG_MAX_POINTS + 32,
               "BtgCachedContact layout");
 static_assert(sizeof(BtgStepParams) == 80, "BtgStepParams layout");
 static_assert(sizeof(BtgPersistentManifold) == 16 * 3 * BTG_MAX_POINTS + 8 * BTG_MAX_POINTS + 32,

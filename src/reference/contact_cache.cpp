@@ -32,7 +32,8 @@ BuiltContacts buildContactsFromRanges(const std::vector<BtgManifoldRange>& range
             const float processing = (params.solverFlags & BTG_SOLVER_PROCESSING_THRESHOLD)
                                          ? btgProcessingThreshold(bodies.props[m.bodyA], bodies.props[m.bodyB])
                                          : BTG_NO_PROCESSING_THRESHOLD;
-            if (prev >= 0) btgWarmStartFrom(&c, bodies.rot[m.bodyA], m, cache[prev], params.warmstartFactor, processing);
+            if (prev >= 0) btgWarmStartFrom(&c, bodies.rot[m.bodyA], m, cache[prev], params.warmstartFactor, processing,
+                                             (params.solverFlags & BTG_SOLVER_WARM_FRICTION) != 0u);
             out.contacts.push_back(c);
             out.manifoldOf.push_back(slot);
         }
