@@ -13,6 +13,7 @@
 #include "scenes/solver_feature_scenes.h"
 #include "scenes/stability_scenes.h"
 #include "scenes/stock_chaos.h"
+#include "feature_builders.h"
 #include "side_by_side.h"
 
 using namespace btgpu;
@@ -21,19 +22,6 @@ namespace features = btgpu::scenes::features;
 
 namespace {
 
-// A builder that applies `change` to each world it makes (a btContactSolverInfo setting).
-SceneBuilder with(const SceneBuilder& make, const std::function<void(Scene&)>& change)
-{
-    return [make, change](WorldKind kind, const Config& config) {
-        ScenePtr scene = make(kind, config);
-        change(*scene);
-        return scene;
-    };
-}
-std::function<void(Scene&)> solverMode(int bits)
-{
-    return [bits](Scene& s) { s.world().getSolverInfo().m_solverMode |= bits; };
-}
 
 // A stock world and a soft-step one side by side, `steps` steps, the GPU path asserted after
 // every step.
@@ -65,10 +53,6 @@ bool sameTransforms(const Scene& a, const Scene& b)
     return true;
 }
 
-btVector3 travel(const Scene& s, int body, const btVector3& start)
-{
-    return s.body(body)->getWorldTransform().getOrigin() - start;
-}
 
 // The aggregates a pile is judged by against stock's chaos, stock's band of each over `steps`
 // steps of `make`'s scene, and the check of btgpu's against them.
@@ -501,74 +485,6 @@ TEST(SolverFeatures, AnisotropicFrictionOnBothBodiesAsStock)
     }
 }
 
-// Anisotropic friction in the soft step: each point's friction rows run along the directions
-// prepare_contacts scaled (as the bullet mode's), so the turned box of
-// AnisotropicFrictionSlidesAsStock slides along its low-friction axis as on stock, and the box on
-// the anisotropic slab of AnisotropicFrictionOnBothBodiesAsStock goes where stock's goes
-// (tol::kSoftSlideDistanceRel of stock's travel, with one friction direction and with two); both
-// stay on the GPU path in the soft step every step.
-TEST(SolverFeatures, SoftStepAnisotropicFrictionAsStock)
-{
-    Config soft;
-    soft.solver = SolverKind::SoftStep;
-    const std::vector<std::pair<std::string, SceneBuilder>> scenes = {{"box", SceneBuilder(features::anisotropicBox)},
-                                                                      {"pair", SceneBuilder(features::anisotropicPair)}};
-    // one friction direction along the slip (Bullet's default: the soft step then solves that
-    // row alone), and two
-    for (int mode : {0, int(SOLVER_USE_2_FRICTION_DIRECTIONS)})
-        for (const auto& [name, base] : scenes) {
-            SCOPED_TRACE(name + " mode " + std::to_string(mode));
-            const SceneBuilder make = with(base, solverMode(mode));
-            ScenePtr stock = make(WorldKind::Stock, Config()), gpu = make(WorldKind::Gpu, soft);
-            ScenePtr plain = make(WorldKind::Gpu, soft);
-            const int moving = name == "box" ? 1 : 2;
-            for (int b = 1; b <= moving; ++b)
-                plain->body(b)->setAnisotropicFriction(btVector3(1, 1, 1), btCollisionObject::CF_ANISOTROPIC_FRICTION_DISABLED);
-            const btVector3 start = stock->body(moving)->getWorldTransform().getOrigin();
-            for (int i = 0; i < 90; ++i) {
-                stock->step();
-                gpu->step();
-                plain->step();
-                ASSERT_TRUE(gpu->report()->gpuPath) << "step " << i << ": " << gpu->report()->cpuPathReason;
-                ASSERT_EQ(SolverKind::SoftStep, gpu->report()->solver);
-            }
-            const btVector3 s = travel(*stock, moving, start), g = travel(*gpu, moving, start),
-                            iso = travel(*plain, moving, start);
-            std::printf("soft step, anisotropic %s, mode %d: stock (%.4f, %.4f), soft step (%.4f, %.4f), isotropic soft "
-                        "step (%.4f, %.4f)\n",
-                        name.c_str(), mode, s.x(), s.z(), g.x(), g.z(), iso.x(), iso.z());
-            RecordProperty(name + "_mode" + std::to_string(mode) + "_stock", std::to_string(s.length()));
-            RecordProperty(name + "_mode" + std::to_string(mode) + "_soft_step", std::to_string(g.length()));
-            EXPECT_LT((g - s).length(), tol::kSoftSlideDistanceRel * s.length());
-            EXPECT_GT((g - iso).length(), 0.2 * s.length());  // the anisotropy matters in the soft step too
-        }
-}
-
-// The soft step builds none of the rows these Bullet features add to the bullet mode: with
-// Config::solver = SoftStep each sends the world to the CPU path naming it (and back when unset).
-TEST(SolverFeatures, SoftStepFallsBackForTheBulletModesContactFeatures)
-{
-    Config soft;
-    soft.solver = SolverKind::SoftStep;
-    const std::vector<std::pair<std::string, std::function<void(scenes::Scene&, bool)>>> cases = {
-        {"m_sor",
-         [](scenes::Scene& s, bool on) { s.world().getSolverInfo().m_sor = on ? btScalar(0.5) : btScalar(1); }},
-    };
-    for (const auto& [name, set] : cases) {
-        scenes::ScenePtr gpu = scenes::boxStack(WorldKind::Gpu, soft, 2);
-        gpu->step();
-        ASSERT_TRUE(gpu->gpuWorld()->isGpuPath()) << gpu->report()->cpuPathReason;
-        set(*gpu, true);
-        gpu->step();
-        EXPECT_FALSE(gpu->gpuWorld()->isGpuPath()) << name;
-        EXPECT_NE(gpu->report()->cpuPathReason.find(name), std::string::npos) << gpu->report()->cpuPathReason;
-        EXPECT_NE(gpu->report()->cpuPathReason.find("SoftStep"), std::string::npos) << gpu->report()->cpuPathReason;
-        set(*gpu, false);
-        gpu->step();
-        EXPECT_TRUE(gpu->gpuWorld()->isGpuPath()) << name << ": " << gpu->report()->cpuPathReason;
-    }
-}
-
 namespace {
 // Contact points the app sees in the dispatcher's manifolds, and how many of them lie farther
 // apart than `threshold`.
@@ -668,15 +584,6 @@ TEST(SolverFeatures, SoftStepNegativeProcessingThresholdSinksAsStock)
     EXPECT_EQ(seenPoints(*gpu, threshold).points, seenPoints(*stock, threshold).points);
 }
 
-namespace {
-// How far body 2 moved along the slope's downhill direction (a slope tilted `angle` about z).
-double downhill(const Scene& s, const btVector3& start, btScalar angle)
-{
-    const btVector3 down = quatRotate(btQuaternion(btVector3(0, 0, 1), angle), btVector3(-1, 0, 0));
-    return (s.body(2)->getWorldTransform().getOrigin() - start).dot(down);
-}
-}  // namespace
-
 // CF_HAS_FRICTION_ANCHOR: btManifoldResult flags the box's points, replaceContactPoint keeps an
 // old point while its lateral impulse lies inside the friction cone (a sliding point's, clamped
 // to the cone's edge, is inside: 3.24's eps is 0), and setupFrictionConstraint pulls each anchor
@@ -710,33 +617,6 @@ TEST(SolverFeatures, FrictionAnchorsHoldAndSlideAsStock)
         EXPECT_NEAR(gpu, stock, tol::kAnchorSlide) << "without anchors: stock " << without << ", btgpu " << gpuWithout;
         EXPECT_GT(std::fabs(without - stock), 5 * tol::kAnchorSlide) << "stock " << stock << ", without " << without;
         EXPECT_GT(std::fabs(gpuWithout - gpu), 5 * tol::kAnchorSlide) << "btgpu " << gpu << ", without " << gpuWithout;
-    }
-}
-
-// A box at rest on a slab tilted 0.1, 0.2 and 0.24 rad (the pair's friction 0.25: 0.24 rad is just
-// inside its cone, 0.245) stays in the soft step as on stock: 4 s, its downhill travel within
-// stock's plus tol::kSoftSlopeCreep, at rest at the end. The soft step warm-starts its friction
-// across steps (BTG_SOLVER_WARM_FRICTION); started at zero each step as Bullet's are, each step's
-// first substep let the box slide: 1.4, 3.3 and 17.5 mm in the 4 s (stock 0.01, 0.02, 0.77).
-TEST(SolverFeatures, SoftStepHoldsABoxOnASlope)
-{
-    Config soft;
-    soft.solver = SolverKind::SoftStep;
-    for (btScalar angle : {btScalar(0.1), btScalar(0.2), btScalar(0.24)}) {
-        SCOPED_TRACE(angle);
-        ScenePtr stock = features::anchorSlope(WorldKind::Stock, Config(), angle, false, 0);
-        ScenePtr gpu = features::anchorSlope(WorldKind::Gpu, soft, angle, false, 0);
-        const btVector3 start = stock->body(2)->getWorldTransform().getOrigin();
-        for (int i = 0; i < 240; ++i) {
-            stock->step();
-            gpu->step();
-            ASSERT_TRUE(gpu->report()->gpuPath) << "step " << i << ": " << gpu->report()->cpuPathReason;
-            ASSERT_EQ(SolverKind::SoftStep, gpu->report()->solver);
-        }
-        const double st = downhill(*stock, start, angle), g = downhill(*gpu, start, angle);
-        RecordProperty("creep_mm_" + std::to_string(int(angle * 100)), std::to_string(1000 * g));
-        EXPECT_LT(g, std::max(st, 0.0) + tol::kSoftSlopeCreep) << "stock " << st;
-        EXPECT_LT(gpu->body(2)->getLinearVelocity().length(), 1e-3);
     }
 }
 
