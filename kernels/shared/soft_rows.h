@@ -375,11 +375,12 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
     s.stiffening = btgMake4(1.0f, 1.0f, 1.0f, 1.0f);
     const float omega2 = (s.flags & BTG_SOFT_FIXED) ? p.omega2Fixed : p.omega2Contact;
     /* The friction's warm start across steps (the cache carries it with BTG_SOLVER_WARM_FRICTION),
-     * against a fixed body only: started at zero each step a box resting on a slope slid in each
-     * step's first substep (0.65 mm/s at 0.1 rad), while between two dynamic bodies the last
+     * against a fixed body only and along the tangents only (Bullet's directions follow the slip
+     * and change from step to step): started at zero each step a box resting on a slope slid in
+     * each step's first substep (0.65 mm/s at 0.1 rad), while between two dynamic bodies the last
      * step's friction rocks the exact towers of 20 and 30 (30 cm) and, with heldMassRatio, throws
      * the held pair (SolverFeatures.SoftStepHoldsABoxOnASlope, SolverModes). */
-    const float frictionWarm = (s.flags & BTG_SOFT_FIXED) && !(p.heldMassRatio > 0.0f) ? p.warmScale : 0.0f;
+    const float frictionWarm = (s.flags & BTG_SOFT_FIXED) && !dirs && !(p.heldMassRatio > 0.0f) ? p.warmScale : 0.0f;
     for (int k = 0; k < BTG_MAX_POINTS; ++k) {
         s.rA[k] = btgZero4();
         s.rB[k] = btgZero4();

@@ -72,7 +72,6 @@
 
 #define BTG_MAX_POINTS 4 /* contact points per manifold, as Bullet's btPersistentManifold */
 
-
 /* Static per-body properties; rewritten only when the app changes them. */
 typedef struct {
     BtgFloat4 invInertiaLocal; /* 1/(kg m^2) on the principal axes; w: 0 */
@@ -419,9 +418,10 @@ typedef struct {
 #define BTG_SOLVER_INTERLEAVE 64u /* SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS: each point's friction
                                      rows right after its normal row */
 #define BTG_SOLVER_WARM_FRICTION 128u /* the warm start also takes the friction impulses across steps (the soft
-                                         step: its directions are a pure function of the normal, btgPlaneSpace,
-                                         and mean the same thing next step; Bullet 3.24 zeroes them at setup,
-                                         setFrictionConstraintImpulse, and so does the bullet mode) */
+                                         step, whose btgSoftPrepare uses them against fixed bodies along its
+                                         tangents, a pure function of the normal that means the same thing next
+                                         step; Bullet 3.24 zeroes them at setup, setFrictionConstraintImpulse,
+                                         and so does the bullet mode) */
 
 /* Device status flags (one uint, read back with the transforms). */
 #define BTG_STATUS_PAIR_OVERFLOW 1u
