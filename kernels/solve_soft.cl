@@ -2,12 +2,14 @@
  * constraint graph; shared/soft_rows.h). Per step: bodies begin (velocities before forces),
  * contacts prepare; per substep: integrate velocities and warm start (one body pass: each body
  * gathers its edges' impulses), solve (soft, biased), integrate positions (deltas only), relax
- * (unbiased); then restitution and store. Edge e below
+ * (unbiased); then restitution and store, and the velocities back into the world's columns
+ * (the passes keep them in the bodies' soft rows, beside the deltas). Edge e below
  * the contact count is contact e, edge contacts + j is joint j.
  * Launch: soft_color_count / soft_color_fill: one work-item per edge slot, edge indices into
  * per-color ranges (and each contact's soft data at its place there, edgeSlot) (soft_color_offsets:
  * one work-item); soft_list_count / soft_list_fill: one per edge slot, soft_list_sort one per
- * body row (the bodies' edge lists the warm start gathers over); soft_bodies: one per body row;
+ * body row (the bodies' edge lists the warm start gathers over); soft_solver_bodies (each
+ * body's solver record for the step, before the passes) and soft_bodies: one per body row;
  * soft_color_range: a color's range strided over the launch; soft_color_serial: one work-item,
  * every edge of the last color or higher in index order (the coloring's leftovers);
  * soft_resident: all of the stage in one launch (resident groups on GPUs, one group for small
@@ -17,8 +19,9 @@
  * invInertiaWorld, linVel0, angVel0, contacts, joints, jointState, jointRows, frictionDirs
  * (BtgSoftParams.anisotropic only).
  * Writes counters[kSoftMassRatio] (soft_color_count: the largest mass ratio of an edge between two
- * dynamic bodies, which sets the step's substeps), softContacts (a held pair's pass also its support's impulses), softBodies (scratch: the
- * deltas, force shares and, prepared color by color with heldMassRatio, supports), linVel, angVel (dynamic rows), contacts (impulses,
+ * dynamic bodies, which sets the step's substeps), softContacts (a held pair's pass also its support's impulses), softSolver (the bodies'
+ * solver records), softBodies (scratch: the velocities, deltas, force shares and, prepared color by
+ * color with heldMassRatio, supports), linVel, angVel (dynamic rows, at the end), contacts (impulses,
  * tangents), jointRows (impulses: a step's, substep's times substeps), and in soft_transforms
  * pos, rot and NaN status. */
 #include "shared/types.h"
@@ -32,20 +35,54 @@
 #define SOFT_ARGS __global BtgContact* contacts, __global BtgSoftContact* softContacts, \
     __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld, \
     __global const BtgFloat4* restrict linVel0, __global const BtgFloat4* restrict angVel0, \
-    BTG_SHARED __global BtgFloat4* lin, BTG_SHARED __global BtgFloat4* ang, BTG_SHARED __global BtgFloat4* softBodies, \
+    __global BtgFloat4* lin, __global BtgFloat4* ang, BTG_SHARED __global BtgFloat4* softBodies, \
+    __global const BtgFloat4* restrict softSolver, \
     __global const BtgJoint* restrict joints, __global const BtgJointState* restrict jointState, \
     __global BtgJointRow* jointRows, __global const uint* restrict listStart, __global const uint* restrict listEntries, \
     __global const int* restrict slotOf, __global uint* counters, __global const BtgRollingContact* restrict rolling, \
     __global const uint* restrict contactManifolds, __global const BtgContactMaterial* restrict materials, int numMaterials, \
     __global const BtgFrictionDirs* restrict frictionDirs, BtgSoftParams params
-#define SOFT_PASS contacts, softContacts, props, invInertiaWorld, linVel0, angVel0, lin, ang, softBodies, joints, \
+#define SOFT_PASS contacts, softContacts, props, invInertiaWorld, linVel0, angVel0, lin, ang, softBodies, softSolver, joints, \
     jointState, jointRows, listStart, listEntries, slotOf, counters, rolling, contactManifolds, materials, numMaterials, \
     frictionDirs, params
 
-static BtgSolverBody load_body(__global const BtgBodyProps* restrict props,
-                               __global const BtgFloat4* restrict invInertiaWorld, int i)
+/* Each body's solver record for the step (soft_solver_bodies, launched before the passes):
+ * btgMakeSolverBody's fields in four rows, one 64-byte line, (invI row 0, invMass), (invI row 1,
+ * linearFactor x), (invI row 2, linearFactor y), (angularFactor, linearFactor z); its kind
+ * (dynamic, moving) is w of the body's VEL_LIN soft row. A contact's rows read two lines of a
+ * body (this and the soft rows' first) where reading props, the world inertia and the velocity
+ * columns took six to eight. */
+#define BTG_SOFT_SOLVER_ROWS 4
+static float soft_kind(uint flags)
 {
-    return btgMakeSolverBody(props[i], invInertiaWorld[3 * i], invInertiaWorld[3 * i + 1], invInertiaWorld[3 * i + 2]);
+    return (float)(2 * btgIsSolverDynamic(flags) + btgIsSolverMoving(flags));
+}
+static BtgSolverBody soft_solver_body(__global const BtgFloat4* restrict softSolver, float kind, int i)
+{
+    const BtgFloat4 r0 = softSolver[BTG_SOFT_SOLVER_ROWS * i], r1 = softSolver[BTG_SOFT_SOLVER_ROWS * i + 1];
+    const BtgFloat4 r2 = softSolver[BTG_SOFT_SOLVER_ROWS * i + 2], r3 = softSolver[BTG_SOFT_SOLVER_ROWS * i + 3];
+    BtgSolverBody b;
+    b.dynamic = kind >= 2.0f;
+    b.moving = kind == 1.0f || kind == 3.0f;
+    b.pad0 = 0;
+    b.invI.r0 = btgXyz(r0);
+    b.invI.r1 = btgXyz(r1);
+    b.invI.r2 = btgXyz(r2);
+    b.invMass = r0.w;
+    b.linFactor = btgMake4(r1.w, r2.w, r3.w, 0.0f);
+    b.angFactor = btgXyz(r3);
+    b.invMassLin = b.linFactor * b.invMass; /* as btgMakeSolverBody */
+    return b;
+}
+/* Body i as the rows see it: its record and velocity (v: its VEL_LIN row, w the kind). */
+static BtgSolverBody load_body(__global const BtgFloat4* restrict softSolver, BTG_SHARED __global BtgFloat4* softBodies,
+                               int i, BtgBodyVel* v)
+{
+    const int r = BTG_SOFT_BODY_ROWS * i;
+    const BtgFloat4 l = softBodies[r + BTG_SOFT_VEL_LIN];
+    const BtgSolverBody b = soft_solver_body(softSolver, l.w, i);
+    *v = btgMakeBodyVel(b.moving, l, softBodies[r + BTG_SOFT_VEL_ANG]);
+    return b;
 }
 
 static int edge_count(__global const uint* restrict counters, int edgeCapacity)
@@ -57,15 +94,12 @@ static int contact_edges(__global const uint* restrict counters, int edgeCapacit
     return (int)min(counters[BTG_COUNTER_CONTACTS], (uint)(edgeCapacity - numJoints));
 }
 
-/* A body's velocity as the rows see it, and written back (w of the columns is not the solver's). */
-static BtgBodyVel load_vel(int moving, BTG_SHARED __global BtgFloat4* lin, BTG_SHARED __global BtgFloat4* ang, int i)
+/* A body's velocity written back to its soft rows (w of VEL_LIN: its kind). */
+static void store_vel(BtgBodyVel v, BtgSolverBody body, BTG_SHARED __global BtgFloat4* softBodies, int i)
 {
-    return btgMakeBodyVel(moving, lin[i], ang[i]);
-}
-static void store_vel(BtgBodyVel v, BTG_SHARED __global BtgFloat4* lin, BTG_SHARED __global BtgFloat4* ang, int i)
-{
-    lin[i] = btgMake4(v.lin.x, v.lin.y, v.lin.z, lin[i].w);
-    ang[i] = btgMake4(v.ang.x, v.ang.y, v.ang.z, ang[i].w);
+    const int r = BTG_SOFT_BODY_ROWS * i;
+    softBodies[r + BTG_SOFT_VEL_LIN] = btgMake4(v.lin.x, v.lin.y, v.lin.z, (float)(2 * body.dynamic + body.moving));
+    softBodies[r + BTG_SOFT_VEL_ANG] = btgMake4(v.ang.x, v.ang.y, v.ang.z, 0.0f);
 }
 
 /* A soft contact as global memory keeps it: each anchor's w the point's normal mass, which
@@ -85,9 +119,7 @@ static BtgSoftDelta load_delta(BTG_SHARED __global BtgFloat4* softBodies, int r)
 {
     BtgSoftDelta d;
     d.pos = softBodies[r + BTG_SOFT_DELTA_POS];
-    d.rot.r0 = softBodies[r + BTG_SOFT_DELTA_MAT];
-    d.rot.r1 = softBodies[r + BTG_SOFT_DELTA_MAT + 1];
-    d.rot.r2 = softBodies[r + BTG_SOFT_DELTA_MAT + 2];
+    d.rot = btgQuatToMat3(softBodies[r + BTG_SOFT_DELTA_ROT]);
     return d;
 }
 
@@ -203,8 +235,9 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
     const int prepare = mode == BTG_SOFT_PREPARE;
     const int bodyA = prepare ? contacts[i].bodyA : softContacts[slot].bodyA;
     const int bodyB = prepare ? contacts[i].bodyB : softContacts[slot].bodyB;
-    BtgSolverBody a = load_body(props, invInertiaWorld, bodyA);
-    BtgSolverBody b = load_body(props, invInertiaWorld, bodyB);
+    BtgBodyVel va, vb;
+    BtgSolverBody a = load_body(softSolver, softBodies, bodyA, &va);
+    BtgSolverBody b = load_body(softSolver, softBodies, bodyB, &vb);
     if (mode == BTG_SOFT_PREPARE) {
         BtgBodyProps pa = props[bodyA], pb = props[bodyB];
         BtgBodyVel a0 = btgMakeBodyVel(a.moving, linVel0[bodyA], angVel0[bodyA]);
@@ -230,7 +263,6 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
         return;
     }
     BtgSoftContact s = load_soft(softContacts, slot, mode, params.frictionInSolve);
-    BtgBodyVel va = load_vel(a.moving, lin, ang, bodyA), vb = load_vel(b.moving, lin, ang, bodyB);
     if (mode == BTG_SOFT_RESTITUTION) {
         btgSoftRestitution(&s, a, b, &va, &vb, params);
     } else {
@@ -256,8 +288,8 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
                      bullet ? &dirs : 0);
         if (params.rolling && mode == BTG_SOFT_RELAX) btgSoftRolling(rolling[i], &s, a, b, &va, &vb, params);
     }
-    if (a.dynamic) store_vel(va, lin, ang, bodyA);
-    if (b.dynamic) store_vel(vb, lin, ang, bodyB);
+    if (a.dynamic) store_vel(va, a, softBodies, bodyA);
+    if (b.dynamic) store_vel(vb, b, softBodies, bodyB);
     softContacts[slot].normalImpulse = s.normalImpulse;
     softContacts[slot].totalNormal = s.totalNormal;
     if (mode == BTG_SOFT_RELAX || (mode == BTG_SOFT_SOLVE && params.frictionInSolve)) {
@@ -277,14 +309,12 @@ static void soft_joint(int j, int mode, SOFT_ARGS)
         for (int k = 0; k < rows; ++k) jointRows[joint.firstRow + k].impulse *= (float)params.substeps;
         return;
     }
-    BtgSolverBody a = joint.bodyA >= 0 ? load_body(props, invInertiaWorld, joint.bodyA) : btgFixedJointBody().body;
-    BtgSolverBody b = joint.bodyB >= 0 ? load_body(props, invInertiaWorld, joint.bodyB) : btgFixedJointBody().body;
     BtgBodyVel va = btgMakeBodyVel(0, btgZero4(), btgZero4()), vb = va;
-    if (joint.bodyA >= 0) va = load_vel(a.moving, lin, ang, joint.bodyA);
-    if (joint.bodyB >= 0) vb = load_vel(b.moving, lin, ang, joint.bodyB);
+    BtgSolverBody a = joint.bodyA >= 0 ? load_body(softSolver, softBodies, joint.bodyA, &va) : btgFixedJointBody().body;
+    BtgSolverBody b = joint.bodyB >= 0 ? load_body(softSolver, softBodies, joint.bodyB, &vb) : btgFixedJointBody().body;
     btgSoftJointSolve(jointRows, joint.firstRow, rows, a, b, &va, &vb, params.jointBoundScale);
-    if (a.dynamic) store_vel(va, lin, ang, joint.bodyA);
-    if (b.dynamic) store_vel(vb, lin, ang, joint.bodyB);
+    if (a.dynamic) store_vel(va, a, softBodies, joint.bodyA);
+    if (b.dynamic) store_vel(vb, b, softBodies, joint.bodyB);
 }
 
 static void soft_edge(int e, int slot, int nc, int mode, uint key, SOFT_ARGS)
@@ -296,22 +326,39 @@ static void soft_edge(int e, int slot, int nc, int mode, uint key, SOFT_ARGS)
 static void soft_body(int i, int mode, SOFT_ARGS)
 {
     const uint flags = props[i].flags;
-    /* Each pass reads and writes only its rows: begin writes them all; the velocity pass reads
-     * the forces' share; the position pass moves the deltas (and their matrix). The support row
-     * (prepare's, between them) the substeps' passes leave alone. */
+    const int row = BTG_SOFT_BODY_ROWS * i;
+    if (mode == BTG_SOFT_BODY_END) {
+        /* the step's velocities back into the world's columns (their w kept) */
+        if (btgIsSolverDynamic(flags)) {
+            const BtgFloat4 v = softBodies[row + BTG_SOFT_VEL_LIN], w = softBodies[row + BTG_SOFT_VEL_ANG];
+            lin[i] = btgMake4(v.x, v.y, v.z, lin[i].w);
+            ang[i] = btgMake4(w.x, w.y, w.z, ang[i].w);
+        }
+        return;
+    }
+    /* Each pass reads and writes only its rows: begin writes them all (the velocities from the
+     * world's columns); the velocity pass reads the forces' share; the position pass moves the
+     * deltas. The support row (prepare's, between them) the substeps' passes leave alone. */
     BtgFloat4 rows[BTG_SOFT_BODY_ROWS];
     for (int r = 0; r < BTG_SOFT_BODY_ROWS; ++r) {
         const int read = (mode == BTG_SOFT_BODY_VELOCITY && (r == BTG_SOFT_FORCE_LIN || r == BTG_SOFT_FORCE_ANG)) ||
                          (mode == BTG_SOFT_BODY_POSITION && (r == BTG_SOFT_DELTA_POS || r == BTG_SOFT_DELTA_ROT));
-        rows[r] = read ? softBodies[BTG_SOFT_BODY_ROWS * i + r] : btgZero4();
+        rows[r] = read ? softBodies[row + r] : btgZero4();
     }
-    BtgFloat4 v = lin[i], w = ang[i];
+    BtgFloat4 v, w;
+    if (mode == BTG_SOFT_BODY_BEGIN) {
+        v = lin[i];
+        w = ang[i];
+    } else {
+        v = softBodies[row + BTG_SOFT_VEL_LIN];
+        w = softBodies[row + BTG_SOFT_VEL_ANG];
+    }
     if (mode == BTG_SOFT_BODY_BEGIN) btgSoftBodyBegin(flags, &v, &w, linVel0[i], angVel0[i], rows, params.substeps);
     else if (mode == BTG_SOFT_BODY_VELOCITY) btgSoftBodyVelocity(flags, &v, &w, rows);
     else btgSoftBodyPosition(flags, v, w, rows, params.h);
     if (mode == BTG_SOFT_BODY_VELOCITY && btgIsSolverDynamic(flags)) {
         /* the substep's warm start, gathered from the body's edges in list order */
-        const BtgSolverBody body = load_body(props, invInertiaWorld, i);
+        const BtgSolverBody body = soft_solver_body(softSolver, soft_kind(flags), i);
         BtgBodyVel vel = btgMakeBodyVel(1, v, w);
         for (uint q = listStart[i]; q < listStart[i + 1]; ++q) {
             const uint entry = listEntries[q];
@@ -334,19 +381,36 @@ static void soft_body(int i, int mode, SOFT_ARGS)
                 shared_soft(softContacts)[slot].total2 = s.total2;
             }
         }
-        v = btgMake4(vel.lin.x, vel.lin.y, vel.lin.z, v.w);
-        w = btgMake4(vel.ang.x, vel.ang.y, vel.ang.z, w.w);
+        v = vel.lin;
+        w = vel.ang;
     }
     for (int r = 0; r < BTG_SOFT_BODY_ROWS; ++r) {
         const int written = mode == BTG_SOFT_BODY_BEGIN ||
                             (mode == BTG_SOFT_BODY_POSITION && btgIsSolverMoving(flags) &&
-                             (r == BTG_SOFT_DELTA_POS || r == BTG_SOFT_DELTA_ROT || r >= BTG_SOFT_DELTA_MAT));
-        if (written) softBodies[BTG_SOFT_BODY_ROWS * i + r] = rows[r];
+                             (r == BTG_SOFT_DELTA_POS || r == BTG_SOFT_DELTA_ROT));
+        if (written && r != BTG_SOFT_VEL_LIN && r != BTG_SOFT_VEL_ANG) softBodies[row + r] = rows[r];
     }
-    if (btgIsSolverDynamic(flags)) {
-        lin[i] = v;
-        ang[i] = w;
+    /* the velocity the rows see (w of VEL_LIN the kind): every body's at the start, a dynamic
+     * one's after its substep's forces and warm start */
+    if (mode == BTG_SOFT_BODY_BEGIN || (mode == BTG_SOFT_BODY_VELOCITY && btgIsSolverDynamic(flags))) {
+        softBodies[row + BTG_SOFT_VEL_LIN] = btgMake4(v.x, v.y, v.z, soft_kind(flags));
+        softBodies[row + BTG_SOFT_VEL_ANG] = btgMake4(w.x, w.y, w.z, 0.0f);
     }
+}
+
+/* Each body's solver record for the step (soft_solver_body reads it): btgMakeSolverBody's
+ * fields, packed. */
+__kernel void soft_solver_bodies(int n, __global const BtgBodyProps* restrict props,
+                                 __global const BtgFloat4* restrict invInertiaWorld, __global BtgFloat4* softSolver)
+{
+    const int i = (int)get_global_id(0);
+    if (i >= n) return;
+    const BtgSolverBody b = btgMakeSolverBody(props[i], invInertiaWorld[3 * i], invInertiaWorld[3 * i + 1],
+                                              invInertiaWorld[3 * i + 2]);
+    softSolver[BTG_SOFT_SOLVER_ROWS * i] = btgMake4(b.invI.r0.x, b.invI.r0.y, b.invI.r0.z, b.invMass);
+    softSolver[BTG_SOFT_SOLVER_ROWS * i + 1] = btgMake4(b.invI.r1.x, b.invI.r1.y, b.invI.r1.z, b.linFactor.x);
+    softSolver[BTG_SOFT_SOLVER_ROWS * i + 2] = btgMake4(b.invI.r2.x, b.invI.r2.y, b.invI.r2.z, b.linFactor.y);
+    softSolver[BTG_SOFT_SOLVER_ROWS * i + 3] = btgMake4(b.angFactor.x, b.angFactor.y, b.angFactor.z, b.linFactor.z);
 }
 
 /* One list of color ranges over every edge (contacts and joints alike): count per color,
@@ -519,14 +583,15 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
     const int substeps = btgSoftSubstepsFor(params, as_float(counters[BTG_COUNTER_SOFT_MASS_RATIO]));
     if (substeps != params.substeps) params = btgSoftParamsWith(params, substeps);
     /* pass list: prepare; per substep velocity and warm start (bodies), solve, position, relax;
-     * restitution; store */
-    const int passes = 2 + 4 * params.substeps + 2;
+     * restitution; store; the velocities back (bodies) */
+    const int passes = 2 + 4 * params.substeps + 3;
     for (int pass = 0; pass < passes; ++pass) {
         int bodyMode = -1, mode = -1;
         if (pass == 0) bodyMode = BTG_SOFT_BODY_BEGIN;
         else if (pass == 1) mode = BTG_SOFT_PREPARE;
-        else if (pass == passes - 1) mode = BTG_SOFT_STORE;
-        else if (pass == passes - 2) mode = BTG_SOFT_RESTITUTION;
+        else if (pass == passes - 1) bodyMode = BTG_SOFT_BODY_END;
+        else if (pass == passes - 2) mode = BTG_SOFT_STORE;
+        else if (pass == passes - 3) mode = BTG_SOFT_RESTITUTION;
         else {
             const int q = (pass - 2) % 4;
             if (q == 0) bodyMode = BTG_SOFT_BODY_VELOCITY;
@@ -536,6 +601,7 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
         }
         if (bodyMode >= 0) {
             for (int i = gid; i < numBodies; i += gsize) soft_body(i, bodyMode, SOFT_PASS);
+            if (bodyMode == BTG_SOFT_BODY_END) break; /* the last pass: each body's own rows */
             SOFT_BARRIER();
             continue;
         }

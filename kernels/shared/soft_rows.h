@@ -128,22 +128,26 @@ typedef struct {
 #define BTG_SOFT_FIXED 1
 #define BTG_SOFT_BULLET_DIRECTIONS 2
 
-/* Per body, eight rows of the soft scratch (BTG_SOFT_BODY_ROWS x numBodies): the position and
- * rotation moved so far this step (the rotation also as its matrix, which every point's
- * separation applies: made once a substep by the body rather than once a point by each of its
- * contacts' rows), and the velocity change the step's forces make per substep. */
+/* Per body, eight rows of the soft scratch (BTG_SOFT_BODY_ROWS x numBodies). The first four,
+ * one 64-byte line, are all a contact's rows read of a body besides its solver record
+ * (solve_soft.cl): its velocity during the stage (the device keeps it there and writes it back
+ * at the end; w of VEL_LIN the body's solver kind), and the position and rotation moved so far
+ * this step (every point's separation applies the rotation as its matrix, made once a side by
+ * btgSoftDeltaOf). Then the velocity change the step's forces make per substep, and prepare's
+ * note of the body's supports (heldMassRatio). */
 #define BTG_SOFT_BODY_ROWS 8
-#define BTG_SOFT_DELTA_POS 0 /* m */
-#define BTG_SOFT_DELTA_ROT 1 /* unit quaternion */
-#define BTG_SOFT_FORCE_LIN 2 /* m/s per substep */
-#define BTG_SOFT_FORCE_ANG 3 /* rad/s per substep */
-#define BTG_SOFT_SUPPORT 4   /* x: its contacts with fixed bodies, y: the last one's index, z: 1 if a pair holds it (floats) */
-#define BTG_SOFT_DELTA_MAT 5 /* three rows: btgQuatToMat3 of DELTA_ROT */
+#define BTG_SOFT_VEL_LIN 0   /* m/s (the device's; the CPU reference keeps its own velocities) */
+#define BTG_SOFT_VEL_ANG 1   /* rad/s */
+#define BTG_SOFT_DELTA_POS 2 /* m */
+#define BTG_SOFT_DELTA_ROT 3 /* unit quaternion */
+#define BTG_SOFT_FORCE_LIN 4 /* m/s per substep */
+#define BTG_SOFT_FORCE_ANG 5 /* rad/s per substep */
+#define BTG_SOFT_SUPPORT 6   /* x: its contacts with fixed bodies, y: the last one's index, z: 1 if a pair holds it (floats) */
 
 /* What a contact's rows read of a body's motion so far this step. */
 typedef struct {
     BtgFloat4 pos; /* BTG_SOFT_DELTA_POS */
-    BtgMat3 rot;   /* BTG_SOFT_DELTA_MAT */
+    BtgMat3 rot;   /* btgQuatToMat3 of BTG_SOFT_DELTA_ROT */
 } BtgSoftDelta;
 
 /* Edge passes and body passes of the soft solve (the warm start is the velocity body pass's:
@@ -156,6 +160,7 @@ typedef struct {
 #define BTG_SOFT_BODY_BEGIN 0
 #define BTG_SOFT_BODY_VELOCITY 1
 #define BTG_SOFT_BODY_POSITION 2
+#define BTG_SOFT_BODY_END 3 /* the device's: the velocities back into the world's columns */
 
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(BtgSoftness) == 16, "BtgSoftness layout");
@@ -236,23 +241,13 @@ static inline int btgSoftSubstepsFor(BtgSoftParams p, float ratio)
 
 /* ---- bodies ---- */
 
-/* The rotation matrix rows of a body's rotation delta (as btgQuatRotate forms it). */
-static inline void btgSoftSetDeltaMatrix(BtgFloat4* rows)
-{
-    const BtgMat3 m = btgQuatToMat3(rows[BTG_SOFT_DELTA_ROT]);
-    rows[BTG_SOFT_DELTA_MAT] = m.r0;
-    rows[BTG_SOFT_DELTA_MAT + 1] = m.r1;
-    rows[BTG_SOFT_DELTA_MAT + 2] = m.r2;
-}
-
-/* A body's deltas from its rows. */
+/* A body's deltas from its rows: the rotation as its matrix (as btgQuatRotate forms it), made
+ * once for all the points of a contact's side. */
 static inline BtgSoftDelta btgSoftDeltaOf(const BtgFloat4* rows)
 {
     BtgSoftDelta d;
     d.pos = rows[BTG_SOFT_DELTA_POS];
-    d.rot.r0 = rows[BTG_SOFT_DELTA_MAT];
-    d.rot.r1 = rows[BTG_SOFT_DELTA_MAT + 1];
-    d.rot.r2 = rows[BTG_SOFT_DELTA_MAT + 2];
+    d.rot = btgQuatToMat3(rows[BTG_SOFT_DELTA_ROT]);
     return d;
 }
 
@@ -263,7 +258,6 @@ static inline void btgSoftBodyBegin(uint flags, BtgFloat4* lin, BtgFloat4* ang, 
 {
     rows[BTG_SOFT_DELTA_POS] = btgZero4();
     rows[BTG_SOFT_DELTA_ROT] = btgMake4(0.0f, 0.0f, 0.0f, 1.0f);
-    btgSoftSetDeltaMatrix(rows);
     rows[BTG_SOFT_FORCE_LIN] = btgZero4();
     rows[BTG_SOFT_FORCE_ANG] = btgZero4();
     rows[BTG_SOFT_SUPPORT] = btgZero4();
@@ -288,7 +282,6 @@ static inline void btgSoftBodyPosition(uint flags, BtgFloat4 lin, BtgFloat4 ang,
     if (!btgIsSolverMoving(flags)) return;
     rows[BTG_SOFT_DELTA_POS] = btgXyz(rows[BTG_SOFT_DELTA_POS]) + btgXyz(lin) * h;
     rows[BTG_SOFT_DELTA_ROT] = btgIntegrateRotation(rows[BTG_SOFT_DELTA_ROT], btgXyz(ang), h);
-    btgSoftSetDeltaMatrix(rows);
 }
 /* The step's end for a body the integrator moves: its pose moved by the deltas. */
 static inline void btgSoftBodyFinish(BtgFloat4* pos, BtgFloat4* rot, const BtgFloat4* rows)

@@ -8,12 +8,20 @@
 #include "world/device_world.h"
 
 #include <algorithm>
+#include <cstdlib>
 
 namespace btgpu {
 
 inline bool useResident(const DeviceWorld& w)
 {
     using R = DeviceWorld::Resident;
+    // BTGPU_RESIDENT=0 / 1: per-round launches / one launch on every device (an experiment
+    // knob, as below)
+    static const int forced = [] {
+        const char* e = std::getenv("BTGPU_RESIDENT");
+        return e && e[0] ? (e[0] == '0' ? 0 : 1) : -1;
+    }();
+    if (forced >= 0) return forced == 1 && w.resident != R::Off;
     return w.resident == R::On || (w.resident == R::Auto && w.ctx.device().isGpu);
 }
 
@@ -23,6 +31,18 @@ inline size_t residentGroups(const DeviceWorld& w, size_t items, size_t group)
     size_t perGroup = 4 * std::max<size_t>(group, 1);
     size_t groups = (items + perGroup - 1) / perGroup;
     return std::clamp<size_t>(groups, 1, std::max<cl_uint>(w.ctx.device().computeUnits, 1));
+}
+
+// Work-groups of the solvers' one-launch kernels: one per compute unit, or k per unit with
+// BTGPU_RESIDENT_GROUPS_PER_UNIT=k (an experiment knob for measuring: more work-items hide
+// more of each contact's dependent loads, but all groups must be resident at once; a device
+// that does not keep them so times out at the first grid barrier and the world goes over to
+// per-round launches, CallEvent::Kind::ResidentOff).
+inline size_t residentSolveGroups(const DeviceWorld& w)
+{
+    size_t perUnit = 1;
+    if (const char* e = std::getenv("BTGPU_RESIDENT_GROUPS_PER_UNIT")) perUnit = size_t(std::clamp(std::atoi(e), 1, 32));
+    return perUnit * std::max<cl_uint>(w.ctx.device().computeUnits, 1);
 }
 
 // The barrier word, zeroed once when allocated: a normal exit leaves it ready for the next launch.

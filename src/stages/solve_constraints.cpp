@@ -72,7 +72,7 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     if (resident || w.lastContactCount <= kOneGroupMaxContacts) {
         cl_kernel k = prog.kernel("solve_resident");
         size_t group = std::min<size_t>(256, cl::kernelGroupLimit(ctx, k));
-        size_t groups = resident ? std::max<cl_uint>(ctx.device().computeUnits, 1) : 1;
+        size_t groups = resident ? residentSolveGroups(w) : 1;
         cl::Launch(ctx, k, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.rollingContacts).arg(w.frictionDirs).arg(w.frictionAnchors)
             .arg(w.counters).arg(edgeCapacity)
             .arg(sc.colorStart)

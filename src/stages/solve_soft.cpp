@@ -17,6 +17,8 @@ namespace {
 // launch on one work-group.
 constexpr int kOneGroupMaxContacts = 4096;
 constexpr int kMaxSubsteps = 256;
+// Rows of a body's solver record (solve_soft.cl's BTG_SOFT_SOLVER_ROWS).
+constexpr int kSoftSolverRows = 4;
 
 // The substep fields of the step's scalars: the base count, and how it grows with the mass
 // ratio. An explicit substep count is kept; m_numIterations' grows unless the light bodies are
@@ -71,6 +73,7 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     SolverScratch& sc = w.solverScratch;
     sc.softContacts.reserve(ctx, std::max<size_t>(slots, 1));
     sc.softBodies.reserve(ctx, size_t(BTG_SOFT_BODY_ROWS) * size_t(numBodies));
+    sc.softSolver.reserve(ctx, size_t(kSoftSolverRows) * size_t(numBodies));
     // Bound buffers even without contacts or joints.
     w.contacts.reserve(ctx, 1);
     w.joints.reserve(ctx, 1);
@@ -92,7 +95,7 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     sc.edgeSlot.reserve(ctx, std::max<size_t>(slots, 1));
     auto soft = [&](cl::Launch& l) -> cl::Launch& {
         return l.arg(w.contacts).arg(sc.softContacts).arg(w.props).arg(w.invInertiaWorld).arg(w.linVel0)
-            .arg(w.angVel0).arg(w.linVel).arg(w.angVel).arg(sc.softBodies).arg(w.joints).arg(w.jointState)
+            .arg(w.angVel0).arg(w.linVel).arg(w.angVel).arg(sc.softBodies).arg(sc.softSolver).arg(w.joints).arg(w.jointState)
             .arg(w.jointRows).arg(sc.softListStart).arg(sc.softListEntries).arg(sc.edgeSlot).arg(w.counters)
             .arg(w.rollingContacts).arg(w.contactManifolds).arg(w.contactMaterials).arg(materials).arg(w.frictionDirs)
             .arg(params);
@@ -103,6 +106,9 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
         l.arg(numBodies).arg(mode);
         soft(l).run(size_t(numBodies));
     };
+    // The bodies' solver records for the step (soft_solver_body reads them).
+    cl::Launch(ctx, prog.kernel("soft_solver_bodies"), &w.profiler).arg(numBodies).arg(w.props).arg(w.invInertiaWorld)
+        .arg(sc.softSolver).run(size_t(numBodies));
     if (slots == 0) {
         // Nothing to solve yet (no edge slots): the bodies still take their substeps.
         bodyPass(BTG_SOFT_BODY_BEGIN);
@@ -110,6 +116,7 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
             bodyPass(BTG_SOFT_BODY_VELOCITY);
             bodyPass(BTG_SOFT_BODY_POSITION);
         }
+        bodyPass(BTG_SOFT_BODY_END);
         return;
     }
     sc.colorCount.reserve(ctx, size_t(numColors) + 1);
@@ -139,7 +146,7 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     if (resident || w.lastContactCount <= kOneGroupMaxContacts) {
         cl_kernel k = prog.kernel("soft_resident");
         const size_t group = std::min<size_t>(256, cl::kernelGroupLimit(ctx, k));
-        const size_t groups = resident ? std::max<cl_uint>(ctx.device().computeUnits, 1) : 1;
+        const size_t groups = resident ? residentSolveGroups(w) : 1;
         cl::Launch l(ctx, k, &w.profiler);
         l.arg(w.edgeColor).arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorOrder).arg(gridBarrier(w))
             .arg(numColors).arg(numJoints).arg(numBodies).arg(kGridBarrierSpins);
@@ -183,6 +190,7 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     }
     edgePass(BTG_SOFT_RESTITUTION, 0u);
     edgePass(BTG_SOFT_STORE, 0u);
+    bodyPass(BTG_SOFT_BODY_END);
 }
 
 void softTransforms(DeviceWorld& w)

@@ -32,6 +32,7 @@ struct SolverScratch {
     cl::DeviceArray<uint> softListEntries; // 2 per edge slot
     ScanScratch softListScan;
     cl::DeviceArray<BtgFloat4> softBodies;
+    cl::DeviceArray<BtgFloat4> softSolver;  // 4 per body: its solver record for the step (solve_soft.cl)
     // solve_jacobi: body b's contacts are jacobiEntries[jacobiStart[b], jacobiStart[b + 1]),
     // each 2 * contact + side, in increasing order; jacobiDeltas holds 4 per contact slot
     // (A lin, A ang, B lin, B ang: m/s, rad/s), the change each contact made to its copies.
