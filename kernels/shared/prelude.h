@@ -19,6 +19,9 @@ typedef int4 BtgInt4;
 #endif
 #define BTG_SHARED_GLOBAL BTG_SHARED __global
 #define BTG_INLINE inline
+/* a hot row function whose by-value arguments (bodies, deltas, the step's scalars: hundreds of
+ * bytes) a CPU device's compiler would otherwise copy onto the stack at every call */
+#define BTG_ALWAYS_INLINE inline __attribute__((always_inline))
 #define BTG_STATIC_ASSERT(cond, msg)
 static inline BtgFloat4 btgMake4(float x, float y, float z, float w) { return (float4)(x, y, z, w); }
 static inline float btgSqrt(float x) { return sqrt(x); }
@@ -47,6 +50,11 @@ struct alignas(16) BtgInt4 {
 #define BTG_CONST_GLOBAL const
 #define BTG_SHARED_GLOBAL
 #define BTG_INLINE inline
+#if defined(__GNUC__) || defined(__clang__)
+#define BTG_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define BTG_ALWAYS_INLINE inline
+#endif
 #define BTG_STATIC_ASSERT(cond, msg) static_assert(cond, msg)
 static inline BtgFloat4 btgMake4(float x, float y, float z, float w) { return BtgFloat4{x, y, z, w}; }
 static inline BtgFloat4 operator+(BtgFloat4 a, BtgFloat4 b) { return {a.x + b.x, a.y + b.y, a.z + b.z, a.w + b.w}; }

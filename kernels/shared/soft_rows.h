@@ -479,7 +479,7 @@ static inline float btgSoftSeparation(const BtgSoftContact* s, int k, BtgSoftDel
 
 /* One friction row of point k along dir: driven to no slip within friction x the point's
  * normal impulse of this substep. */
-static inline float btgSoftFrictionRow(const BtgSoftContact* s, int k, BtgFloat4 dir, float mass, float impulse,
+static BTG_ALWAYS_INLINE float btgSoftFrictionRow(const BtgSoftContact* s, int k, BtgFloat4 dir, float mass, float impulse,
                                        BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb)
 {
     if (mass == 0.0f) return impulse;
@@ -494,7 +494,7 @@ static inline float btgSoftFrictionRow(const BtgSoftContact* s, int k, BtgFloat4
  * closed in one substep either way; then the friction rows (in the relax, and also in the solve
  * with frictionInSolve). Bit 1 of normals: the contact supports a held body, whose load it takes
  * within the substep, so its springs are stiffened from the impulse they carry now as well. */
-static inline void btgSoftNormalRow(BtgSoftContact* s, int k, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
+static BTG_ALWAYS_INLINE void btgSoftNormalRow(BtgSoftContact* s, int k, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
                                     BtgBodyVel* vb, BtgSoftDelta dA, BtgSoftDelta dB, int useBias, int normals,
                                     BtgSoftParams p)
 {
@@ -540,7 +540,7 @@ static inline void btgSoftNormalRow(BtgSoftContact* s, int k, BtgSolverBody a, B
     btgSetLane(&s->totalNormal, k, btgLane(s->totalNormal, k) + (next - old));
     btgRowApply(j, a, b, va, vb, next - old);
 }
-static inline void btgSoftFrictionRows(BtgSoftContact* s, int k, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
+static BTG_ALWAYS_INLINE void btgSoftFrictionRows(BtgSoftContact* s, int k, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
                                        BtgBodyVel* vb, const BtgFrictionDirs* dirs)
 {
     if (btgLane(s->normalMass, k) == 0.0f) return;
