@@ -436,7 +436,7 @@ static inline uint btgSoftJointEntry(int j, int side)
 }
 /* btgRowApply's half for one body (side 0: A, 1: B): linear the row's direction on A, response
  * that body's angular velocity per N s (already times its angular factor). */
-static inline void btgSoftApplySide(BtgFloat4 linear, BtgFloat4 response, int side, BtgSolverBody body,
+static BTG_ALWAYS_INLINE void btgSoftApplySide(BtgFloat4 linear, BtgFloat4 response, int side, BtgSolverBody body,
                                     BtgBodyVel* v, float impulse)
 {
     const BtgFloat4 l = side ? -linear : linear;
@@ -446,7 +446,7 @@ static inline void btgSoftApplySide(BtgFloat4 linear, BtgFloat4 response, int si
 /* WarmStart: this substep starts from the last one's impulses, each point's three applied as one
  * impulse vector (the rows' effect is linear in it), on one of the contact's bodies (its totals:
  * btgSoftWarmTotals). */
-static inline void btgSoftWarmStartSide(const BtgSoftContact* s, int side, BtgSolverBody body, BtgBodyVel* v,
+static BTG_ALWAYS_INLINE void btgSoftWarmStartSide(const BtgSoftContact* s, int side, BtgSolverBody body, BtgBodyVel* v,
                                         const BtgFrictionDirs* dirs)
 {
     for (int k = 0; k < s->numPoints; ++k) {
@@ -458,7 +458,7 @@ static inline void btgSoftWarmStartSide(const BtgSoftContact* s, int side, BtgSo
     }
 }
 /* What a substep's warm start adds to the contact's step totals. */
-static inline void btgSoftWarmTotals(BtgSoftContact* s)
+static BTG_ALWAYS_INLINE void btgSoftWarmTotals(BtgSoftContact* s)
 {
     for (int k = 0; k < s->numPoints; ++k) {
         if (btgLane(s->normalMass, k) == 0.0f) continue;
