@@ -1,5 +1,5 @@
 // soft_step_friction_test.cpp — friction in the soft step (SolverKind::SoftStep) against stock:
-// anisotropic friction along Bullet's scaled directions, a box held on a slope, and the Bullet
+// anisotropic friction along Bullet's scaled directions, a box and a stack of two held on a slope, and the Bullet
 // friction features it sends to the CPU path. Each soft world asserted on the GPU path (or off it,
 // with its reason) at every step (scenes in tests/scenes/solver_feature_scenes.h).
 #include <gtest/gtest.h>
@@ -86,6 +86,36 @@ TEST(SolverFeatures, SoftStepHoldsABoxOnASlope)
         RecordProperty("creep_mm_" + std::to_string(int(angle * 100)), std::to_string(1000 * g));
         EXPECT_LT(g, std::max(st, 0.0) + tol::kSoftSlopeCreep) << "stock " << st;
         EXPECT_LT(gpu->body(2)->getLinearVelocity().length(), 1e-3);
+    }
+}
+
+// Two boxes stacked on that slope, 0.1 and 0.2 rad, 4 s: stock's slide (its friction along the
+// slip, from zero each step: the top box 0.13 and 1.08 m); the soft step's creep, each box within
+// tol::kSoftStackCreepOfStock of stock's travel. The friction between the two boxes starts at zero
+// each step, so the top box still creeps (4.9 and 10.9 mm), far less than stock's.
+TEST(SolverFeatures, SoftStepHoldsAStackOnASlope)
+{
+    Config soft;
+    soft.solver = SolverKind::SoftStep;
+    for (btScalar angle : {btScalar(0.1), btScalar(0.2)}) {
+        SCOPED_TRACE(angle);
+        ScenePtr stock = features::slopeStack(WorldKind::Stock, Config(), angle, 2);
+        ScenePtr gpu = features::slopeStack(WorldKind::Gpu, soft, angle, 2);
+        const btVector3 start[2] = {stock->body(2)->getWorldTransform().getOrigin(),
+                                    stock->body(3)->getWorldTransform().getOrigin()};
+        for (int i = 0; i < 240; ++i) {
+            stock->step();
+            gpu->step();
+            ASSERT_TRUE(gpu->report()->gpuPath) << "step " << i << ": " << gpu->report()->cpuPathReason;
+            ASSERT_EQ(SolverKind::SoftStep, gpu->report()->solver);
+        }
+        for (int k = 0; k < 2; ++k) {
+            const double st = downhill(*stock, start[k], angle, 2 + k), g = downhill(*gpu, start[k], angle, 2 + k);
+            RecordProperty("creep_mm_" + std::to_string(int(angle * 100)) + "_box" + std::to_string(k),
+                           std::to_string(1000 * g));
+            EXPECT_GT(st, 0.02) << "box " << k << ": stock's slides";
+            EXPECT_LT(std::abs(g), tol::kSoftStackCreepOfStock * st) << "box " << k << ": stock " << st;
+        }
     }
 }
 

@@ -129,4 +129,19 @@ ScenePtr anchorSlope(WorldKind kind, const Config& config, btScalar angle, bool 
     return scene;
 }
 
+ScenePtr slopeStack(WorldKind kind, const Config& config, btScalar angle, int boxes)
+{
+    auto scene = std::make_unique<Scene>(kind, config, "slope_stack");
+    scene->addBody(scene->boxShape(btVector3(50, 50, 50)), 0, btVector3(0, -60, 0));
+    const btQuaternion tilt(btVector3(0, 0, 1), angle);
+    const btVector3 up = quatRotate(tilt, btVector3(0, 1, 0));
+    scene->addBody(scene->boxShape(btVector3(5, .5, 5)), 0, btTransform(tilt, btVector3(0, 0, 0)));
+    for (int i = 0; i < boxes; ++i) {
+        btRigidBody* box = scene->addBody(scene->boxShape(btVector3(.5, .5, .5)), 1,
+                                          btTransform(tilt, up * btScalar(1.0 + i)));
+        box->setActivationState(DISABLE_DEACTIVATION);
+    }
+    return scene;
+}
+
 }  // namespace btgpu::scenes::features

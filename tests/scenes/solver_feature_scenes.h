@@ -42,5 +42,8 @@ ScenePtr thresholdStack(WorldKind kind, const Config& config, btScalar threshold
 // has CF_HAS_FRICTION_ANCHOR; the box never sleeps and starts sliding downhill at `speed` m/s. Body 1 the slab, body 2 the box (body 0 a
 // ground far below).
 ScenePtr anchorSlope(WorldKind kind, const Config& config, btScalar angle, bool anchor, btScalar speed = 0);
+// A stack of `boxes` unit boxes of 1 kg resting on the slab of anchorSlope (bodies 2, 3, ...),
+// never deactivated.
+ScenePtr slopeStack(WorldKind kind, const Config& config, btScalar angle, int boxes);
 
 }  // namespace btgpu::scenes::features
