@@ -40,9 +40,25 @@ inline size_t residentGroups(const DeviceWorld& w, size_t items, size_t group)
 // per-round launches, CallEvent::Kind::ResidentOff).
 inline size_t residentSolveGroups(const DeviceWorld& w)
 {
+    const size_t units = std::max<cl_uint>(w.ctx.device().computeUnits, 1);
+    // BTGPU_RESIDENT_GROUPS=n: n groups (at most one per unit), fewer arrivals at each barrier
+    if (const char* e = std::getenv("BTGPU_RESIDENT_GROUPS")) return std::clamp<size_t>(size_t(std::max(std::atoi(e), 1)), 1, units);
     size_t perUnit = 1;
     if (const char* e = std::getenv("BTGPU_RESIDENT_GROUPS_PER_UNIT")) perUnit = size_t(std::clamp(std::atoi(e), 1, 32));
-    return perUnit * std::max<cl_uint>(w.ctx.device().computeUnits, 1);
+    return perUnit * units;
+}
+
+// Work-items of a group of the solvers' one-launch kernels where the groups are resident (one per
+// compute unit): `preferred` (the stage's choice), else 256 for the one group of a small scene
+// on a CPU; or BTGPU_RESIDENT_GROUP_SIZE (an experiment knob, as above); within the kernel's
+// limit. Each contact is a chain of dependent loads, so a sweep wants about one work-item per
+// contact of a colour, and every idle warp still waits at each of the step's hundreds of
+// barriers (measurements in solve_constraints.cpp and solve_soft.cpp).
+inline size_t residentSolveGroupSize(size_t kernelLimit, bool resident, size_t preferred)
+{
+    size_t size = resident ? preferred : 256;
+    if (const char* e = std::getenv("BTGPU_RESIDENT_GROUP_SIZE")) size = size_t(std::clamp(std::atoi(e), 32, 1024));
+    return std::max<size_t>(std::min(size, kernelLimit), 1);
 }
 
 // The barrier word, zeroed once when allocated: a normal exit leaves it ready for the next launch.

@@ -67,11 +67,13 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     // contact is a chain of dependent loads, so more work-items in flight beat cheaper
     // barriers: H200, 1,000 cubes: 1.7 ms with 132 groups, 2.2 with 2; 112,500: 3.1 against
     // 7.1 with groups sized for four contacts a work-item); on a CPU over one group for small
-    // scenes, where launch overhead would dominate (a lone group needs no grid barrier).
+    // scenes, where launch overhead would dominate (a lone group needs no grid barrier). Groups
+    // of 128 work-items on a GPU (H200, solve stage ms at 256 / 128 / 64 work-items a group:
+    // cubes 32,768 2.92 / 2.36 / 2.73, 112,500 4.20 / 3.81 / 4.46).
     const bool resident = useResident(w);
     if (resident || w.lastContactCount <= kOneGroupMaxContacts) {
         cl_kernel k = prog.kernel("solve_resident");
-        size_t group = std::min<size_t>(256, cl::kernelGroupLimit(ctx, k));
+        size_t group = residentSolveGroupSize(cl::kernelGroupLimit(ctx, k), resident, 128);
         size_t groups = resident ? residentSolveGroups(w) : 1;
         cl::Launch(ctx, k, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.rollingContacts).arg(w.frictionDirs).arg(w.frictionAnchors)
             .arg(w.counters).arg(edgeCapacity)

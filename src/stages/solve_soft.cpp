@@ -32,6 +32,19 @@ BtgSoftParams substepFields(const SoftStepConfig& c, int iterations)
     return p;
 }
 
+// Work-items a resident group takes (resident.h): about one per contact of a colour over the
+// compute units, 64 to 256. H200, solve stage ms at 256 / 128 / 64 work-items a group (132
+// groups): cubes 1,000 2.27 / 2.27 / 1.95, 8,000 - / 2.74 / 2.23, 32,768 4.91 / 4.12 / 5.64,
+// 112,500 5.96 / 6.44 / 8.72 (at 32,768, 124,000 contacts in 14 colours, 72 a compute unit): the
+// rule takes 64, 64, 128 and 256.
+size_t softGroupSize(const DeviceWorld& w, int numColors)
+{
+    const size_t units = std::max<cl_uint>(w.ctx.device().computeUnits, 1);
+    const size_t perColor = size_t(std::max(w.lastContactCount, 0)) / size_t(std::max(numColors - 1, 1));
+    const size_t want = perColor / units;
+    return want <= 64 ? 64 : (want <= 128 ? 128 : 256);
+}
+
 }  // namespace
 
 int softSubsteps(const SoftStepConfig& c, int iterations, float massRatio)
@@ -145,7 +158,8 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     const bool resident = useResident(w);
     if (resident || w.lastContactCount <= kOneGroupMaxContacts) {
         cl_kernel k = prog.kernel("soft_resident");
-        const size_t group = std::min<size_t>(256, cl::kernelGroupLimit(ctx, k));
+        const size_t group = residentSolveGroupSize(cl::kernelGroupLimit(ctx, k), resident,
+                                                    softGroupSize(w, numColors));
         const size_t groups = resident ? residentSolveGroups(w) : 1;
         cl::Launch l(ctx, k, &w.profiler);
         l.arg(w.edgeColor).arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorOrder).arg(gridBarrier(w))
