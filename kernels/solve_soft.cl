@@ -52,10 +52,13 @@
  * (dynamic, moving) is w of the body's VEL_LIN soft row. A contact's rows read two lines of a
  * body (this and the soft rows' first) where reading props, the world inertia and the velocity
  * columns took six to eight. */
-#define BTG_SOFT_SOLVER_ROWS 4
+static float soft_kind_of(int dynamic, int moving)
+{
+    return (float)(2 * dynamic + moving);
+}
 static float soft_kind(uint flags)
 {
-    return (float)(2 * btgIsSolverDynamic(flags) + btgIsSolverMoving(flags));
+    return soft_kind_of(btgIsSolverDynamic(flags), btgIsSolverMoving(flags));
 }
 static BtgSolverBody soft_solver_body(__global const BtgFloat4* restrict softSolver, float kind, int i)
 {
@@ -98,7 +101,7 @@ static int contact_edges(__global const uint* restrict counters, int edgeCapacit
 static void store_vel(BtgBodyVel v, BtgSolverBody body, BTG_SHARED __global BtgFloat4* softBodies, int i)
 {
     const int r = BTG_SOFT_BODY_ROWS * i;
-    softBodies[r + BTG_SOFT_VEL_LIN] = btgMake4(v.lin.x, v.lin.y, v.lin.z, (float)(2 * body.dynamic + body.moving));
+    softBodies[r + BTG_SOFT_VEL_LIN] = btgMake4(v.lin.x, v.lin.y, v.lin.z, soft_kind_of(body.dynamic, body.moving));
     softBodies[r + BTG_SOFT_VEL_ANG] = btgMake4(v.ang.x, v.ang.y, v.ang.z, 0.0f);
 }
 

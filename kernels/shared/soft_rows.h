@@ -143,6 +143,9 @@ typedef struct {
 #define BTG_SOFT_FORCE_LIN 4 /* m/s per substep */
 #define BTG_SOFT_FORCE_ANG 5 /* rad/s per substep */
 #define BTG_SOFT_SUPPORT 6   /* x: its contacts with fixed bodies, y: the last one's index, z: 1 if a pair holds it (floats) */
+/* Rows of a body's solver record for the step (the device's: btgMakeSolverBody's fields packed
+ * into one 64-byte line, solve_soft.cl's soft_solver_bodies). */
+#define BTG_SOFT_SOLVER_ROWS 4
 
 /* What a contact's rows read of a body's motion so far this step. */
 typedef struct {

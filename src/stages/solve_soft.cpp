@@ -17,8 +17,6 @@ namespace {
 // launch on one work-group.
 constexpr int kOneGroupMaxContacts = 4096;
 constexpr int kMaxSubsteps = 256;
-// Rows of a body's solver record (solve_soft.cl's BTG_SOFT_SOLVER_ROWS).
-constexpr int kSoftSolverRows = 4;
 
 // The substep fields of the step's scalars: the base count, and how it grows with the mass
 // ratio. An explicit substep count is kept; m_numIterations' grows unless the light bodies are
@@ -86,7 +84,7 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     SolverScratch& sc = w.solverScratch;
     sc.softContacts.reserve(ctx, std::max<size_t>(slots, 1));
     sc.softBodies.reserve(ctx, size_t(BTG_SOFT_BODY_ROWS) * size_t(numBodies));
-    sc.softSolver.reserve(ctx, size_t(kSoftSolverRows) * size_t(numBodies));
+    sc.softSolver.reserve(ctx, size_t(BTG_SOFT_SOLVER_ROWS) * size_t(numBodies));
     // Bound buffers even without contacts or joints.
     w.contacts.reserve(ctx, 1);
     w.joints.reserve(ctx, 1);
