@@ -440,7 +440,7 @@ static inline uint btgSoftJointEntry(int j, int side)
 /* btgRowApply's half for one body (side 0: A, 1: B): linear the row's direction on A, response
  * that body's angular velocity per N s (already times its angular factor). */
 static BTG_ALWAYS_INLINE void btgSoftApplySide(BtgFloat4 linear, BtgFloat4 response, int side, BtgSolverBody body,
-                                    BtgBodyVel* v, float impulse)
+                                               BtgBodyVel* v, float impulse)
 {
     const BtgFloat4 l = side ? -linear : linear;
     v->lin = v->lin + (l * body.invMassLin) * impulse * body.linFactor;
@@ -450,7 +450,7 @@ static BTG_ALWAYS_INLINE void btgSoftApplySide(BtgFloat4 linear, BtgFloat4 respo
  * impulse vector (the rows' effect is linear in it), on one of the contact's bodies (its totals:
  * btgSoftWarmTotals). */
 static BTG_ALWAYS_INLINE void btgSoftWarmStartSide(const BtgSoftContact* s, int side, BtgSolverBody body, BtgBodyVel* v,
-                                        const BtgFrictionDirs* dirs)
+                                                   const BtgFrictionDirs* dirs)
 {
     for (int k = 0; k < s->numPoints; ++k) {
         if (btgLane(s->normalMass, k) == 0.0f) continue;
@@ -483,7 +483,7 @@ static inline float btgSoftSeparation(const BtgSoftContact* s, int k, BtgSoftDel
 /* One friction row of point k along dir: driven to no slip within friction x the point's
  * normal impulse of this substep. */
 static BTG_ALWAYS_INLINE float btgSoftFrictionRow(const BtgSoftContact* s, int k, BtgFloat4 dir, float mass, float impulse,
-                                       BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb)
+                                                  BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb)
 {
     if (mass == 0.0f) return impulse;
     float lim = s->friction * btgLane(s->normalImpulse, k);
@@ -498,8 +498,8 @@ static BTG_ALWAYS_INLINE float btgSoftFrictionRow(const BtgSoftContact* s, int k
  * with frictionInSolve). Bit 1 of normals: the contact supports a held body, whose load it takes
  * within the substep, so its springs are stiffened from the impulse they carry now as well. */
 static BTG_ALWAYS_INLINE void btgSoftNormalRow(BtgSoftContact* s, int k, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
-                                    BtgBodyVel* vb, BtgSoftDelta dA, BtgSoftDelta dB, int useBias, int normals,
-                                    BtgSoftParams p)
+                                               BtgBodyVel* vb, BtgSoftDelta dA, BtgSoftDelta dB, int useBias, int normals,
+                                               BtgSoftParams p)
 {
     const BtgSoftness soft = (s->flags & BTG_SOFT_FIXED) ? p.fixed : p.contact;
     float mass = btgLane(s->normalMass, k);
@@ -544,7 +544,7 @@ static BTG_ALWAYS_INLINE void btgSoftNormalRow(BtgSoftContact* s, int k, BtgSolv
     btgRowApply(j, a, b, va, vb, next - old);
 }
 static BTG_ALWAYS_INLINE void btgSoftFrictionRows(BtgSoftContact* s, int k, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
-                                       BtgBodyVel* vb, const BtgFrictionDirs* dirs)
+                                                  BtgBodyVel* vb, const BtgFrictionDirs* dirs)
 {
     if (btgLane(s->normalMass, k) == 0.0f) return;
     float o1 = btgLane(s->tangent1Impulse, k), o2 = btgLane(s->tangent2Impulse, k);
