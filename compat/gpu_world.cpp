@@ -166,9 +166,9 @@ std::string GpuWorld::softStepReason() const
     // (box-box pairs keep no persistent manifold in it, so no point stays as a friction anchor),
     // with no relaxation factor (m_sor: tried as each row's change times m_sor, under-relaxed
     // the relax no longer takes out the spring's push and a box landing from 3 m at m_sor 0.3
-    // bounced 31 cm where stock's rises 3 cm) nor a spring for a negative cfm. Anisotropic friction it
-    // serves: a contact of an anisotropic body runs its friction rows along Bullet's scaled
-    // directions (BtgSoftParams::anisotropic).
+    // bounced 31 cm where stock's rises 3 cm) nor a spring for a negative cfm. Anisotropic
+    // friction it serves: a contact of an anisotropic body runs its friction rows along Bullet's
+    // scaled directions (BtgSoftParams::anisotropic).
     if (m_solverFlags & BTG_SOLVER_FRICTION_ANCHORS)
         return "friction anchors (CF_HAS_FRICTION_ANCHOR) with Config::solver = SoftStep";
     const btContactSolverInfo& info = m_world.getSolverInfo();

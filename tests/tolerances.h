@@ -68,7 +68,7 @@ constexpr double kSoftSlopeCreep = 0.0005;
 // two dynamic bodies starts at zero each step (warm-started, even at half or as the points' mean,
 // it rocks the exact towers of 20 and 30), so the top box creeps in each step's first substep.
 // Measured at 0.1 / 0.2 rad: lower box 0.56 / 0.93 mm, top 4.9 / 10.9 mm; stock 28 / 278 and
-// 130 / 1,083 mm: 2-4% of stock's.
+// 130 / 1,083 mm: 0.3-4% of stock's.
 constexpr double kSoftStackCreepOfStock = 0.1;
 // A sphere slowed by spinning friction: its time to spin down, relative to stock's.
 constexpr double kSpinDownRel = 0.05;

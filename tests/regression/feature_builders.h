@@ -27,7 +27,8 @@ inline btVector3 travel(const Scene& s, int body, const btVector3& start)
     return s.body(body)->getWorldTransform().getOrigin() - start;
 }
 
-// How far body 2 moved along the slope's downhill direction (a slope tilted `angle` about z).
+// How far `body` (2: anchorSlope's box) moved along the slope's downhill direction (a slope
+// tilted `angle` about z).
 inline double downhill(const Scene& s, const btVector3& start, btScalar angle, int body = 2)
 {
     const btVector3 down = quatRotate(btQuaternion(btVector3(0, 0, 1), angle), btVector3(-1, 0, 0));

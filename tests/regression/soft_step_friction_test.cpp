@@ -1,7 +1,8 @@
 // soft_step_friction_test.cpp — friction in the soft step (SolverKind::SoftStep) against stock:
-// anisotropic friction along Bullet's scaled directions, a box and a stack of two held on a slope, and the Bullet
-// friction features it sends to the CPU path. Each soft world asserted on the GPU path (or off it,
-// with its reason) at every step (scenes in tests/scenes/solver_feature_scenes.h).
+// anisotropic friction along Bullet's scaled directions, a box and a stack of two held on a
+// slope, and the Bullet friction features it sends to the CPU path. Each soft world asserted on
+// the GPU path (or off it, with its reason) at every step (scenes in
+// tests/scenes/solver_feature_scenes.h).
 #include <gtest/gtest.h>
 
 #include <algorithm>

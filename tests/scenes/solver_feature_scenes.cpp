@@ -115,23 +115,13 @@ ScenePtr thresholdStack(WorldKind kind, const Config& config, btScalar threshold
     return scene;
 }
 
-ScenePtr anchorSlope(WorldKind kind, const Config& config, btScalar angle, bool anchor, btScalar speed)
+namespace {
+// A ground far below, a 10 x 1 x 10 m slab tilted `angle` about z (body 1), and `boxes` unit
+// boxes of 1 kg stacked on it (bodies 2, 3, ...), never deactivated (asleep they would stop
+// creeping either way).
+ScenePtr slopeWithBoxes(WorldKind kind, const Config& config, btScalar angle, int boxes, const char* name)
 {
-    auto scene = std::make_unique<Scene>(kind, config, "anchor_slope");
-    scene->addBody(scene->boxShape(btVector3(50, 50, 50)), 0, btVector3(0, -60, 0));
-    const btQuaternion tilt(btVector3(0, 0, 1), angle);
-    const btVector3 up = quatRotate(tilt, btVector3(0, 1, 0));
-    scene->addBody(scene->boxShape(btVector3(5, .5, 5)), 0, btTransform(tilt, btVector3(0, 0, 0)));
-    btRigidBody* box = scene->addBody(scene->boxShape(btVector3(.5, .5, .5)), 1, btTransform(tilt, up * btScalar(1.0)));
-    box->setActivationState(DISABLE_DEACTIVATION);  // asleep it would stop creeping either way
-    box->setLinearVelocity(quatRotate(tilt, btVector3(-speed, 0, 0)));
-    if (anchor) box->setCollisionFlags(box->getCollisionFlags() | btCollisionObject::CF_HAS_FRICTION_ANCHOR);
-    return scene;
-}
-
-ScenePtr slopeStack(WorldKind kind, const Config& config, btScalar angle, int boxes)
-{
-    auto scene = std::make_unique<Scene>(kind, config, "slope_stack");
+    auto scene = std::make_unique<Scene>(kind, config, name);
     scene->addBody(scene->boxShape(btVector3(50, 50, 50)), 0, btVector3(0, -60, 0));
     const btQuaternion tilt(btVector3(0, 0, 1), angle);
     const btVector3 up = quatRotate(tilt, btVector3(0, 1, 0));
@@ -142,6 +132,21 @@ ScenePtr slopeStack(WorldKind kind, const Config& config, btScalar angle, int bo
         box->setActivationState(DISABLE_DEACTIVATION);
     }
     return scene;
+}
+}  // namespace
+
+ScenePtr anchorSlope(WorldKind kind, const Config& config, btScalar angle, bool anchor, btScalar speed)
+{
+    ScenePtr scene = slopeWithBoxes(kind, config, angle, 1, "anchor_slope");
+    btRigidBody* box = scene->body(2);
+    box->setLinearVelocity(quatRotate(btQuaternion(btVector3(0, 0, 1), angle), btVector3(-speed, 0, 0)));
+    if (anchor) box->setCollisionFlags(box->getCollisionFlags() | btCollisionObject::CF_HAS_FRICTION_ANCHOR);
+    return scene;
+}
+
+ScenePtr slopeStack(WorldKind kind, const Config& config, btScalar angle, int boxes)
+{
+    return slopeWithBoxes(kind, config, angle, boxes, "slope_stack");
 }
 
 }  // namespace btgpu::scenes::features
