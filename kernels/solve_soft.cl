@@ -219,8 +219,11 @@ static BtgSoftContact load_soft(__global const BtgSoftContact* softContacts, int
 /* Contact i's soft data lives at `slot`: its place in the color order (soft_color_fill), so
  * that a color's pass reads them one after another. */
 /* key: the sweep's order key (SOLVER_RANDMIZE_ORDER; 0: in order), which permutes the points. */
+/* mode: the pass, BTG_SOFT_WARM_TOTALS or'ed in where the substep's warm start was carried. */
 static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
 {
+    const int warmTotals = (mode & BTG_SOFT_WARM_TOTALS) != 0;
+    mode = btgSoftBaseMode(mode);
     if (mode == BTG_SOFT_STORE) {
         /* the totals the gather wrote, the impulses a held pair may have: from other work-items */
         BtgSoftContact s = softContacts[slot];
@@ -285,6 +288,9 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
         }
         /* Bullet's directions where the contact takes them, read where friction rows run */
         const int bullet = (s.flags & BTG_SOFT_BULLET_DIRECTIONS) && (mode == BTG_SOFT_RELAX || params.frictionInSolve);
+        if (warmTotals)
+            btgSoftCarriedTotals(&s, mode == BTG_SOFT_SOLVE,
+                                 params.frictionInSolve ? mode == BTG_SOFT_SOLVE : mode == BTG_SOFT_RELAX);
         BtgFrictionDirs dirs;
         if (bullet) dirs = frictionDirs[i];
         btgSoftSolve(&s, a, b, &va, &vb, dA, dB, mode == BTG_SOFT_SOLVE, normals, params, btgItemKey(key, (uint)i + 1u),
@@ -306,6 +312,7 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
 static void soft_joint(int j, int mode, SOFT_ARGS)
 {
     const int rows = jointState[j].numRows;
+    mode = btgSoftBaseMode(mode); /* a joint has no totals: its impulse is a substep's, times substeps at the store */
     if (rows == 0 || mode == BTG_SOFT_PREPARE || mode == BTG_SOFT_RESTITUTION) return;
     const BtgJoint joint = joints[j];
     if (mode == BTG_SOFT_STORE) {
@@ -340,11 +347,16 @@ static void soft_body(int i, int mode, SOFT_ARGS)
         return;
     }
     /* Each pass reads and writes only its rows: begin writes them all (the velocities from the
-     * world's columns); the velocity pass reads the forces' share; the position pass moves the
-     * deltas. The support row (prepare's, between them) the substeps' passes leave alone. */
+     * world's columns); the velocity pass reads the forces' share (and notes the mark where the
+     * later substeps carry their warm start), the carry reads both and moves the mark; the
+     * position pass moves the deltas. The support row (prepare's, between them) a held step's
+     * substeps leave alone. */
+    const int velocity = mode == BTG_SOFT_BODY_VELOCITY || mode == BTG_SOFT_BODY_CARRY;
+    const int mark = mode == BTG_SOFT_BODY_CARRY || (mode == BTG_SOFT_BODY_VELOCITY && !params.gather);
     BtgFloat4 rows[BTG_SOFT_BODY_ROWS];
     for (int r = 0; r < BTG_SOFT_BODY_ROWS; ++r) {
-        const int read = (mode == BTG_SOFT_BODY_VELOCITY && (r == BTG_SOFT_FORCE_LIN || r == BTG_SOFT_FORCE_ANG)) ||
+        const int read = (velocity && (r == BTG_SOFT_FORCE_LIN || r == BTG_SOFT_FORCE_ANG)) ||
+                         (mode == BTG_SOFT_BODY_CARRY && (r == BTG_SOFT_MARK_LIN || r == BTG_SOFT_MARK_ANG)) ||
                          (mode == BTG_SOFT_BODY_POSITION && (r == BTG_SOFT_DELTA_POS || r == BTG_SOFT_DELTA_ROT));
         rows[r] = read ? softBodies[row + r] : btgZero4();
     }
@@ -357,7 +369,8 @@ static void soft_body(int i, int mode, SOFT_ARGS)
         w = softBodies[row + BTG_SOFT_VEL_ANG];
     }
     if (mode == BTG_SOFT_BODY_BEGIN) btgSoftBodyBegin(flags, &v, &w, linVel0[i], angVel0[i], rows, params.substeps);
-    else if (mode == BTG_SOFT_BODY_VELOCITY) btgSoftBodyVelocity(flags, &v, &w, rows);
+    else if (mode == BTG_SOFT_BODY_VELOCITY) btgSoftBodyVelocity(flags, &v, &w, rows, mark);
+    else if (mode == BTG_SOFT_BODY_CARRY) btgSoftBodyCarry(flags, &v, &w, rows);
     else btgSoftBodyPosition(flags, v, w, rows, params.h);
     if (mode == BTG_SOFT_BODY_VELOCITY && btgIsSolverDynamic(flags)) {
         /* the substep's warm start, gathered from the body's edges in list order */
@@ -390,12 +403,13 @@ static void soft_body(int i, int mode, SOFT_ARGS)
     for (int r = 0; r < BTG_SOFT_BODY_ROWS; ++r) {
         const int written = mode == BTG_SOFT_BODY_BEGIN ||
                             (mode == BTG_SOFT_BODY_POSITION && btgIsSolverMoving(flags) &&
-                             (r == BTG_SOFT_DELTA_POS || r == BTG_SOFT_DELTA_ROT));
+                             (r == BTG_SOFT_DELTA_POS || r == BTG_SOFT_DELTA_ROT)) ||
+                            (mark && btgIsSolverDynamic(flags) && (r == BTG_SOFT_MARK_LIN || r == BTG_SOFT_MARK_ANG));
         if (written && r != BTG_SOFT_VEL_LIN && r != BTG_SOFT_VEL_ANG) softBodies[row + r] = rows[r];
     }
     /* the velocity the rows see (w of VEL_LIN the kind): every body's at the start, a dynamic
      * one's after its substep's forces and warm start */
-    if (mode == BTG_SOFT_BODY_BEGIN || (mode == BTG_SOFT_BODY_VELOCITY && btgIsSolverDynamic(flags))) {
+    if (mode == BTG_SOFT_BODY_BEGIN || (velocity && btgIsSolverDynamic(flags))) {
         softBodies[row + BTG_SOFT_VEL_LIN] = btgMake4(v.x, v.y, v.z, soft_kind(flags));
         softBodies[row + BTG_SOFT_VEL_ANG] = btgMake4(w.x, w.y, w.z, 0.0f);
     }
@@ -585,8 +599,8 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
     /* the substeps this step's mass ratio needs (soft_color_count noted it) */
     const int substeps = btgSoftSubstepsFor(params, as_float(counters[BTG_COUNTER_SOFT_MASS_RATIO]));
     if (substeps != params.substeps) params = btgSoftParamsWith(params, substeps);
-    /* pass list: prepare; per substep velocity and warm start (bodies), solve, position, relax;
-     * restitution; store; the velocities back (bodies) */
+    /* pass list: prepare; per substep velocity and warm start (bodies: gathered, or carried after
+     * the first), solve, position, relax; restitution; store; the velocities back (bodies) */
     const int passes = 2 + 4 * params.substeps + 3;
     for (int pass = 0; pass < passes; ++pass) {
         int bodyMode = -1, mode = -1;
@@ -596,11 +610,11 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
         else if (pass == passes - 2) mode = BTG_SOFT_STORE;
         else if (pass == passes - 3) mode = BTG_SOFT_RESTITUTION;
         else {
-            const int q = (pass - 2) % 4;
-            if (q == 0) bodyMode = BTG_SOFT_BODY_VELOCITY;
-            else if (q == 1) mode = BTG_SOFT_SOLVE;
+            const int q = (pass - 2) % 4, substep = (pass - 2) / 4;
+            if (q == 0) bodyMode = btgSoftVelocityMode(params, substep);
+            else if (q == 1) mode = btgSoftSweepMode(params, substep, 0);
             else if (q == 2) bodyMode = BTG_SOFT_BODY_POSITION;
-            else mode = BTG_SOFT_RELAX;
+            else mode = btgSoftSweepMode(params, substep, 1);
         }
         if (bodyMode >= 0) {
             for (int i = gid; i < numBodies; i += gsize) soft_body(i, bodyMode, SOFT_PASS);
@@ -612,8 +626,9 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
         const int independent = (mode == BTG_SOFT_PREPARE && !(params.heldMassRatio > 0.0f)) || mode == BTG_SOFT_STORE;
         /* SOLVER_RANDMIZE_ORDER: a substep's solve and relax sweeps take their colours (the
          * leftovers last) and points in an order of their own */
-        const uint key = mode == BTG_SOFT_SOLVE || mode == BTG_SOFT_RELAX
-                             ? btgSoftSweepKey(params, (pass - 2) / 4, mode == BTG_SOFT_RELAX)
+        const int base = btgSoftBaseMode(mode);
+        const uint key = base == BTG_SOFT_SOLVE || base == BTG_SOFT_RELAX
+                             ? btgSoftSweepKey(params, (pass - 2) / 4, base == BTG_SOFT_RELAX)
                              : 0u;
         for (int ci = 0; ci < last; ++ci) {
             const int color = btgPermute(key, last, ci);

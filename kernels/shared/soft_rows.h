@@ -66,6 +66,9 @@ typedef struct {
                                     (applyAnisotropicFriction's scaled directions) */
     int twoDirections;           /* SOLVER_USE_2_FRICTION_DIRECTIONS: with Bullet's directions, both rows (else the first
                                     alone, as Bullet's one row) */
+    int gather;                  /* every substep's warm start gathered from the bodies' edges (btgSoftGathers: rolling
+                                    rows or held pairs); 0: the substeps after the first carry the last one's velocity
+                                    change (BTG_SOFT_BODY_CARRY) */
 } BtgSoftParams;
 
 /* m_globalCfm as a spring: Bullet solves a contact of raw cfm and erp as the implicit spring of
@@ -143,6 +146,11 @@ typedef struct {
 #define BTG_SOFT_FORCE_LIN 4 /* m/s per substep */
 #define BTG_SOFT_FORCE_ANG 5 /* rad/s per substep */
 #define BTG_SOFT_SUPPORT 6   /* x: its contacts with fixed bodies, y: the last one's index, z: 1 if a pair holds it (floats) */
+/* The velocity after this substep's forces, before its warm start (BTG_SOFT_BODY_CARRY's origin):
+ * only where the substeps carry their warm start, so the angular half shares the support's row
+ * (a held step gathers: BtgSoftParams.gather). */
+#define BTG_SOFT_MARK_LIN 7
+#define BTG_SOFT_MARK_ANG 6
 /* Rows of a body's solver record for the step (the device's: btgMakeSolverBody's fields packed
  * into one 64-byte line, solve_soft.cl's soft_solver_bodies). */
 #define BTG_SOFT_SOLVER_ROWS 4
@@ -164,10 +172,15 @@ typedef struct {
 #define BTG_SOFT_BODY_VELOCITY 1
 #define BTG_SOFT_BODY_POSITION 2
 #define BTG_SOFT_BODY_END 3 /* the device's: the velocities back into the world's columns */
+#define BTG_SOFT_BODY_CARRY 4 /* a substep after the first, warm start carried (btgSoftBodyCarry) */
+/* Or'ed into a solve or relax pass of a substep after the first whose warm start was carried:
+ * the contact adds that warm start to its step totals itself (btgSoftCarriedTotals), as the
+ * gather's owner side does. */
+#define BTG_SOFT_WARM_TOTALS 8
 
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(BtgSoftness) == 16, "BtgSoftness layout");
-static_assert(sizeof(BtgSoftParams) == 136, "BtgSoftParams layout");
+static_assert(sizeof(BtgSoftParams) == 140, "BtgSoftParams layout");
 static_assert(sizeof(BtgSoftContact) == 16 * (16 + 2 * BTG_MAX_POINTS) + 32, "BtgSoftContact layout");
 #endif
 
@@ -200,6 +213,22 @@ static inline void btgSoftScales(float a2, float* massScale, float* impulseScale
 {
     *massScale = a2 / (1.0f + a2);
     *impulseScale = 1.0f / (1.0f + a2);
+}
+
+/* A spring of omega^2 and damping ratio zeta stiffened r times: its stiffness times r, its
+ * damping times r^1.5 (its damping ratio times r). The stiffening follows the last step's load,
+ * a step late: stiffened with the damping alike (its ratio kept), that lag pumped energy into
+ * tall stacks (the tower of 30 breathed 17 mm up and down for the 10 s; damped the more, it
+ * settles in 3.4 s). */
+static inline BtgSoftness btgSoftStiffened(float r, float omega2, float zeta, float h)
+{
+    const float omega = sqrt(omega2), hw = h * omega;
+    const float a1 = 2.0f * zeta * r * sqrt(r) + hw * r; /* h (c' + h k') / (m h omega) */
+    BtgSoftness s;
+    s.stiffness = hw * a1;
+    s.biasRate = omega * r / a1;
+    btgSoftScales(s.stiffness, &s.massScale, &s.impulseScale);
+    return s;
 }
 
 /* The step's scalars for `substeps` substeps of p.dt (p's settings kept). Box2D caps the
@@ -271,12 +300,34 @@ static inline void btgSoftBodyBegin(uint flags, BtgFloat4* lin, BtgFloat4* ang, 
     *lin = btgMake4(v0.x, v0.y, v0.z, (*lin).w);
     *ang = btgMake4(w0.x, w0.y, w0.z, (*ang).w);
 }
-/* IntegrateVelocities: a substep's share of the forces. */
-static inline void btgSoftBodyVelocity(uint flags, BtgFloat4* lin, BtgFloat4* ang, const BtgFloat4* rows)
+/* IntegrateVelocities: a substep's share of the forces. mark: note the velocity it leaves (the
+ * carried warm start's origin, before the gathered one is added). */
+static inline void btgSoftBodyVelocity(uint flags, BtgFloat4* lin, BtgFloat4* ang, BtgFloat4* rows, int mark)
 {
     if (!btgIsSolverDynamic(flags)) return;
     *lin = *lin + rows[BTG_SOFT_FORCE_LIN];
     *ang = *ang + rows[BTG_SOFT_FORCE_ANG];
+    if (!mark) return;
+    rows[BTG_SOFT_MARK_LIN] = btgXyz(*lin);
+    rows[BTG_SOFT_MARK_ANG] = btgXyz(*ang);
+}
+/* IntegrateVelocities and WarmStart of a substep after the first, without the gather. The
+ * rows' Jacobians (fixed anchors, normal and tangents, the step's inverse inertia) and the
+ * bodies' masses stay the same over a step, and every row applies exactly its impulse's change,
+ * so what the last substep's warm start and rows did to a body's velocity is M^-1 J^T of the
+ * impulses it ended with: the warm start this substep would gather. Carried as that velocity
+ * change (now minus the mark), it costs a body pass instead of one walk over the body's edges
+ * (up to a dozen contacts of four points). Rolling rows (never warm-started) and held pairs
+ * (btgSoftHeldNormals sets another contact's impulses) break the identity: those steps gather
+ * (BtgSoftParams.gather). Rounding aside (a velocity difference), the same warm start. */
+static inline void btgSoftBodyCarry(uint flags, BtgFloat4* lin, BtgFloat4* ang, BtgFloat4* rows)
+{
+    if (!btgIsSolverDynamic(flags)) return;
+    const BtgFloat4 dLin = btgXyz(*lin) - btgXyz(rows[BTG_SOFT_MARK_LIN]);
+    const BtgFloat4 dAng = btgXyz(*ang) - btgXyz(rows[BTG_SOFT_MARK_ANG]);
+    btgSoftBodyVelocity(flags, lin, ang, rows, 1);
+    *lin = *lin + dLin;
+    *ang = *ang + dAng;
 }
 /* IntegratePositions: the deltas of every body whose velocity enters the rows (kinematic ones
  * too: the host moves them by their velocity over the step). */
@@ -419,6 +470,13 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
             btgSetLane(&s.stiffening, k, r > 1.0f ? r : 1.0f);
         }
     }
+    /* One factor for all the manifold's points, its most loaded point's: stiffened point by
+     * point, every loaded corner sank maxSag whatever its load, so a box had no spring torque
+     * against tipping on its face and exact towers rocked (the tower of 20 48-60 mm in 10 s,
+     * never settling; with one factor 16 mm, settled in 0.5 s). */
+    float r = 1.0f;
+    for (int k = 0; k < c.numPoints; ++k) r = btgMax(r, btgLane(s.stiffening, k));
+    s.stiffening = btgMake4(r, r, r, r);
     return s;
 }
 
@@ -459,6 +517,38 @@ static BTG_ALWAYS_INLINE void btgSoftWarmStartSide(const BtgSoftContact* s, int 
         BtgFloat4 angular = side ? -btgCross3(s->rB[k], impulse) : btgCross3(s->rA[k], impulse);
         btgSoftApplySide(impulse, btgMat3MulVec(body.invI, angular) * body.angFactor, side, body, v, 1.0f);
     }
+}
+/* The contact's own share of a carried warm start (BTG_SOFT_WARM_TOTALS): the last substep's
+ * impulses into the step totals, the normal's in the solve, the friction's in the first pass
+ * that solves friction (as btgSoftWarmTotals, whose sums these are, in the same order). */
+static BTG_ALWAYS_INLINE void btgSoftCarriedTotals(BtgSoftContact* s, int normal, int friction)
+{
+    for (int k = 0; k < s->numPoints; ++k) {
+        if (btgLane(s->normalMass, k) == 0.0f) continue;
+        if (normal) btgSetLane(&s->totalNormal, k, btgLane(s->totalNormal, k) + btgLane(s->normalImpulse, k));
+        if (!friction) continue;
+        btgSetLane(&s->total1, k, btgLane(s->total1, k) + btgLane(s->tangent1Impulse, k));
+        btgSetLane(&s->total2, k, btgLane(s->total2, k) + btgLane(s->tangent2Impulse, k));
+    }
+}
+/* The pass's own mode, and whether it adds a carried warm start to the totals. */
+static inline int btgSoftBaseMode(int mode)
+{
+    return mode & ~BTG_SOFT_WARM_TOTALS;
+}
+/* Whether every substep gathers its warm start (btgSoftBodyCarry says when it cannot be carried). */
+static inline int btgSoftGathers(BtgSoftParams p)
+{
+    return p.rolling || p.heldMassRatio > 0.0f;
+}
+/* The body and edge passes of substep s (0: the step's first). */
+static inline int btgSoftVelocityMode(BtgSoftParams p, int s)
+{
+    return s > 0 && !p.gather ? BTG_SOFT_BODY_CARRY : BTG_SOFT_BODY_VELOCITY;
+}
+static inline int btgSoftSweepMode(BtgSoftParams p, int s, int relax)
+{
+    return (relax ? BTG_SOFT_RELAX : BTG_SOFT_SOLVE) | (s > 0 && !p.gather ? BTG_SOFT_WARM_TOTALS : 0);
 }
 /* What a substep's warm start adds to the contact's step totals. */
 static BTG_ALWAYS_INLINE void btgSoftWarmTotals(BtgSoftContact* s)
@@ -520,19 +610,18 @@ static BTG_ALWAYS_INLINE void btgSoftNormalRow(BtgSoftContact* s, int k, BtgSolv
         bias = massScale * (s->springStiffness / ck) * sep;
         if (bias < -p.pushSpeed) bias = -p.pushSpeed;
     } else if (useBias) {
-        massScale = soft.massScale;
-        impulseScale = soft.impulseScale;
         float r = btgLane(s->stiffening, k);
         if (normals & 2) {
             const float omega2 = p.omega2Fixed;
             float now = old / (mass * p.h * omega2 * p.maxSag);
             r = now > r ? now : r;
         }
-        if (r > 1.0f) {
-            float a2 = r * soft.stiffness;
-            btgSoftScales(a2, &massScale, &impulseScale);
-        }
-        bias = massScale * soft.biasRate * sep;
+        const BtgSoftness spring =
+            r > 1.0f ? btgSoftStiffened(r, (s->flags & BTG_SOFT_FIXED) ? p.omega2Fixed : p.omega2Contact, p.zeta, p.h)
+                     : soft;
+        massScale = spring.massScale;
+        impulseScale = spring.impulseScale;
+        bias = massScale * spring.biasRate * sep;
         if (bias < -p.pushSpeed) bias = -p.pushSpeed;
     }
     BtgJacobian j = btgPointJacobian(s->normal, s->rA[k], s->rB[k], a, b);

@@ -1,5 +1,6 @@
 // solve_soft.cpp — CPU reference of the soft step: the device's passes in its order (bodies,
-// each gathering its warm start from its edges in index order; then per color the edges of that
+// each gathering its warm start from its edges in index order, or after the first substep
+// carrying it; then per color the edges of that
 // color in index order; the last color takes the leftovers),
 // on contacts only (joints are compared through scenes).
 #include "reference/solve_soft.h"
@@ -56,7 +57,9 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
             if (mode == BTG_SOFT_BODY_BEGIN)
                 btgSoftBodyBegin(flags, &v, &w, bodies.linVel0[i], bodies.angVel0[i], r, params.substeps);
             else if (mode == BTG_SOFT_BODY_VELOCITY)
-                btgSoftBodyVelocity(flags, &v, &w, r);
+                btgSoftBodyVelocity(flags, &v, &w, r, !params.gather);
+            else if (mode == BTG_SOFT_BODY_CARRY)
+                btgSoftBodyCarry(flags, &v, &w, r);
             else
                 btgSoftBodyPosition(flags, v, w, r, params.h);
             if (mode == BTG_SOFT_BODY_VELOCITY && btgIsSolverDynamic(flags)) {
@@ -79,6 +82,8 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
         }
     };
     auto edge = [&](size_t e, int mode, uint key) {
+        const bool warmTotals = (mode & BTG_SOFT_WARM_TOTALS) != 0;
+        mode = btgSoftBaseMode(mode);
         if (mode == BTG_SOFT_STORE) {
             btgSoftStore(contacts.data(), int(e), &soft[e]);
             return;
@@ -125,6 +130,9 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
                     normals = 3;
                 }
             }
+            if (warmTotals)
+                btgSoftCarriedTotals(&soft[e], mode == BTG_SOFT_SOLVE,
+                                     params.frictionInSolve ? mode == BTG_SOFT_SOLVE : mode == BTG_SOFT_RELAX);
             btgSoftSolve(&soft[e], a, b, &va, &vb, btgSoftDeltaOf(ra), btgSoftDeltaOf(rb), mode == BTG_SOFT_SOLVE,
                          normals, params, btgItemKey(key, uint(e) + 1u),
                          (soft[e].flags & BTG_SOFT_BULLET_DIRECTIONS) ? dirsOf(e) : nullptr);
@@ -153,10 +161,10 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
     bodyPass(BTG_SOFT_BODY_BEGIN);
     edgePass(BTG_SOFT_PREPARE, 0u);
     for (int s = 0; s < params.substeps; ++s) {
-        bodyPass(BTG_SOFT_BODY_VELOCITY);  // and the warm start
-        edgePass(BTG_SOFT_SOLVE, btgSoftSweepKey(params, s, 0));
+        bodyPass(btgSoftVelocityMode(params, s));  // and the warm start (gathered, or carried)
+        edgePass(btgSoftSweepMode(params, s, 0), btgSoftSweepKey(params, s, 0));
         bodyPass(BTG_SOFT_BODY_POSITION);
-        edgePass(BTG_SOFT_RELAX, btgSoftSweepKey(params, s, 1));
+        edgePass(btgSoftSweepMode(params, s, 1), btgSoftSweepKey(params, s, 1));
     }
     edgePass(BTG_SOFT_RESTITUTION, 0u);
     edgePass(BTG_SOFT_STORE, 0u);

@@ -69,6 +69,7 @@ BtgSoftParams makeSoftParams(const SoftStepConfig& c, const BtgStepParams& param
     p.rolling = (params.solverFlags & BTG_SOLVER_ROLLING_FRICTION) != 0u ? 1 : 0;
     p.anisotropic = (params.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION) != 0u ? 1 : 0;
     p.twoDirections = params.twoFrictionDirections ? 1 : 0;
+    p.gather = btgSoftGathers(p);
     return btgSoftParamsWith(p, p.substeps);
 }
 
@@ -195,10 +196,10 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     bodyPass(BTG_SOFT_BODY_BEGIN);
     edgePass(BTG_SOFT_PREPARE, 0u);
     for (int s = 0; s < params.substeps; ++s) {
-        bodyPass(BTG_SOFT_BODY_VELOCITY);  // and the warm start
-        edgePass(BTG_SOFT_SOLVE, btgSoftSweepKey(params, s, 0));
+        bodyPass(btgSoftVelocityMode(params, s));  // and the warm start (gathered, or carried)
+        edgePass(btgSoftSweepMode(params, s, 0), btgSoftSweepKey(params, s, 0));
         bodyPass(BTG_SOFT_BODY_POSITION);
-        edgePass(BTG_SOFT_RELAX, btgSoftSweepKey(params, s, 1));
+        edgePass(btgSoftSweepMode(params, s, 1), btgSoftSweepKey(params, s, 1));
     }
     edgePass(BTG_SOFT_RESTITUTION, 0u);
     edgePass(BTG_SOFT_STORE, 0u);

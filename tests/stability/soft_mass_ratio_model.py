@@ -8,7 +8,7 @@ import math
 import sys
 
 
-def run(M=1000.0, m=1.0, substeps=10, steps=600, order=(0, 1), hertz=60.0, zeta=10.0, max_sag=0.001,
+def run(M=1000.0, m=1.0, substeps=10, steps=600, order=(0, 1), hertz=60.0, zeta=10.0, max_sag=0.0007,
         push=3.0, ground_share=None, top_share=None, relax_passes=1, verbose=0):
     """Contacts 0 (ground-light) and 1 (light-heavy), solved in `order`. ground_share/top_share:
     that row's relax mass raised to share x the mass it carries (its warm-start load over g h).
@@ -52,9 +52,12 @@ def run(M=1000.0, m=1.0, substeps=10, steps=600, order=(0, 1), hertz=60.0, zeta=
                     if sep > 0:
                         bias = sep / h
                     elif biased:
-                        a2 = r[c] * springs[c]['a2']
+                        # stiffened r times, damped r^1.5 times (btgSoftStiffened)
+                        om = math.sqrt(springs[c]['om2'])
+                        a1r = 2 * zeta * r[c] ** 1.5 + h * om * r[c]
+                        a2 = h * om * a1r
                         ms, isc = a2 / (1 + a2), 1 / (1 + a2)
-                        bias = max(ms * springs[c]['bias'] * sep, -push)
+                        bias = max(ms * (om * r[c] / a1r) * sep, -push)
                     mass = meff[c]
                     share = ground_share if c == 0 else top_share
                     if share is not None and not biased:

@@ -138,6 +138,41 @@ TEST(SolveSoft, MatchesReferenceWithWarmStart)
     EXPECT_GT(total, 1.0f);
 }
 
+// The substeps after the first carry their warm start (the velocity change the last substep's
+// impulses made: btgSoftBodyCarry) where no rolling rows or held pairs break that identity; the
+// gather every substep (BtgSoftParams::gather) stays for those. Both give the same step within
+// rounding, warm-started across steps, friction in the relax or also in the solve (where the
+// friction's totals are added), on the reference and the device; and the gather still runs where
+// it must.
+TEST(SolveSoft, CarriedWarmStartIsTheGatheredOne)
+{
+    test::StackScene s = test::stackScene(6, 4, 9);
+    const BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
+    const float tol = 30 * tol::kStageAbs;
+    for (bool frictionInSolve : {false, true}) {
+        SCOPED_TRACE(frictionInSolve ? "friction also in the solve" : "friction in the relax");
+        BtgSoftParams carried = softParams(p);
+        carried.frictionInSolve = frictionInSolve ? 1 : 0;
+        ASSERT_EQ(0, carried.gather);
+        BtgSoftParams gathered = carried;
+        gathered.gather = 1;
+        const Result c1 = runReference(s.bodies, s.manifolds, {}, p, carried, 8);
+        const Result g1 = runReference(s.bodies, s.manifolds, {}, p, gathered, 8);
+        expectAlike(c1, g1, tol);
+        const Result c = runReference(s.bodies, s.manifolds, c1.contacts, p, carried, 8);
+        const Result g = runReference(s.bodies, s.manifolds, g1.contacts, p, gathered, 8);
+        expectAlike(c, g, tol);
+        for (bool fused : {true, false}) {
+            SCOPED_TRACE(fused ? "one launch" : "per-color launches");
+            expectAlike(runDevice(s.bodies, s.manifolds, c1.contacts, p, gathered, 8, fused), g, tol);
+        }
+    }
+    BtgStepParams rolling = p;
+    rolling.solverFlags |= BTG_SOLVER_ROLLING_FRICTION;
+    EXPECT_EQ(1, softParams(rolling).gather);
+    EXPECT_EQ(1, softParams(p, 0, SoftStepConfig{}.maxSag, 100.0f).gather);
+}
+
 // The three launch shapes compute the same arithmetic in the same color order: per-color
 // launches, one launch on one group, and one launch over resident groups (where the device
 // keeps them resident; a CPU device may time out at the grid barrier, which the pipeline redoes).
