@@ -355,7 +355,7 @@ static void soft_body(int i, int mode, SOFT_ARGS)
     const int mark = mode == BTG_SOFT_BODY_CARRY || (mode == BTG_SOFT_BODY_VELOCITY && !params.gather);
     BtgFloat4 rows[BTG_SOFT_BODY_ROWS];
     for (int r = 0; r < BTG_SOFT_BODY_ROWS; ++r) {
-        const int read = (velocity && (r == BTG_SOFT_FORCE_LIN || r == BTG_SOFT_FORCE_ANG)) ||
+        const int read = (velocity && r == BTG_SOFT_FORCE_LIN) ||
                          (mode == BTG_SOFT_BODY_CARRY && (r == BTG_SOFT_MARK_LIN || r == BTG_SOFT_MARK_ANG)) ||
                          (mode == BTG_SOFT_BODY_POSITION && (r == BTG_SOFT_DELTA_POS || r == BTG_SOFT_DELTA_ROT));
         rows[r] = read ? softBodies[row + r] : btgZero4();
@@ -368,7 +368,7 @@ static void soft_body(int i, int mode, SOFT_ARGS)
         v = softBodies[row + BTG_SOFT_VEL_LIN];
         w = softBodies[row + BTG_SOFT_VEL_ANG];
     }
-    if (mode == BTG_SOFT_BODY_BEGIN) btgSoftBodyBegin(flags, &v, &w, linVel0[i], angVel0[i], rows, params.substeps);
+    if (mode == BTG_SOFT_BODY_BEGIN) btgSoftBodyBegin(flags, &v, linVel0[i], rows, params.substeps);
     else if (mode == BTG_SOFT_BODY_VELOCITY) btgSoftBodyVelocity(flags, &v, &w, rows, mark);
     else if (mode == BTG_SOFT_BODY_CARRY) btgSoftBodyCarry(flags, &v, &w, rows);
     else btgSoftBodyPosition(flags, v, w, rows, params.h);

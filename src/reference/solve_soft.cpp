@@ -55,7 +55,7 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
             BtgFloat4* r = rows.data() + BTG_SOFT_BODY_ROWS * i;
             BtgFloat4 v = bodies.linVel[i], w = bodies.angVel[i];
             if (mode == BTG_SOFT_BODY_BEGIN)
-                btgSoftBodyBegin(flags, &v, &w, bodies.linVel0[i], bodies.angVel0[i], r, params.substeps);
+                btgSoftBodyBegin(flags, &v, bodies.linVel0[i], r, params.substeps);
             else if (mode == BTG_SOFT_BODY_VELOCITY)
                 btgSoftBodyVelocity(flags, &v, &w, r, !params.gather);
             else if (mode == BTG_SOFT_BODY_CARRY)
