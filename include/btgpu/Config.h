@@ -67,9 +67,9 @@ struct SoftStepConfig {
     // box on a 1 kg one 28 cm at 30 Hz, the bottom of a tower of 30 unit boxes 2 cm. A contact
     // whose last step's most loaded point would sink further is stiffened for this step, all its
     // points alike (stiffness r times, damping r^1.5 times) until that point would not. 0:
-    // Box2D's springs. 0.7 mm: the towers of 20 and 30 settle within 14 and 25 mm and the
-    // pyramid of 50's apex sinks 29 mm (README, solver modes; 1 mm stiffened point by point
-    // until 2026-12-05 left the towers rocking).
+    // Box2D's springs. 0.7 mm: the towers of 20 and 30 settle within 13 and 27 mm and no box
+    // of the pyramid of 50 moves more than 38 mm (README, solver modes; 1 mm stiffened point by
+    // point until 2026-12-05 left the towers rocking; one factor at 1 mm, the pyramid 56 mm).
     float maxSag = 0.0007f;
     // Opt-in (0: off, the default): a light body under a much heavier one (masses differing by
     // more than this). Gauss-Seidel hands the heavy body only the light one's share of each

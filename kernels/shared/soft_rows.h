@@ -219,7 +219,7 @@ static inline void btgSoftScales(float a2, float* massScale, float* impulseScale
  * damping times r^1.5 (its damping ratio times r). The stiffening follows the last step's load,
  * a step late: stiffened with the damping alike (its ratio kept), that lag pumped energy into
  * tall stacks (the tower of 30 breathed 17 mm up and down for the 10 s; damped the more, it
- * settles in 3.4 s). */
+ * settles in 2.5-3.4 s). */
 static inline BtgSoftness btgSoftStiffened(float r, float omega2, float zeta, float h)
 {
     const float omega = sqrt(omega2), hw = h * omega;
@@ -288,8 +288,9 @@ static inline BtgSoftDelta btgSoftDeltaOf(const BtgFloat4* rows)
  * The angular velocity keeps the forces' whole change from the start: that change carries
  * Bullet's implicit gyroscopic term, made for one rotation at the velocity it leaves; shared out
  * over the substeps while they turn the body, a box tumbling near its intermediate axis drifted
- * in energy 3.6x as much as stock's at 10 substeps, the more the more substeps
- * (SolverModes / accuracy: tumbling_box; now the bullet mode's error). */
+ * in energy twice as much as stock's in 2 s at 10 substeps, the more the more substeps; now as
+ * the bullet mode's (SoftStepMotion.TumblingBoxTurnsAsTheBulletMode, btgpu_accuracy's
+ * tumbling_box). */
 static inline void btgSoftBodyBegin(uint flags, BtgFloat4* lin, BtgFloat4 v0, BtgFloat4* rows, int substeps)
 {
     rows[BTG_SOFT_DELTA_POS] = btgZero4();
