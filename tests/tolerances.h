@@ -70,7 +70,7 @@ constexpr double kSoftSlopeCreep = 0.0005;
 // Measured at 0.1 / 0.2 rad: lower box 0.56 / 0.93 mm, top 4.9 / 10.9 mm; stock 28 / 278 and
 // 130 / 1,083 mm: 0.3-4% of stock's.
 constexpr double kSoftStackCreepOfStock = 0.1;
-// Relative: how far the soft step's box tumbling near its intermediate axis (no contacts, 4 s) may
+// Relative: how far the soft step's box tumbling near its intermediate axis (no contacts, 2 s) may
 // end from the bullet mode's and stock's, in rotational energy drift and in angular velocity
 // (SoftStepMotion.TumblingBoxTurnsAsTheBulletMode). Measured over 2 s: stock -0.030488, the bullet
 // mode and the soft step -0.030481; with the forces' angular change shared out over the substeps
