@@ -12,12 +12,19 @@
 #define BTG_GRID_BARRIER_H
 #include "prelude.h"
 
+/* Each word on a line of its own (128 bytes apart): the waiters' polls of the generation then do
+ * not contend with the arrivals' atomics, and a poll reads one line. */
 typedef struct {
     uint arrived;    /* groups at the barrier in this generation */
+    uint pad0[31];
     uint generation; /* bumped by the last arrival */
+    uint pad1[31];
     uint timedOut;   /* set by a waiter that gave up */
-    uint pad;
+    uint pad2[31];
 } BtgGridBarrier;
+
+/* words the host allocates (and zeroes) for one barrier */
+#define BTG_GRID_BARRIER_WORDS 96
 
 #ifdef __OPENCL_C_VERSION__
 /* Qualifier of data the resident kernels share between work-groups: the host builds with
@@ -44,10 +51,14 @@ static int btgGridBarrier(volatile __global BtgGridBarrier* bar, int spinLimit, 
             mem_fence(CLK_GLOBAL_MEM_FENCE);
             atomic_inc(&bar->generation);
         } else {
+            /* the give-up flag is read once every 64 polls: it is for a broken device, and each
+             * read is another L2 round trip on the waiters' path */
             int spins = 0;
             while (bar->generation == gen) {
-                if (bar->timedOut != 0u) { stop = 1; break; }
-                if (++spins > spinLimit) { atomic_xchg(&bar->timedOut, 1u); stop = 1; break; }
+                if ((++spins & 63) == 0) {
+                    if (bar->timedOut != 0u) { stop = 1; break; }
+                    if (spins > spinLimit) { atomic_xchg(&bar->timedOut, 1u); stop = 1; break; }
+                }
             }
         }
         mem_fence(CLK_GLOBAL_MEM_FENCE);

@@ -5,6 +5,7 @@
 // batching takes only enough for one round's work (fewer groups, cheaper barriers), the solve
 // one per compute unit (see solve_constraints.cpp).
 #pragma once
+#include "shared/grid_barrier.h"
 #include "world/device_world.h"
 
 #include <algorithm>
@@ -65,7 +66,7 @@ inline size_t residentSolveGroupSize(size_t kernelLimit, bool resident, size_t p
 inline cl::DeviceArray<uint>& gridBarrier(DeviceWorld& w)
 {
     cl::DeviceArray<uint>& bar = w.solverScratch.gridBarrier;
-    if (bar.capacity() == 0) bar.zero(w.ctx, 4);
+    if (bar.capacity() == 0) bar.zero(w.ctx, BTG_GRID_BARRIER_WORDS);
     return bar;
 }
 
