@@ -130,7 +130,7 @@ static BtgSoftDelta load_delta(BTG_SHARED __global BtgFloat4* softBodies, int r)
  * contact's passes stay with one work-item, but the gather reads its impulses from another
  * (and its owner side writes its totals), so those go through BTG_SHARED (volatile on GPUs,
  * whose per-compute-unit caches are not coherent across a grid barrier). */
-static BTG_SHARED __global BtgSoftContact* shared_soft(__global BtgSoftContact* p)
+static BTG_SHARED __global BtgSoftContact* shared_soft(__global const BtgSoftContact* p)
 {
     return (BTG_SHARED __global BtgSoftContact*)p;
 }
@@ -549,6 +549,55 @@ __kernel void soft_list_sort(int numBodies, __global const uint* restrict start,
     }
 }
 
+/* The sweeps' order as each body sees it, for the resident launch's flow (soft_resident): for
+ * each side of regular slot k (colours below the last), the edge's place among its body's
+ * regular edges in colour order (rank) and their number (deg), packed deg << 16 | rank; no
+ * wait (BTG_SOFT_FLOW_FREE) for a side that is not a listed dynamic body. One work-item per
+ * slot, after the lists are filled (their order does not matter here). */
+#define BTG_SOFT_FLOW_FREE 0xffffffffu
+static int entry_edge(uint entry, int nc)
+{
+    return (entry & BTG_SOFT_ENTRY_JOINT) ? nc + (int)((entry & ~BTG_SOFT_ENTRY_JOINT) >> 2) : (int)(entry >> 2);
+}
+static uint flow_rank(int body, int color, int last, int nc, __global const int* restrict edgeColor,
+                      __global const uint* restrict listStart, __global const uint* restrict listEntries)
+{
+    uint rank = 0u, deg = 0u;
+    for (uint q = listStart[body]; q < listStart[body + 1]; ++q) {
+        const int c = edgeColor[entry_edge(listEntries[q], nc)];
+        if (c < 0 || c >= last) continue; /* a leftover: walked after the sweep, outside the flow */
+        ++deg;
+        if (c < color) ++rank;
+    }
+    return deg << 16 | rank;
+}
+__kernel void soft_flow_ranks(__global const uint* restrict counters, int edgeCapacity, int numJoints, int numColors,
+                              __global const uint* restrict colorStart, __global const int* restrict colorOrder,
+                              __global const int* restrict edgeColor, __global const BtgEdge* restrict edges,
+                              __global const BtgJoint* restrict joints, __global const BtgJointState* restrict jointState,
+                              __global const BtgBodyProps* restrict props,
+                              __global const uint* restrict listStart, __global const uint* restrict listEntries,
+                              __global uint* flowRank)
+{
+    const int k = (int)get_global_id(0), last = numColors - 1;
+    if (k >= (int)colorStart[last]) return;
+    const int nc = contact_edges(counters, edgeCapacity, numJoints), e = colorOrder[k];
+    int a, b;
+    if (e < nc) {
+        a = edges[e].bodyA;
+        b = edges[e].bodyB;
+    } else {
+        a = joints[e - nc].bodyA;
+        b = joints[e - nc].bodyB;
+    }
+    const int color = edgeColor[e];
+    /* a joint without rows is in no body's list (list_edge) and touches no body */
+    const int listed = e < nc || jointState[e - nc].numRows != 0;
+    const int waitA = listed && list_side(props, a), waitB = listed && list_side(props, b) && b != a;
+    flowRank[2 * k] = waitA ? flow_rank(a, color, last, nc, edgeColor, listStart, listEntries) : BTG_SOFT_FLOW_FREE;
+    flowRank[2 * k + 1] = waitB ? flow_rank(b, color, last, nc, edgeColor, listStart, listEntries) : BTG_SOFT_FLOW_FREE;
+}
+
 __kernel void soft_bodies(int n, int mode, SOFT_ARGS)
 {
     int i = (int)get_global_id(0);
@@ -579,6 +628,46 @@ __kernel void soft_color_serial(__global const int* restrict edgeColor, int edge
  * Each edge stays with one work-item for the launch; body velocities and deltas, and what the
  * bodies' warm-start gather shares of the soft contacts (shared_soft), go through BTG_SHARED
  * pointers. */
+/* The flow (flow != 0): within a solve, relax or restitution sweep in colour order, an edge waits
+ * only for its own bodies' earlier edges, not for every edge of the colour before: each dynamic
+ * body counts the edges done on it (flowDone, zeroed at the step's begin pass), and edge slot k
+ * of flow sweep s (the launch's s-th such sweep) runs when its bodies' counts are s * deg + rank
+ * (soft_flow_ranks). Each body sees its edges in the same order as with a barrier per colour, so
+ * the results are the same bit for bit; only the colours' barriers go. Deadlock-free where all
+ * groups are resident (as the grid barrier needs) and a group's work-items progress apart (GPUs;
+ * a CPU device runs a group's work-items one after another: groups of one there): an edge waits
+ * only for edges of lower colours, which their work-items reach first. A wait past spinLimit
+ * polls gives up as the grid barrier does (the host redoes the step launch by launch). */
+static int flow_wait(volatile __global uint* flowDone, int body, uint pack, uint sweep,
+                     volatile __global BtgGridBarrier* bar, int spinLimit)
+{
+    if (pack == BTG_SOFT_FLOW_FREE) return 0;
+    const uint want = sweep * (pack >> 16) + (pack & 0xffffu);
+    int spins = 0;
+    while (flowDone[body] != want) {
+        if ((++spins & 63) == 0) {
+            if (bar->timedOut != 0u) return 1;
+            if (spins > spinLimit) {
+                atomic_xchg(&bar->timedOut, 1u);
+                return 1;
+            }
+        }
+    }
+    return 0;
+}
+static void flow_signal(volatile __global uint* flowDone, int body, uint pack, uint sweep)
+{
+    if (pack == BTG_SOFT_FLOW_FREE) return;
+    flowDone[body] = sweep * (pack >> 16) + (pack & 0xffffu) + 1u;
+}
+/* The bodies of edge slot k (soft_flow_ranks' sides): a contact's from its soft rows, a joint's. */
+static int2 flow_bodies(int e, int slot, int nc, __global const BtgSoftContact* softContacts,
+                        __global const BtgJoint* restrict joints)
+{
+    if (e < nc) return (int2)(softContacts[slot].bodyA, softContacts[slot].bodyB);
+    return (int2)(joints[e - nc].bodyA, joints[e - nc].bodyB);
+}
+
 #define SOFT_BARRIER()                                                                                    \
     if (btgGridBarrier(bar, spinLimit, &quit)) {                                                          \
         if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);          \
@@ -588,7 +677,8 @@ __kernel void soft_color_serial(__global const int* restrict edgeColor, int edge
 __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapacity,
                             __global const uint* restrict colorStart, __global const int* restrict colorOrder,
                             volatile __global BtgGridBarrier* bar, int numColors, int numJoints, int numBodies,
-                            int spinLimit, SOFT_ARGS)
+                            int spinLimit, __global const uint* restrict flowRank, volatile __global uint* flowDone,
+                            int flow, SOFT_ARGS)
 {
     __local int quit;
     if (counters[BTG_COUNTER_STATUS] & BTG_STATUS_GRID_BARRIER_TIMEOUT) return;
@@ -602,6 +692,8 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
     /* pass list: prepare; per substep velocity and warm start (bodies: gathered, or carried after
      * the first), solve, position, relax; restitution; store; the velocities back (bodies) */
     const int passes = 2 + 4 * params.substeps + 3;
+    uint flowSweep = 0u; /* the flow sweeps run so far */
+    int flowStopped = 0;
     for (int pass = 0; pass < passes; ++pass) {
         int bodyMode = -1, mode = -1;
         if (pass == 0) bodyMode = BTG_SOFT_BODY_BEGIN;
@@ -617,7 +709,10 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
             else mode = btgSoftSweepMode(params, substep, 1);
         }
         if (bodyMode >= 0) {
-            for (int i = gid; i < numBodies; i += gsize) soft_body(i, bodyMode, SOFT_PASS);
+            for (int i = gid; i < numBodies; i += gsize) {
+                soft_body(i, bodyMode, SOFT_PASS);
+                if (flow && bodyMode == BTG_SOFT_BODY_BEGIN) flowDone[i] = 0u;
+            }
             if (bodyMode == BTG_SOFT_BODY_END) break; /* the last pass: each body's own rows */
             SOFT_BARRIER();
             continue;
@@ -630,12 +725,42 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
         const uint key = base == BTG_SOFT_SOLVE || base == BTG_SOFT_RELAX
                              ? btgSoftSweepKey(params, (pass - 2) / 4, base == BTG_SOFT_RELAX)
                              : 0u;
+        /* the sweeps in colour order, where flow is on: no barrier between their colours */
+        const int flowing = flow && key == 0u && (base == BTG_SOFT_SOLVE || base == BTG_SOFT_RELAX ||
+                                                  base == BTG_SOFT_RESTITUTION);
         for (int ci = 0; ci < last; ++ci) {
             const int color = btgPermute(key, last, ci);
             const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
             if (begin == end) continue; /* the coloring's slack: every work-item reads the same range */
-            for (int k = begin + gid; k < end; k += gsize) soft_edge(colorOrder[k], k, nc, mode, key, SOFT_PASS);
-            if (!independent) SOFT_BARRIER();
+            for (int k = begin + gid; k < end; k += gsize) {
+                const int e = colorOrder[k];
+                if (!flowing) {
+                    soft_edge(e, k, nc, mode, key, SOFT_PASS);
+                    continue;
+                }
+                const int2 ab = flow_bodies(e, k, nc, softContacts, joints);
+                const uint packA = flowRank[2 * k], packB = flowRank[2 * k + 1];
+                /* a wait that gave up stops this work-item's flow edges (not the work-item: its
+                 * group's barriers still need it); every other wait then gives up at its next
+                 * look at the flag, and the host redoes the step */
+                if (flowStopped) continue;
+                if (flow_wait(flowDone, ab.x, packA, flowSweep, bar, spinLimit) ||
+                    flow_wait(flowDone, ab.y, packB, flowSweep, bar, spinLimit)) {
+                    atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
+                    flowStopped = 1;
+                    continue;
+                }
+                mem_fence(CLK_GLOBAL_MEM_FENCE); /* the bodies' rows read after their counts */
+                soft_edge(e, k, nc, mode, key, SOFT_PASS);
+                mem_fence(CLK_GLOBAL_MEM_FENCE); /* the rows written before the counts move on */
+                flow_signal(flowDone, ab.x, packA, flowSweep);
+                flow_signal(flowDone, ab.y, packB, flowSweep);
+            }
+            if (!independent && !flowing) SOFT_BARRIER();
+        }
+        if (flowing) {
+            ++flowSweep;
+            if (walkLast) SOFT_BARRIER(); /* the leftovers after every regular edge */
         }
         if (walkLast && gid == 0)
             for (int i = 0; i < n; ++i)

@@ -47,7 +47,7 @@ void colorConstraints(DeviceWorld& w, int maxColors)
         size_t groups = resident ? residentGroups(w, std::max(items, size_t(w.numBodies)), group) : 1;
         cl::Launch(ctx, k, &w.profiler).arg(w.edges).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity).arg(w.props)
             .arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(w.numBodies).arg(rounds)
-            .arg(gridBarrier(w)).arg(kGridBarrierSpins).run(groups * group, group);
+            .arg(gridBarrier(w)).arg(gridBarrierSpins(w)).run(groups * group, group);
         return;
     }
     cl_kernel reset = prog.kernel("claim_reset");

@@ -70,8 +70,14 @@ inline cl::DeviceArray<uint>& gridBarrier(DeviceWorld& w)
     return bar;
 }
 
-// Polls before a waiter gives up (a poll is an L2 round trip; a round's work is at most a few
-// hundred microseconds, so this is far past any real wait).
+// Polls before a waiter gives up: on a GPU a poll is an L2 round trip (about half a
+// microsecond; a round's work is at most a few hundred microseconds, so this is far past any real
+// wait); on a CPU a poll hits its own cache in nanoseconds, and a group may wait for another's
+// thread to be woken or scheduled: about as long there.
 constexpr int kGridBarrierSpins = 1 << 20;
+inline int gridBarrierSpins(const DeviceWorld& w)
+{
+    return w.ctx.device().isGpu ? kGridBarrierSpins : kGridBarrierSpins << 10;
+}
 
 }  // namespace btgpu

@@ -80,7 +80,7 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             .arg(sc.colorStart)
             .arg(sc.colorOrder).arg(w.props).arg(w.invInertiaWorld).arg(w.linVel).arg(w.angVel).arg(w.pushLin)
             .arg(w.pushAng).arg(gridBarrier(w)).arg(numColors).arg(orderStride).arg(iterations)
-            .arg(params.splitImpulse ? 1 : 0).arg(rows).arg(kGridBarrierSpins).arg(w.joints).arg(w.jointState)
+            .arg(params.splitImpulse ? 1 : 0).arg(rows).arg(gridBarrierSpins(w)).arg(w.joints).arg(w.jointState)
             .arg(w.jointRows).arg(numJoints).arg(w.jointIterations).arg(cl_uint(params.randomSeed))
             .run(groups * group, group);
         return;

@@ -8,6 +8,7 @@
 #include "stages/resident.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 
 namespace btgpu {
@@ -41,6 +42,18 @@ size_t softGroupSize(const DeviceWorld& w, int numColors)
     const size_t perColor = size_t(std::max(w.lastContactCount, 0)) / size_t(std::max(numColors - 1, 1));
     const size_t want = perColor / units;
     return want <= 64 ? 64 : (want <= 128 ? 128 : 256);
+}
+
+// The resident launch's flow (DeviceWorld::softFlow): off by default until measured on a GPU.
+bool softFlow(const DeviceWorld& w)
+{
+    using R = DeviceWorld::Resident;
+    static const int knob = [] {
+        const char* e = std::getenv("BTGPU_SOFT_FLOW");
+        return e && e[0] ? (e[0] == '1' ? 1 : 0) : -1;
+    }();
+    if (w.softFlow != R::Auto) return w.softFlow == R::On;
+    return knob == 1;
 }
 
 }  // namespace
@@ -157,12 +170,30 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     const bool resident = useResident(w);
     if (resident || w.lastContactCount <= kOneGroupMaxContacts) {
         cl_kernel k = prog.kernel("soft_resident");
-        const size_t group = residentSolveGroupSize(cl::kernelGroupLimit(ctx, k), resident,
-                                                    softGroupSize(w, numColors));
         const size_t groups = resident ? residentSolveGroups(w) : 1;
+        const bool flow = resident && groups > 1 && softFlow(w);
+        // A CPU device runs a group's work-items one after another: the flow's waits there need
+        // groups of one.
+        const size_t group = flow && !ctx.device().isGpu
+                                 ? 1
+                                 : residentSolveGroupSize(cl::kernelGroupLimit(ctx, k), resident,
+                                                          softGroupSize(w, numColors));
+        if (flow) {
+            sc.softFlowRank.reserve(ctx, 2 * slots);
+            sc.softFlowDone.reserve(ctx, size_t(numBodies));
+            cl::Launch(ctx, prog.kernel("soft_flow_ranks"), &w.profiler).arg(w.counters).arg(edgeCapacity)
+                .arg(numJoints).arg(numColors).arg(sc.colorStart).arg(sc.colorOrder).arg(w.edgeColor).arg(w.edges)
+                .arg(w.joints).arg(w.jointState).arg(w.props).arg(sc.softListStart).arg(sc.softListEntries)
+                .arg(sc.softFlowRank)
+                .run(slots);
+        } else {
+            sc.softFlowRank.reserve(ctx, 1);
+            sc.softFlowDone.reserve(ctx, 1);
+        }
         cl::Launch l(ctx, k, &w.profiler);
         l.arg(w.edgeColor).arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorOrder).arg(gridBarrier(w))
-            .arg(numColors).arg(numJoints).arg(numBodies).arg(kGridBarrierSpins);
+            .arg(numColors).arg(numJoints).arg(numBodies).arg(gridBarrierSpins(w)).arg(sc.softFlowRank)
+            .arg(sc.softFlowDone).arg(flow ? 1 : 0);
         soft(l).run(groups * group, group);
         return;
     }

@@ -194,6 +194,10 @@ struct DeviceWorld {
     // step is then redone with per-round launches). On forces it (tests).
     enum class Resident { Auto, Off, On };
     Resident resident = Resident::Auto;
+    // The resident soft step's sweeps ordered by per-body counts instead of a grid barrier per
+    // colour (solve_soft.cl's flow; the same results bit for bit). Auto: the BTGPU_SOFT_FLOW knob
+    // (1 on, else off); On forces it (tests; on a CPU device its groups are of one work-item).
+    Resident softFlow = Resident::Auto;
 
     // --- joints (issue 11): the app's joints, their rows and what the solve leaves of them ---
     // Edge contacts + j of the constraint graph is joint j; joint j's rows are

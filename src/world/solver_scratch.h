@@ -33,6 +33,10 @@ struct SolverScratch {
     ScanScratch softListScan;
     cl::DeviceArray<BtgFloat4> softBodies;
     cl::DeviceArray<BtgFloat4> softSolver;  // 4 per body: its solver record for the step (solve_soft.cl)
+    // the resident soft step's flow (solve_soft.cl): 2 per edge slot (each side's place among its
+    // body's edges, and their number), 1 per body (its edges done so far this step)
+    cl::DeviceArray<uint> softFlowRank;
+    cl::DeviceArray<uint> softFlowDone;
     // solve_jacobi: body b's contacts are jacobiEntries[jacobiStart[b], jacobiStart[b + 1]),
     // each 2 * contact + side, in increasing order; jacobiDeltas holds 4 per contact slot
     // (A lin, A ang, B lin, B ang: m/s, rad/s), the change each contact made to its copies.

@@ -49,10 +49,12 @@ struct Result {
 // contacts -> prepare -> batching -> soft step -> poses on the device; prev: last step's contacts.
 Result runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms, const std::vector<BtgContact>& prev,
                  const BtgStepParams& p, const BtgSoftParams& sp, int maxColors, bool fused,
-                 DeviceWorld::Resident resident = DeviceWorld::Resident::Auto)
+                 DeviceWorld::Resident resident = DeviceWorld::Resident::Auto,
+                 DeviceWorld::Resident flow = DeviceWorld::Resident::Off)
 {
     DeviceWorld w(test::context());
     w.resident = resident;
+    w.softFlow = flow;
     w.lastContactCount = fused ? 0 : (1 << 30);
     test::uploadWorld(w, b, ms, uint(ms.size()), prev, ms.size() + 4);
     buildContacts(w, p);
@@ -185,8 +187,12 @@ TEST(SolveSoft, LaunchShapesAgreeBitwise)
     Result perColor = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, false, Resident::Off);
     Result oneGroup = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, true, Resident::Off);
     Result resident = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, false, Resident::On);
+    // the resident launch with the flow (per-body counts, no barrier between colours): on a CPU
+    // device in groups of one work-item, so it must not time out anywhere
+    Result flow = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, false, Resident::On, Resident::On);
     EXPECT_EQ(perColor.status & BTG_STATUS_GRID_BARRIER_TIMEOUT, 0u);
-    std::vector<const Result*> others = {&oneGroup};
+    EXPECT_EQ(flow.status & BTG_STATUS_GRID_BARRIER_TIMEOUT, 0u) << "the flow timed out";
+    std::vector<const Result*> others = {&oneGroup, &flow};
     if (resident.status & BTG_STATUS_GRID_BARRIER_TIMEOUT)
         EXPECT_FALSE(test::context().device().isGpu) << "a GPU must keep one group per compute unit resident";
     else
