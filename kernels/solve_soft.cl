@@ -596,6 +596,23 @@ __kernel void soft_flow_ranks(__global const uint* restrict counters, int edgeCa
     const int waitA = listed && list_side(props, a), waitB = listed && list_side(props, b) && b != a;
     flowRank[2 * k] = waitA ? flow_rank(a, color, last, nc, edgeColor, listStart, listEntries) : BTG_SOFT_FLOW_FREE;
     flowRank[2 * k + 1] = waitB ? flow_rank(b, color, last, nc, edgeColor, listStart, listEntries) : BTG_SOFT_FLOW_FREE;
+    /* a moving body that is not dynamic (kinematic): its position pass moves the deltas that
+     * its edges read, and its edges are not ordered on it, so that pass keeps its barriers
+     * (flowRank[2 * edgeCapacity], zeroed by the host) */
+    if (listed && ((a >= 0 && !waitA && btgIsSolverMoving(props[a].flags)) ||
+                   (b >= 0 && b != a && !waitB && btgIsSolverMoving(props[b].flags))))
+        flowRank[2 * edgeCapacity] = 1u;
+}
+/* Each body's regular edges (its count's step per flow sweep), for the flow's body passes. */
+__kernel void soft_flow_degrees(int numBodies, int numJoints, int numColors, __global const uint* restrict counters,
+                                int edgeCapacity, __global const int* restrict edgeColor,
+                                __global const uint* restrict listStart, __global const uint* restrict listEntries,
+                                __global uint* flowDeg)
+{
+    const int b = (int)get_global_id(0);
+    if (b >= numBodies) return;
+    const int nc = contact_edges(counters, edgeCapacity, numJoints);
+    flowDeg[b] = flow_rank(b, 0, numColors - 1, nc, edgeColor, listStart, listEntries) >> 16;
 }
 
 __kernel void soft_bodies(int n, int mode, SOFT_ARGS)
@@ -638,11 +655,9 @@ __kernel void soft_color_serial(__global const int* restrict edgeColor, int edge
  * a CPU device runs a group's work-items one after another: groups of one there): an edge waits
  * only for edges of lower colours, which their work-items reach first. A wait past spinLimit
  * polls gives up as the grid barrier does (the host redoes the step launch by launch). */
-static int flow_wait(volatile __global uint* flowDone, int body, uint pack, uint sweep,
-                     volatile __global BtgGridBarrier* bar, int spinLimit)
+static int flow_wait_for(volatile __global uint* flowDone, int body, uint want, volatile __global BtgGridBarrier* bar,
+                         int spinLimit)
 {
-    if (pack == BTG_SOFT_FLOW_FREE) return 0;
-    const uint want = sweep * (pack >> 16) + (pack & 0xffffu);
     int spins = 0;
     while (flowDone[body] != want) {
         if ((++spins & 63) == 0) {
@@ -655,10 +670,21 @@ static int flow_wait(volatile __global uint* flowDone, int body, uint pack, uint
     }
     return 0;
 }
-static void flow_signal(volatile __global uint* flowDone, int body, uint pack, uint sweep)
+/* Edge side `pack` waits for its body's count: s * deg + the flow's body passes so far + rank. */
+static uint flow_want(uint pack, uint sweep, uint passes)
+{
+    return sweep * (pack >> 16) + passes + (pack & 0xffffu);
+}
+static int flow_wait(volatile __global uint* flowDone, int body, uint pack, uint sweep, uint passes,
+                     volatile __global BtgGridBarrier* bar, int spinLimit)
+{
+    if (pack == BTG_SOFT_FLOW_FREE) return 0;
+    return flow_wait_for(flowDone, body, flow_want(pack, sweep, passes), bar, spinLimit);
+}
+static void flow_signal(volatile __global uint* flowDone, int body, uint pack, uint sweep, uint passes)
 {
     if (pack == BTG_SOFT_FLOW_FREE) return;
-    flowDone[body] = sweep * (pack >> 16) + (pack & 0xffffu) + 1u;
+    flowDone[body] = flow_want(pack, sweep, passes) + 1u;
 }
 /* The bodies of edge slot k (soft_flow_ranks' sides): a contact's from its soft rows, a joint's. */
 static int2 flow_bodies(int e, int slot, int nc, __global const BtgSoftContact* softContacts,
@@ -678,7 +704,7 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
                             __global const uint* restrict colorStart, __global const int* restrict colorOrder,
                             volatile __global BtgGridBarrier* bar, int numColors, int numJoints, int numBodies,
                             int spinLimit, __global const uint* restrict flowRank, volatile __global uint* flowDone,
-                            int flow, SOFT_ARGS)
+                            __global const uint* restrict flowDeg, int flow, SOFT_ARGS)
 {
     __local int quit;
     if (counters[BTG_COUNTER_STATUS] & BTG_STATUS_GRID_BARRIER_TIMEOUT) return;
@@ -692,8 +718,12 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
     /* pass list: prepare; per substep velocity and warm start (bodies: gathered, or carried after
      * the first), solve, position, relax; restitution; store; the velocities back (bodies) */
     const int passes = 2 + 4 * params.substeps + 3;
-    uint flowSweep = 0u; /* the flow sweeps run so far */
+    uint flowSweep = 0u, flowPasses = 0u; /* the flow sweeps and body passes run so far */
     int flowStopped = 0;
+    /* flow 2: the substeps' body passes in the flow too (every sweep in colour order; a
+     * kinematic body's position pass keeps its barriers) */
+    const int flowBodies = flow == 2 && params.orderSeed == 0u;
+    const int flowPosition = flowBodies && flowRank[2 * edgeCapacity] == 0u;
     for (int pass = 0; pass < passes; ++pass) {
         int bodyMode = -1, mode = -1;
         if (pass == 0) bodyMode = BTG_SOFT_BODY_BEGIN;
@@ -707,6 +737,26 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
             else if (q == 1) mode = btgSoftSweepMode(params, substep, 0);
             else if (q == 2) bodyMode = BTG_SOFT_BODY_POSITION;
             else mode = btgSoftSweepMode(params, substep, 1);
+        }
+        if (bodyMode >= 0 && flowBodies &&
+            (bodyMode == BTG_SOFT_BODY_VELOCITY || bodyMode == BTG_SOFT_BODY_CARRY ||
+             (bodyMode == BTG_SOFT_BODY_POSITION && flowPosition))) {
+            /* each body after its own edges of the sweeps before, its edges of the next after it */
+            for (int i = gid; i < numBodies; i += gsize) {
+                if (flowStopped) break;
+                const uint want = flowSweep * flowDeg[i] + flowPasses;
+                if (flow_wait_for(flowDone, i, want, bar, spinLimit)) {
+                    atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
+                    flowStopped = 1;
+                    break;
+                }
+                mem_fence(CLK_GLOBAL_MEM_FENCE);
+                soft_body(i, bodyMode, SOFT_PASS);
+                mem_fence(CLK_GLOBAL_MEM_FENCE);
+                flowDone[i] = want + 1u;
+            }
+            ++flowPasses;
+            continue;
         }
         if (bodyMode >= 0) {
             for (int i = gid; i < numBodies; i += gsize) {
@@ -744,8 +794,8 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
                  * group's barriers still need it); every other wait then gives up at its next
                  * look at the flag, and the host redoes the step */
                 if (flowStopped) continue;
-                if (flow_wait(flowDone, ab.x, packA, flowSweep, bar, spinLimit) ||
-                    flow_wait(flowDone, ab.y, packB, flowSweep, bar, spinLimit)) {
+                if (flow_wait(flowDone, ab.x, packA, flowSweep, flowPasses, bar, spinLimit) ||
+                    flow_wait(flowDone, ab.y, packB, flowSweep, flowPasses, bar, spinLimit)) {
                     atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
                     flowStopped = 1;
                     continue;
@@ -753,8 +803,8 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
                 mem_fence(CLK_GLOBAL_MEM_FENCE); /* the bodies' rows read after their counts */
                 soft_edge(e, k, nc, mode, key, SOFT_PASS);
                 mem_fence(CLK_GLOBAL_MEM_FENCE); /* the rows written before the counts move on */
-                flow_signal(flowDone, ab.x, packA, flowSweep);
-                flow_signal(flowDone, ab.y, packB, flowSweep);
+                flow_signal(flowDone, ab.x, packA, flowSweep, flowPasses);
+                flow_signal(flowDone, ab.y, packB, flowSweep, flowPasses);
             }
             if (!independent && !flowing) SOFT_BARRIER();
         }
@@ -765,7 +815,9 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
         if (walkLast && gid == 0)
             for (int i = 0; i < n; ++i)
                 if (edgeColor[i] >= last) soft_edge(i, slotOf[i], nc, mode, key, SOFT_PASS);
-        SOFT_BARRIER();
+        /* flow 2: a sweep that a flow pass follows ends without a barrier */
+        const int nextFlows = flowBodies && !walkLast && ((base == BTG_SOFT_SOLVE && flowPosition) || base == BTG_SOFT_RELAX);
+        if (!(flowing && nextFlows)) SOFT_BARRIER();
     }
 }
 

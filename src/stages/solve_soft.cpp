@@ -44,16 +44,18 @@ size_t softGroupSize(const DeviceWorld& w, int numColors)
     return want <= 64 ? 64 : (want <= 128 ? 128 : 256);
 }
 
-// The resident launch's flow (DeviceWorld::softFlow): off by default until measured on a GPU.
-bool softFlow(const DeviceWorld& w)
+// The resident launch's flow (DeviceWorld::softFlow): 0 off, 1 the sweeps' colours, 2 also the
+// substeps' body passes. Off by default until measured on a GPU; BTGPU_SOFT_FLOW=1 or 2.
+int softFlow(const DeviceWorld& w)
 {
     using R = DeviceWorld::Resident;
     static const int knob = [] {
         const char* e = std::getenv("BTGPU_SOFT_FLOW");
-        return e && e[0] ? (e[0] == '1' ? 1 : 0) : -1;
+        return e && (e[0] == '1' || e[0] == '2') ? e[0] - '0' : 0;
     }();
-    if (w.softFlow != R::Auto) return w.softFlow == R::On;
-    return knob == 1;
+    if (w.softFlow == R::On) return 2;
+    if (w.softFlow == R::Off) return 0;
+    return knob;
 }
 
 }  // namespace
@@ -171,7 +173,7 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     if (resident || w.lastContactCount <= kOneGroupMaxContacts) {
         cl_kernel k = prog.kernel("soft_resident");
         const size_t groups = resident ? residentSolveGroups(w) : 1;
-        const bool flow = resident && groups > 1 && softFlow(w);
+        const int flow = resident && groups > 1 ? softFlow(w) : 0;
         // A CPU device runs a group's work-items one after another: the flow's waits there need
         // groups of one.
         const size_t group = flow && !ctx.device().isGpu
@@ -179,21 +181,29 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
                                  : residentSolveGroupSize(cl::kernelGroupLimit(ctx, k), resident,
                                                           softGroupSize(w, numColors));
         if (flow) {
-            sc.softFlowRank.reserve(ctx, 2 * slots);
+            // the ranks, then the kinematic flag after them (soft_flow_ranks)
+            sc.softFlowRank.reserve(ctx, 2 * slots + 1);
+            sc.softFlowRank.fill(ctx, 0u, 2 * slots, 1);
             sc.softFlowDone.reserve(ctx, size_t(numBodies));
+            sc.softFlowDeg.reserve(ctx, size_t(numBodies));
             cl::Launch(ctx, prog.kernel("soft_flow_ranks"), &w.profiler).arg(w.counters).arg(edgeCapacity)
                 .arg(numJoints).arg(numColors).arg(sc.colorStart).arg(sc.colorOrder).arg(w.edgeColor).arg(w.edges)
                 .arg(w.joints).arg(w.jointState).arg(w.props).arg(sc.softListStart).arg(sc.softListEntries)
                 .arg(sc.softFlowRank)
                 .run(slots);
+            if (flow == 2)
+                cl::Launch(ctx, prog.kernel("soft_flow_degrees"), &w.profiler).arg(numBodies).arg(numJoints)
+                    .arg(numColors).arg(w.counters).arg(edgeCapacity).arg(w.edgeColor).arg(sc.softListStart)
+                    .arg(sc.softListEntries).arg(sc.softFlowDeg).run(size_t(numBodies));
         } else {
-            sc.softFlowRank.reserve(ctx, 1);
+            sc.softFlowRank.reserve(ctx, 2 * slots + 1);
             sc.softFlowDone.reserve(ctx, 1);
+            sc.softFlowDeg.reserve(ctx, 1);
         }
         cl::Launch l(ctx, k, &w.profiler);
         l.arg(w.edgeColor).arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorOrder).arg(gridBarrier(w))
             .arg(numColors).arg(numJoints).arg(numBodies).arg(gridBarrierSpins(w)).arg(sc.softFlowRank)
-            .arg(sc.softFlowDone).arg(flow ? 1 : 0);
+            .arg(sc.softFlowDone).arg(sc.softFlowDeg).arg(flow);
         soft(l).run(groups * group, group);
         return;
     }

@@ -37,6 +37,7 @@ struct SolverScratch {
     // body's edges, and their number), 1 per body (its edges done so far this step)
     cl::DeviceArray<uint> softFlowRank;
     cl::DeviceArray<uint> softFlowDone;
+    cl::DeviceArray<uint> softFlowDeg;  // 1 per body: its edges a sweep (the flow's body passes)
     // solve_jacobi: body b's contacts are jacobiEntries[jacobiStart[b], jacobiStart[b + 1]),
     // each 2 * contact + side, in increasing order; jacobiDeltas holds 4 per contact slot
     // (A lin, A ang, B lin, B ang: m/s, rad/s), the change each contact made to its copies.
