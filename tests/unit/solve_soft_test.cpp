@@ -178,10 +178,24 @@ TEST(SolveSoft, CarriedWarmStartIsTheGatheredOne)
 // The three launch shapes compute the same arithmetic in the same color order: per-color
 // launches, one launch on one group, and one launch over resident groups (where the device
 // keeps them resident; a CPU device may time out at the grid barrier, which the pipeline redoes).
-TEST(SolveSoft, LaunchShapesAgreeBitwise)
+// Twice: with the scene's moving kinematic body (whose position passes keep their barriers in the
+// flow), and with it made static (every body pass in the flow).
+class SolveSoftLaunch : public ::testing::TestWithParam<bool> {};
+INSTANTIATE_TEST_SUITE_P(SolveSoft, SolveSoftLaunch, ::testing::Values(true, false));
+TEST_P(SolveSoftLaunch, LaunchShapesAgreeBitwise)
 {
     using Resident = DeviceWorld::Resident;
     test::StackScene s = test::stackScene(6, 4, 9);
+    if (!GetParam()) {
+        int kinematic = 0;
+        for (size_t b = 0; b < s.bodies.props.size(); ++b)
+            if (s.bodies.props[b].flags & BTG_BODY_KINEMATIC) {
+                s.bodies.props[b].flags = BTG_BODY_STATIC;
+                s.bodies.linVel[b] = s.bodies.linVel0[b] = btgZero4();
+                ++kinematic;
+            }
+        ASSERT_EQ(kinematic, 1);
+    }
     BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
     BtgSoftParams sp = softParams(p);
     Result perColor = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, false, Resident::Off);
