@@ -283,6 +283,72 @@ __kernel void solve_color_range(__global BtgContact* contacts, __global BtgRolli
                          frictionDirs, anchors, JOINT_PASS, props, invInertiaWorld, lin, ang, key);
 }
 
+/* The flow (solve_resident's flow != 0, every sweep in colour order): an edge waits only for its
+ * own dynamic bodies' earlier edges, not for every edge of the colour before. Each body keeps
+ * one bit per colour and list (flowMasks[4 b + list]: list 0 every contact, 1 the push
+ * contacts, 2 the joints, as colorOrder's lists) where it is a dynamic side, and counts the edges
+ * done on it (flowDone[2 b]: the velocity sweeps', whose lists 2 and 0 share the velocities;
+ * flowDone[2 b + 1]: the push sweeps'). Edge slot k of a list-L sweep at colour c runs when the
+ * count is the sweeps done so far times the body's bits in their lists, plus its bits below c
+ * in L. Each body sees its edges in the same order as with a barrier per colour: the same
+ * results bit for bit. As the grid barrier, valid where all groups are resident and a group's
+ * work-items progress apart (GPUs; groups of one work-item on a CPU device). One work-item per
+ * slot of the lists (list = id / orderStride), after color_fill; the host zeroes the masks
+ * and counts. */
+static void flow_mask(volatile __global uint* flowMasks, __global const BtgBodyProps* restrict props, int body, int list,
+                      int color)
+{
+    if (body >= 0 && btgIsSolverDynamic(props[body].flags)) atomic_or(&flowMasks[4 * body + list], 1u << color);
+}
+static int2 flow_edge_bodies(int e, int list, int nc, __global const BtgContact* restrict contacts,
+                             __global const BtgJoint* restrict joints)
+{
+    if (list == 2) return (int2)(joints[e - nc].bodyA, joints[e - nc].bodyB);
+    return (int2)(contacts[e].bodyA, contacts[e].bodyB);
+}
+__kernel void solve_flow_masks(__global const uint* restrict counters, int edgeCapacity, int numJoints, int numColors,
+                               int numLists, __global const uint* restrict colorStart, __global const int* restrict colorOrder,
+                               int orderStride, __global const int* restrict edgeColor,
+                               __global const BtgContact* restrict contacts, __global const BtgJoint* restrict joints,
+                               __global const BtgBodyProps* restrict props, volatile __global uint* flowMasks)
+{
+    const int id = (int)get_global_id(0), list = id / max(orderStride, 1), k = id - list * max(orderStride, 1);
+    if (list >= numLists || k >= (int)colorStart[list * (numColors + 1) + numColors - 1]) return;
+    const int e = colorOrder[list * orderStride + k], nc = contact_edges(counters, edgeCapacity, numJoints);
+    const int2 ab = flow_edge_bodies(e, list, nc, contacts, joints);
+    const int color = edgeColor[e];
+    flow_mask(flowMasks, props, ab.x, list, color);
+    if (ab.y != ab.x) flow_mask(flowMasks, props, ab.y, list, color);
+}
+/* What side `body` of a list-`list` edge at `color` waits for (its count before it), or -1 (no
+ * wait: not a dynamic side). sweeps: the flow sweeps done so far per list. */
+static long flow_want(__global const uint* restrict flowMasks, int body, int list, int color, int last, int4 sweeps)
+{
+    if (body < 0) return -1;
+    const uint4 m = vload4(body, flowMasks);
+    const uint mine = list == 0 ? m.x : (list == 1 ? m.y : m.z);
+    if (!((mine >> color) & 1u)) return -1;
+    const uint regular = last >= 32 ? 0xffffffffu : (1u << last) - 1u;
+    const uint before = popcount(mine & ((1u << color) - 1u));
+    if (list == 1) return (long)((uint)sweeps.y * popcount(m.y & regular) + before);
+    return (long)((uint)sweeps.x * popcount(m.x & regular) + (uint)sweeps.z * popcount(m.z & regular) + before);
+}
+static int flow_wait(volatile __global uint* done, long want, volatile __global BtgGridBarrier* bar, int spinLimit)
+{
+    if (want < 0) return 0;
+    int spins = 0;
+    while (*done != (uint)want) {
+        if ((++spins & 63) == 0) {
+            if (bar->timedOut != 0u) return 1;
+            if (spins > spinLimit) {
+                atomic_xchg(&bar->timedOut, 1u);
+                return 1;
+            }
+        }
+    }
+    return 0;
+}
+
 /* solve_resident: every pass and color in ONE launch over resident work-groups (GPUs), with a
  * grid barrier (shared/grid_barrier.h) where the per-color path has a kernel boundary: a step
  * has (colors + 1) x (1 + 2 x iterations) of those. Body velocities go through BTG_SHARED
@@ -299,9 +365,15 @@ __kernel void solve_resident(__global const int* restrict edgeColor, __global Bt
                              BTG_SHARED __global BtgFloat4* linVel, BTG_SHARED __global BtgFloat4* angVel,
                              BTG_SHARED __global BtgFloat4* pushLin, BTG_SHARED __global BtgFloat4* pushAng,
                              volatile __global BtgGridBarrier* bar, int numColors, int orderStride, int iterations,
-                             int splitImpulse, int rows, int spinLimit, JOINT_ARGS, int jointIterations, uint seed)
+                             int splitImpulse, int rows, int spinLimit, JOINT_ARGS, int jointIterations, uint seed,
+                             __global const uint* restrict flowMasks, volatile __global uint* flowDone, int flow)
 {
     __local int quit;
+    /* the flow orders every sweep by the bodies' counts: only where every sweep is in colour
+     * order, and each colour is a bit of the masks */
+    const int flowing = flow && seed == 0u && numColors - 1 <= 32;
+    int4 flowSweeps = (int4)(0, 0, 0, 0); /* flow sweeps done per list */
+    int flowStopped = 0;
     if (counters[BTG_COUNTER_STATUS] & BTG_STATUS_GRID_BARRIER_TIMEOUT) return;
     const int gid = (int)get_global_id(0), gsize = (int)get_global_size(0);
     const int n = edge_count(counters, edgeCapacity);
@@ -340,11 +412,45 @@ __kernel void solve_resident(__global const int* restrict edgeColor, __global Bt
                     /* an empty colour (the coloring's slack, a list's unused colours) needs no
                      * barrier: every work-item reads the same range */
                     if (begin == end) continue;
-                    for (int k = begin + gid; k < end; k += gsize)
-                        solve_phase_edge(colorOrder[list * orderStride + k], phase, nc, iteration, m, rows,
-                                         contacts, rolling, frictionDirs, anchors, JOINT_PASS, props, invInertiaWorld, lin, ang,
-                                         key);
+                    for (int k = begin + gid; k < end; k += gsize) {
+                        const int e = colorOrder[list * orderStride + k];
+                        if (!flowing) {
+                            solve_phase_edge(e, phase, nc, iteration, m, rows, contacts, rolling, frictionDirs, anchors,
+                                             JOINT_PASS, props, invInertiaWorld, lin, ang, key);
+                            continue;
+                        }
+                        /* a wait that gave up stops this work-item's edges (its group's barriers
+                         * still need it); the others give up at their next look at the flag */
+                        if (flowStopped) continue;
+                        const int2 ab = flow_edge_bodies(e, list, nc, contacts, joints);
+                        const long wantA = flow_want(flowMasks, ab.x, list, color, last, flowSweeps);
+                        const long wantB = ab.y != ab.x ? flow_want(flowMasks, ab.y, list, color, last, flowSweeps) : -1;
+                        const int slot = mode == BTG_PASS_PUSH ? 1 : 0;
+                        if (flow_wait(&flowDone[2 * max(ab.x, 0) + slot], wantA, bar, spinLimit) ||
+                            flow_wait(&flowDone[2 * max(ab.y, 0) + slot], wantB, bar, spinLimit)) {
+                            atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
+                            flowStopped = 1;
+                            continue;
+                        }
+                        mem_fence(CLK_GLOBAL_MEM_FENCE); /* the bodies' velocities read after their counts */
+                        solve_phase_edge(e, phase, nc, iteration, m, rows, contacts, rolling, frictionDirs, anchors,
+                                         JOINT_PASS, props, invInertiaWorld, lin, ang, key);
+                        mem_fence(CLK_GLOBAL_MEM_FENCE); /* written before the counts move on */
+                        if (wantA >= 0) flowDone[2 * ab.x + slot] = (uint)wantA + 1u;
+                        if (wantB >= 0) flowDone[2 * ab.y + slot] = (uint)wantB + 1u;
+                    }
+                    if (flowing) continue;
                     if (btgGridBarrier(bar, spinLimit, &quit)) {
+                        if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
+                        return;
+                    }
+                }
+                if (flowing) {
+                    if (list == 0) ++flowSweeps.x;
+                    else if (list == 1) ++flowSweeps.y;
+                    else ++flowSweeps.z;
+                    /* the leftovers after every regular edge of the sweep */
+                    if (walkLast && btgGridBarrier(bar, spinLimit, &quit)) {
                         if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
                         return;
                     }

@@ -9,6 +9,7 @@
 #include "stages/resident.h"
 
 #include <algorithm>
+#include <cstdlib>
 
 namespace btgpu {
 
@@ -17,6 +18,19 @@ namespace {
 // launch on one work-group: below it launch overhead outweighs the parallelism of one launch
 // per color. (On a GPU one lone group is slow: 1,000 cubes took 8.5 ms that way on an H200.)
 constexpr int kOneGroupMaxContacts = 4096;
+
+// The resident launch's flow (DeviceWorld::pgsFlow): off by default until measured on a GPU;
+// BTGPU_PGS_FLOW=1.
+bool pgsFlow(const DeviceWorld& w)
+{
+    using R = DeviceWorld::Resident;
+    static const bool knob = [] {
+        const char* e = std::getenv("BTGPU_PGS_FLOW");
+        return e && e[0] == '1';
+    }();
+    if (w.pgsFlow != R::Auto) return w.pgsFlow == R::On;
+    return knob;
+}
 }
 
 void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iterations, int numColors)
@@ -73,8 +87,24 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     const bool resident = useResident(w);
     if (resident || w.lastContactCount <= kOneGroupMaxContacts) {
         cl_kernel k = prog.kernel("solve_resident");
-        size_t group = residentSolveGroupSize(cl::kernelGroupLimit(ctx, k), resident, 128);
         size_t groups = resident ? residentSolveGroups(w) : 1;
+        // The flow (solve_constraints.cl): every sweep ordered by the bodies' counts instead of a
+        // grid barrier per colour; on a CPU device in groups of one work-item.
+        const bool flow = resident && groups > 1 && pgsFlow(w) && params.randomSeed == 0u && numColors - 1 <= 32;
+        size_t group = flow && !ctx.device().isGpu ? 1 : residentSolveGroupSize(cl::kernelGroupLimit(ctx, k), resident, 128);
+        if (flow) {
+            sc.pgsFlowMasks.reserve(ctx, 4 * bodies);
+            sc.pgsFlowMasks.zero(ctx, 4 * bodies);
+            sc.pgsFlowDone.reserve(ctx, 2 * bodies);
+            sc.pgsFlowDone.zero(ctx, 2 * bodies);
+            cl::Launch(ctx, prog.kernel("solve_flow_masks"), &w.profiler).arg(w.counters).arg(edgeCapacity)
+                .arg(numJoints).arg(numColors).arg(numLists).arg(sc.colorStart).arg(sc.colorOrder).arg(orderStride)
+                .arg(w.edgeColor).arg(w.contacts).arg(w.joints).arg(w.props).arg(sc.pgsFlowMasks)
+                .run(size_t(numLists) * slots);
+        } else {
+            sc.pgsFlowMasks.reserve(ctx, 4);
+            sc.pgsFlowDone.reserve(ctx, 2);
+        }
         cl::Launch(ctx, k, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.rollingContacts).arg(w.frictionDirs).arg(w.frictionAnchors)
             .arg(w.counters).arg(edgeCapacity)
             .arg(sc.colorStart)
@@ -82,6 +112,7 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             .arg(w.pushAng).arg(gridBarrier(w)).arg(numColors).arg(orderStride).arg(iterations)
             .arg(params.splitImpulse ? 1 : 0).arg(rows).arg(gridBarrierSpins(w)).arg(w.joints).arg(w.jointState)
             .arg(w.jointRows).arg(numJoints).arg(w.jointIterations).arg(cl_uint(params.randomSeed))
+            .arg(sc.pgsFlowMasks).arg(sc.pgsFlowDone).arg(flow ? 1 : 0)
             .run(groups * group, group);
         return;
     }

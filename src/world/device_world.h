@@ -198,6 +198,8 @@ struct DeviceWorld {
     // colour (solve_soft.cl's flow; the same results bit for bit). Auto: the BTGPU_SOFT_FLOW knob
     // (1 on, else off); On forces it (tests; on a CPU device its groups are of one work-item).
     Resident softFlow = Resident::Auto;
+    // The same for the bullet mode's resident solve (solve_constraints.cl's flow; BTGPU_PGS_FLOW=1).
+    Resident pgsFlow = Resident::Auto;
 
     // --- joints (issue 11): the app's joints, their rows and what the solve leaves of them ---
     // Edge contacts + j of the constraint graph is joint j; joint j's rows are

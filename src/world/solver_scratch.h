@@ -38,6 +38,10 @@ struct SolverScratch {
     cl::DeviceArray<uint> softFlowRank;
     cl::DeviceArray<uint> softFlowDone;
     cl::DeviceArray<uint> softFlowDeg;  // 1 per body: its edges a sweep (the flow's body passes)
+    // the resident solve's flow (solve_constraints.cl): 4 per body (a bit per colour and list
+    // where it is a dynamic side), 2 per body (its velocity and push sweeps' edges done)
+    cl::DeviceArray<uint> pgsFlowMasks;
+    cl::DeviceArray<uint> pgsFlowDone;
     // solve_jacobi: body b's contacts are jacobiEntries[jacobiStart[b], jacobiStart[b + 1]),
     // each 2 * contact + side, in increasing order; jacobiDeltas holds 4 per contact slot
     // (A lin, A ang, B lin, B ang: m/s, rad/s), the change each contact made to its copies.

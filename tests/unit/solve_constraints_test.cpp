@@ -39,10 +39,12 @@ struct Result {
 // fused: the one-work-group batching and solve small scenes take (by the last contact count).
 Result runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms, const std::vector<BtgContact>& prev,
                  const BtgStepParams& p, int maxColors, bool fused = false,
-                 DeviceWorld::Resident resident = DeviceWorld::Resident::Auto)
+                 DeviceWorld::Resident resident = DeviceWorld::Resident::Auto,
+                 DeviceWorld::Resident flow = DeviceWorld::Resident::Off)
 {
     DeviceWorld w(test::context());
     w.resident = resident;
+    w.pgsFlow = flow;
     w.lastContactCount = fused ? 0 : (1 << 30);
     test::uploadWorld(w, b, ms, uint(ms.size()), prev, ms.size() + 4);
     buildContacts(w, p);
@@ -183,15 +185,23 @@ TEST(SolveConstraints, OneWorkGroupLaunchSolvesTheSame)
 // All passes and colors in one launch over resident work-groups, with grid barriers between
 // colors: bitwise what one launch per color gives. A device that does not keep the groups
 // resident may time out instead (the world then redoes the step per color); a GPU must not.
-TEST(SolveConstraints, OneResidentLaunchSolvesTheSame)
+// Also with the flow (per-body counts, no barrier between colours; on a CPU device in groups of
+// one work-item, so it must not time out anywhere), leftovers (3 colours) and split impulse's
+// push list included.
+class SolveConstraintsResident : public ::testing::TestWithParam<bool> {};
+INSTANTIATE_TEST_SUITE_P(SolveConstraints, SolveConstraintsResident, ::testing::Values(false, true));
+TEST_P(SolveConstraintsResident, OneResidentLaunchSolvesTheSame)
 {
     test::StackScene s = test::stackScene(6, 4, 9);
     BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
     using Resident = DeviceWorld::Resident;
+    const bool flow = GetParam();
     for (int maxColors : {3, 16}) {
         Result a = runDevice(s.bodies, s.manifolds, {}, p, maxColors, false, Resident::Off);
-        Result b = runDevice(s.bodies, s.manifolds, {}, p, maxColors, false, Resident::On);
+        Result b = runDevice(s.bodies, s.manifolds, {}, p, maxColors, false, Resident::On,
+                             flow ? Resident::On : Resident::Off);
         EXPECT_EQ(a.status & BTG_STATUS_GRID_BARRIER_TIMEOUT, 0u);
+        if (flow) EXPECT_EQ(b.status & BTG_STATUS_GRID_BARRIER_TIMEOUT, 0u) << "the flow timed out";
         if (b.status & BTG_STATUS_GRID_BARRIER_TIMEOUT) {
             EXPECT_FALSE(test::context().device().isGpu) << "a GPU must keep one group per compute unit resident";
             continue;
