@@ -414,30 +414,33 @@ __kernel void solve_resident(__global const int* restrict edgeColor, __global Bt
                     if (begin == end) continue;
                     for (int k = begin + gid; k < end; k += gsize) {
                         const int e = colorOrder[list * orderStride + k];
-                        if (!flowing) {
-                            solve_phase_edge(e, phase, nc, iteration, m, rows, contacts, rolling, frictionDirs, anchors,
-                                             JOINT_PASS, props, invInertiaWorld, lin, ang, key);
-                            continue;
-                        }
-                        /* a wait that gave up stops this work-item's edges (its group's barriers
-                         * still need it); the others give up at their next look at the flag */
-                        if (flowStopped) continue;
-                        const int2 ab = flow_edge_bodies(e, list, nc, contacts, joints);
-                        const long wantA = flow_want(flowMasks, ab.x, list, color, last, flowSweeps);
-                        const long wantB = ab.y != ab.x ? flow_want(flowMasks, ab.y, list, color, last, flowSweeps) : -1;
+                        /* one call of the rows for both orders: one compiled copy of their arithmetic */
+                        int2 ab = (int2)(0, 0);
+                        long wantA = -1, wantB = -1;
                         const int slot = mode == BTG_PASS_PUSH ? 1 : 0;
-                        if (flow_wait(&flowDone[2 * max(ab.x, 0) + slot], wantA, bar, spinLimit) ||
-                            flow_wait(&flowDone[2 * max(ab.y, 0) + slot], wantB, bar, spinLimit)) {
-                            atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
-                            flowStopped = 1;
-                            continue;
+                        if (flowing) {
+                            /* a wait that gave up stops this work-item's edges (its group's
+                             * barriers still need it); the others give up at their next look at
+                             * the flag */
+                            if (flowStopped) continue;
+                            ab = flow_edge_bodies(e, list, nc, contacts, joints);
+                            wantA = flow_want(flowMasks, ab.x, list, color, last, flowSweeps);
+                            wantB = ab.y != ab.x ? flow_want(flowMasks, ab.y, list, color, last, flowSweeps) : -1;
+                            if (flow_wait(&flowDone[2 * max(ab.x, 0) + slot], wantA, bar, spinLimit) ||
+                                flow_wait(&flowDone[2 * max(ab.y, 0) + slot], wantB, bar, spinLimit)) {
+                                atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
+                                flowStopped = 1;
+                                continue;
+                            }
+                            mem_fence(CLK_GLOBAL_MEM_FENCE); /* the bodies' velocities read after their counts */
                         }
-                        mem_fence(CLK_GLOBAL_MEM_FENCE); /* the bodies' velocities read after their counts */
                         solve_phase_edge(e, phase, nc, iteration, m, rows, contacts, rolling, frictionDirs, anchors,
                                          JOINT_PASS, props, invInertiaWorld, lin, ang, key);
-                        mem_fence(CLK_GLOBAL_MEM_FENCE); /* written before the counts move on */
-                        if (wantA >= 0) flowDone[2 * ab.x + slot] = (uint)wantA + 1u;
-                        if (wantB >= 0) flowDone[2 * ab.y + slot] = (uint)wantB + 1u;
+                        if (flowing) {
+                            mem_fence(CLK_GLOBAL_MEM_FENCE); /* written before the counts move on */
+                            if (wantA >= 0) flowDone[2 * ab.x + slot] = (uint)wantA + 1u;
+                            if (wantB >= 0) flowDone[2 * ab.y + slot] = (uint)wantB + 1u;
+                        }
                     }
                     if (flowing) continue;
                     if (btgGridBarrier(bar, spinLimit, &quit)) {

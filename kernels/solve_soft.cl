@@ -738,30 +738,33 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
             else if (q == 2) bodyMode = BTG_SOFT_BODY_POSITION;
             else mode = btgSoftSweepMode(params, substep, 1);
         }
-        if (bodyMode >= 0 && flowBodies &&
-            (bodyMode == BTG_SOFT_BODY_VELOCITY || bodyMode == BTG_SOFT_BODY_CARRY ||
-             (bodyMode == BTG_SOFT_BODY_POSITION && flowPosition))) {
-            /* each body after its own edges of the sweeps before, its edges of the next after it */
-            for (int i = gid; i < numBodies; i += gsize) {
-                if (flowStopped) break;
-                const uint want = flowSweep * flowDeg[i] + flowPasses;
-                if (flow_wait_for(flowDone, i, want, bar, spinLimit)) {
-                    atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
-                    flowStopped = 1;
-                    break;
-                }
-                mem_fence(CLK_GLOBAL_MEM_FENCE);
-                soft_body(i, bodyMode, SOFT_PASS);
-                mem_fence(CLK_GLOBAL_MEM_FENCE);
-                flowDone[i] = want + 1u;
-            }
-            ++flowPasses;
-            continue;
-        }
         if (bodyMode >= 0) {
+            /* flow 2: each body after its own edges of the sweeps before, its edges of the next
+             * after it, with no barrier */
+            const int flowPass = flowBodies && (bodyMode == BTG_SOFT_BODY_VELOCITY || bodyMode == BTG_SOFT_BODY_CARRY ||
+                                                (bodyMode == BTG_SOFT_BODY_POSITION && flowPosition));
             for (int i = gid; i < numBodies; i += gsize) {
+                uint want = 0u;
+                if (flowPass) {
+                    if (flowStopped) break;
+                    want = flowSweep * flowDeg[i] + flowPasses;
+                    if (flow_wait_for(flowDone, i, want, bar, spinLimit)) {
+                        atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
+                        flowStopped = 1;
+                        break;
+                    }
+                    mem_fence(CLK_GLOBAL_MEM_FENCE);
+                }
                 soft_body(i, bodyMode, SOFT_PASS);
+                if (flowPass) {
+                    mem_fence(CLK_GLOBAL_MEM_FENCE);
+                    flowDone[i] = want + 1u;
+                }
                 if (flow && bodyMode == BTG_SOFT_BODY_BEGIN) flowDone[i] = 0u;
+            }
+            if (flowPass) {
+                ++flowPasses;
+                continue;
             }
             if (bodyMode == BTG_SOFT_BODY_END) break; /* the last pass: each body's own rows */
             SOFT_BARRIER();
@@ -784,27 +787,31 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
             if (begin == end) continue; /* the coloring's slack: every work-item reads the same range */
             for (int k = begin + gid; k < end; k += gsize) {
                 const int e = colorOrder[k];
-                if (!flowing) {
-                    soft_edge(e, k, nc, mode, key, SOFT_PASS);
-                    continue;
+                /* one call of the rows for both orders: one compiled copy of their arithmetic */
+                int2 ab = (int2)(0, 0);
+                uint packA = BTG_SOFT_FLOW_FREE, packB = BTG_SOFT_FLOW_FREE;
+                if (flowing) {
+                    ab = flow_bodies(e, k, nc, softContacts, joints);
+                    packA = flowRank[2 * k];
+                    packB = flowRank[2 * k + 1];
+                    /* a wait that gave up stops this work-item's flow edges (not the work-item:
+                     * its group's barriers still need it); every other wait then gives up at
+                     * its next look at the flag, and the host redoes the step */
+                    if (flowStopped) continue;
+                    if (flow_wait(flowDone, ab.x, packA, flowSweep, flowPasses, bar, spinLimit) ||
+                        flow_wait(flowDone, ab.y, packB, flowSweep, flowPasses, bar, spinLimit)) {
+                        atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
+                        flowStopped = 1;
+                        continue;
+                    }
+                    mem_fence(CLK_GLOBAL_MEM_FENCE); /* the bodies' rows read after their counts */
                 }
-                const int2 ab = flow_bodies(e, k, nc, softContacts, joints);
-                const uint packA = flowRank[2 * k], packB = flowRank[2 * k + 1];
-                /* a wait that gave up stops this work-item's flow edges (not the work-item: its
-                 * group's barriers still need it); every other wait then gives up at its next
-                 * look at the flag, and the host redoes the step */
-                if (flowStopped) continue;
-                if (flow_wait(flowDone, ab.x, packA, flowSweep, flowPasses, bar, spinLimit) ||
-                    flow_wait(flowDone, ab.y, packB, flowSweep, flowPasses, bar, spinLimit)) {
-                    atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
-                    flowStopped = 1;
-                    continue;
-                }
-                mem_fence(CLK_GLOBAL_MEM_FENCE); /* the bodies' rows read after their counts */
                 soft_edge(e, k, nc, mode, key, SOFT_PASS);
-                mem_fence(CLK_GLOBAL_MEM_FENCE); /* the rows written before the counts move on */
-                flow_signal(flowDone, ab.x, packA, flowSweep, flowPasses);
-                flow_signal(flowDone, ab.y, packB, flowSweep, flowPasses);
+                if (flowing) {
+                    mem_fence(CLK_GLOBAL_MEM_FENCE); /* the rows written before the counts move on */
+                    flow_signal(flowDone, ab.x, packA, flowSweep, flowPasses);
+                    flow_signal(flowDone, ab.y, packB, flowSweep, flowPasses);
+                }
             }
             if (!independent && !flowing) SOFT_BARRIER();
         }
