@@ -17,6 +17,7 @@
 #include <btBulletDynamicsCommon.h>
 
 #include <cmath>
+#include <cstring>
 #include <gtest/gtest.h>
 #include <memory>
 
@@ -438,9 +439,13 @@ struct SolveResult {
 };
 
 SolveResult runSolveDevice(const test::StackScene& s, const ref::JointTables& t, const BtgStepParams& p,
-                           const BtgJointStepParams& jp, int iterations, int maxColors, bool fused)
+                           const BtgJointStepParams& jp, int iterations, int maxColors, bool fused,
+                           DeviceWorld::Resident resident = DeviceWorld::Resident::Auto,
+                           DeviceWorld::Resident flow = DeviceWorld::Resident::Off, uint* status = nullptr)
 {
     DeviceWorld w(test::context());
+    w.resident = resident;
+    w.pgsFlow = flow;
     w.lastContactCount = fused ? 0 : (1 << 30);
     test::uploadWorld(w, s.bodies, s.manifolds, uint(s.manifolds.size()), {}, s.manifolds.size() + 4);
     w.numJoints = int(t.joints.size());
@@ -466,8 +471,9 @@ SolveResult runSolveDevice(const test::StackScene& s, const ref::JointTables& t,
     r.joints.rows = w.jointRows.download(w.ctx, t.rows.size());
     r.joints.state = w.jointState.download(w.ctx, t.state.size());
     r.joints.feedback = w.jointFeedback.download(w.ctx, t.state.size());
-    const uint edges = w.counters.download(w.ctx, kNumCounters)[kEdgeCount];
-    r.colors = w.edgeColor.download(w.ctx, edges);
+    const std::vector<uint> counters = w.counters.download(w.ctx, kNumCounters);
+    r.colors = w.edgeColor.download(w.ctx, counters[kEdgeCount]);
+    if (status) *status = counters[kStatus];
     return r;
 }
 
@@ -561,4 +567,31 @@ TEST(PrepareJoints, SolveWithContactsMatchesReference)
     EXPECT_EQ(rt.state[1].broken, 1);
     EXPECT_EQ(rt.state[0].broken, 0);
     EXPECT_GT(std::fabs(rt.state.back().appliedImpulse), 0.0f);
+}
+
+// The resident solve's flow (per-body counts instead of a barrier per colour) with joints: the
+// joints' list, iteration overrides above the contacts' count, a joint to the fixed body and one
+// that breaks: bitwise what the per-colour launches give (on a CPU device in groups of one
+// work-item, so it must not time out).
+TEST(PrepareJoints, SolveWithContactsFlowIsBitwiseTheSame)
+{
+    using Resident = DeviceWorld::Resident;
+    test::StackScene s = test::stackScene(4, 2, 2);
+    BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
+    for (size_t i = 0; i < s.bodies.props.size(); ++i)
+        if (s.bodies.props[i].flags & BTG_BODY_DYNAMIC) s.bodies.linVel[i] = btgMake4(0.1f * float(i % 3), -0.3f, 0, 0);
+    const ref::JointTables t = stackJoints(s);
+    const BtgJointStepParams jp = jointParams(int(t.joints.size()));
+    uint perColorStatus = 0, flowStatus = 0;
+    const SolveResult a = runSolveDevice(s, t, p, jp, 10, 24, false, Resident::Off, Resident::Off, &perColorStatus);
+    const SolveResult b = runSolveDevice(s, t, p, jp, 10, 24, false, Resident::On, Resident::On, &flowStatus);
+    EXPECT_EQ(perColorStatus & BTG_STATUS_GRID_BARRIER_TIMEOUT, 0u);
+    ASSERT_EQ(flowStatus & BTG_STATUS_GRID_BARRIER_TIMEOUT, 0u) << "the flow timed out";
+    const size_t n = a.bodies.linVel.size() * sizeof(BtgFloat4);
+    EXPECT_EQ(0, std::memcmp(a.bodies.linVel.data(), b.bodies.linVel.data(), n));
+    EXPECT_EQ(0, std::memcmp(a.bodies.angVel.data(), b.bodies.angVel.data(), n));
+    ASSERT_EQ(a.joints.rows.size(), b.joints.rows.size());
+    for (size_t k = 0; k < a.joints.rows.size(); ++k)
+        EXPECT_EQ(0, std::memcmp(&a.joints.rows[k].impulse, &b.joints.rows[k].impulse, sizeof(float))) << "row " << k;
+    for (size_t j = 0; j < t.joints.size(); ++j) EXPECT_EQ(a.joints.state[j].broken, b.joints.state[j].broken) << j;
 }
