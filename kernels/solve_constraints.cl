@@ -335,18 +335,7 @@ static long flow_want(__global const uint* restrict flowMasks, int body, int lis
 }
 static int flow_wait(volatile __global uint* done, long want, volatile __global BtgGridBarrier* bar, int spinLimit)
 {
-    if (want < 0) return 0;
-    int spins = 0;
-    while (*done != (uint)want) {
-        if ((++spins & 63) == 0) {
-            if (bar->timedOut != 0u) return 1;
-            if (spins > spinLimit) {
-                atomic_xchg(&bar->timedOut, 1u);
-                return 1;
-            }
-        }
-    }
-    return 0;
+    return want >= 0 && btgWaitForCount(done, (uint)want, bar, spinLimit);
 }
 
 /* solve_resident: every pass and color in ONE launch over resident work-groups (GPUs), with a

@@ -655,21 +655,6 @@ __kernel void soft_color_serial(__global const int* restrict edgeColor, int edge
  * a CPU device runs a group's work-items one after another: groups of one there): an edge waits
  * only for edges of lower colours, which their work-items reach first. A wait past spinLimit
  * polls gives up as the grid barrier does (the host redoes the step launch by launch). */
-static int flow_wait_for(volatile __global uint* flowDone, int body, uint want, volatile __global BtgGridBarrier* bar,
-                         int spinLimit)
-{
-    int spins = 0;
-    while (flowDone[body] != want) {
-        if ((++spins & 63) == 0) {
-            if (bar->timedOut != 0u) return 1;
-            if (spins > spinLimit) {
-                atomic_xchg(&bar->timedOut, 1u);
-                return 1;
-            }
-        }
-    }
-    return 0;
-}
 /* Edge side `pack` waits for its body's count: s * deg + the flow's body passes so far + rank. */
 static uint flow_want(uint pack, uint sweep, uint passes)
 {
@@ -679,7 +664,7 @@ static int flow_wait(volatile __global uint* flowDone, int body, uint pack, uint
                      volatile __global BtgGridBarrier* bar, int spinLimit)
 {
     if (pack == BTG_SOFT_FLOW_FREE) return 0;
-    return flow_wait_for(flowDone, body, flow_want(pack, sweep, passes), bar, spinLimit);
+    return btgWaitForCount(&flowDone[body], flow_want(pack, sweep, passes), bar, spinLimit);
 }
 static void flow_signal(volatile __global uint* flowDone, int body, uint pack, uint sweep, uint passes)
 {
@@ -748,7 +733,7 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
                 if (flowPass) {
                     if (flowStopped) break;
                     want = flowSweep * flowDeg[i] + flowPasses;
-                    if (flow_wait_for(flowDone, i, want, bar, spinLimit)) {
+                    if (btgWaitForCount(&flowDone[i], want, bar, spinLimit)) {
                         atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
                         flowStopped = 1;
                         break;

@@ -67,6 +67,25 @@ static int btgGridBarrier(volatile __global BtgGridBarrier* bar, int spinLimit, 
     barrier(CLK_GLOBAL_MEM_FENCE | CLK_LOCAL_MEM_FENCE);
     return *quit;
 }
+
+/* The resident solves' flows (solve_soft.cl, solve_constraints.cl): one work-item waits until a
+ * count another work-item moves on reaches `want`. Returns nonzero when it gave up, as the
+ * barrier's waiters do (past spinLimit polls, or another waiter gave up). */
+static int btgWaitForCount(volatile __global uint* count, uint want, volatile __global BtgGridBarrier* bar,
+                           int spinLimit)
+{
+    int spins = 0;
+    while (*count != want) {
+        if ((++spins & 63) == 0) {
+            if (bar->timedOut != 0u) return 1;
+            if (spins > spinLimit) {
+                atomic_xchg(&bar->timedOut, 1u);
+                return 1;
+            }
+        }
+    }
+    return 0;
+}
 #endif
 
 #endif
