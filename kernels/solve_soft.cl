@@ -659,6 +659,8 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
      * kinematic body's position pass keeps its barriers) */
     const int flowBodies = flow == 2 && params.orderSeed == 0u;
     const int flowPosition = flowBodies && flowRank[2 * edgeCapacity] == 0u;
+    int nonEmpty = 0; /* the regular colours with edges (the same for every work-item) */
+    for (int c = 0; c < last; ++c) nonEmpty += colorStart[c] != colorStart[c + 1];
     for (int pass = 0; pass < passes; ++pass) {
         int bodyMode = -1, mode = -1;
         if (pass == 0) bodyMode = BTG_SOFT_BODY_BEGIN;
@@ -716,10 +718,12 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
         /* the sweeps in colour order, where flow is on: no barrier between their colours */
         const int flowing = flow && key == 0u && (base == BTG_SOFT_SOLVE || base == BTG_SOFT_RELAX ||
                                                   base == BTG_SOFT_RESTITUTION);
+        int left = nonEmpty; /* regular colours of the sweep still to run */
         for (int ci = 0; ci < last; ++ci) {
             const int color = btgPermute(key, last, ci);
             const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
             if (begin == end) continue; /* the coloring's slack: every work-item reads the same range */
+            --left;
             for (int k = begin + gid; k < end; k += gsize) {
                 const int e = colorOrder[k];
                 /* one call of the rows for both orders: one compiled copy of their arithmetic */
@@ -748,7 +752,9 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
                     flow_signal(flowDone, ab.y, packB, flowSweep, flowPasses);
                 }
             }
-            if (!independent && !flowing) SOFT_BARRIER();
+            /* the sweep's own barrier below follows the last colour where no leftovers come
+             * between: one barrier there, not two */
+            if (!independent && !flowing && (left > 0 || walkLast)) SOFT_BARRIER();
         }
         if (flowing) {
             ++flowSweep;
