@@ -4,6 +4,9 @@
 #include "cl/context.h"
 #include "cl/kernel_source.h"
 
+#include <cstdio>
+#include <cstdlib>
+
 namespace btgpu::cl {
 
 std::string baseBuildOptions(const Context& context)
@@ -14,6 +17,9 @@ std::string baseBuildOptions(const Context& context)
     // on GPUs, whose per-compute-unit caches are not coherent; CPU caches are, and there
     // volatile only stops the compiler from vectorizing (PoCL: the solve ran 2x slower).
     opts += context.device().isGpu ? " -DBTG_SHARED=volatile" : " -DBTG_SHARED=";
+    // For measuring (not for apps): BTGPU_CL_OPTIONS adds build options (NVIDIA's
+    // -cl-nv-verbose, -cl-nv-maxrregcount=N, ...), BTGPU_CL_LOG=1 prints every build's log.
+    if (const char* extra = std::getenv("BTGPU_CL_OPTIONS"); extra && *extra) opts += std::string(" ") + extra;
     return opts;
 }
 
@@ -36,6 +42,13 @@ Program::Program(Context& context, const std::string& stem, const std::string& e
         clReleaseProgram(m_program);
         m_program = nullptr;
         throw Error("clBuildProgram(" + stem + ".cl, \"" + opts + "\")", err, __FILE__, __LINE__, log);
+    }
+    if (const char* e = std::getenv("BTGPU_CL_LOG"); e && e[0] == '1') {
+        size_t n = 0;
+        clGetProgramBuildInfo(m_program, dev, CL_PROGRAM_BUILD_LOG, 0, nullptr, &n);
+        std::string log(n, '\0');
+        if (n) clGetProgramBuildInfo(m_program, dev, CL_PROGRAM_BUILD_LOG, n, log.data(), nullptr);
+        std::fprintf(stderr, "btgpu: build log of %s.cl (%s):\n%s\n", stem.c_str(), opts.c_str(), log.c_str());
     }
 }
 
