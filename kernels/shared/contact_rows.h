@@ -552,12 +552,23 @@ static inline void btgStoreContactImpulses(BTG_GLOBAL BtgContact* contacts, int 
     }
 }
 
+/* Point k's lever arms, picked by selects rather than an index: the rows run with k known only
+ * at run time, and one indexed read of rA/rB keeps the whole contact in a GPU's local memory,
+ * every field of it then a load and a store there (btgSoftArmA: the same in the soft step). */
+static inline BtgFloat4 btgContactArmA(const BtgContact* c, int k)
+{
+    return btgXyz(k == 0 ? c->rA[0] : (k == 1 ? c->rA[1] : (k == 2 ? c->rA[2] : c->rA[3])));
+}
+static inline BtgFloat4 btgContactArmB(const BtgContact* c, int k)
+{
+    return btgXyz(k == 0 ? c->rB[0] : (k == 1 ? c->rB[1] : (k == 2 ? c->rB[2] : c->rB[3])));
+}
 /* Point k's rows as solver rows (see BtgContact): the normal row is unilateral, the friction
  * rows are bounded by friction times the point's normal impulse as it stands, the push row
  * shares the normal row's direction and mass. */
 static inline BtgSolverRow btgContactNormalRow(const BtgContact* c, int k, BtgSolverBody a, BtgSolverBody b)
 {
-    BtgFloat4 rA = btgXyz(c->rA[k]), rB = btgXyz(c->rB[k]);
+    BtgFloat4 rA = btgContactArmA(c, k), rB = btgContactArmB(c, k);
     BtgSolverRow r = btgMakeSolverRow(btgPointJacobian(c->normal, rA, rB, a, b), btgLane(c->normalMass, k),
                                       btgLane(c->normalTarget, k), 0.0f, BTG_NORMAL_UPPER_LIMIT,
                                       btgLane(c->normalImpulse, k));
@@ -567,13 +578,13 @@ static inline BtgSolverRow btgContactNormalRow(const BtgContact* c, int k, BtgSo
 static inline BtgSolverRow btgContactFrictionRow(const BtgContact* c, int k, BtgFloat4 dir, float mass, float impulse,
                                                  float target, BtgSolverBody a, BtgSolverBody b)
 {
-    BtgFloat4 rA = btgXyz(c->rA[k]), rB = btgXyz(c->rB[k]);
+    BtgFloat4 rA = btgContactArmA(c, k), rB = btgContactArmB(c, k);
     float lim = c->friction * btgLane(c->normalImpulse, k);
     return btgMakeSolverRow(btgPointJacobian(dir, rA, rB, a, b), mass, target, -lim, lim, impulse);
 }
 static inline BtgSolverRow btgContactPushRow(const BtgContact* c, int k, BtgSolverBody a, BtgSolverBody b)
 {
-    BtgFloat4 rA = btgXyz(c->rA[k]), rB = btgXyz(c->rB[k]);
+    BtgFloat4 rA = btgContactArmA(c, k), rB = btgContactArmB(c, k);
     BtgSolverRow r = btgMakeSolverRow(btgPointJacobian(c->normal, rA, rB, a, b), btgLane(c->normalMass, k),
                                       btgLane(c->pushTarget, k), 0.0f, BTG_NORMAL_UPPER_LIMIT,
                                       btgLane(c->pushImpulse, k));
@@ -589,7 +600,7 @@ static inline void btgContactWarmStartDirs(const BtgContact* c, const BtgFrictio
 {
     const int twoFriction = (rows & BTG_ROWS_TWO_FRICTION) != 0;
     for (int k = 0; k < c->numPoints; ++k) {
-        BtgFloat4 rA = btgXyz(c->rA[k]), rB = btgXyz(c->rB[k]);
+        BtgFloat4 rA = btgContactArmA(c, k), rB = btgContactArmB(c, k);
         if (btgLane(c->normalMass, k) == 0.0f) continue;
         btgRowApply(btgPointJacobian(c->normal, rA, rB, a, b), a, b, va, vb, btgLane(c->normalImpulse, k));
         if (btgLane(c->friction1Mass, k) != 0.0f)

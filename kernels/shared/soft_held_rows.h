@@ -148,8 +148,8 @@ static inline int btgSoftHeldNormals(BtgSoftContact* s, int lightIsA, BTG_SHARED
         if (btgLane(s->normalMass, k) == 0.0f) continue;
         float sep = btgSoftSeparation(s, k, dA, dB);
         float old = btgLane(s->normalImpulse, k);
-        BtgJacobian j = btgPointJacobian(s->normal, s->rA[k], s->rB[k], ha, hb);
-        float mass = btgPointRowMass(j, s->rA[k], s->rB[k], ha, hb);
+        BtgJacobian j = btgPointJacobian(s->normal, btgSoftArmA(s, k), btgSoftArmB(s, k), ha, hb);
+        float mass = btgPointRowMass(j, btgSoftArmA(s, k), btgSoftArmB(s, k), ha, hb);
         float bias = 0.0f, massScale = 1.0f, impulseScale = 0.0f;
         if (sep > 0.0f) {
             bias = sep * p.invH;
@@ -170,7 +170,7 @@ static inline int btgSoftHeldNormals(BtgSoftContact* s, int lightIsA, BTG_SHARED
         btgSetLane(&s->totalNormal, k, btgLane(s->totalNormal, k) + (next - old));
         btgRowApply(j, ha, hb, va, vb, next - old);
         force += next - old;
-        torque = torque + btgCross3(lightIsA ? s->rA[k] : s->rB[k], dt) * (next - old);
+        torque = torque + btgCross3(lightIsA ? btgSoftArmA(s, k) : btgSoftArmB(s, k), dt) * (next - old);
     }
     BtgFloat4 impulse = support->normalImpulse, total = support->totalNormal;
     float delta[BTG_MAX_POINTS];

@@ -125,6 +125,19 @@ typedef struct {
     BtgFloat4 pointRestitution;       /* per point: its restitution (the pair's, or a contact callback's) */
 } BtgSoftContact;
 
+/* Point k's lever arms, picked by selects rather than an index: a contact's rows run with k known
+ * only at run time, and one indexed read of rA/rB keeps the whole 416-byte contact in a GPU's
+ * local memory (the H100's soft_resident had a 1,584-byte stack frame, and a 4-point contact's
+ * normal rows took about 5,000 cycles: every field a load and a store through it). */
+static inline BtgFloat4 btgSoftArmA(const BtgSoftContact* s, int k)
+{
+    return k == 0 ? s->rA[0] : (k == 1 ? s->rA[1] : (k == 2 ? s->rA[2] : s->rA[3]));
+}
+static inline BtgFloat4 btgSoftArmB(const BtgSoftContact* s, int k)
+{
+    return k == 0 ? s->rB[0] : (k == 1 ? s->rB[1] : (k == 2 ? s->rB[2] : s->rB[3]));
+}
+
 /* BtgSoftContact.flags. FIXED: solved with BtgSoftParams.fixed (against a static, kinematic or
  * sleeping body). BULLET_DIRECTIONS: the friction rows run along Bullet's directions for each
  * point (anisotropic friction: btgSoftTakesBulletDirections), not the tangents. */
@@ -515,7 +528,7 @@ static BTG_ALWAYS_INLINE void btgSoftWarmStartSide(const BtgSoftContact* s, int 
         if (btgLane(s->normalMass, k) == 0.0f) continue;
         float ln = btgLane(s->normalImpulse, k), l1 = btgLane(s->tangent1Impulse, k), l2 = btgLane(s->tangent2Impulse, k);
         BtgFloat4 impulse = btgXyz(s->normal * ln + btgSoftDir1(s, dirs, k) * l1 + btgSoftDir2(s, dirs, k) * l2);
-        BtgFloat4 angular = side ? -btgCross3(s->rB[k], impulse) : btgCross3(s->rA[k], impulse);
+        BtgFloat4 angular = side ? -btgCross3(btgSoftArmB(s, k), impulse) : btgCross3(btgSoftArmA(s, k), impulse);
         btgSoftApplySide(impulse, btgMat3MulVec(body.invI, angular) * body.angFactor, side, body, v, 1.0f);
     }
 }
@@ -566,8 +579,8 @@ static BTG_ALWAYS_INLINE void btgSoftWarmTotals(BtgSoftContact* s)
  * (the normal held fixed over the step). dA/dB: the bodies' deltas. */
 static inline float btgSoftSeparation(const BtgSoftContact* s, int k, BtgSoftDelta dA, BtgSoftDelta dB)
 {
-    BtgFloat4 pA = btgXyz(dA.pos) + btgMat3MulVec(dA.rot, s->rA[k]);
-    BtgFloat4 pB = btgXyz(dB.pos) + btgMat3MulVec(dB.rot, s->rB[k]);
+    BtgFloat4 pA = btgXyz(dA.pos) + btgMat3MulVec(dA.rot, btgSoftArmA(s, k));
+    BtgFloat4 pB = btgXyz(dB.pos) + btgMat3MulVec(dB.rot, btgSoftArmB(s, k));
     return btgLane(s->baseSeparation, k) + btgDot3(pA - pB, s->normal);
 }
 
@@ -578,7 +591,7 @@ static BTG_ALWAYS_INLINE float btgSoftFrictionRow(const BtgSoftContact* s, int k
 {
     if (mass == 0.0f) return impulse;
     float lim = s->friction * btgLane(s->normalImpulse, k);
-    BtgSolverRow r = btgMakeSolverRow(btgPointJacobian(dir, s->rA[k], s->rB[k], a, b), mass, 0.0f, -lim, lim, impulse);
+    BtgSolverRow r = btgMakeSolverRow(btgPointJacobian(dir, btgSoftArmA(s, k), btgSoftArmB(s, k), a, b), mass, 0.0f, -lim, lim, impulse);
     btgRowSolve(&r, a, b, va, vb);
     return r.impulse;
 }
@@ -625,7 +638,7 @@ static BTG_ALWAYS_INLINE void btgSoftNormalRow(BtgSoftContact* s, int k, BtgSolv
         bias = massScale * spring.biasRate * sep;
         if (bias < -p.pushSpeed) bias = -p.pushSpeed;
     }
-    BtgJacobian j = btgPointJacobian(s->normal, s->rA[k], s->rB[k], a, b);
+    BtgJacobian j = btgPointJacobian(s->normal, btgSoftArmA(s, k), btgSoftArmB(s, k), a, b);
     float vn = btgRowVelocity(j, *va, *vb);
     float next = old - mass * (massScale * vn + bias) - impulseScale * old;
     if (!(next > 0.0f)) next = 0.0f;
@@ -699,7 +712,7 @@ static inline void btgSoftRestitution(BtgSoftContact* s, BtgSolverBody a, BtgSol
     for (int k = 0; k < s->numPoints; ++k) {
         float mass = btgLane(s->normalMass, k), rel = btgLane(s->relativeVelocity, k);
         if (mass == 0.0f || rel > -p.restitutionThreshold || btgLane(s->totalNormal, k) == 0.0f) continue;
-        BtgJacobian j = btgPointJacobian(s->normal, s->rA[k], s->rB[k], a, b);
+        BtgJacobian j = btgPointJacobian(s->normal, btgSoftArmA(s, k), btgSoftArmB(s, k), a, b);
         float vn = btgRowVelocity(j, *va, *vb);
         float old = btgLane(s->normalImpulse, k);
         float next = old - mass * (vn + btgLane(s->pointRestitution, k) * rel);
