@@ -83,9 +83,9 @@ static BtgSolverBody load_body(__global const BtgFloat4* restrict softSolver, BT
                                int i, BtgBodyVel* v)
 {
     const int r = BTG_SOFT_BODY_ROWS * i;
-    const BtgFloat4 l = softBodies[r + BTG_SOFT_VEL_LIN];
+    const BtgFloat4 l = btgLoadShared4(&softBodies[r + BTG_SOFT_VEL_LIN]);
     const BtgSolverBody b = soft_solver_body(softSolver, l.w, i);
-    *v = btgMakeBodyVel(b.moving, l, softBodies[r + BTG_SOFT_VEL_ANG]);
+    *v = btgMakeBodyVel(b.moving, l, btgLoadShared4(&softBodies[r + BTG_SOFT_VEL_ANG]));
     return b;
 }
 
@@ -122,8 +122,8 @@ static BtgSoftContact btgSoftPack(BtgSoftContact s)
 static BtgSoftDelta load_delta(BTG_SHARED __global BtgFloat4* softBodies, int r)
 {
     BtgSoftDelta d;
-    d.pos = softBodies[r + BTG_SOFT_DELTA_POS];
-    d.rot = btgQuatToMat3(softBodies[r + BTG_SOFT_DELTA_ROT]);
+    d.pos = btgLoadShared4(&softBodies[r + BTG_SOFT_DELTA_POS]);
+    d.rot = btgQuatToMat3(btgLoadShared4(&softBodies[r + BTG_SOFT_DELTA_ROT]));
     return d;
 }
 
@@ -197,8 +197,8 @@ static BtgSoftContact load_soft(__global const BtgSoftContact* softContacts, int
         btgSetLane(&s.normalMass, k, rA.w);
     }
     /* a held pair writes its support's impulses and totals, the gather's owner side the totals */
-    s.normalImpulse = shared_soft(softContacts)[i].normalImpulse;
-    s.totalNormal = shared_soft(softContacts)[i].totalNormal;
+    s.normalImpulse = btgLoadShared4(&shared_soft(softContacts)[i].normalImpulse);
+    s.totalNormal = btgLoadShared4(&shared_soft(softContacts)[i].totalNormal);
     const int friction = mode == BTG_SOFT_RELAX || (mode == BTG_SOFT_SOLVE && frictionInSolve);
     const int separation = mode == BTG_SOFT_SOLVE || mode == BTG_SOFT_RELAX;
     s.tangent1 = btgZero4();
@@ -208,8 +208,8 @@ static BtgSoftContact load_soft(__global const BtgSoftContact* softContacts, int
     s.tangent2Mass = friction ? softContacts[i].tangent2Mass : btgZero4();
     s.tangent1Impulse = friction ? softContacts[i].tangent1Impulse : btgZero4();
     s.tangent2Impulse = friction ? softContacts[i].tangent2Impulse : btgZero4();
-    s.total1 = friction ? shared_soft(softContacts)[i].total1 : btgZero4();
-    s.total2 = friction ? shared_soft(softContacts)[i].total2 : btgZero4();
+    s.total1 = friction ? btgLoadShared4(&shared_soft(softContacts)[i].total1) : btgZero4();
+    s.total2 = friction ? btgLoadShared4(&shared_soft(softContacts)[i].total2) : btgZero4();
     s.baseSeparation = separation ? softContacts[i].baseSeparation : btgZero4();
     s.stiffening = separation ? softContacts[i].stiffening : btgZero4();
     s.relativeVelocity = mode == BTG_SOFT_RESTITUTION ? softContacts[i].relativeVelocity : btgZero4();

@@ -34,6 +34,24 @@ typedef struct {
 #define BTG_SHARED volatile
 #endif
 
+/* A float4 another work-group wrote in this launch, read through a BTG_SHARED pointer. Plain
+ * (volatile on GPUs) by default. BTG_LOAD_CG (an experiment, NVIDIA only: build option
+ * -DBTG_LOAD_CG=1 through BTGPU_CL_OPTIONS) reads it with PTX's ld.global.cg instead, cached in
+ * L2 only (coherent across compute units, as volatile is) but free to be issued beside other
+ * loads: on the H100 a contact's volatile loads ran one after another, about 300 cycles each. */
+#if defined(BTG_LOAD_CG)
+static inline float4 btgLoadShared4(BTG_SHARED __global const float4* p)
+{
+    float4 v;
+    asm volatile("ld.global.cg.v4.f32 {%0, %1, %2, %3}, [%4];"
+                 : "=f"(v.x), "=f"(v.y), "=f"(v.z), "=f"(v.w)
+                 : "l"((__global const float4*)p));
+    return v;
+}
+#else
+#define btgLoadShared4(p) (*(p))
+#endif
+
 /* Returns nonzero when the launch must stop (a timeout). Call from every work-item. Global
  * writes before it are visible to every group after it for data read through BTG_SHARED
  * pointers or written by atomics. */
