@@ -191,9 +191,11 @@ static BtgSoftContact load_soft(__global const BtgSoftContact* softContacts, int
     s.normal = softContacts[i].normal;
     s.normalMass = btgZero4();
     for (int k = 0; k < BTG_MAX_POINTS; ++k) {
-        const BtgFloat4 rA = k < s.numPoints ? softContacts[i].rA[k] : btgZero4();
+        /* read whatever the point count: the reads need not wait for it (a GPU's round trip) */
+        const BtgFloat4 loadA = softContacts[i].rA[k], loadB = softContacts[i].rB[k];
+        const BtgFloat4 rA = k < s.numPoints ? loadA : btgZero4();
         s.rA[k] = btgXyz(rA);
-        s.rB[k] = k < s.numPoints ? btgXyz(softContacts[i].rB[k]) : btgZero4();
+        s.rB[k] = k < s.numPoints ? btgXyz(loadB) : btgZero4();
         btgSetLane(&s.normalMass, k, rA.w);
     }
     /* a held pair writes its support's impulses and totals, the gather's owner side the totals */
