@@ -58,7 +58,8 @@ static void solve_contact(int i, int mode, int rows, __global BtgContact* contac
     BtgSolverBody b = load_body(props, invInertiaWorld, c.bodyB);
     /* Push velocities of infinite-mass bodies are zero, as Bullet's solver bodies start them. */
     int movingA = mode == BTG_PASS_PUSH ? a.dynamic : a.moving, movingB = mode == BTG_PASS_PUSH ? b.dynamic : b.moving;
-    BtgFloat4 linA = lin[c.bodyA], angA = ang[c.bodyA], linB = lin[c.bodyB], angB = ang[c.bodyB];
+    BtgFloat4 linA = btgLoadShared4(&lin[c.bodyA]), angA = btgLoadShared4(&ang[c.bodyA]);
+    BtgFloat4 linB = btgLoadShared4(&lin[c.bodyB]), angB = btgLoadShared4(&ang[c.bodyB]);
     BtgBodyVel va = btgMakeBodyVel(movingA, linA, angA);
     BtgBodyVel vb = btgMakeBodyVel(movingB, linB, angB);
     /* anisotropic friction: the explicit directions, for the passes with friction rows */
@@ -136,12 +137,12 @@ static void solve_joint(int j, int iteration, JOINT_ARGS, __global const BtgBody
     BtgSolverBody b = joint.bodyB >= 0 ? load_body(props, invInertiaWorld, joint.bodyB) : btgFixedJointBody().body;
     BtgFloat4 linA = btgZero4(), angA = btgZero4(), linB = btgZero4(), angB = btgZero4();
     if (joint.bodyA >= 0) {
-        linA = lin[joint.bodyA];
-        angA = ang[joint.bodyA];
+        linA = btgLoadShared4(&lin[joint.bodyA]);
+        angA = btgLoadShared4(&ang[joint.bodyA]);
     }
     if (joint.bodyB >= 0) {
-        linB = lin[joint.bodyB];
-        angB = ang[joint.bodyB];
+        linB = btgLoadShared4(&lin[joint.bodyB]);
+        angB = btgLoadShared4(&ang[joint.bodyB]);
     }
     BtgBodyVel va = btgMakeBodyVel(a.moving, linA, angA);
     BtgBodyVel vb = btgMakeBodyVel(b.moving, linB, angB);
