@@ -601,9 +601,19 @@ static BTG_ALWAYS_INLINE float btgSoftFrictionRow(const BtgSoftContact* s, int k
  * closed in one substep either way; then the friction rows (in the relax, and also in the solve
  * with frictionInSolve). Bit 1 of normals: the contact supports a held body, whose load it takes
  * within the substep, so its springs are stiffened from the impulse they carry now as well. */
+/* The contact's spring for the step (its softness stiffened by its one factor, btgSoftPrepare's:
+ * every lane of `stiffening` the same), made once a contact rather than once a point: the square
+ * roots and divisions of btgSoftStiffened lie on each row's dependent chain (a GPU's latency). */
+static BTG_ALWAYS_INLINE BtgSoftness btgSoftContactSpring(const BtgSoftContact* s, BtgSoftParams p)
+{
+    const BtgSoftness soft = (s->flags & BTG_SOFT_FIXED) ? p.fixed : p.contact;
+    const float r = s->stiffening.x;
+    return r > 1.0f ? btgSoftStiffened(r, (s->flags & BTG_SOFT_FIXED) ? p.omega2Fixed : p.omega2Contact, p.zeta, p.h)
+                    : soft;
+}
 static BTG_ALWAYS_INLINE void btgSoftNormalRow(BtgSoftContact* s, int k, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
                                                BtgBodyVel* vb, BtgSoftDelta dA, BtgSoftDelta dB, int useBias, int normals,
-                                               BtgSoftParams p)
+                                               BtgSoftParams p, BtgSoftness contactSpring)
 {
     const BtgSoftness soft = (s->flags & BTG_SOFT_FIXED) ? p.fixed : p.contact;
     float mass = btgLane(s->normalMass, k);
@@ -624,15 +634,15 @@ static BTG_ALWAYS_INLINE void btgSoftNormalRow(BtgSoftContact* s, int k, BtgSolv
         bias = massScale * (s->springStiffness / ck) * sep;
         if (bias < -p.pushSpeed) bias = -p.pushSpeed;
     } else if (useBias) {
-        float r = btgLane(s->stiffening, k);
+        BtgSoftness spring = contactSpring;
         if (normals & 2) {
+            float r = btgLane(s->stiffening, k);
             const float omega2 = p.omega2Fixed;
             float now = old / (mass * p.h * omega2 * p.maxSag);
             r = now > r ? now : r;
+            spring = r > 1.0f ? btgSoftStiffened(r, (s->flags & BTG_SOFT_FIXED) ? p.omega2Fixed : p.omega2Contact, p.zeta, p.h)
+                              : soft;
         }
-        const BtgSoftness spring =
-            r > 1.0f ? btgSoftStiffened(r, (s->flags & BTG_SOFT_FIXED) ? p.omega2Fixed : p.omega2Contact, p.zeta, p.h)
-                     : soft;
         massScale = spring.massScale;
         impulseScale = spring.impulseScale;
         bias = massScale * spring.biasRate * sep;
@@ -666,18 +676,20 @@ static inline void btgSoftSolve(BtgSoftContact* s, BtgSolverBody a, BtgSolverBod
 {
     const int n = s->numPoints;
     const int friction = !useBias || p.frictionInSolve;
+    BtgSoftness spring = (s->flags & BTG_SOFT_FIXED) ? p.fixed : p.contact;
+    if (useBias && (normals & 1) && !(s->springStiffness > 0.0f)) spring = btgSoftContactSpring(s, p);
     /* SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS: each point's friction rows right after
      * its normal row, bounded by the impulse just found (as the bullet mode's interleaved sweep) */
     if (friction && p.interleave) {
         for (int q = 0; q < n; ++q) {
             const int k = btgPermute(pointKey, n, q);
-            if (normals & 1) btgSoftNormalRow(s, k, a, b, va, vb, dA, dB, useBias, normals, p);
+            if (normals & 1) btgSoftNormalRow(s, k, a, b, va, vb, dA, dB, useBias, normals, p, spring);
             btgSoftFrictionRows(s, k, a, b, va, vb, dirs);
         }
         return;
     }
     for (int q = 0; q < n && (normals & 1); ++q)
-        btgSoftNormalRow(s, btgPermute(pointKey, n, q), a, b, va, vb, dA, dB, useBias, normals, p);
+        btgSoftNormalRow(s, btgPermute(pointKey, n, q), a, b, va, vb, dA, dB, useBias, normals, p, spring);
     if (!friction) return;
     for (int q = 0; q < n; ++q) btgSoftFrictionRows(s, btgPermute(pointKey, n, q), a, b, va, vb, dirs);
 }
