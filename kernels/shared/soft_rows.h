@@ -604,18 +604,19 @@ static BTG_ALWAYS_INLINE float btgSoftFrictionRow(const BtgSoftContact* s, int k
 /* The contact's spring for the step (its softness stiffened by its one factor, btgSoftPrepare's:
  * every lane of `stiffening` the same), made once a contact rather than once a point: the square
  * roots and divisions of btgSoftStiffened lie on each row's dependent chain (a GPU's latency). */
+static BTG_ALWAYS_INLINE BtgSoftness btgSoftSpringOf(const BtgSoftContact* s, float r, BtgSoftParams p)
+{
+    const int fixed = (s->flags & BTG_SOFT_FIXED) != 0;
+    return r > 1.0f ? btgSoftStiffened(r, fixed ? p.omega2Fixed : p.omega2Contact, p.zeta, p.h) : (fixed ? p.fixed : p.contact);
+}
 static BTG_ALWAYS_INLINE BtgSoftness btgSoftContactSpring(const BtgSoftContact* s, BtgSoftParams p)
 {
-    const BtgSoftness soft = (s->flags & BTG_SOFT_FIXED) ? p.fixed : p.contact;
-    const float r = s->stiffening.x;
-    return r > 1.0f ? btgSoftStiffened(r, (s->flags & BTG_SOFT_FIXED) ? p.omega2Fixed : p.omega2Contact, p.zeta, p.h)
-                    : soft;
+    return btgSoftSpringOf(s, s->stiffening.x, p);
 }
 static BTG_ALWAYS_INLINE void btgSoftNormalRow(BtgSoftContact* s, int k, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
                                                BtgBodyVel* vb, BtgSoftDelta dA, BtgSoftDelta dB, int useBias, int normals,
                                                BtgSoftParams p, BtgSoftness contactSpring)
 {
-    const BtgSoftness soft = (s->flags & BTG_SOFT_FIXED) ? p.fixed : p.contact;
     float mass = btgLane(s->normalMass, k);
     if (mass == 0.0f) return;
     float sep = btgSoftSeparation(s, k, dA, dB);
@@ -640,8 +641,7 @@ static BTG_ALWAYS_INLINE void btgSoftNormalRow(BtgSoftContact* s, int k, BtgSolv
             const float omega2 = p.omega2Fixed;
             float now = old / (mass * p.h * omega2 * p.maxSag);
             r = now > r ? now : r;
-            spring = r > 1.0f ? btgSoftStiffened(r, (s->flags & BTG_SOFT_FIXED) ? p.omega2Fixed : p.omega2Contact, p.zeta, p.h)
-                              : soft;
+            spring = btgSoftSpringOf(s, r, p);
         }
         massScale = spring.massScale;
         impulseScale = spring.impulseScale;
