@@ -1,6 +1,9 @@
 #!/bin/bash
-# flows_on_gpu.sh — the measurement the flows wait for (README, "The flows"), for the device
-# tool: pack first, from the repository root,
+# flows_on_gpu.sh — the measurement that decided the flows (README, "The flows": on an H100,
+# 2026-12-05, slower and not bitwise, so BTGPU_SOFT_FLOW / BTGPU_PGS_FLOW now act on CPU devices
+# only, and on a GPU this script's flow runs repeat the runs without them; to measure the flows
+# there again, lift that rule in softFlow / pgsFlow first). For the device tool: pack first,
+# from the repository root,
 #   cp <b4e1194's btgpu_bench> build/btgpu_bench_b4
 #   ../shared/gpu/pack build/tests/bench/btgpu_bench build/btgpu_bench_b4 build/tests/btgpu_unit_tests
 #   cp tests/bench/flows_on_gpu.sh .gpu/
