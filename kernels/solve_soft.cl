@@ -32,6 +32,7 @@
 #include "shared/grid_barrier.h"
 #include "shared/soft_flow.h"
 #include "shared/contact_material.h"
+#include "shared/soft_wide.h"
 
 #define SOFT_ARGS __global BtgContact* contacts, __global BtgSoftContact* softContacts, \
     __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld, \
@@ -614,6 +615,151 @@ __kernel void soft_color_range(__global const uint* restrict colorStart, __globa
     const int nc = contact_edges(counters, edgeCapacity, numJoints);
     for (int k = begin + (int)get_global_id(0); k < end; k += (int)get_global_size(0))
         soft_edge(colorOrder[k], k, nc, mode, key, SOFT_PASS);
+}
+
+/* Lane l of a wide sweep's body: soft_solver_body's record, the velocity row (w: the kind) and
+ * the deltas, as soft_contact's load_body and load_delta read them. */
+static void wide_gather_body(__global const BtgFloat4* restrict softSolver, BTG_SHARED __global BtgFloat4* softBodies,
+                             int i, int l, float* lanes)
+{
+    const int r = BTG_SOFT_BODY_ROWS * i;
+    const BtgFloat4 s0 = softSolver[BTG_SOFT_SOLVER_ROWS * i], s1 = softSolver[BTG_SOFT_SOLVER_ROWS * i + 1];
+    const BtgFloat4 s2 = softSolver[BTG_SOFT_SOLVER_ROWS * i + 2], s3 = softSolver[BTG_SOFT_SOLVER_ROWS * i + 3];
+    const BtgFloat4 vl = btgLoadShared4(&softBodies[r + BTG_SOFT_VEL_LIN]), va = btgLoadShared4(&softBodies[r + BTG_SOFT_VEL_ANG]);
+    const BtgFloat4 dp = btgLoadShared4(&softBodies[r + BTG_SOFT_DELTA_POS]), q = btgLoadShared4(&softBodies[r + BTG_SOFT_DELTA_ROT]);
+    const float v[BTG_WB_FIELDS] = {s0.x, s0.y, s0.z, s1.x, s1.y, s1.z, s2.x, s2.y, s2.z, s0.w, s1.w, s2.w, s3.w,
+                                    s3.x, s3.y, s3.z, vl.w, vl.x, vl.y, vl.z, va.x, va.y, va.z, dp.x, dp.y, dp.z,
+                                    q.x, q.y, q.z, q.w};
+    for (int f = 0; f < BTG_WB_FIELDS; ++f) lanes[f * BTG_SOFT_WIDE + l] = v[f];
+}
+/* An empty lane: a fixed body at rest, nothing moved. */
+static void wide_empty_body(int l, float* lanes)
+{
+    for (int f = 0; f < BTG_WB_FIELDS; ++f) lanes[f * BTG_SOFT_WIDE + l] = f == BTG_WB_QW ? 1.0f : 0.0f;
+}
+/* Lane l of a wide sweep's contacts: what load_soft reads for the solve or relax (friction: the
+ * friction fields too); an empty lane has no points. */
+static void wide_gather_contact(__global const BtgSoftContact* softContacts, int slot, int l, int friction, float* c)
+{
+    for (int f = 0; f < BTG_WC_FIELDS; ++f) c[f * BTG_SOFT_WIDE + l] = 0.0f;
+    if (slot < 0) return;
+    __global const BtgSoftContact* s = softContacts + slot;
+    const BtgFloat4 n = s->normal;
+    const int points = s->numPoints;
+    c[BTG_WC_NX * BTG_SOFT_WIDE + l] = n.x;
+    c[BTG_WC_NY * BTG_SOFT_WIDE + l] = n.y;
+    c[BTG_WC_NZ * BTG_SOFT_WIDE + l] = n.z;
+    c[BTG_WC_FRICTION * BTG_SOFT_WIDE + l] = s->friction;
+    c[BTG_WC_STIFFENING * BTG_SOFT_WIDE + l] = s->stiffening.x;
+    c[BTG_WC_FIXED * BTG_SOFT_WIDE + l] = (s->flags & BTG_SOFT_FIXED) ? 1.0f : 0.0f;
+    const BtgFloat4 normal = btgLoadShared4(&shared_soft(softContacts)[slot].normalImpulse);
+    const BtgFloat4 total = btgLoadShared4(&shared_soft(softContacts)[slot].totalNormal);
+    const BtgFloat4 base = s->baseSeparation;
+    BtgFloat4 m1 = btgZero4(), m2 = btgZero4(), i1 = btgZero4(), i2 = btgZero4(), t1 = btgZero4(), t2 = btgZero4();
+    if (friction) {
+        m1 = s->tangent1Mass;
+        m2 = s->tangent2Mass;
+        i1 = s->tangent1Impulse;
+        i2 = s->tangent2Impulse;
+        t1 = btgLoadShared4(&shared_soft(softContacts)[slot].total1);
+        t2 = btgLoadShared4(&shared_soft(softContacts)[slot].total2);
+    }
+    for (int k = 0; k < BTG_MAX_POINTS; ++k) {
+        const BtgFloat4 rA = k < points ? s->rA[k] : btgZero4(), rB = k < points ? s->rB[k] : btgZero4();
+        const float v[BTG_WC_PER_POINT] = {rA.x, rA.y, rA.z, rB.x, rB.y, rB.z, rA.w, btgLane(base, k),
+                                           btgLane(m1, k), btgLane(m2, k), btgLane(normal, k), btgLane(total, k),
+                                           btgLane(i1, k), btgLane(i2, k), btgLane(t1, k), btgLane(t2, k)};
+        for (int f = 0; f < BTG_WC_PER_POINT; ++f) c[BTG_WC_AT(k, f) * BTG_SOFT_WIDE + l] = v[f];
+    }
+}
+static BtgFloat4 wide_points(const float* c, int l, int f)
+{
+    return btgMake4(c[BTG_WC_AT(0, f) * BTG_SOFT_WIDE + l], c[BTG_WC_AT(1, f) * BTG_SOFT_WIDE + l], c[BTG_WC_AT(2, f) * BTG_SOFT_WIDE + l],
+                    c[BTG_WC_AT(3, f) * BTG_SOFT_WIDE + l]);
+}
+/* The lanes' velocities back to the dynamic bodies' rows (store_vel's; w of VEL_LIN the kind). */
+static void wide_store_vels(const BtgVelW* v, const float* lanes, const int* body, int n,
+                            BTG_SHARED __global BtgFloat4* softBodies)
+{
+    float x[6 * BTG_SOFT_WIDE];
+    vstore8(v->lin.x, 0, x);
+    vstore8(v->lin.y, 1, x);
+    vstore8(v->lin.z, 2, x);
+    vstore8(v->ang.x, 3, x);
+    vstore8(v->ang.y, 4, x);
+    vstore8(v->ang.z, 5, x);
+    for (int l = 0; l < n; ++l) {
+        const float kind = lanes[BTG_WB_KIND * BTG_SOFT_WIDE + l];
+        if (!(kind >= 2.0f)) continue;
+        const int r = BTG_SOFT_BODY_ROWS * body[l];
+        softBodies[r + BTG_SOFT_VEL_LIN] = btgMake4(x[l], x[BTG_SOFT_WIDE + l], x[2 * BTG_SOFT_WIDE + l], kind);
+        softBodies[r + BTG_SOFT_VEL_ANG] = btgMake4(x[3 * BTG_SOFT_WIDE + l], x[4 * BTG_SOFT_WIDE + l], x[5 * BTG_SOFT_WIDE + l], 0.0f);
+    }
+}
+
+/* A colour's solve or relax sweep, eight contacts a work-item at a time (soft_wide.h: on CPU
+ * devices, which run the rows as scalar code otherwise): what the wide rows serve goes into the
+ * lanes, every other edge of the chunk through soft_edge (one colour's edges share no dynamic
+ * body, so the order within it changes nothing). */
+__kernel void soft_color_wide(__global const uint* restrict colorStart, __global const int* restrict colorOrder,
+                              int edgeCapacity, int numJoints, int color, int mode, uint key, SOFT_ARGS)
+{
+    const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
+    const int nc = contact_edges(counters, edgeCapacity, numJoints);
+    const int base = btgSoftBaseMode(mode), relax = base == BTG_SOFT_RELAX;
+    const int friction = relax || params.frictionInSolve;
+    const int wide = (base == BTG_SOFT_SOLVE || relax) && key == 0u && !params.interleave &&
+                     !(params.heldMassRatio > 0.0f) && !(params.rolling && relax);
+    const int stride = (int)get_global_size(0) * BTG_SOFT_WIDE;
+    for (int k0 = begin + (int)get_global_id(0) * BTG_SOFT_WIDE; k0 < end; k0 += stride) {
+        int slots[BTG_SOFT_WIDE], lanes = 0;
+        for (int k = k0; k < k0 + BTG_SOFT_WIDE && k < end; ++k) {
+            const int e = colorOrder[k];
+            if (!wide || e >= nc || softContacts[k].springStiffness > 0.0f ||
+                (softContacts[k].flags & BTG_SOFT_BULLET_DIRECTIONS))
+                soft_edge(e, k, nc, mode, key, SOFT_PASS);
+            else
+                slots[lanes++] = k;
+        }
+        if (lanes == 0) continue;
+        float c[BTG_WC_FIELDS * BTG_SOFT_WIDE], la[BTG_WB_FIELDS * BTG_SOFT_WIDE], lb[BTG_WB_FIELDS * BTG_SOFT_WIDE];
+        int bodyA[BTG_SOFT_WIDE], bodyB[BTG_SOFT_WIDE];
+        for (int l = 0; l < BTG_SOFT_WIDE; ++l) {
+            const int slot = l < lanes ? slots[l] : -1;
+            wide_gather_contact(softContacts, slot, l, friction, c);
+            bodyA[l] = slot >= 0 ? softContacts[slot].bodyA : 0;
+            bodyB[l] = slot >= 0 ? softContacts[slot].bodyB : 0;
+            if (slot >= 0) {
+                wide_gather_body(softSolver, softBodies, bodyA[l], l, la);
+                wide_gather_body(softSolver, softBodies, bodyB[l], l, lb);
+            } else {
+                wide_empty_body(l, la);
+                wide_empty_body(l, lb);
+            }
+        }
+        BtgBodyW a, b;
+        BtgVelW va, vb;
+        BtgDeltaW dA, dB;
+        int8 dynA, dynB;
+        btgWBody(la, &a, &va, &dA, &dynA);
+        btgWBody(lb, &b, &vb, &dB, &dynB);
+        if (mode & BTG_SOFT_WARM_TOTALS)
+            btgWCarriedTotals(c, base == BTG_SOFT_SOLVE, params.frictionInSolve ? base == BTG_SOFT_SOLVE : relax);
+        btgWSoftSolve(c, &a, &b, &va, &vb, &dA, &dB, base == BTG_SOFT_SOLVE, params);
+        wide_store_vels(&va, la, bodyA, lanes, softBodies);
+        wide_store_vels(&vb, lb, bodyB, lanes, softBodies);
+        for (int l = 0; l < lanes; ++l) {
+            const int slot = slots[l];
+            softContacts[slot].normalImpulse = wide_points(c, l, BTG_WC_NIMP);
+            softContacts[slot].totalNormal = wide_points(c, l, BTG_WC_TOTN);
+            if (friction) {
+                softContacts[slot].tangent1Impulse = wide_points(c, l, BTG_WC_T1IMP);
+                softContacts[slot].tangent2Impulse = wide_points(c, l, BTG_WC_T2IMP);
+                softContacts[slot].total1 = wide_points(c, l, BTG_WC_TOT1);
+                softContacts[slot].total2 = wide_points(c, l, BTG_WC_TOT2);
+            }
+        }
+    }
 }
 
 __kernel void soft_color_serial(__global const int* restrict edgeColor, int edgeCapacity, int numJoints, int color,

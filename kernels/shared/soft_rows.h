@@ -138,6 +138,9 @@ static inline BtgFloat4 btgSoftArmB(const BtgSoftContact* s, int k)
     return k == 0 ? s->rB[0] : (k == 1 ? s->rB[1] : (k == 2 ? s->rB[2] : s->rB[3]));
 }
 
+/* Contacts a work-item solves side by side on a CPU device (soft_wide.h's lanes, float8). */
+#define BTG_SOFT_WIDE 8
+
 /* BtgSoftContact.flags. FIXED: solved with BtgSoftParams.fixed (against a static, kinematic or
  * sleeping body). BULLET_DIRECTIONS: the friction rows run along Bullet's directions for each
  * point (anisotropic friction: btgSoftTakesBulletDirections), not the tangents. */

@@ -222,8 +222,19 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     }
     const size_t rangeItems = std::min(slots, size_t(std::max<cl_uint>(ctx.device().computeUnits, 1)) * 256);
     cl_kernel range = prog.kernel("soft_color_range"), serial = prog.kernel("soft_color_serial");
+    // A CPU device takes the solve and relax sweeps eight contacts a work-item (soft_wide.h): it
+    // runs each work-item's rows as scalar code, and the sweeps were its soft step's cost.
+    // BTGPU_SOFT_WIDE=0: the scalar sweeps there too (an experiment knob, for measuring).
+    static const bool wideOff = [] {
+        const char* e = std::getenv("BTGPU_SOFT_WIDE");
+        return e && e[0] == '0';
+    }();
+    cl_kernel wide = ctx.device().isGpu || wideOff ? nullptr : prog.kernel("soft_color_wide");
+    const size_t wideItems = (rangeItems + BTG_SOFT_WIDE - 1) / BTG_SOFT_WIDE;
     // key: a solve or relax sweep's order (SOLVER_RANDMIZE_ORDER), as soft_resident takes it
     auto edgePass = [&](int mode, cl_uint key) {
+        const int base = btgSoftBaseMode(mode);
+        const bool sweep = wide && (base == BTG_SOFT_SOLVE || base == BTG_SOFT_RELAX);
         for (int ci = 0; ci < numColors; ++ci) {
             if (ci == numColors - 1) {
                 cl::Launch l(ctx, serial, &w.profiler);
@@ -231,9 +242,9 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
                 soft(l).run(1, 1);
             } else {
                 const int color = btgPermute(key, numColors - 1, ci);
-                cl::Launch l(ctx, range, &w.profiler);
+                cl::Launch l(ctx, sweep ? wide : range, &w.profiler);
                 l.arg(sc.colorStart).arg(sc.colorOrder).arg(edgeCapacity).arg(numJoints).arg(color).arg(mode).arg(key);
-                soft(l).run(rangeItems, 64);
+                soft(l).run(sweep ? wideItems : rangeItems, sweep ? 8 : 64);
             }
         }
     };

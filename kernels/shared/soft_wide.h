@@ -1,0 +1,320 @@
+/* soft_wide.h — the soft step's solve and relax sweeps, eight contacts of one colour at a time
+ * in the lanes of float8 (solve_soft.cl's soft_color_wide, on CPU devices). A CPU device runs a
+ * work-group's work-items one after another, each contact's rows as scalar code, and so the
+ * sweeps were the soft step's cost there (54% of a PoCL run of cubes 8,000); the contacts of a
+ * colour share no dynamic body, so they can go through the rows side by side, as Box2D v3's
+ * contact solver runs them in SIMD lanes (contact_solver.c, b2FloatW). Each expression below is
+ * written as its scalar counterpart in soft_rows.h / solver_rows.h / math.h is (the same
+ * operations in the same order in one statement, so a compiler contracts the same products into
+ * the same fused multiply-adds), lane by lane the same arithmetic as soft_contact's: the same
+ * results bit for bit (SolveSoft tests, the bench's state hash). Device only (OpenCL vectors):
+ * the CPU reference is soft_rows.h itself. Served: contacts with the soft step's own spring and
+ * the tangents (not a pair's stiffness and damping, not Bullet's directions), points in order
+ * (no SOLVER_RANDMIZE_ORDER), friction after the normals (no interleave), no held pairs, no
+ * rolling rows; soft_color_wide hands everything else to soft_edge. */
+#ifndef BTG_SOFT_WIDE_H
+#define BTG_SOFT_WIDE_H
+#include "soft_rows.h"
+
+typedef float8 BtgW;
+typedef struct {
+    BtgW x, y, z;
+} BtgV3W;
+typedef struct {
+    BtgV3W r0, r1, r2;
+} BtgM3W;
+
+static BTG_ALWAYS_INLINE BtgV3W btgW3(BtgW x, BtgW y, BtgW z)
+{
+    BtgV3W v;
+    v.x = x;
+    v.y = y;
+    v.z = z;
+    return v;
+}
+static BTG_ALWAYS_INLINE BtgV3W btgW3Add(BtgV3W a, BtgV3W b) { return btgW3(a.x + b.x, a.y + b.y, a.z + b.z); }
+static BTG_ALWAYS_INLINE BtgV3W btgW3Sub(BtgV3W a, BtgV3W b) { return btgW3(a.x - b.x, a.y - b.y, a.z - b.z); }
+static BTG_ALWAYS_INLINE BtgV3W btgW3Neg(BtgV3W a) { return btgW3(-a.x, -a.y, -a.z); }
+/* btgDot3, btgCross3, btgMat3MulVec */
+static BTG_ALWAYS_INLINE BtgW btgW3Dot(BtgV3W a, BtgV3W b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static BTG_ALWAYS_INLINE BtgV3W btgW3Cross(BtgV3W a, BtgV3W b)
+{
+    return btgW3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+static BTG_ALWAYS_INLINE BtgV3W btgW3MatMul(BtgM3W m, BtgV3W v) { return btgW3(btgW3Dot(m.r0, v), btgW3Dot(m.r1, v), btgW3Dot(m.r2, v)); }
+static BTG_ALWAYS_INLINE BtgV3W btgW3Mul(BtgV3W a, BtgV3W b) { return btgW3(a.x * b.x, a.y * b.y, a.z * b.z); }
+static BTG_ALWAYS_INLINE BtgW btgWSelect(BtgW no, BtgW yes, int8 pick) { return select(no, yes, pick); }
+static BTG_ALWAYS_INLINE BtgV3W btgW3Select(BtgV3W no, BtgV3W yes, int8 pick)
+{
+    return btgW3(select(no.x, yes.x, pick), select(no.y, yes.y, pick), select(no.z, yes.z, pick));
+}
+
+/* A body as the rows see it (BtgSolverBody, BtgBodyVel, BtgSoftDelta), eight lanes. */
+typedef struct {
+    BtgM3W invI;
+    BtgV3W invMassLin, linFactor, angFactor;
+    BtgW invMass;
+} BtgBodyW;
+typedef struct {
+    BtgV3W lin, ang;
+} BtgVelW;
+typedef struct {
+    BtgV3W pos;
+    BtgM3W rot;
+} BtgDeltaW;
+
+/* A lane's values before they become vectors: field f of lane l at f * 8 + l. */
+enum {
+    BTG_WB_I00, BTG_WB_I01, BTG_WB_I02, BTG_WB_I10, BTG_WB_I11, BTG_WB_I12, BTG_WB_I20, BTG_WB_I21, BTG_WB_I22,
+    BTG_WB_INVMASS, BTG_WB_LF0, BTG_WB_LF1, BTG_WB_LF2, BTG_WB_AF0, BTG_WB_AF1, BTG_WB_AF2, BTG_WB_KIND,
+    BTG_WB_VL0, BTG_WB_VL1, BTG_WB_VL2, BTG_WB_VA0, BTG_WB_VA1, BTG_WB_VA2,
+    BTG_WB_DP0, BTG_WB_DP1, BTG_WB_DP2, BTG_WB_QX, BTG_WB_QY, BTG_WB_QZ, BTG_WB_QW, BTG_WB_FIELDS
+};
+static BTG_ALWAYS_INLINE BtgW btgWLoad(const float* lanes, int f) { return vload8(0, lanes + f * BTG_SOFT_WIDE); }
+static BTG_ALWAYS_INLINE BtgV3W btgW3Load(const float* lanes, int f)
+{
+    return btgW3(btgWLoad(lanes, f), btgWLoad(lanes, f + 1), btgWLoad(lanes, f + 2));
+}
+
+/* btgQuatToMat3, lane by lane */
+static BTG_ALWAYS_INLINE BtgM3W btgWQuatToMat3(BtgW qx, BtgW qy, BtgW qz, BtgW qw)
+{
+    BtgW d = qx * qx + qy * qy + qz * qz + qw * qw;
+    BtgW s = 2.0f / d;
+    BtgW xs = qx * s, ys = qy * s, zs = qz * s;
+    BtgW wx = qw * xs, wy = qw * ys, wz = qw * zs;
+    BtgW xx = qx * xs, xy = qx * ys, xz = qx * zs;
+    BtgW yy = qy * ys, yz = qy * zs, zz = qz * zs;
+    BtgM3W m;
+    m.r0 = btgW3(1.0f - (yy + zz), xy - wz, xz + wy);
+    m.r1 = btgW3(xy + wz, 1.0f - (xx + zz), yz - wx);
+    m.r2 = btgW3(xz - wy, yz + wx, 1.0f - (xx + yy));
+    return m;
+}
+
+/* The lanes' bodies as soft_solver_body, btgMakeBodyVel and load_delta make them. */
+static BTG_ALWAYS_INLINE void btgWBody(const float* lanes, BtgBodyW* b, BtgVelW* v, BtgDeltaW* d, int8* dynamic)
+{
+    b->invI.r0 = btgW3Load(lanes, BTG_WB_I00);
+    b->invI.r1 = btgW3Load(lanes, BTG_WB_I10);
+    b->invI.r2 = btgW3Load(lanes, BTG_WB_I20);
+    b->invMass = btgWLoad(lanes, BTG_WB_INVMASS);
+    b->linFactor = btgW3Load(lanes, BTG_WB_LF0);
+    b->angFactor = btgW3Load(lanes, BTG_WB_AF0);
+    b->invMassLin = btgW3(b->linFactor.x * b->invMass, b->linFactor.y * b->invMass, b->linFactor.z * b->invMass);
+    const BtgW kind = btgWLoad(lanes, BTG_WB_KIND);
+    *dynamic = kind >= 2.0f;
+    const int8 moving = kind == 1.0f || kind == 3.0f;
+    const BtgW zero = (BtgW)(0.0f);
+    const BtgV3W z3 = btgW3(zero, zero, zero);
+    v->lin = btgW3Select(z3, btgW3Load(lanes, BTG_WB_VL0), moving);
+    v->ang = btgW3Select(z3, btgW3Load(lanes, BTG_WB_VA0), moving);
+    d->pos = btgW3Load(lanes, BTG_WB_DP0);
+    d->rot = btgWQuatToMat3(btgWLoad(lanes, BTG_WB_QX), btgWLoad(lanes, BTG_WB_QY), btgWLoad(lanes, BTG_WB_QZ),
+                            btgWLoad(lanes, BTG_WB_QW));
+}
+
+/* BtgJacobian, lanes */
+typedef struct {
+    BtgV3W linear, angularA, angularB, responseA, responseB;
+} BtgJacobianW;
+static BTG_ALWAYS_INLINE BtgJacobianW btgWPointJacobian(BtgV3W dir, BtgV3W rA, BtgV3W rB, const BtgBodyW* a, const BtgBodyW* b)
+{
+    BtgJacobianW j;
+    j.linear = dir;
+    j.angularA = btgW3Cross(rA, j.linear);
+    j.angularB = btgW3Neg(btgW3Cross(rB, j.linear));
+    j.responseA = btgW3Mul(btgW3MatMul(a->invI, j.angularA), a->angFactor);
+    j.responseB = btgW3Mul(btgW3MatMul(b->invI, j.angularB), b->angFactor);
+    return j;
+}
+static BTG_ALWAYS_INLINE BtgW btgWRowVelocity(const BtgJacobianW* j, const BtgVelW* va, const BtgVelW* vb)
+{
+    BtgW v1 = btgW3Dot(j->linear, va->lin) + btgW3Dot(j->angularA, va->ang);
+    BtgW v2 = btgW3Dot(btgW3Neg(j->linear), vb->lin) + btgW3Dot(j->angularB, vb->ang);
+    return v1 + v2;
+}
+/* btgRowApply, each component as its float4 expression */
+static BTG_ALWAYS_INLINE void btgWRowApply(const BtgJacobianW* j, const BtgBodyW* a, const BtgBodyW* b, BtgVelW* va,
+                                           BtgVelW* vb, BtgW impulse)
+{
+    const BtgV3W l = j->linear, nl = btgW3Neg(j->linear);
+    va->lin.x = va->lin.x + (l.x * a->invMassLin.x) * impulse * a->linFactor.x;
+    va->lin.y = va->lin.y + (l.y * a->invMassLin.y) * impulse * a->linFactor.y;
+    va->lin.z = va->lin.z + (l.z * a->invMassLin.z) * impulse * a->linFactor.z;
+    va->ang.x = va->ang.x + j->responseA.x * (a->angFactor.x * impulse);
+    va->ang.y = va->ang.y + j->responseA.y * (a->angFactor.y * impulse);
+    va->ang.z = va->ang.z + j->responseA.z * (a->angFactor.z * impulse);
+    vb->lin.x = vb->lin.x + (nl.x * b->invMassLin.x) * impulse * b->linFactor.x;
+    vb->lin.y = vb->lin.y + (nl.y * b->invMassLin.y) * impulse * b->linFactor.y;
+    vb->lin.z = vb->lin.z + (nl.z * b->invMassLin.z) * impulse * b->linFactor.z;
+    vb->ang.x = vb->ang.x + j->responseB.x * (b->angFactor.x * impulse);
+    vb->ang.y = vb->ang.y + j->responseB.y * (b->angFactor.y * impulse);
+    vb->ang.z = vb->ang.z + j->responseB.z * (b->angFactor.z * impulse);
+}
+/* A row's velocity change kept only in the lanes that solve it (the scalar rows return early). */
+static BTG_ALWAYS_INLINE void btgWKeep(BtgVelW* v, BtgVelW before, int8 solved)
+{
+    v->lin = btgW3Select(before.lin, v->lin, solved);
+    v->ang = btgW3Select(before.ang, v->ang, solved);
+}
+
+/* A contact's fields in lanes: per point k the anchors (w: the normal mass), base separation,
+ * tangent masses, impulses and step totals. */
+enum {
+    BTG_WC_NX, BTG_WC_NY, BTG_WC_NZ, BTG_WC_FRICTION, BTG_WC_STIFFENING, BTG_WC_FIXED,
+    BTG_WC_POINT0, /* then per point: */
+    BTG_WC_AX = 0, BTG_WC_AY, BTG_WC_AZ, BTG_WC_BX, BTG_WC_BY, BTG_WC_BZ, BTG_WC_MASS, BTG_WC_BASE,
+    BTG_WC_T1MASS, BTG_WC_T2MASS, BTG_WC_NIMP, BTG_WC_TOTN, BTG_WC_T1IMP, BTG_WC_T2IMP, BTG_WC_TOT1, BTG_WC_TOT2,
+    BTG_WC_PER_POINT
+};
+#define BTG_WC_FIELDS (BTG_WC_POINT0 + BTG_MAX_POINTS * BTG_WC_PER_POINT)
+#define BTG_WC_AT(k, f) (BTG_WC_POINT0 + (k) * BTG_WC_PER_POINT + (f))
+
+/* btgSoftStiffened / btgSoftSpringOf for the lanes (r: each contact's one factor). */
+static BTG_ALWAYS_INLINE void btgWContactSpring(BtgW r, int8 fixed, BtgSoftParams p, BtgW* massScale, BtgW* impulseScale,
+                                                BtgW* biasRate)
+{
+    const BtgW omega2 = select((BtgW)(p.omega2Contact), (BtgW)(p.omega2Fixed), fixed);
+    const BtgW zeta = (BtgW)(p.zeta), h = (BtgW)(p.h);
+    const BtgW omega = sqrt(omega2), hw = h * omega;
+    const BtgW a1 = 2.0f * zeta * r * sqrt(r) + hw * r;
+    const BtgW stiffness = hw * a1;
+    const BtgW rate = omega * r / a1;
+    const BtgW ms = stiffness / (1.0f + stiffness);
+    const BtgW is = 1.0f / (1.0f + stiffness);
+    const int8 stiffened = r > 1.0f;
+    *massScale = select(select((BtgW)(p.contact.massScale), (BtgW)(p.fixed.massScale), fixed), ms, stiffened);
+    *impulseScale = select(select((BtgW)(p.contact.impulseScale), (BtgW)(p.fixed.impulseScale), fixed), is, stiffened);
+    *biasRate = select(select((BtgW)(p.contact.biasRate), (BtgW)(p.fixed.biasRate), fixed), rate, stiffened);
+}
+
+/* btgPlaneSpace of the lanes' normals */
+static BTG_ALWAYS_INLINE void btgWPlaneSpace(BtgV3W n, BtgV3W* p, BtgV3W* q)
+{
+    const BtgW zero = (BtgW)(0.0f);
+    const int8 zAxis = fabs(n.z) > 0.70710678f;
+    const BtgW az = n.y * n.y + n.z * n.z;
+    const BtgW kz = 1.0f / sqrt(az);
+    const BtgV3W pz = btgW3(zero, -n.z * kz, n.y * kz);
+    const BtgV3W qz = btgW3(az * kz, -n.x * pz.z, n.x * pz.y);
+    const BtgW ax = n.x * n.x + n.y * n.y;
+    const BtgW kx = 1.0f / sqrt(ax);
+    const BtgV3W px = btgW3(-n.y * kx, n.x * kx, zero);
+    const BtgV3W qx = btgW3(-n.z * px.y, n.z * px.x, ax * kx);
+    *p = btgW3Select(px, pz, zAxis);
+    *q = btgW3Select(qx, qz, zAxis);
+}
+
+/* Point k's normal row (btgSoftNormalRow with the soft step's own spring; normals 1) and its
+ * two friction rows (btgSoftFrictionRows along the tangents), lanes. */
+static BTG_ALWAYS_INLINE void btgWNormalRow(float* c, int k, BtgV3W n, const BtgBodyW* a, const BtgBodyW* b, BtgVelW* va,
+                                            BtgVelW* vb, const BtgDeltaW* dA, const BtgDeltaW* dB, int useBias,
+                                            BtgSoftParams p, BtgW springMassScale, BtgW springImpulseScale,
+                                            BtgW springBiasRate)
+{
+    const BtgW mass = btgWLoad(c, BTG_WC_AT(k, BTG_WC_MASS));
+    const int8 solved = mass != 0.0f;
+    if (!any(solved)) return;
+    const BtgV3W rA = btgW3Load(c, BTG_WC_AT(k, BTG_WC_AX)), rB = btgW3Load(c, BTG_WC_AT(k, BTG_WC_BX));
+    /* btgSoftSeparation */
+    const BtgV3W pA = btgW3Add(dA->pos, btgW3MatMul(dA->rot, rA));
+    const BtgV3W pB = btgW3Add(dB->pos, btgW3MatMul(dB->rot, rB));
+    const BtgW sep = btgWLoad(c, BTG_WC_AT(k, BTG_WC_BASE)) + btgW3Dot(btgW3Sub(pA, pB), n);
+    const BtgW old = btgWLoad(c, BTG_WC_AT(k, BTG_WC_NIMP));
+    const int8 open = sep > 0.0f;
+    BtgW bias = (BtgW)(0.0f), massScale = (BtgW)(1.0f), impulseScale = (BtgW)(0.0f);
+    if (useBias) {
+        massScale = springMassScale;
+        impulseScale = springImpulseScale;
+        bias = massScale * springBiasRate * sep;
+        bias = select(bias, (BtgW)(-p.pushSpeed), bias < -p.pushSpeed);
+        massScale = select(massScale, (BtgW)(1.0f), open);
+        impulseScale = select(impulseScale, (BtgW)(0.0f), open);
+    }
+    bias = select(bias, sep * p.invH, open);
+    const BtgJacobianW j = btgWPointJacobian(n, rA, rB, a, b);
+    const BtgW vn = btgWRowVelocity(&j, va, vb);
+    BtgW next = old - mass * (massScale * vn + bias) - impulseScale * old;
+    next = select((BtgW)(0.0f), next, next > 0.0f);
+    next = select(old, next, solved);
+    vstore8(next, 0, c + BTG_WC_AT(k, BTG_WC_NIMP) * BTG_SOFT_WIDE);
+    const BtgW total = btgWLoad(c, BTG_WC_AT(k, BTG_WC_TOTN));
+    vstore8(select(total, total + (next - old), solved), 0, c + BTG_WC_AT(k, BTG_WC_TOTN) * BTG_SOFT_WIDE);
+    const BtgVelW a0 = *va, b0 = *vb;
+    btgWRowApply(&j, a, b, va, vb, next - old);
+    btgWKeep(va, a0, solved);
+    btgWKeep(vb, b0, solved);
+}
+/* btgSoftFrictionRow: returns the new impulse (the old one where the lane has no row). */
+static BTG_ALWAYS_INLINE BtgW btgWFrictionRow(const float* c, int k, BtgV3W dir, BtgW mass, BtgW impulse, BtgW friction,
+                                              int8 active, const BtgBodyW* a, const BtgBodyW* b, BtgVelW* va,
+                                              BtgVelW* vb)
+{
+    const int8 solved = active & (mass != 0.0f);
+    if (!any(solved)) return impulse;
+    const BtgW lim = friction * btgWLoad(c, BTG_WC_AT(k, BTG_WC_NIMP));
+    const BtgV3W rA = btgW3Load(c, BTG_WC_AT(k, BTG_WC_AX)), rB = btgW3Load(c, BTG_WC_AT(k, BTG_WC_BX));
+    const BtgJacobianW j = btgWPointJacobian(dir, rA, rB, a, b);
+    /* btgMakeSolverRow (target 0, cfm 0, bounds -lim..lim) and btgRowSolve */
+    const BtgW target = (BtgW)(0.0f), cfm = (BtgW)(0.0f), lower = -lim, upper = lim;
+    BtgW delta = (target - btgWRowVelocity(&j, va, vb)) * mass - impulse * cfm;
+    const BtgW sum = impulse + delta;
+    const int8 below = sum < lower, above = !below & (sum > upper);
+    delta = select(select(delta, upper - impulse, above), lower - impulse, below);
+    const BtgW next = select(select(sum, upper, above), lower, below);
+    const BtgVelW a0 = *va, b0 = *vb;
+    btgWRowApply(&j, a, b, va, vb, delta);
+    btgWKeep(va, a0, solved);
+    btgWKeep(vb, b0, solved);
+    return select(impulse, next, solved);
+}
+static BTG_ALWAYS_INLINE void btgWFrictionRows(float* c, int k, BtgV3W t1, BtgV3W t2, BtgW friction, const BtgBodyW* a,
+                                               const BtgBodyW* b, BtgVelW* va, BtgVelW* vb)
+{
+    const int8 active = btgWLoad(c, BTG_WC_AT(k, BTG_WC_MASS)) != 0.0f;
+    if (!any(active)) return;
+    const BtgW o1 = btgWLoad(c, BTG_WC_AT(k, BTG_WC_T1IMP)), o2 = btgWLoad(c, BTG_WC_AT(k, BTG_WC_T2IMP));
+    const BtgW n1 = btgWFrictionRow(c, k, t1, btgWLoad(c, BTG_WC_AT(k, BTG_WC_T1MASS)), o1, friction, active, a, b, va, vb);
+    const BtgW n2 = btgWFrictionRow(c, k, t2, btgWLoad(c, BTG_WC_AT(k, BTG_WC_T2MASS)), o2, friction, active, a, b, va, vb);
+    vstore8(select(o1, n1, active), 0, c + BTG_WC_AT(k, BTG_WC_T1IMP) * BTG_SOFT_WIDE);
+    vstore8(select(o2, n2, active), 0, c + BTG_WC_AT(k, BTG_WC_T2IMP) * BTG_SOFT_WIDE);
+    const BtgW s1 = btgWLoad(c, BTG_WC_AT(k, BTG_WC_TOT1)), s2 = btgWLoad(c, BTG_WC_AT(k, BTG_WC_TOT2));
+    vstore8(select(s1, s1 + (n1 - o1), active), 0, c + BTG_WC_AT(k, BTG_WC_TOT1) * BTG_SOFT_WIDE);
+    vstore8(select(s2, s2 + (n2 - o2), active), 0, c + BTG_WC_AT(k, BTG_WC_TOT2) * BTG_SOFT_WIDE);
+}
+
+/* btgSoftCarriedTotals, lanes */
+static BTG_ALWAYS_INLINE void btgWCarriedTotals(float* c, int normal, int friction)
+{
+    for (int k = 0; k < BTG_MAX_POINTS; ++k) {
+        const int8 active = btgWLoad(c, BTG_WC_AT(k, BTG_WC_MASS)) != 0.0f;
+        if (normal) {
+            const BtgW t = btgWLoad(c, BTG_WC_AT(k, BTG_WC_TOTN));
+            vstore8(select(t, t + btgWLoad(c, BTG_WC_AT(k, BTG_WC_NIMP)), active), 0, c + BTG_WC_AT(k, BTG_WC_TOTN) * BTG_SOFT_WIDE);
+        }
+        if (!friction) continue;
+        const BtgW t1 = btgWLoad(c, BTG_WC_AT(k, BTG_WC_TOT1)), t2 = btgWLoad(c, BTG_WC_AT(k, BTG_WC_TOT2));
+        vstore8(select(t1, t1 + btgWLoad(c, BTG_WC_AT(k, BTG_WC_T1IMP)), active), 0, c + BTG_WC_AT(k, BTG_WC_TOT1) * BTG_SOFT_WIDE);
+        vstore8(select(t2, t2 + btgWLoad(c, BTG_WC_AT(k, BTG_WC_T2IMP)), active), 0, c + BTG_WC_AT(k, BTG_WC_TOT2) * BTG_SOFT_WIDE);
+    }
+}
+
+/* btgSoftSolve for the lanes: the normal rows point by point (soft while biased), then, in the
+ * relax (or with frictionInSolve), the friction rows. */
+static BTG_ALWAYS_INLINE void btgWSoftSolve(float* c, const BtgBodyW* a, const BtgBodyW* b, BtgVelW* va, BtgVelW* vb,
+                                            const BtgDeltaW* dA, const BtgDeltaW* dB, int useBias, BtgSoftParams p)
+{
+    const BtgV3W n = btgW3Load(c, BTG_WC_NX);
+    const int8 fixed = btgWLoad(c, BTG_WC_FIXED) != 0.0f;
+    BtgW ms = (BtgW)(1.0f), is = (BtgW)(0.0f), rate = (BtgW)(0.0f);
+    if (useBias) btgWContactSpring(btgWLoad(c, BTG_WC_STIFFENING), fixed, p, &ms, &is, &rate);
+    for (int k = 0; k < BTG_MAX_POINTS; ++k) btgWNormalRow(c, k, n, a, b, va, vb, dA, dB, useBias, p, ms, is, rate);
+    if (!(!useBias || p.frictionInSolve)) return;
+    BtgV3W t1, t2;
+    btgWPlaneSpace(n, &t1, &t2);
+    const BtgW friction = btgWLoad(c, BTG_WC_FRICTION);
+    for (int k = 0; k < BTG_MAX_POINTS; ++k) btgWFrictionRows(c, k, t1, t2, friction, a, b, va, vb);
+}
+
+#endif
