@@ -618,58 +618,100 @@ __kernel void soft_color_range(__global const uint* restrict colorStart, __globa
 }
 
 /* Lane l of a wide sweep's body: soft_solver_body's record, the velocity row (w: the kind) and
- * the deltas, as soft_contact's load_body and load_delta read them. */
-static void wide_gather_body(__global const BtgFloat4* restrict softSolver, BTG_SHARED __global BtgFloat4* softBodies,
-                             int i, int l, float* lanes)
+ * the deltas, as soft_contact's load_body and load_delta read them. Each field its own store:
+ * a loop over the fields becomes AVX-512 scatters, which cost a quarter of the sweep. */
+#define WIDE_PUT(lanes, f, l, x) (lanes)[(f) * BTG_SOFT_WIDE + (l)] = (x)
+static BTG_ALWAYS_INLINE void wide_put_body(float* lanes, int l, BtgFloat4 s0, BtgFloat4 s1, BtgFloat4 s2, BtgFloat4 s3,
+                                            BtgFloat4 vl, BtgFloat4 va, BtgFloat4 dp, BtgFloat4 q)
 {
-    const int r = BTG_SOFT_BODY_ROWS * i;
-    const BtgFloat4 s0 = softSolver[BTG_SOFT_SOLVER_ROWS * i], s1 = softSolver[BTG_SOFT_SOLVER_ROWS * i + 1];
-    const BtgFloat4 s2 = softSolver[BTG_SOFT_SOLVER_ROWS * i + 2], s3 = softSolver[BTG_SOFT_SOLVER_ROWS * i + 3];
-    const BtgFloat4 vl = btgLoadShared4(&softBodies[r + BTG_SOFT_VEL_LIN]), va = btgLoadShared4(&softBodies[r + BTG_SOFT_VEL_ANG]);
-    const BtgFloat4 dp = btgLoadShared4(&softBodies[r + BTG_SOFT_DELTA_POS]), q = btgLoadShared4(&softBodies[r + BTG_SOFT_DELTA_ROT]);
-    const float v[BTG_WB_FIELDS] = {s0.x, s0.y, s0.z, s1.x, s1.y, s1.z, s2.x, s2.y, s2.z, s0.w, s1.w, s2.w, s3.w,
-                                    s3.x, s3.y, s3.z, vl.w, vl.x, vl.y, vl.z, va.x, va.y, va.z, dp.x, dp.y, dp.z,
-                                    q.x, q.y, q.z, q.w};
-    for (int f = 0; f < BTG_WB_FIELDS; ++f) lanes[f * BTG_SOFT_WIDE + l] = v[f];
+    WIDE_PUT(lanes, BTG_WB_I00, l, s0.x);
+    WIDE_PUT(lanes, BTG_WB_I01, l, s0.y);
+    WIDE_PUT(lanes, BTG_WB_I02, l, s0.z);
+    WIDE_PUT(lanes, BTG_WB_I10, l, s1.x);
+    WIDE_PUT(lanes, BTG_WB_I11, l, s1.y);
+    WIDE_PUT(lanes, BTG_WB_I12, l, s1.z);
+    WIDE_PUT(lanes, BTG_WB_I20, l, s2.x);
+    WIDE_PUT(lanes, BTG_WB_I21, l, s2.y);
+    WIDE_PUT(lanes, BTG_WB_I22, l, s2.z);
+    WIDE_PUT(lanes, BTG_WB_INVMASS, l, s0.w);
+    WIDE_PUT(lanes, BTG_WB_LF0, l, s1.w);
+    WIDE_PUT(lanes, BTG_WB_LF1, l, s2.w);
+    WIDE_PUT(lanes, BTG_WB_LF2, l, s3.w);
+    WIDE_PUT(lanes, BTG_WB_AF0, l, s3.x);
+    WIDE_PUT(lanes, BTG_WB_AF1, l, s3.y);
+    WIDE_PUT(lanes, BTG_WB_AF2, l, s3.z);
+    WIDE_PUT(lanes, BTG_WB_KIND, l, vl.w);
+    WIDE_PUT(lanes, BTG_WB_VL0, l, vl.x);
+    WIDE_PUT(lanes, BTG_WB_VL1, l, vl.y);
+    WIDE_PUT(lanes, BTG_WB_VL2, l, vl.z);
+    WIDE_PUT(lanes, BTG_WB_VA0, l, va.x);
+    WIDE_PUT(lanes, BTG_WB_VA1, l, va.y);
+    WIDE_PUT(lanes, BTG_WB_VA2, l, va.z);
+    WIDE_PUT(lanes, BTG_WB_DP0, l, dp.x);
+    WIDE_PUT(lanes, BTG_WB_DP1, l, dp.y);
+    WIDE_PUT(lanes, BTG_WB_DP2, l, dp.z);
+    WIDE_PUT(lanes, BTG_WB_QX, l, q.x);
+    WIDE_PUT(lanes, BTG_WB_QY, l, q.y);
+    WIDE_PUT(lanes, BTG_WB_QZ, l, q.z);
+    WIDE_PUT(lanes, BTG_WB_QW, l, q.w);
+}
+static BTG_ALWAYS_INLINE void wide_gather_body(__global const BtgFloat4* restrict softSolver,
+                                               BTG_SHARED __global BtgFloat4* softBodies, int i, int l, float* lanes)
+{
+    const int r = BTG_SOFT_BODY_ROWS * i, s = BTG_SOFT_SOLVER_ROWS * i;
+    wide_put_body(lanes, l, softSolver[s], softSolver[s + 1], softSolver[s + 2], softSolver[s + 3],
+                  btgLoadShared4(&softBodies[r + BTG_SOFT_VEL_LIN]), btgLoadShared4(&softBodies[r + BTG_SOFT_VEL_ANG]),
+                  btgLoadShared4(&softBodies[r + BTG_SOFT_DELTA_POS]), btgLoadShared4(&softBodies[r + BTG_SOFT_DELTA_ROT]));
 }
 /* An empty lane: a fixed body at rest, nothing moved. */
-static void wide_empty_body(int l, float* lanes)
+static BTG_ALWAYS_INLINE void wide_empty_body(int l, float* lanes)
 {
-    for (int f = 0; f < BTG_WB_FIELDS; ++f) lanes[f * BTG_SOFT_WIDE + l] = f == BTG_WB_QW ? 1.0f : 0.0f;
+    const BtgFloat4 z = btgZero4();
+    wide_put_body(lanes, l, z, z, z, z, z, z, z, btgMake4(0.0f, 0.0f, 0.0f, 1.0f));
 }
 /* Lane l of a wide sweep's contacts: what load_soft reads for the solve or relax (friction: the
- * friction fields too); an empty lane has no points. */
-static void wide_gather_contact(__global const BtgSoftContact* softContacts, int slot, int l, int friction, float* c)
+ * friction fields too); an empty lane (slot -1) has no points. */
+static BTG_ALWAYS_INLINE void wide_gather_contact(__global const BtgSoftContact* softContacts, int slot, int l, int friction,
+                                                  float* c)
 {
-    for (int f = 0; f < BTG_WC_FIELDS; ++f) c[f * BTG_SOFT_WIDE + l] = 0.0f;
-    if (slot < 0) return;
-    __global const BtgSoftContact* s = softContacts + slot;
-    const BtgFloat4 n = s->normal;
-    const int points = s->numPoints;
-    c[BTG_WC_NX * BTG_SOFT_WIDE + l] = n.x;
-    c[BTG_WC_NY * BTG_SOFT_WIDE + l] = n.y;
-    c[BTG_WC_NZ * BTG_SOFT_WIDE + l] = n.z;
-    c[BTG_WC_FRICTION * BTG_SOFT_WIDE + l] = s->friction;
-    c[BTG_WC_STIFFENING * BTG_SOFT_WIDE + l] = s->stiffening.x;
-    c[BTG_WC_FIXED * BTG_SOFT_WIDE + l] = (s->flags & BTG_SOFT_FIXED) ? 1.0f : 0.0f;
-    const BtgFloat4 normal = btgLoadShared4(&shared_soft(softContacts)[slot].normalImpulse);
-    const BtgFloat4 total = btgLoadShared4(&shared_soft(softContacts)[slot].totalNormal);
-    const BtgFloat4 base = s->baseSeparation;
-    BtgFloat4 m1 = btgZero4(), m2 = btgZero4(), i1 = btgZero4(), i2 = btgZero4(), t1 = btgZero4(), t2 = btgZero4();
-    if (friction) {
-        m1 = s->tangent1Mass;
-        m2 = s->tangent2Mass;
-        i1 = s->tangent1Impulse;
-        i2 = s->tangent2Impulse;
-        t1 = btgLoadShared4(&shared_soft(softContacts)[slot].total1);
-        t2 = btgLoadShared4(&shared_soft(softContacts)[slot].total2);
-    }
+    const int live = slot >= 0;
+    __global const BtgSoftContact* s = softContacts + (live ? slot : 0);
+    const BtgFloat4 z = btgZero4();
+    const BtgFloat4 n = live ? s->normal : z;
+    const int points = live ? s->numPoints : 0;
+    WIDE_PUT(c, BTG_WC_NX, l, n.x);
+    WIDE_PUT(c, BTG_WC_NY, l, n.y);
+    WIDE_PUT(c, BTG_WC_NZ, l, n.z);
+    WIDE_PUT(c, BTG_WC_FRICTION, l, live ? s->friction : 0.0f);
+    WIDE_PUT(c, BTG_WC_STIFFENING, l, live ? s->stiffening.x : 0.0f);
+    WIDE_PUT(c, BTG_WC_FIXED, l, live && (s->flags & BTG_SOFT_FIXED) ? 1.0f : 0.0f);
+    const BtgFloat4 normal = live ? btgLoadShared4(&shared_soft(softContacts)[slot].normalImpulse) : z;
+    const BtgFloat4 total = live ? btgLoadShared4(&shared_soft(softContacts)[slot].totalNormal) : z;
+    const BtgFloat4 base = live ? s->baseSeparation : z;
+    const int f = live && friction;
+    const BtgFloat4 m1 = f ? s->tangent1Mass : z, m2 = f ? s->tangent2Mass : z;
+    const BtgFloat4 i1 = f ? s->tangent1Impulse : z, i2 = f ? s->tangent2Impulse : z;
+    const BtgFloat4 t1 = f ? btgLoadShared4(&shared_soft(softContacts)[slot].total1) : z;
+    const BtgFloat4 t2 = f ? btgLoadShared4(&shared_soft(softContacts)[slot].total2) : z;
+#pragma unroll
     for (int k = 0; k < BTG_MAX_POINTS; ++k) {
-        const BtgFloat4 rA = k < points ? s->rA[k] : btgZero4(), rB = k < points ? s->rB[k] : btgZero4();
-        const float v[BTG_WC_PER_POINT] = {rA.x, rA.y, rA.z, rB.x, rB.y, rB.z, rA.w, btgLane(base, k),
-                                           btgLane(m1, k), btgLane(m2, k), btgLane(normal, k), btgLane(total, k),
-                                           btgLane(i1, k), btgLane(i2, k), btgLane(t1, k), btgLane(t2, k)};
-        for (int f = 0; f < BTG_WC_PER_POINT; ++f) c[BTG_WC_AT(k, f) * BTG_SOFT_WIDE + l] = v[f];
+        const BtgFloat4 rA = k < points ? s->rA[k] : z, rB = k < points ? s->rB[k] : z;
+        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_AX), l, rA.x);
+        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_AY), l, rA.y);
+        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_AZ), l, rA.z);
+        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_BX), l, rB.x);
+        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_BY), l, rB.y);
+        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_BZ), l, rB.z);
+        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_MASS), l, rA.w);
+        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_BASE), l, btgLane(base, k));
+        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_T1MASS), l, btgLane(m1, k));
+        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_T2MASS), l, btgLane(m2, k));
+        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_NIMP), l, btgLane(normal, k));
+        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_TOTN), l, btgLane(total, k));
+        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_T1IMP), l, btgLane(i1, k));
+        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_T2IMP), l, btgLane(i2, k));
+        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_TOT1), l, btgLane(t1, k));
+        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_TOT2), l, btgLane(t2, k));
     }
 }
 static BtgFloat4 wide_points(const float* c, int l, int f)
