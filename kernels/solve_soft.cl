@@ -617,110 +617,91 @@ __kernel void soft_color_range(__global const uint* restrict colorStart, __globa
         soft_edge(colorOrder[k], k, nc, mode, key, SOFT_PASS);
 }
 
-/* Lane l of a wide sweep's body: soft_solver_body's record, the velocity row (w: the kind) and
- * the deltas, as soft_contact's load_body and load_delta read them. Each field its own store:
- * a loop over the fields becomes AVX-512 scatters, which cost a quarter of the sweep. */
-#define WIDE_PUT(lanes, f, l, x) (lanes)[(f) * BTG_SOFT_WIDE + (l)] = (x)
-static BTG_ALWAYS_INLINE void wide_put_body(float* lanes, int l, BtgFloat4 s0, BtgFloat4 s1, BtgFloat4 s2, BtgFloat4 s3,
-                                            BtgFloat4 vl, BtgFloat4 va, BtgFloat4 dp, BtgFloat4 q)
+/* ---- CPU devices: the solve and relax sweeps eight contacts at a time (soft_wide.h) ----
+ * The regular colours' slots in chunks of eight (colour c's chunk m: slots colorStart[c] + 8m..,
+ * at wideStart[c] + m); soft_wide_pack puts each contact the wide rows serve into its chunk's
+ * block of lanes once a step (after the first substep's warm-start gather, which reads and
+ * writes the soft contacts), the sweeps then work on the blocks, and soft_wide_unpack puts the
+ * impulses and totals back before restitution. Every other edge of a chunk (a joint, a contact
+ * with its own spring or Bullet's directions) stays with soft_edge, lane mode 0. */
+__kernel void soft_wide_offsets(__global const uint* restrict colorStart, __global uint* wideStart, int numColors)
 {
-    WIDE_PUT(lanes, BTG_WB_I00, l, s0.x);
-    WIDE_PUT(lanes, BTG_WB_I01, l, s0.y);
-    WIDE_PUT(lanes, BTG_WB_I02, l, s0.z);
-    WIDE_PUT(lanes, BTG_WB_I10, l, s1.x);
-    WIDE_PUT(lanes, BTG_WB_I11, l, s1.y);
-    WIDE_PUT(lanes, BTG_WB_I12, l, s1.z);
-    WIDE_PUT(lanes, BTG_WB_I20, l, s2.x);
-    WIDE_PUT(lanes, BTG_WB_I21, l, s2.y);
-    WIDE_PUT(lanes, BTG_WB_I22, l, s2.z);
-    WIDE_PUT(lanes, BTG_WB_INVMASS, l, s0.w);
-    WIDE_PUT(lanes, BTG_WB_LF0, l, s1.w);
-    WIDE_PUT(lanes, BTG_WB_LF1, l, s2.w);
-    WIDE_PUT(lanes, BTG_WB_LF2, l, s3.w);
-    WIDE_PUT(lanes, BTG_WB_AF0, l, s3.x);
-    WIDE_PUT(lanes, BTG_WB_AF1, l, s3.y);
-    WIDE_PUT(lanes, BTG_WB_AF2, l, s3.z);
-    WIDE_PUT(lanes, BTG_WB_KIND, l, vl.w);
-    WIDE_PUT(lanes, BTG_WB_VL0, l, vl.x);
-    WIDE_PUT(lanes, BTG_WB_VL1, l, vl.y);
-    WIDE_PUT(lanes, BTG_WB_VL2, l, vl.z);
-    WIDE_PUT(lanes, BTG_WB_VA0, l, va.x);
-    WIDE_PUT(lanes, BTG_WB_VA1, l, va.y);
-    WIDE_PUT(lanes, BTG_WB_VA2, l, va.z);
-    WIDE_PUT(lanes, BTG_WB_DP0, l, dp.x);
-    WIDE_PUT(lanes, BTG_WB_DP1, l, dp.y);
-    WIDE_PUT(lanes, BTG_WB_DP2, l, dp.z);
-    WIDE_PUT(lanes, BTG_WB_QX, l, q.x);
-    WIDE_PUT(lanes, BTG_WB_QY, l, q.y);
-    WIDE_PUT(lanes, BTG_WB_QZ, l, q.z);
-    WIDE_PUT(lanes, BTG_WB_QW, l, q.w);
+    if (get_global_id(0) != 0) return;
+    uint sum = 0u;
+    for (int c = 0; c < numColors - 1; ++c) {
+        wideStart[c] = sum;
+        sum += (colorStart[c + 1] - colorStart[c] + BTG_SOFT_WIDE - 1) / BTG_SOFT_WIDE;
+    }
+    wideStart[max(numColors - 1, 0)] = sum;
 }
-static BTG_ALWAYS_INLINE void wide_gather_body(__global const BtgFloat4* restrict softSolver,
-                                               BTG_SHARED __global BtgFloat4* softBodies, int i, int l, float* lanes)
+/* Slot k's chunk and lane (k in a regular colour). */
+static int2 wide_chunk_of(int k, __global const uint* restrict colorStart, __global const uint* restrict wideStart)
 {
-    const int r = BTG_SOFT_BODY_ROWS * i, s = BTG_SOFT_SOLVER_ROWS * i;
-    wide_put_body(lanes, l, softSolver[s], softSolver[s + 1], softSolver[s + 2], softSolver[s + 3],
-                  btgLoadShared4(&softBodies[r + BTG_SOFT_VEL_LIN]), btgLoadShared4(&softBodies[r + BTG_SOFT_VEL_ANG]),
-                  btgLoadShared4(&softBodies[r + BTG_SOFT_DELTA_POS]), btgLoadShared4(&softBodies[r + BTG_SOFT_DELTA_ROT]));
+    int c = 0;
+    while (colorStart[c + 1] <= (uint)k) ++c;
+    const int at = k - (int)colorStart[c];
+    return (int2)((int)wideStart[c] + at / BTG_SOFT_WIDE, at % BTG_SOFT_WIDE);
 }
-/* An empty lane: a fixed body at rest, nothing moved. */
-static BTG_ALWAYS_INLINE void wide_empty_body(int l, float* lanes)
+#define WIDE_INFO 3 /* ints a lane of a chunk: its mode (1: wide), body A, body B (each 8 a chunk) */
+__kernel void soft_wide_pack(__global const uint* restrict colorStart, __global const int* restrict colorOrder,
+                             __global const uint* restrict wideStart, __global float* wideBlock, __global int* wideLanes,
+                             int edgeCapacity, int numJoints, int numColors, SOFT_ARGS)
 {
-    const BtgFloat4 z = btgZero4();
-    wide_put_body(lanes, l, z, z, z, z, z, z, z, btgMake4(0.0f, 0.0f, 0.0f, 1.0f));
-}
-/* Lane l of a wide sweep's contacts: what load_soft reads for the solve or relax (friction: the
- * friction fields too); an empty lane (slot -1) has no points. */
-static BTG_ALWAYS_INLINE void wide_gather_contact(__global const BtgSoftContact* softContacts, int slot, int l, int friction,
-                                                  float* c)
-{
-    const int live = slot >= 0;
-    __global const BtgSoftContact* s = softContacts + (live ? slot : 0);
-    const BtgFloat4 z = btgZero4();
-    const BtgFloat4 n = live ? s->normal : z;
-    const int points = live ? s->numPoints : 0;
-    WIDE_PUT(c, BTG_WC_NX, l, n.x);
-    WIDE_PUT(c, BTG_WC_NY, l, n.y);
-    WIDE_PUT(c, BTG_WC_NZ, l, n.z);
-    WIDE_PUT(c, BTG_WC_FRICTION, l, live ? s->friction : 0.0f);
-    WIDE_PUT(c, BTG_WC_STIFFENING, l, live ? s->stiffening.x : 0.0f);
-    WIDE_PUT(c, BTG_WC_FIXED, l, live && (s->flags & BTG_SOFT_FIXED) ? 1.0f : 0.0f);
-    const BtgFloat4 normal = live ? btgLoadShared4(&shared_soft(softContacts)[slot].normalImpulse) : z;
-    const BtgFloat4 total = live ? btgLoadShared4(&shared_soft(softContacts)[slot].totalNormal) : z;
-    const BtgFloat4 base = live ? s->baseSeparation : z;
-    const int f = live && friction;
-    const BtgFloat4 m1 = f ? s->tangent1Mass : z, m2 = f ? s->tangent2Mass : z;
-    const BtgFloat4 i1 = f ? s->tangent1Impulse : z, i2 = f ? s->tangent2Impulse : z;
-    const BtgFloat4 t1 = f ? btgLoadShared4(&shared_soft(softContacts)[slot].total1) : z;
-    const BtgFloat4 t2 = f ? btgLoadShared4(&shared_soft(softContacts)[slot].total2) : z;
-#pragma unroll
-    for (int k = 0; k < BTG_MAX_POINTS; ++k) {
-        const BtgFloat4 rA = k < points ? s->rA[k] : z, rB = k < points ? s->rB[k] : z;
-        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_AX), l, rA.x);
-        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_AY), l, rA.y);
-        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_AZ), l, rA.z);
-        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_BX), l, rB.x);
-        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_BY), l, rB.y);
-        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_BZ), l, rB.z);
-        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_MASS), l, rA.w);
-        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_BASE), l, btgLane(base, k));
-        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_T1MASS), l, btgLane(m1, k));
-        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_T2MASS), l, btgLane(m2, k));
-        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_NIMP), l, btgLane(normal, k));
-        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_TOTN), l, btgLane(total, k));
-        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_T1IMP), l, btgLane(i1, k));
-        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_T2IMP), l, btgLane(i2, k));
-        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_TOT1), l, btgLane(t1, k));
-        WIDE_PUT(c, BTG_WC_AT(k, BTG_WC_TOT2), l, btgLane(t2, k));
+    const int k = (int)get_global_id(0);
+    if (k >= (int)colorStart[numColors - 1]) return; /* the regular colours' slots only */
+    const int2 at = wide_chunk_of(k, colorStart, wideStart);
+    const int e = colorOrder[k];
+    __global const BtgSoftContact* s = softContacts + k;
+    const int wide = e < contact_edges(counters, edgeCapacity, numJoints) && !(s->springStiffness > 0.0f) &&
+                     !(s->flags & BTG_SOFT_BULLET_DIRECTIONS);
+    __global float* block = wideBlock + at.x * BTG_WC_FIELDS * BTG_SOFT_WIDE;
+    __global int* info = wideLanes + at.x * WIDE_INFO * BTG_SOFT_WIDE;
+    info[at.y] = wide;
+    info[BTG_SOFT_WIDE + at.y] = wide ? s->bodyA : 0;
+    info[2 * BTG_SOFT_WIDE + at.y] = wide ? s->bodyB : 0;
+    btgWPutContact(block, at.y, wide ? s : 0);
+    /* the colour's last slot empties the rest of its chunk */
+    int c = 0;
+    while (colorStart[c + 1] <= (uint)k) ++c;
+    if (k + 1 != (int)colorStart[c + 1]) return;
+    for (int l = at.y + 1; l < BTG_SOFT_WIDE; ++l) {
+        info[l] = 0;
+        btgWPutContact(block, l, 0);
     }
 }
-static BtgFloat4 wide_points(const float* c, int l, int f)
+__kernel void soft_wide_unpack(__global const uint* restrict colorStart, __global const uint* restrict wideStart,
+                               __global const float* restrict wideBlock, __global const int* restrict wideLanes,
+                               int numColors, __global BtgSoftContact* softContacts)
 {
-    return btgMake4(c[BTG_WC_AT(0, f) * BTG_SOFT_WIDE + l], c[BTG_WC_AT(1, f) * BTG_SOFT_WIDE + l], c[BTG_WC_AT(2, f) * BTG_SOFT_WIDE + l],
-                    c[BTG_WC_AT(3, f) * BTG_SOFT_WIDE + l]);
+    const int k = (int)get_global_id(0);
+    if (k >= (int)colorStart[numColors - 1]) return;
+    const int2 at = wide_chunk_of(k, colorStart, wideStart);
+    if (!wideLanes[at.x * WIDE_INFO * BTG_SOFT_WIDE + at.y]) return;
+    __global const float* block = wideBlock + at.x * BTG_WC_FIELDS * BTG_SOFT_WIDE;
+    softContacts[k].normalImpulse = btgWPoints(block, at.y, BTG_WC_NIMP);
+    softContacts[k].totalNormal = btgWPoints(block, at.y, BTG_WC_TOTN);
+    softContacts[k].tangent1Impulse = btgWPoints(block, at.y, BTG_WC_T1IMP);
+    softContacts[k].tangent2Impulse = btgWPoints(block, at.y, BTG_WC_T2IMP);
+    softContacts[k].total1 = btgWPoints(block, at.y, BTG_WC_TOT1);
+    softContacts[k].total2 = btgWPoints(block, at.y, BTG_WC_TOT2);
+}
+/* The eight rows of body i a lane takes (the solver record, then velocity and deltas), read
+ * for all the chunk's lanes before any is put into lanes: their cache misses then overlap. */
+static BTG_ALWAYS_INLINE void wide_load_body(__global const BtgFloat4* restrict softSolver,
+                                             BTG_SHARED __global BtgFloat4* softBodies, int i, BtgFloat4* rows)
+{
+    const int r = BTG_SOFT_BODY_ROWS * i, s = BTG_SOFT_SOLVER_ROWS * i;
+    rows[0] = softSolver[s];
+    rows[1] = softSolver[s + 1];
+    rows[2] = softSolver[s + 2];
+    rows[3] = softSolver[s + 3];
+    rows[4] = btgLoadShared4(&softBodies[r + BTG_SOFT_VEL_LIN]);
+    rows[5] = btgLoadShared4(&softBodies[r + BTG_SOFT_VEL_ANG]);
+    rows[6] = btgLoadShared4(&softBodies[r + BTG_SOFT_DELTA_POS]);
+    rows[7] = btgLoadShared4(&softBodies[r + BTG_SOFT_DELTA_ROT]);
 }
 /* The lanes' velocities back to the dynamic bodies' rows (store_vel's; w of VEL_LIN the kind). */
-static void wide_store_vels(const BtgVelW* v, const float* lanes, const int* body, int n,
+static void wide_store_vels(const BtgVelW* v, const float* lanes, __global const int* body, const int* wide,
                             BTG_SHARED __global BtgFloat4* softBodies)
 {
     float x[6 * BTG_SOFT_WIDE];
@@ -730,53 +711,68 @@ static void wide_store_vels(const BtgVelW* v, const float* lanes, const int* bod
     vstore8(v->ang.x, 3, x);
     vstore8(v->ang.y, 4, x);
     vstore8(v->ang.z, 5, x);
-    for (int l = 0; l < n; ++l) {
+    for (int l = 0; l < BTG_SOFT_WIDE; ++l) {
         const float kind = lanes[BTG_WB_KIND * BTG_SOFT_WIDE + l];
-        if (!(kind >= 2.0f)) continue;
+        if (!wide[l] || !(kind >= 2.0f)) continue;
         const int r = BTG_SOFT_BODY_ROWS * body[l];
         softBodies[r + BTG_SOFT_VEL_LIN] = btgMake4(x[l], x[BTG_SOFT_WIDE + l], x[2 * BTG_SOFT_WIDE + l], kind);
-        softBodies[r + BTG_SOFT_VEL_ANG] = btgMake4(x[3 * BTG_SOFT_WIDE + l], x[4 * BTG_SOFT_WIDE + l], x[5 * BTG_SOFT_WIDE + l], 0.0f);
+        softBodies[r + BTG_SOFT_VEL_ANG] =
+            btgMake4(x[3 * BTG_SOFT_WIDE + l], x[4 * BTG_SOFT_WIDE + l], x[5 * BTG_SOFT_WIDE + l], 0.0f);
     }
 }
 
-/* A colour's solve or relax sweep, eight contacts a work-item at a time (soft_wide.h: on CPU
- * devices, which run the rows as scalar code otherwise): what the wide rows serve goes into the
- * lanes, every other edge of the chunk through soft_edge (one colour's edges share no dynamic
- * body, so the order within it changes nothing). */
+/* A colour's solve or relax sweep, a chunk a work-item at a time: the chunk's scalar edges
+ * through soft_edge (one colour's edges share no dynamic body: the order within it changes
+ * nothing), its wide lanes through soft_wide.h's rows on the chunk's block. */
 __kernel void soft_color_wide(__global const uint* restrict colorStart, __global const int* restrict colorOrder,
-                              int edgeCapacity, int numJoints, int color, int mode, uint key, SOFT_ARGS)
+                              __global const uint* restrict wideStart, __global float* wideBlock,
+                              __global const int* restrict wideLanes, int edgeCapacity, int numJoints, int color,
+                              int mode, uint key, SOFT_ARGS)
 {
     const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
+    const int chunks = (end - begin + BTG_SOFT_WIDE - 1) / BTG_SOFT_WIDE;
     const int nc = contact_edges(counters, edgeCapacity, numJoints);
-    const int base = btgSoftBaseMode(mode), relax = base == BTG_SOFT_RELAX;
-    const int friction = relax || params.frictionInSolve;
-    const int wide = (base == BTG_SOFT_SOLVE || relax) && key == 0u && !params.interleave &&
-                     !(params.heldMassRatio > 0.0f) && !(params.rolling && relax);
-    const int stride = (int)get_global_size(0) * BTG_SOFT_WIDE;
-    for (int k0 = begin + (int)get_global_id(0) * BTG_SOFT_WIDE; k0 < end; k0 += stride) {
-        int slots[BTG_SOFT_WIDE], lanes = 0;
-        for (int k = k0; k < k0 + BTG_SOFT_WIDE && k < end; ++k) {
-            const int e = colorOrder[k];
-            if (!wide || e >= nc || softContacts[k].springStiffness > 0.0f ||
-                (softContacts[k].flags & BTG_SOFT_BULLET_DIRECTIONS))
-                soft_edge(e, k, nc, mode, key, SOFT_PASS);
-            else
-                slots[lanes++] = k;
-        }
-        if (lanes == 0) continue;
-        float c[BTG_WC_FIELDS * BTG_SOFT_WIDE], la[BTG_WB_FIELDS * BTG_SOFT_WIDE], lb[BTG_WB_FIELDS * BTG_SOFT_WIDE];
-        int bodyA[BTG_SOFT_WIDE], bodyB[BTG_SOFT_WIDE];
+    const int base = btgSoftBaseMode(mode);
+    for (int m = (int)get_global_id(0); m < chunks; m += (int)get_global_size(0)) {
+        const int k0 = begin + m * BTG_SOFT_WIDE, chunk = (int)wideStart[color] + m;
+        __global const int* info = wideLanes + chunk * WIDE_INFO * BTG_SOFT_WIDE;
+        __global float* block = wideBlock + chunk * BTG_WC_FIELDS * BTG_SOFT_WIDE;
+        int wide[BTG_SOFT_WIDE], any = 0;
         for (int l = 0; l < BTG_SOFT_WIDE; ++l) {
-            const int slot = l < lanes ? slots[l] : -1;
-            wide_gather_contact(softContacts, slot, l, friction, c);
-            bodyA[l] = slot >= 0 ? softContacts[slot].bodyA : 0;
-            bodyB[l] = slot >= 0 ? softContacts[slot].bodyB : 0;
-            if (slot >= 0) {
-                wide_gather_body(softSolver, softBodies, bodyA[l], l, la);
-                wide_gather_body(softSolver, softBodies, bodyB[l], l, lb);
+            wide[l] = k0 + l < end && info[l];
+            any |= wide[l];
+            if (k0 + l < end && !wide[l]) soft_edge(colorOrder[k0 + l], k0 + l, nc, mode, key, SOFT_PASS);
+        }
+        if (!any) continue;
+        /* the work-item's next chunk read ahead: its bodies' rows sit anywhere in memory, and
+         * waiting for them was a fifth of the sweep */
+        const int next = m + (int)get_global_size(0);
+        if (next < chunks) {
+            __global const int* nextInfo = info + (int)get_global_size(0) * WIDE_INFO * BTG_SOFT_WIDE;
+            __global const float* nextBlock = block + (int)get_global_size(0) * BTG_WC_FIELDS * BTG_SOFT_WIDE;
+            for (int l = 0; l < BTG_SOFT_WIDE; ++l) {
+                const int ia = nextInfo[BTG_SOFT_WIDE + l], ib = nextInfo[2 * BTG_SOFT_WIDE + l];
+                btgPrefetch(softBodies + BTG_SOFT_BODY_ROWS * ia);
+                btgPrefetch(softSolver + BTG_SOFT_SOLVER_ROWS * ia);
+                btgPrefetch(softBodies + BTG_SOFT_BODY_ROWS * ib);
+                btgPrefetch(softSolver + BTG_SOFT_SOLVER_ROWS * ib);
+            }
+            for (int f = 0; f < BTG_WC_FIELDS * BTG_SOFT_WIDE; f += 16) btgPrefetch(nextBlock + f);
+        }
+        BtgFloat4 rowsA[BTG_SOFT_WIDE * 8], rowsB[BTG_SOFT_WIDE * 8];
+        for (int l = 0; l < BTG_SOFT_WIDE; ++l) {
+            if (!wide[l]) continue;
+            wide_load_body(softSolver, softBodies, info[BTG_SOFT_WIDE + l], rowsA + 8 * l);
+            wide_load_body(softSolver, softBodies, info[2 * BTG_SOFT_WIDE + l], rowsB + 8 * l);
+        }
+        float la[BTG_WB_FIELDS * BTG_SOFT_WIDE], lb[BTG_WB_FIELDS * BTG_SOFT_WIDE];
+        for (int l = 0; l < BTG_SOFT_WIDE; ++l) {
+            if (wide[l]) {
+                btgWPutBody(la, l, rowsA + 8 * l);
+                btgWPutBody(lb, l, rowsB + 8 * l);
             } else {
-                wide_empty_body(l, la);
-                wide_empty_body(l, lb);
+                btgWEmptyBody(la, l);
+                btgWEmptyBody(lb, l);
             }
         }
         BtgBodyW a, b;
@@ -786,21 +782,11 @@ __kernel void soft_color_wide(__global const uint* restrict colorStart, __global
         btgWBody(la, &a, &va, &dA, &dynA);
         btgWBody(lb, &b, &vb, &dB, &dynB);
         if (mode & BTG_SOFT_WARM_TOTALS)
-            btgWCarriedTotals(c, base == BTG_SOFT_SOLVE, params.frictionInSolve ? base == BTG_SOFT_SOLVE : relax);
-        btgWSoftSolve(c, &a, &b, &va, &vb, &dA, &dB, base == BTG_SOFT_SOLVE, params);
-        wide_store_vels(&va, la, bodyA, lanes, softBodies);
-        wide_store_vels(&vb, lb, bodyB, lanes, softBodies);
-        for (int l = 0; l < lanes; ++l) {
-            const int slot = slots[l];
-            softContacts[slot].normalImpulse = wide_points(c, l, BTG_WC_NIMP);
-            softContacts[slot].totalNormal = wide_points(c, l, BTG_WC_TOTN);
-            if (friction) {
-                softContacts[slot].tangent1Impulse = wide_points(c, l, BTG_WC_T1IMP);
-                softContacts[slot].tangent2Impulse = wide_points(c, l, BTG_WC_T2IMP);
-                softContacts[slot].total1 = wide_points(c, l, BTG_WC_TOT1);
-                softContacts[slot].total2 = wide_points(c, l, BTG_WC_TOT2);
-            }
-        }
+            btgWCarriedTotals(block, base == BTG_SOFT_SOLVE,
+                              params.frictionInSolve ? base == BTG_SOFT_SOLVE : base == BTG_SOFT_RELAX);
+        btgWSoftSolve(block, &a, &b, &va, &vb, &dA, &dB, base == BTG_SOFT_SOLVE, params);
+        wide_store_vels(&va, la, info + BTG_SOFT_WIDE, wide, softBodies);
+        wide_store_vels(&vb, lb, info + 2 * BTG_SOFT_WIDE, wide, softBodies);
     }
 }
 

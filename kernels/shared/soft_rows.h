@@ -138,8 +138,10 @@ static inline BtgFloat4 btgSoftArmB(const BtgSoftContact* s, int k)
     return k == 0 ? s->rB[0] : (k == 1 ? s->rB[1] : (k == 2 ? s->rB[2] : s->rB[3]));
 }
 
-/* Contacts a work-item solves side by side on a CPU device (soft_wide.h's lanes, float8). */
+/* Contacts a work-item solves side by side on a CPU device (soft_wide.h's lanes, float8), and
+ * the floats of a contact's lane in a chunk's block (six of the contact's, sixteen a point's). */
 #define BTG_SOFT_WIDE 8
+#define BTG_SOFT_WIDE_FIELDS (6 + 16 * BTG_MAX_POINTS)
 
 /* BtgSoftContact.flags. FIXED: solved with BtgSoftParams.fixed (against a static, kinematic or
  * sleeping body). BULLET_DIRECTIONS: the friction rows run along Bullet's directions for each

@@ -8,8 +8,9 @@
  * operations in the same order in one statement, so a compiler contracts the same products into
  * the same fused multiply-adds), lane by lane the same arithmetic as soft_contact's: the same
  * results bit for bit (SolveSoft tests, the bench's state hash). Device only (OpenCL vectors):
- * the CPU reference is soft_rows.h itself. Served: contacts with the soft step's own spring and
- * the tangents (not a pair's stiffness and damping, not Bullet's directions), points in order
+ * the CPU reference is soft_rows.h itself. The contacts' lanes live in blocks of eight
+ * (soft_wide_pack), read and written as vectors; the bodies' are gathered each sweep. Served:
+ * contacts with the soft step's own spring and the tangents (not a pair's stiffness and damping, not Bullet's directions), points in order
  * (no SOLVER_RANDMIZE_ORDER), friction after the normals (no interleave), no held pairs, no
  * rolling rows; soft_color_wide hands everything else to soft_edge. */
 #ifndef BTG_SOFT_WIDE_H
@@ -49,6 +50,13 @@ static BTG_ALWAYS_INLINE BtgV3W btgW3Select(BtgV3W no, BtgV3W yes, int8 pick)
     return btgW3(select(no.x, yes.x, pick), select(no.y, yes.y, pick), select(no.z, yes.z, pick));
 }
 
+/* A cache line read ahead (a CPU device's clang: prefetcht0), nothing elsewhere. */
+#if defined(BTG_CPU_DEVICE) && defined(__clang__)
+#define btgPrefetch(p) __builtin_prefetch((const __global void*)(p))
+#else
+#define btgPrefetch(p) ((void)0)
+#endif
+
 /* A body as the rows see it (BtgSolverBody, BtgBodyVel, BtgSoftDelta), eight lanes. */
 typedef struct {
     BtgM3W invI;
@@ -74,6 +82,60 @@ static BTG_ALWAYS_INLINE BtgW btgWLoad(const float* lanes, int f) { return vload
 static BTG_ALWAYS_INLINE BtgV3W btgW3Load(const float* lanes, int f)
 {
     return btgW3(btgWLoad(lanes, f), btgWLoad(lanes, f + 1), btgWLoad(lanes, f + 2));
+}
+/* The same from a chunk's block of contact lanes (global memory: soft_wide_pack's). */
+static BTG_ALWAYS_INLINE BtgW btgWLoadG(__global const float* c, int f) { return vload8(0, c + f * BTG_SOFT_WIDE); }
+static BTG_ALWAYS_INLINE BtgV3W btgW3LoadG(__global const float* c, int f)
+{
+    return btgW3(btgWLoadG(c, f), btgWLoadG(c, f + 1), btgWLoadG(c, f + 2));
+}
+static BTG_ALWAYS_INLINE void btgWStoreG(__global float* c, int f, BtgW x) { vstore8(x, 0, c + f * BTG_SOFT_WIDE); }
+
+/* Lane l of a body's fields from its eight rows (soft_solver_body's record, then the velocity row,
+ * w the kind, and the deltas), or an empty lane's: a fixed body at rest, nothing moved. Each field
+ * its own store: a loop over the fields becomes AVX-512 scatters, which cost a quarter of the sweep. */
+#define BTG_W_PUT(lanes, f, l, x) (lanes)[(f) * BTG_SOFT_WIDE + (l)] = (x)
+static BTG_ALWAYS_INLINE void btgWPutBody(float* lanes, int l, const BtgFloat4* rows)
+{
+    const BtgFloat4 s0 = rows[0], s1 = rows[1], s2 = rows[2], s3 = rows[3];
+    const BtgFloat4 vl = rows[4], va = rows[5], dp = rows[6], q = rows[7];
+    BTG_W_PUT(lanes, BTG_WB_I00, l, s0.x);
+    BTG_W_PUT(lanes, BTG_WB_I01, l, s0.y);
+    BTG_W_PUT(lanes, BTG_WB_I02, l, s0.z);
+    BTG_W_PUT(lanes, BTG_WB_I10, l, s1.x);
+    BTG_W_PUT(lanes, BTG_WB_I11, l, s1.y);
+    BTG_W_PUT(lanes, BTG_WB_I12, l, s1.z);
+    BTG_W_PUT(lanes, BTG_WB_I20, l, s2.x);
+    BTG_W_PUT(lanes, BTG_WB_I21, l, s2.y);
+    BTG_W_PUT(lanes, BTG_WB_I22, l, s2.z);
+    BTG_W_PUT(lanes, BTG_WB_INVMASS, l, s0.w);
+    BTG_W_PUT(lanes, BTG_WB_LF0, l, s1.w);
+    BTG_W_PUT(lanes, BTG_WB_LF1, l, s2.w);
+    BTG_W_PUT(lanes, BTG_WB_LF2, l, s3.w);
+    BTG_W_PUT(lanes, BTG_WB_AF0, l, s3.x);
+    BTG_W_PUT(lanes, BTG_WB_AF1, l, s3.y);
+    BTG_W_PUT(lanes, BTG_WB_AF2, l, s3.z);
+    BTG_W_PUT(lanes, BTG_WB_KIND, l, vl.w);
+    BTG_W_PUT(lanes, BTG_WB_VL0, l, vl.x);
+    BTG_W_PUT(lanes, BTG_WB_VL1, l, vl.y);
+    BTG_W_PUT(lanes, BTG_WB_VL2, l, vl.z);
+    BTG_W_PUT(lanes, BTG_WB_VA0, l, va.x);
+    BTG_W_PUT(lanes, BTG_WB_VA1, l, va.y);
+    BTG_W_PUT(lanes, BTG_WB_VA2, l, va.z);
+    BTG_W_PUT(lanes, BTG_WB_DP0, l, dp.x);
+    BTG_W_PUT(lanes, BTG_WB_DP1, l, dp.y);
+    BTG_W_PUT(lanes, BTG_WB_DP2, l, dp.z);
+    BTG_W_PUT(lanes, BTG_WB_QX, l, q.x);
+    BTG_W_PUT(lanes, BTG_WB_QY, l, q.y);
+    BTG_W_PUT(lanes, BTG_WB_QZ, l, q.z);
+    BTG_W_PUT(lanes, BTG_WB_QW, l, q.w);
+}
+static BTG_ALWAYS_INLINE void btgWEmptyBody(float* lanes, int l)
+{
+    BtgFloat4 rows[8];
+    for (int r = 0; r < 8; ++r) rows[r] = btgZero4();
+    rows[7] = btgMake4(0.0f, 0.0f, 0.0f, 1.0f);
+    btgWPutBody(lanes, l, rows);
 }
 
 /* btgQuatToMat3, lane by lane */
@@ -168,8 +230,54 @@ enum {
     BTG_WC_T1MASS, BTG_WC_T2MASS, BTG_WC_NIMP, BTG_WC_TOTN, BTG_WC_T1IMP, BTG_WC_T2IMP, BTG_WC_TOT1, BTG_WC_TOT2,
     BTG_WC_PER_POINT
 };
-#define BTG_WC_FIELDS (BTG_WC_POINT0 + BTG_MAX_POINTS * BTG_WC_PER_POINT)
+#define BTG_WC_FIELDS BTG_SOFT_WIDE_FIELDS /* BTG_WC_POINT0 + BTG_MAX_POINTS * BTG_WC_PER_POINT */
 #define BTG_WC_AT(k, f) (BTG_WC_POINT0 + (k) * BTG_WC_PER_POINT + (f))
+
+/* Lane l of a chunk's block from soft contact s as load_soft reads it for the solve and relax
+ * (s 0: an empty lane, no points), and a point field of lane l back as the contact's float4. */
+static BTG_ALWAYS_INLINE void btgWPutContact(__global float* c, int l, __global const BtgSoftContact* s)
+{
+    const BtgFloat4 z = btgZero4();
+    const int live = s != 0;
+    const BtgFloat4 n = live ? s->normal : z;
+    const int points = live ? s->numPoints : 0;
+    BTG_W_PUT(c, BTG_WC_NX, l, n.x);
+    BTG_W_PUT(c, BTG_WC_NY, l, n.y);
+    BTG_W_PUT(c, BTG_WC_NZ, l, n.z);
+    BTG_W_PUT(c, BTG_WC_FRICTION, l, live ? s->friction : 0.0f);
+    BTG_W_PUT(c, BTG_WC_STIFFENING, l, live ? s->stiffening.x : 0.0f);
+    BTG_W_PUT(c, BTG_WC_FIXED, l, live && (s->flags & BTG_SOFT_FIXED) ? 1.0f : 0.0f);
+    const BtgFloat4 normal = live ? s->normalImpulse : z, total = live ? s->totalNormal : z;
+    const BtgFloat4 base = live ? s->baseSeparation : z;
+    const BtgFloat4 m1 = live ? s->tangent1Mass : z, m2 = live ? s->tangent2Mass : z;
+    const BtgFloat4 i1 = live ? s->tangent1Impulse : z, i2 = live ? s->tangent2Impulse : z;
+    const BtgFloat4 t1 = live ? s->total1 : z, t2 = live ? s->total2 : z;
+#pragma unroll
+    for (int k = 0; k < BTG_MAX_POINTS; ++k) {
+        const BtgFloat4 rA = k < points ? s->rA[k] : z, rB = k < points ? s->rB[k] : z;
+        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_AX), l, rA.x);
+        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_AY), l, rA.y);
+        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_AZ), l, rA.z);
+        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_BX), l, rB.x);
+        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_BY), l, rB.y);
+        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_BZ), l, rB.z);
+        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_MASS), l, rA.w); /* the anchors' w: the normal mass (btgSoftPack) */
+        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_BASE), l, btgLane(base, k));
+        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_T1MASS), l, btgLane(m1, k));
+        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_T2MASS), l, btgLane(m2, k));
+        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_NIMP), l, btgLane(normal, k));
+        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_TOTN), l, btgLane(total, k));
+        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_T1IMP), l, btgLane(i1, k));
+        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_T2IMP), l, btgLane(i2, k));
+        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_TOT1), l, btgLane(t1, k));
+        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_TOT2), l, btgLane(t2, k));
+    }
+}
+static BTG_ALWAYS_INLINE BtgFloat4 btgWPoints(__global const float* c, int l, int f)
+{
+    return btgMake4(c[BTG_WC_AT(0, f) * BTG_SOFT_WIDE + l], c[BTG_WC_AT(1, f) * BTG_SOFT_WIDE + l],
+                    c[BTG_WC_AT(2, f) * BTG_SOFT_WIDE + l], c[BTG_WC_AT(3, f) * BTG_SOFT_WIDE + l]);
+}
 
 /* btgSoftStiffened / btgSoftSpringOf for the lanes (r: each contact's one factor). */
 static BTG_ALWAYS_INLINE void btgWContactSpring(BtgW r, int8 fixed, BtgSoftParams p, BtgW* massScale, BtgW* impulseScale,
@@ -208,20 +316,20 @@ static BTG_ALWAYS_INLINE void btgWPlaneSpace(BtgV3W n, BtgV3W* p, BtgV3W* q)
 
 /* Point k's normal row (btgSoftNormalRow with the soft step's own spring; normals 1) and its
  * two friction rows (btgSoftFrictionRows along the tangents), lanes. */
-static BTG_ALWAYS_INLINE void btgWNormalRow(float* c, int k, BtgV3W n, const BtgBodyW* a, const BtgBodyW* b, BtgVelW* va,
+static BTG_ALWAYS_INLINE void btgWNormalRow(__global float* c, int k, BtgV3W n, const BtgBodyW* a, const BtgBodyW* b, BtgVelW* va,
                                             BtgVelW* vb, const BtgDeltaW* dA, const BtgDeltaW* dB, int useBias,
                                             BtgSoftParams p, BtgW springMassScale, BtgW springImpulseScale,
                                             BtgW springBiasRate)
 {
-    const BtgW mass = btgWLoad(c, BTG_WC_AT(k, BTG_WC_MASS));
+    const BtgW mass = btgWLoadG(c, BTG_WC_AT(k, BTG_WC_MASS));
     const int8 solved = mass != 0.0f;
     if (!any(solved)) return;
-    const BtgV3W rA = btgW3Load(c, BTG_WC_AT(k, BTG_WC_AX)), rB = btgW3Load(c, BTG_WC_AT(k, BTG_WC_BX));
+    const BtgV3W rA = btgW3LoadG(c, BTG_WC_AT(k, BTG_WC_AX)), rB = btgW3LoadG(c, BTG_WC_AT(k, BTG_WC_BX));
     /* btgSoftSeparation */
     const BtgV3W pA = btgW3Add(dA->pos, btgW3MatMul(dA->rot, rA));
     const BtgV3W pB = btgW3Add(dB->pos, btgW3MatMul(dB->rot, rB));
-    const BtgW sep = btgWLoad(c, BTG_WC_AT(k, BTG_WC_BASE)) + btgW3Dot(btgW3Sub(pA, pB), n);
-    const BtgW old = btgWLoad(c, BTG_WC_AT(k, BTG_WC_NIMP));
+    const BtgW sep = btgWLoadG(c, BTG_WC_AT(k, BTG_WC_BASE)) + btgW3Dot(btgW3Sub(pA, pB), n);
+    const BtgW old = btgWLoadG(c, BTG_WC_AT(k, BTG_WC_NIMP));
     const int8 open = sep > 0.0f;
     BtgW bias = (BtgW)(0.0f), massScale = (BtgW)(1.0f), impulseScale = (BtgW)(0.0f);
     if (useBias) {
@@ -238,23 +346,23 @@ static BTG_ALWAYS_INLINE void btgWNormalRow(float* c, int k, BtgV3W n, const Btg
     BtgW next = old - mass * (massScale * vn + bias) - impulseScale * old;
     next = select((BtgW)(0.0f), next, next > 0.0f);
     next = select(old, next, solved);
-    vstore8(next, 0, c + BTG_WC_AT(k, BTG_WC_NIMP) * BTG_SOFT_WIDE);
-    const BtgW total = btgWLoad(c, BTG_WC_AT(k, BTG_WC_TOTN));
-    vstore8(select(total, total + (next - old), solved), 0, c + BTG_WC_AT(k, BTG_WC_TOTN) * BTG_SOFT_WIDE);
+    btgWStoreG(c, BTG_WC_AT(k, BTG_WC_NIMP), next);
+    const BtgW total = btgWLoadG(c, BTG_WC_AT(k, BTG_WC_TOTN));
+    btgWStoreG(c, BTG_WC_AT(k, BTG_WC_TOTN), select(total, total + (next - old), solved));
     const BtgVelW a0 = *va, b0 = *vb;
     btgWRowApply(&j, a, b, va, vb, next - old);
     btgWKeep(va, a0, solved);
     btgWKeep(vb, b0, solved);
 }
 /* btgSoftFrictionRow: returns the new impulse (the old one where the lane has no row). */
-static BTG_ALWAYS_INLINE BtgW btgWFrictionRow(const float* c, int k, BtgV3W dir, BtgW mass, BtgW impulse, BtgW friction,
+static BTG_ALWAYS_INLINE BtgW btgWFrictionRow(__global const float* c, int k, BtgV3W dir, BtgW mass, BtgW impulse, BtgW friction,
                                               int8 active, const BtgBodyW* a, const BtgBodyW* b, BtgVelW* va,
                                               BtgVelW* vb)
 {
     const int8 solved = active & (mass != 0.0f);
     if (!any(solved)) return impulse;
-    const BtgW lim = friction * btgWLoad(c, BTG_WC_AT(k, BTG_WC_NIMP));
-    const BtgV3W rA = btgW3Load(c, BTG_WC_AT(k, BTG_WC_AX)), rB = btgW3Load(c, BTG_WC_AT(k, BTG_WC_BX));
+    const BtgW lim = friction * btgWLoadG(c, BTG_WC_AT(k, BTG_WC_NIMP));
+    const BtgV3W rA = btgW3LoadG(c, BTG_WC_AT(k, BTG_WC_AX)), rB = btgW3LoadG(c, BTG_WC_AT(k, BTG_WC_BX));
     const BtgJacobianW j = btgWPointJacobian(dir, rA, rB, a, b);
     /* btgMakeSolverRow (target 0, cfm 0, bounds -lim..lim) and btgRowSolve */
     const BtgW target = (BtgW)(0.0f), cfm = (BtgW)(0.0f), lower = -lim, upper = lim;
@@ -269,51 +377,51 @@ static BTG_ALWAYS_INLINE BtgW btgWFrictionRow(const float* c, int k, BtgV3W dir,
     btgWKeep(vb, b0, solved);
     return select(impulse, next, solved);
 }
-static BTG_ALWAYS_INLINE void btgWFrictionRows(float* c, int k, BtgV3W t1, BtgV3W t2, BtgW friction, const BtgBodyW* a,
+static BTG_ALWAYS_INLINE void btgWFrictionRows(__global float* c, int k, BtgV3W t1, BtgV3W t2, BtgW friction, const BtgBodyW* a,
                                                const BtgBodyW* b, BtgVelW* va, BtgVelW* vb)
 {
-    const int8 active = btgWLoad(c, BTG_WC_AT(k, BTG_WC_MASS)) != 0.0f;
+    const int8 active = btgWLoadG(c, BTG_WC_AT(k, BTG_WC_MASS)) != 0.0f;
     if (!any(active)) return;
-    const BtgW o1 = btgWLoad(c, BTG_WC_AT(k, BTG_WC_T1IMP)), o2 = btgWLoad(c, BTG_WC_AT(k, BTG_WC_T2IMP));
-    const BtgW n1 = btgWFrictionRow(c, k, t1, btgWLoad(c, BTG_WC_AT(k, BTG_WC_T1MASS)), o1, friction, active, a, b, va, vb);
-    const BtgW n2 = btgWFrictionRow(c, k, t2, btgWLoad(c, BTG_WC_AT(k, BTG_WC_T2MASS)), o2, friction, active, a, b, va, vb);
-    vstore8(select(o1, n1, active), 0, c + BTG_WC_AT(k, BTG_WC_T1IMP) * BTG_SOFT_WIDE);
-    vstore8(select(o2, n2, active), 0, c + BTG_WC_AT(k, BTG_WC_T2IMP) * BTG_SOFT_WIDE);
-    const BtgW s1 = btgWLoad(c, BTG_WC_AT(k, BTG_WC_TOT1)), s2 = btgWLoad(c, BTG_WC_AT(k, BTG_WC_TOT2));
-    vstore8(select(s1, s1 + (n1 - o1), active), 0, c + BTG_WC_AT(k, BTG_WC_TOT1) * BTG_SOFT_WIDE);
-    vstore8(select(s2, s2 + (n2 - o2), active), 0, c + BTG_WC_AT(k, BTG_WC_TOT2) * BTG_SOFT_WIDE);
+    const BtgW o1 = btgWLoadG(c, BTG_WC_AT(k, BTG_WC_T1IMP)), o2 = btgWLoadG(c, BTG_WC_AT(k, BTG_WC_T2IMP));
+    const BtgW n1 = btgWFrictionRow(c, k, t1, btgWLoadG(c, BTG_WC_AT(k, BTG_WC_T1MASS)), o1, friction, active, a, b, va, vb);
+    const BtgW n2 = btgWFrictionRow(c, k, t2, btgWLoadG(c, BTG_WC_AT(k, BTG_WC_T2MASS)), o2, friction, active, a, b, va, vb);
+    btgWStoreG(c, BTG_WC_AT(k, BTG_WC_T1IMP), select(o1, n1, active));
+    btgWStoreG(c, BTG_WC_AT(k, BTG_WC_T2IMP), select(o2, n2, active));
+    const BtgW s1 = btgWLoadG(c, BTG_WC_AT(k, BTG_WC_TOT1)), s2 = btgWLoadG(c, BTG_WC_AT(k, BTG_WC_TOT2));
+    btgWStoreG(c, BTG_WC_AT(k, BTG_WC_TOT1), select(s1, s1 + (n1 - o1), active));
+    btgWStoreG(c, BTG_WC_AT(k, BTG_WC_TOT2), select(s2, s2 + (n2 - o2), active));
 }
 
 /* btgSoftCarriedTotals, lanes */
-static BTG_ALWAYS_INLINE void btgWCarriedTotals(float* c, int normal, int friction)
+static BTG_ALWAYS_INLINE void btgWCarriedTotals(__global float* c, int normal, int friction)
 {
     for (int k = 0; k < BTG_MAX_POINTS; ++k) {
-        const int8 active = btgWLoad(c, BTG_WC_AT(k, BTG_WC_MASS)) != 0.0f;
+        const int8 active = btgWLoadG(c, BTG_WC_AT(k, BTG_WC_MASS)) != 0.0f;
         if (normal) {
-            const BtgW t = btgWLoad(c, BTG_WC_AT(k, BTG_WC_TOTN));
-            vstore8(select(t, t + btgWLoad(c, BTG_WC_AT(k, BTG_WC_NIMP)), active), 0, c + BTG_WC_AT(k, BTG_WC_TOTN) * BTG_SOFT_WIDE);
+            const BtgW t = btgWLoadG(c, BTG_WC_AT(k, BTG_WC_TOTN));
+            btgWStoreG(c, BTG_WC_AT(k, BTG_WC_TOTN), select(t, t + btgWLoadG(c, BTG_WC_AT(k, BTG_WC_NIMP)), active));
         }
         if (!friction) continue;
-        const BtgW t1 = btgWLoad(c, BTG_WC_AT(k, BTG_WC_TOT1)), t2 = btgWLoad(c, BTG_WC_AT(k, BTG_WC_TOT2));
-        vstore8(select(t1, t1 + btgWLoad(c, BTG_WC_AT(k, BTG_WC_T1IMP)), active), 0, c + BTG_WC_AT(k, BTG_WC_TOT1) * BTG_SOFT_WIDE);
-        vstore8(select(t2, t2 + btgWLoad(c, BTG_WC_AT(k, BTG_WC_T2IMP)), active), 0, c + BTG_WC_AT(k, BTG_WC_TOT2) * BTG_SOFT_WIDE);
+        const BtgW t1 = btgWLoadG(c, BTG_WC_AT(k, BTG_WC_TOT1)), t2 = btgWLoadG(c, BTG_WC_AT(k, BTG_WC_TOT2));
+        btgWStoreG(c, BTG_WC_AT(k, BTG_WC_TOT1), select(t1, t1 + btgWLoadG(c, BTG_WC_AT(k, BTG_WC_T1IMP)), active));
+        btgWStoreG(c, BTG_WC_AT(k, BTG_WC_TOT2), select(t2, t2 + btgWLoadG(c, BTG_WC_AT(k, BTG_WC_T2IMP)), active));
     }
 }
 
 /* btgSoftSolve for the lanes: the normal rows point by point (soft while biased), then, in the
  * relax (or with frictionInSolve), the friction rows. */
-static BTG_ALWAYS_INLINE void btgWSoftSolve(float* c, const BtgBodyW* a, const BtgBodyW* b, BtgVelW* va, BtgVelW* vb,
+static BTG_ALWAYS_INLINE void btgWSoftSolve(__global float* c, const BtgBodyW* a, const BtgBodyW* b, BtgVelW* va, BtgVelW* vb,
                                             const BtgDeltaW* dA, const BtgDeltaW* dB, int useBias, BtgSoftParams p)
 {
-    const BtgV3W n = btgW3Load(c, BTG_WC_NX);
-    const int8 fixed = btgWLoad(c, BTG_WC_FIXED) != 0.0f;
+    const BtgV3W n = btgW3LoadG(c, BTG_WC_NX);
+    const int8 fixed = btgWLoadG(c, BTG_WC_FIXED) != 0.0f;
     BtgW ms = (BtgW)(1.0f), is = (BtgW)(0.0f), rate = (BtgW)(0.0f);
-    if (useBias) btgWContactSpring(btgWLoad(c, BTG_WC_STIFFENING), fixed, p, &ms, &is, &rate);
+    if (useBias) btgWContactSpring(btgWLoadG(c, BTG_WC_STIFFENING), fixed, p, &ms, &is, &rate);
     for (int k = 0; k < BTG_MAX_POINTS; ++k) btgWNormalRow(c, k, n, a, b, va, vb, dA, dB, useBias, p, ms, is, rate);
     if (!(!useBias || p.frictionInSolve)) return;
     BtgV3W t1, t2;
     btgWPlaneSpace(n, &t1, &t2);
-    const BtgW friction = btgWLoad(c, BTG_WC_FRICTION);
+    const BtgW friction = btgWLoadG(c, BTG_WC_FRICTION);
     for (int k = 0; k < BTG_MAX_POINTS; ++k) btgWFrictionRows(c, k, t1, t2, friction, a, b, va, vb);
 }
 

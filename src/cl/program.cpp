@@ -16,7 +16,7 @@ std::string baseBuildOptions(const Context& context)
     // Data the resident kernels share between work-groups is read through volatile pointers
     // on GPUs, whose per-compute-unit caches are not coherent; CPU caches are, and there
     // volatile only stops the compiler from vectorizing (PoCL: the solve ran 2x slower).
-    opts += context.device().isGpu ? " -DBTG_SHARED=volatile" : " -DBTG_SHARED=";
+    opts += context.device().isGpu ? " -DBTG_SHARED=volatile" : " -DBTG_SHARED= -DBTG_CPU_DEVICE=1";
     // For measuring (not for apps): BTGPU_CL_OPTIONS adds build options (NVIDIA's
     // -cl-nv-verbose, -cl-nv-maxrregcount=N, ...), BTGPU_CL_LOG=1 prints every build's log.
     if (const char* extra = std::getenv("BTGPU_CL_OPTIONS"); extra && *extra) opts += std::string(" ") + extra;

@@ -223,13 +223,26 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     const size_t rangeItems = std::min(slots, size_t(std::max<cl_uint>(ctx.device().computeUnits, 1)) * 256);
     cl_kernel range = prog.kernel("soft_color_range"), serial = prog.kernel("soft_color_serial");
     // A CPU device takes the solve and relax sweeps eight contacts a work-item (soft_wide.h): it
-    // runs each work-item's rows as scalar code, and the sweeps were its soft step's cost.
+    // runs each work-item's rows as scalar code, and the sweeps were its soft step's cost. Not
+    // where a pass reads the soft contacts between the sweeps (every substep's gather) or the
+    // order is not the colours' and points' own.
     // BTGPU_SOFT_WIDE=0: the scalar sweeps there too (an experiment knob, for measuring).
     static const bool wideOff = [] {
         const char* e = std::getenv("BTGPU_SOFT_WIDE");
         return e && e[0] == '0';
     }();
-    cl_kernel wide = ctx.device().isGpu || wideOff ? nullptr : prog.kernel("soft_color_wide");
+    const bool wideOn = !ctx.device().isGpu && !wideOff && !params.gather && !params.interleave &&
+                        params.orderSeed == 0u && !(params.heldMassRatio > 0.0f) && numColors > 1;
+    cl_kernel wide = wideOn ? prog.kernel("soft_color_wide") : nullptr;
+    if (wideOn) {
+        // chunks: at most one partial one a colour beyond the slots' eighths
+        const size_t chunks = slots / BTG_SOFT_WIDE + size_t(numColors);
+        sc.softWideStart.reserve(ctx, size_t(numColors));
+        sc.softWideBlock.reserve(ctx, chunks * BTG_SOFT_WIDE_FIELDS * BTG_SOFT_WIDE);
+        sc.softWideLanes.reserve(ctx, chunks * 3 * BTG_SOFT_WIDE);
+        cl::Launch(ctx, prog.kernel("soft_wide_offsets"), &w.profiler).arg(sc.colorStart).arg(sc.softWideStart)
+            .arg(numColors).run(1, 1);
+    }
     const size_t wideItems = (rangeItems + BTG_SOFT_WIDE - 1) / BTG_SOFT_WIDE;
     // key: a solve or relax sweep's order (SOLVER_RANDMIZE_ORDER), as soft_resident takes it
     auto edgePass = [&](int mode, cl_uint key) {
@@ -240,22 +253,43 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
                 cl::Launch l(ctx, serial, &w.profiler);
                 l.arg(w.edgeColor).arg(edgeCapacity).arg(numJoints).arg(ci).arg(mode).arg(key);
                 soft(l).run(1, 1);
+            } else if (sweep) {
+                // groups of eight chunks: a CPU device runs a group on one core, and a colour
+                // has a few hundred chunks to share out
+                cl::Launch l(ctx, wide, &w.profiler);
+                l.arg(sc.colorStart).arg(sc.colorOrder).arg(sc.softWideStart).arg(sc.softWideBlock)
+                    .arg(sc.softWideLanes).arg(edgeCapacity).arg(numJoints).arg(ci).arg(mode).arg(key);
+                soft(l).run(wideItems, 8);
             } else {
                 const int color = btgPermute(key, numColors - 1, ci);
-                cl::Launch l(ctx, sweep ? wide : range, &w.profiler);
+                cl::Launch l(ctx, range, &w.profiler);
                 l.arg(sc.colorStart).arg(sc.colorOrder).arg(edgeCapacity).arg(numJoints).arg(color).arg(mode).arg(key);
-                soft(l).run(sweep ? wideItems : rangeItems, sweep ? 8 : 64);
+                soft(l).run(rangeItems, 64);
             }
         }
+    };
+    // the wide lanes from the soft contacts, after the first substep's gather (which reads their
+    // impulses and writes their totals), and back before restitution
+    auto widePack = [&] {
+        cl::Launch l(ctx, prog.kernel("soft_wide_pack"), &w.profiler);
+        l.arg(sc.colorStart).arg(sc.colorOrder).arg(sc.softWideStart).arg(sc.softWideBlock).arg(sc.softWideLanes)
+            .arg(edgeCapacity).arg(numJoints).arg(numColors);
+        soft(l).run(slots);
+    };
+    auto wideUnpack = [&] {
+        cl::Launch(ctx, prog.kernel("soft_wide_unpack"), &w.profiler).arg(sc.colorStart).arg(sc.softWideStart)
+            .arg(sc.softWideBlock).arg(sc.softWideLanes).arg(numColors).arg(sc.softContacts).run(slots);
     };
     bodyPass(BTG_SOFT_BODY_BEGIN);
     edgePass(BTG_SOFT_PREPARE, 0u);
     for (int s = 0; s < params.substeps; ++s) {
         bodyPass(btgSoftVelocityMode(params, s));  // and the warm start (gathered, or carried)
+        if (s == 0 && wide) widePack();
         edgePass(btgSoftSweepMode(params, s, 0), btgSoftSweepKey(params, s, 0));
         bodyPass(BTG_SOFT_BODY_POSITION);
         edgePass(btgSoftSweepMode(params, s, 1), btgSoftSweepKey(params, s, 1));
     }
+    if (wide) wideUnpack();
     edgePass(BTG_SOFT_RESTITUTION, 0u);
     edgePass(BTG_SOFT_STORE, 0u);
     bodyPass(BTG_SOFT_BODY_END);

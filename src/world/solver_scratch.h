@@ -33,6 +33,11 @@ struct SolverScratch {
     ScanScratch softListScan;
     cl::DeviceArray<BtgFloat4> softBodies;
     cl::DeviceArray<BtgFloat4> softSolver;  // 4 per body: its solver record for the step (solve_soft.cl)
+    // a CPU device's wide sweeps (soft_wide.h): per regular colour its first chunk of eight slots,
+    // per chunk its block of contact lanes (BTG_WC_FIELDS x 8 floats) and its lanes' modes and bodies
+    cl::DeviceArray<uint> softWideStart;  // numColors
+    cl::DeviceArray<float> softWideBlock;
+    cl::DeviceArray<int> softWideLanes;   // 3 x 8 per chunk
     // the resident soft step's flow (solve_soft.cl): 2 per edge slot (each side's place among its
     // body's edges, and their number), 1 per body (its edges done so far this step)
     cl::DeviceArray<uint> softFlowRank;
