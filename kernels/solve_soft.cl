@@ -701,10 +701,11 @@ static BTG_ALWAYS_INLINE void wide_load_body(__global const BtgFloat4* restrict 
     rows[7] = btgLoadShared4(&softBodies[r + BTG_SOFT_DELTA_ROT]);
 }
 /* The lanes' velocities back to the dynamic bodies' rows (store_vel's; w of VEL_LIN the kind). */
-static void wide_store_vels(const BtgVelW* v, const float* lanes, __global const int* body, const int* wide,
+static void wide_store_vels(const BtgVelW* v, BtgW kinds, __global const int* body, const int* wide,
                             BTG_SHARED __global BtgFloat4* softBodies)
 {
-    float x[6 * BTG_SOFT_WIDE];
+    float x[7 * BTG_SOFT_WIDE];
+    vstore8(kinds, 6, x);
     vstore8(v->lin.x, 0, x);
     vstore8(v->lin.y, 1, x);
     vstore8(v->lin.z, 2, x);
@@ -712,7 +713,7 @@ static void wide_store_vels(const BtgVelW* v, const float* lanes, __global const
     vstore8(v->ang.y, 4, x);
     vstore8(v->ang.z, 5, x);
     for (int l = 0; l < BTG_SOFT_WIDE; ++l) {
-        const float kind = lanes[BTG_WB_KIND * BTG_SOFT_WIDE + l];
+        const float kind = x[6 * BTG_SOFT_WIDE + l];
         if (!wide[l] || !(kind >= 2.0f)) continue;
         const int r = BTG_SOFT_BODY_ROWS * body[l];
         softBodies[r + BTG_SOFT_VEL_LIN] = btgMake4(x[l], x[BTG_SOFT_WIDE + l], x[2 * BTG_SOFT_WIDE + l], kind);
@@ -761,32 +762,26 @@ __kernel void soft_color_wide(__global const uint* restrict colorStart, __global
         }
         BtgFloat4 rowsA[BTG_SOFT_WIDE * 8], rowsB[BTG_SOFT_WIDE * 8];
         for (int l = 0; l < BTG_SOFT_WIDE; ++l) {
-            if (!wide[l]) continue;
+            if (!wide[l]) {
+                btgWEmptyRows(rowsA + 8 * l);
+                btgWEmptyRows(rowsB + 8 * l);
+                continue;
+            }
             wide_load_body(softSolver, softBodies, info[BTG_SOFT_WIDE + l], rowsA + 8 * l);
             wide_load_body(softSolver, softBodies, info[2 * BTG_SOFT_WIDE + l], rowsB + 8 * l);
-        }
-        float la[BTG_WB_FIELDS * BTG_SOFT_WIDE], lb[BTG_WB_FIELDS * BTG_SOFT_WIDE];
-        for (int l = 0; l < BTG_SOFT_WIDE; ++l) {
-            if (wide[l]) {
-                btgWPutBody(la, l, rowsA + 8 * l);
-                btgWPutBody(lb, l, rowsB + 8 * l);
-            } else {
-                btgWEmptyBody(la, l);
-                btgWEmptyBody(lb, l);
-            }
         }
         BtgBodyW a, b;
         BtgVelW va, vb;
         BtgDeltaW dA, dB;
-        int8 dynA, dynB;
-        btgWBody(la, &a, &va, &dA, &dynA);
-        btgWBody(lb, &b, &vb, &dB, &dynB);
+        BtgW kindA, kindB;
+        btgWBody(rowsA, &a, &va, &dA, &kindA);
+        btgWBody(rowsB, &b, &vb, &dB, &kindB);
         if (mode & BTG_SOFT_WARM_TOTALS)
             btgWCarriedTotals(block, base == BTG_SOFT_SOLVE,
                               params.frictionInSolve ? base == BTG_SOFT_SOLVE : base == BTG_SOFT_RELAX);
         btgWSoftSolve(block, &a, &b, &va, &vb, &dA, &dB, base == BTG_SOFT_SOLVE, params);
-        wide_store_vels(&va, la, info + BTG_SOFT_WIDE, wide, softBodies);
-        wide_store_vels(&vb, lb, info + 2 * BTG_SOFT_WIDE, wide, softBodies);
+        wide_store_vels(&va, kindA, info + BTG_SOFT_WIDE, wide, softBodies);
+        wide_store_vels(&vb, kindB, info + 2 * BTG_SOFT_WIDE, wide, softBodies);
     }
 }
 

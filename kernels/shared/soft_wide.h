@@ -71,13 +71,6 @@ typedef struct {
     BtgM3W rot;
 } BtgDeltaW;
 
-/* A lane's values before they become vectors: field f of lane l at f * 8 + l. */
-enum {
-    BTG_WB_I00, BTG_WB_I01, BTG_WB_I02, BTG_WB_I10, BTG_WB_I11, BTG_WB_I12, BTG_WB_I20, BTG_WB_I21, BTG_WB_I22,
-    BTG_WB_INVMASS, BTG_WB_LF0, BTG_WB_LF1, BTG_WB_LF2, BTG_WB_AF0, BTG_WB_AF1, BTG_WB_AF2, BTG_WB_KIND,
-    BTG_WB_VL0, BTG_WB_VL1, BTG_WB_VL2, BTG_WB_VA0, BTG_WB_VA1, BTG_WB_VA2,
-    BTG_WB_DP0, BTG_WB_DP1, BTG_WB_DP2, BTG_WB_QX, BTG_WB_QY, BTG_WB_QZ, BTG_WB_QW, BTG_WB_FIELDS
-};
 static BTG_ALWAYS_INLINE BtgW btgWLoad(const float* lanes, int f) { return vload8(0, lanes + f * BTG_SOFT_WIDE); }
 static BTG_ALWAYS_INLINE BtgV3W btgW3Load(const float* lanes, int f)
 {
@@ -91,52 +84,9 @@ static BTG_ALWAYS_INLINE BtgV3W btgW3LoadG(__global const float* c, int f)
 }
 static BTG_ALWAYS_INLINE void btgWStoreG(__global float* c, int f, BtgW x) { vstore8(x, 0, c + f * BTG_SOFT_WIDE); }
 
-/* Lane l of a body's fields from its eight rows (soft_solver_body's record, then the velocity row,
- * w the kind, and the deltas), or an empty lane's: a fixed body at rest, nothing moved. Each field
- * its own store: a loop over the fields becomes AVX-512 scatters, which cost a quarter of the sweep. */
+/* One float of lane l of field f in a block of lanes. Each its own store: a loop over the fields
+ * becomes AVX-512 scatters, which cost a quarter of the sweep. */
 #define BTG_W_PUT(lanes, f, l, x) (lanes)[(f) * BTG_SOFT_WIDE + (l)] = (x)
-static BTG_ALWAYS_INLINE void btgWPutBody(float* lanes, int l, const BtgFloat4* rows)
-{
-    const BtgFloat4 s0 = rows[0], s1 = rows[1], s2 = rows[2], s3 = rows[3];
-    const BtgFloat4 vl = rows[4], va = rows[5], dp = rows[6], q = rows[7];
-    BTG_W_PUT(lanes, BTG_WB_I00, l, s0.x);
-    BTG_W_PUT(lanes, BTG_WB_I01, l, s0.y);
-    BTG_W_PUT(lanes, BTG_WB_I02, l, s0.z);
-    BTG_W_PUT(lanes, BTG_WB_I10, l, s1.x);
-    BTG_W_PUT(lanes, BTG_WB_I11, l, s1.y);
-    BTG_W_PUT(lanes, BTG_WB_I12, l, s1.z);
-    BTG_W_PUT(lanes, BTG_WB_I20, l, s2.x);
-    BTG_W_PUT(lanes, BTG_WB_I21, l, s2.y);
-    BTG_W_PUT(lanes, BTG_WB_I22, l, s2.z);
-    BTG_W_PUT(lanes, BTG_WB_INVMASS, l, s0.w);
-    BTG_W_PUT(lanes, BTG_WB_LF0, l, s1.w);
-    BTG_W_PUT(lanes, BTG_WB_LF1, l, s2.w);
-    BTG_W_PUT(lanes, BTG_WB_LF2, l, s3.w);
-    BTG_W_PUT(lanes, BTG_WB_AF0, l, s3.x);
-    BTG_W_PUT(lanes, BTG_WB_AF1, l, s3.y);
-    BTG_W_PUT(lanes, BTG_WB_AF2, l, s3.z);
-    BTG_W_PUT(lanes, BTG_WB_KIND, l, vl.w);
-    BTG_W_PUT(lanes, BTG_WB_VL0, l, vl.x);
-    BTG_W_PUT(lanes, BTG_WB_VL1, l, vl.y);
-    BTG_W_PUT(lanes, BTG_WB_VL2, l, vl.z);
-    BTG_W_PUT(lanes, BTG_WB_VA0, l, va.x);
-    BTG_W_PUT(lanes, BTG_WB_VA1, l, va.y);
-    BTG_W_PUT(lanes, BTG_WB_VA2, l, va.z);
-    BTG_W_PUT(lanes, BTG_WB_DP0, l, dp.x);
-    BTG_W_PUT(lanes, BTG_WB_DP1, l, dp.y);
-    BTG_W_PUT(lanes, BTG_WB_DP2, l, dp.z);
-    BTG_W_PUT(lanes, BTG_WB_QX, l, q.x);
-    BTG_W_PUT(lanes, BTG_WB_QY, l, q.y);
-    BTG_W_PUT(lanes, BTG_WB_QZ, l, q.z);
-    BTG_W_PUT(lanes, BTG_WB_QW, l, q.w);
-}
-static BTG_ALWAYS_INLINE void btgWEmptyBody(float* lanes, int l)
-{
-    BtgFloat4 rows[8];
-    for (int r = 0; r < 8; ++r) rows[r] = btgZero4();
-    rows[7] = btgMake4(0.0f, 0.0f, 0.0f, 1.0f);
-    btgWPutBody(lanes, l, rows);
-}
 
 /* btgQuatToMat3, lane by lane */
 static BTG_ALWAYS_INLINE BtgM3W btgWQuatToMat3(BtgW qx, BtgW qy, BtgW qz, BtgW qw)
@@ -154,26 +104,37 @@ static BTG_ALWAYS_INLINE BtgM3W btgWQuatToMat3(BtgW qx, BtgW qy, BtgW qz, BtgW q
     return m;
 }
 
-/* The lanes' bodies as soft_solver_body, btgMakeBodyVel and load_delta make them. */
-static BTG_ALWAYS_INLINE void btgWBody(const float* lanes, BtgBodyW* b, BtgVelW* v, BtgDeltaW* d, int8* dynamic)
+/* The lanes' bodies as soft_solver_body, btgMakeBodyVel and load_delta make them, from each
+ * lane's eight rows (rows[8 l + r]: the solver record's four, then the velocity rows, w of the
+ * first the kind, and the deltas; an empty lane's a fixed body at rest). Each field's vector is
+ * built from the eight lanes in registers: put through memory lane by lane and read back as a
+ * vector, every read waited for eight stores it could not forward. */
+#define BTG_W_ROW(rows, r, c)                                                                         \
+    ((BtgW)((rows)[(r)].c, (rows)[8 + (r)].c, (rows)[16 + (r)].c, (rows)[24 + (r)].c, (rows)[32 + (r)].c, \
+            (rows)[40 + (r)].c, (rows)[48 + (r)].c, (rows)[56 + (r)].c))
+static BTG_ALWAYS_INLINE void btgWBody(const BtgFloat4* rows, BtgBodyW* b, BtgVelW* v, BtgDeltaW* d, BtgW* kind)
 {
-    b->invI.r0 = btgW3Load(lanes, BTG_WB_I00);
-    b->invI.r1 = btgW3Load(lanes, BTG_WB_I10);
-    b->invI.r2 = btgW3Load(lanes, BTG_WB_I20);
-    b->invMass = btgWLoad(lanes, BTG_WB_INVMASS);
-    b->linFactor = btgW3Load(lanes, BTG_WB_LF0);
-    b->angFactor = btgW3Load(lanes, BTG_WB_AF0);
+    b->invI.r0 = btgW3(BTG_W_ROW(rows, 0, x), BTG_W_ROW(rows, 0, y), BTG_W_ROW(rows, 0, z));
+    b->invI.r1 = btgW3(BTG_W_ROW(rows, 1, x), BTG_W_ROW(rows, 1, y), BTG_W_ROW(rows, 1, z));
+    b->invI.r2 = btgW3(BTG_W_ROW(rows, 2, x), BTG_W_ROW(rows, 2, y), BTG_W_ROW(rows, 2, z));
+    b->invMass = BTG_W_ROW(rows, 0, w);
+    b->linFactor = btgW3(BTG_W_ROW(rows, 1, w), BTG_W_ROW(rows, 2, w), BTG_W_ROW(rows, 3, w));
+    b->angFactor = btgW3(BTG_W_ROW(rows, 3, x), BTG_W_ROW(rows, 3, y), BTG_W_ROW(rows, 3, z));
     b->invMassLin = btgW3(b->linFactor.x * b->invMass, b->linFactor.y * b->invMass, b->linFactor.z * b->invMass);
-    const BtgW kind = btgWLoad(lanes, BTG_WB_KIND);
-    *dynamic = kind >= 2.0f;
-    const int8 moving = kind == 1.0f || kind == 3.0f;
+    *kind = BTG_W_ROW(rows, 4, w);
+    const int8 moving = *kind == 1.0f || *kind == 3.0f;
     const BtgW zero = (BtgW)(0.0f);
     const BtgV3W z3 = btgW3(zero, zero, zero);
-    v->lin = btgW3Select(z3, btgW3Load(lanes, BTG_WB_VL0), moving);
-    v->ang = btgW3Select(z3, btgW3Load(lanes, BTG_WB_VA0), moving);
-    d->pos = btgW3Load(lanes, BTG_WB_DP0);
-    d->rot = btgWQuatToMat3(btgWLoad(lanes, BTG_WB_QX), btgWLoad(lanes, BTG_WB_QY), btgWLoad(lanes, BTG_WB_QZ),
-                            btgWLoad(lanes, BTG_WB_QW));
+    v->lin = btgW3Select(z3, btgW3(BTG_W_ROW(rows, 4, x), BTG_W_ROW(rows, 4, y), BTG_W_ROW(rows, 4, z)), moving);
+    v->ang = btgW3Select(z3, btgW3(BTG_W_ROW(rows, 5, x), BTG_W_ROW(rows, 5, y), BTG_W_ROW(rows, 5, z)), moving);
+    d->pos = btgW3(BTG_W_ROW(rows, 6, x), BTG_W_ROW(rows, 6, y), BTG_W_ROW(rows, 6, z));
+    d->rot = btgWQuatToMat3(BTG_W_ROW(rows, 7, x), BTG_W_ROW(rows, 7, y), BTG_W_ROW(rows, 7, z), BTG_W_ROW(rows, 7, w));
+}
+/* An empty lane's rows: a fixed body at rest, nothing moved. */
+static BTG_ALWAYS_INLINE void btgWEmptyRows(BtgFloat4* rows)
+{
+    for (int r = 0; r < 7; ++r) rows[r] = btgZero4();
+    rows[7] = btgMake4(0.0f, 0.0f, 0.0f, 1.0f);
 }
 
 /* BtgJacobian, lanes */
