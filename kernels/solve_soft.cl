@@ -734,7 +734,10 @@ __kernel void soft_color_wide(__global const uint* restrict colorStart, __global
     const int chunks = (end - begin + BTG_SOFT_WIDE - 1) / BTG_SOFT_WIDE;
     const int nc = contact_edges(counters, edgeCapacity, numJoints);
     const int base = btgSoftBaseMode(mode);
-    for (int m = (int)get_global_id(0); m < chunks; m += (int)get_global_size(0)) {
+    /* each work-item a run of consecutive chunks: their blocks stream through memory in order */
+    const int per = (chunks + (int)get_global_size(0) - 1) / (int)get_global_size(0);
+    const int first = (int)get_global_id(0) * per, stop = min(chunks, first + per);
+    for (int m = first; m < stop; ++m) {
         const int k0 = begin + m * BTG_SOFT_WIDE, chunk = (int)wideStart[color] + m;
         __global const int* info = wideLanes + chunk * WIDE_INFO * BTG_SOFT_WIDE;
         __global float* block = wideBlock + chunk * BTG_WC_FIELDS * BTG_SOFT_WIDE;
@@ -745,12 +748,10 @@ __kernel void soft_color_wide(__global const uint* restrict colorStart, __global
             if (k0 + l < end && !wide[l]) soft_edge(colorOrder[k0 + l], k0 + l, nc, mode, key, SOFT_PASS);
         }
         if (!any) continue;
-        /* the work-item's next chunk read ahead: its bodies' rows sit anywhere in memory, and
+        /* the work-item's next chunk's bodies read ahead: their rows sit anywhere in memory, and
          * waiting for them was a fifth of the sweep */
-        const int next = m + (int)get_global_size(0);
-        if (next < chunks) {
-            __global const int* nextInfo = info + (int)get_global_size(0) * WIDE_INFO * BTG_SOFT_WIDE;
-            __global const float* nextBlock = block + (int)get_global_size(0) * BTG_WC_FIELDS * BTG_SOFT_WIDE;
+        if (m + 1 < stop) {
+            __global const int* nextInfo = info + WIDE_INFO * BTG_SOFT_WIDE;
             for (int l = 0; l < BTG_SOFT_WIDE; ++l) {
                 const int ia = nextInfo[BTG_SOFT_WIDE + l], ib = nextInfo[2 * BTG_SOFT_WIDE + l];
                 btgPrefetch(softBodies + BTG_SOFT_BODY_ROWS * ia);
@@ -758,7 +759,6 @@ __kernel void soft_color_wide(__global const uint* restrict colorStart, __global
                 btgPrefetch(softBodies + BTG_SOFT_BODY_ROWS * ib);
                 btgPrefetch(softSolver + BTG_SOFT_SOLVER_ROWS * ib);
             }
-            for (int f = 0; f < BTG_WC_FIELDS * BTG_SOFT_WIDE; f += 16) btgPrefetch(nextBlock + f);
         }
         BtgFloat4 rowsA[BTG_SOFT_WIDE * 8], rowsB[BTG_SOFT_WIDE * 8];
         for (int l = 0; l < BTG_SOFT_WIDE; ++l) {
