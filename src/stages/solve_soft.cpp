@@ -17,7 +17,26 @@ namespace {
 // As solve_constraints: up to this many contacts a CPU device takes the whole stage in one
 // launch on one work-group.
 constexpr int kOneGroupMaxContacts = 4096;
+// Where the CPU device takes the sweeps eight contacts a work-item (wideSweeps), the per-colour
+// launches win above about a thousand contacts (PoCL, 2 cores, cubes of 343 / 1,000: frame
+// 8.9 / 19.1 ms against one group's 8.7 / 24.7; 125: 5.8 against 3.4, the launches' host cost).
+constexpr int kOneGroupMaxContactsWide = 1024;
 constexpr int kMaxSubsteps = 256;
+
+// A CPU device takes the solve and relax sweeps eight contacts a work-item (soft_wide.h): it
+// runs each work-item's rows as scalar code, and the sweeps were its soft step's cost. Not
+// where a pass reads the soft contacts between the sweeps (every substep's gather) or the order
+// is not the colours' and points' own. BTGPU_SOFT_WIDE=0: the scalar sweeps there too (an
+// experiment knob, for measuring).
+bool wideSweeps(cl::Context& ctx, const BtgSoftParams& params)
+{
+    static const bool off = [] {
+        const char* e = std::getenv("BTGPU_SOFT_WIDE");
+        return e && e[0] == '0';
+    }();
+    return !ctx.device().isGpu && !off && !params.gather && !params.interleave && params.orderSeed == 0u &&
+           !(params.heldMassRatio > 0.0f);
+}
 
 // The substep fields of the step's scalars: the base count, and how it grows with the mass
 // ratio. An explicit substep count is kept; m_numIterations' grows unless the light bodies are
@@ -173,7 +192,8 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     cl::Launch(ctx, prog.kernel("soft_list_sort"), &w.profiler).arg(numBodies).arg(sc.softListStart)
         .arg(sc.softListEntries).run(size_t(numBodies));
     const bool resident = useResident(w);
-    if (resident || w.lastContactCount <= kOneGroupMaxContacts) {
+    const bool wideOn = wideSweeps(ctx, params) && numColors > 1;
+    if (resident || w.lastContactCount <= (wideOn ? kOneGroupMaxContactsWide : kOneGroupMaxContacts)) {
         cl_kernel k = prog.kernel("soft_resident");
         const size_t groups = resident ? residentSolveGroups(w) : 1;
         const int flow = resident && groups > 1 ? softFlow(w) : 0;
@@ -222,17 +242,6 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     }
     const size_t rangeItems = std::min(slots, size_t(std::max<cl_uint>(ctx.device().computeUnits, 1)) * 256);
     cl_kernel range = prog.kernel("soft_color_range"), serial = prog.kernel("soft_color_serial");
-    // A CPU device takes the solve and relax sweeps eight contacts a work-item (soft_wide.h): it
-    // runs each work-item's rows as scalar code, and the sweeps were its soft step's cost. Not
-    // where a pass reads the soft contacts between the sweeps (every substep's gather) or the
-    // order is not the colours' and points' own.
-    // BTGPU_SOFT_WIDE=0: the scalar sweeps there too (an experiment knob, for measuring).
-    static const bool wideOff = [] {
-        const char* e = std::getenv("BTGPU_SOFT_WIDE");
-        return e && e[0] == '0';
-    }();
-    const bool wideOn = !ctx.device().isGpu && !wideOff && !params.gather && !params.interleave &&
-                        params.orderSeed == 0u && !(params.heldMassRatio > 0.0f) && numColors > 1;
     cl_kernel wide = wideOn ? prog.kernel("soft_color_wide") : nullptr;
     if (wideOn) {
         // chunks: at most one partial one a colour beyond the slots' eighths
