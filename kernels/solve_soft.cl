@@ -643,17 +643,15 @@ static int2 wide_chunk_of(int k, __global const uint* restrict colorStart, __glo
     return (int2)((int)wideStart[c] + at / BTG_SOFT_WIDE, at % BTG_SOFT_WIDE);
 }
 #define WIDE_INFO 3 /* ints a lane of a chunk: its mode (1: wide), body A, body B (each 8 a chunk) */
-__kernel void soft_wide_pack(__global const uint* restrict colorStart, __global const int* restrict colorOrder,
-                             __global const uint* restrict wideStart, __global float* wideBlock, __global int* wideLanes,
-                             int edgeCapacity, int numJoints, int numColors, SOFT_ARGS)
+#define WIDE_ARGS __global const uint* restrict wideStart, __global float* wideBlock, __global int* wideLanes
+#define WIDE_PASS wideStart, wideBlock, wideLanes
+static void wide_pack_slot(int k, __global const uint* restrict colorStart, __global const int* restrict colorOrder,
+                           int nc, WIDE_ARGS, __global const BtgSoftContact* softContacts)
 {
-    const int k = (int)get_global_id(0);
-    if (k >= (int)colorStart[numColors - 1]) return; /* the regular colours' slots only */
     const int2 at = wide_chunk_of(k, colorStart, wideStart);
     const int e = colorOrder[k];
     __global const BtgSoftContact* s = softContacts + k;
-    const int wide = e < contact_edges(counters, edgeCapacity, numJoints) && !(s->springStiffness > 0.0f) &&
-                     !(s->flags & BTG_SOFT_BULLET_DIRECTIONS);
+    const int wide = e < nc && !(s->springStiffness > 0.0f) && !(s->flags & BTG_SOFT_BULLET_DIRECTIONS);
     __global float* block = wideBlock + at.x * BTG_WC_FIELDS * BTG_SOFT_WIDE;
     __global int* info = wideLanes + at.x * WIDE_INFO * BTG_SOFT_WIDE;
     info[at.y] = wide;
@@ -669,12 +667,9 @@ __kernel void soft_wide_pack(__global const uint* restrict colorStart, __global 
         btgWPutContact(block, l, 0);
     }
 }
-__kernel void soft_wide_unpack(__global const uint* restrict colorStart, __global const uint* restrict wideStart,
-                               __global const float* restrict wideBlock, __global const int* restrict wideLanes,
-                               int numColors, __global BtgSoftContact* softContacts)
+static void wide_unpack_slot(int k, __global const uint* restrict colorStart, WIDE_ARGS,
+                             __global BtgSoftContact* softContacts)
 {
-    const int k = (int)get_global_id(0);
-    if (k >= (int)colorStart[numColors - 1]) return;
     const int2 at = wide_chunk_of(k, colorStart, wideStart);
     if (!wideLanes[at.x * WIDE_INFO * BTG_SOFT_WIDE + at.y]) return;
     __global const float* block = wideBlock + at.x * BTG_WC_FIELDS * BTG_SOFT_WIDE;
@@ -684,6 +679,20 @@ __kernel void soft_wide_unpack(__global const uint* restrict colorStart, __globa
     softContacts[k].tangent2Impulse = btgWPoints(block, at.y, BTG_WC_T2IMP);
     softContacts[k].total1 = btgWPoints(block, at.y, BTG_WC_TOT1);
     softContacts[k].total2 = btgWPoints(block, at.y, BTG_WC_TOT2);
+}
+__kernel void soft_wide_pack(__global const uint* restrict colorStart, __global const int* restrict colorOrder,
+                             WIDE_ARGS, int edgeCapacity, int numJoints, int numColors, SOFT_ARGS)
+{
+    const int k = (int)get_global_id(0);
+    if (k >= (int)colorStart[numColors - 1]) return; /* the regular colours' slots only */
+    wide_pack_slot(k, colorStart, colorOrder, contact_edges(counters, edgeCapacity, numJoints), WIDE_PASS, softContacts);
+}
+__kernel void soft_wide_unpack(__global const uint* restrict colorStart, WIDE_ARGS, int numColors,
+                               __global BtgSoftContact* softContacts)
+{
+    const int k = (int)get_global_id(0);
+    if (k >= (int)colorStart[numColors - 1]) return;
+    wide_unpack_slot(k, colorStart, WIDE_PASS, softContacts);
 }
 /* The eight rows of body i a lane takes (the solver record, then velocity and deltas), read
  * for all the chunk's lanes before any is put into lanes: their cache misses then overlap. */
@@ -722,67 +731,70 @@ static void wide_store_vels(const BtgVelW* v, BtgW kinds, __global const int* bo
     }
 }
 
-/* A colour's solve or relax sweep, a chunk a work-item at a time: the chunk's scalar edges
- * through soft_edge (one colour's edges share no dynamic body: the order within it changes
- * nothing), its wide lanes through soft_wide.h's rows on the chunk's block. */
+/* Chunk m of colour `color` (slots begin.., end its colour's end) in a solve or relax sweep: its
+ * scalar edges through soft_edge (one colour's edges share no dynamic body: the order within it
+ * changes nothing), its wide lanes through soft_wide.h's rows on the chunk's block. next: the
+ * work-item's next chunk of the colour (-1: none), whose bodies are read ahead. */
+static void soft_wide_chunk(int color, int m, int next, int begin, int end, __global const int* restrict colorOrder,
+                            WIDE_ARGS, int nc, int mode, uint key, SOFT_ARGS)
+{
+    const int base = btgSoftBaseMode(mode);
+    const int k0 = begin + m * BTG_SOFT_WIDE, chunk = (int)wideStart[color] + m;
+    __global const int* info = wideLanes + chunk * WIDE_INFO * BTG_SOFT_WIDE;
+    __global float* block = wideBlock + chunk * BTG_WC_FIELDS * BTG_SOFT_WIDE;
+    int wide[BTG_SOFT_WIDE], any = 0;
+    for (int l = 0; l < BTG_SOFT_WIDE; ++l) {
+        wide[l] = k0 + l < end && info[l];
+        any |= wide[l];
+        if (k0 + l < end && !wide[l]) soft_edge(colorOrder[k0 + l], k0 + l, nc, mode, key, SOFT_PASS);
+    }
+    if (!any) return;
+    /* the work-item's next chunk's bodies read ahead: their rows sit anywhere in memory, and
+     * waiting for them was a fifth of the sweep */
+    if (next >= 0) {
+        __global const int* nextInfo = wideLanes + ((int)wideStart[color] + next) * WIDE_INFO * BTG_SOFT_WIDE;
+        for (int l = 0; l < BTG_SOFT_WIDE; ++l) {
+            const int ia = nextInfo[BTG_SOFT_WIDE + l], ib = nextInfo[2 * BTG_SOFT_WIDE + l];
+            btgPrefetch(softBodies + BTG_SOFT_BODY_ROWS * ia);
+            btgPrefetch(softSolver + BTG_SOFT_SOLVER_ROWS * ia);
+            btgPrefetch(softBodies + BTG_SOFT_BODY_ROWS * ib);
+            btgPrefetch(softSolver + BTG_SOFT_SOLVER_ROWS * ib);
+        }
+    }
+    BtgFloat4 rowsA[BTG_SOFT_WIDE * 8], rowsB[BTG_SOFT_WIDE * 8];
+    for (int l = 0; l < BTG_SOFT_WIDE; ++l) {
+        if (!wide[l]) {
+            btgWEmptyRows(rowsA + 8 * l);
+            btgWEmptyRows(rowsB + 8 * l);
+            continue;
+        }
+        wide_load_body(softSolver, softBodies, info[BTG_SOFT_WIDE + l], rowsA + 8 * l);
+        wide_load_body(softSolver, softBodies, info[2 * BTG_SOFT_WIDE + l], rowsB + 8 * l);
+    }
+    BtgBodyW a, b;
+    BtgVelW va, vb;
+    BtgDeltaW dA, dB;
+    BtgW kindA, kindB;
+    btgWBody(rowsA, &a, &va, &dA, &kindA);
+    btgWBody(rowsB, &b, &vb, &dB, &kindB);
+    if (mode & BTG_SOFT_WARM_TOTALS)
+        btgWCarriedTotals(block, base == BTG_SOFT_SOLVE, params.frictionInSolve ? base == BTG_SOFT_SOLVE : base == BTG_SOFT_RELAX);
+    btgWSoftSolve(block, &a, &b, &va, &vb, &dA, &dB, base == BTG_SOFT_SOLVE, params);
+    wide_store_vels(&va, kindA, info + BTG_SOFT_WIDE, wide, softBodies);
+    wide_store_vels(&vb, kindB, info + 2 * BTG_SOFT_WIDE, wide, softBodies);
+}
+/* A colour's solve or relax sweep, each work-item a run of consecutive chunks (their blocks
+ * stream through memory in order). */
 __kernel void soft_color_wide(__global const uint* restrict colorStart, __global const int* restrict colorOrder,
-                              __global const uint* restrict wideStart, __global float* wideBlock,
-                              __global const int* restrict wideLanes, int edgeCapacity, int numJoints, int color,
-                              int mode, uint key, SOFT_ARGS)
+                              WIDE_ARGS, int edgeCapacity, int numJoints, int color, int mode, uint key, SOFT_ARGS)
 {
     const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
     const int chunks = (end - begin + BTG_SOFT_WIDE - 1) / BTG_SOFT_WIDE;
     const int nc = contact_edges(counters, edgeCapacity, numJoints);
-    const int base = btgSoftBaseMode(mode);
-    /* each work-item a run of consecutive chunks: their blocks stream through memory in order */
     const int per = (chunks + (int)get_global_size(0) - 1) / (int)get_global_size(0);
     const int first = (int)get_global_id(0) * per, stop = min(chunks, first + per);
-    for (int m = first; m < stop; ++m) {
-        const int k0 = begin + m * BTG_SOFT_WIDE, chunk = (int)wideStart[color] + m;
-        __global const int* info = wideLanes + chunk * WIDE_INFO * BTG_SOFT_WIDE;
-        __global float* block = wideBlock + chunk * BTG_WC_FIELDS * BTG_SOFT_WIDE;
-        int wide[BTG_SOFT_WIDE], any = 0;
-        for (int l = 0; l < BTG_SOFT_WIDE; ++l) {
-            wide[l] = k0 + l < end && info[l];
-            any |= wide[l];
-            if (k0 + l < end && !wide[l]) soft_edge(colorOrder[k0 + l], k0 + l, nc, mode, key, SOFT_PASS);
-        }
-        if (!any) continue;
-        /* the work-item's next chunk's bodies read ahead: their rows sit anywhere in memory, and
-         * waiting for them was a fifth of the sweep */
-        if (m + 1 < stop) {
-            __global const int* nextInfo = info + WIDE_INFO * BTG_SOFT_WIDE;
-            for (int l = 0; l < BTG_SOFT_WIDE; ++l) {
-                const int ia = nextInfo[BTG_SOFT_WIDE + l], ib = nextInfo[2 * BTG_SOFT_WIDE + l];
-                btgPrefetch(softBodies + BTG_SOFT_BODY_ROWS * ia);
-                btgPrefetch(softSolver + BTG_SOFT_SOLVER_ROWS * ia);
-                btgPrefetch(softBodies + BTG_SOFT_BODY_ROWS * ib);
-                btgPrefetch(softSolver + BTG_SOFT_SOLVER_ROWS * ib);
-            }
-        }
-        BtgFloat4 rowsA[BTG_SOFT_WIDE * 8], rowsB[BTG_SOFT_WIDE * 8];
-        for (int l = 0; l < BTG_SOFT_WIDE; ++l) {
-            if (!wide[l]) {
-                btgWEmptyRows(rowsA + 8 * l);
-                btgWEmptyRows(rowsB + 8 * l);
-                continue;
-            }
-            wide_load_body(softSolver, softBodies, info[BTG_SOFT_WIDE + l], rowsA + 8 * l);
-            wide_load_body(softSolver, softBodies, info[2 * BTG_SOFT_WIDE + l], rowsB + 8 * l);
-        }
-        BtgBodyW a, b;
-        BtgVelW va, vb;
-        BtgDeltaW dA, dB;
-        BtgW kindA, kindB;
-        btgWBody(rowsA, &a, &va, &dA, &kindA);
-        btgWBody(rowsB, &b, &vb, &dB, &kindB);
-        if (mode & BTG_SOFT_WARM_TOTALS)
-            btgWCarriedTotals(block, base == BTG_SOFT_SOLVE,
-                              params.frictionInSolve ? base == BTG_SOFT_SOLVE : base == BTG_SOFT_RELAX);
-        btgWSoftSolve(block, &a, &b, &va, &vb, &dA, &dB, base == BTG_SOFT_SOLVE, params);
-        wide_store_vels(&va, kindA, info + BTG_SOFT_WIDE, wide, softBodies);
-        wide_store_vels(&vb, kindB, info + 2 * BTG_SOFT_WIDE, wide, softBodies);
-    }
+    for (int m = first; m < stop; ++m)
+        soft_wide_chunk(color, m, m + 1 < stop ? m + 1 : -1, begin, end, colorOrder, WIDE_PASS, nc, mode, key, SOFT_PASS);
 }
 
 __kernel void soft_color_serial(__global const int* restrict edgeColor, int edgeCapacity, int numJoints, int color,
@@ -810,7 +822,7 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
                             __global const uint* restrict colorStart, __global const int* restrict colorOrder,
                             volatile __global BtgGridBarrier* bar, int numColors, int numJoints, int numBodies,
                             int spinLimit, __global const uint* restrict flowRank, volatile __global uint* flowDone,
-                            __global const uint* restrict flowDeg, int flow, SOFT_ARGS)
+                            __global const uint* restrict flowDeg, int flow, WIDE_ARGS, int wide, SOFT_ARGS)
 {
     __local int quit;
     if (counters[BTG_COUNTER_STATUS] & BTG_STATUS_GRID_BARRIER_TIMEOUT) return;
@@ -876,7 +888,18 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
             }
             if (bodyMode == BTG_SOFT_BODY_END) break; /* the last pass: each body's own rows */
             SOFT_BARRIER();
+            if (wide && pass == 2) {
+                /* a CPU device's wide sweeps: the lanes from the soft contacts after the first
+                 * substep's gather (soft_wide_pack's) */
+                for (int k = gid; k < (int)colorStart[last]; k += gsize)
+                    wide_pack_slot(k, colorStart, colorOrder, nc, WIDE_PASS, softContacts);
+                SOFT_BARRIER();
+            }
             continue;
+        }
+        if (wide && mode == BTG_SOFT_RESTITUTION) {
+            for (int k = gid; k < (int)colorStart[last]; k += gsize) wide_unpack_slot(k, colorStart, WIDE_PASS, softContacts);
+            SOFT_BARRIER();
         }
         /* store (and prepare, unless it notes the bodies' supports) touch each edge alone: no barrier between colors */
         const int independent = (mode == BTG_SOFT_PREPARE && !(params.heldMassRatio > 0.0f)) || mode == BTG_SOFT_STORE;
@@ -895,7 +918,13 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
             const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
             if (begin == end) continue; /* the coloring's slack: every work-item reads the same range */
             --left;
-            for (int k = begin + gid; k < end; k += gsize) {
+            if (wide && (base == BTG_SOFT_SOLVE || base == BTG_SOFT_RELAX)) {
+                const int chunks = (end - begin + BTG_SOFT_WIDE - 1) / BTG_SOFT_WIDE;
+                for (int m = gid; m < chunks; m += gsize)
+                    soft_wide_chunk(color, m, m + gsize < chunks ? m + gsize : -1, begin, end, colorOrder, WIDE_PASS, nc,
+                                    mode, key, SOFT_PASS);
+            }
+            for (int k = begin + gid; k < end && !(wide && (base == BTG_SOFT_SOLVE || base == BTG_SOFT_RELAX)); k += gsize) {
                 const int e = colorOrder[k];
                 /* one call of the rows for both orders: one compiled copy of their arithmetic */
                 int2 ab = (int2)(0, 0);

@@ -26,6 +26,14 @@ inline bool useResident(const DeviceWorld& w)
     return w.resident == R::On || (w.resident == R::Auto && w.ctx.device().isGpu);
 }
 
+// Whether a stage may take one launch over resident groups where it prefers to (not after the
+// world went over to per-round launches, nor with BTGPU_RESIDENT=0).
+inline bool residentAllowed(const DeviceWorld& w)
+{
+    const char* e = std::getenv("BTGPU_RESIDENT");
+    return w.resident != DeviceWorld::Resident::Off && !(e && e[0] == '0');
+}
+
 // Work-groups of `group` items for `items` of work per round (each item a few per work-item).
 inline size_t residentGroups(const DeviceWorld& w, size_t items, size_t group)
 {

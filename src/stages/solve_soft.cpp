@@ -193,16 +193,37 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
         .arg(sc.softListEntries).run(size_t(numBodies));
     const bool resident = useResident(w);
     const bool wideOn = wideSweeps(ctx, params) && numColors > 1;
-    if (resident || w.lastContactCount <= (wideOn ? kOneGroupMaxContactsWide : kOneGroupMaxContacts)) {
+    if (wideOn) {
+        // chunks: at most one partial one a colour beyond the slots' eighths
+        const size_t chunks = slots / BTG_SOFT_WIDE + size_t(numColors);
+        sc.softWideStart.reserve(ctx, size_t(numColors));
+        sc.softWideBlock.reserve(ctx, chunks * BTG_SOFT_WIDE_FIELDS * BTG_SOFT_WIDE);
+        sc.softWideLanes.reserve(ctx, chunks * 3 * BTG_SOFT_WIDE);
+        cl::Launch(ctx, prog.kernel("soft_wide_offsets"), &w.profiler).arg(sc.colorStart).arg(sc.softWideStart)
+            .arg(numColors).run(1, 1);
+    } else {
+        sc.softWideStart.reserve(ctx, 1);
+        sc.softWideBlock.reserve(ctx, 1);
+        sc.softWideLanes.reserve(ctx, 1);
+    }
+    // With the wide sweeps a CPU device takes the whole stage in one launch too, a group a core
+    // with grid barriers between the colours: the per-colour path enqueues about 300 launches a
+    // step, whose host cost was about 4 ms a frame on PoCL (cubes 1,000 and 8,000 alike).
+    const bool wideResident = wideOn && residentAllowed(w) && w.lastContactCount > kOneGroupMaxContactsWide;
+    if (resident || wideResident || w.lastContactCount <= (wideOn ? kOneGroupMaxContactsWide : kOneGroupMaxContacts)) {
         cl_kernel k = prog.kernel("soft_resident");
-        const size_t groups = resident ? residentSolveGroups(w) : 1;
+        const bool many = resident || wideResident;
+        const size_t groups = many ? residentSolveGroups(w) : 1;
         const int flow = resident && groups > 1 ? softFlow(w) : 0;
+        const int wideIn = wideOn && flow == 0;
         // A CPU device runs a group's work-items one after another: the flow's waits there need
-        // groups of one.
+        // groups of one; its wide sweeps take a chunk of eight contacts a work-item, a few
+        // hundred chunks a colour, so small groups.
         const size_t group = flow && !ctx.device().isGpu
                                  ? 1
-                                 : residentSolveGroupSize(cl::kernelGroupLimit(ctx, k), resident,
-                                                          softGroupSize(w, numColors));
+                                 : wideResident && !resident ? size_t(8)
+                                                             : residentSolveGroupSize(cl::kernelGroupLimit(ctx, k), many,
+                                                                                      softGroupSize(w, numColors));
         if (flow) {
             // the ranks, then the kinematic flag after them (soft_flow_ranks)
             sc.softFlowRank.reserve(ctx, 2 * slots + 1);
@@ -226,7 +247,8 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
         cl::Launch l(ctx, k, &w.profiler);
         l.arg(w.edgeColor).arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorOrder).arg(gridBarrier(w))
             .arg(numColors).arg(numJoints).arg(numBodies).arg(gridBarrierSpins(w)).arg(sc.softFlowRank)
-            .arg(sc.softFlowDone).arg(sc.softFlowDeg).arg(flow);
+            .arg(sc.softFlowDone).arg(sc.softFlowDeg).arg(flow).arg(sc.softWideStart).arg(sc.softWideBlock)
+            .arg(sc.softWideLanes).arg(wideIn);
         soft(l).run(groups * group, group);
         return;
     }
@@ -243,15 +265,6 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     const size_t rangeItems = std::min(slots, size_t(std::max<cl_uint>(ctx.device().computeUnits, 1)) * 256);
     cl_kernel range = prog.kernel("soft_color_range"), serial = prog.kernel("soft_color_serial");
     cl_kernel wide = wideOn ? prog.kernel("soft_color_wide") : nullptr;
-    if (wideOn) {
-        // chunks: at most one partial one a colour beyond the slots' eighths
-        const size_t chunks = slots / BTG_SOFT_WIDE + size_t(numColors);
-        sc.softWideStart.reserve(ctx, size_t(numColors));
-        sc.softWideBlock.reserve(ctx, chunks * BTG_SOFT_WIDE_FIELDS * BTG_SOFT_WIDE);
-        sc.softWideLanes.reserve(ctx, chunks * 3 * BTG_SOFT_WIDE);
-        cl::Launch(ctx, prog.kernel("soft_wide_offsets"), &w.profiler).arg(sc.colorStart).arg(sc.softWideStart)
-            .arg(numColors).run(1, 1);
-    }
     const size_t wideItems = (rangeItems + BTG_SOFT_WIDE - 1) / BTG_SOFT_WIDE;
     // key: a solve or relax sweep's order (SOLVER_RANDMIZE_ORDER), as soft_resident takes it
     auto edgePass = [&](int mode, cl_uint key) {
