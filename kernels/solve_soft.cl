@@ -337,10 +337,20 @@ static void soft_edge(int e, int slot, int nc, int mode, uint key, SOFT_ARGS)
     else soft_joint(e - nc, mode, SOFT_PASS);
 }
 
+/* Flags that say what a body's kind (w of its VEL_LIN row, soft_kind) says: dynamic, moving
+ * (kinematic) or fixed, for the rows' helpers. */
+static uint soft_kind_flags(float kind)
+{
+    return kind >= 2.0f ? BTG_BODY_DYNAMIC : (kind == 1.0f ? BTG_BODY_KINEMATIC : BTG_BODY_STATIC);
+}
+
 static void soft_body(int i, int mode, SOFT_ARGS)
 {
-    const uint flags = props[i].flags;
     const int row = BTG_SOFT_BODY_ROWS * i;
+    /* the step's first pass reads the body's flags (props: a line a body, 160 bytes apart); the
+     * others its kind, which that pass left in the velocity row they read anyway (a fifth of a
+     * CPU's body passes waited for props) */
+    const uint flags = mode == BTG_SOFT_BODY_BEGIN ? props[i].flags : soft_kind_flags(softBodies[row + BTG_SOFT_VEL_LIN].w);
     if (mode == BTG_SOFT_BODY_END) {
         /* the step's velocities back into the world's columns (their w kept) */
         if (btgIsSolverDynamic(flags)) {
