@@ -241,6 +241,9 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
         btgSoftStore(contacts, i, &s);
         return;
     }
+    /* a contact that never bounces (s.restitution 0: btgSoftRestitution's first test) leaves its
+     * bodies and impulses as they are: not read and written back */
+    if (mode == BTG_SOFT_RESTITUTION && softContacts[slot].restitution == 0.0f) return;
     /* the passes after prepare take the bodies from the soft contact: one struct a pass, not two */
     const int prepare = mode == BTG_SOFT_PREPARE;
     const int bodyA = prepare ? contacts[i].bodyA : softContacts[slot].bodyA;
