@@ -353,11 +353,12 @@ static void soft_body(int i, int mode, SOFT_ARGS)
     /* the step's first pass reads the body's flags (props: a line a body, 160 bytes apart); the
      * others its kind, which that pass left in the velocity row they read anyway (a fifth of a
      * CPU's body passes waited for props) */
-    const uint flags = mode == BTG_SOFT_BODY_BEGIN ? props[i].flags : soft_kind_flags(softBodies[row + BTG_SOFT_VEL_LIN].w);
+    const BtgFloat4 velLin = mode == BTG_SOFT_BODY_BEGIN ? btgZero4() : softBodies[row + BTG_SOFT_VEL_LIN];
+    const uint flags = mode == BTG_SOFT_BODY_BEGIN ? props[i].flags : soft_kind_flags(velLin.w);
     if (mode == BTG_SOFT_BODY_END) {
         /* the step's velocities back into the world's columns (their w kept) */
         if (btgIsSolverDynamic(flags)) {
-            const BtgFloat4 v = softBodies[row + BTG_SOFT_VEL_LIN], w = softBodies[row + BTG_SOFT_VEL_ANG];
+            const BtgFloat4 v = velLin, w = softBodies[row + BTG_SOFT_VEL_ANG];
             lin[i] = btgMake4(v.x, v.y, v.z, lin[i].w);
             ang[i] = btgMake4(w.x, w.y, w.z, ang[i].w);
         }
@@ -382,7 +383,7 @@ static void soft_body(int i, int mode, SOFT_ARGS)
         v = lin[i];
         w = ang[i];
     } else {
-        v = softBodies[row + BTG_SOFT_VEL_LIN];
+        v = velLin;
         w = softBodies[row + BTG_SOFT_VEL_ANG];
     }
     if (mode == BTG_SOFT_BODY_BEGIN) btgSoftBodyBegin(flags, &v, linVel0[i], rows, params.substeps);
