@@ -32,7 +32,9 @@
 #include "shared/grid_barrier.h"
 #include "shared/soft_flow.h"
 #include "shared/contact_material.h"
-#include "shared/soft_wide.h"
+#ifdef BTG_CPU_DEVICE
+#include "shared/soft_wide.h" /* the wide sweeps: CPU devices only (a GPU's build never sees them) */
+#endif
 
 #define SOFT_ARGS __global BtgContact* contacts, __global BtgSoftContact* softContacts, \
     __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld, \
@@ -631,6 +633,10 @@ __kernel void soft_color_range(__global const uint* restrict colorStart, __globa
         soft_edge(colorOrder[k], k, nc, mode, key, SOFT_PASS);
 }
 
+#define WIDE_INFO 3 /* ints a lane of a chunk: its mode (1: wide), body A, body B (each 8 a chunk) */
+#define WIDE_ARGS __global const uint* restrict wideStart, __global float* wideBlock, __global int* wideLanes
+#define WIDE_PASS wideStart, wideBlock, wideLanes
+#ifdef BTG_CPU_DEVICE
 /* ---- CPU devices: the solve and relax sweeps eight contacts at a time (soft_wide.h) ----
  * The regular colours' slots in chunks of eight (colour c's chunk m: slots colorStart[c] + 8m..,
  * at wideStart[c] + m); soft_wide_pack puts each contact the wide rows serve into its chunk's
@@ -656,9 +662,6 @@ static int2 wide_chunk_of(int k, __global const uint* restrict colorStart, __glo
     const int at = k - (int)colorStart[c];
     return (int2)((int)wideStart[c] + at / BTG_SOFT_WIDE, at % BTG_SOFT_WIDE);
 }
-#define WIDE_INFO 3 /* ints a lane of a chunk: its mode (1: wide), body A, body B (each 8 a chunk) */
-#define WIDE_ARGS __global const uint* restrict wideStart, __global float* wideBlock, __global int* wideLanes
-#define WIDE_PASS wideStart, wideBlock, wideLanes
 static void wide_pack_slot(int k, __global const uint* restrict colorStart, __global const int* restrict colorOrder,
                            int nc, WIDE_ARGS, __global const BtgSoftContact* softContacts)
 {
@@ -811,6 +814,8 @@ __kernel void soft_color_wide(__global const uint* restrict colorStart, __global
         soft_wide_chunk(color, m, m + 1 < stop ? m + 1 : -1, begin, end, colorOrder, WIDE_PASS, nc, mode, key, SOFT_PASS);
 }
 
+#endif /* BTG_CPU_DEVICE */
+
 __kernel void soft_color_serial(__global const int* restrict edgeColor, int edgeCapacity, int numJoints, int color,
                                 int mode, uint key, SOFT_ARGS)
 {
@@ -902,6 +907,7 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
             }
             if (bodyMode == BTG_SOFT_BODY_END) break; /* the last pass: each body's own rows */
             SOFT_BARRIER();
+#ifdef BTG_CPU_DEVICE
             if (wide && pass == 2) {
                 /* a CPU device's wide sweeps: the lanes from the soft contacts after the first
                  * substep's gather (soft_wide_pack's) */
@@ -909,12 +915,15 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
                     wide_pack_slot(k, colorStart, colorOrder, nc, WIDE_PASS, softContacts);
                 SOFT_BARRIER();
             }
+#endif
             continue;
         }
+#ifdef BTG_CPU_DEVICE
         if (wide && mode == BTG_SOFT_RESTITUTION) {
             for (int k = gid; k < (int)colorStart[last]; k += gsize) wide_unpack_slot(k, colorStart, WIDE_PASS, softContacts);
             SOFT_BARRIER();
         }
+#endif
         /* store (and prepare, unless it notes the bodies' supports) touch each edge alone: no barrier between colors */
         const int independent = (mode == BTG_SOFT_PREPARE && !(params.heldMassRatio > 0.0f)) || mode == BTG_SOFT_STORE;
         /* SOLVER_RANDMIZE_ORDER: a substep's solve and relax sweeps take their colours (the
@@ -932,13 +941,18 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
             const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
             if (begin == end) continue; /* the coloring's slack: every work-item reads the same range */
             --left;
-            if (wide && (base == BTG_SOFT_SOLVE || base == BTG_SOFT_RELAX)) {
+#ifdef BTG_CPU_DEVICE
+            const int wideSweep = wide && (base == BTG_SOFT_SOLVE || base == BTG_SOFT_RELAX);
+            if (wideSweep) {
                 const int chunks = (end - begin + BTG_SOFT_WIDE - 1) / BTG_SOFT_WIDE;
                 for (int m = gid; m < chunks; m += gsize)
                     soft_wide_chunk(color, m, m + gsize < chunks ? m + gsize : -1, begin, end, colorOrder, WIDE_PASS, nc,
                                     mode, key, SOFT_PASS);
             }
-            for (int k = begin + gid; k < end && !(wide && (base == BTG_SOFT_SOLVE || base == BTG_SOFT_RELAX)); k += gsize) {
+#else
+            const int wideSweep = 0; /* a GPU's build has no wide sweeps (the host never asks) */
+#endif
+            for (int k = begin + gid; k < end && !wideSweep; k += gsize) {
                 const int e = colorOrder[k];
                 /* one call of the rows for both orders: one compiled copy of their arithmetic */
                 int2 ab = (int2)(0, 0);
