@@ -21,6 +21,9 @@ constexpr int kOneGroupMaxContacts = 4096;
 // launches win above about a thousand contacts (PoCL, 2 cores, cubes of 343 / 1,000: frame
 // 8.9 / 19.1 ms against one group's 8.7 / 24.7; 125: 5.8 against 3.4, the launches' host cost).
 constexpr int kOneGroupMaxContactsWide = 1024;
+// ... and as many bodies: one group runs the substeps' body passes on one core (PoCL cubes
+// 32,768 while they fall, few contacts: frame 87.6 ms against b4e1194's 33.2).
+constexpr int kOneGroupMaxBodiesWide = 4096;
 constexpr int kMaxSubsteps = 256;
 
 // A CPU device takes the solve and relax sweeps eight contacts a work-item (soft_wide.h): it
@@ -209,8 +212,10 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     // With the wide sweeps a CPU device takes the whole stage in one launch too, a group a core
     // with grid barriers between the colours: the per-colour path enqueues about 300 launches a
     // step, whose host cost was about 4 ms a frame on PoCL (cubes 1,000 and 8,000 alike).
-    const bool wideResident = wideOn && residentAllowed(w) && w.lastContactCount > kOneGroupMaxContactsWide;
-    if (resident || wideResident || w.lastContactCount <= (wideOn ? kOneGroupMaxContactsWide : kOneGroupMaxContacts)) {
+    const bool wideOneGroup = w.lastContactCount <= kOneGroupMaxContactsWide && numBodies <= kOneGroupMaxBodiesWide;
+    const bool wideResident = wideOn && residentAllowed(w) && !wideOneGroup;
+    const bool oneGroup = wideOn ? wideOneGroup : w.lastContactCount <= kOneGroupMaxContacts;
+    if (resident || wideResident || oneGroup) {
         cl_kernel k = prog.kernel("soft_resident");
         const bool many = resident || wideResident;
         const size_t groups = many ? residentSolveGroups(w) : 1;
