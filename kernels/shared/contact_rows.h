@@ -346,11 +346,11 @@ static inline BtgFloat4 btgFrictionDir2(const BtgContact* c, int k)
 /* The same, or the explicit directions of anisotropic friction where dirs is given. */
 static inline BtgFloat4 btgFrictionDir1Of(const BtgContact* c, const BtgFrictionDirs* dirs, int k)
 {
-    return dirs ? dirs->dir1[k] : btgFrictionDir1(c, k);
+    return dirs ? btgPick4(dirs->dir1, k) : btgFrictionDir1(c, k);
 }
 static inline BtgFloat4 btgFrictionDir2Of(const BtgContact* c, const BtgFrictionDirs* dirs, int k)
 {
-    return dirs ? dirs->dir2[k] : btgFrictionDir2(c, k);
+    return dirs ? btgPick4(dirs->dir2, k) : btgFrictionDir2(c, k);
 }
 
 /* Solver rows of one contact. a0/b0: velocities before this substep's forces (restitution);
@@ -557,11 +557,11 @@ static inline void btgStoreContactImpulses(BTG_GLOBAL BtgContact* contacts, int 
  * every field of it then a load and a store there (btgSoftArmA: the same in the soft step). */
 static inline BtgFloat4 btgContactArmA(const BtgContact* c, int k)
 {
-    return btgXyz(k == 0 ? c->rA[0] : (k == 1 ? c->rA[1] : (k == 2 ? c->rA[2] : c->rA[3])));
+    return btgXyz(btgPick4(c->rA, k));
 }
 static inline BtgFloat4 btgContactArmB(const BtgContact* c, int k)
 {
-    return btgXyz(k == 0 ? c->rB[0] : (k == 1 ? c->rB[1] : (k == 2 ? c->rB[2] : c->rB[3])));
+    return btgXyz(btgPick4(c->rB, k));
 }
 /* Point k's rows as solver rows (see BtgContact): the normal row is unilateral, the friction
  * rows are bounded by friction times the point's normal impulse as it stands, the push row

@@ -131,11 +131,11 @@ typedef struct {
  * normal rows took about 5,000 cycles: every field a load and a store through it). */
 static inline BtgFloat4 btgSoftArmA(const BtgSoftContact* s, int k)
 {
-    return k == 0 ? s->rA[0] : (k == 1 ? s->rA[1] : (k == 2 ? s->rA[2] : s->rA[3]));
+    return btgPick4(s->rA, k);
 }
 static inline BtgFloat4 btgSoftArmB(const BtgSoftContact* s, int k)
 {
-    return k == 0 ? s->rB[0] : (k == 1 ? s->rB[1] : (k == 2 ? s->rB[2] : s->rB[3]));
+    return btgPick4(s->rB, k);
 }
 
 /* Contacts a work-item solves side by side on a CPU device (soft_wide.h's lanes, float8), and
@@ -381,11 +381,11 @@ static inline void btgSoftTangents(BtgSoftContact* s)
  * impulse holds friction x scale along that axis, as Bullet's row does). */
 static inline BtgFloat4 btgSoftDir1(const BtgSoftContact* s, const BtgFrictionDirs* dirs, int k)
 {
-    return dirs ? btgXyz(dirs->dir1[k]) : s->tangent1;
+    return dirs ? btgXyz(btgPick4(dirs->dir1, k)) : s->tangent1;
 }
 static inline BtgFloat4 btgSoftDir2(const BtgSoftContact* s, const BtgFrictionDirs* dirs, int k)
 {
-    return dirs ? btgXyz(dirs->dir2[k]) : s->tangent2;
+    return dirs ? btgXyz(btgPick4(dirs->dir2, k)) : s->tangent2;
 }
 /* Whether a contact takes Bullet's directions: one of an anisotropic body (flagsA/B: its
  * bodies' BtgBodyProps flags). Other contacts keep the tangents. */

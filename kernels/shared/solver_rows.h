@@ -60,6 +60,14 @@ static inline float btgLane(BtgFloat4 v, int k)
 {
     return k == 0 ? v.x : (k == 1 ? v.y : (k == 2 ? v.z : v.w));
 }
+/* Element k of a private four-element array (a contact's lever arms, a point's friction
+ * directions), picked by selects: an index known only at run time into a private array keeps
+ * the whole struct around it in a GPU's local memory (the H100's soft_resident had a
+ * 1,584-byte stack frame, every contact field a load and a store through it). */
+static inline BtgFloat4 btgPick4(const BtgFloat4* a, int k)
+{
+    return k == 0 ? a[0] : (k == 1 ? a[1] : (k == 2 ? a[2] : a[3]));
+}
 static inline void btgSetLane(BtgFloat4* v, int k, float x)
 {
     if (k == 0) (*v).x = x;
