@@ -157,23 +157,22 @@ static BTG_ALWAYS_INLINE BtgW btgWRowVelocity(const BtgJacobianW* j, const BtgVe
     BtgW v2 = btgW3Dot(btgW3Neg(j->linear), vb->lin) + btgW3Dot(j->angularB, vb->ang);
     return v1 + v2;
 }
-/* btgRowApply, each component as its float4 expression */
+/* btgRowApply on one body (l: the row's linear part on that side), each component as its float4
+ * expression */
+static BTG_ALWAYS_INLINE void btgWApplySide(BtgVelW* v, BtgV3W l, BtgV3W response, const BtgBodyW* body, BtgW impulse)
+{
+    v->lin.x = v->lin.x + (l.x * body->invMassLin.x) * impulse * body->linFactor.x;
+    v->lin.y = v->lin.y + (l.y * body->invMassLin.y) * impulse * body->linFactor.y;
+    v->lin.z = v->lin.z + (l.z * body->invMassLin.z) * impulse * body->linFactor.z;
+    v->ang.x = v->ang.x + response.x * (body->angFactor.x * impulse);
+    v->ang.y = v->ang.y + response.y * (body->angFactor.y * impulse);
+    v->ang.z = v->ang.z + response.z * (body->angFactor.z * impulse);
+}
 static BTG_ALWAYS_INLINE void btgWRowApply(const BtgJacobianW* j, const BtgBodyW* a, const BtgBodyW* b, BtgVelW* va,
                                            BtgVelW* vb, BtgW impulse)
 {
-    const BtgV3W l = j->linear, nl = btgW3Neg(j->linear);
-    va->lin.x = va->lin.x + (l.x * a->invMassLin.x) * impulse * a->linFactor.x;
-    va->lin.y = va->lin.y + (l.y * a->invMassLin.y) * impulse * a->linFactor.y;
-    va->lin.z = va->lin.z + (l.z * a->invMassLin.z) * impulse * a->linFactor.z;
-    va->ang.x = va->ang.x + j->responseA.x * (a->angFactor.x * impulse);
-    va->ang.y = va->ang.y + j->responseA.y * (a->angFactor.y * impulse);
-    va->ang.z = va->ang.z + j->responseA.z * (a->angFactor.z * impulse);
-    vb->lin.x = vb->lin.x + (nl.x * b->invMassLin.x) * impulse * b->linFactor.x;
-    vb->lin.y = vb->lin.y + (nl.y * b->invMassLin.y) * impulse * b->linFactor.y;
-    vb->lin.z = vb->lin.z + (nl.z * b->invMassLin.z) * impulse * b->linFactor.z;
-    vb->ang.x = vb->ang.x + j->responseB.x * (b->angFactor.x * impulse);
-    vb->ang.y = vb->ang.y + j->responseB.y * (b->angFactor.y * impulse);
-    vb->ang.z = vb->ang.z + j->responseB.z * (b->angFactor.z * impulse);
+    btgWApplySide(va, j->linear, j->responseA, a, impulse);
+    btgWApplySide(vb, btgW3Neg(j->linear), j->responseB, b, impulse);
 }
 /* A row's velocity change kept only in the lanes that solve it (the scalar rows return early). */
 static BTG_ALWAYS_INLINE void btgWKeep(BtgVelW* v, BtgVelW before, int8 solved)
