@@ -1,18 +1,19 @@
-/* soft_wide.h — the soft step's solve and relax sweeps, eight contacts of one colour at a time
- * in the lanes of float8 (solve_soft.cl's soft_color_wide, on CPU devices). A CPU device runs a
- * work-group's work-items one after another, each contact's rows as scalar code, and so the
- * sweeps were the soft step's cost there (54% of a PoCL run of cubes 8,000); the contacts of a
- * colour share no dynamic body, so they can go through the rows side by side, as Box2D v3's
- * contact solver runs them in SIMD lanes (contact_solver.c, b2FloatW). Each expression below is
- * written as its scalar counterpart in soft_rows.h / solver_rows.h / math.h is (the same
- * operations in the same order in one statement, so a compiler contracts the same products into
- * the same fused multiply-adds), lane by lane the same arithmetic as soft_contact's: the same
- * results bit for bit (SolveSoft tests, the bench's state hash). Device only (OpenCL vectors):
- * the CPU reference is soft_rows.h itself. The contacts' lanes live in blocks of eight
- * (soft_wide_pack), read and written as vectors; the bodies' are gathered each sweep. Served:
- * contacts with the soft step's own spring and the tangents (not a pair's stiffness and damping, not Bullet's directions), points in order
- * (no SOLVER_RANDMIZE_ORDER), friction after the normals (no interleave), no held pairs, no
- * rolling rows; soft_color_wide hands everything else to soft_edge. */
+/* soft_wide.h — the soft step's solve and relax rows, eight contacts of one colour at a time in
+ * the lanes of float8, for CPU devices (soft_wide_passes.h's kernels and soft_resident). A CPU
+ * device runs a work-group's work-items one after another, each contact's rows as scalar code,
+ * and so the sweeps were the soft step's cost there (54% of a PoCL run of cubes 8,000); the
+ * contacts of a colour share no dynamic body, so they can go through the rows side by side, as
+ * Box2D v3's contact solver runs them in SIMD lanes (contact_solver.c, b2FloatW). Each
+ * expression below is written as its scalar counterpart in soft_rows.h / solver_rows.h / math.h
+ * is (the same operations in the same order in one statement, so a compiler contracts the same
+ * products into the same fused multiply-adds): lane by lane the same arithmetic as
+ * soft_contact's, the same results bit for bit (SolveSoft.LaunchShapesAgreeBitwise, the bench's
+ * state hash). Device only (OpenCL vectors): the CPU reference is soft_rows.h itself. The
+ * contacts' lanes live in blocks of eight (soft_wide_pack), read and written as vectors; the
+ * bodies' are gathered each sweep. Served: contacts with the soft step's own spring and the
+ * tangents (not a pair's stiffness and damping, not Bullet's directions), points in order (no
+ * SOLVER_RANDMIZE_ORDER), friction after the normals (no interleave), no held pairs, no rolling
+ * rows; everything else goes to soft_edge. */
 #ifndef BTG_SOFT_WIDE_H
 #define BTG_SOFT_WIDE_H
 #include "soft_rows.h"
@@ -44,7 +45,6 @@ static BTG_ALWAYS_INLINE BtgV3W btgW3Cross(BtgV3W a, BtgV3W b)
 }
 static BTG_ALWAYS_INLINE BtgV3W btgW3MatMul(BtgM3W m, BtgV3W v) { return btgW3(btgW3Dot(m.r0, v), btgW3Dot(m.r1, v), btgW3Dot(m.r2, v)); }
 static BTG_ALWAYS_INLINE BtgV3W btgW3Mul(BtgV3W a, BtgV3W b) { return btgW3(a.x * b.x, a.y * b.y, a.z * b.z); }
-static BTG_ALWAYS_INLINE BtgW btgWSelect(BtgW no, BtgW yes, int8 pick) { return select(no, yes, pick); }
 static BTG_ALWAYS_INLINE BtgV3W btgW3Select(BtgV3W no, BtgV3W yes, int8 pick)
 {
     return btgW3(select(no.x, yes.x, pick), select(no.y, yes.y, pick), select(no.z, yes.z, pick));
@@ -71,12 +71,7 @@ typedef struct {
     BtgM3W rot;
 } BtgDeltaW;
 
-static BTG_ALWAYS_INLINE BtgW btgWLoad(const float* lanes, int f) { return vload8(0, lanes + f * BTG_SOFT_WIDE); }
-static BTG_ALWAYS_INLINE BtgV3W btgW3Load(const float* lanes, int f)
-{
-    return btgW3(btgWLoad(lanes, f), btgWLoad(lanes, f + 1), btgWLoad(lanes, f + 2));
-}
-/* The same from a chunk's block of contact lanes (global memory: soft_wide_pack's). */
+/* Field f of a chunk's block of contact lanes (global memory: soft_wide_pack's), as vectors. */
 static BTG_ALWAYS_INLINE BtgW btgWLoadG(__global const float* c, int f) { return vload8(0, c + f * BTG_SOFT_WIDE); }
 static BTG_ALWAYS_INLINE BtgV3W btgW3LoadG(__global const float* c, int f)
 {
