@@ -23,6 +23,9 @@ typedef int4 BtgInt4;
  * bytes) a CPU device's compiler would otherwise copy onto the stack at every call */
 #define BTG_ALWAYS_INLINE inline __attribute__((always_inline))
 #define BTG_STATIC_ASSERT(cond, msg)
+/* a loop over a private array's elements, unrolled: with its index known at compile time the
+ * array stays in registers (an indexed private array lives in a GPU's local memory) */
+#define BTG_UNROLL _Pragma("unroll")
 static inline BtgFloat4 btgMake4(float x, float y, float z, float w) { return (float4)(x, y, z, w); }
 static inline float btgSqrt(float x) { return sqrt(x); }
 static inline float btgAbs(float x) { return fabs(x); }
@@ -56,6 +59,7 @@ struct alignas(16) BtgInt4 {
 #define BTG_ALWAYS_INLINE inline
 #endif
 #define BTG_STATIC_ASSERT(cond, msg) static_assert(cond, msg)
+#define BTG_UNROLL
 static inline BtgFloat4 btgMake4(float x, float y, float z, float w) { return BtgFloat4{x, y, z, w}; }
 static inline BtgFloat4 operator+(BtgFloat4 a, BtgFloat4 b) { return {a.x + b.x, a.y + b.y, a.z + b.z, a.w + b.w}; }
 static inline BtgFloat4 operator-(BtgFloat4 a, BtgFloat4 b) { return {a.x - b.x, a.y - b.y, a.z - b.z, a.w - b.w}; }

@@ -175,8 +175,9 @@ static inline int btgSoftHeldNormals(BtgSoftContact* s, int lightIsA, BTG_SHARED
     BtgFloat4 impulse = support->normalImpulse, total = support->totalNormal;
     float delta[BTG_MAX_POINTS];
     btgSoftShareOut(&share, support, impulse, force, dt, torque, delta);
-    for (int j = 0; j < support->numPoints; ++j) {
-        if (btgLane(support->normalMass, j) == 0.0f) continue;
+    BTG_UNROLL
+    for (int j = 0; j < BTG_MAX_POINTS; ++j) {
+        if (j >= support->numPoints || btgLane(support->normalMass, j) == 0.0f) continue;
         float old = btgLane(impulse, j), next = old + delta[j];
         if (!(next > 0.0f)) next = 0.0f;
         btgSetLane(&impulse, j, next);

@@ -381,11 +381,11 @@ static inline void btgSoftTangents(BtgSoftContact* s)
  * impulse holds friction x scale along that axis, as Bullet's row does). */
 static inline BtgFloat4 btgSoftDir1(const BtgSoftContact* s, const BtgFrictionDirs* dirs, int k)
 {
-    return dirs ? btgXyz(btgPick4(dirs->dir1, k)) : s->tangent1;
+    return (s->flags & BTG_SOFT_BULLET_DIRECTIONS) ? btgXyz(btgPick4(dirs->dir1, k)) : s->tangent1;
 }
 static inline BtgFloat4 btgSoftDir2(const BtgSoftContact* s, const BtgFrictionDirs* dirs, int k)
 {
-    return dirs ? btgXyz(btgPick4(dirs->dir2, k)) : s->tangent2;
+    return (s->flags & BTG_SOFT_BULLET_DIRECTIONS) ? btgXyz(btgPick4(dirs->dir2, k)) : s->tangent2;
 }
 /* Whether a contact takes Bullet's directions: one of an anisotropic body (flagsA/B: its
  * bodies' BtgBodyProps flags). Other contacts keep the tangents. */
@@ -399,7 +399,7 @@ static inline int btgSoftTakesBulletDirections(uint flagsA, uint flagsB, BtgSoft
  * velocities before the step's forces. */
 static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel a0,
                                             BtgBodyVel b0, BtgFloat4 restitution, int solvable, BtgSoftParams p,
-                                            BtgPairMaterial mat, const BtgFrictionDirs* dirs)
+                                            BtgPairMaterial mat, int bullet, const BtgFrictionDirs* dirs)
 {
     BtgSoftContact s;
     s.normal = btgXyz(c.normal);
@@ -415,7 +415,7 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
     s.bodyA = c.bodyA;
     s.bodyB = c.bodyB;
     s.numPoints = c.numPoints;
-    s.flags = (a.dynamic && b.dynamic ? 0 : BTG_SOFT_FIXED) | (dirs ? BTG_SOFT_BULLET_DIRECTIONS : 0);
+    s.flags = (a.dynamic && b.dynamic ? 0 : BTG_SOFT_FIXED) | (bullet ? BTG_SOFT_BULLET_DIRECTIONS : 0);
     s.springStiffness = 0.0f;
     s.springDamping = 0.0f;
     if (mat.stiffnessDamping) {
@@ -446,7 +446,8 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
      * each step's first substep (0.65 mm/s at 0.1 rad), while between two dynamic bodies the last
      * step's friction rocks the exact towers of 20 and 30 (30 cm) and, with heldMassRatio, throws
      * the held pair (SolverFeatures.SoftStepHoldsABoxOnASlope, SolverModes). */
-    const float frictionWarm = (s.flags & BTG_SOFT_FIXED) && !dirs && !(p.heldMassRatio > 0.0f) ? p.warmScale : 0.0f;
+    const float frictionWarm = (s.flags & BTG_SOFT_FIXED) && !bullet && !(p.heldMassRatio > 0.0f) ? p.warmScale : 0.0f;
+    BTG_UNROLL
     for (int k = 0; k < BTG_MAX_POINTS; ++k) {
         s.rA[k] = btgZero4();
         s.rB[k] = btgZero4();
@@ -471,7 +472,7 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
         /* scaled directions are not orthogonal: a second row would add friction Bullet's one
          * direction does not have (the parallelogram of two bounded rows), so with one
          * direction the second has no row and no impulse */
-        const int second = !dirs || p.twoDirections;
+        const int second = !bullet || p.twoDirections;
         if (second) btgSetLane(&s.tangent2Mass, k, btgPointRowMass(btgPointJacobian(d2, rA, rB, a, b), rA, rB, a, b));
         btgSetLane(&s.normalImpulse, k, btgLane(c.normalImpulse, k) * p.warmScale);
         btgSetLane(&s.tangent1Impulse, k, btgLane(c.friction1Impulse, k) * frictionWarm);
