@@ -26,6 +26,19 @@
  * color with heldMassRatio, supports), linVel, angVel (dynamic rows, at the end), contacts (impulses,
  * tangents), jointRows (impulses: a step's, substep's times substeps), and in soft_transforms
  * pos, rot and NaN status. */
+/* NVIDIA's GPUs (BTG_NVIDIA, from the host): the data the work-groups share in soft_resident is
+ * not volatile but read with ld.global.cg (btgLoadShared4, btgLoadSharedInt: L2, coherent across
+ * compute units); every read of a body's rows or of another work-item's soft contact goes
+ * through those. NVIDIA compiles volatile to system-scope accesses that run one after another:
+ * with them the H100's soft solve at 32,768 cubes took 4.7 ms a step, 0.8 without. The held
+ * pairs' support (soft_held_rows.h) stays volatile. BTG_SOFT_VOLATILE=1 (a build option through
+ * BTGPU_CL_OPTIONS) keeps volatile, for measuring. */
+#if defined(BTG_NVIDIA) && !defined(BTG_SOFT_VOLATILE)
+#undef BTG_SHARED
+#define BTG_SHARED
+#define BTG_LOAD_CG 1
+#define BTG_HELD_GLOBAL volatile __global
+#endif
 #include "shared/types.h"
 #include "shared/math.h"
 #include "shared/soft_held_rows.h"
@@ -149,27 +162,27 @@ static BtgSoftContact load_soft_gather(__global BtgSoftContact* softContacts, in
     BtgSoftContact s;
     s.bodyA = 0;
     s.bodyB = 0;
-    s.numPoints = sc[i].numPoints;
-    s.flags = sc[i].flags;
+    s.numPoints = btgLoadSharedInt(&sc[i].numPoints);
+    s.flags = btgLoadSharedInt(&sc[i].flags);
     s.friction = 0.0f;
     s.restitution = 0.0f;
     s.springStiffness = 0.0f;
     s.springDamping = 0.0f;
-    s.normal = sc[i].normal;
+    s.normal = btgLoadShared4(&sc[i].normal);
     btgSoftTangents(&s);
     s.normalMass = btgZero4();
     for (int k = 0; k < BTG_MAX_POINTS; ++k) {
-        const BtgFloat4 r = k < s.numPoints ? (side == 0 ? sc[i].rA[k] : sc[i].rB[k]) : btgZero4();
+        const BtgFloat4 r = k < s.numPoints ? btgLoadShared4(side == 0 ? &sc[i].rA[k] : &sc[i].rB[k]) : btgZero4();
         s.rA[k] = side == 0 ? btgXyz(r) : btgZero4();
         s.rB[k] = side == 1 ? btgXyz(r) : btgZero4();
         btgSetLane(&s.normalMass, k, r.w);
     }
-    s.normalImpulse = sc[i].normalImpulse;
-    s.tangent1Impulse = sc[i].tangent1Impulse;
-    s.tangent2Impulse = sc[i].tangent2Impulse;
-    s.totalNormal = totals ? sc[i].totalNormal : btgZero4();
-    s.total1 = totals ? sc[i].total1 : btgZero4();
-    s.total2 = totals ? sc[i].total2 : btgZero4();
+    s.normalImpulse = btgLoadShared4(&sc[i].normalImpulse);
+    s.tangent1Impulse = btgLoadShared4(&sc[i].tangent1Impulse);
+    s.tangent2Impulse = btgLoadShared4(&sc[i].tangent2Impulse);
+    s.totalNormal = totals ? btgLoadShared4(&sc[i].totalNormal) : btgZero4();
+    s.total1 = totals ? btgLoadShared4(&sc[i].total1) : btgZero4();
+    s.total2 = totals ? btgLoadShared4(&sc[i].total2) : btgZero4();
     s.tangent1Mass = btgZero4();
     s.tangent2Mass = btgZero4();
     s.baseSeparation = btgZero4();
@@ -236,12 +249,12 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
         /* the totals the gather wrote, the impulses a held pair may have: from other work-items */
         BtgSoftContact s = softContacts[slot];
         BTG_SHARED __global BtgSoftContact* sc = shared_soft(softContacts);
-        s.normalImpulse = sc[slot].normalImpulse;
-        s.tangent1Impulse = sc[slot].tangent1Impulse;
-        s.tangent2Impulse = sc[slot].tangent2Impulse;
-        s.totalNormal = sc[slot].totalNormal;
-        s.total1 = sc[slot].total1;
-        s.total2 = sc[slot].total2;
+        s.normalImpulse = btgLoadShared4(&sc[slot].normalImpulse);
+        s.tangent1Impulse = btgLoadShared4(&sc[slot].tangent1Impulse);
+        s.tangent2Impulse = btgLoadShared4(&sc[slot].tangent2Impulse);
+        s.totalNormal = btgLoadShared4(&sc[slot].totalNormal);
+        s.total1 = btgLoadShared4(&sc[slot].total1);
+        s.total2 = btgLoadShared4(&sc[slot].total2);
         btgSoftStore(contacts, i, &s);
         return;
     }
@@ -274,8 +287,8 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
             const int fixed = a.dynamic != b.dynamic && btgContactSolvable(pa.flags, pb.flags);
             const int light = btgSoftLightSide(a, b, params);
             const int rowA = BTG_SOFT_BODY_ROWS * bodyA + BTG_SOFT_SUPPORT, rowB = BTG_SOFT_BODY_ROWS * bodyB + BTG_SOFT_SUPPORT;
-            if (a.dynamic) softBodies[rowA] = btgSoftNoteSupport(softBodies[rowA], fixed, light == 1, slot);
-            if (b.dynamic) softBodies[rowB] = btgSoftNoteSupport(softBodies[rowB], fixed, light == 2, slot);
+            if (a.dynamic) softBodies[rowA] = btgSoftNoteSupport(btgLoadShared4(&softBodies[rowA]), fixed, light == 1, slot);
+            if (b.dynamic) softBodies[rowB] = btgSoftNoteSupport(btgLoadShared4(&softBodies[rowB]), fixed, light == 2, slot);
         }
         return;
     }
@@ -289,11 +302,11 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
         if (params.heldMassRatio > 0.0f) {
             const int light = btgSoftLightSide(a, b, params);
             if (light) {
-                const BtgFloat4 support = softBodies[(light == 1 ? rA : rB) + BTG_SOFT_SUPPORT];
+                const BtgFloat4 support = btgLoadShared4(&softBodies[(light == 1 ? rA : rB) + BTG_SOFT_SUPPORT]);
                 if (support.x == 1.0f && btgSoftHeldNormals(&s, light == 1, shared_soft(softContacts) + (int)support.y, a, b, &va,
                                                             &vb, dA, dB, mode == BTG_SOFT_SOLVE, params))
                     normals = 0;
-            } else if (a.dynamic != b.dynamic && softBodies[(a.dynamic ? rA : rB) + BTG_SOFT_SUPPORT].z == 1.0f) {
+            } else if (a.dynamic != b.dynamic && btgLoadShared4(&softBodies[(a.dynamic ? rA : rB) + BTG_SOFT_SUPPORT]).z == 1.0f) {
                 normals = 3;
             }
         }
@@ -357,12 +370,12 @@ static void soft_body(int i, int mode, SOFT_ARGS)
     /* the step's first pass reads the body's flags (props: a line a body, 160 bytes apart); the
      * others its kind, which that pass left in the velocity row they read anyway (a fifth of a
      * CPU's body passes waited for props) */
-    const BtgFloat4 velLin = mode == BTG_SOFT_BODY_BEGIN ? btgZero4() : softBodies[row + BTG_SOFT_VEL_LIN];
+    const BtgFloat4 velLin = mode == BTG_SOFT_BODY_BEGIN ? btgZero4() : btgLoadShared4(&softBodies[row + BTG_SOFT_VEL_LIN]);
     const uint flags = mode == BTG_SOFT_BODY_BEGIN ? props[i].flags : soft_kind_flags(velLin.w);
     if (mode == BTG_SOFT_BODY_END) {
         /* the step's velocities back into the world's columns (their w kept) */
         if (btgIsSolverDynamic(flags)) {
-            const BtgFloat4 v = velLin, w = softBodies[row + BTG_SOFT_VEL_ANG];
+            const BtgFloat4 v = velLin, w = btgLoadShared4(&softBodies[row + BTG_SOFT_VEL_ANG]);
             lin[i] = btgMake4(v.x, v.y, v.z, lin[i].w);
             ang[i] = btgMake4(w.x, w.y, w.z, ang[i].w);
         }
@@ -380,7 +393,7 @@ static void soft_body(int i, int mode, SOFT_ARGS)
         const int read = (velocity && r == BTG_SOFT_FORCE_LIN) ||
                          (mode == BTG_SOFT_BODY_CARRY && (r == BTG_SOFT_MARK_LIN || r == BTG_SOFT_MARK_ANG)) ||
                          (mode == BTG_SOFT_BODY_POSITION && (r == BTG_SOFT_DELTA_POS || r == BTG_SOFT_DELTA_ROT));
-        rows[r] = read ? softBodies[row + r] : btgZero4();
+        rows[r] = read ? btgLoadShared4(&softBodies[row + r]) : btgZero4();
     }
     BtgFloat4 v, w;
     if (mode == BTG_SOFT_BODY_BEGIN) {
@@ -388,7 +401,7 @@ static void soft_body(int i, int mode, SOFT_ARGS)
         w = ang[i];
     } else {
         v = velLin;
-        w = softBodies[row + BTG_SOFT_VEL_ANG];
+        w = btgLoadShared4(&softBodies[row + BTG_SOFT_VEL_ANG]);
     }
     if (mode == BTG_SOFT_BODY_BEGIN) btgSoftBodyBegin(flags, &v, linVel0[i], rows, params.substeps);
     else if (mode == BTG_SOFT_BODY_VELOCITY) btgSoftBodyVelocity(flags, &v, &w, rows, mark);

@@ -34,22 +34,31 @@ typedef struct {
 #define BTG_SHARED volatile
 #endif
 
-/* A float4 another work-group wrote in this launch, read through a BTG_SHARED pointer. Plain
- * (volatile on GPUs) by default. BTG_LOAD_CG (an experiment, NVIDIA only: build option
- * -DBTG_LOAD_CG=1 through BTGPU_CL_OPTIONS) reads it with PTX's ld.global.cg instead, cached in
- * L2 only (coherent across compute units, as volatile is) but free to be issued beside other
- * loads: on the H100 a contact's volatile loads ran one after another, about 300 cycles each. */
+/* A float4 (an int) another work-group wrote in this launch, read through a BTG_SHARED pointer.
+ * Plain (volatile on GPUs) by default. With BTG_LOAD_CG (NVIDIA only: solve_soft.cl sets it on
+ * NVIDIA's GPUs, where it also drops volatile from BTG_SHARED; for other programs a build option
+ * through BTGPU_CL_OPTIONS) it is read with PTX's ld.global.cg, cached in L2 only: coherent
+ * across compute units, as volatile is, but free to be issued beside other loads. NVIDIA
+ * compiles volatile to system-scope accesses that run one after another (about 300 cycles each
+ * on the H100): a program that drops volatile must read every such datum through these. */
 #if defined(BTG_LOAD_CG)
 static inline float4 btgLoadShared4(BTG_SHARED __global const float4* p)
 {
     float4 v;
-    asm volatile("ld.global.cg.v4.f32 {%0, %1, %2, %3}, [%4];"
+    __asm__ __volatile__("ld.global.cg.v4.f32 {%0, %1, %2, %3}, [%4];"
                  : "=f"(v.x), "=f"(v.y), "=f"(v.z), "=f"(v.w)
                  : "l"((__global const float4*)p));
     return v;
 }
+static inline int btgLoadSharedInt(BTG_SHARED __global const int* p)
+{
+    int v;
+    __asm__ __volatile__("ld.global.cg.s32 %0, [%1];" : "=r"(v) : "l"((__global const int*)p));
+    return v;
+}
 #else
 #define btgLoadShared4(p) (*(p))
+#define btgLoadSharedInt(p) (*(p))
 #endif
 
 /* Returns nonzero when the launch must stop (a timeout). Call from every work-item. Global

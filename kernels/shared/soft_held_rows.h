@@ -6,6 +6,13 @@
 #define BTG_SOFT_HELD_ROWS_H
 #include "soft_rows.h"
 
+/* The support a held pair reads and writes: another work-group's soft contact, volatile where
+ * BTG_SHARED is (solve_soft.cl keeps it volatile on NVIDIA's GPUs, where it reads the rest of
+ * its shared data with btgLoadShared4 instead). */
+#ifndef BTG_HELD_GLOBAL
+#define BTG_HELD_GLOBAL BTG_SHARED_GLOBAL
+#endif
+
 /* ---- a light body under a heavy one (SoftStepConfig::heldMassRatio) ---- */
 
 /* A body as a held contact's rows see it: its velocity read, nothing applied to it. */
@@ -51,7 +58,7 @@ typedef struct {
     int points;
 } BtgSoftShare;
 
-static inline int btgSoftMakeShare(BtgSoftShare* h, BTG_SHARED_GLOBAL const BtgSoftContact* support, int light,
+static inline int btgSoftMakeShare(BtgSoftShare* h, BTG_HELD_GLOBAL const BtgSoftContact* support, int light,
                                    BtgFloat4 dt)
 {
     const int supportA = support->bodyA == light;
@@ -93,7 +100,7 @@ static inline int btgSoftMakeShare(BtgSoftShare* h, BTG_SHARED_GLOBAL const BtgS
  * it: least norm, and of four points the free share (the null vector of the three sums) taken
  * nearest zero that keeps every point's impulse (from `base`) at or above zero, so that no
  * clamp breaks the balance (a lone loaded corner above would otherwise ask one below to pull). */
-static inline void btgSoftShareOut(const BtgSoftShare* h, BTG_SHARED_GLOBAL const BtgSoftContact* support, BtgFloat4 base,
+static inline void btgSoftShareOut(const BtgSoftShare* h, BTG_HELD_GLOBAL const BtgSoftContact* support, BtgFloat4 base,
                                    float force, BtgFloat4 dt, BtgFloat4 torque, float* delta)
 {
     const float b0 = -force * btgDot3(dt, h->dg), b1 = -btgDot3(torque, h->e1), b2 = -btgDot3(torque, h->e2);
@@ -133,7 +140,7 @@ static inline void btgSoftShareOut(const BtgSoftShare* h, BTG_SHARED_GLOBAL cons
  * support, shared out (btgSoftShareOut) so that force and torque on the light body balance when
  * the next substep warm-starts both: the light body is never kicked, so nothing has to catch
  * it. Returns 0 (rows left to btgSoftSolve) where btgSoftMakeShare finds no valid support. */
-static inline int btgSoftHeldNormals(BtgSoftContact* s, int lightIsA, BTG_SHARED_GLOBAL BtgSoftContact* support,
+static inline int btgSoftHeldNormals(BtgSoftContact* s, int lightIsA, BTG_HELD_GLOBAL BtgSoftContact* support,
                                      BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb, BtgSoftDelta dA,
                                      BtgSoftDelta dB, int useBias, BtgSoftParams p)
 {

@@ -410,8 +410,9 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
      * one (0: the contact never bounces) */
     s.pointRestitution = restitution;
     s.restitution = 0.0f;
-    for (int k = 0; k < c.numPoints; ++k)
+    BTG_FOR_POINTS(k, c.numPoints) {
         if (s.restitution == 0.0f) s.restitution = btgLane(restitution, k);
+    }
     s.bodyA = c.bodyA;
     s.bodyB = c.bodyB;
     s.numPoints = c.numPoints;
@@ -495,7 +496,9 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
      * against tipping on its face and exact towers rocked (the tower of 20 48-60 mm in 10 s,
      * never settling; with one factor 16 mm, settled in 0.5 s). */
     float r = 1.0f;
-    for (int k = 0; k < c.numPoints; ++k) r = btgMax(r, btgLane(s.stiffening, k));
+    BTG_FOR_POINTS(k, c.numPoints) {
+        r = btgMax(r, btgLane(s.stiffening, k));
+    }
     s.stiffening = btgMake4(r, r, r, r);
     return s;
 }
@@ -530,7 +533,7 @@ static BTG_ALWAYS_INLINE void btgSoftApplySide(BtgFloat4 linear, BtgFloat4 respo
 static BTG_ALWAYS_INLINE void btgSoftWarmStartSide(const BtgSoftContact* s, int side, BtgSolverBody body, BtgBodyVel* v,
                                                    const BtgFrictionDirs* dirs)
 {
-    for (int k = 0; k < s->numPoints; ++k) {
+    BTG_FOR_POINTS(k, s->numPoints) {
         if (btgLane(s->normalMass, k) == 0.0f) continue;
         float ln = btgLane(s->normalImpulse, k), l1 = btgLane(s->tangent1Impulse, k), l2 = btgLane(s->tangent2Impulse, k);
         BtgFloat4 impulse = btgXyz(s->normal * ln + btgSoftDir1(s, dirs, k) * l1 + btgSoftDir2(s, dirs, k) * l2);
@@ -543,7 +546,7 @@ static BTG_ALWAYS_INLINE void btgSoftWarmStartSide(const BtgSoftContact* s, int 
  * that solves friction (as btgSoftWarmTotals, whose sums these are, in the same order). */
 static BTG_ALWAYS_INLINE void btgSoftCarriedTotals(BtgSoftContact* s, int normal, int friction)
 {
-    for (int k = 0; k < s->numPoints; ++k) {
+    BTG_FOR_POINTS(k, s->numPoints) {
         if (btgLane(s->normalMass, k) == 0.0f) continue;
         if (normal) btgSetLane(&s->totalNormal, k, btgLane(s->totalNormal, k) + btgLane(s->normalImpulse, k));
         if (!friction) continue;
@@ -573,7 +576,7 @@ static inline int btgSoftSweepMode(BtgSoftParams p, int s, int relax)
 /* What a substep's warm start adds to the contact's step totals. */
 static BTG_ALWAYS_INLINE void btgSoftWarmTotals(BtgSoftContact* s)
 {
-    for (int k = 0; k < s->numPoints; ++k) {
+    BTG_FOR_POINTS(k, s->numPoints) {
         if (btgLane(s->normalMass, k) == 0.0f) continue;
         btgSetLane(&s->totalNormal, k, btgLane(s->totalNormal, k) + btgLane(s->normalImpulse, k));
         btgSetLane(&s->total1, k, btgLane(s->total1, k) + btgLane(s->tangent1Impulse, k));
@@ -676,7 +679,7 @@ static BTG_ALWAYS_INLINE void btgSoftFrictionRows(BtgSoftContact* s, int k, BtgS
 }
 /* The points in the order they are solved: SOLVER_RANDMIZE_ORDER permutes them by pointKey
  * (btgItemKey of the sweep's key and the contact; 0: in order), as the bullet mode's sweeps do. */
-static inline void btgSoftSolve(BtgSoftContact* s, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb,
+static BTG_ALWAYS_INLINE void btgSoftSolve(BtgSoftContact* s, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb,
                                 BtgSoftDelta dA, BtgSoftDelta dB, int useBias, int normals,
                                 BtgSoftParams p, uint pointKey, const BtgFrictionDirs* dirs)
 {
@@ -686,6 +689,26 @@ static inline void btgSoftSolve(BtgSoftContact* s, BtgSolverBody a, BtgSolverBod
     if (useBias && (normals & 1) && !(s->springStiffness > 0.0f)) spring = btgSoftContactSpring(s, p);
     /* SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS: each point's friction rows right after
      * its normal row, bounded by the impulse just found (as the bullet mode's interleaved sweep) */
+    if (pointKey == 0u) {
+        /* in order (the usual case): the points' loops unrolled, each k a constant */
+        if (friction && p.interleave) {
+            BTG_FOR_POINTS(k, n) {
+                if (normals & 1) btgSoftNormalRow(s, k, a, b, va, vb, dA, dB, useBias, normals, p, spring);
+                btgSoftFrictionRows(s, k, a, b, va, vb, dirs);
+            }
+            return;
+        }
+        if (normals & 1) {
+            BTG_FOR_POINTS(k, n) {
+                btgSoftNormalRow(s, k, a, b, va, vb, dA, dB, useBias, normals, p, spring);
+            }
+        }
+        if (!friction) return;
+        BTG_FOR_POINTS(k, n) {
+            btgSoftFrictionRows(s, k, a, b, va, vb, dirs);
+        }
+        return;
+    }
     if (friction && p.interleave) {
         for (int q = 0; q < n; ++q) {
             const int k = btgPermute(pointKey, n, q);
@@ -727,7 +750,7 @@ static inline void btgSoftRestitution(BtgSoftContact* s, BtgSolverBody a, BtgSol
                                       BtgBodyVel* vb, BtgSoftParams p)
 {
     if (s->restitution == 0.0f) return;
-    for (int k = 0; k < s->numPoints; ++k) {
+    BTG_FOR_POINTS(k, s->numPoints) {
         float mass = btgLane(s->normalMass, k), rel = btgLane(s->relativeVelocity, k);
         if (mass == 0.0f || rel > -p.restitutionThreshold || btgLane(s->totalNormal, k) == 0.0f) continue;
         BtgJacobian j = btgPointJacobian(s->normal, btgSoftArmA(s, k), btgSoftArmB(s, k), a, b);

@@ -56,6 +56,12 @@ typedef struct {
                       m_globalCfm or stiffness and damping; 0 for friction and rolling rows) */
 } BtgSolverRow;
 
+/* The points 0..n-1 of a contact, in a loop a GPU's compiler unrolls: with k a constant in each
+ * copy, btgLane, btgSetLane and btgPick4 are register moves; with k known only at run time the
+ * compiler turns their selects into an indexed vector element, which a GPU keeps in local
+ * memory (a store of the vector and a load, every lane of every row). Use with a braced body. */
+#define BTG_FOR_POINTS(k, n) BTG_UNROLL for (int k = 0; k < BTG_MAX_POINTS; ++k) if (k < (n))
+
 static inline float btgLane(BtgFloat4 v, int k)
 {
     return k == 0 ? v.x : (k == 1 ? v.y : (k == 2 ? v.z : v.w));
