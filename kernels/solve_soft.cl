@@ -282,7 +282,7 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
         if (bullet) dirs = frictionDirs[i];
         softContacts[slot] = btgSoftPack(btgSoftPrepare(contacts[i], a, b, a0, b0, restitution,
                                                         btgContactSolvable(pa.flags, pb.flags), params,
-                                                        btgPairMaterial(pa, pb), bullet, &dirs));
+                                                        btgPairMaterial(pa, pb), bullet, bullet ? &dirs : 0));
         if (params.heldMassRatio > 0.0f) {
             const int fixed = a.dynamic != b.dynamic && btgContactSolvable(pa.flags, pb.flags);
             const int light = btgSoftLightSide(a, b, params);
@@ -318,7 +318,7 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
         BtgFrictionDirs dirs;
         if (bullet) dirs = frictionDirs[i];
         btgSoftSolve(&s, a, b, &va, &vb, dA, dB, mode == BTG_SOFT_SOLVE, normals, params, btgItemKey(key, (uint)i + 1u),
-                     &dirs);
+                     bullet ? &dirs : 0);
         if (params.rolling && mode == BTG_SOFT_RELAX) btgSoftRolling(rolling[i], &s, a, b, &va, &vb, params);
     }
     if (a.dynamic) store_vel(va, a, softBodies, bodyA);
@@ -424,7 +424,7 @@ static void soft_body(int i, int mode, SOFT_ARGS)
             const int bullet = (s.flags & BTG_SOFT_BULLET_DIRECTIONS) != 0;
             BtgFrictionDirs dirs;
             if (bullet) dirs = frictionDirs[entry >> 2];
-            btgSoftWarmStartSide(&s, side, body, &vel, &dirs);
+            btgSoftWarmStartSide(&s, side, body, &vel, bullet ? &dirs : 0);
             if (owner) {
                 btgSoftWarmTotals(&s);
                 shared_soft(softContacts)[slot].totalNormal = s.totalNormal;

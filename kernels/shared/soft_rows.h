@@ -381,11 +381,11 @@ static inline void btgSoftTangents(BtgSoftContact* s)
  * impulse holds friction x scale along that axis, as Bullet's row does). */
 static inline BtgFloat4 btgSoftDir1(const BtgSoftContact* s, const BtgFrictionDirs* dirs, int k)
 {
-    return (s->flags & BTG_SOFT_BULLET_DIRECTIONS) ? btgXyz(btgPick4(dirs->dir1, k)) : s->tangent1;
+    return dirs ? btgXyz(btgPick4(dirs->dir1, k)) : s->tangent1;
 }
 static inline BtgFloat4 btgSoftDir2(const BtgSoftContact* s, const BtgFrictionDirs* dirs, int k)
 {
-    return (s->flags & BTG_SOFT_BULLET_DIRECTIONS) ? btgXyz(btgPick4(dirs->dir2, k)) : s->tangent2;
+    return dirs ? btgXyz(btgPick4(dirs->dir2, k)) : s->tangent2;
 }
 /* Whether a contact takes Bullet's directions: one of an anisotropic body (flagsA/B: its
  * bodies' BtgBodyProps flags). Other contacts keep the tangents. */
