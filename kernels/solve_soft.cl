@@ -28,11 +28,12 @@
  * pos, rot and NaN status. */
 /* NVIDIA's GPUs (BTG_NVIDIA, from the host): the data the work-groups share in soft_resident is
  * not volatile but read with ld.global.cg (btgLoadShared4, btgLoadSharedInt: L2, coherent across
- * compute units); every read of a body's rows or of another work-item's soft contact goes
- * through those. NVIDIA compiles volatile to system-scope accesses that run one after another:
- * with them the H100's soft solve at 32,768 cubes took 4.7 ms a step, 0.8 without. The held
- * pairs' support (soft_held_rows.h) stays volatile. BTG_SOFT_VOLATILE=1 (a build option through
- * BTGPU_CL_OPTIONS) keeps volatile, for measuring. */
+ * compute units, free to be issued together); every read of a body's rows or of another
+ * work-item's soft contact goes through those. The H100's soft solve stage at 32,768 cubes:
+ * 4.16 ms against 4.24 with volatile, the same state hash (2026-12-06). Plain loads, which may
+ * hit a compute unit's stale L1, took 0.8 ms and changed the hash run to run: the stage's time
+ * is its dependent loads' latency. The held pairs' support (soft_held_rows.h) stays volatile.
+ * BTG_SOFT_VOLATILE=1 (a build option through BTGPU_CL_OPTIONS) keeps volatile, for measuring. */
 #if defined(BTG_NVIDIA) && !defined(BTG_SOFT_VOLATILE)
 #undef BTG_SHARED
 #define BTG_SHARED

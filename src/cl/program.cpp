@@ -18,8 +18,8 @@ std::string baseBuildOptions(const Context& context)
     // volatile only stops the compiler from vectorizing (PoCL: the solve ran 2x slower).
     opts += context.device().isGpu ? " -DBTG_SHARED=volatile" : " -DBTG_SHARED= -DBTG_CPU_DEVICE=1";
     // NVIDIA's GPUs: a program may read that data with PTX's ld.global.cg instead (L2, coherent
-    // across compute units) and drop volatile, which NVIDIA compiles to system-scope accesses
-    // issued one after another (solve_soft.cl: the H100's soft solve 6x faster without them).
+    // across compute units) and drop volatile (solve_soft.cl does: its solve stage 2% faster on
+    // the H100, the same state hashes).
     if (context.device().isGpu && context.device().platformName.find("NVIDIA") != std::string::npos) opts += " -DBTG_NVIDIA=1";
     // For measuring (not for apps): BTGPU_CL_OPTIONS adds build options (NVIDIA's
     // -cl-nv-verbose, -cl-nv-maxrregcount=N, ...), BTGPU_CL_LOG=1 prints every build's log.
