@@ -26,20 +26,7 @@
  * color with heldMassRatio, supports), linVel, angVel (dynamic rows, at the end), contacts (impulses,
  * tangents), jointRows (impulses: a step's, substep's times substeps), and in soft_transforms
  * pos, rot and NaN status. */
-/* NVIDIA's GPUs (BTG_NVIDIA, from the host): the data the work-groups share in soft_resident is
- * not volatile but read with ld.global.cg (btgLoadShared4, btgLoadSharedInt: L2, coherent across
- * compute units, free to be issued together); every read of a body's rows or of another
- * work-item's soft contact goes through those. The H100's soft solve stage at 32,768 cubes:
- * 4.16 ms against 4.24 with volatile, the same state hash (2026-12-06). Plain loads, which may
- * hit a compute unit's stale L1, took 0.8 ms and changed the hash run to run: the stage's time
- * is its dependent loads' latency. The held pairs' support (soft_held_rows.h) stays volatile.
- * BTG_SOFT_VOLATILE=1 (a build option through BTGPU_CL_OPTIONS) keeps volatile, for measuring. */
-#if defined(BTG_NVIDIA) && !defined(BTG_SOFT_VOLATILE)
-#undef BTG_SHARED
-#define BTG_SHARED
-#define BTG_LOAD_CG 1
-#define BTG_HELD_GLOBAL volatile __global
-#endif
+#include "shared/soft_kernel_args.h" /* first: it may set BTG_SHARED */
 #include "shared/types.h"
 #include "shared/math.h"
 #include "shared/soft_held_rows.h"
@@ -51,20 +38,6 @@
 #ifdef BTG_CPU_DEVICE
 #include "shared/soft_wide.h" /* the wide sweeps: CPU devices only (a GPU's build never sees them) */
 #endif
-
-#define SOFT_ARGS __global BtgContact* contacts, __global BtgSoftContact* softContacts, \
-    __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld, \
-    __global const BtgFloat4* restrict linVel0, __global const BtgFloat4* restrict angVel0, \
-    __global BtgFloat4* lin, __global BtgFloat4* ang, BTG_SHARED __global BtgFloat4* softBodies, \
-    __global const BtgFloat4* restrict softSolver, \
-    __global const BtgJoint* restrict joints, __global const BtgJointState* restrict jointState, \
-    __global BtgJointRow* jointRows, __global const uint* restrict listStart, __global const uint* restrict listEntries, \
-    __global const int* restrict slotOf, __global uint* counters, __global const BtgRollingContact* restrict rolling, \
-    __global const uint* restrict contactManifolds, __global const BtgContactMaterial* restrict materials, int numMaterials, \
-    __global const BtgFrictionDirs* restrict frictionDirs, BtgSoftParams params
-#define SOFT_PASS contacts, softContacts, props, invInertiaWorld, linVel0, angVel0, lin, ang, softBodies, softSolver, joints, \
-    jointState, jointRows, listStart, listEntries, slotOf, counters, rolling, contactManifolds, materials, numMaterials, \
-    frictionDirs, params
 
 /* Each body's solver record for the step (soft_solver_bodies, launched before the passes):
  * btgMakeSolverBody's fields in four rows, one 64-byte line, (invI row 0, invMass), (invI row 1,
@@ -242,8 +215,9 @@ static BtgSoftContact load_soft(__global const BtgSoftContact* softContacts, int
  * that a color's pass reads them one after another. */
 /* key: the sweep's order key (SOLVER_RANDMIZE_ORDER; 0: in order), which permutes the points. */
 /* mode: the pass, BTG_SOFT_WARM_TOTALS or'ed in where the substep's warm start was carried. */
-static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
+static void soft_contact(int i, int slot, int mode, uint key, SOFT_FN_ARGS)
 {
+    SOFT_FN_PARAMS
     const int warmTotals = (mode & BTG_SOFT_WARM_TOTALS) != 0;
     mode = btgSoftBaseMode(mode);
     if (mode == BTG_SOFT_STORE) {
@@ -334,8 +308,9 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_ARGS)
     }
 }
 
-static void soft_joint(int j, int mode, SOFT_ARGS)
+static void soft_joint(int j, int mode, SOFT_FN_ARGS)
 {
+    SOFT_FN_PARAMS
     const int rows = jointState[j].numRows;
     mode = btgSoftBaseMode(mode); /* a joint has no totals: its impulse is a substep's, times substeps at the store */
     if (rows == 0 || mode == BTG_SOFT_PREPARE || mode == BTG_SOFT_RESTITUTION) return;
@@ -352,10 +327,10 @@ static void soft_joint(int j, int mode, SOFT_ARGS)
     if (b.dynamic) store_vel(vb, b, softBodies, joint.bodyB);
 }
 
-static void soft_edge(int e, int slot, int nc, int mode, uint key, SOFT_ARGS)
+static void soft_edge(int e, int slot, int nc, int mode, uint key, SOFT_FN_ARGS)
 {
-    if (e < nc) soft_contact(e, slot, mode, key, SOFT_PASS);
-    else soft_joint(e - nc, mode, SOFT_PASS);
+    if (e < nc) soft_contact(e, slot, mode, key, SOFT_FN_PASS);
+    else soft_joint(e - nc, mode, SOFT_FN_PASS);
 }
 
 /* Flags that say what a body's kind (w of its VEL_LIN row, soft_kind) says: dynamic, moving
@@ -365,8 +340,9 @@ static uint soft_kind_flags(float kind)
     return kind >= 2.0f ? BTG_BODY_DYNAMIC : (kind == 1.0f ? BTG_BODY_KINEMATIC : BTG_BODY_STATIC);
 }
 
-static void soft_body(int i, int mode, SOFT_ARGS)
+static void soft_body(int i, int mode, SOFT_FN_ARGS)
 {
+    SOFT_FN_PARAMS
     const int row = BTG_SOFT_BODY_ROWS * i;
     /* the step's first pass reads the body's flags (props: a line a body, 160 bytes apart); the
      * others its kind, which that pass left in the velocity row they read anyway (a fifth of a

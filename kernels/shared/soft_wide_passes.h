@@ -121,8 +121,9 @@ static void wide_store_vels(const BtgVelW* v, BtgW kinds, __global const int* bo
  * changes nothing), its wide lanes through soft_wide.h's rows on the chunk's block. next: the
  * work-item's next chunk of the colour (-1: none), whose bodies are read ahead. */
 static void soft_wide_chunk(int color, int m, int next, int begin, int end, __global const int* restrict colorOrder,
-                            WIDE_ARGS, int nc, int mode, uint key, SOFT_ARGS)
+                            WIDE_ARGS, int nc, int mode, uint key, SOFT_FN_ARGS)
 {
+    SOFT_FN_PARAMS
     const int base = btgSoftBaseMode(mode);
     const int k0 = begin + m * BTG_SOFT_WIDE, chunk = (int)wideStart[color] + m;
     __global const int* info = wideLanes + chunk * WIDE_INFO * BTG_SOFT_WIDE;
@@ -131,7 +132,7 @@ static void soft_wide_chunk(int color, int m, int next, int begin, int end, __gl
     for (int l = 0; l < BTG_SOFT_WIDE; ++l) {
         wide[l] = k0 + l < end && info[l];
         any |= wide[l];
-        if (k0 + l < end && !wide[l]) soft_edge(colorOrder[k0 + l], k0 + l, nc, mode, key, SOFT_PASS);
+        if (k0 + l < end && !wide[l]) soft_edge(colorOrder[k0 + l], k0 + l, nc, mode, key, SOFT_FN_PASS);
     }
     if (!any) return;
     /* the work-item's next chunk's bodies read ahead: their rows sit anywhere in memory, and
