@@ -393,7 +393,14 @@ static void soft_body(int i, int mode, SOFT_FN_ARGS)
             const int side = (int)(entry & 1u);
             if (entry & BTG_SOFT_ENTRY_JOINT) {
                 const int j = (int)((entry & ~BTG_SOFT_ENTRY_JOINT) >> 2);
-                btgSoftJointWarmStartSide(jointRows, joints[j].firstRow, jointState[j].numRows, side, body, &vel);
+                /* the joint rows' impulses of the last substep (zero at the step's start) on this
+                 * side, each read as shared data: the joint's work-item (another group) wrote it */
+                BTG_SHARED __global const BtgJointRow* rowsShared = (BTG_SHARED __global const BtgJointRow*)jointRows;
+                for (int r = joints[j].firstRow; r < joints[j].firstRow + jointState[j].numRows; ++r) {
+                    const BtgJacobian jac = jointRows[r].jacobian;
+                    btgSoftApplySide(jac.linear, side ? jac.responseB : jac.responseA, side, body, &vel,
+                                     btgLoadSharedFloat(&rowsShared[r].impulse));
+                }
                 continue;
             }
             const int slot = slotOf[entry >> 2], owner = (entry & 2u) != 0u;

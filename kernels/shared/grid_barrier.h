@@ -56,9 +56,16 @@ static inline int btgLoadSharedInt(BTG_SHARED __global const int* p)
     __asm__ __volatile__("ld.global.cg.s32 %0, [%1];" : "=r"(v) : "l"((__global const int*)p));
     return v;
 }
+static inline float btgLoadSharedFloat(BTG_SHARED __global const float* p)
+{
+    float v;
+    __asm__ __volatile__("ld.global.cg.f32 %0, [%1];" : "=f"(v) : "l"((__global const float*)p));
+    return v;
+}
 #else
 #define btgLoadShared4(p) (*(p))
 #define btgLoadSharedInt(p) (*(p))
+#define btgLoadSharedFloat(p) (*(p))
 #endif
 
 /* Returns nonzero when the launch must stop (a timeout). Call from every work-item. Global

@@ -782,16 +782,6 @@ static inline void btgSoftStore(BTG_GLOBAL BtgContact* contacts, int i, const Bt
 
 /* ---- joints (their Bullet rows, built once a step by prepare_joints) ---- */
 
-/* Warm start: the joint rows' impulses of the last substep (zero at the step's start) on one of
- * the joint's bodies. */
-static inline void btgSoftJointWarmStartSide(BTG_CONST_GLOBAL BtgJointRow* rows, int first, int count, int side,
-                                             BtgSolverBody body, BtgBodyVel* v)
-{
-    for (int k = 0; k < count; ++k) {
-        const BtgJacobian j = rows[first + k].jacobian;
-        btgSoftApplySide(j.linear, side ? j.responseB : j.responseA, side, body, v, rows[first + k].impulse);
-    }
-}
 /* One Gauss-Seidel step on each row, its bounds (N s a step) scaled to a substep. The rows'
  * targets keep their Bullet bias in the relax too: they carry motors and limits as well as the
  * position error, and Bullet's joints take no split impulse either. */
