@@ -257,7 +257,7 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_FN_ARGS)
         if (bullet) dirs = frictionDirs[i];
         softContacts[slot] = btgSoftPack(btgSoftPrepare(contacts[i], a, b, a0, b0, restitution,
                                                         btgContactSolvable(pa.flags, pb.flags), params,
-                                                        btgPairMaterial(pa, pb), bullet, bullet ? &dirs : 0));
+                                                        btgPairMaterial(pa, pb), bullet ? &dirs : 0));
         if (params.heldMassRatio > 0.0f) {
             const int fixed = a.dynamic != b.dynamic && btgContactSolvable(pa.flags, pb.flags);
             const int light = btgSoftLightSide(a, b, params);

@@ -399,7 +399,7 @@ static inline int btgSoftTakesBulletDirections(uint flagsA, uint flagsB, BtgSoft
  * velocities before the step's forces. */
 static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSolverBody b, BtgBodyVel a0,
                                             BtgBodyVel b0, BtgFloat4 restitution, int solvable, BtgSoftParams p,
-                                            BtgPairMaterial mat, int bullet, const BtgFrictionDirs* dirs)
+                                            BtgPairMaterial mat, const BtgFrictionDirs* dirs)
 {
     BtgSoftContact s;
     s.normal = btgXyz(c.normal);
@@ -416,7 +416,7 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
     s.bodyA = c.bodyA;
     s.bodyB = c.bodyB;
     s.numPoints = c.numPoints;
-    s.flags = (a.dynamic && b.dynamic ? 0 : BTG_SOFT_FIXED) | (bullet ? BTG_SOFT_BULLET_DIRECTIONS : 0);
+    s.flags = (a.dynamic && b.dynamic ? 0 : BTG_SOFT_FIXED) | (dirs ? BTG_SOFT_BULLET_DIRECTIONS : 0);
     s.springStiffness = 0.0f;
     s.springDamping = 0.0f;
     if (mat.stiffnessDamping) {
@@ -447,7 +447,7 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
      * each step's first substep (0.65 mm/s at 0.1 rad), while between two dynamic bodies the last
      * step's friction rocks the exact towers of 20 and 30 (30 cm) and, with heldMassRatio, throws
      * the held pair (SolverFeatures.SoftStepHoldsABoxOnASlope, SolverModes). */
-    const float frictionWarm = (s.flags & BTG_SOFT_FIXED) && !bullet && !(p.heldMassRatio > 0.0f) ? p.warmScale : 0.0f;
+    const float frictionWarm = (s.flags & BTG_SOFT_FIXED) && !dirs && !(p.heldMassRatio > 0.0f) ? p.warmScale : 0.0f;
     BTG_UNROLL
     for (int k = 0; k < BTG_MAX_POINTS; ++k) {
         s.rA[k] = btgZero4();
@@ -473,7 +473,7 @@ static inline BtgSoftContact btgSoftPrepare(BtgContact c, BtgSolverBody a, BtgSo
         /* scaled directions are not orthogonal: a second row would add friction Bullet's one
          * direction does not have (the parallelogram of two bounded rows), so with one
          * direction the second has no row and no impulse */
-        const int second = !bullet || p.twoDirections;
+        const int second = !dirs || p.twoDirections;
         if (second) btgSetLane(&s.tangent2Mass, k, btgPointRowMass(btgPointJacobian(d2, rA, rB, a, b), rA, rB, a, b));
         btgSetLane(&s.normalImpulse, k, btgLane(c.normalImpulse, k) * p.warmScale);
         btgSetLane(&s.tangent1Impulse, k, btgLane(c.friction1Impulse, k) * frictionWarm);

@@ -98,7 +98,7 @@ std::vector<BtgFloat4> solveSoft(std::vector<BtgContact>& contacts, const std::v
                                      btgMakeBodyVel(b.moving, bodies.linVel0[ib], bodies.angVel0[ib]),
                                      btgMake4(r, r, r, r),
                                      btgContactSolvable(pa.flags, pb.flags), params,
-                                     btgPairMaterial(pa, pb), dirsOf(e) != nullptr, dirsOf(e));
+                                     btgPairMaterial(pa, pb), dirsOf(e));
             if (params.heldMassRatio > 0.0f) {
                 const int fixed = a.dynamic != b.dynamic && btgContactSolvable(pa.flags, pb.flags);
                 const int light = btgSoftLightSide(a, b, params);
