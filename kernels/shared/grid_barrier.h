@@ -34,7 +34,7 @@ typedef struct {
 #define BTG_SHARED volatile
 #endif
 
-/* A float4 (an int) another work-group wrote in this launch, read through a BTG_SHARED pointer.
+/* A float4 (an int, a float) another work-group wrote in this launch, read through a BTG_SHARED pointer.
  * Plain (volatile on GPUs) by default. With BTG_LOAD_CG (NVIDIA only: solve_soft.cl sets it on
  * NVIDIA's GPUs, where it also drops volatile from BTG_SHARED; for other programs a build option
  * through BTGPU_CL_OPTIONS) it is read with PTX's ld.global.cg, cached in L2 only: coherent

@@ -5,9 +5,9 @@
 #define BTG_SOFT_KERNEL_ARGS_H
 
 /* NVIDIA's GPUs (BTG_NVIDIA, from the host): the data the work-groups share in soft_resident is
- * not volatile but read with ld.global.cg (btgLoadShared4, btgLoadSharedInt: L2, coherent across
- * compute units, free to be issued together); every read of a body's rows or of another
- * work-item's soft contact goes through those. The H100's soft solve stage at 32,768 cubes:
+ * not volatile but read with ld.global.cg (btgLoadShared4, btgLoadSharedInt, btgLoadSharedFloat:
+ * L2, coherent across compute units, free to be issued together); every read of a body's rows,
+ * another work-item's soft contact or a joint row's impulse goes through those. The H100's soft solve stage at 32,768 cubes:
  * 4.16 ms against 4.24 with volatile, the same state hash (2026-12-06). Plain loads, which may
  * hit a compute unit's stale L1, took 0.8 ms and changed the hash run to run: the stage's time
  * is its dependent loads' latency. The held pairs' support (soft_held_rows.h) stays volatile.
