@@ -30,6 +30,7 @@
 #include "shared/types.h"
 #include "shared/math.h"
 #include "shared/soft_held_rows.h"
+#include "shared/soft_quad_rows.h" /* NVIDIA only: a contact's rows on four work-items */
 #include "shared/integrate.h"
 #include "shared/counters.h"
 #include "shared/grid_barrier.h"
@@ -215,7 +216,10 @@ static BtgSoftContact load_soft(__global const BtgSoftContact* softContacts, int
  * that a color's pass reads them one after another. */
 /* key: the sweep's order key (SOLVER_RANDMIZE_ORDER; 0: in order), which permutes the points. */
 /* mode: the pass, BTG_SOFT_WARM_TOTALS or'ed in where the substep's warm start was carried. */
-static void soft_contact(int i, int slot, int mode, uint key, SOFT_FN_ARGS)
+/* lane: -1, or (NVIDIA, solve and relax sweeps) this work-item's place 0..3 in the quad of
+ * work-items that takes the contact (soft_quad_rows.h): all four load and run it, work-item 0
+ * stores it. */
+static void soft_contact(int i, int slot, int mode, uint key, int lane, SOFT_FN_ARGS)
 {
     SOFT_FN_PARAMS
     const int warmTotals = (mode & BTG_SOFT_WARM_TOTALS) != 0;
@@ -292,10 +296,17 @@ static void soft_contact(int i, int slot, int mode, uint key, SOFT_FN_ARGS)
                                  params.frictionInSolve ? mode == BTG_SOFT_SOLVE : mode == BTG_SOFT_RELAX);
         BtgFrictionDirs dirs;
         if (bullet) dirs = frictionDirs[i];
+#if defined(BTG_NVIDIA)
+        if (lane >= 0 && key == 0u && !params.interleave && normals == 1 && !bullet) {
+            const uint mask = 0xfu << (get_local_id(0) & 28u);
+            btgSoftSolveQuad(&s, a, b, &va, &vb, dA, dB, mode == BTG_SOFT_SOLVE, params, lane, mask);
+        } else
+#endif
         btgSoftSolve(&s, a, b, &va, &vb, dA, dB, mode == BTG_SOFT_SOLVE, normals, params, btgItemKey(key, (uint)i + 1u),
                      bullet ? &dirs : 0);
         if (params.rolling && mode == BTG_SOFT_RELAX) btgSoftRolling(rolling[i], &s, a, b, &va, &vb, params);
     }
+    if (lane > 0) return; /* the quad's other work-items hold the same results */
     if (a.dynamic) store_vel(va, a, softBodies, bodyA);
     if (b.dynamic) store_vel(vb, b, softBodies, bodyB);
     softContacts[slot].normalImpulse = s.normalImpulse;
@@ -327,10 +338,14 @@ static void soft_joint(int j, int mode, SOFT_FN_ARGS)
     if (b.dynamic) store_vel(vb, b, softBodies, joint.bodyB);
 }
 
+static void soft_edge_lane(int e, int slot, int nc, int mode, uint key, int lane, SOFT_FN_ARGS)
+{
+    if (e < nc) soft_contact(e, slot, mode, key, lane, SOFT_FN_PASS);
+    else if (lane <= 0) soft_joint(e - nc, mode, SOFT_FN_PASS); /* a joint: the quad's work-item 0 alone */
+}
 static void soft_edge(int e, int slot, int nc, int mode, uint key, SOFT_FN_ARGS)
 {
-    if (e < nc) soft_contact(e, slot, mode, key, SOFT_FN_PASS);
-    else soft_joint(e - nc, mode, SOFT_FN_PASS);
+    soft_edge_lane(e, slot, nc, mode, key, -1, SOFT_FN_PASS);
 }
 
 /* Flags that say what a body's kind (w of its VEL_LIN row, soft_kind) says: dynamic, moving
@@ -617,7 +632,7 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
                             __global const uint* restrict colorStart, __global const int* restrict colorOrder,
                             volatile __global BtgGridBarrier* bar, int numColors, int numJoints, int numBodies,
                             int spinLimit, __global const uint* restrict flowRank, volatile __global uint* flowDone,
-                            __global const uint* restrict flowDeg, int flow, WIDE_ARGS, int wide, SOFT_ARGS)
+                            __global const uint* restrict flowDeg, int flow, WIDE_ARGS, int wide, int quad, SOFT_ARGS)
 {
     __local int quit;
     if (counters[BTG_COUNTER_STATUS] & BTG_STATUS_GRID_BARRIER_TIMEOUT) return;
@@ -711,6 +726,11 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
         /* the sweeps in colour order, where flow is on: no barrier between their colours */
         const int flowing = flow && key == 0u && (base == BTG_SOFT_SOLVE || base == BTG_SOFT_RELAX ||
                                                   base == BTG_SOFT_RESTITUTION);
+        /* quad (NVIDIA, from the host): the solve and relax sweeps in order take a contact on four
+         * work-items (soft_quad_rows.h) */
+        const int quadSweep = quad && !flowing && key == 0u && (base == BTG_SOFT_SOLVE || base == BTG_SOFT_RELAX);
+        const int first = quadSweep ? gid >> 2 : gid, stride = quadSweep ? gsize >> 2 : gsize;
+        const int lane = quadSweep ? (gid & 3) : -1;
         int left = nonEmpty; /* regular colours of the sweep still to run */
         for (int ci = 0; ci < last; ++ci) {
             const int color = btgPermute(key, last, ci);
@@ -728,7 +748,7 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
 #else
             const int wideSweep = 0; /* a GPU's build has no wide sweeps (the host never asks) */
 #endif
-            for (int k = begin + gid; k < end && !wideSweep; k += gsize) {
+            for (int k = begin + first; k < end && !wideSweep; k += stride) {
                 const int e = colorOrder[k];
                 /* one call of the rows for both orders: one compiled copy of their arithmetic */
                 int2 ab = (int2)(0, 0);
@@ -749,7 +769,7 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
                     }
                     mem_fence(CLK_GLOBAL_MEM_FENCE); /* the bodies' rows read after their counts */
                 }
-                soft_edge(e, k, nc, mode, key, SOFT_PASS);
+                soft_edge_lane(e, k, nc, mode, key, lane, SOFT_PASS);
                 if (flowing) {
                     mem_fence(CLK_GLOBAL_MEM_FENCE); /* the rows written before the counts move on */
                     flow_signal(flowDone, ab.x, packA, flowSweep, flowPasses);

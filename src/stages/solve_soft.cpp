@@ -58,12 +58,28 @@ BtgSoftParams substepFields(const SoftStepConfig& c, int iterations)
 // groups): cubes 1,000 2.27 / 2.27 / 1.95, 8,000 - / 2.74 / 2.23, 32,768 4.91 / 4.12 / 5.64,
 // 112,500 5.96 / 6.44 / 8.72 (at 32,768, 124,000 contacts in 14 colours, 72 a compute unit): the
 // rule takes 64, 64, 128 and 256.
-size_t softGroupSize(const DeviceWorld& w, int numColors)
+size_t softGroupSize(const DeviceWorld& w, int numColors, bool quad)
 {
     const size_t units = std::max<cl_uint>(w.ctx.device().computeUnits, 1);
     const size_t perColor = size_t(std::max(w.lastContactCount, 0)) / size_t(std::max(numColors - 1, 1));
-    const size_t want = perColor / units;
+    const size_t want = (quad ? 4 : 1) * perColor / units;
     return want <= 64 ? 64 : (want <= 128 ? 128 : 256);
+}
+
+// Whether the resident solve and relax sweeps take a contact on four work-items (NVIDIA's GPUs:
+// soft_quad_rows.h, shfl.sync across the quad): a colour then waits for a quarter of each
+// contact's per-point arithmetic. H100, 2026-12-06, solve stage median ms without / with, the
+// same state hashes: cubes 1,000 1.71 / 1.51, 32,768 4.22 / 3.78, 112,500 3.63 / 3.48. Not with
+// held pairs (their rows write the support's impulses: one work-item must). BTGPU_SOFT_QUAD=0
+// turns it off (for measuring).
+bool softQuad(const DeviceWorld& w, const BtgSoftParams& params)
+{
+    static const bool off = [] {
+        const char* e = std::getenv("BTGPU_SOFT_QUAD");
+        return e && e[0] == '0';
+    }();
+    const auto& d = w.ctx.device();
+    return d.isGpu && d.platformName.find("NVIDIA") != std::string::npos && !(params.heldMassRatio > 0.0f) && !off;
 }
 
 // The resident launch's flow (DeviceWorld::softFlow): 0 off, 1 the sweeps' colours, 2 also the
@@ -221,6 +237,7 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
         const size_t groups = many ? residentSolveGroups(w) : 1;
         const int flow = resident && groups > 1 ? softFlow(w) : 0;
         const int wideIn = wideOn && flow == 0;
+        int quad = resident && flow == 0 && softQuad(w, params) ? 1 : 0;
         // A CPU device runs a group's work-items one after another: the flow's waits there need
         // groups of one; its wide sweeps take a chunk of eight contacts a work-item, a few
         // hundred chunks a colour, so small groups.
@@ -228,7 +245,8 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
                                  ? 1
                                  : wideResident && !resident ? size_t(8)
                                                              : residentSolveGroupSize(cl::kernelGroupLimit(ctx, k), many,
-                                                                                      softGroupSize(w, numColors));
+                                                                                      softGroupSize(w, numColors, quad != 0));
+        if (group % 32 != 0) quad = 0;  // a quad's four work-items must share a warp
         if (flow) {
             // the ranks, then the kinematic flag after them (soft_flow_ranks)
             sc.softFlowRank.reserve(ctx, 2 * slots + 1);
@@ -253,7 +271,7 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
         l.arg(w.edgeColor).arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorOrder).arg(gridBarrier(w))
             .arg(numColors).arg(numJoints).arg(numBodies).arg(gridBarrierSpins(w)).arg(sc.softFlowRank)
             .arg(sc.softFlowDone).arg(sc.softFlowDeg).arg(flow).arg(sc.softWideStart).arg(sc.softWideBlock)
-            .arg(sc.softWideLanes).arg(wideIn);
+            .arg(sc.softWideLanes).arg(wideIn).arg(quad);
         soft(l).run(groups * group, group);
         return;
     }
