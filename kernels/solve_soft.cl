@@ -731,8 +731,14 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
         const int quadSweep = quad && !flowing && key == 0u && (base == BTG_SOFT_SOLVE || base == BTG_SOFT_RELAX);
         const int first = quadSweep ? gid >> 2 : gid, stride = quadSweep ? gsize >> 2 : gsize;
         const int lane = quadSweep ? (gid & 3) : -1;
+        /* a pass that touches each edge alone takes the regular colours' slots as one range: a
+         * work-item's share is then its part of all of them, not one contact of every colour
+         * one after another (cubes 32,768: 14 dependent rounds -> 4) */
+        if (independent)
+            for (int k = (int)colorStart[0] + gid; k < (int)colorStart[last]; k += gsize)
+                soft_edge(colorOrder[k], k, nc, mode, key, SOFT_PASS);
         int left = nonEmpty; /* regular colours of the sweep still to run */
-        for (int ci = 0; ci < last; ++ci) {
+        for (int ci = 0; ci < last && !independent; ++ci) {
             const int color = btgPermute(key, last, ci);
             const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
             if (begin == end) continue; /* the coloring's slack: every work-item reads the same range */
