@@ -259,9 +259,12 @@ static void soft_contact(int i, int slot, int mode, uint key, int lane, SOFT_FN_
         const int bullet = btgSoftTakesBulletDirections(pa.flags, pb.flags, params);
         BtgFrictionDirs dirs;
         if (bullet) dirs = frictionDirs[i];
-        softContacts[slot] = btgSoftPack(btgSoftPrepare(contacts[i], a, b, a0, b0, restitution,
-                                                        btgContactSolvable(pa.flags, pb.flags), params,
-                                                        btgPairMaterial(pa, pb), bullet ? &dirs : 0));
+        const BtgSoftContact prepared = btgSoftPrepare(contacts[i], a, b, a0, b0, restitution,
+                                                       btgContactSolvable(pa.flags, pb.flags), params,
+                                                       btgPairMaterial(pa, pb), bullet ? &dirs : 0);
+        /* a contact that may bounce: soft_resident's restitution pass runs */
+        if (prepared.restitution != 0.0f) atomic_or(&counters[BTG_COUNTER_SOFT_BOUNCE], 1u);
+        softContacts[slot] = btgSoftPack(prepared);
         if (params.heldMassRatio > 0.0f) {
             const int fixed = a.dynamic != b.dynamic && btgContactSolvable(pa.flags, pb.flags);
             const int light = btgSoftLightSide(a, b, params);
@@ -623,7 +626,7 @@ __kernel void soft_color_serial(__global const int* restrict edgeColor, int edge
  * bodies' warm-start gather shares of the soft contacts (shared_soft), go through BTG_SHARED
  * pointers. */
 #define SOFT_BARRIER()                                                                                    \
-    if (btgGridBarrier(bar, spinLimit, &quit)) {                                                          \
+    if (btgGridBarrierCounting(bar, &barPhase, spinLimit, &quit)) {                                       \
         if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);          \
         return;                                                                                           \
     }
@@ -635,6 +638,7 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
                             __global const uint* restrict flowDeg, int flow, WIDE_ARGS, int wide, int quad, SOFT_ARGS)
 {
     __local int quit;
+    uint barPhase = 0u; /* the grid barriers passed (btgGridBarrierCounting: bar's words zeroed by the host) */
     if (counters[BTG_COUNTER_STATUS] & BTG_STATUS_GRID_BARRIER_TIMEOUT) return;
     const int gid = (int)get_global_id(0), gsize = (int)get_global_size(0);
     const int n = edge_count(counters, edgeCapacity), nc = contact_edges(counters, edgeCapacity, numJoints);
@@ -697,6 +701,7 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
                 continue;
             }
             if (bodyMode == BTG_SOFT_BODY_END) break; /* the last pass: each body's own rows */
+            if (bodyMode == BTG_SOFT_BODY_BEGIN && gid == 0) counters[BTG_COUNTER_SOFT_BOUNCE] = 0u; /* prepare notes a bounce */
             SOFT_BARRIER();
 #ifdef BTG_CPU_DEVICE
             if (wide && pass == 2) {
@@ -715,6 +720,10 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
             SOFT_BARRIER();
         }
 #endif
+        /* no contact of the step bounces (prepare noted none, every work-item reads the same word
+         * after the barriers since): the restitution pass has nothing to do, nor its barriers */
+        if (mode == BTG_SOFT_RESTITUTION && !flow && ((volatile __global uint*)counters)[BTG_COUNTER_SOFT_BOUNCE] == 0u)
+            continue;
         /* store (and prepare, unless it notes the bodies' supports) touch each edge alone: no barrier between colors */
         const int independent = (mode == BTG_SOFT_PREPARE && !(params.heldMassRatio > 0.0f)) || mode == BTG_SOFT_STORE;
         /* SOLVER_RANDMIZE_ORDER: a substep's solve and relax sweeps take their colours (the

@@ -14,7 +14,8 @@
 #define BTG_COUNTER_SUB_PAIRS 8   /* midphase (convex, triangle) sub-pairs found, even past capacity */
 #define BTG_COUNTER_SOFT_MASS_RATIO 9 /* the soft step's prepare: the float bits of the largest mass ratio
                                         (heavier over lighter) of an edge between two dynamic bodies */
-#define BTG_NUM_COUNTERS 10
+#define BTG_COUNTER_SOFT_BOUNCE 10 /* soft_resident: nonzero when a soft contact of the step may bounce */
+#define BTG_NUM_COUNTERS 11
 
 /* Solver passes (solve_constraints, solve_jacobi): warm start, a velocity iteration, a
  * split-impulse push iteration. The batched PGS sweeps a velocity iteration's contacts twice,

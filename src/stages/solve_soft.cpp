@@ -267,8 +267,10 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
             sc.softFlowDone.reserve(ctx, 1);
             sc.softFlowDeg.reserve(ctx, 1);
         }
+        // its own barrier words, zeroed for each launch: soft_resident's barrier count only grows
+        sc.softBarrier.zero(ctx, BTG_GRID_BARRIER_WORDS);
         cl::Launch l(ctx, k, &w.profiler);
-        l.arg(w.edgeColor).arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorOrder).arg(gridBarrier(w))
+        l.arg(w.edgeColor).arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorOrder).arg(sc.softBarrier)
             .arg(numColors).arg(numJoints).arg(numBodies).arg(gridBarrierSpins(w)).arg(sc.softFlowRank)
             .arg(sc.softFlowDone).arg(sc.softFlowDeg).arg(flow).arg(sc.softWideStart).arg(sc.softWideBlock)
             .arg(sc.softWideLanes).arg(wideIn).arg(quad);

@@ -19,6 +19,7 @@ struct SolverScratch {
     cl::DeviceArray<uint> colorStart;  // 2 x (numColors + 1)
     cl::DeviceArray<int> colorOrder;   // two per contact slot
     cl::DeviceArray<uint> gridBarrier; // solve_resident's arrival count, generation, timeout flag
+    cl::DeviceArray<uint> softBarrier; // soft_resident's (btgGridBarrierCounting: zeroed before each launch)
     // solve_soft (SolverKind::SoftStep): each contact slot's soft rows, and BTG_SOFT_BODY_ROWS per
     // body (position and rotation deltas, the forces' velocity change per substep); the color
     // ranges above hold one list there, over every edge (the last range the leftovers);
