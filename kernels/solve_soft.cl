@@ -738,8 +738,6 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
         /* quad (NVIDIA, from the host): the solve and relax sweeps in order take a contact on four
          * work-items (soft_quad_rows.h) */
         const int quadSweep = quad && !flowing && key == 0u && (base == BTG_SOFT_SOLVE || base == BTG_SOFT_RELAX);
-        const int first = quadSweep ? gid >> 2 : gid, stride = quadSweep ? gsize >> 2 : gsize;
-        const int lane = quadSweep ? (gid & 3) : -1;
         /* a pass that touches each edge alone takes the regular colours' slots as one range: a
          * work-item's share is then its part of all of them, not one contact of every colour
          * one after another (cubes 32,768: 14 dependent rounds -> 4) */
@@ -763,6 +761,12 @@ __kernel void soft_resident(__global const int* restrict edgeColor, int edgeCapa
 #else
             const int wideSweep = 0; /* a GPU's build has no wide sweeps (the host never asks) */
 #endif
+            /* in quads where the colour's contacts fit the launch's quads at once; a larger colour
+             * one contact a work-item (two rounds of quads cost more than one round of single
+             * work-items; both give the same bits) */
+            const int quadColor = quadSweep && end - begin <= (gsize >> 2);
+            const int first = quadColor ? gid >> 2 : gid, stride = quadColor ? gsize >> 2 : gsize;
+            const int lane = quadColor ? (gid & 3) : -1;
             for (int k = begin + first; k < end && !wideSweep; k += stride) {
                 const int e = colorOrder[k];
                 /* one call of the rows for both orders: one compiled copy of their arithmetic */
