@@ -4,6 +4,7 @@
  * Reads counters[kContactCount], props, invInertiaWorld, rot (anisotropic friction), linVel0,
  * angVel0 (restitution), linVel, angVel (after this substep's forces: each point's friction
  * direction), contacts.
+ * softStep: the plan's solver is the soft step (btgPrepareSoftContact where it reads no more).
  * Writes contacts (friction, tangent plane and per-point friction directions, row masses,
  * normalCfm, normalTarget, pushTarget, pushImpulse zeroed; impulses of non-solvable contacts
  * zeroed), rolling[0, contacts) (BTG_SOLVER_ROLLING_FRICTION only), frictionDirs[0, contacts)
@@ -25,7 +26,7 @@ __kernel void prepare_contacts(__global BtgContact* contacts, __global uint* cou
                                __global const BtgFloat4* restrict linVel, __global const BtgFloat4* restrict angVel,
                                __global BtgEdge* edges, __global BtgRollingContact* rolling,
                                __global BtgFrictionDirs* frictionDirs, __global const BtgFloat4* restrict pos,
-                               __global BtgFrictionAnchor* anchors, BtgStepParams params)
+                               __global BtgFrictionAnchor* anchors, BtgStepParams params, int softStep)
 {
     uint i = (uint)get_global_id(0);
     const uint n = min(counters[BTG_COUNTER_CONTACTS], (uint)contactCapacity);
@@ -39,6 +40,14 @@ __kernel void prepare_contacts(__global BtgContact* contacts, __global uint* cou
     const BtgBodyVel a0 = t.a0, b0 = t.b0, a1 = t.a1, b1 = t.b1;
     const BtgPairMaterial mat = btgPairMaterial(pa, pb);
     const int solvable = btgContactSolvable(pa.flags, pb.flags);
+    /* the soft step (softStep: the plan's solver) makes its own rows: where it reads nothing else
+     * of this stage's (no rolling rows, Bullet's directions or anchors), only what it reads */
+    if (softStep && !(params.solverFlags & (BTG_SOLVER_ROLLING_FRICTION | BTG_SOLVER_ANISOTROPIC_FRICTION |
+                                            BTG_SOLVER_FRICTION_ANCHORS))) {
+        btgPrepareSoftContact(&c, mat, solvable);
+        contacts[i] = c;
+        return;
+    }
     btgPrepareContact(&c, a, b, a0, b0, a1, b1, mat, solvable, params);
     const int anchored = (params.solverFlags & BTG_SOLVER_FRICTION_ANCHORS) != 0u;
     if (params.solverFlags & BTG_SOLVER_ANISOTROPIC_FRICTION) {

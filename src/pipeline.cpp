@@ -53,7 +53,7 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::FilterPairs: filterPairs(w); break;
         case Stage::ApplyForces: applyForces(w, p.dt, p.maxGyroscopicForce); break;
         case Stage::ContactCache: buildContacts(w, p); break;
-        case Stage::PrepareContacts: prepareContacts(w, p); break;
+        case Stage::PrepareContacts: prepareContacts(w, p, plan.solver == SolverKind::SoftStep); break;
         case Stage::ContactCallbacks: applyContactMaterials(w, p); break;
         case Stage::PrepareJoints: prepareJoints(w, s.joints); break;
         case Stage::FinishJoints: finishJoints(w, s.joints); break;

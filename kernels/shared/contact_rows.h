@@ -443,6 +443,23 @@ static inline void btgPrepareContact(BtgContact* c, BtgSolverBody a, BtgSolverBo
     }
 }
 
+/* What the soft step reads of btgPrepareContact's work (solve_soft's prepare builds its own rows,
+ * soft_rows.h): the normal with w zero, the pair's friction, and the impulses of points that get
+ * no rows zeroed (past the count, or a pair that is not solved). The bullet mode's directions,
+ * masses and targets are not made: the soft step's store writes the directions it solved along,
+ * and a contact callback's material prepares the contact again in full (contact_material.h). */
+static inline void btgPrepareSoftContact(BtgContact* c, BtgPairMaterial mat, int solvable)
+{
+    c->normal = btgXyz(c->normal);
+    c->friction = mat.friction;
+    for (int k = 0; k < BTG_MAX_POINTS; ++k) {
+        if (k < c->numPoints && solvable) continue;
+        btgSetLane(&c->normalImpulse, k, 0.0f);
+        btgSetLane(&c->friction1Impulse, k, 0.0f);
+        btgSetLane(&c->friction2Impulse, k, 0.0f);
+    }
+}
+
 /* ---- friction anchors (CF_HAS_FRICTION_ANCHOR) ---- */
 
 /* Whether a pair's points are friction anchors: btManifoldResult flags every point it adds

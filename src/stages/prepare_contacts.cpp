@@ -9,7 +9,7 @@
 
 namespace btgpu {
 
-void prepareContacts(DeviceWorld& w, const BtgStepParams& params)
+void prepareContacts(DeviceWorld& w, const BtgStepParams& params, bool softStep)
 {
     int contactCapacity = int(std::min(w.contactCapacity, w.contacts.capacity()));
     // The joints' edges follow the contacts' (prepare_joints writes them).
@@ -24,7 +24,7 @@ void prepareContacts(DeviceWorld& w, const BtgStepParams& params)
     cl::Launch(w.ctx, w.ctx.program("prepare_contacts").kernel("prepare_contacts"), &w.profiler)
         .arg(w.contacts).arg(w.counters).arg(contactCapacity).arg(w.props).arg(w.invInertiaWorld).arg(w.rot)
         .arg(w.linVel0).arg(w.angVel0).arg(w.linVel).arg(w.angVel).arg(w.edges).arg(w.rollingContacts)
-        .arg(w.frictionDirs).arg(w.pos).arg(w.frictionAnchors).arg(params)
+        .arg(w.frictionDirs).arg(w.pos).arg(w.frictionAnchors).arg(params).arg(softStep ? 1 : 0)
         .run(size_t(contactCapacity));
 }
 

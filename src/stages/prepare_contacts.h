@@ -18,5 +18,5 @@
 #include "world/device_world.h"
 
 namespace btgpu {
-void prepareContacts(DeviceWorld& w, const BtgStepParams& params);
+void prepareContacts(DeviceWorld& w, const BtgStepParams& params, bool softStep = false);
 }

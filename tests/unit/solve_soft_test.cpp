@@ -50,7 +50,7 @@ struct Result {
 Result runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms, const std::vector<BtgContact>& prev,
                  const BtgStepParams& p, const BtgSoftParams& sp, int maxColors, bool fused,
                  DeviceWorld::Resident resident = DeviceWorld::Resident::Auto,
-                 DeviceWorld::Resident flow = DeviceWorld::Resident::Off)
+                 DeviceWorld::Resident flow = DeviceWorld::Resident::Off, bool softPrepare = true)
 {
     DeviceWorld w(test::context());
     w.resident = resident;
@@ -58,7 +58,7 @@ Result runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms
     w.lastContactCount = fused ? 0 : (1 << 30);
     test::uploadWorld(w, b, ms, uint(ms.size()), prev, ms.size() + 4);
     buildContacts(w, p);
-    prepareContacts(w, p);
+    prepareContacts(w, p, softPrepare);  // as the pipeline prepares for the soft step, unless asked
     w.colorRounds = maxColors - 1;
     colorConstraints(w, maxColors);
     solveSoft(w, sp, w.numColors);
@@ -236,6 +236,37 @@ TEST_P(SolveSoftLaunch, LaunchShapesAgreeBitwise)
     for (size_t i = 0; i < oneGroupF.contacts.size(); ++i)
         EXPECT_EQ(0, std::memcmp(&oneGroupF.contacts[i].friction1Impulse, &perColorF.contacts[i].friction1Impulse,
                                  sizeof(BtgFloat4)));
+}
+
+// prepare_contacts for the soft step makes only what the soft step reads of it
+// (btgPrepareSoftContact: the normal, the friction, impulses of points without rows zeroed):
+// the soft step's answer is the one after the bullet mode's full preparation, bit for bit, also
+// with a kinematic body, friction in the solve and a contact whose pair is not solved.
+TEST(SolveSoft, ItsPrepareIsBitwiseTheFullOne)
+{
+    test::StackScene s = test::stackScene(6, 4, 9);
+    BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
+    for (int frictionInSolve : {0, 1}) {
+        SCOPED_TRACE(frictionInSolve ? "friction in the solve" : "friction in the relax");
+        BtgSoftParams sp = softParams(p);
+        sp.frictionInSolve = frictionInSolve;
+        const Result full = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, false, DeviceWorld::Resident::Auto,
+                                      DeviceWorld::Resident::Off, false);
+        const Result own = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, false);
+        const size_t n = full.bodies.linVel.size();
+        EXPECT_EQ(0, std::memcmp(own.bodies.linVel.data(), full.bodies.linVel.data(), n * sizeof(BtgFloat4)));
+        EXPECT_EQ(0, std::memcmp(own.bodies.angVel.data(), full.bodies.angVel.data(), n * sizeof(BtgFloat4)));
+        EXPECT_EQ(0, std::memcmp(own.bodies.pos.data(), full.bodies.pos.data(), n * sizeof(BtgFloat4)));
+        EXPECT_EQ(0, std::memcmp(own.bodies.rot.data(), full.bodies.rot.data(), n * sizeof(BtgFloat4)));
+        ASSERT_EQ(own.contacts.size(), full.contacts.size());
+        for (size_t i = 0; i < own.contacts.size(); ++i) {
+            EXPECT_EQ(0, std::memcmp(&own.contacts[i].normalImpulse, &full.contacts[i].normalImpulse, sizeof(BtgFloat4)));
+            EXPECT_EQ(0, std::memcmp(&own.contacts[i].friction1Impulse, &full.contacts[i].friction1Impulse,
+                                     sizeof(BtgFloat4)));
+            EXPECT_EQ(0, std::memcmp(&own.contacts[i].tangent1, &full.contacts[i].tangent1, sizeof(BtgFloat4)));
+            EXPECT_EQ(own.contacts[i].friction, full.contacts[i].friction);
+        }
+    }
 }
 
 // SOLVER_RANDMIZE_ORDER (the step's order seed: each substep's solve and relax sweeps permute
