@@ -10,6 +10,10 @@
 // With the solver features of params.solverFlags also each contact's rolling rows
 // (w.rollingContacts) and anisotropic friction directions (w.frictionDirs), else those stay one
 // placeholder element; m_sor, m_globalCfm and soft contacts enter the normal and friction rows.
+// softStep (the plan's solver is the soft step, which makes its own rows): where the soft step
+// reads no more of this stage (no rolling rows, anisotropic directions or anchors), only the
+// normal, the pair's friction and the zeroed impulses of points without rows are made
+// (btgPrepareSoftContact; the soft step's answer bitwise the same: SolveSoft.ItsPrepareIsBitwiseTheFullOne).
 // Reads contacts, counters, props, invInertiaWorld, rot, linVel0, angVel0, linVel, angVel.
 // Writes contacts (combined friction, per-point friction directions, row masses, cfm, normal and
 // push targets), rollingContacts, frictionDirs, edges[0, contacts), counters[kEdgeCount],
