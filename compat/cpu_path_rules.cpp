@@ -472,6 +472,15 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
     forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
         Found& f = found[chunk];
         for (size_t i = begin; i < end; ++i) {
+            // The fields read below lie on two lines of each object (bytes 184-311 in 3.24's
+            // btCollisionObject) and one of its shape, objects scattered over the heap: fetched a
+            // few bodies ahead, the loop stops waiting for memory at each body.
+            if (i + 8 < end) {
+                const char* ahead = reinterpret_cast<const char*>(objs[int(i + 8)]);
+                __builtin_prefetch(ahead + 184);
+                __builtin_prefetch(ahead + 308);
+            }
+            if (i + 4 < end) __builtin_prefetch(objs[int(i + 4)]->getCollisionShape());
             const btCollisionObject* o = objs[int(i)];
             std::string why = bodyReason(o, context);
             if (!why.empty()) {

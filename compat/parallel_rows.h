@@ -18,6 +18,18 @@ namespace btgpu {
 // run serially on the caller.
 void runOnPool(size_t count, const std::function<void(size_t)>& job);
 
+// Every cache line of the `bytes` at p fetched ahead of its use (write: for writing): the
+// per-body passes over the app's objects, which lie scattered over the heap, wait for memory at
+// every body without it. A hint only: it never faults, even on a pointer no longer valid.
+inline void prefetchObject(const void* p, size_t bytes, bool write)
+{
+    const char* c = static_cast<const char*>(p);
+    for (size_t off = 0; off < bytes; off += 64) {
+        if (write) __builtin_prefetch(c + off, 1);
+        else __builtin_prefetch(c + off, 0);
+    }
+}
+
 // How many chunks forEachChunk will use for n rows (to size per-chunk result lists first).
 inline int chunkCount(size_t n, size_t minPerThread)
 {

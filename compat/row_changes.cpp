@@ -87,11 +87,15 @@ bool GpuWorld::shapesSwapped() const
     const size_t minPerThread = 8192;
     std::vector<char> swapped(size_t(chunkCount(n, minPerThread)), 0);
     forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
-        for (size_t i = begin; i < end; ++i)
+        for (size_t i = begin; i < end; ++i) {
+            // each object's shape pointer is on a line of its own, objects scattered over the
+            // heap: fetched a few bodies ahead (bodiesReason reads the same line next)
+            if (i + 8 < end) __builtin_prefetch(reinterpret_cast<const char*>(objs[int(i + 8)]) + 200);
             if (objs[int(i)]->getCollisionShape() != m_shapeOfObject[i]) {
                 swapped[size_t(chunk)] = 1;
                 return;
             }
+        }
     });
     return std::find(swapped.begin(), swapped.end(), 1) != swapped.end();
 }
@@ -110,6 +114,10 @@ std::vector<BodyRowUpdate> GpuWorld::changedRows(bool all)
     std::vector<std::vector<std::pair<size_t, std::string>>> newlyBad(chunks);
     forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
         for (size_t r = begin; r < end; ++r) {
+            // compareRow reads most of each body (objects scattered over the heap): the body a
+            // few rows ahead fetched meanwhile, so the comparison stops waiting for memory
+            if (r + 4 < end)
+                if (const btCollisionObject* ahead = m_rows.at(r + 4)) prefetchObject(ahead, sizeof(btRigidBody), false);
             // Removed inside this call (by an action or a tick callback): the row follows at
             // the next internal step; the object may be gone already.
             if (!m_removed.empty() && m_removed.count(m_rows.at(r))) continue;

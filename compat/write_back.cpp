@@ -31,6 +31,16 @@ void GpuWorld::writeBack(const BodyReadback& rb, bool last, bool sleepRead)
     std::vector<std::vector<size_t>> bad(chunks), fellAsleep(chunks);
     forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
         for (size_t r = begin; r < end; ++r) {
+            // the body a few rows ahead, and the motion state of the next but one (whose body
+            // came two rows ago), fetched while this one is written (objects scattered over
+            // the heap); not while bodies removed inside this call may be gone
+            if (m_removed.empty()) {
+                if (r + 4 < end)
+                    if (const btCollisionObject* ahead = m_rows.at(r + 4)) prefetchObject(ahead, sizeof(btRigidBody), true);
+                if (fuse && r + 2 < end)
+                    if (const btRigidBody* next = m_rows.at(r + 2) ? btRigidBody::upcast(m_rows.at(r + 2)) : nullptr)
+                        if (const btMotionState* ms = next->getMotionState()) prefetchObject(ms, sizeof(btDefaultMotionState), true);
+            }
             btCollisionObject* o = m_rows.at(r);
             if (!m_removed.empty() && m_removed.count(o)) continue;  // removed inside this call
             btRigidBody* body = o ? btRigidBody::upcast(o) : nullptr;
