@@ -73,20 +73,9 @@ static BTG_ALWAYS_INLINE void btgSoftSolveQuad(BtgSoftContact* s, BtgSolverBody 
     const BtgFloat4 pB = btgXyz(dB.pos) + btgMat3MulVec(dB.rot, rB);
     const float sep = btgQuadLane(s->baseSeparation, q) + btgDot3(pA - pB, s->normal);
     float bias = 0.0f, massScale = 1.0f, impulseScale = 0.0f;
-    if (sep > 0.0f) {
-        bias = sep * p.invH;
-    } else if (useBias && s->springStiffness > 0.0f) {
-        const float ck = s->springDamping + p.h * s->springStiffness;
-        const float a2 = p.h * ck / mass;
-        btgSoftScales(a2, &massScale, &impulseScale);
-        bias = massScale * (s->springStiffness / ck) * sep;
-        if (bias < -p.pushSpeed) bias = -p.pushSpeed;
-    } else if (useBias) {
-        massScale = spring.massScale;
-        impulseScale = spring.impulseScale;
-        bias = massScale * spring.biasRate * sep;
-        if (bias < -p.pushSpeed) bias = -p.pushSpeed;
-    }
+    if (sep > 0.0f) bias = sep * p.invH;
+    else if (useBias && s->springStiffness > 0.0f) bias = btgSoftPairSpringBias(s, mass, sep, p, &massScale, &impulseScale);
+    else if (useBias) bias = btgSoftSpringBias(spring, sep, p, &massScale, &impulseScale);
     const BtgJacobian jn = btgPointJacobian(s->normal, rA, rB, a, b);
     BTG_FOR_POINTS(k, n) {
         const float mk = btgLane(s->normalMass, k);

@@ -622,6 +622,29 @@ static BTG_ALWAYS_INLINE BtgSoftness btgSoftContactSpring(const BtgSoftContact* 
 {
     return btgSoftSpringOf(s, s->stiffening.x, p);
 }
+/* A point's bias against the pair's own spring, stiffness k and damping c, on the point's
+ * effective mass m: omega^2 = k / m and 2 zeta omega = c / m make Box2D's a2 = h (c + h k) / m
+ * and bias rate k / (c + h k) (Bullet's erp / dt for the same k and c); it rests where the
+ * point's load is k times its depth, as stock's does. Sets the row's scales. */
+static BTG_ALWAYS_INLINE float btgSoftPairSpringBias(const BtgSoftContact* s, float mass, float sep, BtgSoftParams p,
+                                                     float* massScale, float* impulseScale)
+{
+    const float ck = s->springDamping + p.h * s->springStiffness;
+    const float a2 = p.h * ck / mass;
+    btgSoftScales(a2, massScale, impulseScale);
+    const float bias = *massScale * (s->springStiffness / ck) * sep;
+    return bias < -p.pushSpeed ? -p.pushSpeed : bias;
+}
+/* A point's bias against the soft step's spring (stiffened or not), pushing apart at most
+ * pushSpeed. Sets the row's scales. */
+static BTG_ALWAYS_INLINE float btgSoftSpringBias(BtgSoftness spring, float sep, BtgSoftParams p, float* massScale,
+                                                 float* impulseScale)
+{
+    *massScale = spring.massScale;
+    *impulseScale = spring.impulseScale;
+    const float bias = *massScale * spring.biasRate * sep;
+    return bias < -p.pushSpeed ? -p.pushSpeed : bias;
+}
 static BTG_ALWAYS_INLINE void btgSoftNormalRow(BtgSoftContact* s, int k, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
                                                BtgBodyVel* vb, BtgSoftDelta dA, BtgSoftDelta dB, int useBias, int normals,
                                                BtgSoftParams p, BtgSoftness contactSpring)
@@ -634,15 +657,7 @@ static BTG_ALWAYS_INLINE void btgSoftNormalRow(BtgSoftContact* s, int k, BtgSolv
     if (sep > 0.0f) {
         bias = sep * p.invH;
     } else if (useBias && s->springStiffness > 0.0f) {
-        /* the pair's own spring, stiffness k and damping c, on the point's effective mass m:
-         * omega^2 = k / m and 2 zeta omega = c / m make Box2D's a2 = h (c + h k) / m and bias
-         * rate k / (c + h k) (Bullet's erp / dt for the same k and c); it rests where the
-         * point's load is k times its depth, as stock's does */
-        const float ck = s->springDamping + p.h * s->springStiffness;
-        const float a2 = p.h * ck / mass;
-        btgSoftScales(a2, &massScale, &impulseScale);
-        bias = massScale * (s->springStiffness / ck) * sep;
-        if (bias < -p.pushSpeed) bias = -p.pushSpeed;
+        bias = btgSoftPairSpringBias(s, mass, sep, p, &massScale, &impulseScale);
     } else if (useBias) {
         BtgSoftness spring = contactSpring;
         if (normals & 2) {
@@ -652,10 +667,7 @@ static BTG_ALWAYS_INLINE void btgSoftNormalRow(BtgSoftContact* s, int k, BtgSolv
             r = now > r ? now : r;
             spring = btgSoftSpringOf(s, r, p);
         }
-        massScale = spring.massScale;
-        impulseScale = spring.impulseScale;
-        bias = massScale * spring.biasRate * sep;
-        if (bias < -p.pushSpeed) bias = -p.pushSpeed;
+        bias = btgSoftSpringBias(spring, sep, p, &massScale, &impulseScale);
     }
     BtgJacobian j = btgPointJacobian(s->normal, btgSoftArmA(s, k), btgSoftArmB(s, k), a, b);
     float vn = btgRowVelocity(j, *va, *vb);
