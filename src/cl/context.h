@@ -22,6 +22,9 @@ struct DeviceInfo {
     cl_ulong globalMemBytes = 0;
     cl_uint computeUnits = 1;
     std::string describe() const;
+    // NVIDIA's GPUs: programs are built with -DBTG_NVIDIA=1 (inline PTX), and the host picks the
+    // launches that rely on it (the soft step's quads) by the same test
+    bool isNvidiaGpu() const { return isGpu && platformName.find("NVIDIA") != std::string::npos; }
 };
 
 // All OpenCL devices on all platforms; empty when there is no platform (no ICD).

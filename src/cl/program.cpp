@@ -20,7 +20,7 @@ std::string baseBuildOptions(const Context& context)
     // NVIDIA's GPUs: a program may read that data with PTX's ld.global.cg instead (L2, coherent
     // across compute units) and drop volatile (solve_soft.cl does: its solve stage 2% faster on
     // the H100, the same state hashes).
-    if (context.device().isGpu && context.device().platformName.find("NVIDIA") != std::string::npos) opts += " -DBTG_NVIDIA=1";
+    if (context.device().isNvidiaGpu()) opts += " -DBTG_NVIDIA=1";
     // For measuring (not for apps): BTGPU_CL_OPTIONS adds build options (NVIDIA's
     // -cl-nv-verbose, -cl-nv-maxrregcount=N, ...), BTGPU_CL_LOG=1 prints every build's log.
     if (const char* extra = std::getenv("BTGPU_CL_OPTIONS"); extra && *extra) opts += std::string(" ") + extra;

@@ -78,8 +78,7 @@ bool softQuad(const DeviceWorld& w, const BtgSoftParams& params)
         const char* e = std::getenv("BTGPU_SOFT_QUAD");
         return e && e[0] == '0';
     }();
-    const auto& d = w.ctx.device();
-    return d.isGpu && d.platformName.find("NVIDIA") != std::string::npos && !(params.heldMassRatio > 0.0f) && !off;
+    return w.ctx.device().isNvidiaGpu() && !(params.heldMassRatio > 0.0f) && !off;
 }
 
 // The resident launch's flow (DeviceWorld::softFlow): 0 off, 1 the sweeps' colours, 2 also the
