@@ -2,10 +2,24 @@
 #include "cl/launch.h"
 
 #include <algorithm>
+#include <cstdlib>
 
 namespace btgpu::cl {
 
-void Profiler::add(cl_event e) { m_events.emplace_back(stage, e); }
+void Profiler::add(cl_event e, cl_kernel kernel)
+{
+    static const bool perKernel = [] {
+        const char* v = std::getenv("BTGPU_PROFILE_KERNELS");
+        return v && v[0] == '1';
+    }();
+    if (!perKernel || !kernel) {
+        m_events.emplace_back(stage, e);
+        return;
+    }
+    char name[128] = {0};
+    if (clGetKernelInfo(kernel, CL_KERNEL_FUNCTION_NAME, sizeof(name) - 1, name, nullptr) != CL_SUCCESS) name[0] = 0;
+    m_events.emplace_back(stage + ": " + name, e);
+}
 
 void Profiler::collect(std::map<std::string, double>& out)
 {
@@ -30,7 +44,7 @@ void Launch::run(size_t global, size_t localSize)
     bool keep = m_prof && m_prof->enabled;
     BTGPU_CL_CHECK(clEnqueueNDRangeKernel(m_ctx.queue(), m_kernel, 1, nullptr, &g, &localSize, 0, nullptr, keep ? &ev : nullptr));
     if (m_prof) m_prof->countLaunch();
-    if (keep) m_prof->add(ev);
+    if (keep) m_prof->add(ev, m_kernel);
 }
 
 size_t kernelGroupLimit(Context& ctx, cl_kernel kernel)

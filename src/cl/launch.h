@@ -15,7 +15,8 @@ class Profiler {
 public:
     bool enabled = false;
     std::string stage = "other";
-    void add(cl_event e);
+    // BTGPU_PROFILE_KERNELS=1 (for measuring): each launch under "stage: kernel" instead.
+    void add(cl_event e, cl_kernel kernel = nullptr);
     // Waits for the kept events and adds their device milliseconds per stage to `out`.
     void collect(std::map<std::string, double>& out);
     int launches() const { return m_launches; }
