@@ -1,6 +1,7 @@
 /* radix_sort.cl — one pass of a stable LSD radix sort of uint keys with uint values, 4 bits
- * per pass. Each work-item owns a contiguous chunk and walks it in order, so the scatter is
- * stable and deterministic without local-memory ranking (simple; not bandwidth-optimal).
+ * per pass, two ways. The chunk kernels (CPU devices): each work-item owns a contiguous chunk
+ * and walks it in order, so the scatter is stable and deterministic without local-memory
+ * ranking. The tile kernels (GPUs), below.
  * Stage: primitive. Launch: one work-item per chunk of `chunk` elements (both kernels).
  * Reads: keysIn, valsIn, hist (digit-major, exclusively scanned between the two kernels).
  * Writes: radix_histogram: hist[d * numChunks + c]; radix_scatter: keysOut, valsOut. */
@@ -36,6 +37,134 @@ __kernel void radix_scatter(__global const uint* restrict keysIn, __global const
         uint k = keysIn[i];
         uint o = offsets[(k >> shift) & BTG_RADIX_MASK]++;
         keysOut[o] = k;
+        valsOut[o] = valsIn[i];
+    }
+}
+
+/* The tiled passes (GPUs; RadixScratch's host side picks them): a work-group of
+ * BTG_RADIX_GROUP work-items takes a tile of BTG_RADIX_TILE consecutive keys, read coalesced;
+ * the chunk kernels above give each work-item 64 keys of its own, a strided walk that left a
+ * GPU's loads uncoalesced and its compute units nearly idle (H100, cubes 32,768: the pair sort's
+ * passes about 0.4 ms a step). A pass is three launches: radix_tile_count (each tile's digit
+ * counts, digit-major), radix_tile_offsets (one work-group: their exclusive scan, in place),
+ * radix_tile_scatter (each key's place: its digit's offset for the tile plus its rank among the
+ * tile's keys of that digit before it, from a scan of per-work-item counts in local memory).
+ * Stable: a tile's keys keep their order within a digit, and tiles come in order. */
+#define BTG_RADIX_GROUP 256u
+#define BTG_RADIX_PER_ITEM 4u
+#define BTG_RADIX_TILE (BTG_RADIX_GROUP * BTG_RADIX_PER_ITEM)
+
+/* Work-group exclusive scan of one uint a work-item (BTG_RADIX_GROUP of them) in `sums`;
+ * returns this work-item's prefix, and the total in *total. Hillis-Steele in place. */
+static uint radix_group_scan(__local uint* sums, uint l, uint v, uint* total)
+{
+    sums[l] = v;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    for (uint d = 1u; d < BTG_RADIX_GROUP; d <<= 1) {
+        const uint add = l >= d ? sums[l - d] : 0u;
+        barrier(CLK_LOCAL_MEM_FENCE);
+        sums[l] += add;
+        barrier(CLK_LOCAL_MEM_FENCE);
+    }
+    const uint inclusive = sums[l];
+    *total = sums[BTG_RADIX_GROUP - 1u];
+    barrier(CLK_LOCAL_MEM_FENCE);
+    return inclusive - v;
+}
+
+/* The tile's digit counts: counts[d * numTiles + tile]. Launch: numTiles groups of BTG_RADIX_GROUP. */
+__kernel __attribute__((reqd_work_group_size(BTG_RADIX_GROUP, 1, 1)))
+void radix_tile_count(__global const uint* restrict keys, __global uint* restrict counts, uint n, uint shift,
+                      uint numTiles)
+{
+    __local uint perItem[BTG_RADIX * BTG_RADIX_GROUP]; /* [d][l]: work-item l's keys of digit d */
+    const uint l = (uint)get_local_id(0), tile = (uint)get_group_id(0);
+    uint own[BTG_RADIX];
+    for (uint d = 0; d < BTG_RADIX; ++d) own[d] = 0u;
+    for (uint j = 0; j < BTG_RADIX_PER_ITEM; ++j) {
+        const uint i = tile * BTG_RADIX_TILE + j * BTG_RADIX_GROUP + l;
+        if (i < n) own[(keys[i] >> shift) & BTG_RADIX_MASK]++;
+    }
+    for (uint d = 0; d < BTG_RADIX; ++d) perItem[d * BTG_RADIX_GROUP + l] = own[d];
+    barrier(CLK_LOCAL_MEM_FENCE);
+    /* digit d = l / 16 sums its row's 16 slices of 16; then the row's first adds them */
+    const uint d = l / BTG_RADIX, part = l % BTG_RADIX;
+    uint s = 0u;
+    for (uint k = 0; k < BTG_RADIX_GROUP / BTG_RADIX; ++k) s += perItem[d * BTG_RADIX_GROUP + part * (BTG_RADIX_GROUP / BTG_RADIX) + k];
+    barrier(CLK_LOCAL_MEM_FENCE);
+    perItem[l] = s;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (part == 0u) {
+        uint t = 0u;
+        for (uint k = 0; k < BTG_RADIX; ++k) t += perItem[d * BTG_RADIX + k];
+        counts[d * numTiles + tile] = t;
+    }
+}
+
+/* counts[0, size) replaced by their exclusive prefix sums. Launch: one group of BTG_RADIX_GROUP. */
+__kernel __attribute__((reqd_work_group_size(BTG_RADIX_GROUP, 1, 1)))
+void radix_tile_offsets(__global uint* counts, uint size)
+{
+    __local uint sums[BTG_RADIX_GROUP];
+    const uint l = (uint)get_local_id(0);
+    const uint per = (size + BTG_RADIX_GROUP - 1u) / BTG_RADIX_GROUP;
+    const uint begin = min(l * per, size), end = min(begin + per, size);
+    uint s = 0u;
+    for (uint i = begin; i < end; ++i) s += counts[i];
+    uint total = 0u;
+    uint run = radix_group_scan(sums, l, s, &total);
+    for (uint i = begin; i < end; ++i) {
+        const uint c = counts[i];
+        counts[i] = run;
+        run += c;
+    }
+}
+
+/* Each key of the tile to offsets[d * numTiles + tile] plus its rank among the tile's keys of
+ * digit d before it. Launch: numTiles groups of BTG_RADIX_GROUP. */
+__kernel __attribute__((reqd_work_group_size(BTG_RADIX_GROUP, 1, 1)))
+void radix_tile_scatter(__global const uint* restrict keysIn, __global const uint* restrict valsIn,
+                        __global uint* restrict keysOut, __global uint* restrict valsOut,
+                        __global const uint* restrict offsets, uint n, uint shift, uint numTiles)
+{
+    __local uint tileKeys[BTG_RADIX_TILE];
+    __local uint rank[BTG_RADIX * BTG_RADIX_GROUP]; /* [d][l], then its exclusive scan in that order */
+    __local uint sums[BTG_RADIX_GROUP];
+    __local uint start[BTG_RADIX];                  /* where digit d's keys go, less the tile's keys of smaller digits */
+    const uint l = (uint)get_local_id(0), tile = (uint)get_group_id(0);
+    const uint tileBase = tile * BTG_RADIX_TILE;
+    for (uint j = 0; j < BTG_RADIX_PER_ITEM; ++j) {
+        const uint i = tileBase + j * BTG_RADIX_GROUP + l;
+        tileKeys[j * BTG_RADIX_GROUP + l] = i < n ? keysIn[i] : 0u;
+    }
+    for (uint d = 0; d < BTG_RADIX; ++d) rank[d * BTG_RADIX_GROUP + l] = 0u;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    /* work-item l's keys: the tile's [l * PER_ITEM, (l + 1) * PER_ITEM), in order */
+    const uint first = l * BTG_RADIX_PER_ITEM;
+    for (uint k = 0; k < BTG_RADIX_PER_ITEM; ++k)
+        if (tileBase + first + k < n) rank[((tileKeys[first + k] >> shift) & BTG_RADIX_MASK) * BTG_RADIX_GROUP + l]++;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    /* exclusive scan of rank in [d][l] order: work-item t takes entries [16 t, 16 t + 16) */
+    uint s = 0u;
+    for (uint k = 0; k < BTG_RADIX; ++k) s += rank[l * BTG_RADIX + k];
+    uint total = 0u;
+    uint run = radix_group_scan(sums, l, s, &total);
+    for (uint k = 0; k < BTG_RADIX; ++k) {
+        const uint c = rank[l * BTG_RADIX + k];
+        rank[l * BTG_RADIX + k] = run;
+        run += c;
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (l < BTG_RADIX) start[l] = offsets[l * numTiles + tile] - rank[l * BTG_RADIX_GROUP];
+    barrier(CLK_LOCAL_MEM_FENCE);
+    for (uint k = 0; k < BTG_RADIX_PER_ITEM; ++k) {
+        const uint i = tileBase + first + k;
+        if (i >= n) break;
+        const uint key = tileKeys[first + k], d = (key >> shift) & BTG_RADIX_MASK;
+        uint before = 0u;
+        for (uint m = 0; m < k; ++m) before += ((tileKeys[first + m] >> shift) & BTG_RADIX_MASK) == d;
+        const uint o = start[d] + rank[d * BTG_RADIX_GROUP + l] + before;
+        keysOut[o] = key;
         valsOut[o] = valsIn[i];
     }
 }

@@ -1,6 +1,7 @@
 // radix_sort_test.cpp — the device radix sort equals a CPU stable sort exactly (keys and the
 // values they carry, so stability is checked), for several sizes and key widths, with the
-// caller's 0xffffffff padding beyond the real count.
+// caller's 0xffffffff padding beyond the real count; both ways (chunks, the CPU devices', and
+// tiles, the GPUs') on whatever device the tests run.
 #include "reference/prims/radix_sort.h"
 #include "stages/prims/radix_sort.h"
 #include "test_device.h"
@@ -11,7 +12,7 @@
 using namespace btgpu;
 
 namespace {
-void checkSort(size_t n, int keyBits, unsigned seed, size_t padding = 0)
+void checkSort(size_t n, int keyBits, unsigned seed, size_t padding = 0, RadixPath path = RadixPath::Auto)
 {
     cl::Context& ctx = test::context();
     std::mt19937 rng(seed);
@@ -28,11 +29,11 @@ void checkSort(size_t n, int keyBits, unsigned seed, size_t padding = 0)
     dk.upload(ctx, keys);
     dv.upload(ctx, values);
     RadixScratch scratch;
-    radixSort(ctx, nullptr, dk, dv, total, keyBits, scratch);
+    radixSort(ctx, nullptr, dk, dv, total, keyBits, scratch, path);
     std::vector<uint> gotK = dk.download(ctx, total), gotV = dv.download(ctx, total);
     ref::radixSort(keys, values, keyBits);
-    ASSERT_EQ(gotK, keys) << "n=" << n << " bits=" << keyBits;
-    ASSERT_EQ(gotV, values) << "n=" << n << " bits=" << keyBits;
+    ASSERT_EQ(gotK, keys) << "n=" << n << " bits=" << keyBits << " path=" << int(path);
+    ASSERT_EQ(gotV, values) << "n=" << n << " bits=" << keyBits << " path=" << int(path);
 }
 }  // namespace
 
@@ -41,6 +42,16 @@ TEST(RadixSort, MatchesReferenceAcrossSizesAndWidths)
     for (size_t n : {size_t(0), size_t(1), size_t(63), size_t(64), size_t(1000), size_t(100000)})
         for (int bits : {3, 4, 13, 32})
             checkSort(n, bits, unsigned(n * 31 + bits));
+}
+
+// The tiles' edges: one key, a tile less one, a tile, a tile and one, many tiles with a partial
+// last one (1,024 keys a tile), and a scan of more tile counts than its work-group's work-items.
+TEST(RadixSort, ChunksAndTilesAgreeWithTheReference)
+{
+    for (RadixPath path : {RadixPath::Chunks, RadixPath::Tiles})
+        for (size_t n : {size_t(2), size_t(1023), size_t(1024), size_t(1025), size_t(5000), size_t(70000)})
+            for (int bits : {4, 9, 30})
+                checkSort(n, bits, unsigned(n * 7 + bits), n % 3 == 0 ? 100 : 0, path);
 }
 
 TEST(RadixSort, PaddingSortsLast)

@@ -5,6 +5,7 @@
 
 #include "cl/program.h"
 
+#include <cstdlib>
 #include <utility>
 
 namespace btgpu {
@@ -13,6 +14,26 @@ constexpr int kRadixBits = 4;
 constexpr cl_uint kDigits = 1u << kRadixBits;
 // Elements per work-item: the histogram holds 16 entries per chunk, so 64 keeps it at n/4.
 constexpr cl_uint kChunk = 64;
+// radix_sort.cl's BTG_RADIX_GROUP and BTG_RADIX_TILE.
+constexpr size_t kTileGroup = 256;
+constexpr cl_uint kTile = 1024;
+
+// A GPU's passes: count, scan, scatter by tiles of kTile keys (radix_sort.cl says why).
+void tilePass(cl::Context& ctx, cl::Profiler* profiler, cl::Program& prog, cl::DeviceArray<uint>& kIn,
+              cl::DeviceArray<uint>& vIn, cl::DeviceArray<uint>& kOut, cl::DeviceArray<uint>& vOut, size_t n,
+              cl_uint shift, RadixScratch& scratch)
+{
+    const cl_uint numTiles = cl_uint((n + kTile - 1) / kTile);
+    cl::Launch(ctx, prog.kernel("radix_tile_count"), profiler)
+        .arg(kIn).arg(scratch.histogram).arg(cl_uint(n)).arg(shift).arg(numTiles)
+        .run(size_t(numTiles) * kTileGroup, kTileGroup);
+    cl::Launch(ctx, prog.kernel("radix_tile_offsets"), profiler)
+        .arg(scratch.histogram).arg(cl_uint(numTiles * kDigits))
+        .run(kTileGroup, kTileGroup);
+    cl::Launch(ctx, prog.kernel("radix_tile_scatter"), profiler)
+        .arg(kIn).arg(vIn).arg(kOut).arg(vOut).arg(scratch.histogram).arg(cl_uint(n)).arg(shift).arg(numTiles)
+        .run(size_t(numTiles) * kTileGroup, kTileGroup);
+}
 }  // namespace
 
 int radixBitsFor(uint maxValue)
@@ -23,12 +44,20 @@ int radixBitsFor(uint maxValue)
 }
 
 void radixSort(cl::Context& ctx, cl::Profiler* profiler, cl::DeviceArray<uint>& keys,
-               cl::DeviceArray<uint>& values, size_t n, int keyBits, RadixScratch& scratch)
+               cl::DeviceArray<uint>& values, size_t n, int keyBits, RadixScratch& scratch, RadixPath path)
 {
     if (n <= 1 || keyBits <= 0) return;
     if (keyBits > 32) keyBits = 32;
+    // A CPU device runs a work-group's work-items one after another: its chunks walk their keys
+    // in cache order, where a tile's local-memory barriers would cost it.
+    // BTGPU_RADIX_CHUNKS=1 (for measuring) takes the chunks on a GPU too.
+    static const bool chunksKnob = [] {
+        const char* e = std::getenv("BTGPU_RADIX_CHUNKS");
+        return e && e[0] == '1';
+    }();
+    const bool tiles = path == RadixPath::Tiles || (path == RadixPath::Auto && ctx.device().isGpu && !chunksKnob);
     cl_uint numChunks = cl_uint((n + kChunk - 1) / kChunk);
-    size_t histSize = size_t(numChunks) * kDigits;
+    size_t histSize = tiles ? (n + kTile - 1) / kTile * kDigits : size_t(numChunks) * kDigits;
     scratch.keysAlt.reserve(ctx, n);
     scratch.valuesAlt.reserve(ctx, n);
     scratch.histogram.reserve(ctx, histSize);
@@ -41,6 +70,12 @@ void radixSort(cl::Context& ctx, cl::Profiler* profiler, cl::DeviceArray<uint>& 
     int passes = (keyBits + kRadixBits - 1) / kRadixBits;
     for (int p = 0; p < passes; ++p) {
         cl_uint shift = cl_uint(p * kRadixBits);
+        if (tiles) {
+            tilePass(ctx, profiler, prog, *kIn, *vIn, *kOut, *vOut, n, shift, scratch);
+            std::swap(kIn, kOut);
+            std::swap(vIn, vOut);
+            continue;
+        }
         cl::Launch(ctx, prog.kernel("radix_histogram"), profiler)
             .arg(*kIn).arg(scratch.histogram).arg(cl_uint(n)).arg(shift).arg(kChunk).arg(numChunks)
             .run(numChunks);
