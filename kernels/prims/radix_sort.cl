@@ -45,10 +45,11 @@ __kernel void radix_scatter(__global const uint* restrict keysIn, __global const
  * BTG_RADIX_GROUP work-items takes a tile of BTG_RADIX_TILE consecutive keys, read coalesced;
  * the chunk kernels above give each work-item 64 keys of its own, a strided walk that left a
  * GPU's loads uncoalesced and its compute units nearly idle (H100, cubes 32,768: the pair sort's
- * passes about 0.4 ms a step). A pass is three launches: radix_tile_count (each tile's digit
- * counts, digit-major), radix_tile_offsets (one work-group: their exclusive scan, in place),
- * radix_tile_scatter (each key's place: its digit's offset for the tile plus its rank among the
- * tile's keys of that digit before it, from a scan of per-work-item counts in local memory).
+ * passes about 0.4 ms a step). A pass is radix_tile_count (each tile's digit counts,
+ * digit-major), radix_tile_offsets (one work-group: their exclusive scan, in place; left out
+ * where there are few tiles, radix_tile_scatter then adds them up itself) and radix_tile_scatter
+ * (each key's place: its digit's offset for the tile plus its rank among the tile's keys of that
+ * digit before it, from a scan of per-work-item counts in local memory).
  * Stable: a tile's keys keep their order within a digit, and tiles come in order. */
 #define BTG_RADIX_GROUP 256u
 #define BTG_RADIX_PER_ITEM 4u
@@ -120,12 +121,14 @@ void radix_tile_offsets(__global uint* counts, uint size)
     }
 }
 
-/* Each key of the tile to offsets[d * numTiles + tile] plus its rank among the tile's keys of
- * digit d before it. Launch: numTiles groups of BTG_RADIX_GROUP. */
+/* Each key of the tile to its digit d's offset for the tile plus its rank among the tile's keys
+ * of digit d before it. scanned: offsets[d * numTiles + tile] is that offset (radix_tile_offsets
+ * ran); else offsets holds the counts, and each work-group adds up the ones before its own (a
+ * few tiles: one launch a pass the fewer). Launch: numTiles groups of BTG_RADIX_GROUP. */
 __kernel __attribute__((reqd_work_group_size(BTG_RADIX_GROUP, 1, 1)))
 void radix_tile_scatter(__global const uint* restrict keysIn, __global const uint* restrict valsIn,
                         __global uint* restrict keysOut, __global uint* restrict valsOut,
-                        __global const uint* restrict offsets, uint n, uint shift, uint numTiles)
+                        __global const uint* restrict offsets, uint n, uint shift, uint numTiles, uint scanned)
 {
     __local uint tileKeys[BTG_RADIX_TILE];
     __local uint rank[BTG_RADIX * BTG_RADIX_GROUP]; /* [d][l], then its exclusive scan in that order */
@@ -155,7 +158,29 @@ void radix_tile_scatter(__global const uint* restrict keysIn, __global const uin
         run += c;
     }
     barrier(CLK_LOCAL_MEM_FENCE);
-    if (l < BTG_RADIX) start[l] = offsets[l * numTiles + tile] - rank[l * BTG_RADIX_GROUP];
+    /* Without the scan launch: digit d = l / 16's counts, every 16th tile from l % 16, those
+     * before this tile and all of them, added up here (the barriers outside any branch: PoCL's
+     * work-group loops want them so). */
+    const uint row = l / BTG_RADIX;
+    uint tilesBefore = 0u, all = 0u;
+    for (uint t = l % BTG_RADIX; !scanned && t < numTiles; t += BTG_RADIX) {
+        const uint c = offsets[row * numTiles + t];
+        all += c;
+        tilesBefore += t < tile ? c : 0u;
+    }
+    sums[l] = tilesBefore; /* the scan above is done with sums: free again */
+    barrier(CLK_LOCAL_MEM_FENCE);
+    uint rowBefore = 0u;
+    if (l < BTG_RADIX)
+        for (uint k = 0; k < BTG_RADIX; ++k) rowBefore += sums[l * BTG_RADIX + k];
+    barrier(CLK_LOCAL_MEM_FENCE);
+    sums[l] = all;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (l < BTG_RADIX) {
+        uint below = 0u; /* the keys of every smaller digit, all tiles */
+        for (uint k = 0; k < l * BTG_RADIX; ++k) below += sums[k];
+        start[l] = (scanned ? offsets[l * numTiles + tile] : below + rowBefore) - rank[l * BTG_RADIX_GROUP];
+    }
     barrier(CLK_LOCAL_MEM_FENCE);
     for (uint k = 0; k < BTG_RADIX_PER_ITEM; ++k) {
         const uint i = tileBase + first + k;

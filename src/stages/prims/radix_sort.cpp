@@ -17,6 +17,7 @@ constexpr cl_uint kChunk = 64;
 // radix_sort.cl's BTG_RADIX_GROUP and BTG_RADIX_TILE.
 constexpr size_t kTileGroup = 256;
 constexpr cl_uint kTile = 1024;
+constexpr cl_uint kFusedTiles = 128;
 
 // A GPU's passes: count, scan, scatter by tiles of kTile keys (radix_sort.cl says why).
 void tilePass(cl::Context& ctx, cl::Profiler* profiler, cl::Program& prog, cl::DeviceArray<uint>& kIn,
@@ -27,11 +28,16 @@ void tilePass(cl::Context& ctx, cl::Profiler* profiler, cl::Program& prog, cl::D
     cl::Launch(ctx, prog.kernel("radix_tile_count"), profiler)
         .arg(kIn).arg(scratch.histogram).arg(cl_uint(n)).arg(shift).arg(numTiles)
         .run(size_t(numTiles) * kTileGroup, kTileGroup);
-    cl::Launch(ctx, prog.kernel("radix_tile_offsets"), profiler)
-        .arg(scratch.histogram).arg(cl_uint(numTiles * kDigits))
-        .run(kTileGroup, kTileGroup);
+    // Up to kFusedTiles tiles each scatter work-group adds up the counts before its tile itself
+    // (16 x tiles loads over its 256 work-items) where a scan launch would cost more.
+    const cl_uint scanned = numTiles > kFusedTiles ? 1u : 0u;
+    if (scanned)
+        cl::Launch(ctx, prog.kernel("radix_tile_offsets"), profiler)
+            .arg(scratch.histogram).arg(cl_uint(numTiles * kDigits))
+            .run(kTileGroup, kTileGroup);
     cl::Launch(ctx, prog.kernel("radix_tile_scatter"), profiler)
         .arg(kIn).arg(vIn).arg(kOut).arg(vOut).arg(scratch.histogram).arg(cl_uint(n)).arg(shift).arg(numTiles)
+        .arg(scanned)
         .run(size_t(numTiles) * kTileGroup, kTileGroup);
 }
 }  // namespace
