@@ -34,7 +34,8 @@ void colorConstraints(DeviceWorld& w, int maxColors)
     int edgeCapacity = int(slots);
     if (slots == 0) return;
     size_t bodies = size_t(std::max(w.numBodies, 1));
-    w.solverScratch.bodyClaim.reserve(ctx, bodies);
+    // color_resident's claims: two halves taken in turn, then a word per sub-round (its comment)
+    w.solverScratch.bodyClaim.reserve(ctx, 2 * bodies + size_t(rounds) * kSubRounds);
     w.solverScratch.bodyColor.reserve(ctx, bodies);
     w.counters.fill(ctx, 0u, BTG_COUNTER_COLORS_USED, 2);  // colors used and leftovers
     // The whole batching in one launch: on a GPU over resident groups sized for one round's

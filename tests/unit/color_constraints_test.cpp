@@ -2,6 +2,7 @@
 // reference's, no dynamic body twice in a parallel color (static and kinematic ones may be),
 // every edge colored, and the result the same when run again.
 #include "contact_fixture.h"
+#include "shared/coloring.h"
 #include "stages/color_constraints.h"
 #include "test_device.h"
 
@@ -138,4 +139,27 @@ TEST(ColorConstraints, EnoughColorsLeaveNoLeftovers)
     Graph g = randomGraph(80, 600, 3);
     std::vector<int> got = runDevice(g, 64);
     EXPECT_EQ(std::count(got.begin(), got.end(), 63), 0);
+}
+
+// The batching's priorities are a bijection of the edge index (coloring.h): no two edges below
+// four million tie. A tie between two edges of one body lets both take it in the same colour.
+// (The int priority before 2026-12-06 tied 1,823 pairs here, the first at edges 88,337 and
+// 112,962.) And the fix changed no coloring without a tie: its order is the old one's wherever
+// the old priorities differ.
+TEST(ColorPriority, UniqueOverFourMillionEdges)
+{
+    const int n = 4 << 20;
+    std::vector<uint> p(size_t(n), 0u);
+    for (int i = 0; i < n; ++i) p[size_t(i)] = btgColorPriority(i);
+    EXPECT_NE(btgColorPriority(88337), btgColorPriority(112962));
+    // the old priority: the hash's low 31 bits
+    auto old = [](int i) { return int(((btgColorPriority(i) >> 1) | (btgColorPriority(i) << 31)) & 0x7fffffffu); };
+    std::mt19937 rng(7);
+    for (int k = 0; k < 100000; ++k) {
+        const int i = int(rng() % uint(n)), j = int(rng() % uint(n));
+        if (old(i) != old(j)) ASSERT_EQ(old(i) < old(j), p[size_t(i)] < p[size_t(j)]) << i << " " << j;
+    }
+    EXPECT_EQ(old(88337), old(112962));
+    std::sort(p.begin(), p.end());
+    EXPECT_EQ(std::adjacent_find(p.begin(), p.end()), p.end()) << "two edges share a priority";
 }
