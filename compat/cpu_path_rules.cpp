@@ -448,7 +448,7 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
 }
 
 std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool jacobi, unsigned* solverFlags,
-                         std::vector<btRigidBody*>* ccdBodies)
+                         std::vector<btRigidBody*>* ccdBodies, ShapeWalk* shapes)
 {
     *bodyIndex = -1;
     const btCollisionObjectArray& objs = world.getCollisionObjectArray();
@@ -467,8 +467,11 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
         unsigned anchoredKinds = 0;  // deviceShapeKinds of the CF_HAS_FRICTION_ANCHOR bodies
         unsigned worldKinds = 0;     // ... of every body
         std::vector<btRigidBody*> ccd;  // bodies stock's CCD looks at
+        bool swapped = false;           // an object's shape is not shapes->expected's
     };
     std::vector<Found> found(chunkCount(n, minPerThread));
+    const std::vector<const btCollisionShape*>* expected =
+        shapes && shapes->expected && shapes->expected->size() == n ? shapes->expected : nullptr;
     forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
         Found& f = found[chunk];
         for (size_t i = begin; i < end; ++i) {
@@ -482,6 +485,7 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
             }
             if (i + 4 < end) __builtin_prefetch(objs[int(i + 4)]->getCollisionShape());
             const btCollisionObject* o = objs[int(i)];
+            if (expected && o->getCollisionShape() != (*expected)[i]) f.swapped = true;
             std::string why = bodyReason(o, context);
             if (!why.empty()) {
                 f.index = int(i);
@@ -520,6 +524,14 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
     int anisotropicRolling = 0, anisotropic = 0, anisotropicOrdered = 0;
     unsigned anchoredKinds = 0, worldKinds = 0;
     if (ccdBodies) ccdBodies->clear();
+    if (shapes) {
+        shapes->complete = true;
+        shapes->swapped = shapes->expected && shapes->expected->size() != n;
+        for (const Found& f : found) {
+            shapes->complete = shapes->complete && f.index < 0;
+            shapes->swapped = shapes->swapped || f.swapped;
+        }
+    }
     for (const Found& f : found) {
         if (f.index >= 0) {
             *bodyIndex = f.index;

@@ -9,6 +9,7 @@
 #include <vector>
 
 class btCollisionObject;
+class btCollisionShape;
 class btDiscreteDynamicsWorld;
 class btRigidBody;
 
@@ -46,8 +47,17 @@ std::string bodyReason(const btCollisionObject* body, const BodyRuleContext& con
 // solver is configured. *solverFlags (when given, and the bodies are served) gets the
 // BTG_SOLVER_* bits the bodies call for (rolling friction, soft contacts). *ccdBodies (when
 // given) gets the bodies stock's continuous collision detection looks at (ccd_steps.h).
+// *shapes (when given): on the same walk each object's shape against shapes->expected (the
+// GPU world's shapesSwapped question, asked where the walk reads that line anyway): swapped when
+// one differs or the count does; complete when the walk saw every object (no reason stopped it).
+struct ShapeWalk {
+    const std::vector<const btCollisionShape*>* expected = nullptr;
+    bool complete = false;
+    bool swapped = false;
+};
 std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool jacobi = false,
-                         unsigned* solverFlags = nullptr, std::vector<btRigidBody*>* ccdBodies = nullptr);
+                         unsigned* solverFlags = nullptr, std::vector<btRigidBody*>* ccdBodies = nullptr,
+                         ShapeWalk* shapes = nullptr);
 
 // The dispatcher's collision algorithm for each pair of the shape types in `shapeTypes` (bit t:
 // proxy type t present) against a stock btDefaultCollisionConfiguration's: catches

@@ -6,6 +6,7 @@
 #include "btgpu/btGpuDynamicsWorld.h"
 #include "contact_callbacks.h"
 #include "cpu_path_guard.h"
+#include "cpu_path_rules.h"
 #include "ignored_pairs.h"
 #include "joint_rows.h"
 #include "leaf_pairs.h"
@@ -68,8 +69,9 @@ private:
 
     bool ensureDevice();
     // Why this step must run on the CPU path (cpu_path_rules.h), "" for the GPU path; a
-    // per-body reason sets *bodyIndex.
-    std::string cpuPathReason(int* bodyIndex);
+    // per-body reason sets *bodyIndex. *shapes (when given) gets shapesSwapped's answer from
+    // the rules' walk over the objects, where that walk saw them all (ShapeWalk::complete).
+    std::string cpuPathReason(int* bodyIndex, ShapeWalk* shapes = nullptr);
     // Bullet features the soft step (Config::solver = SoftStep) does not serve, "" when none.
     std::string softStepReason() const;
     // The solver the next step runs: Config::solver, Auto resolved by the last cpuPathReason
