@@ -47,7 +47,7 @@ __kernel void radix_scatter(__global const uint* restrict keysIn, __global const
  * GPU's loads uncoalesced and its compute units nearly idle (H100, cubes 32,768: the pair sort's
  * passes about 0.4 ms a step). A pass is radix_tile_count (each tile's digit counts,
  * digit-major), radix_tile_offsets (one work-group: their exclusive scan, in place; left out
- * where there are few tiles, radix_tile_scatter then adds them up itself) and radix_tile_scatter
+ * up to 512 tiles, radix_tile_scatter then adds them up itself) and radix_tile_scatter
  * (each key's place: its digit's offset for the tile plus its rank among the tile's keys of that
  * digit before it, from a scan of per-work-item counts in local memory).
  * Stable: a tile's keys keep their order within a digit, and tiles come in order. */

@@ -45,12 +45,12 @@ TEST(RadixSort, MatchesReferenceAcrossSizesAndWidths)
 }
 
 // The tiles' edges: one key, a tile less one, a tile, a tile and one, many tiles with a partial
-// last one (1,024 keys a tile), each scatter adding up the counts itself (up to 128 tiles) and
-// after the scan launch (200,000 keys: 196 tiles, more counts than its work-group's work-items).
+// last one (1,024 keys a tile), each scatter adding up the counts itself (up to 512 tiles) and
+// after the scan launch (600,000 keys: 586 tiles, more counts than its work-group's work-items).
 TEST(RadixSort, ChunksAndTilesAgreeWithTheReference)
 {
     for (RadixPath path : {RadixPath::Chunks, RadixPath::Tiles})
-        for (size_t n : {size_t(2), size_t(1023), size_t(1024), size_t(1025), size_t(5000), size_t(70000), size_t(200000)})
+        for (size_t n : {size_t(2), size_t(1023), size_t(1024), size_t(1025), size_t(5000), size_t(200000), size_t(600000)})
             for (int bits : {4, 9, 30})
                 checkSort(n, bits, unsigned(n * 7 + bits), n % 3 == 0 ? 100 : 0, path);
 }
