@@ -10,7 +10,7 @@ namespace btgpu {
 
 struct SolverScratch {
     cl::DeviceArray<uint> blockSums;  // contact_cache: per-work-group counts, then offsets
-    cl::DeviceArray<int> bodyClaim;   // color_constraints: lowest contact priority claiming a body
+    cl::DeviceArray<uint> bodyClaim;  // color_constraints: lowest contact priority claiming a body (two halves and a word a sub-round in color_resident)
     cl::DeviceArray<int> bodyColor;   // color_constraints: the color that last took the body
     // solve_constraints: contacts of color c are colorOrder[colorStart[c], colorStart[c + 1]);
     // a second list (counts and starts after numColors + 1, indices after one per contact
