@@ -49,9 +49,12 @@ __kernel void grid_cell_ranges(__global const uint* restrict keys, __global uint
     if (k == numBodies - 1 || keys[k + 1] != h) cellRange[2 * h + 1] = (uint)(k + 1);
 }
 
-/* Launch: one work-item per sorted grid entry. Scans the 27 neighbour cells' buckets (each
- * bucket once, though hash collisions map several cells to it) and keeps pairs with a higher
- * row only, so each pair is found once. */
+/* Launch: one work-item per sorted grid entry. Scans its own cell and the 13 neighbour cells
+ * after it (in z, y, x order) of the 27 (each bucket once, though hash collisions map several
+ * cells to it): a pair of bodies in two cells is found from the lower cell, a pair in one cell
+ * by its lower row; a body met in a bucket through a collision is kept only where its own cell
+ * says so. Each pair once, as (lower row, higher row); the pair sort orders them after, so the
+ * list is the one the full 27 cells gave (PoCL cubes 8,000: the stage's visits halved). */
 __kernel void grid_pairs(__global const BtgFloat4* restrict aabbMin, __global const BtgFloat4* restrict aabbMax,
                          __global const BtgBodyProps* restrict props, __global const uint* restrict keys,
                          __global const uint* restrict rows, __global const uint* restrict cellRange,
@@ -64,11 +67,11 @@ __kernel void grid_pairs(__global const BtgFloat4* restrict aabbMin, __global co
     BtgFloat4 iMin = aabbMin[i], iMax = aabbMax[i];
     BtgBodyProps pi = props[i];
     BtgInt4 c = btgGridCell(iMin, iMax, invCellSize);
-    uint seen[27];
+    uint seen[14];
     int numSeen = 0;
-    for (int dz = -1; dz <= 1; ++dz)
-        for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
+    for (int dz = 0; dz <= 1; ++dz)
+        for (int dy = dz == 0 ? 0 : -1; dy <= 1; ++dy)
+            for (int dx = dz == 0 && dy == 0 ? 0 : -1; dx <= 1; ++dx) {
                 uint h = btgGridHash(c.x + dx, c.y + dy, c.z + dz, tableMask);
                 int dup = 0;
                 for (int s = 0; s < numSeen; ++s) dup |= seen[s] == h;
@@ -77,10 +80,19 @@ __kernel void grid_pairs(__global const BtgFloat4* restrict aabbMin, __global co
                 uint end = cellRange[2 * h + 1];
                 for (uint m = cellRange[2 * h]; m < end; ++m) {
                     int j = (int)rows[m];
-                    if (j <= i) continue;
-                    if (!btgAabbOverlap(iMin, iMax, aabbMin[j], aabbMax[j])) continue;
+                    if (j == i) continue;
+                    const BtgFloat4 jMin = aabbMin[j], jMax = aabbMax[j];
+                    if (!btgAabbOverlap(iMin, iMax, jMin, jMax)) continue;
+                    /* j's cell against i's, in z, y, x order: lower, or the same and a lower row,
+                     * and i is not the one that keeps the pair */
+                    const BtgInt4 cj = btgGridCell(jMin, jMax, invCellSize);
+                    const int order = cj.z != c.z ? (cj.z > c.z ? 1 : -1)
+                                      : cj.y != c.y ? (cj.y > c.y ? 1 : -1)
+                                      : cj.x != c.x ? (cj.x > c.x ? 1 : -1)
+                                                    : (j > i ? 1 : -1);
+                    if (order < 0) continue;
                     if (!btgPairAllowed(pi, props[j])) continue;
-                    btgAppendPair(raw, counters, capacity, i, j);
+                    btgAppendPair(raw, counters, capacity, min(i, j), max(i, j));
                 }
             }
 }
