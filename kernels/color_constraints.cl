@@ -117,8 +117,8 @@ __kernel void color_finish(__global int* edgeColor, __global uint* counters, int
  * (shared/grid_barrier.h) where those have a kernel boundary, so the coloring is identical.
  * Edge i is handled by the same work-item in every round (its color is read and written by
  * no other); claims and body colors are shared, through BTG_SHARED pointers and atomics.
- * claim holds 2 x numBodies claims and a word per sub-round after them (the host's
- * colorResidentClaimWords): the sub-rounds take the two halves in turn, each assign pass
+ * claim holds 2 x numBodies claims and a word per sub-round after them (as colorConstraints
+ * reserves it): the sub-rounds take the two halves in turn, each assign pass
  * resetting the half the next claim pass takes, so a sub-round has two grid barriers where the
  * per-launch kernels' reset makes three; and each claim pass notes in its sub-round's word
  * whether it met an uncolored edge, so the rounds stop at the first that met none (the host

@@ -56,8 +56,8 @@ __kernel void radix_scatter(__global const uint* restrict keysIn, __global const
 #define BTG_RADIX_TILE (BTG_RADIX_GROUP * BTG_RADIX_PER_ITEM)
 
 /* Work-group exclusive scan of one uint a work-item (BTG_RADIX_GROUP of them) in `sums`;
- * returns this work-item's prefix, and the total in *total. Hillis-Steele in place. */
-static uint radix_group_scan(__local uint* sums, uint l, uint v, uint* total)
+ * returns this work-item's prefix. Hillis-Steele in place. */
+static uint radix_group_scan(__local uint* sums, uint l, uint v)
 {
     sums[l] = v;
     barrier(CLK_LOCAL_MEM_FENCE);
@@ -68,7 +68,6 @@ static uint radix_group_scan(__local uint* sums, uint l, uint v, uint* total)
         barrier(CLK_LOCAL_MEM_FENCE);
     }
     const uint inclusive = sums[l];
-    *total = sums[BTG_RADIX_GROUP - 1u];
     barrier(CLK_LOCAL_MEM_FENCE);
     return inclusive - v;
 }
@@ -112,8 +111,7 @@ void radix_tile_offsets(__global uint* counts, uint size)
     const uint begin = min(l * per, size), end = min(begin + per, size);
     uint s = 0u;
     for (uint i = begin; i < end; ++i) s += counts[i];
-    uint total = 0u;
-    uint run = radix_group_scan(sums, l, s, &total);
+    uint run = radix_group_scan(sums, l, s);
     for (uint i = begin; i < end; ++i) {
         const uint c = counts[i];
         counts[i] = run;
@@ -150,8 +148,7 @@ void radix_tile_scatter(__global const uint* restrict keysIn, __global const uin
     /* exclusive scan of rank in [d][l] order: work-item t takes entries [16 t, 16 t + 16) */
     uint s = 0u;
     for (uint k = 0; k < BTG_RADIX; ++k) s += rank[l * BTG_RADIX + k];
-    uint total = 0u;
-    uint run = radix_group_scan(sums, l, s, &total);
+    uint run = radix_group_scan(sums, l, s);
     for (uint k = 0; k < BTG_RADIX; ++k) {
         const uint c = rank[l * BTG_RADIX + k];
         rank[l * BTG_RADIX + k] = run;
