@@ -31,6 +31,19 @@ static inline void btgHullInterval(BtgCollider h, BTG_CONST_GLOBAL BtgFloat4* ve
 {
     BtgFloat4 dl = btgMat3TMulVec(h.pose.rot, d);
     float base = btgDot3(d, h.pose.pos);
+    if (h.shape.type == BTG_SHAPE_BOX) {
+        /* A box's vertices are exactly (+-hx, +-hy, +-hz) (shape_tables.cpp): the loop below
+         * would find its largest projection at the vertex whose signs are dl's, the same
+         * products |dl_i| h_i summed in the same order, and the smallest at the opposite vertex,
+         * exactly its negation (rounding is monotone and symmetric). Bit for bit the loop's
+         * interval, for 3 products instead of 8 dot products (the soft step's box pairs run
+         * this SAT every step). */
+        BtgFloat4 adl = btgMake4(btgAbs(dl.x), btgAbs(dl.y), btgAbs(dl.z), 0.0f);
+        float r = btgDot3(adl, h.shape.param);
+        *lo = base + (-r);
+        *hi = base + r;
+        return;
+    }
     float mn = 0.0f, mx = 0.0f;
     for (int i = 0; i < h.shape.numVertices; ++i) {
         float s = btgDot3(dl, btgHullVertex(h.shape, verts, i));
@@ -69,7 +82,11 @@ static inline BtgSatResult btgFindSeparatingAxis(BtgCollider a, BtgCollider b, B
     best.feature = BTG_SAT_FACE_A;
     best.indexA = -1;
     best.indexB = -1;
-    for (int f = 0; f < a.shape.numFaces; ++f) {
+    /* A box's faces come in opposite pairs, +axis before -axis (shape_tables.cpp): the second
+     * of a pair measures exactly the first's separation (every interval negated exactly), and
+     * an equal separation never replaces the best, so it is skipped, bit for bit. */
+    const int stepA = a.shape.type == BTG_SHAPE_BOX ? 2 : 1, stepB = b.shape.type == BTG_SHAPE_BOX ? 2 : 1;
+    for (int f = 0; f < a.shape.numFaces; f += stepA) {
         BtgFloat4 axis;
         BtgFloat4 d = btgMat3MulVec(a.pose.rot, faces[a.shape.firstFace + f].plane);
         float s = btgAxisSeparation(a, b, verts, d, &axis);
@@ -80,7 +97,7 @@ static inline BtgSatResult btgFindSeparatingAxis(BtgCollider a, BtgCollider b, B
             if (s > reject) return best;
         }
     }
-    for (int f = 0; f < b.shape.numFaces; ++f) {
+    for (int f = 0; f < b.shape.numFaces; f += stepB) {
         BtgFloat4 axis;
         BtgFloat4 d = btgMat3MulVec(b.pose.rot, faces[b.shape.firstFace + f].plane);
         float s = btgAxisSeparation(a, b, verts, d, &axis);

@@ -3,6 +3,7 @@
 // face–face, edge–edge and vertex–face boxes, spheres, planes, a sphere on an 18-vertex hull.
 #include "reference/narrowphase.h"
 #include "shape_tables.h"
+#include "shared/clip.h"
 #include "shared/math.h"
 #include "shared/narrowphase_common.h"
 #include "stages/find_pairs.h"
@@ -402,6 +403,68 @@ TEST(Narrowphase, RandomPosesAgreeAndLieOnSurfaces)
         }
     }
     EXPECT_GT(touching, 12);
+}
+
+// The SAT's box shortcuts (a box's interval from its half extents, one face of each opposite
+// pair) must give the answer of the generic hull loops bit for bit: the same rows with the type
+// HULL run those loops. Random poses, touching, near and apart, and exact stacks (ties).
+TEST(Narrowphase, BoxSatIsTheHullSatBitForBit)
+{
+    test::ShapeTables t;
+    const int boxes[] = {t.addBox(btgMake4(0.5f, 0.5f, 0.5f, 0)), t.addBox(btgMake4(1.5f, 0.2f, 1.0f, 0)),
+                         t.addBox(btgMake4(0.05f, 0.3f, 0.17f, 0))};
+    const ref::ShapeTablesView v = t.view();
+    uint32_t seed = 777u;
+    auto rnd = [&seed] {
+        seed = seed * 1664525u + 1013904223u;
+        return float(seed >> 8) / float(1u << 24);
+    };
+    auto collider = [&](int shape, BtgFloat4 pos, BtgFloat4 q, int asHull) {
+        BtgCollider c{};
+        c.pose.pos = pos;
+        c.pose.rot = btgQuatToMat3(q);
+        c.shape = t.shapes[size_t(shape)];
+        if (asHull) c.shape.type = BTG_SHAPE_HULL;
+        c.body = 0;
+        return c;
+    };
+    int touching = 0, edges = 0;
+    for (int i = 0; i < 3000; ++i) {
+        const int sa = boxes[i % 3], sb = boxes[(i / 3) % 3];
+        BtgFloat4 qa = kIdentity, qb = kIdentity;
+        BtgFloat4 pa = btgMake4(0, 0, 0, 0), pb = btgMake4(0, 0, 0, 0);
+        if (i % 4 == 0) {  // stacked, axis-aligned: every face axis of a pair ties
+            pa = btgMake4(0.3f * (rnd() - 0.5f), t.shapes[size_t(sa)].param.y + t.shapes[size_t(sb)].param.y -
+                                                     0.01f * rnd(), 0.0f, 0);
+        } else {
+            qa = btgQuatNormalize(btgMake4(rnd() - 0.5f, rnd() - 0.5f, rnd() - 0.5f, rnd() - 0.5f));
+            qb = btgQuatNormalize(btgMake4(rnd() - 0.5f, rnd() - 0.5f, rnd() - 0.5f, rnd() - 0.5f));
+            pa = btgNormalize3(btgMake4(rnd() - 0.5f, rnd() - 0.5f, rnd() - 0.5f, 0)) * (0.2f + 2.0f * rnd());
+        }
+        BtgManifold m[2];
+        BtgSatResult sat[2];
+        float lo[2], hi[2];
+        const BtgFloat4 dir = btgNormalize3(btgMake4(rnd() - 0.5f, rnd() - 0.5f, rnd() - 0.5f, 0));
+        for (int asHull = 0; asHull < 2; ++asHull) {
+            const BtgCollider a = collider(sa, pa, qa, asHull), b = collider(sb, pb, qb, asHull);
+            btgHullInterval(a, v.hullVertices, dir, &lo[asHull], &hi[asHull]);
+            sat[asHull] = btgFindSeparatingAxis(a, b, v.hullVertices, v.hullFaces, v.hullEdges, kThreshold);
+            m[asHull] = btgCollideHullHull(a, b, v.hullVertices, v.hullFaces, v.hullIndices, v.hullEdges, kThreshold);
+        }
+        SCOPED_TRACE("pose " + std::to_string(i));
+        ASSERT_EQ(std::memcmp(lo, lo + 1, sizeof(float)), 0);
+        ASSERT_EQ(std::memcmp(hi, hi + 1, sizeof(float)), 0);
+        ASSERT_EQ(std::memcmp(&sat[0].axis, &sat[1].axis, sizeof(BtgFloat4)), 0);
+        ASSERT_EQ(std::memcmp(&sat[0].separation, &sat[1].separation, sizeof(float)), 0);
+        ASSERT_EQ(sat[0].feature, sat[1].feature);
+        ASSERT_EQ(sat[0].indexA, sat[1].indexA);
+        ASSERT_EQ(sat[0].indexB, sat[1].indexB);
+        ASSERT_EQ(std::memcmp(&m[0], &m[1], sizeof(BtgManifold)), 0);
+        touching += m[0].numPoints > 0;
+        edges += sat[0].feature == BTG_SAT_EDGE;
+    }
+    EXPECT_GT(touching, 1000);  // the cases are not all apart ...
+    EXPECT_GT(edges, 100);      // ... nor all face contacts
 }
 
 // Equal boxes stacked exactly: every incident corner lies on a side plane of the reference
