@@ -57,6 +57,27 @@ inline size_t residentSolveGroups(const DeviceWorld& w)
     return perUnit * units;
 }
 
+// The batched PGS's one-launch solve: one group per compute unit, but no more than its contacts
+// (as of the last readback) give a group kPgsContactsPerGroup of, nor fewer than kPgsMinGroups.
+// Every group arrives at each of the step's hundreds of grid barriers, one atomic at one word
+// each: in a small scene the arrivals cost more than the parallelism they buy. H100, 2026-12-06
+// (tests/bench/small_scenes_on_gpu.sh, median frame ms over 200, two runs, groups 2 / 4 / 8 /
+// 16 / 32 / 66 / 132): cubes 125 1.35 / 1.35-1.47 / 1.36-1.42 / 1.35 / 1.36-1.40 / 1.35-1.37 /
+// 1.44-1.55; cubes 1,000 2.76-2.80 / 2.21-2.25 / 2.19-2.41 / 2.18-2.32 / 2.16-2.20 /
+// 2.17-2.19 / 2.17-2.22; cubes 8,000 from 32 groups within 4%, 32,768 best at 132. The groups
+// split the same colour ranges: bitwise the same results whatever the count (state hashes).
+// BTGPU_RESIDENT_GROUPS still sets the count outright.
+constexpr size_t kPgsContactsPerGroup = 64;
+constexpr size_t kPgsMinGroups = 16;
+inline size_t residentPgsGroups(const DeviceWorld& w)
+{
+    const size_t all = residentSolveGroups(w);
+    if (std::getenv("BTGPU_RESIDENT_GROUPS")) return all;
+    const size_t contacts = size_t(std::max(w.lastContactCount, 0));
+    const size_t wanted = std::max(kPgsMinGroups, (contacts + kPgsContactsPerGroup - 1) / kPgsContactsPerGroup);
+    return std::min(all, wanted);
+}
+
 // Work-items of a group of the solvers' one-launch kernels where the groups are resident (one per
 // compute unit): `preferred` (the stage's choice), else 256 for the one group of a small scene
 // on a CPU; or BTGPU_RESIDENT_GROUP_SIZE (an experiment knob, as above); within the kernel's

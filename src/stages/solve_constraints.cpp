@@ -81,14 +81,15 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     // Every pass and color in one launch: on a GPU over one group per compute unit (each
     // contact is a chain of dependent loads, so more work-items in flight beat cheaper
     // barriers: H200, 1,000 cubes: 1.7 ms with 132 groups, 2.2 with 2; 112,500: 3.1 against
-    // 7.1 with groups sized for four contacts a work-item); on a CPU over one group for small
+    // 7.1 with groups sized for four contacts a work-item; fewer in small scenes, where the
+    // barriers' arrivals cost more: residentPgsGroups); on a CPU over one group for small
     // scenes, where launch overhead would dominate (a lone group needs no grid barrier). Groups
     // of 128 work-items on a GPU (H200, solve stage ms at 256 / 128 / 64 work-items a group:
     // cubes 32,768 2.92 / 2.36 / 2.73, 112,500 4.20 / 3.81 / 4.46).
     const bool resident = useResident(w);
     if (resident || w.lastContactCount <= kOneGroupMaxContacts) {
         cl_kernel k = prog.kernel("solve_resident");
-        size_t groups = resident ? residentSolveGroups(w) : 1;
+        size_t groups = resident ? residentPgsGroups(w) : 1;
         // The flow (solve_constraints.cl): every sweep ordered by the bodies' counts instead of a
         // grid barrier per colour; on a CPU device in groups of one work-item.
         const bool flow = resident && groups > 1 && pgsFlow(w) && params.randomSeed == 0u && numColors - 1 <= 32;
