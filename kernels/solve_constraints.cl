@@ -43,75 +43,6 @@ static BtgSolverBody load_body(__global const BtgBodyProps* restrict props,
     return btgMakeSolverBody(props[i], invInertiaWorld[3 * i], invInertiaWorld[3 * i + 1], invInertiaWorld[3 * i + 2]);
 }
 
-/* Body velocities go through BTG_SHARED (volatile on GPUs) pointers: solve_resident shares
- * them between work-groups across its grid barriers, where a non-coherent cache must not
- * serve a stale copy. The arithmetic is the same for every caller. */
-static void solve_contact(int i, int mode, int rows, __global BtgContact* contacts,
-                      __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs, __global const BtgFrictionAnchor* restrict anchors,
-                      __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
-                      BTG_SHARED __global BtgFloat4* lin, BTG_SHARED __global BtgFloat4* ang, uint key)
-{
-    /* SOLVER_RANDMIZE_ORDER: this contact's points in its own order within the sweep (0: in order) */
-    const uint order = btgItemKey(key, (uint)i + 1u);
-    BtgContact c = btgLoadContactRows(contacts, i, mode == BTG_PASS_ROLLING ? BTG_PASS_NORMALS : mode, rows);
-    BtgSolverBody a = load_body(props, invInertiaWorld, c.bodyA);
-    BtgSolverBody b = load_body(props, invInertiaWorld, c.bodyB);
-    /* Push velocities of infinite-mass bodies are zero, as Bullet's solver bodies start them. */
-    int movingA = mode == BTG_PASS_PUSH ? a.dynamic : a.moving, movingB = mode == BTG_PASS_PUSH ? b.dynamic : b.moving;
-    BtgFloat4 linA = btgLoadShared4(&lin[c.bodyA]), angA = btgLoadShared4(&ang[c.bodyA]);
-    BtgFloat4 linB = btgLoadShared4(&lin[c.bodyB]), angB = btgLoadShared4(&ang[c.bodyB]);
-    BtgBodyVel va = btgMakeBodyVel(movingA, linA, angA);
-    BtgBodyVel vb = btgMakeBodyVel(movingB, linB, angB);
-    /* anisotropic friction: the explicit directions, for the passes with friction rows */
-    BtgFrictionDirs dirs;
-    const int explicitDirs = (rows & BTG_ROWS_ANISOTROPIC) != 0 &&
-                             (mode == BTG_PASS_WARM_START || mode == BTG_PASS_FRICTION || mode == BTG_PASS_VELOCITY);
-    if (explicitDirs) dirs = frictionDirs[i];
-    const BtgFrictionDirs* d = explicitDirs ? &dirs : 0;
-    /* friction anchors: the friction rows' positional targets, for the friction passes */
-    BtgFrictionAnchor anchor;
-    const int anchored = (rows & BTG_ROWS_ANCHORS) != 0 && (mode == BTG_PASS_FRICTION || mode == BTG_PASS_VELOCITY);
-    if (anchored) anchor = anchors[i];
-    const BtgFrictionAnchor* f = anchored ? &anchor : 0;
-    /* key is the same for every work-item of the launch: without SOLVER_RANDMIZE_ORDER the
-     * unpermuted loops, with no permutation code in them */
-    if (mode == BTG_PASS_WARM_START) btgContactWarmStartDirs(&c, d, a, b, &va, &vb, rows);
-    else if (mode == BTG_PASS_NORMALS && key == 0u) btgContactSolveNormals(&c, a, b, &va, &vb);
-    else if (mode == BTG_PASS_NORMALS) btgContactSolveNormalsOrdered(&c, order, a, b, &va, &vb);
-    else if (mode == BTG_PASS_FRICTION && key == 0u && !anchored) btgContactSolveFrictionDirs(&c, d, a, b, &va, &vb, rows);
-    else if (mode == BTG_PASS_FRICTION && key == 0u) btgContactSolveFrictionAnchored(&c, d, f, a, b, &va, &vb, rows);
-    else if (mode == BTG_PASS_FRICTION) btgContactSolveFrictionOrdered(&c, d, f, order, a, b, &va, &vb, rows);
-    else if (mode == BTG_PASS_VELOCITY) btgContactSolveInterleavedOrdered(&c, d, f, order, a, b, &va, &vb, rows);
-    else if (mode == BTG_PASS_ROLLING) {
-        BtgRollingContact r = rolling[i];
-        btgRollingSolve(&r, c.normal, btgSolvedNormalImpulse(&c), c.numPoints, a, b, &va, &vb);
-        rolling[i].spinImpulse = r.spinImpulse;
-        rolling[i].roll1Impulse = r.roll1Impulse;
-        rolling[i].roll2Impulse = r.roll2Impulse;
-    } else if (key == 0u) btgContactSolvePush(&c, a, b, &va, &vb);
-    else btgContactSolvePushOrdered(&c, order, a, b, &va, &vb);
-    /* w of the velocity columns is not the solver's: keep it. */
-    if (a.dynamic) {
-        lin[c.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, linA.w);
-        ang[c.bodyA] = btgMake4(va.ang.x, va.ang.y, va.ang.z, angA.w);
-    }
-    if (b.dynamic) {
-        lin[c.bodyB] = btgMake4(vb.lin.x, vb.lin.y, vb.lin.z, linB.w);
-        ang[c.bodyB] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, angB.w);
-    }
-    if (mode != BTG_PASS_ROLLING) btgStoreContactImpulses(contacts, i, &c, mode, rows);
-}
-
-/* One edge of the graph: the contacts are the edges [0, contacts); a constraint kind with
- * edges after them is solved here by its own rows. */
-static void solve_edge(int e, int mode, int rows, __global BtgContact* contacts,
-                       __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs, __global const BtgFrictionAnchor* restrict anchors,
-                       __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
-                       BTG_SHARED __global BtgFloat4* lin, BTG_SHARED __global BtgFloat4* ang, uint key)
-{
-    solve_contact(e, mode, rows, contacts, rolling, frictionDirs, anchors, props, invInertiaWorld, lin, ang, key);
-}
-
 static int edge_count(__global const uint* restrict counters, int edgeCapacity)
 {
     return (int)min(counters[BTG_COUNTER_EDGES], (uint)edgeCapacity);
@@ -124,54 +55,24 @@ static int contact_edges(__global const uint* restrict counters, int edgeCapacit
     return (int)min(counters[BTG_COUNTER_CONTACTS], (uint)(edgeCapacity - numJoints));
 }
 
-/* Joint j's rows, one Gauss-Seidel step each in row order (the rows of one joint share its two
- * bodies, so one work-item takes them all). */
-static void solve_joint(int j, int iteration, JOINT_ARGS, __global const BtgBodyProps* restrict props,
-                        __global const BtgFloat4* restrict invInertiaWorld, BTG_SHARED __global BtgFloat4* lin,
-                        BTG_SHARED __global BtgFloat4* ang)
-{
-    BtgJoint joint = joints[j];
-    const int rows = jointState[j].numRows;
-    if (rows == 0 || iteration >= joint.iterations) return;
-    BtgSolverBody a = joint.bodyA >= 0 ? load_body(props, invInertiaWorld, joint.bodyA) : btgFixedJointBody().body;
-    BtgSolverBody b = joint.bodyB >= 0 ? load_body(props, invInertiaWorld, joint.bodyB) : btgFixedJointBody().body;
-    BtgFloat4 linA = btgZero4(), angA = btgZero4(), linB = btgZero4(), angB = btgZero4();
-    if (joint.bodyA >= 0) {
-        linA = btgLoadShared4(&lin[joint.bodyA]);
-        angA = btgLoadShared4(&ang[joint.bodyA]);
-    }
-    if (joint.bodyB >= 0) {
-        linB = btgLoadShared4(&lin[joint.bodyB]);
-        angB = btgLoadShared4(&ang[joint.bodyB]);
-    }
-    BtgBodyVel va = btgMakeBodyVel(a.moving, linA, angA);
-    BtgBodyVel vb = btgMakeBodyVel(b.moving, linB, angB);
-    for (int k = 0; k < rows; ++k) {
-        BtgJointRow r = jointRows[joint.firstRow + k];
-        btgJointRowSolve(&r, a, b, &va, &vb);
-        jointRows[joint.firstRow + k].impulse = r.impulse;
-    }
-    if (a.dynamic) {
-        lin[joint.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, linA.w);
-        ang[joint.bodyA] = btgMake4(va.ang.x, va.ang.y, va.ang.z, angA.w);
-    }
-    if (b.dynamic) {
-        lin[joint.bodyB] = btgMake4(vb.lin.x, vb.lin.y, vb.lin.z, linB.w);
-        ang[joint.bodyB] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, angB.w);
-    }
-}
-
-/* One edge of the phase: a joint edge (phase 1) or a contact (phase 0). */
-static void solve_phase_edge(int e, int phase, int contacts, int iteration, int mode, int rows,
-                             __global BtgContact* contactRows, __global BtgRollingContact* rolling,
-                             __global const BtgFrictionDirs* restrict frictionDirs, __global const BtgFrictionAnchor* restrict anchors, JOINT_ARGS,
-                             __global const BtgBodyProps* restrict props,
-                             __global const BtgFloat4* restrict invInertiaWorld, BTG_SHARED __global BtgFloat4* lin,
-                             BTG_SHARED __global BtgFloat4* ang, uint key)
-{
-    if (phase) solve_joint(e - contacts, iteration, JOINT_PASS, props, invInertiaWorld, lin, ang);
-    else solve_edge(e, mode, rows, contactRows, rolling, frictionDirs, anchors, props, invInertiaWorld, lin, ang, key);
-}
+/* The edges' rows against the bodies' velocities (pgs_edges.h), twice: through BTG_SHARED global
+ * pointers (every kernel but solve_local; volatile on GPUs, where solve_resident shares them
+ * between work-groups across its grid barriers and a non-coherent cache must not serve a stale
+ * copy), and through local ones (solve_local's one work-group). The arithmetic is the same. */
+#define BTG_PGS_VEL BTG_SHARED __global BtgFloat4*
+#define BTG_PGS_LOAD(p) btgLoadShared4(p)
+#define BTG_PGS_FN(name) name
+#include "shared/pgs_edges.h"
+#undef BTG_PGS_VEL
+#undef BTG_PGS_LOAD
+#undef BTG_PGS_FN
+#define BTG_PGS_VEL __local BtgFloat4*
+#define BTG_PGS_LOAD(p) (*(p))
+#define BTG_PGS_FN(name) name##_local
+#include "shared/pgs_edges.h"
+#undef BTG_PGS_VEL
+#undef BTG_PGS_LOAD
+#undef BTG_PGS_FN
 
 /* Whether edge e has a split-impulse row (only contacts do: Bullet pushes contacts only). */
 static int edge_has_push(__global const BtgContact* restrict contacts, int e)
@@ -460,6 +361,98 @@ __kernel void solve_resident(__global const int* restrict edgeColor, __global Bt
                     }
                 }
             }
+        }
+    }
+}
+
+/* solve_local: solve_resident's passes, sweeps and colours on ONE work-group whose bodies'
+ * velocities live in local memory (slin, sang: a float4 each a body, every body of the world)
+ * for the whole launch: a small scene on a GPU, where each of the step's hundreds of colour
+ * phases is a chain of dependent loads and a barrier, and here the velocities are local loads
+ * and the barrier a work-group's. The velocity passes run on linVel/angVel's values, then (split
+ * impulse) the push passes on pushLin/pushAng's (zeroed by the host), each written back after
+ * its passes. Edges go to work-items as in solve_resident (slot k of a colour's range to work-item
+ * k mod the group), the rows and the colour order are its: the results are the same bit for
+ * bit (SolveConstraints.LocalSolveIsTheResidentSolveBitForBit). */
+__kernel void solve_local(__global const int* restrict edgeColor, __global BtgContact* contacts,
+                          __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs,
+                          __global const BtgFrictionAnchor* restrict anchors, __global uint* counters, int edgeCapacity,
+                          __global const uint* restrict colorStart, __global const int* restrict colorOrder,
+                          __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
+                          __global BtgFloat4* linVel, __global BtgFloat4* angVel, __global BtgFloat4* pushLin,
+                          __global BtgFloat4* pushAng, int numColors, int orderStride, int iterations,
+                          int splitImpulse, int rows, JOINT_ARGS, int jointIterations, uint seed, int numBodies,
+                          __local BtgFloat4* slin, __local BtgFloat4* sang)
+{
+    if (counters[BTG_COUNTER_STATUS] & BTG_STATUS_GRID_BARRIER_TIMEOUT) return;
+    const int lid = (int)get_local_id(0), lsize = (int)get_local_size(0);
+    for (int b = lid; b < numBodies; b += lsize) {
+        slin[b] = linVel[b];
+        sang[b] = angVel[b];
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+    const int n = edge_count(counters, edgeCapacity);
+    const int nc = contact_edges(counters, edgeCapacity, numJoints);
+    const int last = numColors - 1;
+    const int walkLast = counters[BTG_COUNTER_LEFTOVERS] != 0u || counters[BTG_COUNTER_COLORS_USED] > (uint)last;
+    const int velocity = max(iterations, numJoints > 0 ? jointIterations : 0);
+    const int passes = 1 + velocity + (splitImpulse ? iterations : 0);
+    int pushing = 0;
+    for (int pass = 0; pass < passes; ++pass) {
+        const int mode = pass == 0 ? BTG_PASS_WARM_START : (pass <= velocity ? BTG_PASS_VELOCITY : BTG_PASS_PUSH);
+        const int iteration = pass - 1;
+        if (mode == BTG_PASS_PUSH && !pushing) {
+            /* the velocities are final: back to global memory, the push velocities in their place */
+            for (int b = lid; b < numBodies; b += lsize) {
+                linVel[b] = slin[b];
+                angVel[b] = sang[b];
+                slin[b] = pushLin[b];
+                sang[b] = pushAng[b];
+            }
+            barrier(CLK_LOCAL_MEM_FENCE);
+            pushing = 1;
+        }
+        for (int phase = (mode == BTG_PASS_VELOCITY && numJoints > 0) ? 1 : 0; phase >= 0; --phase) {
+            if (phase == 0 && mode == BTG_PASS_VELOCITY && iteration >= iterations) break;
+            const int list = phase ? 2 : (mode == 2 ? 1 : 0);
+            const int split = phase == 0 && mode == BTG_PASS_VELOCITY;
+            const int interleave = (rows & BTG_ROWS_INTERLEAVE) != 0;
+            const int sweeps = split ? (interleave ? 1 : 2) + ((rows & BTG_ROWS_ROLLING) ? 1 : 0) : 1;
+            for (int sweep = 0; sweep < sweeps; ++sweep) {
+                const int m = !split ? mode
+                                     : (sweep == sweeps - 1 && (rows & BTG_ROWS_ROLLING)) ? BTG_PASS_ROLLING
+                                     : interleave ? BTG_PASS_VELOCITY
+                                     : (sweep == 0 ? BTG_PASS_NORMALS : BTG_PASS_FRICTION);
+                const uint key = btgPassKey(seed, m, phase, iteration);
+                for (int ci = 0; ci < last; ++ci) {
+                    const int color = btgPermute(key, last, ci);
+                    const int begin = (int)colorStart[list * (numColors + 1) + color];
+                    const int end = (int)colorStart[list * (numColors + 1) + color + 1];
+                    if (begin == end) continue; /* the same for every work-item */
+                    for (int k = begin + lid; k < end; k += lsize)
+                        solve_phase_edge_local(colorOrder[list * orderStride + k], phase, nc, iteration, m, rows, contacts,
+                                               rolling, frictionDirs, anchors, JOINT_PASS, props, invInertiaWorld, slin,
+                                               sang, key);
+                    barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+                }
+                if (walkLast) {
+                    if (lid == 0)
+                        for (int i = phase ? nc : 0; i < (phase ? n : min(n, nc)); ++i)
+                            if (edgeColor[i] >= last)
+                                solve_phase_edge_local(i, phase, nc, iteration, m, rows, contacts, rolling, frictionDirs,
+                                                       anchors, JOINT_PASS, props, invInertiaWorld, slin, sang, key);
+                    barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+                }
+            }
+        }
+    }
+    for (int b = lid; b < numBodies; b += lsize) {
+        if (pushing) {
+            pushLin[b] = slin[b];
+            pushAng[b] = sang[b];
+        } else {
+            linVel[b] = slin[b];
+            angVel[b] = sang[b];
         }
     }
 }

@@ -60,6 +60,7 @@ std::vector<DeviceInfo> listDevices()
             BTGPU_CL_CHECK(clGetDeviceInfo(d, CL_DEVICE_MAX_WORK_GROUP_SIZE, sizeof(size_t), &info.maxWorkGroupSize, nullptr));
             BTGPU_CL_CHECK(clGetDeviceInfo(d, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof(cl_ulong), &info.globalMemBytes, nullptr));
             BTGPU_CL_CHECK(clGetDeviceInfo(d, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof(cl_uint), &info.computeUnits, nullptr));
+            BTGPU_CL_CHECK(clGetDeviceInfo(d, CL_DEVICE_LOCAL_MEM_SIZE, sizeof(cl_ulong), &info.localMemBytes, nullptr));
             out.push_back(info);
         }
     }

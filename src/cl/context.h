@@ -21,6 +21,7 @@ struct DeviceInfo {
     size_t maxWorkGroupSize = 1;
     cl_ulong globalMemBytes = 0;
     cl_uint computeUnits = 1;
+    cl_ulong localMemBytes = 0;  // a work-group's local memory (CL_DEVICE_LOCAL_MEM_SIZE)
     std::string describe() const;
     // NVIDIA's GPUs: programs are built with -DBTG_NVIDIA=1 (inline PTX), and the host picks the
     // launches that rely on it (the soft step's quads) by the same test

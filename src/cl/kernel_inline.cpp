@@ -43,10 +43,16 @@ std::string normalise(const std::string& path)
     return out;
 }
 
+// A header that says this in its first line is inlined at every include (it is meant to be
+// included more than once, with different macros around it: kernels/shared/pgs_edges.h).
+const char* const kEveryInclude = "inlined at every include";
+
 void inlineInto(const std::string& dir, const std::string& rel, std::set<std::string>& seen, std::string& out)
 {
-    if (!seen.insert(rel).second) return;
-    std::istringstream in(readFile(dir + "/" + rel));
+    const std::string text = readFile(dir + "/" + rel);
+    const bool everyTime = text.substr(0, text.find('\n')).find(kEveryInclude) != std::string::npos;
+    if (!everyTime && !seen.insert(rel).second) return;
+    std::istringstream in(text);
     std::string line;
     int lineNo = 0;
     out += "#line 1 \"" + rel + "\"\n";

@@ -32,6 +32,30 @@ bool pgsFlow(const DeviceWorld& w)
     if (w.pgsFlow != R::Auto) return w.pgsFlow == R::On;
     return knob && !w.ctx.device().isGpu;
 }
+
+// solve_local (solve_constraints.cl): the solve on one work-group, every body's velocities in its
+// local memory, on a GPU up to this many contacts (as of the last readback). Each colour phase of
+// the resident solve is a chain of dependent loads (velocities through L2) and a grid barrier,
+// about 3.5 us on an H100 whatever the scene's size (125 cubes: 186 phases, 0.7 ms); one group
+// with local velocities and a work-group barrier shortens the chain, until one compute unit's
+// throughput is what limits (measured: tests/bench/small_scenes_on_gpu.sh).
+constexpr int kLocalMaxContacts = 2048;
+constexpr size_t kLocalMaxGroup = 1024;
+bool pgsLocal(const DeviceWorld& w, size_t bodies, bool flow)
+{
+    using R = DeviceWorld::Resident;
+    if (w.pgsLocal == R::Off || flow || bodies == 0) return false;
+    // BTGPU_PGS_LOCAL=0 / 1: never / wherever the velocities fit (an experiment knob)
+    static const int knob = [] {
+        const char* e = std::getenv("BTGPU_PGS_LOCAL");
+        return e && e[0] ? (e[0] == '0' ? 0 : 1) : -1;
+    }();
+    if (knob == 0 && w.pgsLocal != R::On) return false;
+    // two float4 a body, and a little for what the compiler keeps there itself
+    if (2 * sizeof(BtgFloat4) * bodies + 1024 > w.ctx.device().localMemBytes) return false;
+    if (w.pgsLocal == R::On || knob == 1) return true;
+    return useResident(w) && w.ctx.device().isGpu && w.lastContactCount <= kLocalMaxContacts;
+}
 }
 
 void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iterations, int numColors)
@@ -87,6 +111,19 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     // of 128 work-items on a GPU (H200, solve stage ms at 256 / 128 / 64 work-items a group:
     // cubes 32,768 2.92 / 2.36 / 2.73, 112,500 4.20 / 3.81 / 4.46).
     const bool resident = useResident(w);
+    if (pgsLocal(w, bodies, pgsFlow(w))) {
+        cl_kernel k = prog.kernel("solve_local");
+        const size_t group = std::min(kLocalMaxGroup, cl::kernelGroupLimit(ctx, k));
+        cl::Launch(ctx, k, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.rollingContacts).arg(w.frictionDirs)
+            .arg(w.frictionAnchors).arg(w.counters).arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorOrder)
+            .arg(w.props).arg(w.invInertiaWorld).arg(w.linVel).arg(w.angVel).arg(w.pushLin).arg(w.pushAng)
+            .arg(numColors).arg(orderStride).arg(iterations).arg(params.splitImpulse ? 1 : 0).arg(rows)
+            .arg(w.joints).arg(w.jointState).arg(w.jointRows).arg(numJoints).arg(w.jointIterations)
+            .arg(cl_uint(params.randomSeed)).arg(int(bodies)).local(bodies * sizeof(BtgFloat4))
+            .local(bodies * sizeof(BtgFloat4))
+            .run(group, group);
+        return;
+    }
     if (resident || w.lastContactCount <= kOneGroupMaxContacts) {
         cl_kernel k = prog.kernel("solve_resident");
         size_t groups = resident ? residentPgsGroups(w) : 1;

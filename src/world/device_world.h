@@ -200,6 +200,10 @@ struct DeviceWorld {
     Resident softFlow = Resident::Auto;
     // The same for the bullet mode's resident solve (solve_constraints.cl's flow; BTGPU_PGS_FLOW=1).
     Resident pgsFlow = Resident::Auto;
+    // The bullet mode's solve on one work-group with the velocities in local memory
+    // (solve_constraints.cl's solve_local; the same results bit for bit): Auto takes it on GPUs
+    // for small scenes (solve_constraints.cpp), On wherever the velocities fit (tests), Off never.
+    Resident pgsLocal = Resident::Auto;
 
     // --- joints (issue 11): the app's joints, their rows and what the solve leaves of them ---
     // Edge contacts + j of the constraint graph is joint j; joint j's rows are

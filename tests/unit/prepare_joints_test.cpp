@@ -441,11 +441,13 @@ struct SolveResult {
 SolveResult runSolveDevice(const test::StackScene& s, const ref::JointTables& t, const BtgStepParams& p,
                            const BtgJointStepParams& jp, int iterations, int maxColors, bool fused,
                            DeviceWorld::Resident resident = DeviceWorld::Resident::Auto,
-                           DeviceWorld::Resident flow = DeviceWorld::Resident::Off, uint* status = nullptr)
+                           DeviceWorld::Resident flow = DeviceWorld::Resident::Off, uint* status = nullptr,
+                           DeviceWorld::Resident local = DeviceWorld::Resident::Off)
 {
     DeviceWorld w(test::context());
     w.resident = resident;
     w.pgsFlow = flow;
+    w.pgsLocal = local;
     w.lastContactCount = fused ? 0 : (1 << 30);
     test::uploadWorld(w, s.bodies, s.manifolds, uint(s.manifolds.size()), {}, s.manifolds.size() + 4);
     w.numJoints = int(t.joints.size());
@@ -593,5 +595,31 @@ TEST(PrepareJoints, SolveWithContactsFlowIsBitwiseTheSame)
     ASSERT_EQ(a.joints.rows.size(), b.joints.rows.size());
     for (size_t k = 0; k < a.joints.rows.size(); ++k)
         EXPECT_EQ(0, std::memcmp(&a.joints.rows[k].impulse, &b.joints.rows[k].impulse, sizeof(float))) << "row " << k;
+    for (size_t j = 0; j < t.joints.size(); ++j) EXPECT_EQ(a.joints.state[j].broken, b.joints.state[j].broken) << j;
+}
+
+// The one-group solve with local velocities (solve_local), joints with iterations overridden
+// upwards included: bitwise the per-colour launches'.
+TEST(PrepareJoints, SolveWithContactsLocalIsBitwiseTheSame)
+{
+    using Resident = DeviceWorld::Resident;
+    test::StackScene s = test::stackScene(4, 2, 2);
+    BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
+    for (size_t i = 0; i < s.bodies.props.size(); ++i)
+        if (s.bodies.props[i].flags & BTG_BODY_DYNAMIC) s.bodies.linVel[i] = btgMake4(0.1f * float(i % 3), -0.3f, 0, 0);
+    const ref::JointTables t = stackJoints(s);
+    const BtgJointStepParams jp = jointParams(int(t.joints.size()));
+    const SolveResult a = runSolveDevice(s, t, p, jp, 10, 24, false, Resident::Off);
+    const SolveResult b = runSolveDevice(s, t, p, jp, 10, 24, false, Resident::Off, Resident::Off, nullptr, Resident::On);
+    const size_t n = a.bodies.linVel.size() * sizeof(BtgFloat4);
+    EXPECT_EQ(0, std::memcmp(a.bodies.linVel.data(), b.bodies.linVel.data(), n));
+    EXPECT_EQ(0, std::memcmp(a.bodies.angVel.data(), b.bodies.angVel.data(), n));
+    ASSERT_EQ(a.joints.rows.size(), b.joints.rows.size());
+    int loaded = 0;
+    for (size_t k = 0; k < a.joints.rows.size(); ++k) {
+        EXPECT_EQ(0, std::memcmp(&a.joints.rows[k].impulse, &b.joints.rows[k].impulse, sizeof(float))) << "row " << k;
+        loaded += a.joints.rows[k].impulse != 0.0f;
+    }
+    EXPECT_GT(loaded, 0);
     for (size_t j = 0; j < t.joints.size(); ++j) EXPECT_EQ(a.joints.state[j].broken, b.joints.state[j].broken) << j;
 }

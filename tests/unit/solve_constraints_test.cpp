@@ -40,11 +40,13 @@ struct Result {
 Result runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms, const std::vector<BtgContact>& prev,
                  const BtgStepParams& p, int maxColors, bool fused = false,
                  DeviceWorld::Resident resident = DeviceWorld::Resident::Auto,
-                 DeviceWorld::Resident flow = DeviceWorld::Resident::Off)
+                 DeviceWorld::Resident flow = DeviceWorld::Resident::Off,
+                 DeviceWorld::Resident local = DeviceWorld::Resident::Off)
 {
     DeviceWorld w(test::context());
     w.resident = resident;
     w.pgsFlow = flow;
+    w.pgsLocal = local;
     w.lastContactCount = fused ? 0 : (1 << 30);
     test::uploadWorld(w, b, ms, uint(ms.size()), prev, ms.size() + 4);
     buildContacts(w, p);
@@ -216,6 +218,41 @@ TEST_P(SolveConstraintsResident, OneResidentLaunchSolvesTheSame)
             EXPECT_EQ(0, std::memcmp(&a.contacts[i].pushImpulse, &b.contacts[i].pushImpulse, sizeof(BtgFloat4)));
         }
     }
+}
+
+// solve_local (one work-group, the velocities in local memory) against one launch per colour:
+// the same bits, with leftovers (3 colours), the push list, and a SOLVER_RANDMIZE_ORDER seed.
+TEST(SolveConstraints, LocalSolveIsTheResidentSolveBitForBit)
+{
+    test::StackScene s = test::stackScene(6, 4, 9);
+    using Resident = DeviceWorld::Resident;
+    for (uint seed : {0u, 12345u})
+        for (int maxColors : {3, 16}) {
+            BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
+            p.randomSeed = seed;
+            Result a = runDevice(s.bodies, s.manifolds, {}, p, maxColors, false, Resident::Off);
+            Result b = runDevice(s.bodies, s.manifolds, {}, p, maxColors, false, Resident::Off, Resident::Off,
+                                 Resident::On);
+            Result warm = runDevice(s.bodies, s.manifolds, b.contacts, p, maxColors, false, Resident::Off,
+                                    Resident::Off, Resident::On);
+            Result warmRef = runDevice(s.bodies, s.manifolds, a.contacts, p, maxColors, false, Resident::Off);
+            for (const auto& [x, y] : {std::pair<const Result*, const Result*>{&a, &b}, {&warmRef, &warm}}) {
+                size_t n = x->bodies.linVel.size();
+                EXPECT_EQ(0, std::memcmp(x->bodies.linVel.data(), y->bodies.linVel.data(), n * sizeof(BtgFloat4))) << maxColors;
+                EXPECT_EQ(0, std::memcmp(x->bodies.angVel.data(), y->bodies.angVel.data(), n * sizeof(BtgFloat4))) << maxColors;
+                EXPECT_EQ(0, std::memcmp(x->bodies.pushLin.data(), y->bodies.pushLin.data(), n * sizeof(BtgFloat4))) << maxColors;
+                EXPECT_EQ(0, std::memcmp(x->bodies.pushAng.data(), y->bodies.pushAng.data(), n * sizeof(BtgFloat4))) << maxColors;
+                ASSERT_EQ(x->contacts.size(), y->contacts.size());
+                for (size_t i = 0; i < x->contacts.size(); ++i) {
+                    EXPECT_EQ(0, std::memcmp(&x->contacts[i].normalImpulse, &y->contacts[i].normalImpulse, sizeof(BtgFloat4)));
+                    EXPECT_EQ(0, std::memcmp(&x->contacts[i].friction1Impulse, &y->contacts[i].friction1Impulse, sizeof(BtgFloat4)));
+                    EXPECT_EQ(0, std::memcmp(&x->contacts[i].pushImpulse, &y->contacts[i].pushImpulse, sizeof(BtgFloat4)));
+                }
+            }
+            bool moved = false;  // the solve did something to compare
+            for (const BtgFloat4& v : b.bodies.pushLin) moved = moved || v.y != 0.0f;
+            EXPECT_TRUE(moved);
+        }
 }
 
 TEST(SolveConstraints, RestingBoxStops)
