@@ -1,7 +1,7 @@
 // radix_sort_test.cpp — the device radix sort equals a CPU stable sort exactly (keys and the
 // values they carry, so stability is checked), for several sizes and key widths, with the
-// caller's 0xffffffff padding beyond the real count; both ways (chunks, the CPU devices', and
-// tiles, the GPUs') on whatever device the tests run.
+// caller's 0xffffffff padding beyond the real count; every way (chunks, the CPU devices', tiles,
+// the GPUs', and one tile in one launch) on whatever device the tests run.
 #include "reference/prims/radix_sort.h"
 #include "stages/prims/radix_sort.h"
 #include "test_device.h"
@@ -53,6 +53,16 @@ TEST(RadixSort, ChunksAndTilesAgreeWithTheReference)
         for (size_t n : {size_t(2), size_t(1023), size_t(1024), size_t(1025), size_t(5000), size_t(200000), size_t(600000)})
             for (int bits : {4, 9, 30})
                 checkSort(n, bits, unsigned(n * 7 + bits), n % 3 == 0 ? 100 : 0, path);
+}
+
+// One tile sorted in one launch (every pass in local memory): up to a whole tile, an odd and an
+// even number of passes, padding included.
+TEST(RadixSort, OneTileAgreesWithTheReference)
+{
+    for (size_t n : {size_t(2), size_t(3), size_t(255), size_t(256), size_t(257), size_t(700), size_t(1024)})
+        for (int bits : {1, 4, 9, 13, 30, 32})
+            checkSort(n, bits, unsigned(n * 13 + bits), 0, RadixPath::OneTile);
+    checkSort(900, 13, 77, 124, RadixPath::OneTile);
 }
 
 TEST(RadixSort, PaddingSortsLast)

@@ -63,6 +63,19 @@ void radixSort(cl::Context& ctx, cl::Profiler* profiler, cl::DeviceArray<uint>& 
         const char* e = std::getenv("BTGPU_RADIX_CHUNKS");
         return e && e[0] == '1';
     }();
+    // Up to one tile, every pass in one launch on one work-group (radix_tile_sort): a small
+    // scene's sorts took two launches a pass on a GPU and three or more on a CPU device.
+    // BTGPU_RADIX_ONE_TILE=0 (for measuring) leaves them to the passes.
+    static const bool oneTileOff = [] {
+        const char* e = std::getenv("BTGPU_RADIX_ONE_TILE");
+        return e && e[0] == '0';
+    }();
+    if (n <= kTile && (path == RadixPath::OneTile || (path == RadixPath::Auto && !chunksKnob && !oneTileOff))) {
+        cl::Launch(ctx, ctx.program("prims/radix_sort").kernel("radix_tile_sort"), profiler)
+            .arg(keys).arg(values).arg(cl_uint(n)).arg(cl_uint((keyBits + kRadixBits - 1) / kRadixBits))
+            .run(kTileGroup, kTileGroup);
+        return;
+    }
     const bool tiles = path == RadixPath::Tiles || (path == RadixPath::Auto && ctx.device().isGpu && !chunksKnob);
     cl_uint numChunks = cl_uint((n + kChunk - 1) / kChunk);
     size_t histSize = tiles ? (n + kTile - 1) / kTile * kDigits : size_t(numChunks) * kDigits;
