@@ -116,7 +116,11 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     const bool resident = useResident(w);
     if (pgsLocal(w, bodies, pgsFlow(w))) {
         cl_kernel k = prog.kernel("solve_local");
-        const size_t group = std::min(kLocalMaxGroup, cl::kernelGroupLimit(ctx, k));
+        // (BTGPU_RESIDENT_GROUP_SIZE, the experiment knob, sets it here too. H100, solve stage
+        // ms at 1,024 / 512 / 256 / 128 / 64 work-items, two runs: cubes 125 0.51 at every
+        // size, 512 cubes 0.85 / 0.85 / 0.85 / 1.13 / 1.70: a phase is one contact's chain of
+        // loads and rows, not the barrier's work-items)
+        const size_t group = residentSolveGroupSize(cl::kernelGroupLimit(ctx, k), true, kLocalMaxGroup);
         cl::Launch(ctx, k, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.rollingContacts).arg(w.frictionDirs)
             .arg(w.frictionAnchors).arg(w.counters).arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorOrder)
             .arg(w.props).arg(w.invInertiaWorld).arg(w.linVel).arg(w.angVel).arg(w.pushLin).arg(w.pushAng)
