@@ -240,6 +240,44 @@ static int flow_wait(volatile __global uint* done, long want, volatile __global 
     return want >= 0 && btgWaitForCount(done, (uint)want, bar, spinLimit);
 }
 
+/* The one-launch solves' schedule (solve_resident, solve_local): pass 0 warm-starts, the next
+ * `velocity` passes iterate velocities, the rest (split impulse) push. */
+static int pass_mode(int pass, int velocity)
+{
+    return pass == 0 ? BTG_PASS_WARM_START : (pass <= velocity ? BTG_PASS_VELOCITY : BTG_PASS_PUSH);
+}
+/* A phase's sweeps: the contacts' velocity pass is normals then friction (interleaved: both in
+ * one), then rolling; every other phase one sweep of its pass's mode. */
+static int phase_sweeps(int mode, int phase, int rows)
+{
+    if (phase != 0 || mode != BTG_PASS_VELOCITY) return 1;
+    return ((rows & BTG_ROWS_INTERLEAVE) ? 1 : 2) + ((rows & BTG_ROWS_ROLLING) ? 1 : 0);
+}
+/* The list a phase's edges come from: the joints (phase 1), the contacts with a push target
+ * (push passes), or every contact. */
+static int phase_list(int mode, int phase)
+{
+    return phase ? 2 : (mode == BTG_PASS_PUSH ? 1 : 0);
+}
+/* The phases of a pass, from this one down to 0: the joints first where velocity passes have
+ * joints to solve. */
+static int first_phase(int mode, int numJoints)
+{
+    return (mode == BTG_PASS_VELOCITY && numJoints > 0) ? 1 : 0;
+}
+/* Colour `color`'s slots [x, y) in `list`'s part of colorOrder. */
+static int2 color_range(__global const uint* restrict colorStart, int list, int numColors, int color)
+{
+    return (int2)((int)colorStart[list * (numColors + 1) + color], (int)colorStart[list * (numColors + 1) + color + 1]);
+}
+static int sweep_mode(int mode, int phase, int rows, int sweep, int sweeps)
+{
+    if (phase != 0 || mode != BTG_PASS_VELOCITY) return mode;
+    if (sweep == sweeps - 1 && (rows & BTG_ROWS_ROLLING)) return BTG_PASS_ROLLING;
+    if (rows & BTG_ROWS_INTERLEAVE) return BTG_PASS_VELOCITY;
+    return sweep == 0 ? BTG_PASS_NORMALS : BTG_PASS_FRICTION;
+}
+
 /* solve_resident: every pass and color in ONE launch over resident work-groups (GPUs), with a
  * grid barrier (shared/grid_barrier.h) where the per-color path has a kernel boundary: a step
  * has (colors + 1) x (1 + 2 x iterations) of those. Body velocities go through BTG_SHARED
@@ -276,30 +314,24 @@ __kernel void solve_resident(__global const int* restrict edgeColor, __global Bt
     const int velocity = max(iterations, numJoints > 0 ? jointIterations : 0);
     const int passes = 1 + velocity + (splitImpulse ? iterations : 0);
     for (int pass = 0; pass < passes; ++pass) {
-        const int mode = pass == 0 ? BTG_PASS_WARM_START : (pass <= velocity ? BTG_PASS_VELOCITY : BTG_PASS_PUSH);
+        const int mode = pass_mode(pass, velocity);
         const int iteration = pass - 1;
         BTG_SHARED __global BtgFloat4* lin = mode == 2 ? pushLin : linVel;
         BTG_SHARED __global BtgFloat4* ang = mode == 2 ? pushAng : angVel;
         /* Phase 1: the joints (velocity passes only), then phase 0: the contacts, whose
          * velocity pass is two sweeps (normals, then friction). */
-        for (int phase = (mode == BTG_PASS_VELOCITY && numJoints > 0) ? 1 : 0; phase >= 0; --phase) {
+        for (int phase = first_phase(mode, numJoints); phase >= 0; --phase) {
             if (phase == 0 && mode == BTG_PASS_VELOCITY && iteration >= iterations) break;
             /* push passes: only contacts with a push target */
-            const int list = phase ? 2 : (mode == 2 ? 1 : 0);
-            /* the contacts' velocity sweeps: normals, friction (interleaved: both in one), rolling */
-            const int split = phase == 0 && mode == BTG_PASS_VELOCITY;
-            const int interleave = (rows & BTG_ROWS_INTERLEAVE) != 0;
-            const int sweeps = split ? (interleave ? 1 : 2) + ((rows & BTG_ROWS_ROLLING) ? 1 : 0) : 1;
+            const int list = phase_list(mode, phase);
+            const int sweeps = phase_sweeps(mode, phase, rows);
             for (int sweep = 0; sweep < sweeps; ++sweep) {
-                const int m = !split ? mode
-                                     : (sweep == sweeps - 1 && (rows & BTG_ROWS_ROLLING)) ? BTG_PASS_ROLLING
-                                     : interleave ? BTG_PASS_VELOCITY
-                                     : (sweep == 0 ? BTG_PASS_NORMALS : BTG_PASS_FRICTION);
+                const int m = sweep_mode(mode, phase, rows, sweep, sweeps);
                 const uint key = btgPassKey(seed, m, phase, iteration);
                 for (int ci = 0; ci < last; ++ci) {
                     const int color = btgPermute(key, last, ci); /* SOLVER_RANDMIZE_ORDER, else ci */
-                    const int begin = (int)colorStart[list * (numColors + 1) + color];
-                    const int end = (int)colorStart[list * (numColors + 1) + color + 1];
+                    const int2 range = color_range(colorStart, list, numColors, color);
+                    const int begin = range.x, end = range.y;
                     /* an empty colour (the coloring's slack, a list's unused colours) needs no
                      * barrier: every work-item reads the same range */
                     if (begin == end) continue;
@@ -399,7 +431,7 @@ __kernel void solve_local(__global const int* restrict edgeColor, __global BtgCo
     const int passes = 1 + velocity + (splitImpulse ? iterations : 0);
     int pushing = 0;
     for (int pass = 0; pass < passes; ++pass) {
-        const int mode = pass == 0 ? BTG_PASS_WARM_START : (pass <= velocity ? BTG_PASS_VELOCITY : BTG_PASS_PUSH);
+        const int mode = pass_mode(pass, velocity);
         const int iteration = pass - 1;
         if (mode == BTG_PASS_PUSH && !pushing) {
             /* the velocities are final: back to global memory, the push velocities in their place */
@@ -412,24 +444,16 @@ __kernel void solve_local(__global const int* restrict edgeColor, __global BtgCo
             barrier(CLK_LOCAL_MEM_FENCE);
             pushing = 1;
         }
-        for (int phase = (mode == BTG_PASS_VELOCITY && numJoints > 0) ? 1 : 0; phase >= 0; --phase) {
+        for (int phase = first_phase(mode, numJoints); phase >= 0; --phase) {
             if (phase == 0 && mode == BTG_PASS_VELOCITY && iteration >= iterations) break;
-            const int list = phase ? 2 : (mode == 2 ? 1 : 0);
-            const int split = phase == 0 && mode == BTG_PASS_VELOCITY;
-            const int interleave = (rows & BTG_ROWS_INTERLEAVE) != 0;
-            const int sweeps = split ? (interleave ? 1 : 2) + ((rows & BTG_ROWS_ROLLING) ? 1 : 0) : 1;
+            const int list = phase_list(mode, phase), sweeps = phase_sweeps(mode, phase, rows);
             for (int sweep = 0; sweep < sweeps; ++sweep) {
-                const int m = !split ? mode
-                                     : (sweep == sweeps - 1 && (rows & BTG_ROWS_ROLLING)) ? BTG_PASS_ROLLING
-                                     : interleave ? BTG_PASS_VELOCITY
-                                     : (sweep == 0 ? BTG_PASS_NORMALS : BTG_PASS_FRICTION);
+                const int m = sweep_mode(mode, phase, rows, sweep, sweeps);
                 const uint key = btgPassKey(seed, m, phase, iteration);
                 for (int ci = 0; ci < last; ++ci) {
-                    const int color = btgPermute(key, last, ci);
-                    const int begin = (int)colorStart[list * (numColors + 1) + color];
-                    const int end = (int)colorStart[list * (numColors + 1) + color + 1];
-                    if (begin == end) continue; /* the same for every work-item */
-                    for (int k = begin + lid; k < end; k += lsize)
+                    const int2 range = color_range(colorStart, list, numColors, btgPermute(key, last, ci));
+                    if (range.x == range.y) continue; /* the same for every work-item */
+                    for (int k = range.x + lid; k < range.y; k += lsize)
                         solve_phase_edge_local(colorOrder[list * orderStride + k], phase, nc, iteration, m, rows, contacts,
                                                rolling, frictionDirs, anchors, JOINT_PASS, props, invInertiaWorld, slin,
                                                sang, key);

@@ -72,6 +72,31 @@ static uint radix_group_scan(__local uint* sums, uint l, uint v)
     return inclusive - v;
 }
 
+/* Each key's rank in the tile, less its rank among its own work-item's keys of that digit:
+ * rank[d * BTG_RADIX_GROUP + l] becomes the number of the tile's keys of a smaller digit, plus
+ * those of digit d held by work-items before l (work-item l holds the tile's keys [4 l, 4 l + 4),
+ * of which the first `valid` of the tile count). */
+static void radix_tile_ranks(__local uint* rank, __local uint* sums, __local const uint* tileKeys, uint valid,
+                             uint shift)
+{
+    const uint l = (uint)get_local_id(0), first = l * BTG_RADIX_PER_ITEM;
+    for (uint d = 0; d < BTG_RADIX; ++d) rank[d * BTG_RADIX_GROUP + l] = 0u;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    for (uint k = 0; k < BTG_RADIX_PER_ITEM; ++k)
+        if (first + k < valid) rank[((tileKeys[first + k] >> shift) & BTG_RADIX_MASK) * BTG_RADIX_GROUP + l]++;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    /* exclusive scan of rank in [d][l] order: work-item t takes entries [16 t, 16 t + 16) */
+    uint s = 0u;
+    for (uint k = 0; k < BTG_RADIX; ++k) s += rank[l * BTG_RADIX + k];
+    uint run = radix_group_scan(sums, l, s);
+    for (uint k = 0; k < BTG_RADIX; ++k) {
+        const uint c = rank[l * BTG_RADIX + k];
+        rank[l * BTG_RADIX + k] = run;
+        run += c;
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+}
+
 /* The tile's digit counts: counts[d * numTiles + tile]. Launch: numTiles groups of BTG_RADIX_GROUP. */
 __kernel __attribute__((reqd_work_group_size(BTG_RADIX_GROUP, 1, 1)))
 void radix_tile_count(__global const uint* restrict keys, __global uint* restrict counts, uint n, uint shift,
@@ -138,23 +163,10 @@ void radix_tile_scatter(__global const uint* restrict keysIn, __global const uin
         const uint i = tileBase + j * BTG_RADIX_GROUP + l;
         tileKeys[j * BTG_RADIX_GROUP + l] = i < n ? keysIn[i] : 0u;
     }
-    for (uint d = 0; d < BTG_RADIX; ++d) rank[d * BTG_RADIX_GROUP + l] = 0u;
     barrier(CLK_LOCAL_MEM_FENCE);
     /* work-item l's keys: the tile's [l * PER_ITEM, (l + 1) * PER_ITEM), in order */
     const uint first = l * BTG_RADIX_PER_ITEM;
-    for (uint k = 0; k < BTG_RADIX_PER_ITEM; ++k)
-        if (tileBase + first + k < n) rank[((tileKeys[first + k] >> shift) & BTG_RADIX_MASK) * BTG_RADIX_GROUP + l]++;
-    barrier(CLK_LOCAL_MEM_FENCE);
-    /* exclusive scan of rank in [d][l] order: work-item t takes entries [16 t, 16 t + 16) */
-    uint s = 0u;
-    for (uint k = 0; k < BTG_RADIX; ++k) s += rank[l * BTG_RADIX + k];
-    uint run = radix_group_scan(sums, l, s);
-    for (uint k = 0; k < BTG_RADIX; ++k) {
-        const uint c = rank[l * BTG_RADIX + k];
-        rank[l * BTG_RADIX + k] = run;
-        run += c;
-    }
-    barrier(CLK_LOCAL_MEM_FENCE);
+    radix_tile_ranks(rank, sums, tileKeys, tileBase < n ? n - tileBase : 0u, shift);
     /* Without the scan launch: digit d = l / 16's counts, every 16th tile from l % 16, those
      * before this tile and all of them, added up here (the barriers outside any branch: PoCL's
      * work-group loops want them so). */
@@ -192,66 +204,54 @@ void radix_tile_scatter(__global const uint* restrict keysIn, __global const uin
 }
 
 /* A sort of one tile (n <= BTG_RADIX_TILE) in one launch: every pass in local memory, the keys
- * and values ping-ponged between two local copies, each pass radix_tile_scatter's ranks (its
- * work-item's four consecutive keys counted per digit, the counts scanned in [digit][work-item]
- * order, which for one tile is each key's place less its rank among its own keys of that digit
- * before it). A small scene's sorts took two launches a pass, up to eight passes each; the same
- * stable order, so the same bits. Launch: one group of BTG_RADIX_GROUP. */
+ * and values ping-ponged between two local copies, each pass radix_tile_scatter's ranks
+ * (radix_tile_ranks: for one tile each key's place less its rank among its own work-item's keys
+ * of that digit). A small scene's sorts took two launches a pass, up to eight passes each; the
+ * same stable order, so the same bits. Launch: one group of BTG_RADIX_GROUP. */
 __kernel __attribute__((reqd_work_group_size(BTG_RADIX_GROUP, 1, 1)))
 void radix_tile_sort(__global uint* keys, __global uint* vals, uint n, uint passes)
 {
     __local uint keysA[BTG_RADIX_TILE], valsA[BTG_RADIX_TILE], keysB[BTG_RADIX_TILE], valsB[BTG_RADIX_TILE];
     __local uint rank[BTG_RADIX * BTG_RADIX_GROUP];
     __local uint sums[BTG_RADIX_GROUP];
-    const uint l = (uint)get_local_id(0);
+    const uint l = (uint)get_local_id(0), first = l * BTG_RADIX_PER_ITEM;
     for (uint j = 0; j < BTG_RADIX_PER_ITEM; ++j) {
         const uint i = j * BTG_RADIX_GROUP + l;
         keysA[i] = i < n ? keys[i] : 0u;
         valsA[i] = i < n ? vals[i] : 0u;
     }
-    const uint first = l * BTG_RADIX_PER_ITEM;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    /* (the copies picked by pointers, the barriers outside any branch: PoCL's work-group loops
+     * want them so) */
+    __local uint* keysIn = keysA;
+    __local uint* valsIn = valsA;
+    __local uint* keysOut = keysB;
+    __local uint* valsOut = valsB;
     for (uint pass = 0u; pass < passes; ++pass) {
         const uint shift = 4u * pass;
-        /* this pass reads one copy and writes the other (no pointer to local memory chosen at
-         * run time: the pass's parity picks the branch, the same for every work-item) */
-        const uint odd = pass & 1u;
-        for (uint d = 0; d < BTG_RADIX; ++d) rank[d * BTG_RADIX_GROUP + l] = 0u;
-        barrier(CLK_LOCAL_MEM_FENCE);
-        for (uint k = 0; k < BTG_RADIX_PER_ITEM; ++k)
-            if (first + k < n) rank[(((odd ? keysB : keysA)[first + k] >> shift) & BTG_RADIX_MASK) * BTG_RADIX_GROUP + l]++;
-        barrier(CLK_LOCAL_MEM_FENCE);
-        uint s = 0u;
-        for (uint k = 0; k < BTG_RADIX; ++k) s += rank[l * BTG_RADIX + k];
-        uint run = radix_group_scan(sums, l, s);
-        for (uint k = 0; k < BTG_RADIX; ++k) {
-            const uint c = rank[l * BTG_RADIX + k];
-            rank[l * BTG_RADIX + k] = run;
-            run += c;
-        }
-        barrier(CLK_LOCAL_MEM_FENCE);
+        radix_tile_ranks(rank, sums, keysIn, n, shift);
         for (uint k = 0; k < BTG_RADIX_PER_ITEM; ++k) {
             if (first + k >= n) break;
-            const uint key = (odd ? keysB : keysA)[first + k], d = (key >> shift) & BTG_RADIX_MASK;
+            const uint key = keysIn[first + k], d = (key >> shift) & BTG_RADIX_MASK;
             uint before = 0u;
-            for (uint m = 0; m < k; ++m) before += (((odd ? keysB : keysA)[first + m] >> shift) & BTG_RADIX_MASK) == d;
+            for (uint m = 0; m < k; ++m) before += ((keysIn[first + m] >> shift) & BTG_RADIX_MASK) == d;
             const uint o = rank[d * BTG_RADIX_GROUP + l] + before;
-            const uint v = (odd ? valsB : valsA)[first + k];
-            if (odd) {
-                keysA[o] = key;
-                valsA[o] = v;
-            } else {
-                keysB[o] = key;
-                valsB[o] = v;
-            }
+            keysOut[o] = key;
+            valsOut[o] = valsIn[first + k];
         }
         barrier(CLK_LOCAL_MEM_FENCE);
+        __local uint* t = keysIn;
+        keysIn = keysOut;
+        keysOut = t;
+        t = valsIn;
+        valsIn = valsOut;
+        valsOut = t;
     }
-    const uint odd = passes & 1u;
     for (uint j = 0; j < BTG_RADIX_PER_ITEM; ++j) {
         const uint i = j * BTG_RADIX_GROUP + l;
         if (i < n) {
-            keys[i] = odd ? keysB[i] : keysA[i];
-            vals[i] = odd ? valsB[i] : valsA[i];
+            keys[i] = keysIn[i];
+            vals[i] = valsIn[i];
         }
     }
 }

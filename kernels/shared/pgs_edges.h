@@ -7,6 +7,14 @@
  * guard, and the first line's words tell the kernel inliner (src/cl/kernel_inline.cpp) to inline
  * it at every include: included twice on purpose. OpenCL only. */
 
+/* A dynamic body's solved velocities back; w of the velocity columns is not the solver's: kept. */
+static void BTG_PGS_FN(store_velocity)(BTG_PGS_VEL lin, BTG_PGS_VEL ang, int body, BtgBodyVel v, BtgFloat4 linOld,
+                                       BtgFloat4 angOld)
+{
+    lin[body] = btgMake4(v.lin.x, v.lin.y, v.lin.z, linOld.w);
+    ang[body] = btgMake4(v.ang.x, v.ang.y, v.ang.z, angOld.w);
+}
+
 static void BTG_PGS_FN(solve_contact)(int i, int mode, int rows, __global BtgContact* contacts,
                       __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs, __global const BtgFrictionAnchor* restrict anchors,
                       __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
@@ -51,15 +59,8 @@ static void BTG_PGS_FN(solve_contact)(int i, int mode, int rows, __global BtgCon
         rolling[i].roll2Impulse = r.roll2Impulse;
     } else if (key == 0u) btgContactSolvePush(&c, a, b, &va, &vb);
     else btgContactSolvePushOrdered(&c, order, a, b, &va, &vb);
-    /* w of the velocity columns is not the solver's: keep it. */
-    if (a.dynamic) {
-        lin[c.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, linA.w);
-        ang[c.bodyA] = btgMake4(va.ang.x, va.ang.y, va.ang.z, angA.w);
-    }
-    if (b.dynamic) {
-        lin[c.bodyB] = btgMake4(vb.lin.x, vb.lin.y, vb.lin.z, linB.w);
-        ang[c.bodyB] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, angB.w);
-    }
+    if (a.dynamic) BTG_PGS_FN(store_velocity)(lin, ang, c.bodyA, va, linA, angA);
+    if (b.dynamic) BTG_PGS_FN(store_velocity)(lin, ang, c.bodyB, vb, linB, angB);
     if (mode != BTG_PASS_ROLLING) btgStoreContactImpulses(contacts, i, &c, mode, rows);
 }
 
@@ -100,14 +101,8 @@ static void BTG_PGS_FN(solve_joint)(int j, int iteration, JOINT_ARGS, __global c
         btgJointRowSolve(&r, a, b, &va, &vb);
         jointRows[joint.firstRow + k].impulse = r.impulse;
     }
-    if (a.dynamic) {
-        lin[joint.bodyA] = btgMake4(va.lin.x, va.lin.y, va.lin.z, linA.w);
-        ang[joint.bodyA] = btgMake4(va.ang.x, va.ang.y, va.ang.z, angA.w);
-    }
-    if (b.dynamic) {
-        lin[joint.bodyB] = btgMake4(vb.lin.x, vb.lin.y, vb.lin.z, linB.w);
-        ang[joint.bodyB] = btgMake4(vb.ang.x, vb.ang.y, vb.ang.z, angB.w);
-    }
+    if (a.dynamic) BTG_PGS_FN(store_velocity)(lin, ang, joint.bodyA, va, linA, angA);
+    if (b.dynamic) BTG_PGS_FN(store_velocity)(lin, ang, joint.bodyB, vb, linB, angB);
 }
 
 /* One edge of the phase: a joint edge (phase 1) or a contact (phase 0). */

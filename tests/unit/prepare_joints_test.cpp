@@ -575,13 +575,22 @@ TEST(PrepareJoints, SolveWithContactsMatchesReference)
 // joints' list, iteration overrides above the contacts' count, a joint to the fixed body and one
 // that breaks: bitwise what the per-colour launches give (on a CPU device in groups of one
 // work-item, so it must not time out).
+namespace {
+// The jointed stack the launch-shape tests solve: its bodies moving, so every row has work.
+test::StackScene movingStack()
+{
+    test::StackScene s = test::stackScene(4, 2, 2);
+    for (size_t i = 0; i < s.bodies.props.size(); ++i)
+        if (s.bodies.props[i].flags & BTG_BODY_DYNAMIC) s.bodies.linVel[i] = btgMake4(0.1f * float(i % 3), -0.3f, 0, 0);
+    return s;
+}
+}  // namespace
+
 TEST(PrepareJoints, SolveWithContactsFlowIsBitwiseTheSame)
 {
     using Resident = DeviceWorld::Resident;
-    test::StackScene s = test::stackScene(4, 2, 2);
-    BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
-    for (size_t i = 0; i < s.bodies.props.size(); ++i)
-        if (s.bodies.props[i].flags & BTG_BODY_DYNAMIC) s.bodies.linVel[i] = btgMake4(0.1f * float(i % 3), -0.3f, 0, 0);
+    const test::StackScene s = movingStack();
+    const BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
     const ref::JointTables t = stackJoints(s);
     const BtgJointStepParams jp = jointParams(int(t.joints.size()));
     uint perColorStatus = 0, flowStatus = 0;
@@ -603,10 +612,8 @@ TEST(PrepareJoints, SolveWithContactsFlowIsBitwiseTheSame)
 TEST(PrepareJoints, SolveWithContactsLocalIsBitwiseTheSame)
 {
     using Resident = DeviceWorld::Resident;
-    test::StackScene s = test::stackScene(4, 2, 2);
-    BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
-    for (size_t i = 0; i < s.bodies.props.size(); ++i)
-        if (s.bodies.props[i].flags & BTG_BODY_DYNAMIC) s.bodies.linVel[i] = btgMake4(0.1f * float(i % 3), -0.3f, 0, 0);
+    const test::StackScene s = movingStack();
+    const BtgStepParams p = test::defaultParams(int(s.bodies.props.size()));
     const ref::JointTables t = stackJoints(s);
     const BtgJointStepParams jp = jointParams(int(t.joints.size()));
     const SolveResult a = runSolveDevice(s, t, p, jp, 10, 24, false, Resident::Off);
