@@ -14,7 +14,8 @@ std::string kernelSource(const std::string& stem);
 // Every embedded stem (the kernel-build test compiles them all).
 std::vector<std::string> kernelStems();
 
-// Reads kernelDir/stem.cl and inlines its quoted #includes (relative to kernelDir), once each.
+// Reads kernelDir/stem.cl and inlines its quoted #includes (relative to kernelDir), once each,
+// except a header whose first line says "inlined at every include" (kernel_inline.cpp).
 std::string inlineKernelFile(const std::string& kernelDir, const std::string& relPath);
 
 }  // namespace btgpu::cl
