@@ -116,10 +116,11 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     const bool resident = useResident(w);
     if (pgsLocal(w, bodies, pgsFlow(w))) {
         cl_kernel k = prog.kernel("solve_local");
-        // (BTGPU_RESIDENT_GROUP_SIZE, the experiment knob, sets it here too. H100, solve stage
-        // ms at 1,024 / 512 / 256 / 128 / 64 work-items, two runs: cubes 125 0.51 at every
-        // size, 512 cubes 0.85 / 0.85 / 0.85 / 1.13 / 1.70: a phase is one contact's chain of
-        // loads and rows, not the barrier's work-items)
+        // As large as the kernel allows (its registers cap it: clang's sm_90 build uses 242 a
+        // work-item, which leaves 256 of the 1,024). BTGPU_RESIDENT_GROUP_SIZE, the experiment
+        // knob, sets it here too. H100, solve stage ms asking 1,024 / 512 / 256 / 128 / 64
+        // work-items, two runs: cubes 125 0.51 at every size, 512 cubes 0.85 / 0.85 / 0.85 /
+        // 1.13 / 1.70 (the first three likely one size, the cap's).
         const size_t group = residentSolveGroupSize(cl::kernelGroupLimit(ctx, k), true, kLocalMaxGroup);
         cl::Launch(ctx, k, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.rollingContacts).arg(w.frictionDirs)
             .arg(w.frictionAnchors).arg(w.counters).arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorOrder)
