@@ -72,11 +72,12 @@ static uint radix_group_scan(__local uint* sums, uint l, uint v)
     return inclusive - v;
 }
 
-/* Each key's rank in the tile, less its rank among its own work-item's keys of that digit:
- * rank[d * BTG_RADIX_GROUP + l] becomes the number of the tile's keys of a smaller digit, plus
- * those of digit d held by work-items before l (work-item l holds the tile's keys [4 l, 4 l + 4),
- * of which the first `valid` of the tile count). */
-static void radix_tile_ranks(__local uint* rank, __local uint* sums, __local const uint* tileKeys, uint valid,
+/* Each key's rank in the tile, less its rank among its own work-item's keys of that digit
+ * (ushort: at most a tile's 1,024, and radix_tile_sort's local memory stays under the 32 KB
+ * every OpenCL device offers): rank[d * BTG_RADIX_GROUP + l] becomes the number of the tile's
+ * keys of a smaller digit, plus those of digit d held by work-items before l (work-item l holds
+ * the tile's keys [4 l, 4 l + 4), of which the first `valid` of the tile count). */
+static void radix_tile_ranks(__local ushort* rank, __local uint* sums, __local const uint* tileKeys, uint valid,
                              uint shift)
 {
     const uint l = (uint)get_local_id(0), first = l * BTG_RADIX_PER_ITEM;
@@ -91,7 +92,7 @@ static void radix_tile_ranks(__local uint* rank, __local uint* sums, __local con
     uint run = radix_group_scan(sums, l, s);
     for (uint k = 0; k < BTG_RADIX; ++k) {
         const uint c = rank[l * BTG_RADIX + k];
-        rank[l * BTG_RADIX + k] = run;
+        rank[l * BTG_RADIX + k] = (ushort)run;
         run += c;
     }
     barrier(CLK_LOCAL_MEM_FENCE);
@@ -154,7 +155,7 @@ void radix_tile_scatter(__global const uint* restrict keysIn, __global const uin
                         __global const uint* restrict offsets, uint n, uint shift, uint numTiles, uint scanned)
 {
     __local uint tileKeys[BTG_RADIX_TILE];
-    __local uint rank[BTG_RADIX * BTG_RADIX_GROUP]; /* [d][l], then its exclusive scan in that order */
+    __local ushort rank[BTG_RADIX * BTG_RADIX_GROUP]; /* [d][l], then its exclusive scan in that order */
     __local uint sums[BTG_RADIX_GROUP];
     __local uint start[BTG_RADIX];                  /* where digit d's keys go, less the tile's keys of smaller digits */
     const uint l = (uint)get_local_id(0), tile = (uint)get_group_id(0);
@@ -212,7 +213,7 @@ __kernel __attribute__((reqd_work_group_size(BTG_RADIX_GROUP, 1, 1)))
 void radix_tile_sort(__global uint* keys, __global uint* vals, uint n, uint passes)
 {
     __local uint keysA[BTG_RADIX_TILE], valsA[BTG_RADIX_TILE], keysB[BTG_RADIX_TILE], valsB[BTG_RADIX_TILE];
-    __local uint rank[BTG_RADIX * BTG_RADIX_GROUP];
+    __local ushort rank[BTG_RADIX * BTG_RADIX_GROUP];
     __local uint sums[BTG_RADIX_GROUP];
     const uint l = (uint)get_local_id(0), first = l * BTG_RADIX_PER_ITEM;
     for (uint j = 0; j < BTG_RADIX_PER_ITEM; ++j) {

@@ -70,19 +70,23 @@ void radixSort(cl::Context& ctx, cl::Profiler* profiler, cl::DeviceArray<uint>& 
         const char* e = std::getenv("BTGPU_RADIX_ONE_TILE");
         return e && e[0] == '0';
     }();
-    if (n <= kTile && (path == RadixPath::OneTile || (path == RadixPath::Auto && !chunksKnob && !oneTileOff))) {
-        cl::Launch(ctx, ctx.program("prims/radix_sort").kernel("radix_tile_sort"), profiler)
+    // The tile kernels need work-groups of kTileGroup: a device offering fewer (PoCL with
+    // POCL_MAX_WORK_GROUP_SIZE=64) takes the chunks.
+    cl::Program& prog = ctx.program("prims/radix_sort");
+    const bool tileGroups = cl::kernelGroupLimit(ctx, prog.kernel("radix_tile_scatter")) >= kTileGroup &&
+                            cl::kernelGroupLimit(ctx, prog.kernel("radix_tile_sort")) >= kTileGroup;
+    if (n <= kTile && tileGroups && (path == RadixPath::OneTile || (path == RadixPath::Auto && !chunksKnob && !oneTileOff))) {
+        cl::Launch(ctx, prog.kernel("radix_tile_sort"), profiler)
             .arg(keys).arg(values).arg(cl_uint(n)).arg(cl_uint((keyBits + kRadixBits - 1) / kRadixBits))
             .run(kTileGroup, kTileGroup);
         return;
     }
-    const bool tiles = path == RadixPath::Tiles || (path == RadixPath::Auto && ctx.device().isGpu && !chunksKnob);
+    const bool tiles = tileGroups && (path == RadixPath::Tiles || (path == RadixPath::Auto && ctx.device().isGpu && !chunksKnob));
     cl_uint numChunks = cl_uint((n + kChunk - 1) / kChunk);
     size_t histSize = tiles ? (n + kTile - 1) / kTile * kDigits : size_t(numChunks) * kDigits;
     scratch.keysAlt.reserve(ctx, n);
     scratch.valuesAlt.reserve(ctx, n);
     scratch.histogram.reserve(ctx, histSize);
-    cl::Program& prog = ctx.program("prims/radix_sort");
 
     cl::DeviceArray<uint>* kIn = &keys;
     cl::DeviceArray<uint>* vIn = &values;
