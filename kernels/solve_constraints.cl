@@ -240,6 +240,18 @@ static int flow_wait(volatile __global uint* done, long want, volatile __global 
     return want >= 0 && btgWaitForCount(done, (uint)want, bar, spinLimit);
 }
 
+/* Velocity iterations: the contacts' count, or more when a joint asks for more
+ * (setOverrideNumSolverIterations: Bullet iterates to the largest). */
+static int velocity_passes(int iterations, int numJoints, int jointIterations)
+{
+    return max(iterations, numJoints > 0 ? jointIterations : 0);
+}
+/* Whether the sweeps walk the batching's leftovers (edges at or past the last colour) serially. */
+static int walk_leftovers(__global const uint* restrict counters, int last)
+{
+    return counters[BTG_COUNTER_LEFTOVERS] != 0u || counters[BTG_COUNTER_COLORS_USED] > (uint)last;
+}
+
 /* The one-launch solves' schedule (solve_resident, solve_local): pass 0 warm-starts, the next
  * `velocity` passes iterate velocities, the rest (split impulse) push. */
 static int pass_mode(int pass, int velocity)
@@ -264,6 +276,12 @@ static int phase_list(int mode, int phase)
 static int first_phase(int mode, int numJoints)
 {
     return (mode == BTG_PASS_VELOCITY && numJoints > 0) ? 1 : 0;
+}
+/* ... down to this one: a velocity pass past the contacts' iterations (a joint asked for more)
+ * solves the joints only. */
+static int last_phase(int mode, int iteration, int iterations)
+{
+    return (mode == BTG_PASS_VELOCITY && iteration >= iterations) ? 1 : 0;
 }
 /* Colour `color`'s slots [x, y) in `list`'s part of colorOrder. */
 static int2 color_range(__global const uint* restrict colorStart, int list, int numColors, int color)
@@ -308,10 +326,8 @@ __kernel void solve_resident(__global const int* restrict edgeColor, __global Bt
     const int n = edge_count(counters, edgeCapacity);
     const int nc = contact_edges(counters, edgeCapacity, numJoints);
     const int last = numColors - 1;
-    const int walkLast = counters[BTG_COUNTER_LEFTOVERS] != 0u || counters[BTG_COUNTER_COLORS_USED] > (uint)last;
-    /* Velocity iterations: the contacts' count, or more when a joint asks for more
-     * (setOverrideNumSolverIterations: Bullet iterates to the largest). */
-    const int velocity = max(iterations, numJoints > 0 ? jointIterations : 0);
+    const int walkLast = walk_leftovers(counters, last);
+    const int velocity = velocity_passes(iterations, numJoints, jointIterations);
     const int passes = 1 + velocity + (splitImpulse ? iterations : 0);
     for (int pass = 0; pass < passes; ++pass) {
         const int mode = pass_mode(pass, velocity);
@@ -320,8 +336,7 @@ __kernel void solve_resident(__global const int* restrict edgeColor, __global Bt
         BTG_SHARED __global BtgFloat4* ang = mode == 2 ? pushAng : angVel;
         /* Phase 1: the joints (velocity passes only), then phase 0: the contacts, whose
          * velocity pass is two sweeps (normals, then friction). */
-        for (int phase = first_phase(mode, numJoints); phase >= 0; --phase) {
-            if (phase == 0 && mode == BTG_PASS_VELOCITY && iteration >= iterations) break;
+        for (int phase = first_phase(mode, numJoints); phase >= last_phase(mode, iteration, iterations); --phase) {
             /* push passes: only contacts with a push target */
             const int list = phase_list(mode, phase);
             const int sweeps = phase_sweeps(mode, phase, rows);
@@ -423,13 +438,11 @@ __kernel void solve_local(__global const int* restrict edgeColor, __global BtgCo
         sang[b] = angVel[b];
     }
     barrier(CLK_LOCAL_MEM_FENCE);
-    const int n = edge_count(counters, edgeCapacity);
-    const int nc = contact_edges(counters, edgeCapacity, numJoints);
-    const int last = numColors - 1;
-    const int walkLast = counters[BTG_COUNTER_LEFTOVERS] != 0u || counters[BTG_COUNTER_COLORS_USED] > (uint)last;
-    const int velocity = max(iterations, numJoints > 0 ? jointIterations : 0);
+    const int velocity = velocity_passes(iterations, numJoints, jointIterations);
     const int passes = 1 + velocity + (splitImpulse ? iterations : 0);
-    int pushing = 0;
+    const int n = edge_count(counters, edgeCapacity), nc = contact_edges(counters, edgeCapacity, numJoints);
+    const int last = numColors - 1, walkLast = walk_leftovers(counters, last);
+    int pushing = 0; /* the push passes have begun: the local velocities are the push ones */
     for (int pass = 0; pass < passes; ++pass) {
         const int mode = pass_mode(pass, velocity);
         const int iteration = pass - 1;
@@ -444,8 +457,7 @@ __kernel void solve_local(__global const int* restrict edgeColor, __global BtgCo
             barrier(CLK_LOCAL_MEM_FENCE);
             pushing = 1;
         }
-        for (int phase = first_phase(mode, numJoints); phase >= 0; --phase) {
-            if (phase == 0 && mode == BTG_PASS_VELOCITY && iteration >= iterations) break;
+        for (int phase = first_phase(mode, numJoints); phase >= last_phase(mode, iteration, iterations); --phase) {
             const int list = phase_list(mode, phase), sweeps = phase_sweeps(mode, phase, rows);
             for (int sweep = 0; sweep < sweeps; ++sweep) {
                 const int m = sweep_mode(mode, phase, rows, sweep, sweeps);
