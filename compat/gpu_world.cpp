@@ -554,7 +554,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         gDisableDeactivation = (drawer->getDebugMode() & btIDebugDraw::DBG_NoDeactivation) != 0;
 
     m_dev->profiler.resetLaunchCount();
-    m_report.syncInMs = m_report.deviceMs = m_report.writeBackMs = 0.0;
+    m_report.syncInMs = m_report.deviceMs = m_report.writeBackMs = m_report.manifoldFillMs = 0.0;
     m_report.ghostBroadphaseMs = 0.0;
     m_report.callbackMs = 0.0;
     m_report.contactCallbacks = 0;

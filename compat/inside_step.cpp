@@ -48,7 +48,10 @@ void GpuWorld::completeBroadphasePairs()
 
 void GpuWorld::fillManifolds()
 {
-    if (m_config.fillDispatcherManifolds) m_manifolds.fill(m_world.getDispatcher(), m_rows, m_readback, m_removed);
+    if (!m_config.fillDispatcherManifolds) return;
+    const auto t0 = std::chrono::steady_clock::now();
+    m_manifolds.fill(m_world.getDispatcher(), m_rows, m_readback, m_removed);
+    m_report.manifoldFillMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void GpuWorld::leaveGpuPath()

@@ -53,10 +53,11 @@ int ManifoldSync::handToStock(btCollisionWorld& world)
     };
     std::unordered_map<const void*, std::unordered_map<const void*, Held>> held;
     if (dispatcher && cache)
-        for (auto& [key, e] : m_map) {
-            btPersistentManifold* m = e.manifold;
-            if (!m || m->getNumContacts() == 0 || key.sub0 >= 0 || key.sub1 >= 0) continue;
-            if (!convexLeaf(m->getBody0()) || !convexLeaf(m->getBody1())) continue;
+        m_map.forEach([&](Node* node) {
+            btPersistentManifold* m = node->second.manifold;
+            const Key& key = node->first;
+            if (!m || m->getNumContacts() == 0 || key.sub0 >= 0 || key.sub1 >= 0) return;
+            if (!convexLeaf(m->getBody0()) || !convexLeaf(m->getBody1())) return;
             Held h{m->getBody0(), std::min(m->getNumContacts(), 4), {}};
             for (int j = 0; j < h.numPoints; ++j) {
                 h.points[j] = m->getContactPoint(j);
@@ -66,7 +67,7 @@ int ManifoldSync::handToStock(btCollisionWorld& world)
             const void* lo = std::min<const void*>(m->getBody0(), m->getBody1());
             const void* hi = std::max<const void*>(m->getBody0(), m->getBody1());
             held[lo][hi] = h;
-        }
+        });
     releaseAll(dispatcher);
     if (held.empty()) return 0;
     int handed = 0;
@@ -122,10 +123,9 @@ int ManifoldSync::takeFromStock(btDispatcher* dispatcher)
             a->getCollisionShape()->isConcave() || b->getCollisionShape()->isConcave())
             continue;
         const Key key{a, b, -1, -1};
-        auto it = m_map.find(key);
-        if (it != m_map.end() && it->second.manifold) continue;
-        if (it == m_map.end()) it = m_map.emplace(key, Entry{}).first;
-        Node* node = &*it;
+        Node* node = m_map.find(key);
+        if (node && node->second.manifold) continue;
+        if (!node) node = m_map.insert(key);
         m_dead.erase(node);
         node->second = Entry{};
         btPersistentManifold* mine = dispatcher->getNewManifold(a, b);

@@ -61,7 +61,9 @@ void triangleOfFeature(const btCollisionShape* concave, unsigned key, int* partI
 namespace {
 
 struct NewPoint {
-    btManifoldPoint point;
+    btManifoldPoint point;  // as it goes into the manifold: without its user data until placed
+    void* userData;         // what it holds once placed
+    int lifeTime;           // m_lifeTime once placed (the point's own holds its tag until then)
     uint featureId;
     bool pending;  // its user data and coefficients came from the callbacks before the solve
     bool moved;    // a callback changed its geometry (PointState::moved)
@@ -138,9 +140,10 @@ const btManifoldPoint* ManifoldSync::continued(const Side& side, unsigned featur
                                                int index1, const btVector3& localA, bool* moved, bool identities) const
 {
     if (moved) *moved = false;
-    auto it = m_map.find(side.key);
-    if (it == m_map.end() || !it->second.manifold || side.spheres) return nullptr;  // none, or its body left  // stock clears a sphere pair's manifold each step
-    const Entry& e = it->second;
+    const Node* node = m_map.find(side.key);
+    // none, or its body left; stock clears a sphere pair's manifold each step
+    if (!node || !node->second.manifold || side.spheres) return nullptr;
+    const Entry& e = node->second;
     const btPersistentManifold* m = e.manifold;
     const btScalar thr2 = m->getContactBreakingThreshold() * m->getContactBreakingThreshold();
     // By identity the first with the feature id; else (a triangle's key may name several points)
@@ -172,14 +175,16 @@ const btManifoldPoint* ManifoldSync::continued(const Side& side, unsigned featur
 
 void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
 {
-    NewPoint points[4 * BTG_MAX_POINTS];  // a convex–mesh pair's triangles: reduced as they come
-    std::vector<NewPoint> many;
-    int count = 0;
-    auto push = [&](const NewPoint& np) {
-        if (count < int(sizeof(points) / sizeof(points[0]))) points[count++] = np;
-        else many.push_back(np);
-    };
+    // Reused by each thread (a convex–mesh pair's triangles bring more than four: reduced as they
+    // go in): no point is built or copied more than its one way into the manifold needs.
+    static thread_local std::vector<NewPoint> points;
+    points.clear();
     const Key& key = g.entry->first;
+    // One pair of bodies: their combined coefficients once (btManifoldResult's, per point on stock).
+    const btScalar friction = btManifoldResult::calculateCombinedFriction(key.body0, key.body1);
+    const btScalar restitution = btManifoldResult::calculateCombinedRestitution(key.body0, key.body1);
+    const btScalar rolling = btManifoldResult::calculateCombinedRollingFriction(key.body0, key.body1);
+    const btScalar spinning = btManifoldResult::calculateCombinedSpinningFriction(key.body0, key.body1);
     for (size_t i = g.first; i < g.last; ++i) {
         const BtgContactReport& r = reports[i];
         const Side& side = m_sides[i];
@@ -198,7 +203,9 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
             if (side.concaveA) triangleOfFeature(side.concaveA, r.featureId[k], &partA, &indexA);
             if (side.concaveB) triangleOfFeature(side.concaveB, r.featureId[k], &partB, &indexB);
             // The impulses act on the report's A along +n, +d1, +d2; Bullet's on body0.
-            NewPoint np{swap ? btManifoldPoint(lB, lA, -n, d) : btManifoldPoint(lA, lB, n, d), r.featureId[k], false, false, -1};
+            points.push_back({swap ? btManifoldPoint(lB, lA, -n, d) : btManifoldPoint(lA, lB, n, d), nullptr, 0,
+                              r.featureId[k], false, false, -1});
+            NewPoint& np = points.back();
             btManifoldPoint& p = np.point;
             p.m_positionWorldOnA = swap ? pB : pA;
             p.m_positionWorldOnB = swap ? pA : pB;
@@ -211,21 +218,20 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
             p.m_index0 = swap ? indexB : indexA;
             p.m_partId1 = swap ? partA : partB;
             p.m_index1 = swap ? indexA : indexB;
-            p.m_combinedFriction = btManifoldResult::calculateCombinedFriction(key.body0, key.body1);
-            p.m_combinedRestitution = btManifoldResult::calculateCombinedRestitution(key.body0, key.body1);
-            p.m_combinedRollingFriction = btManifoldResult::calculateCombinedRollingFriction(key.body0, key.body1);
-            p.m_combinedSpinningFriction = btManifoldResult::calculateCombinedSpinningFriction(key.body0, key.body1);
+            p.m_combinedFriction = friction;
+            p.m_combinedRestitution = restitution;
+            p.m_combinedRollingFriction = rolling;
+            p.m_combinedSpinningFriction = spinning;
             if (!m_pending.empty()) {
                 auto it = m_pending.find(PointKey{r.bodyA, r.bodyB, r.indexA, r.indexB, r.featureId[k], k});
                 if (it != m_pending.end()) {
-                    p.m_userPersistentData = it->second.userData;
+                    np.userData = it->second.userData;
                     p.m_combinedFriction = it->second.friction;
                     p.m_combinedRestitution = it->second.restitution;
                     np.pending = true;
                     np.moved = it->second.moved;
                 }
             }
-            push(np);
         }
     }
     Entry& e = g.entry->second;
@@ -239,10 +245,8 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
     for (int j = 0; j < oldCount; ++j) old[j] = m->getContactPoint(j);
     const btScalar thr2 = m->getContactBreakingThreshold() * m->getContactBreakingThreshold();
     unsigned claimed = 0;
-    const int total = count + int(many.size());
-    auto at = [&](int i) -> NewPoint& { return i < count ? points[i] : many[size_t(i - count)]; };
-    for (int i = 0; i < total; ++i) {
-        NewPoint& np = at(i);
+    const int total = int(points.size());
+    for (NewPoint& np : points) {
         int match = -1;
         for (int j = 0; j < oldCount && match < 0; ++j)
             if (!((claimed >> j) & 1u) && np.featureId != BTG_FEATURE_UNKNOWN && e.ids[j] == np.featureId &&
@@ -261,10 +265,10 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
         }
         if (match >= 0) claimed |= 1u << match;
         np.continues = match;
-        np.point.m_lifeTime = g.spheres ? 0 : (match >= 0 ? old[match].m_lifeTime + ages : 1);
+        np.lifeTime = g.spheres ? 0 : (match >= 0 ? old[match].m_lifeTime + ages : 1);
         // A point that continues one keeps its user data (replaceContactPoint); stock clears a
         // sphere pair's manifold every step, which drops it.
-        if (!np.pending) np.point.m_userPersistentData = match >= 0 && !g.spheres ? old[match].m_userPersistentData : nullptr;
+        if (!np.pending) np.userData = match >= 0 && !g.spheres ? old[match].m_userPersistentData : nullptr;
     }
     // Emptied without Bullet's clearManifold, which would end the contact and destroy the
     // points' user data (the callbacks for both are the fill's, serially: contactEvents); the
@@ -300,12 +304,12 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
             m->addManifoldPoint(p);
         }
     for (int i = 0; i < total; ++i) {
-        btManifoldPoint pt = at(i).point;
-        pt.m_userPersistentData = nullptr;
+        btManifoldPoint& pt = points[size_t(i)].point;  // no user data yet (NewPoint::userData)
         pt.m_lifeTime = kNewTag + i;
+        const int continues = points[size_t(i)].continues;
         int slot = -1;
-        for (int s = 0; retain && at(i).continues >= 0 && s < m->getNumContacts() && slot < 0; ++s)
-            if (m->getContactPoint(s).m_lifeTime == kOldTag + at(i).continues) slot = s;
+        for (int s = 0; retain && continues >= 0 && s < m->getNumContacts() && slot < 0; ++s)
+            if (m->getContactPoint(s).m_lifeTime == kOldTag + continues) slot = s;
         if (slot >= 0) m->getContactPoint(slot) = pt;
         else m->addManifoldPoint(pt);
     }
@@ -329,9 +333,9 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
         if (p.m_lifeTime >= kNewTag) {
             const int i = p.m_lifeTime - kNewTag;
             owner[s] = i;
-            e.ids[s] = at(i).featureId;
-            e.moved[s] = at(i).moved;
-            p.m_lifeTime = at(i).point.m_lifeTime;
+            e.ids[s] = points[size_t(i)].featureId;
+            e.moved[s] = points[size_t(i)].moved;
+            p.m_lifeTime = points[size_t(i)].lifeTime;
         } else {
             const int j = p.m_lifeTime - kOldTag;
             e.ids[s] = oldIds[j];
@@ -342,7 +346,7 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
         }
     }
     for (int s = 0; s < m->getNumContacts(); ++s)
-        if (owner[s] >= 0) m->getContactPoint(s).m_userPersistentData = at(owner[s]).point.m_userPersistentData;
+        if (owner[s] >= 0) m->getContactPoint(s).m_userPersistentData = points[size_t(owner[s])].userData;
     // User data no point holds any more: destroyed, as stock's point removal does.
     g.dropped.clear();
     auto held = [&](void* p) {
@@ -352,8 +356,8 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
     };
     for (int j = 0; j < oldCount; ++j)
         if (old[j].m_userPersistentData && !held(old[j].m_userPersistentData)) g.dropped.push_back(old[j].m_userPersistentData);
-    for (int i = 0; i < total; ++i) {
-        void* p = at(i).point.m_userPersistentData;
+    for (const NewPoint& np : points) {
+        void* p = np.userData;
         if (p && !held(p) && std::find(g.dropped.begin(), g.dropped.end(), p) == g.dropped.end()) g.dropped.push_back(p);
     }
 }
@@ -363,6 +367,7 @@ void ManifoldSync::contactEvents()
     // Stock's order within a manifold's step: a sphere pair's manifold is cleared first (its
     // contact ends), points are added (the contact starts with the first of an empty manifold),
     // then the refresh removes the points that went (their user data destroyed).
+    if (!gContactEndedCallback && !gContactStartedCallback && !gContactDestroyedCallback) return;  // (a walk of every manifold)
     for (Group& g : m_groups) {
         btPersistentManifold* m = g.entry->second.manifold;
         const bool restarted = g.spheres && g.before > 0 && !g.fresh;
@@ -386,47 +391,81 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
     // while they run.
     const size_t n = rb.numContacts;
     m_sides.resize(n);
+    // Each lookup's two misses (its slot, its node) are fetched ahead, kAhead reports apart.
+    constexpr size_t kAhead = 8;
+    std::vector<size_t>& hashes = m_hashes;
+    hashes.resize(n);
     forEachChunk(n, 2048, [&](size_t begin, size_t end, int) {
-        for (size_t i = begin; i < end; ++i) {
-            Side& side = m_sides[i];
-            const BtgContactReport& r = rb.contacts[i];
-            side = orient(rows, r.bodyA, r.bodyB, r.indexA, r.indexB, removed);
-            side.node = nullptr;
-            if (!side.valid) continue;
-            auto it = m_map.find(side.key);
-            if (it != m_map.end()) side.node = &*it;
+        for (size_t i = begin; i < end + 2 * kAhead; ++i) {
+            if (i < end) {
+                Side& side = m_sides[i];
+                const BtgContactReport& r = rb.contacts[i];
+                side = orient(rows, r.bodyA, r.bodyB, r.indexA, r.indexB, removed);
+                side.node = nullptr;
+                hashes[i] = KeyHash()(side.key);
+                if (side.valid) m_map.prefetchSlot(hashes[i]);
+            }
+            if (i >= begin + kAhead && i - kAhead < end && m_sides[i - kAhead].valid) m_map.prefetchNode(hashes[i - kAhead]);
+            if (i >= begin + 2 * kAhead) {
+                Side& side = m_sides[i - 2 * kAhead];
+                if (side.valid) side.node = m_map.find(side.key, hashes[i - 2 * kAhead]);
+                side.held = side.node && side.node->second.manifold;
+            }
         }
     });
     // Reports are in pair order: a manifold's (a mesh pair's triangles, one compound child pair)
-    // are consecutive. Serially: the groups, and new manifolds from the dispatcher's pool
-    // (getNewManifold is not thread-safe); this pass reads the sides in order and touches the
-    // map only for keys it did not hold.
-    m_groups.clear();
-    for (size_t i = 0; i < n; ++i) {
-        Side& side = m_sides[i];
-        if (!side.valid) continue;
-        if (!m_groups.empty() && m_groups.back().last == i && m_groups.back().entry->first == side.key) {
-            m_groups.back().last = i + 1;
-            continue;
+    // are consecutive. The groups in parallel: a valid report starts one unless the report just
+    // before it is of the same manifold. Then, serially in group order, the groups whose key held
+    // no manifold (new pairs, few a step): their node, and a new manifold from the dispatcher's
+    // pool (getNewManifold is not thread-safe).
+    const int startChunks = chunkCount(n, 4096);
+    std::vector<std::vector<size_t>> startsIn(static_cast<size_t>(startChunks));
+    forEachChunk(n, 4096, [&](size_t begin, size_t end, int chunk) {
+        for (size_t i = begin; i < end; ++i) {
+            const Side& side = m_sides[i];
+            if (side.valid && !(i > 0 && m_sides[i - 1].valid && m_sides[i - 1].key == side.key))
+                startsIn[size_t(chunk)].push_back(i);
         }
-        Node* node = side.node;
-        if (!node) {
-            auto it = m_map.find(side.key);  // a new key seen earlier in this pass
-            if (it == m_map.end()) it = m_map.emplace(side.key, Entry{nullptr, 0, {}, {}}).first;
-            node = &*it;
+    });
+    m_starts.clear();
+    for (const std::vector<size_t>& starts : startsIn) m_starts.insert(m_starts.end(), starts.begin(), starts.end());
+    m_groups.resize(m_starts.size());
+    const int groupChunks = chunkCount(m_starts.size(), 2048);
+    std::vector<std::vector<size_t>> unheldIn(static_cast<size_t>(groupChunks));
+    forEachChunk(m_starts.size(), 2048, [&](size_t begin, size_t end, int chunk) {
+        for (size_t k = begin; k < end; ++k) {
+            const size_t i = m_starts[k];
+            const Side& side = m_sides[i];
+            size_t last = i + 1;
+            while (last < n && m_sides[last].valid && m_sides[last].key == side.key) ++last;
+            const BtgContactReport& r = rb.contacts[i];
+            Group& g = m_groups[k];
+            g.entry = side.node;
+            g.first = i;
+            g.last = last;
+            g.row0 = side.swap ? r.bodyB : r.bodyA;
+            g.row1 = side.swap ? r.bodyA : r.bodyB;
+            g.spheres = side.spheres;
+            g.fresh = false;
+            g.before = 0;
+            if (!side.held) unheldIn[size_t(chunk)].push_back(k);
         }
-        const bool fresh = !node->second.manifold;
-        if (fresh) {
-            // New, or revived after its body left (a new body at the freed address).
-            m_dead.erase(node);
-            node->second = Entry{dispatcher->getNewManifold(side.key.body0, side.key.body1), 0, {}, {}};
-            m_byObject[side.key.body0].push_back(node);
-            if (side.key.body1 != side.key.body0) m_byObject[side.key.body1].push_back(node);
+    });
+    for (const std::vector<size_t>& unheld : unheldIn)
+        for (size_t k : unheld) {
+            Group& g = m_groups[k];
+            const Side& side = m_sides[g.first];
+            Node* node = side.node ? side.node : m_map.insert(side.key);  // new, or a new key of an earlier group
+            g.entry = node;
+            g.fresh = !node->second.manifold;
+            if (g.fresh) {
+                // New, or revived after its body left (a new body at the freed address).
+                m_dead.erase(node);
+                node->second = Entry{dispatcher->getNewManifold(side.key.body0, side.key.body1), 0, {}, {}};
+                m_byObject[side.key.body0].push_back(node);
+                if (side.key.body1 != side.key.body0) m_byObject[side.key.body1].push_back(node);
+            }
         }
-        const BtgContactReport& r = rb.contacts[i];
-        m_groups.push_back({node, i, i + 1, side.swap ? r.bodyB : r.bodyA, side.swap ? r.bodyA : r.bodyB, side.spheres,
-                            fresh, 0, {}});
-    }
     // Stamps in parallel; a manifold named by two groups (not adjacent: not seen in pair order)
     // shows as a stamp already this fill's.
     const size_t numGroups = m_groups.size();
@@ -473,7 +512,13 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
         }
     } else {
         forEachChunk(numGroups, 512, [&](size_t begin, size_t end, int) {
-            for (size_t k = begin; k < end; ++k) refill(m_groups[k], rb.contacts.data());
+            for (size_t k = begin; k < end; ++k) {
+                // The manifolds lie scattered over the dispatcher's pool: the one two groups
+                // ahead is fetched (for writing) while this one is refilled, its node four ahead.
+                if (k + 4 < end) __builtin_prefetch(m_groups[k + 4].entry);
+                if (k + 2 < end) prefetchObject(m_groups[k + 2].entry->second.manifold, sizeof(btPersistentManifold), true);
+                refill(m_groups[k], rb.contacts.data());
+            }
         });
         for (const Group& g : m_groups) m_nextLive.push_back(g.entry);
     }
@@ -486,9 +531,16 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
     m_staleFlag.assign(m_live.size(), 0);
     forEachChunk(m_live.size(), 4096, [&](size_t begin, size_t end, int) {
         for (size_t i = begin; i < end; ++i) {
+            if (i + 8 < end) __builtin_prefetch(m_live[i + 8]);
             Node* node = m_live[i];
-            if (m_dead.count(node) || node->second.stamp == m_stamp) continue;
-            m_staleFlag[i] = (node->first.body0->isActive() || node->first.body1->isActive()) ? 1 : 2;
+            // A null manifold: its body left (m_dead).
+            if (!node->second.manifold || node->second.stamp == m_stamp) continue;
+            const bool awake = node->first.body0->isActive() || node->first.body1->isActive();
+            // An empty manifold of a pair stock still holds stays as it is: what the serial pass
+            // below would do with it (no points to refresh or remove), decided here in parallel
+            // (with the device's empty manifolds most stale entries are these).
+            const bool heldEmpty = m_wantedValid && node->second.manifold->getNumContacts() == 0 && stockHolds(node->first);
+            m_staleFlag[i] = awake && !heldEmpty ? 1 : 2;
         }
     });
     // Released from the dispatcher's last index down, so its array order does not depend on
@@ -518,7 +570,7 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
         forget(node);
     }
     // Nodes of bodies that left and were not found again: gone for good.
-    for (Node* node : m_dead) m_map.erase(node->first);
+    for (Node* node : m_dead) m_map.erase(node);
     m_dead.clear();
     if (m_wantedValid) holdStockPairs(dispatcher, removed);
     m_wantedValid = false;  // each internal step notes its own pairs
@@ -598,15 +650,15 @@ void ManifoldSync::forget(Node* node)
         list.erase(std::remove(list.begin(), list.end(), node), list.end());
         if (list.empty()) m_byObject.erase(it);
     }
-    m_map.erase(node->first);
+    m_map.erase(node);
 }
 
 void ManifoldSync::releaseAll(btDispatcher* dispatcher)
 {
     if (dispatcher)
-        for (auto& [key, e] : m_map) {
-            btPersistentManifold* m = e.manifold;
-            if (!m) continue;  // its body left: released then
+        m_map.forEach([&](Node* node) {
+            btPersistentManifold* m = node->second.manifold;
+            if (!m) return;  // its body left: released then
             for (int j = 0; j < m->getNumContacts(); ++j) {
                 btManifoldPoint& p = m->getContactPoint(j);
                 if (p.m_userPersistentData && gContactDestroyedCallback) gContactDestroyedCallback(p.m_userPersistentData);
@@ -614,7 +666,7 @@ void ManifoldSync::releaseAll(btDispatcher* dispatcher)
             }
             m->setNumContacts(0);
             dispatcher->releaseManifold(m);
-        }
+        });
     m_map.clear();
     m_byObject.clear();
     m_live.clear();

@@ -3,6 +3,7 @@
 // (body, body) — per compound child pair, one per convex–mesh pair — taken from and given back
 // to the dispatcher's pool, filled from the device's contact reports (report_contacts).
 #pragma once
+#include "manifold_table.h"
 #include "row_map.h"
 #include "stages/sync_bodies.h"
 
@@ -10,6 +11,7 @@
 #include <LinearMath/btVector3.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -119,10 +121,18 @@ public:
         }
     };
     struct KeyHash {
+        // Mixed to every bit (splitmix64's finaliser): the table takes the low bits of the hash,
+        // and objects' addresses share their low ones.
         size_t operator()(const Key& k) const
         {
-            size_t h = std::hash<const void*>()(k.body0) * 31 + std::hash<const void*>()(k.body1);
-            return h * 1000003u + size_t(k.sub0) * 131u + size_t(k.sub1);
+            uint64_t h = uint64_t(reinterpret_cast<uintptr_t>(k.body0)) * 0x9E3779B97F4A7C15ull;
+            h ^= uint64_t(reinterpret_cast<uintptr_t>(k.body1)) + 0x632BE59BD9B4E019ull + (h << 6) + (h >> 2);
+            h ^= ((uint64_t(uint32_t(k.sub0)) << 32) | uint32_t(k.sub1)) * 0xC2B2AE3D27D4EB4Full;
+            h ^= h >> 30;
+            h *= 0xBF58476D1CE4E5B9ull;
+            h ^= h >> 27;
+            h *= 0x94D049BB133111EBull;
+            return size_t(h ^ (h >> 31));
         }
     };
     struct Entry {
@@ -132,11 +142,13 @@ public:
         bool moved[4];    // each point's PointState::moved as it was filled
         bool persistent = false;  // its last fill was a device persistent manifold (box and GJK pairs)
     };
-    using Node = std::pair<const Key, Entry>;  // a map node: its address stays while it is in the map
+    using Table = ManifoldTable<Key, Entry, KeyHash>;
+    using Node = Table::Node;  // its address stays while it is in the table
     // One report's manifold in Bullet's terms (orient: which side is body0, the key).
     struct Side {
         Key key;
         Node* node;    // the map's entry for key, null while it has none
+        bool held;     // node has a manifold (as the fill's lookups found it: none loses it before the refill)
         bool valid;    // both bodies still in the world
         bool swap;     // the report's B is Bullet's body0
         bool spheres;  // sphere–sphere (stock clears that manifold every step)
@@ -164,8 +176,8 @@ public:
     // before the solve may set its old points' user data and coefficients: the fill keeps them).
     btPersistentManifold* manifold(const Side& side) const
     {
-        auto it = m_map.find(side.key);
-        return it == m_map.end() ? nullptr : it->second.manifold;
+        const Node* node = m_map.find(side.key);
+        return node ? node->second.manifold : nullptr;
     }
 
 private:
@@ -212,7 +224,7 @@ private:
     std::unordered_map<unsigned long long, StockPair> m_uncollided;
     std::unordered_map<unsigned long long, StockPair> m_compoundPairs;
 
-    std::unordered_map<Key, Entry, KeyHash> m_map;
+    Table m_map;
     std::vector<btTransform> m_collidedAt;  // per row (noteCollidedAt)
     bool m_collidedAtValid = false;
     // Every entry by each of its two bodies, so that removing a body costs its own manifolds,
@@ -227,7 +239,9 @@ private:
     std::unordered_set<Node*> m_dead;
     long m_stamp = 0;
     std::vector<Side> m_sides;    // per report of the current fill
+    std::vector<size_t> m_hashes;  // each side's key's hash
     std::vector<Group> m_groups;
+    std::vector<size_t> m_starts;  // each group's first report
     std::vector<BtgContactReport> m_scratch;
     std::unordered_map<PointKey, PointState, PointKeyHash> m_pending;  // for the next fill
     // Config::stockEmptyManifolds (notePairs): the manifold keys of each pair stock's dispatcher

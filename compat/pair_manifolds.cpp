@@ -243,10 +243,9 @@ void ManifoldSync::holdStockPairs(btDispatcher* dispatcher, const std::unordered
     // it: no callback for an empty one; its contact starts when the device gives it points).
     for (const Key& k : m_wanted) {
         if (!removed.empty() && (removed.count(k.body0) || removed.count(k.body1))) continue;
-        auto it = m_map.find(k);
-        if (it != m_map.end() && it->second.manifold) continue;
-        if (it == m_map.end()) it = m_map.emplace(k, Entry{}).first;
-        Node* node = &*it;
+        Node* node = m_map.find(k);
+        if (node && node->second.manifold) continue;
+        if (!node) node = m_map.insert(k);
         node->second = Entry{};
         node->second.manifold = dispatcher->getNewManifold(k.body0, k.body1);
         node->second.stamp = m_stamp;

@@ -129,6 +129,7 @@ public:
         out.stageMs["host: sync-in (compare rows, upload)"] = r.syncInMs;
         out.stageMs["host: enqueue + wait + readback"] = r.deviceMs;
         out.stageMs["host: write-back"] = r.writeBackMs;
+        out.stageMs["host: write-back, of it the manifold fill"] = r.manifoldFillMs;
         if (!m_callback.empty()) out.stageMs["host: contact callbacks (in enqueue + wait)"] = r.callbackMs;
         out.pairs = r.pairs;
         out.manifolds = r.contacts;
