@@ -130,6 +130,7 @@ public:
         out.stageMs["host: enqueue + wait + readback"] = r.deviceMs;
         out.stageMs["host: write-back"] = r.writeBackMs;
         out.stageMs["host: write-back, of it the manifold fill"] = r.manifoldFillMs;
+        if (!m_noAabbSync) out.stageMs["host: Bullet's broadphase AABB sync"] = r.aabbSyncMs;
         if (!m_callback.empty()) out.stageMs["host: contact callbacks (in enqueue + wait)"] = r.callbackMs;
         out.pairs = r.pairs;
         out.manifolds = r.contacts;
