@@ -185,6 +185,7 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
     // go in): no point is built or copied more than its one way into the manifold needs.
     static thread_local std::vector<NewPoint> points;
     points.clear();
+    points.reserve(4 * BTG_MAX_POINTS);
     const Key& key = g.entry->first;
     // One pair of bodies: their combined coefficients once (btManifoldResult's, per point on stock).
     const btScalar friction = btManifoldResult::calculateCombinedFriction(key.body0, key.body1);

@@ -203,7 +203,7 @@ private:
     void forget(Node* node);
     // Config::stockEmptyManifolds, in the fill: whether a manifold the device did not name
     // stays (its pair still stock's), and empty manifolds for the noted pairs that have none.
-    bool stockHolds(const Key& key) const { return m_wantedSet.count(key) > 0; }
+    bool stockHolds(const Key& key) const { return m_wantedSet.find(key) != nullptr; }
     void holdStockPairs(btDispatcher* dispatcher, const std::unordered_set<const btCollisionObject*>& removed);
     // One broadphase pair: its objects in the cache's order and its id (the proxies' unique ids).
     struct StockPair {
@@ -249,7 +249,7 @@ private:
     // of them in the pair cache's order (the order empty manifolds are made in).
     std::unordered_map<unsigned long long, std::vector<Key>> m_stockPairs;
     std::vector<Key> m_wanted;
-    std::unordered_set<Key, KeyHash> m_wantedSet;
+    ManifoldTable<Key, char, KeyHash> m_wantedSet;  // as a set
     bool m_wantedValid = false;
 };
 

@@ -66,6 +66,14 @@ public:
         ++m_count;
         return n;
     }
+    // As a set: whether key was new; key gone (if there).
+    bool add(const Key& key)
+    {
+        const size_t before = m_count;
+        insert(key);
+        return m_count != before;
+    }
+    void eraseKey(const Key& key) { erase(find(key)); }
     void erase(Node* n)
     {
         if (!n || !n->inUse) return;

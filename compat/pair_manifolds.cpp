@@ -178,7 +178,7 @@ void ManifoldSync::notePairList(btDispatcher* dispatcher, bool valid, const std:
             keys = std::move(it->second);
         }
         for (const Key& k : keys)
-            if (m_wantedSet.insert(k).second) m_wanted.push_back(k);
+            if (m_wantedSet.add(k)) m_wanted.push_back(k);
         next.emplace(id, std::move(keys));
     }
     m_stockPairs.swap(next);
@@ -199,16 +199,16 @@ void ManifoldSync::notePairChanges(btDispatcher* dispatcher, const std::vector<S
     auto drop = [&](unsigned long long id) {
         auto it = m_stockPairs.find(id);
         if (it == m_stockPairs.end()) return;
-        for (const Key& k : it->second) m_wantedSet.erase(k);
+        for (const Key& k : it->second) m_wantedSet.eraseKey(k);
         m_stockPairs.erase(it);
     };
     auto collide = [&](const StockPair& pair) {
         std::vector<Key> keys = algorithmKeys(pair.a, pair.b, rows, removed);
         std::vector<Key>& held = m_stockPairs[pair.id];
         for (const Key& k : held)
-            if (std::find(keys.begin(), keys.end(), k) == keys.end()) m_wantedSet.erase(k);
+            if (std::find(keys.begin(), keys.end(), k) == keys.end()) m_wantedSet.eraseKey(k);
         for (const Key& k : keys)
-            if (m_wantedSet.insert(k).second) m_wanted.push_back(k);
+            if (m_wantedSet.add(k)) m_wanted.push_back(k);
         held = std::move(keys);
     };
     auto gone = [&](const StockPair& p) { return !removed.empty() && (removed.count(p.a) || removed.count(p.b)); };
