@@ -423,8 +423,9 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
     // before it is of the same manifold. Then, serially in group order, the groups whose key held
     // no manifold (new pairs, few a step): their node, and a new manifold from the dispatcher's
     // pool (getNewManifold is not thread-safe).
-    const int startChunks = chunkCount(n, 4096);
-    std::vector<std::vector<size_t>> startsIn(static_cast<size_t>(startChunks));
+    std::vector<std::vector<size_t>>& startsIn = m_startsIn;  // per chunk, kept with their capacity
+    startsIn.resize(size_t(chunkCount(n, 4096)));
+    for (std::vector<size_t>& starts : startsIn) starts.clear();
     forEachChunk(n, 4096, [&](size_t begin, size_t end, int chunk) {
         for (size_t i = begin; i < end; ++i) {
             const Side& side = m_sides[i];
@@ -435,8 +436,9 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
     m_starts.clear();
     for (const std::vector<size_t>& starts : startsIn) m_starts.insert(m_starts.end(), starts.begin(), starts.end());
     m_groups.resize(m_starts.size());
-    const int groupChunks = chunkCount(m_starts.size(), 2048);
-    std::vector<std::vector<size_t>> unheldIn(static_cast<size_t>(groupChunks));
+    std::vector<std::vector<size_t>>& unheldIn = m_unheldIn;
+    unheldIn.resize(size_t(chunkCount(m_starts.size(), 2048)));
+    for (std::vector<size_t>& unheld : unheldIn) unheld.clear();
     forEachChunk(m_starts.size(), 2048, [&](size_t begin, size_t end, int chunk) {
         for (size_t k = begin; k < end; ++k) {
             const size_t i = m_starts[k];

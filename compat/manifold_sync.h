@@ -242,6 +242,7 @@ private:
     std::vector<size_t> m_hashes;  // each side's key's hash
     std::vector<Group> m_groups;
     std::vector<size_t> m_starts;  // each group's first report
+    std::vector<std::vector<size_t>> m_startsIn, m_unheldIn;  // per chunk of the group passes
     std::vector<BtgContactReport> m_scratch;
     std::unordered_map<PointKey, PointState, PointKeyHash> m_pending;  // for the next fill
     // Config::stockEmptyManifolds (notePairs): the manifold keys of each pair stock's dispatcher
