@@ -246,8 +246,17 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
     // starts at 1, as stock's refreshContactPoints leaves a point added this step.
     const int oldCount = m->getNumContacts();
     const int ages = refreshesPerStep(key.body0, key.body1);
-    btManifoldPoint old[MANIFOLD_CACHE_SIZE];
-    for (int j = 0; j < oldCount; ++j) old[j] = m->getContactPoint(j);
+    // What the matching and the lifetimes need of the old points (not whole copies: the old
+    // points a refill keeps stay where they are in the manifold).
+    struct Old {
+        btVector3 m_localPointA;
+        int m_index0, m_index1, m_partId1, m_lifeTime;
+        void* m_userPersistentData;
+    } old[MANIFOLD_CACHE_SIZE];
+    for (int j = 0; j < oldCount; ++j) {
+        const btManifoldPoint& p = m->getContactPoint(j);
+        old[j] = Old{p.m_localPointA, p.m_index0, p.m_index1, p.m_partId1, p.m_lifeTime, p.m_userPersistentData};
+    }
     const btScalar thr2 = m->getContactBreakingThreshold() * m->getContactBreakingThreshold();
     unsigned claimed = 0;
     const int total = int(points.size());
@@ -300,14 +309,11 @@ void ManifoldSync::refill(Group& g, const BtgContactReport* reports)
     e.persistent = persistent;
     const bool retain = !persistent && m_collidedAtValid && !g.spheres && total > 0 && g.row0 >= 0 && g.row1 >= 0 &&
                         size_t(std::max(g.row0, g.row1)) < m_collidedAt.size();
-    m->setNumContacts(0);
+    // Kept: the old points stay in their slots, in order (as addManifoldPoint would put each
+    // back), without their user data (taken above), tagged; else the manifold starts empty.
+    m->setNumContacts(retain ? oldCount : 0);
     if (retain)
-        for (int j = 0; j < oldCount; ++j) {
-            btManifoldPoint p = old[j];
-            p.m_userPersistentData = nullptr;
-            p.m_lifeTime = kOldTag + j;
-            m->addManifoldPoint(p);
-        }
+        for (int j = 0; j < oldCount; ++j) m->getContactPoint(j).m_lifeTime = kOldTag + j;
     for (int i = 0; i < total; ++i) {
         btManifoldPoint& pt = points[size_t(i)].point;  // no user data yet (NewPoint::userData)
         pt.m_lifeTime = kNewTag + i;
