@@ -687,7 +687,24 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             }
             Clock::time_point t2 = Clock::now();
             writeBack(m_readback, b == batches - 1);
-            if (!actions) fillManifolds();  // before the tick callback, which may read them
+            if (!actions && b == batches - 1 && aabbsBesideFill()) {
+                // The call's broadphase AABB sync (Bullet's serial updateAabbs; finishCall's
+                // otherwise) on the side thread while the pool fills the manifolds: the sync
+                // reads the bodies' transforms and writes Bullet's broadphase only, the fill
+                // reads shapes and writes the dispatcher's manifolds; it waits for the sync
+                // before reading activation or calling the app's callbacks.
+                m_side.start([this] { syncBroadphaseAabbs(); });
+                auto waitForSync = [this] {
+                    const Clock::time_point w0 = Clock::now();
+                    m_side.wait();
+                    m_aabbWaitMs += msBetween(w0, Clock::now());
+                };
+                fillManifolds(waitForSync);
+                waitForSync();  // (the fill returns early without contacts)
+                m_aabbsSynced = true;
+            } else if (!actions) {
+                fillManifolds();  // before the tick callback, which may read them
+            }
             m_report.syncInMs += msBetween(t0, t1);
             m_report.deviceMs += msBetween(t1, t2);
             m_report.writeBackMs += msBetween(t2, Clock::now());
@@ -731,9 +748,11 @@ bool GpuWorld::finishCall(bool profiled, bool gpuPath)
     Clock::time_point t4 = Clock::now();
     // With ghosts (or an overlap filter) the broadphase holds stock's AABBs already (set at the
     // step's start): moving them here would add pairs, and ghost overlaps, stock does not have.
-    if (m_config.syncBroadphaseAabbs && !broadphaseAsStock()) syncBroadphaseAabbs();
+    if (m_config.syncBroadphaseAabbs && !broadphaseAsStock() && !m_aabbsSynced) syncBroadphaseAabbs();
     m_report.writeBackMs += msBetween(t3, t4);
-    m_report.aabbSyncMs = msBetween(t4, Clock::now());
+    m_report.aabbSyncMs = msBetween(t4, Clock::now()) + m_aabbWaitMs;  // beside the fill: what it added
+    m_aabbsSynced = false;
+    m_aabbWaitMs = 0.0;
     m_report.stageMs.clear();  // empty on calls that were not profiled
     if (profiled) m_dev->profiler.collect(m_report.stageMs);
     m_report.launches = m_dev->profiler.launches();

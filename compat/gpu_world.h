@@ -14,6 +14,7 @@
 #include "row_map.h"
 #include "pipeline.h"
 #include "shape_tables.h"
+#include "side_task.h"
 #include "stages/sync_bodies.h"
 #include "world/device_world.h"
 #include "world/plan.h"
@@ -145,7 +146,15 @@ private:
     void noteLeafPairs(int steps);
     LeafPairCache m_leafPairs;
     // The app's dispatcher manifolds from the readback just taken (Config::fillDispatcherManifolds).
-    void fillManifolds();
+    void fillManifolds(const std::function<void()>& beforeEvents = {});
+    // Whether this call's last broadphase AABB sync may run beside the manifold fill (SideTask):
+    // a big world, Bullet's own Dbvt, dispatcher and world classes, the write-back's fused pass
+    // (no tick callback, nothing of the app's between the fill and the sync but its own motion
+    // states, called after both).
+    bool aabbsBesideFill() const;
+    SideTask m_side;
+    bool m_aabbsSynced = false;   // this call's sync ran beside the fill
+    double m_aabbWaitMs = 0.0;    // what it added to the call: the fill's wait for it
     // The CPU path runs next: our manifolds go back to the dispatcher's pool (its algorithms
     // make their own); coming back, the algorithms' go (ours replace them).
     void leaveGpuPath();

@@ -46,11 +46,19 @@ void GpuWorld::completeBroadphasePairs()
     m_broadphasePairsStale = false;
 }
 
-void GpuWorld::fillManifolds()
+bool GpuWorld::aabbsBesideFill() const
+{
+    const btDispatcher* dispatcher = m_world.getDispatcher();
+    return m_config.fillDispatcherManifolds && m_config.syncBroadphaseAabbs && !broadphaseAsStock() &&
+           dbvtBroadphase() && dispatcher && typeid(*dispatcher) == typeid(btCollisionDispatcher) &&
+           fusedWriteBackPending() && m_world.getNumCollisionObjects() >= 4096;
+}
+
+void GpuWorld::fillManifolds(const std::function<void()>& beforeEvents)
 {
     if (!m_config.fillDispatcherManifolds) return;
     const auto t0 = std::chrono::steady_clock::now();
-    m_manifolds.fill(m_world.getDispatcher(), m_rows, m_readback, m_removed);
+    m_manifolds.fill(m_world.getDispatcher(), m_rows, m_readback, m_removed, beforeEvents);
     m_report.manifoldFillMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 

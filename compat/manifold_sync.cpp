@@ -393,7 +393,8 @@ void ManifoldSync::contactEvents()
 }
 
 void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const BodyReadback& rb,
-                        const std::unordered_set<const btCollisionObject*>& removed)
+                        const std::unordered_set<const btCollisionObject*>& removed,
+                        const std::function<void()>& beforeEvents)
 {
     if (!dispatcher || !rb.contactsValid) return;
     ++m_stamp;
@@ -535,6 +536,7 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
         });
         for (const Group& g : m_groups) m_nextLive.push_back(g.entry);
     }
+    if (beforeEvents) beforeEvents();
     m_pending.clear();
     contactEvents();
 

@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -35,8 +36,11 @@ public:
     // Every manifold this call's reports name is created or refilled; those of pairs no longer
     // touching are released, except where both bodies sleep (stock keeps those as they were).
     // `removed`: objects that left inside this call (their rows still name them).
+    // beforeEvents: called once the manifolds are refilled, before the app's contact callbacks
+    // and before any body's activation is read (a job run beside the fill is waited for there).
     void fill(btDispatcher* dispatcher, const RowMap& rows, const BodyReadback& rb,
-              const std::unordered_set<const btCollisionObject*>& removed);
+              const std::unordered_set<const btCollisionObject*>& removed,
+              const std::function<void()>& beforeEvents = {});
     // All given back (the CPU path's algorithms make their own; the switch turned off; rebuild).
     // Their contacts do not end for the app (no gContactEndedCallback: the CPU path's manifolds
     // take them on); points' user data go to gContactDestroyedCallback, as they leave the app.
