@@ -43,7 +43,7 @@ struct Report {
     double deviceMs = 0.0;
     double writeBackMs = 0.0;
     double manifoldFillMs = 0.0;      // the app's dispatcher manifolds filled (Config::fillDispatcherManifolds): in writeBackMs (with actions, in deviceMs)
-    double aabbSyncMs = 0.0;
+    double aabbSyncMs = 0.0;          // what the sync added to the call (run beside the manifold fill in big worlds)
     double ghostBroadphaseMs = 0.0;   // with ghosts, an overlap filter or Config::stockEmptyManifolds: Bullet's broadphase pair update on the host (in syncInMs)
     // While the app's contact callbacks (gContactAddedCallback on CF_CUSTOM_MATERIAL_CALLBACK
     // bodies, gContactProcessedCallback, custom combiners) or an overlap filter need the host
