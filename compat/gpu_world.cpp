@@ -694,6 +694,17 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
                 // reads shapes and writes the dispatcher's manifolds; it waits for the sync
                 // before reading activation or calling the app's callbacks.
                 m_side.start([this] { syncBroadphaseAabbs(); });
+                // Never left running past here, whatever the fill throws.
+                struct Joined {
+                    SideTask& side;
+                    ~Joined()
+                    {
+                        try {
+                            side.wait();
+                        } catch (...) {
+                        }
+                    }
+                } joined{m_side};
                 auto waitForSync = [this] {
                     const Clock::time_point w0 = Clock::now();
                     m_side.wait();
