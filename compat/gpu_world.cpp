@@ -687,35 +687,8 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             }
             Clock::time_point t2 = Clock::now();
             writeBack(m_readback, b == batches - 1);
-            if (!actions && b == batches - 1 && aabbsBesideFill()) {
-                // The call's broadphase AABB sync (Bullet's serial updateAabbs; finishCall's
-                // otherwise) on the side thread while the pool fills the manifolds: the sync
-                // reads the bodies' transforms and writes Bullet's broadphase only, the fill
-                // reads shapes and writes the dispatcher's manifolds; it waits for the sync
-                // before reading activation or calling the app's callbacks.
-                m_side.start([this] { syncBroadphaseAabbs(); });
-                // Never left running past here, whatever the fill throws.
-                struct Joined {
-                    SideTask& side;
-                    ~Joined()
-                    {
-                        try {
-                            side.wait();
-                        } catch (...) {
-                        }
-                    }
-                } joined{m_side};
-                auto waitForSync = [this] {
-                    const Clock::time_point w0 = Clock::now();
-                    m_side.wait();
-                    m_aabbWaitMs += msBetween(w0, Clock::now());
-                };
-                fillManifolds(waitForSync);
-                waitForSync();  // (the fill returns early without contacts)
-                m_aabbsSynced = true;
-            } else if (!actions) {
-                fillManifolds();  // before the tick callback, which may read them
-            }
+            if (!actions && b == batches - 1 && aabbsBesideFill()) fillBesideAabbSync();
+            else if (!actions) fillManifolds();  // before the tick callback, which may read them
             m_report.syncInMs += msBetween(t0, t1);
             m_report.deviceMs += msBetween(t1, t2);
             m_report.writeBackMs += msBetween(t2, Clock::now());

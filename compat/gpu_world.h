@@ -152,6 +152,8 @@ private:
     // (no tick callback, nothing of the app's between the fill and the sync but its own motion
     // states, called after both).
     bool aabbsBesideFill() const;
+    // The fill, with the call's broadphase AABB sync on the side thread beside it.
+    void fillBesideAabbSync();
     SideTask m_side;
     bool m_aabbsSynced = false;   // this call's sync ran beside the fill
     double m_aabbWaitMs = 0.0;    // what it added to the call: the fill's wait for it

@@ -62,6 +62,35 @@ void GpuWorld::fillManifolds(const std::function<void()>& beforeEvents)
     m_report.manifoldFillMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+void GpuWorld::fillBesideAabbSync()
+{
+    // The call's broadphase AABB sync (Bullet's serial updateAabbs; finishCall's otherwise) on
+    // the side thread while the pool fills the manifolds: the sync reads the bodies' transforms
+    // and writes Bullet's broadphase only, the fill reads shapes and writes the dispatcher's
+    // manifolds; it waits for the sync before reading activation or calling the app's callbacks.
+    using Clock = std::chrono::steady_clock;
+    m_side.start([this] { syncBroadphaseAabbs(); });
+    // Never left running past here, whatever the fill throws.
+    struct Joined {
+        SideTask& side;
+        ~Joined()
+        {
+            try {
+                side.wait();
+            } catch (...) {
+            }
+        }
+    } joined{m_side};
+    auto waitForSync = [this] {
+        const Clock::time_point w0 = Clock::now();
+        m_side.wait();
+        m_aabbWaitMs += std::chrono::duration<double, std::milli>(Clock::now() - w0).count();
+    };
+    fillManifolds(waitForSync);
+    waitForSync();  // (the fill returns early without contacts)
+    m_aabbsSynced = true;
+}
+
 void GpuWorld::leaveGpuPath()
 {
     // The pairs first (stock's algorithms hang on them), then the contacts handed over (which
