@@ -97,7 +97,7 @@ __kernel void solve_color_serial(__global const int* restrict edgeColor, __globa
     const int nc = contact_edges(counters, edgeCapacity, numJoints);
     for (int i = phase ? nc : 0; i < (phase ? n : min(n, nc)); ++i)
         if (edgeColor[i] >= color)
-            solve_phase_edge(i, phase, nc, iteration, mode, rows, contacts, rolling, frictionDirs, anchors, JOINT_PASS, props,
+            solve_phase_edge(i, i, phase, nc, iteration, mode, rows, contacts, rolling, frictionDirs, anchors, JOINT_PASS, props,
                              invInertiaWorld, lin, ang, key);
 }
 
@@ -163,10 +163,41 @@ __kernel void color_fill(__global const int* restrict edgeColor, __global const 
     }
 }
 
+/* The contacts' list 0 (every contact of a regular colour) copied in colour order, so that a sweep
+ * reads its colour's rows one after another instead of at the contacts' scattered places: slot k
+ * of list 0 is contact colorOrder[k]. The velocity sweeps solve the copy (the push sweeps read the
+ * list's own rows, which hold the same values: the velocity sweeps change impulses only, never
+ * a push row's fields), and contacts_scatter puts the impulses they changed back. The
+ * leftovers (colours past the last regular one) are not in list 0: solved in place. */
+static int list0_count(__global const uint* restrict colorStart, int numColors)
+{
+    return (int)colorStart[numColors];
+}
+__kernel void contacts_gather(__global const BtgContact* restrict contacts, __global const uint* restrict colorStart,
+                              __global const int* restrict colorOrder, int numColors, __global BtgContact* sorted)
+{
+    const int k = (int)get_global_id(0);
+    if (k >= list0_count(colorStart, numColors)) return;
+    sorted[k] = contacts[colorOrder[k]];
+}
+__kernel void contacts_scatter(__global BtgContact* contacts, __global const uint* restrict colorStart,
+                               __global const int* restrict colorOrder, int numColors,
+                               __global const BtgContact* restrict sorted)
+{
+    const int k = (int)get_global_id(0);
+    if (k >= list0_count(colorStart, numColors)) return;
+    const int e = colorOrder[k];
+    contacts[e].normalImpulse = sorted[k].normalImpulse;
+    contacts[e].friction1Impulse = sorted[k].friction1Impulse;
+    contacts[e].friction2Impulse = sorted[k].friction2Impulse;
+}
+
 /* solve_color_range: the color's range in list (phase 1: 2, the joints; else mode == 2 ? 1 : 0), strided over however many
  * work-items the host launched (it does not know the range's length; a launch over every
- * edge slot cost a CPU device hundreds of empty work-groups per color). */
-__kernel void solve_color_range(__global BtgContact* contacts, __global BtgRollingContact* rolling,
+ * edge slot cost a CPU device hundreds of empty work-groups per color). List 0's rows from the
+ * colour-ordered copy `sorted` (contacts_gather) where `useSorted`, else in place. */
+__kernel void solve_color_range(__global BtgContact* contacts, __global BtgContact* sorted, int useSorted,
+                                __global BtgRollingContact* rolling,
                                 __global const BtgFrictionDirs* restrict frictionDirs, __global const BtgFrictionAnchor* restrict anchors,
                                 __global const uint* restrict colorStart,
                                 __global const int* restrict colorOrder, __global const BtgBodyProps* restrict props,
@@ -180,9 +211,13 @@ __kernel void solve_color_range(__global BtgContact* contacts, __global BtgRolli
     const int begin = (int)colorStart[list * (numColors + 1) + color];
     const int end = (int)colorStart[list * (numColors + 1) + color + 1];
     const int nc = phase ? contact_edges(counters, edgeCapacity, numJoints) : 0;
-    for (int k = begin + (int)get_global_id(0); k < end; k += (int)get_global_size(0))
-        solve_phase_edge(colorOrder[list * orderStride + k], phase, nc, iteration, mode, rows, contacts, rolling,
-                         frictionDirs, anchors, JOINT_PASS, props, invInertiaWorld, lin, ang, key);
+    const int copied = useSorted && list == 0;
+    __global BtgContact* rowsAt = copied ? sorted : contacts;
+    for (int k = begin + (int)get_global_id(0); k < end; k += (int)get_global_size(0)) {
+        const int e = colorOrder[list * orderStride + k];
+        solve_phase_edge(e, copied ? k : e, phase, nc, iteration, mode, rows, rowsAt, rolling, frictionDirs, anchors,
+                         JOINT_PASS, props, invInertiaWorld, lin, ang, key);
+    }
 }
 
 /* The flow (solve_resident's flow != 0, every sweep in colour order): an edge waits only for its
@@ -372,7 +407,7 @@ __kernel void solve_resident(__global const int* restrict edgeColor, __global Bt
                             }
                             mem_fence(CLK_GLOBAL_MEM_FENCE); /* the bodies' velocities read after their counts */
                         }
-                        solve_phase_edge(e, phase, nc, iteration, m, rows, contacts, rolling, frictionDirs, anchors,
+                        solve_phase_edge(e, e, phase, nc, iteration, m, rows, contacts, rolling, frictionDirs, anchors,
                                          JOINT_PASS, props, invInertiaWorld, lin, ang, key);
                         if (flowing) {
                             mem_fence(CLK_GLOBAL_MEM_FENCE); /* written before the counts move on */
@@ -400,7 +435,7 @@ __kernel void solve_resident(__global const int* restrict edgeColor, __global Bt
                     if (gid == 0)
                         for (int i = phase ? nc : 0; i < (phase ? n : min(n, nc)); ++i)
                             if (edgeColor[i] >= last)
-                                solve_phase_edge(i, phase, nc, iteration, m, rows, contacts, rolling, frictionDirs, anchors, JOINT_PASS,
+                                solve_phase_edge(i, i, phase, nc, iteration, m, rows, contacts, rolling, frictionDirs, anchors, JOINT_PASS,
                                                  props, invInertiaWorld, lin, ang, key);
                     if (btgGridBarrier(bar, spinLimit, &quit)) {
                         if (gid == 0) atomic_or(&counters[BTG_COUNTER_STATUS], BTG_STATUS_GRID_BARRIER_TIMEOUT);
@@ -466,7 +501,7 @@ __kernel void solve_local(__global const int* restrict edgeColor, __global BtgCo
                     const int2 range = color_range(colorStart, list, numColors, btgPermute(key, last, ci));
                     if (range.x == range.y) continue; /* the same for every work-item */
                     for (int k = range.x + lid; k < range.y; k += lsize)
-                        solve_phase_edge_local(colorOrder[list * orderStride + k], phase, nc, iteration, m, rows, contacts,
+                        solve_phase_edge_local(colorOrder[list * orderStride + k], colorOrder[list * orderStride + k], phase, nc, iteration, m, rows, contacts,
                                                rolling, frictionDirs, anchors, JOINT_PASS, props, invInertiaWorld, slin,
                                                sang, key);
                     barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
@@ -475,7 +510,7 @@ __kernel void solve_local(__global const int* restrict edgeColor, __global BtgCo
                     if (lid == 0)
                         for (int i = phase ? nc : 0; i < (phase ? n : min(n, nc)); ++i)
                             if (edgeColor[i] >= last)
-                                solve_phase_edge_local(i, phase, nc, iteration, m, rows, contacts, rolling, frictionDirs,
+                                solve_phase_edge_local(i, i, phase, nc, iteration, m, rows, contacts, rolling, frictionDirs,
                                                        anchors, JOINT_PASS, props, invInertiaWorld, slin, sang, key);
                     barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
                 }

@@ -15,14 +15,14 @@ static void BTG_PGS_FN(store_velocity)(BTG_PGS_VEL lin, BTG_PGS_VEL ang, int bod
     ang[body] = btgMake4(v.ang.x, v.ang.y, v.ang.z, angOld.w);
 }
 
-static void BTG_PGS_FN(solve_contact)(int i, int mode, int rows, __global BtgContact* contacts,
+static void BTG_PGS_FN(solve_contact)(int i, int slot, int mode, int rows, __global BtgContact* contacts,
                       __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs, __global const BtgFrictionAnchor* restrict anchors,
                       __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
                       BTG_PGS_VEL lin, BTG_PGS_VEL ang, uint key)
 {
     /* SOLVER_RANDMIZE_ORDER: this contact's points in its own order within the sweep (0: in order) */
     const uint order = btgItemKey(key, (uint)i + 1u);
-    BtgContact c = btgLoadContactRows(contacts, i, mode == BTG_PASS_ROLLING ? BTG_PASS_NORMALS : mode, rows);
+    BtgContact c = btgLoadContactRows(contacts, slot, mode == BTG_PASS_ROLLING ? BTG_PASS_NORMALS : mode, rows);
     BtgSolverBody a = load_body(props, invInertiaWorld, c.bodyA);
     BtgSolverBody b = load_body(props, invInertiaWorld, c.bodyB);
     /* Push velocities of infinite-mass bodies are zero, as Bullet's solver bodies start them. */
@@ -61,17 +61,18 @@ static void BTG_PGS_FN(solve_contact)(int i, int mode, int rows, __global BtgCon
     else btgContactSolvePushOrdered(&c, order, a, b, &va, &vb);
     if (a.dynamic) BTG_PGS_FN(store_velocity)(lin, ang, c.bodyA, va, linA, angA);
     if (b.dynamic) BTG_PGS_FN(store_velocity)(lin, ang, c.bodyB, vb, linB, angB);
-    if (mode != BTG_PASS_ROLLING) btgStoreContactImpulses(contacts, i, &c, mode, rows);
+    if (mode != BTG_PASS_ROLLING) btgStoreContactImpulses(contacts, slot, &c, mode, rows);
 }
 
 /* One edge of the graph: the contacts are the edges [0, contacts); a constraint kind with
- * edges after them is solved here by its own rows. */
-static void BTG_PGS_FN(solve_edge)(int e, int mode, int rows, __global BtgContact* contacts,
+ * edges after them is solved here by its own rows. A contact's rows are contacts[slot]: the
+ * contact list's own (slot e), or the colour-ordered copy's (see contacts_gather). */
+static void BTG_PGS_FN(solve_edge)(int e, int slot, int mode, int rows, __global BtgContact* contacts,
                        __global BtgRollingContact* rolling, __global const BtgFrictionDirs* restrict frictionDirs, __global const BtgFrictionAnchor* restrict anchors,
                        __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
                        BTG_PGS_VEL lin, BTG_PGS_VEL ang, uint key)
 {
-    BTG_PGS_FN(solve_contact)(e, mode, rows, contacts, rolling, frictionDirs, anchors, props, invInertiaWorld, lin, ang, key);
+    BTG_PGS_FN(solve_contact)(e, slot, mode, rows, contacts, rolling, frictionDirs, anchors, props, invInertiaWorld, lin, ang, key);
 }
 
 /* Joint j's rows, one Gauss-Seidel step each in row order (the rows of one joint share its two
@@ -106,7 +107,7 @@ static void BTG_PGS_FN(solve_joint)(int j, int iteration, JOINT_ARGS, __global c
 }
 
 /* One edge of the phase: a joint edge (phase 1) or a contact (phase 0). */
-static void BTG_PGS_FN(solve_phase_edge)(int e, int phase, int contacts, int iteration, int mode, int rows,
+static void BTG_PGS_FN(solve_phase_edge)(int e, int slot, int phase, int contacts, int iteration, int mode, int rows,
                              __global BtgContact* contactRows, __global BtgRollingContact* rolling,
                              __global const BtgFrictionDirs* restrict frictionDirs, __global const BtgFrictionAnchor* restrict anchors, JOINT_ARGS,
                              __global const BtgBodyProps* restrict props,
@@ -114,6 +115,6 @@ static void BTG_PGS_FN(solve_phase_edge)(int e, int phase, int contacts, int ite
                              BTG_PGS_VEL ang, uint key)
 {
     if (phase) BTG_PGS_FN(solve_joint)(e - contacts, iteration, JOINT_PASS, props, invInertiaWorld, lin, ang);
-    else BTG_PGS_FN(solve_edge)(e, mode, rows, contactRows, rolling, frictionDirs, anchors, props, invInertiaWorld, lin, ang, key);
+    else BTG_PGS_FN(solve_edge)(e, slot, mode, rows, contactRows, rolling, frictionDirs, anchors, props, invInertiaWorld, lin, ang, key);
 }
 

@@ -184,7 +184,7 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
                     .arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(rows).arg(w.joints)
                     .arg(w.jointState).arg(w.jointRows).arg(numJoints).arg(phase).arg(iteration).arg(seed).run(1, 1);
             } else {
-                cl::Launch(ctx, parallel, &w.profiler).arg(w.contacts).arg(w.rollingContacts).arg(w.frictionDirs).arg(w.frictionAnchors)
+                cl::Launch(ctx, parallel, &w.profiler).arg(w.contacts).arg(sc.sortedContacts).arg(1).arg(w.rollingContacts).arg(w.frictionDirs).arg(w.frictionAnchors)
                     .arg(sc.colorStart)
                     .arg(sc.colorOrder)
                     .arg(w.props).arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(rows)
@@ -193,6 +193,9 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             }
         }
     };
+    sc.sortedContacts.reserve(ctx, slots);
+    cl::Launch(ctx, prog.kernel("contacts_gather"), &w.profiler).arg(w.contacts).arg(sc.colorStart).arg(sc.colorOrder)
+        .arg(numColors).arg(sc.sortedContacts).run(slots);
     pass(BTG_PASS_WARM_START, 0, -1, w.linVel, w.angVel);
     for (int it = 0; it < velocityPasses; ++it) {
         if (numJoints > 0) pass(BTG_PASS_VELOCITY, 1, it, w.linVel, w.angVel);
@@ -210,6 +213,8 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     }
     if (params.splitImpulse)
         for (int it = 0; it < iterations; ++it) pass(BTG_PASS_PUSH, 0, iterations + it, w.pushLin, w.pushAng);
+    cl::Launch(ctx, prog.kernel("contacts_scatter"), &w.profiler).arg(w.contacts).arg(sc.colorStart).arg(sc.colorOrder)
+        .arg(numColors).arg(sc.sortedContacts).run(slots);
 }
 
 }  // namespace btgpu

@@ -18,6 +18,9 @@ struct SolverScratch {
     cl::DeviceArray<uint> colorCount;  // 2 x (numColors + 1): per color, then the fill cursor
     cl::DeviceArray<uint> colorStart;  // 2 x (numColors + 1)
     cl::DeviceArray<int> colorOrder;   // two per contact slot
+    // solve_constraints' per-colour launches: list 0's contacts copied in colour order (slot k:
+    // contact colorOrder[k]), which the velocity sweeps solve (contacts_gather / contacts_scatter)
+    cl::DeviceArray<BtgContact> sortedContacts;
     cl::DeviceArray<uint> gridBarrier; // solve_resident's arrival count, generation, timeout flag
     cl::DeviceArray<uint> softBarrier; // soft_resident's (btgGridBarrierCounting: zeroed before each launch)
     // solve_soft (SolverKind::SoftStep): each contact slot's soft rows, and BTG_SOFT_BODY_ROWS per
