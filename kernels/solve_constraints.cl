@@ -74,6 +74,10 @@ static int contact_edges(__global const uint* restrict counters, int edgeCapacit
 #undef BTG_PGS_LOAD
 #undef BTG_PGS_FN
 
+#ifdef BTG_CPU_DEVICE
+#include "shared/pgs_wide_passes.h" /* the wide velocity sweeps: CPU devices only (a GPU's build never sees them) */
+#endif
+
 /* Whether edge e has a split-impulse row (only contacts do: Bullet pushes contacts only). */
 static int edge_has_push(__global const BtgContact* restrict contacts, int e)
 {

@@ -28,6 +28,10 @@
 #define BTG_ROWS_INTERLEAVE 32 /* a velocity iteration is one sweep, each point's normal then friction rows
                                   (BTG_PASS_VELOCITY), not a normal sweep and a friction sweep */
 
+/* Floats a contact takes in a CPU device's wide sweeps' block of lanes, per lane (pgs_wide.h's
+ * BTG_PW_FIELDS: 10 of the contact's, 15 per point). */
+#define BTG_PGS_WIDE_FIELDS 70
+
 /* The optional rows a step's solve reads. */
 static inline int btgRowFlags(BtgStepParams p)
 {

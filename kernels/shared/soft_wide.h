@@ -107,7 +107,9 @@ static BTG_ALWAYS_INLINE BtgM3W btgWQuatToMat3(BtgW qx, BtgW qy, BtgW qz, BtgW q
 #define BTG_W_ROW(rows, r, c)                                                                         \
     ((BtgW)((rows)[(r)].c, (rows)[8 + (r)].c, (rows)[16 + (r)].c, (rows)[24 + (r)].c, (rows)[32 + (r)].c, \
             (rows)[40 + (r)].c, (rows)[48 + (r)].c, (rows)[56 + (r)].c))
-static BTG_ALWAYS_INLINE void btgWBody(const BtgFloat4* rows, BtgBodyW* b, BtgVelW* v, BtgDeltaW* d, BtgW* kind)
+/* The solver body and velocities alone, from rows 0-5 (the PGS sweeps' lanes, pgs_wide.h, have
+ * no deltas). */
+static BTG_ALWAYS_INLINE void btgWSolverBody(const BtgFloat4* rows, BtgBodyW* b, BtgVelW* v, BtgW* kind)
 {
     b->invI.r0 = btgW3(BTG_W_ROW(rows, 0, x), BTG_W_ROW(rows, 0, y), BTG_W_ROW(rows, 0, z));
     b->invI.r1 = btgW3(BTG_W_ROW(rows, 1, x), BTG_W_ROW(rows, 1, y), BTG_W_ROW(rows, 1, z));
@@ -122,6 +124,10 @@ static BTG_ALWAYS_INLINE void btgWBody(const BtgFloat4* rows, BtgBodyW* b, BtgVe
     const BtgV3W z3 = btgW3(zero, zero, zero);
     v->lin = btgW3Select(z3, btgW3(BTG_W_ROW(rows, 4, x), BTG_W_ROW(rows, 4, y), BTG_W_ROW(rows, 4, z)), moving);
     v->ang = btgW3Select(z3, btgW3(BTG_W_ROW(rows, 5, x), BTG_W_ROW(rows, 5, y), BTG_W_ROW(rows, 5, z)), moving);
+}
+static BTG_ALWAYS_INLINE void btgWBody(const BtgFloat4* rows, BtgBodyW* b, BtgVelW* v, BtgDeltaW* d, BtgW* kind)
+{
+    btgWSolverBody(rows, b, v, kind);
     d->pos = btgW3(BTG_W_ROW(rows, 6, x), BTG_W_ROW(rows, 6, y), BTG_W_ROW(rows, 6, z));
     d->rot = btgWQuatToMat3(BTG_W_ROW(rows, 7, x), BTG_W_ROW(rows, 7, y), BTG_W_ROW(rows, 7, z), BTG_W_ROW(rows, 7, w));
 }
@@ -309,6 +315,23 @@ static BTG_ALWAYS_INLINE void btgWNormalRow(__global float* c, int k, BtgV3W n, 
     btgWKeep(va, a0, solved);
     btgWKeep(vb, b0, solved);
 }
+/* btgRowSolve on the lanes' rows (btgMakeSolverRow's fields): returns the new impulse, the old
+ * one where the lane solves no row (`solved` false: its velocities kept too). */
+static BTG_ALWAYS_INLINE BtgW btgWRowSolve(const BtgJacobianW* j, BtgW mass, BtgW target, BtgW cfm, BtgW lower, BtgW upper,
+                                           BtgW impulse, int8 solved, const BtgBodyW* a, const BtgBodyW* b, BtgVelW* va,
+                                           BtgVelW* vb)
+{
+    BtgW delta = (target - btgWRowVelocity(j, va, vb)) * mass - impulse * cfm;
+    const BtgW sum = impulse + delta;
+    const int8 below = sum < lower, above = !below & (sum > upper);
+    delta = select(select(delta, upper - impulse, above), lower - impulse, below);
+    const BtgW next = select(select(sum, upper, above), lower, below);
+    const BtgVelW a0 = *va, b0 = *vb;
+    btgWRowApply(j, a, b, va, vb, delta);
+    btgWKeep(va, a0, solved);
+    btgWKeep(vb, b0, solved);
+    return select(impulse, next, solved);
+}
 /* btgSoftFrictionRow: returns the new impulse (the old one where the lane has no row). */
 static BTG_ALWAYS_INLINE BtgW btgWFrictionRow(__global const float* c, int k, BtgV3W dir, BtgW mass, BtgW impulse, BtgW friction,
                                               int8 active, const BtgBodyW* a, const BtgBodyW* b, BtgVelW* va,
@@ -320,17 +343,7 @@ static BTG_ALWAYS_INLINE BtgW btgWFrictionRow(__global const float* c, int k, Bt
     const BtgV3W rA = btgW3LoadG(c, BTG_WC_AT(k, BTG_WC_AX)), rB = btgW3LoadG(c, BTG_WC_AT(k, BTG_WC_BX));
     const BtgJacobianW j = btgWPointJacobian(dir, rA, rB, a, b);
     /* btgMakeSolverRow (target 0, cfm 0, bounds -lim..lim) and btgRowSolve */
-    const BtgW target = (BtgW)(0.0f), cfm = (BtgW)(0.0f), lower = -lim, upper = lim;
-    BtgW delta = (target - btgWRowVelocity(&j, va, vb)) * mass - impulse * cfm;
-    const BtgW sum = impulse + delta;
-    const int8 below = sum < lower, above = !below & (sum > upper);
-    delta = select(select(delta, upper - impulse, above), lower - impulse, below);
-    const BtgW next = select(select(sum, upper, above), lower, below);
-    const BtgVelW a0 = *va, b0 = *vb;
-    btgWRowApply(&j, a, b, va, vb, delta);
-    btgWKeep(va, a0, solved);
-    btgWKeep(vb, b0, solved);
-    return select(impulse, next, solved);
+    return btgWRowSolve(&j, mass, (BtgW)(0.0f), (BtgW)(0.0f), -lim, lim, impulse, solved, a, b, va, vb);
 }
 static BTG_ALWAYS_INLINE void btgWFrictionRows(__global float* c, int k, BtgV3W t1, BtgV3W t2, BtgW friction, const BtgBodyW* a,
                                                const BtgBodyW* b, BtgVelW* va, BtgVelW* vb)

@@ -5,6 +5,7 @@
  * (a GPU's build never sees it). */
 #ifndef BTG_SOFT_WIDE_PASSES_H
 #define BTG_SOFT_WIDE_PASSES_H
+#include "wide_chunks.h"
 /* ---- CPU devices: the solve and relax sweeps eight contacts at a time (soft_wide.h) ----
  * The regular colours' slots in chunks of eight (colour c's chunk m: slots colorStart[c] + 8m..,
  * at wideStart[c] + m); soft_wide_pack puts each contact the wide rows serve into its chunk's
@@ -14,26 +15,12 @@
  * with its own spring or Bullet's directions) stays with soft_edge, lane mode 0. */
 __kernel void soft_wide_offsets(__global const uint* restrict colorStart, __global uint* wideStart, int numColors)
 {
-    if (get_global_id(0) != 0) return;
-    uint sum = 0u;
-    for (int c = 0; c < numColors - 1; ++c) {
-        wideStart[c] = sum;
-        sum += (colorStart[c + 1] - colorStart[c] + BTG_SOFT_WIDE - 1) / BTG_SOFT_WIDE;
-    }
-    wideStart[max(numColors - 1, 0)] = sum;
-}
-/* Slot k's chunk and lane (k in a regular colour). */
-static int2 wide_chunk_of(int k, __global const uint* restrict colorStart, __global const uint* restrict wideStart)
-{
-    int c = 0;
-    while (colorStart[c + 1] <= (uint)k) ++c;
-    const int at = k - (int)colorStart[c];
-    return (int2)((int)wideStart[c] + at / BTG_SOFT_WIDE, at % BTG_SOFT_WIDE);
+    if (get_global_id(0) == 0) btgWideOffsets(colorStart, wideStart, numColors);
 }
 static void wide_pack_slot(int k, __global const uint* restrict colorStart, __global const int* restrict colorOrder,
                            int nc, WIDE_ARGS, __global const BtgSoftContact* softContacts)
 {
-    const int2 at = wide_chunk_of(k, colorStart, wideStart);
+    const int2 at = btgWideChunkOf(k, colorStart, wideStart);
     const int e = colorOrder[k];
     __global const BtgSoftContact* s = softContacts + k;
     const int wide = e < nc && !(s->springStiffness > 0.0f) && !(s->flags & BTG_SOFT_BULLET_DIRECTIONS);
@@ -44,9 +31,7 @@ static void wide_pack_slot(int k, __global const uint* restrict colorStart, __gl
     info[2 * BTG_SOFT_WIDE + at.y] = wide ? s->bodyB : 0;
     btgWPutContact(block, at.y, wide ? s : 0);
     /* the colour's last slot empties the rest of its chunk */
-    int c = 0;
-    while (colorStart[c + 1] <= (uint)k) ++c;
-    if (k + 1 != (int)colorStart[c + 1]) return;
+    if (!btgWideLastOfColor(k, colorStart)) return;
     for (int l = at.y + 1; l < BTG_SOFT_WIDE; ++l) {
         info[l] = 0;
         btgWPutContact(block, l, 0);
@@ -55,7 +40,7 @@ static void wide_pack_slot(int k, __global const uint* restrict colorStart, __gl
 static void wide_unpack_slot(int k, __global const uint* restrict colorStart, WIDE_ARGS,
                              __global BtgSoftContact* softContacts)
 {
-    const int2 at = wide_chunk_of(k, colorStart, wideStart);
+    const int2 at = btgWideChunkOf(k, colorStart, wideStart);
     if (!wideLanes[at.x * WIDE_INFO * BTG_SOFT_WIDE + at.y]) return;
     __global const float* block = wideBlock + at.x * BTG_WC_FIELDS * BTG_SOFT_WIDE;
     softContacts[k].normalImpulse = btgWPoints(block, at.y, BTG_WC_NIMP);
@@ -177,9 +162,9 @@ __kernel void soft_color_wide(__global const uint* restrict colorStart, __global
     const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
     const int chunks = (end - begin + BTG_SOFT_WIDE - 1) / BTG_SOFT_WIDE;
     const int nc = contact_edges(counters, edgeCapacity, numJoints);
-    const int per = (chunks + (int)get_global_size(0) - 1) / (int)get_global_size(0);
-    const int first = (int)get_global_id(0) * per, stop = min(chunks, first + per);
-    for (int m = first; m < stop; ++m)
+    const int2 run = btgWideRun(chunks, (int)get_global_id(0), (int)get_global_size(0));
+    const int stop = run.y;
+    for (int m = run.x; m < stop; ++m)
         soft_wide_chunk(color, m, m + 1 < stop ? m + 1 : -1, begin, end, colorOrder, WIDE_PASS, nc, mode, key, SOFT_PASS);
 }
 

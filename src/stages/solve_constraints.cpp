@@ -6,6 +6,7 @@
 
 #include "cl/program.h"
 #include "shared/contact_rows.h"
+#include "shared/soft_rows.h"
 #include "stages/resident.h"
 
 #include <algorithm>
@@ -59,7 +60,21 @@ bool pgsLocal(const DeviceWorld& w, size_t bodies, bool flow)
     if (w.pgsLocal == R::On || knob == 1) return true;
     return useResident(w) && w.ctx.device().isGpu && w.lastContactCount <= kLocalMaxContacts;
 }
+
+// A CPU device takes the warm-start, normal and friction sweeps eight contacts a work-item
+// (pgs_wide.h): it runs each work-item's rows as scalar code, and the sweeps were about half of
+// its frame. Only the rows the wide sweeps serve (no contact cfm, rolling, anisotropic or anchored
+// friction, interleave, SOLVER_RANDMIZE_ORDER). BTGPU_PGS_WIDE=0: the scalar sweeps there too (an
+// experiment knob, for measuring).
+bool pgsWide(const cl::Context& ctx, const BtgStepParams& params, int rows)
+{
+    static const bool off = [] {
+        const char* e = std::getenv("BTGPU_PGS_WIDE");
+        return e && e[0] == '0';
+    }();
+    return !ctx.device().isGpu && !off && (rows & ~BTG_ROWS_TWO_FRICTION) == 0 && params.randomSeed == 0u;
 }
+}  // namespace
 
 void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iterations, int numColors)
 {
@@ -169,6 +184,22 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     cl_kernel serial = prog.kernel("solve_color_serial");
     // phase 1: the joints' edges, 0: the contacts' (see solve_resident).
     const cl_uint seed = params.randomSeed;
+    // the wide sweeps' blocks (pgs_wide_passes.h), in the soft step's scratch (the two solvers
+    // never share a step): a chunk of eight slots per regular colour's eight, up to one part
+    // empty per colour
+    const bool wide = pgsWide(ctx, params, rows);
+    cl_kernel wideSweep = wide ? prog.kernel("solve_color_wide") : nullptr;
+    const size_t wideItems = (rangeItems + BTG_SOFT_WIDE - 1) / BTG_SOFT_WIDE;
+    if (wide) {
+        const size_t chunks = slots / BTG_SOFT_WIDE + size_t(numColors);
+        sc.softWideStart.reserve(ctx, size_t(numColors));
+        sc.softWideBlock.reserve(ctx, chunks * BTG_PGS_WIDE_FIELDS * BTG_SOFT_WIDE);
+        sc.softWideLanes.reserve(ctx, chunks * 3 * BTG_SOFT_WIDE);
+        cl::Launch(ctx, prog.kernel("pgs_wide_offsets"), &w.profiler).arg(sc.colorStart).arg(sc.softWideStart)
+            .arg(numColors).run(1, 1);
+        cl::Launch(ctx, prog.kernel("pgs_wide_pack"), &w.profiler).arg(w.contacts).arg(sc.colorStart).arg(sc.colorOrder)
+            .arg(numColors).arg(sc.softWideStart).arg(sc.softWideBlock).arg(sc.softWideLanes).run(slots);
+    }
     auto pass = [&](int mode, int phase, int iteration, cl::DeviceArray<BtgFloat4>& lin, cl::DeviceArray<BtgFloat4>& ang) {
         // SOLVER_RANDMIZE_ORDER: the sweep's colours in its permuted order (the leftovers last),
         // as the one-launch kernel takes them
@@ -177,14 +208,20 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             const int color = ci == numColors - 1 ? ci : btgPermute(key, numColors - 1, ci);
             // The last color holds the coloring's leftovers (usually none: the serial kernel
             // then returns at once).
-            if (color == numColors - 1) {
+            const bool wideMode = mode == BTG_PASS_WARM_START || mode == BTG_PASS_NORMALS || mode == BTG_PASS_FRICTION;
+            if (wide && phase == 0 && wideMode && color != numColors - 1) {
+                // groups of eight chunks: a CPU device runs a group on one core
+                cl::Launch(ctx, wideSweep, &w.profiler).arg(sc.colorStart).arg(sc.softWideStart).arg(sc.softWideBlock)
+                    .arg(sc.softWideLanes).arg(color).arg(mode).arg(rows & BTG_ROWS_TWO_FRICTION ? 1 : 0).arg(w.props)
+                    .arg(w.invInertiaWorld).arg(lin).arg(ang).run(wideItems, 8);
+            } else if (color == numColors - 1) {
                 cl::Launch(ctx, serial, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.rollingContacts)
                     .arg(w.frictionDirs).arg(w.frictionAnchors).arg(w.counters)
                     .arg(edgeCapacity).arg(w.props)
                     .arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(rows).arg(w.joints)
                     .arg(w.jointState).arg(w.jointRows).arg(numJoints).arg(phase).arg(iteration).arg(seed).run(1, 1);
             } else {
-                cl::Launch(ctx, parallel, &w.profiler).arg(w.contacts).arg(sc.sortedContacts).arg(1).arg(w.rollingContacts).arg(w.frictionDirs).arg(w.frictionAnchors)
+                cl::Launch(ctx, parallel, &w.profiler).arg(w.contacts).arg(sc.sortedContacts).arg(wide ? 0 : 1).arg(w.rollingContacts).arg(w.frictionDirs).arg(w.frictionAnchors)
                     .arg(sc.colorStart)
                     .arg(sc.colorOrder)
                     .arg(w.props).arg(w.invInertiaWorld).arg(lin).arg(ang).arg(color).arg(mode).arg(rows)
@@ -193,9 +230,11 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             }
         }
     };
-    sc.sortedContacts.reserve(ctx, slots);
-    cl::Launch(ctx, prog.kernel("contacts_gather"), &w.profiler).arg(w.contacts).arg(sc.colorStart).arg(sc.colorOrder)
-        .arg(numColors).arg(sc.sortedContacts).run(slots);
+    if (!wide) {
+        sc.sortedContacts.reserve(ctx, slots);
+        cl::Launch(ctx, prog.kernel("contacts_gather"), &w.profiler).arg(w.contacts).arg(sc.colorStart)
+            .arg(sc.colorOrder).arg(numColors).arg(sc.sortedContacts).run(slots);
+    }
     pass(BTG_PASS_WARM_START, 0, -1, w.linVel, w.angVel);
     for (int it = 0; it < velocityPasses; ++it) {
         if (numJoints > 0) pass(BTG_PASS_VELOCITY, 1, it, w.linVel, w.angVel);
@@ -213,8 +252,13 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     }
     if (params.splitImpulse)
         for (int it = 0; it < iterations; ++it) pass(BTG_PASS_PUSH, 0, iterations + it, w.pushLin, w.pushAng);
-    cl::Launch(ctx, prog.kernel("contacts_scatter"), &w.profiler).arg(w.contacts).arg(sc.colorStart).arg(sc.colorOrder)
-        .arg(numColors).arg(sc.sortedContacts).run(slots);
+    if (wide)
+        cl::Launch(ctx, prog.kernel("pgs_wide_unpack"), &w.profiler).arg(w.contacts).arg(sc.colorStart)
+            .arg(sc.colorOrder).arg(numColors).arg(sc.softWideStart).arg(sc.softWideBlock).arg(sc.softWideLanes)
+            .run(slots);
+    else
+        cl::Launch(ctx, prog.kernel("contacts_scatter"), &w.profiler).arg(w.contacts).arg(sc.colorStart)
+            .arg(sc.colorOrder).arg(numColors).arg(sc.sortedContacts).run(slots);
 }
 
 }  // namespace btgpu
