@@ -19,6 +19,11 @@ namespace {
 // launch on one work-group: below it launch overhead outweighs the parallelism of one launch
 // per color. (On a GPU one lone group is slow: 1,000 cubes took 8.5 ms that way on an H200.)
 constexpr int kOneGroupMaxContacts = 4096;
+// ... and where the per-colour launches take the wide sweeps (pgsWide), up to this many: PoCL,
+// 2 cores, 150 frames, two rounds, frame ms with the limit at 4,096 / 1,024 / 256: cubes 343
+// 5.5-5.8 / 6.0-6.6 / 5.9-6.9, 512 7.6-9.0 / 7.7-8.3 / 7.7-8.3, 1,000 (3,300 contacts) 12.9-13.1 /
+// 11.2-11.3 / 11.0-11.6.
+constexpr int kOneGroupMaxContactsWide = 2048;
 
 // The resident launch's flow (DeviceWorld::pgsFlow): off by default; BTGPU_PGS_FLOW=1 acts on CPU
 // devices only (on an H100 at cubes 32,768 it took the solve from 2.3 to 11.1 ms, its state hash
@@ -147,7 +152,8 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             .run(group, group);
         return;
     }
-    if (resident || w.lastContactCount <= kOneGroupMaxContacts) {
+    const int oneGroupMax = pgsWide(ctx, params, rows) ? kOneGroupMaxContactsWide : kOneGroupMaxContacts;
+    if (resident || w.lastContactCount <= oneGroupMax) {
         cl_kernel k = prog.kernel("solve_resident");
         size_t groups = resident ? residentPgsGroups(w) : 1;
         // The flow (solve_constraints.cl): every sweep ordered by the bodies' counts instead of a
