@@ -220,26 +220,31 @@ __kernel void leaves_pairs_write(__global const BtgPair* restrict raw, __global 
     next[i] = raw[order[i]];
 }
 
-/* Launch: one work-item per slot of both lists (2 x capacity): this list's pairs the last one
- * lacks are appended to changes[0, capacity), the last list's pairs this one lacks to
- * changes[capacity, 2 capacity); the host puts each part in (a, b) order (they are few). */
+/* Launch: one work-item per `span` slots of each list (2 x ceil(capacity / span) in all): this
+ * list's pairs the last one lacks are appended to changes[0, capacity), the last list's pairs
+ * this one lacks to changes[capacity, 2 capacity); the host puts each part in (a, b) order (they
+ * are few). A work-item finds its first pair in the other list by bisection and walks on from
+ * there (a CPU device: spans of many pairs; a GPU: one). */
 __kernel void leaves_diff(__global const BtgPair* restrict next, __global const BtgPair* restrict prev,
-                          volatile __global uint* counts, __global BtgPair* changes, uint capacity)
+                          volatile __global uint* counts, __global BtgPair* changes, uint capacity, int span)
 {
-    uint i = (uint)get_global_id(0);
-    if (i >= 2u * capacity || counts[BTG_LEAF_MOVED] == 0u) return;
-    int numNext = (int)min(counts[BTG_LEAF_FOUND], capacity);
-    int numPrev = (int)counts[BTG_LEAF_PREV];
-    if (i < capacity) {
-        if ((int)i >= numNext || btgLeafPairIn(prev, numPrev, next[i])) return;
-        BtgPair q = next[i];
-        q.childA = 1;
-        changes[atomic_inc(&counts[BTG_LEAF_ADDED])] = q;
-    } else {
-        uint j = i - capacity;
-        if ((int)j >= numPrev || btgLeafPairIn(next, numNext, prev[j])) return;
-        BtgPair q = prev[j];
-        q.childA = 0;
-        changes[capacity + atomic_inc(&counts[BTG_LEAF_REMOVED])] = q;
+    const uint id = (uint)get_global_id(0), perList = (capacity + (uint)span - 1u) / (uint)span;
+    if (id >= 2u * perList || counts[BTG_LEAF_MOVED] == 0u) return;
+    const int numNext = (int)min(counts[BTG_LEAF_FOUND], capacity);
+    const int numPrev = (int)counts[BTG_LEAF_PREV];
+    const int removed = id >= perList; /* the last list's pairs */
+    __global const BtgPair* restrict mine = removed ? prev : next;
+    __global const BtgPair* restrict other = removed ? next : prev;
+    const int nMine = removed ? numPrev : numNext, nOther = removed ? numNext : numPrev;
+    const int begin = (int)(id - (removed ? perList : 0u)) * span, end = min(begin + span, nMine);
+    if (begin >= end) return;
+    int at = btgLeafLowerBound(other, nOther, mine[begin]);
+    for (int i = begin; i < end; ++i) {
+        BtgPair q = mine[i];
+        while (at < nOther && btgLeafPairLess(other[at], q)) ++at;
+        if (btgLeafPairAt(other, nOther, at, q)) continue;
+        q.childA = removed ? 0 : 1;
+        if (removed) changes[capacity + atomic_inc(&counts[BTG_LEAF_REMOVED])] = q;
+        else changes[atomic_inc(&counts[BTG_LEAF_ADDED])] = q;
     }
 }

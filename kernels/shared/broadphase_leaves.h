@@ -152,8 +152,8 @@ static inline uint btgLeafCellHash(int y, int z) { return btgGridHash(0, y, z, (
 
 static inline int btgLeafPairLess(BtgPair p, BtgPair q) { return p.a < q.a || (p.a == q.a && p.b < q.b); }
 
-/* Whether q is in pairs[0, n) (sorted by (a, b)). */
-static inline int btgLeafPairIn(BTG_CONST_GLOBAL BtgPair* pairs, int n, BtgPair q)
+/* The first of pairs[0, n) (sorted by (a, b)) not below q. */
+static inline int btgLeafLowerBound(BTG_CONST_GLOBAL BtgPair* pairs, int n, BtgPair q)
 {
     int lo = 0, hi = n;
     while (lo < hi) {
@@ -161,7 +161,16 @@ static inline int btgLeafPairIn(BTG_CONST_GLOBAL BtgPair* pairs, int n, BtgPair 
         if (btgLeafPairLess(pairs[mid], q)) lo = mid + 1;
         else hi = mid;
     }
-    return lo < n && pairs[lo].a == q.a && pairs[lo].b == q.b;
+    return lo;
+}
+static inline int btgLeafPairAt(BTG_CONST_GLOBAL BtgPair* pairs, int n, int at, BtgPair q)
+{
+    return at < n && pairs[at].a == q.a && pairs[at].b == q.b;
+}
+/* Whether q is in pairs[0, n) (sorted by (a, b)). */
+static inline int btgLeafPairIn(BTG_CONST_GLOBAL BtgPair* pairs, int n, BtgPair q)
+{
+    return btgLeafPairAt(pairs, n, btgLeafLowerBound(pairs, n, q), q);
 }
 
 #endif
