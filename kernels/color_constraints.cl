@@ -36,46 +36,58 @@ __kernel void claim_reset(__global uint* claim, int numBodies)
     if (b < numBodies) claim[b] = NO_CLAIM;
 }
 
-__kernel void body_color_reset(__global int* bodyColor, int numBodies)
+/* A body no edge colours (not solver-dynamic: static, kinematic, asleep, excluded) holds
+ * BODY_FIXED in bodyColor for the whole batching, a dynamic one -1 until an edge takes it: the
+ * claims and assignments then read one compact word a body, not its props (a 160-byte row
+ * whose flags were a scattered read per side of every edge in every sub-round). */
+#define BODY_FIXED (-2)
+static int reset_color(__global const BtgBodyProps* restrict props, int b)
+{
+    return btgIsSolverDynamic(props[b].flags) ? -1 : BODY_FIXED;
+}
+__kernel void body_color_reset(__global int* bodyColor, __global const BtgBodyProps* restrict props, int numBodies)
 {
     int b = (int)get_global_id(0);
-    if (b < numBodies) bodyColor[b] = -1;
+    if (b < numBodies) bodyColor[b] = reset_color(props, b);
 }
 
 /* claim and bodyColor go through BTG_SHARED (volatile on GPUs) pointers: color_resident shares them between
  * work-groups across its grid barriers, where a non-coherent cache must not serve a stale
  * copy. Same arithmetic for every caller. */
-static int body_free(__global const BtgBodyProps* restrict props, BTG_SHARED __global const int* bodyColor, int body,
-                     int color)
+static int body_free(BTG_SHARED __global const int* bodyColor, int body, int color)
 {
-    return !btgIsSolverDynamic(props[body].flags) || bodyColor[body] != color;
+    return bodyColor[body] != color; /* BODY_FIXED is no colour */
+}
+static int body_dynamic(BTG_SHARED __global const int* bodyColor, int body)
+{
+    return bodyColor[body] != BODY_FIXED;
 }
 
 /* One edge's claim in a sub-round: an uncolored edge whose dynamic bodies are still free in
  * this color bids for them with its priority. */
 static int claim_edge(__global const BtgEdge* restrict edges, __global const int* edgeColor, int i,
-                      __global const BtgBodyProps* restrict props, BTG_SHARED __global uint* claim,
+                      BTG_SHARED __global uint* claim,
                       BTG_SHARED __global const int* bodyColor, int color)
 {
     if (edgeColor[i] >= 0) return 0;
     int a = edges[i].bodyA, b = edges[i].bodyB;
-    if (!body_free(props, bodyColor, a, color) || !body_free(props, bodyColor, b, color)) return 1;
+    if (!body_free(bodyColor, a, color) || !body_free(bodyColor, b, color)) return 1;
     const uint p = btgColorPriority(i);
-    if (btgIsSolverDynamic(props[a].flags)) atomic_min(&claim[a], p);
-    if (btgIsSolverDynamic(props[b].flags)) atomic_min(&claim[b], p);
+    if (body_dynamic(bodyColor, a)) atomic_min(&claim[a], p);
+    if (body_dynamic(bodyColor, b)) atomic_min(&claim[b], p);
     return 1; /* still uncolored */
 }
 
 /* One edge's assignment: it takes the color when it won every dynamic body it bid for. */
 static void assign_edge(__global const BtgEdge* restrict edges, __global int* edgeColor, int i, __global uint* counters,
-                        __global const BtgBodyProps* restrict props, BTG_SHARED __global const uint* claim,
+                        BTG_SHARED __global const uint* claim,
                         BTG_SHARED __global int* bodyColor, int color)
 {
     if (edgeColor[i] >= 0) return;
     int a = edges[i].bodyA, b = edges[i].bodyB;
-    if (!body_free(props, bodyColor, a, color) || !body_free(props, bodyColor, b, color)) return;
+    if (!body_free(bodyColor, a, color) || !body_free(bodyColor, b, color)) return;
     const uint p = btgColorPriority(i);
-    int dynA = btgIsSolverDynamic(props[a].flags), dynB = btgIsSolverDynamic(props[b].flags);
+    int dynA = body_dynamic(bodyColor, a), dynB = body_dynamic(bodyColor, b);
     if ((dynA && claim[a] != p) || (dynB && claim[b] != p)) return;
     edgeColor[i] = color;
     /* Only this edge owns these bodies now: plain stores are race-free. */
@@ -85,20 +97,18 @@ static void assign_edge(__global const BtgEdge* restrict edges, __global int* ed
 }
 
 __kernel void color_claim(__global const BtgEdge* restrict edges, __global const int* restrict edgeColor,
-                          __global const uint* restrict counters, int edgeCapacity,
-                          __global const BtgBodyProps* restrict props, __global uint* claim,
+                          __global const uint* restrict counters, int edgeCapacity, __global uint* claim,
                           __global const int* restrict bodyColor, int color)
 {
     int i = (int)get_global_id(0);
-    if (i < edge_count(counters, edgeCapacity)) claim_edge(edges, edgeColor, i, props, claim, bodyColor, color);
+    if (i < edge_count(counters, edgeCapacity)) claim_edge(edges, edgeColor, i, claim, bodyColor, color);
 }
 
 __kernel void color_assign(__global const BtgEdge* restrict edges, __global int* edgeColor, __global uint* counters,
-                           int edgeCapacity, __global const BtgBodyProps* restrict props,
-                           __global const uint* restrict claim, __global int* bodyColor, int color)
+                           int edgeCapacity, __global const uint* restrict claim, __global int* bodyColor, int color)
 {
     int i = (int)get_global_id(0);
-    if (i < edge_count(counters, edgeCapacity)) assign_edge(edges, edgeColor, i, counters, props, claim, bodyColor, color);
+    if (i < edge_count(counters, edgeCapacity)) assign_edge(edges, edgeColor, i, counters, claim, bodyColor, color);
 }
 
 /* Edges left after the rounds share the last color, which the solver runs serially. */
@@ -136,7 +146,7 @@ __kernel void color_resident(__global const BtgEdge* restrict edges, __global in
     BTG_SHARED __global uint* met = claim + 2 * numBodies; /* a word per sub-round */
     for (int i = gid; i < n; i += gsize) edgeColor[i] = -1;
     for (int b = gid; b < numBodies; b += gsize) {
-        bodyColor[b] = -1;
+        bodyColor[b] = reset_color(props, b);
         claim[b] = NO_CLAIM;
     }
     for (int r = gid; r < rounds * BTG_COLOR_SUB_ROUNDS; r += gsize) met[r] = 0u;
@@ -149,7 +159,7 @@ __kernel void color_resident(__global const BtgEdge* restrict edges, __global in
             if (get_local_id(0) == 0) metUncolored = 0;
             barrier(CLK_LOCAL_MEM_FENCE);
             int mine = 0;
-            for (int i = gid; i < n; i += gsize) mine |= claim_edge(edges, edgeColor, i, props, cur, bodyColor, color);
+            for (int i = gid; i < n; i += gsize) mine |= claim_edge(edges, edgeColor, i, cur, bodyColor, color);
             if (mine) metUncolored = 1;
             barrier(CLK_LOCAL_MEM_FENCE);
             if (get_local_id(0) == 0 && metUncolored) met[r] = 1u;
@@ -161,7 +171,7 @@ __kernel void color_resident(__global const BtgEdge* restrict edges, __global in
                 break;
             }
             for (int i = gid; i < n; i += gsize)
-                assign_edge(edges, edgeColor, i, counters, props, cur, bodyColor, color);
+                assign_edge(edges, edgeColor, i, counters, cur, bodyColor, color);
             for (int b = gid; b < numBodies; b += gsize) next[b] = NO_CLAIM;
             stop = btgGridBarrier(bar, spinLimit, &quit);
         }

@@ -56,14 +56,14 @@ void colorConstraints(DeviceWorld& w, int maxColors)
     cl_kernel assign = prog.kernel("color_assign");
 
     cl::Launch(ctx, prog.kernel("color_init"), &w.profiler).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity).run(slots);
-    cl::Launch(ctx, prog.kernel("body_color_reset"), &w.profiler).arg(w.solverScratch.bodyColor).arg(w.numBodies).run(bodies);
+    cl::Launch(ctx, prog.kernel("body_color_reset"), &w.profiler).arg(w.solverScratch.bodyColor).arg(w.props).arg(w.numBodies).run(bodies);
     for (int color = 0; color < rounds; ++color) {
         for (int sub = 0; sub < kSubRounds; ++sub) {
             cl::Launch(ctx, reset, &w.profiler).arg(w.solverScratch.bodyClaim).arg(w.numBodies).run(bodies);
             cl::Launch(ctx, claim, &w.profiler).arg(w.edges).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity)
-                .arg(w.props).arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(color).run(slots);
+                .arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(color).run(slots);
             cl::Launch(ctx, assign, &w.profiler).arg(w.edges).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity)
-                .arg(w.props).arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(color).run(slots);
+                .arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(color).run(slots);
         }
     }
     cl::Launch(ctx, prog.kernel("color_finish"), &w.profiler).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity)
