@@ -13,16 +13,16 @@
 
 /* The manifold the pair kept last substep: found through the warm-start cache (the contacts in
  * pair order), whose entry j the GJK cache holds at j too. None when the pair had no points, or
- * the entry is another kind's (the pair's shapes changed). */
+ * the entry is another kind's (the pair's shapes changed). hint: btgFindPrevContactNear's. */
 static BtgPersistentManifold btgPreviousManifold(BtgPair p, int kind, __global const BtgChild* restrict children,
                                                __global const uint* restrict counters,
                                                __global const BtgCachedContact* restrict cache, int cacheCapacity,
                                                __global const BtgPersistentManifold* restrict gjkCache,
-                                               int gjkCapacity)
+                                               int gjkCapacity, int* hint)
 {
     BtgManifold key = btgPairKeyManifold(p, children);
     const int prevCount = (int)min(counters[BTG_COUNTER_PREV_CONTACTS], (uint)min(cacheCapacity, gjkCapacity));
-    const int j = btgFindPrevContact(cache, prevCount, key);
+    const int j = btgFindPrevContactNear(cache, prevCount, key, hint);
     if (j >= 0) {
         BtgPersistentManifold prev = gjkCache[j];
         if (prev.bodyA == p.a && prev.bodyB == p.b && prev.kind == kind && prev.numPoints >= 0 &&
@@ -35,7 +35,15 @@ static BtgPersistentManifold btgPreviousManifold(BtgPair p, int kind, __global c
 /* The program's one collide kernel, collide_persistent, for every kind of its sub-table TABLE:
  * a work-item strides over the kinds' ranges laid end to end, so the step (GJK and EPA, the
  * featured hulls' clip, the box detector) is compiled once, not once a kind (NVIDIA's compiler
- * took minutes over the nine copies). */
+ * took minutes over the nine copies). On a CPU device a work-item takes a run of consecutive
+ * pairs instead, each pair's last manifold sought from where the one before it was found
+ * (btgFindPrevContactNear): a bisection over the whole cache for every pair, and the load of the
+ * scattered entry it found, were a fifth of the kernel on PoCL. */
+#ifdef BTG_CPU_DEVICE
+#define BTG_PERSISTENT_RUNS 1
+#else
+#define BTG_PERSISTENT_RUNS 0
+#endif
 #define BTG_PERSISTENT_KIND_ITEM(program, kind, shapeA, shapeB, routine, kernel) kind,
 #define BTG_PERSISTENT_PROGRAM_KERNEL(TABLE)                                                                         \
     __kernel void collide_persistent(__global const BtgPair* restrict pairs, __global const uint* restrict kindOrder, \
@@ -58,7 +66,12 @@ static BtgPersistentManifold btgPreviousManifold(BtgPair p, int kind, __global c
         uint total = 0u;                                                                                              \
         for (int k = 0; k < numKinds; ++k)                                                                            \
             total += kindRanges[BTG_KIND_RANGE_END(kinds[k])] - kindRanges[BTG_KIND_RANGE_START(kinds[k])];           \
-        for (uint idx = (uint)get_global_id(0); idx < total; idx += (uint)get_global_size(0)) {                      \
+        const uint per = BTG_PERSISTENT_RUNS ? (total + (uint)get_global_size(0) - 1u) / (uint)get_global_size(0) : 1u; \
+        const uint start = BTG_PERSISTENT_RUNS ? (uint)get_global_id(0) * per : (uint)get_global_id(0);               \
+        const uint stop = BTG_PERSISTENT_RUNS ? min(total, start + per) : total;                                      \
+        const uint stride = BTG_PERSISTENT_RUNS ? 1u : (uint)get_global_size(0);                                      \
+        int hint = BTG_PERSISTENT_RUNS ? 0 : -1; /* none on a GPU: its work-items' pairs lie far apart */          \
+        for (uint idx = start; idx < stop; idx += stride) {                                                          \
             int kind = BTG_PAIR_NONE;                                                                                 \
             uint i = 0u, rest = idx;                                                                                  \
             for (int k = 0; k < numKinds && kind == BTG_PAIR_NONE; ++k) {                                            \
@@ -85,7 +98,8 @@ static BtgPersistentManifold btgPreviousManifold(BtgPair p, int kind, __global c
             } else if (btgPairKind(a.shape.type, b.shape.type) == kind) {                                             \
                 float dist[BTG_MAX_POINTS];                                                                           \
                 BtgPersistentManifold prev =                                                                          \
-                    btgPreviousManifold(p, kind, children, counters, cache, cacheCapacity, gjkCache, gjkCapacity);      \
+                    btgPreviousManifold(p, kind, children, counters, cache, cacheCapacity, gjkCache, gjkCapacity,      \
+                                        &hint);                                                                       \
                 if (p.childA != BTG_WHOLE_BODY || p.childB != BTG_WHOLE_BODY)                                         \
                     prev = btgChildPreRefresh(prev, a.pose, b.pose, t);                                               \
                 pm = BTG_PERSISTENT_STEP(prev, a, b, verts, faces, indices, edges, t, dist);                          \

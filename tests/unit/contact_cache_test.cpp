@@ -381,3 +381,38 @@ TEST(ContactCache, WarmStartFollowsFeatureIds)
     EXPECT_EQ(w5.x, 0.0f);
     EXPECT_FLOAT_EQ(w5.y, 5.0f);
 }
+
+// The search for a pair's cached entries from a hint (collide_persistent's runs of pairs on CPU
+// devices) finds the same lower bound as the plain bisection, for hints below, at and past it,
+// runs of equal pairs, both orientations of an entry and pairs absent from the cache; and leaves
+// the hint at that bound.
+TEST(ContactCache, SearchFromAHintFindsTheBisectionsEntry)
+{
+    std::mt19937 rng(20261206u);
+    for (int trial = 0; trial < 200; ++trial) {
+        const int n = int(rng() % 300);
+        std::vector<std::pair<int, int>> keys;
+        for (int i = 0; i < n; ++i) {
+            int a = int(rng() % 60), b = int(rng() % 60);
+            if (a == b) b = a + 1;
+            keys.emplace_back(std::min(a, b), std::max(a, b));
+        }
+        std::sort(keys.begin(), keys.end());
+        std::vector<BtgCachedContact> cache(size_t(std::max(n, 1)));
+        for (int i = 0; i < n; ++i) {
+            const bool flip = rng() & 1u;  // the entry's own orientation
+            cache[size_t(i)].bodyA = flip ? keys[size_t(i)].second : keys[size_t(i)].first;
+            cache[size_t(i)].bodyB = flip ? keys[size_t(i)].first : keys[size_t(i)].second;
+        }
+        for (int q = 0; q < 50; ++q) {
+            int ka = int(rng() % 61), kb = int(rng() % 61);
+            if (ka > kb) std::swap(ka, kb);
+            const int want = btgCachedLowerBound(cache.data(), 0, n, ka, kb);
+            int hint = int(rng() % unsigned(n + 3));  // anywhere, past the end included
+            ASSERT_EQ(btgCachedLowerBoundNear(cache.data(), n, ka, kb, &hint), want) << trial << " " << q;
+            EXPECT_EQ(hint, want);
+            int none = -1;
+            ASSERT_EQ(btgCachedLowerBoundNear(cache.data(), n, ka, kb, &none), want);
+        }
+    }
+}
