@@ -93,7 +93,11 @@ static void assign_edge(__global const BtgEdge* restrict edges, __global int* ed
     /* Only this edge owns these bodies now: plain stores are race-free. */
     if (dynA) bodyColor[a] = color;
     if (dynB) bodyColor[b] = color;
-    atomic_max(&counters[BTG_COUNTER_COLORS_USED], (uint)(color + 1));
+    /* looked at first: the colour's first edge raises it, the rest find it raised (an atomic for
+     * every edge kept the counters' line moving between a CPU device's cores, and every
+     * work-item's read of the edge count there waited for it) */
+    if (((volatile __global uint*)counters)[BTG_COUNTER_COLORS_USED] < (uint)(color + 1))
+        atomic_max(&counters[BTG_COUNTER_COLORS_USED], (uint)(color + 1));
 }
 
 __kernel void color_claim(__global const BtgEdge* restrict edges, __global const int* restrict edgeColor,
