@@ -116,13 +116,20 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     w.joints.reserve(ctx, 1);
     w.jointState.reserve(ctx, 1);
     w.jointRows.reserve(ctx, 1);
-    cl::Launch(ctx, prog.kernel("color_count"), &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.counters)
-        .arg(edgeCapacity).arg(sc.colorCount).arg(numColors).arg(numJoints).run(slots);
-    cl::Launch(ctx, prog.kernel("color_offsets"), &w.profiler).arg(sc.colorCount).arg(sc.colorStart).arg(numColors)
-        .arg(numLists).run(1, 1);
-    cl::Launch(ctx, prog.kernel("color_fill"), &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.counters)
-        .arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorCount).arg(sc.colorOrder).arg(numColors).arg(orderStride)
-        .arg(numJoints).run(slots);
+    if (ctx.device().isGpu) {
+        cl::Launch(ctx, prog.kernel("color_count"), &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.counters)
+            .arg(edgeCapacity).arg(sc.colorCount).arg(numColors).arg(numJoints).run(slots);
+        cl::Launch(ctx, prog.kernel("color_offsets"), &w.profiler).arg(sc.colorCount).arg(sc.colorStart)
+            .arg(numColors).arg(numLists).run(1, 1);
+        cl::Launch(ctx, prog.kernel("color_fill"), &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.counters)
+            .arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorCount).arg(sc.colorOrder).arg(numColors)
+            .arg(orderStride).arg(numJoints).run(slots);
+    } else {
+        // a CPU device: one work-item, the edges in index order (color_lists_serial)
+        cl::Launch(ctx, prog.kernel("color_lists_serial"), &w.profiler).arg(w.edgeColor).arg(w.contacts)
+            .arg(w.counters).arg(edgeCapacity).arg(sc.colorCount).arg(sc.colorStart).arg(sc.colorOrder).arg(numColors)
+            .arg(orderStride).arg(numJoints).arg(numLists).run(1, 1);
+    }
     // Velocity iterations: the contacts', or a joint's larger override.
     const int velocityPasses = std::max(iterations, numJoints > 0 ? w.jointIterations : 0);
     // Every pass and color in one launch: on a GPU over one group per compute unit (each
