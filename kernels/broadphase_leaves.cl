@@ -9,6 +9,7 @@
  * shapes. Writes: the LeafBuffers columns (src/world/leaf_buffers.h) and their counts. */
 #include "shared/broadphase_leaves.h"
 #include "shared/counters.h"
+#include "shared/group_append.h"
 
 /* Launch: one work-item per body row, every substep. reset: the leaf starts as createProxy
  * makes it (the shape's AABB without the threshold) before this step's setAabb. */
@@ -47,28 +48,33 @@ __kernel void leaves_update(int n, __global const BtgFloat4* restrict pos, __glo
     leafMax[i] = leaf.hi;
 }
 
+static inline BtgPair btgLeafPair(int r, int s)
+{
+    BtgPair q;
+    q.a = r < s ? r : s;
+    q.b = r < s ? s : r;
+    q.childA = BTG_WHOLE_BODY;
+    q.childB = BTG_WHOLE_BODY;
+    return q;
+}
 /* Appends the pair (r, s) to a list counted in counts[slot] (every pair counted, stored while it fits). */
 static inline void btgLeafAppend(__global BtgPair* raw, volatile __global uint* counts, int countSlot, uint capacity,
                                  int r, int s)
 {
     uint slot = atomic_inc(&counts[countSlot]);
-    if (slot < capacity) {
-        BtgPair q;
-        q.a = r < s ? r : s;
-        q.b = r < s ? s : r;
-        q.childA = BTG_WHOLE_BODY;
-        q.childB = BTG_WHOLE_BODY;
-        raw[slot] = q;
-    }
+    if (slot < capacity) raw[slot] = btgLeafPair(r, s);
 }
 
 /* A candidate pair (its boxes old and new leaf together meet): what stock's pass of setAabb
  * calls made of it. btgLeafJudge (shared) gives its m_newpairs share; the pair goes to the list
- * when its leaves meet now, to the transient list when only a moved leaf met the other's then. */
+ * when its leaves meet now (through the group's buffer where `group` is given: leaves_sweep on a
+ * CPU device), to the transient list when only a moved leaf met the other's then. */
+#define LEAF_GROUP_ARGS __local BtgPair *groupPairs, __local uint *groupCount
 static inline uint btgLeafTake(int r, int s, __global const BtgFloat4* leafMin, __global const BtgFloat4* leafMax,
                                __global const BtgFloat4* oldMin, __global const BtgFloat4* oldMax,
                                __global const uint* moved, __global const BtgBodyProps* props, __global BtgPair* raw,
-                               __global BtgPair* transient, volatile __global uint* counts, uint capacity)
+                               __global BtgPair* transient, volatile __global uint* counts, uint capacity,
+                               int group, LEAF_GROUP_ARGS)
 {
     int p = r < s ? r : s, q = r < s ? s : r;
     BtgAabb np, nq, oq;
@@ -81,7 +87,8 @@ static inline uint btgLeafTake(int r, int s, __global const BtgFloat4* leafMin, 
     int meets = 0;
     uint share = btgLeafJudge(np, nq, oq, moved[p], moved[q], &meets);
     if (!btgLeafPairAllowed(props[p], props[q])) return share;
-    if (meets) btgLeafAppend(raw, counts, BTG_LEAF_FOUND, capacity, p, q);
+    if (meets && group) btgGroupAppend(groupPairs, groupCount, raw, &counts[BTG_LEAF_FOUND], capacity, btgLeafPair(p, q));
+    else if (meets) btgLeafAppend(raw, counts, BTG_LEAF_FOUND, capacity, p, q);
     else if (share) btgLeafAppend(transient, counts, BTG_LEAF_TRANSIENT, capacity, p, q);
     return share;
 }
@@ -126,17 +133,18 @@ __kernel void leaves_entries(int n, __global const BtgBodyProps* restrict props,
  * the lower corner of the leaves' overlap in y and z (both leaves have an entry there), so it is
  * found once. Every overlap counts towards m_newpairs once per moved side (stock's tree collider
  * counts before the pair cache filters); the allowed ones are appended. */
-__kernel void leaves_sweep(int numEntries, __global const uint* restrict keys, __global const uint* restrict values,
-                           __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict leafMin,
-                           __global const BtgFloat4* restrict leafMax, __global const BtgFloat4* restrict oldMin,
-                           __global const BtgFloat4* restrict oldMax, __global const uint* restrict moved,
-                           __global BtgPair* raw, __global BtgPair* transient, volatile __global uint* counts,
-                           uint capacity, float invCell)
+/* One sorted entry's sweep (leaves_sweep); returns its m_newpairs share. */
+static uint leaves_sweep_entry(int i, int numEntries, __global const uint* restrict keys,
+                               __global const uint* restrict values, __global const BtgBodyProps* restrict props,
+                               __global const BtgFloat4* restrict leafMin, __global const BtgFloat4* restrict leafMax,
+                               __global const BtgFloat4* restrict oldMin, __global const BtgFloat4* restrict oldMax,
+                               __global const uint* restrict moved, __global BtgPair* raw, __global BtgPair* transient,
+                               volatile __global uint* counts, uint capacity, float invCell, int group,
+                               LEAF_GROUP_ARGS)
 {
-    int i = (int)get_global_id(0);
-    if (i >= numEntries || counts[BTG_LEAF_MOVED] == 0u) return;
+    if (i >= numEntries) return 0u;
     uint key = keys[i];
-    if (key == BTG_LEAF_NO_ENTRY) return;
+    if (key == BTG_LEAF_NO_ENTRY) return 0u;
     uint v = values[i];
     int r = (int)(v >> 2);
     BtgAabb ur = btgLeafUnion(leafMin[r], leafMax[r], oldMin[r], oldMax[r]);
@@ -157,9 +165,41 @@ __kernel void leaves_sweep(int numEntries, __global const uint* restrict keys, _
         BtgInt4 s0 = btgLeafCell(us.lo, invCell);
         int sy = s0.y + (int)(vj & 1u), sz = s0.z + (int)((vj >> 1) & 1u);
         if (corner.y != cy || corner.z != cz || corner.y != sy || corner.z != sz) continue;
-        newPairs += btgLeafTake(r, s, leafMin, leafMax, oldMin, oldMax, moved, props, raw, transient, counts, capacity);
+        newPairs += btgLeafTake(r, s, leafMin, leafMax, oldMin, oldMax, moved, props, raw, transient, counts, capacity,
+                                group, groupPairs, groupCount);
     }
+    return newPairs;
+}
+/* Launch: one work-item per sorted entry: it against the entries after it in its cell until one
+ * starts past its upper x bound (by sweep key). A pair is taken in one cell only, the one holding
+ * the lower corner of the leaves' overlap in y and z (both leaves have an entry there), so it is
+ * found once. Every overlap counts towards m_newpairs once per moved side (stock's tree collider
+ * counts before the pair cache filters); the allowed ones are appended (on a CPU device through
+ * the work-group's buffer, group_append.h). */
+__kernel void leaves_sweep(int numEntries, __global const uint* restrict keys, __global const uint* restrict values,
+                           __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict leafMin,
+                           __global const BtgFloat4* restrict leafMax, __global const BtgFloat4* restrict oldMin,
+                           __global const BtgFloat4* restrict oldMax, __global const uint* restrict moved,
+                           __global BtgPair* raw, __global BtgPair* transient, volatile __global uint* counts,
+                           uint capacity, float invCell)
+{
+    const int i = (int)get_global_id(0);
+    /* every work-item reads the same count: a group returns whole */
+    if (counts[BTG_LEAF_MOVED] == 0u) return;
+#ifdef BTG_CPU_DEVICE
+    __local BtgPair groupPairs[BTG_GROUP_APPEND_ROOM];
+    __local uint groupCount, groupBase, groupNew;
+    btgGroupAppendBegin(&groupCount, &groupNew);
+    const uint newPairs = leaves_sweep_entry(i, numEntries, keys, values, props, leafMin, leafMax, oldMin, oldMax, moved,
+                                             raw, transient, counts, capacity, invCell, 1, groupPairs, &groupCount);
+    if (newPairs) atomic_add(&groupNew, newPairs);
+    btgGroupAppendEnd(groupPairs, &groupCount, &groupBase, raw, &counts[BTG_LEAF_FOUND], capacity, &groupNew,
+                      &counts[BTG_LEAF_NEWPAIRS]);
+#else
+    const uint newPairs = leaves_sweep_entry(i, numEntries, keys, values, props, leafMin, leafMax, oldMin, oldMax, moved,
+                                             raw, transient, counts, capacity, invCell, 0, 0, 0);
     if (newPairs) atomic_add(&counts[BTG_LEAF_NEWPAIRS], newPairs);
+#endif
 }
 
 /* Launch: one work-item per body row: it against every large row (a pair of two large rows taken
@@ -181,7 +221,8 @@ __kernel void leaves_large(int n, __global const int* restrict large, __global c
         int r = large[k];
         if (r == s || (isLarge[s] && s < r)) continue;
         if (!btgLeafMeets(btgLeafUnion(leafMin[r], leafMax[r], oldMin[r], oldMax[r]), us)) continue;
-        newPairs += btgLeafTake(r, s, leafMin, leafMax, oldMin, oldMax, moved, props, raw, transient, counts, capacity);
+        newPairs += btgLeafTake(r, s, leafMin, leafMax, oldMin, oldMax, moved, props, raw, transient, counts, capacity,
+                                0, 0, 0);
     }
     if (newPairs) atomic_add(&counts[BTG_LEAF_NEWPAIRS], newPairs);
 }
