@@ -5,7 +5,7 @@
 # and 8,000 with and without the sync; then one profiled run of this build per size
 # (BTGPU_PROFILE_KERNELS=1: every stage's median, in $OUT/profile_<n>.txt). Pack first:
 #   cp <older btgpu_bench> build/btgpu_bench_base
-#   ../shared/gpu/pack build/tests/bench/btgpu_bench build/btgpu_bench_base
+#   ../shared/gpu/pack build/tests/bench/btgpu_bench build/btgpu_bench_base [build/tests/btgpu_unit_tests]
 #   cp tests/bench/aabb_sync_on_gpu.sh .gpu/
 # then run  bash .gpu/aabb_sync_on_gpu.sh  with carry [".gpu"]. Lines go to $OUT/summary.txt.
 export BTGPU_DEVICE=gpu
@@ -20,6 +20,11 @@ one() {
   line="$line $(echo "$out" | grep -oE 'state hash [0-9a-f]+') $(echo "$out" | grep -iE 'error|invalid' | head -3)"
   echo "$line" | tee -a "$S"
 }
+# the unit tests of the kernels a build changed, on the GPU (packed beside the benches: UNITS)
+if [ -x ./.gpu/bin/btgpu_unit_tests ]; then
+  timeout 300 bash .gpu/run ./.gpu/bin/btgpu_unit_tests --gtest_filter="${UNITS:-*}" > "${OUT:-/tmp}/units.txt" 2>&1
+  grep -E "PASSED|FAILED|tests ran" "${OUT:-/tmp}/units.txt" | tee -a "$S"
+fi
 for spec in ${SPECS:-32768:200 8000:200}; do
   n=${spec%%:*}; f=${spec##*:}
   C="--scene cubes --n $n --frames $f --backends btgpu"
