@@ -1,7 +1,7 @@
 /* pgs_wide_passes.h — solve_constraints.cl's wide velocity sweeps for CPU devices (pgs_wide.h's
  * rows): the kernels pgs_wide_offsets, pgs_wide_pack, pgs_wide_unpack and solve_color_wide. Not
  * a header of its own: solve_constraints.cl includes it under BTG_CPU_DEVICE (a GPU's build never
- * sees it), where load_body is defined.
+ * sees it), where load_body is defined. pgs_wide_bodies makes each body's record once a step.
  * The regular colours' slots of list 0 (every contact) go in chunks of eight (wide_chunks.h);
  * pgs_wide_pack puts each contact into its chunk's block of lanes once a step, the warm-start,
  * normal and friction sweeps then work on the blocks, and pgs_wide_unpack puts the impulses back
@@ -57,11 +57,27 @@ __kernel void pgs_wide_unpack(__global BtgContact* contacts, __global const uint
     c->friction2Impulse = btgPwPoints(block, at.y, BTG_PW_F2IMP, points, c->friction2Impulse);
 }
 
-/* Body i's rows as btgWSolverBody reads them (load_body and btgMakeBodyVel's fields: the inverse
- * inertia rows with w the inverse mass and the linear factor, the angular factor, the velocities
- * with w the kind: 3 dynamic, 1 moving, 0 fixed); an empty lane's are a fixed body at rest. */
-static BTG_ALWAYS_INLINE void pgs_wide_body(__global const BtgBodyProps* restrict props,
-                                            __global const BtgFloat4* restrict invInertiaWorld,
+/* Each body's solver record for the step's wide sweeps, four rows as btgWSolverBody reads them
+ * (load_body's fields: the inverse inertia rows with w the inverse mass and the linear factor,
+ * the angular factor), and its kind (3 dynamic, 1 moving, 0 fixed): one 64-byte line a body where
+ * load_body reads two lines of its props and the inertia rows (one work-item a body, once a
+ * step: the sweeps change none of it). */
+__kernel void pgs_wide_bodies(int numBodies, __global const BtgBodyProps* restrict props,
+                              __global const BtgFloat4* restrict invInertiaWorld, __global BtgFloat4* record,
+                              __global int* kinds)
+{
+    const int i = (int)get_global_id(0);
+    if (i >= numBodies) return;
+    const BtgSolverBody b = load_body(props, invInertiaWorld, i);
+    record[4 * i] = btgMake4(b.invI.r0.x, b.invI.r0.y, b.invI.r0.z, b.invMass);
+    record[4 * i + 1] = btgMake4(b.invI.r1.x, b.invI.r1.y, b.invI.r1.z, b.linFactor.x);
+    record[4 * i + 2] = btgMake4(b.invI.r2.x, b.invI.r2.y, b.invI.r2.z, b.linFactor.y);
+    record[4 * i + 3] = btgMake4(b.angFactor.x, b.angFactor.y, b.angFactor.z, b.linFactor.z);
+    kinds[i] = b.dynamic ? 3 : (b.moving ? 1 : 0);
+}
+/* Body i's rows (its record, then its velocities with w the kind); an empty lane's are a fixed
+ * body at rest. */
+static BTG_ALWAYS_INLINE void pgs_wide_body(__global const BtgFloat4* restrict record, __global const int* restrict kinds,
                                             __global const BtgFloat4* lin, __global const BtgFloat4* ang, int i,
                                             int live, BtgFloat4* rows)
 {
@@ -69,14 +85,10 @@ static BTG_ALWAYS_INLINE void pgs_wide_body(__global const BtgBodyProps* restric
         for (int r = 0; r < 6; ++r) rows[r] = btgZero4();
         return;
     }
-    const BtgSolverBody b = load_body(props, invInertiaWorld, i);
-    rows[0] = btgMake4(b.invI.r0.x, b.invI.r0.y, b.invI.r0.z, b.invMass);
-    rows[1] = btgMake4(b.invI.r1.x, b.invI.r1.y, b.invI.r1.z, b.linFactor.x);
-    rows[2] = btgMake4(b.invI.r2.x, b.invI.r2.y, b.invI.r2.z, b.linFactor.y);
-    rows[3] = btgMake4(b.angFactor.x, b.angFactor.y, b.angFactor.z, b.linFactor.z);
-    const BtgFloat4 v = lin[i], w = ang[i];
-    rows[4] = btgMake4(v.x, v.y, v.z, b.dynamic ? 3.0f : (b.moving ? 1.0f : 0.0f));
-    rows[5] = w;
+    for (int r = 0; r < 4; ++r) rows[r] = record[4 * i + r];
+    const BtgFloat4 v = lin[i];
+    rows[4] = btgMake4(v.x, v.y, v.z, (float)kinds[i]);
+    rows[5] = ang[i];
 }
 /* The lanes' velocities back to their dynamic bodies (store_velocity's: w kept). */
 static void pgs_wide_store(const BtgVelW* v, BtgW kinds, __global const int* body, const int* live,
@@ -101,7 +113,7 @@ static void pgs_wide_store(const BtgVelW* v, BtgW kinds, __global const int* bod
 /* Chunk `chunk`'s lanes through one velocity sweep (mode: warm start, normals or friction). next:
  * the work-item's next chunk (-1: none), whose bodies are read ahead. */
 static void pgs_wide_chunk(int chunk, int next, int mode, int twoFriction, PGS_WIDE_ARGS,
-                           __global const BtgBodyProps* restrict props, __global const BtgFloat4* restrict invInertiaWorld,
+                           __global const BtgFloat4* restrict record, __global const int* restrict kinds,
                            __global BtgFloat4* lin, __global BtgFloat4* ang)
 {
     __global const int* info = wideLanes + chunk * PGS_WIDE_INFO * BTG_SOFT_WIDE;
@@ -118,9 +130,7 @@ static void pgs_wide_chunk(int chunk, int next, int mode, int twoFriction, PGS_W
         for (int l = 0; l < BTG_SOFT_WIDE; ++l) {
             for (int s = 1; s <= 2; ++s) {
                 const int i = nextInfo[s * BTG_SOFT_WIDE + l];
-                btgPrefetch(props + i); /* load_body's fields: both of the props' first two lines */
-                btgPrefetch((__global const char*)(props + i) + 64);
-                btgPrefetch(invInertiaWorld + 3 * i);
+                btgPrefetch(record + 4 * i);
                 btgPrefetch(lin + i);
                 btgPrefetch(ang + i);
             }
@@ -128,8 +138,8 @@ static void pgs_wide_chunk(int chunk, int next, int mode, int twoFriction, PGS_W
     }
     BtgFloat4 rowsA[BTG_SOFT_WIDE * 8], rowsB[BTG_SOFT_WIDE * 8];
     for (int l = 0; l < BTG_SOFT_WIDE; ++l) {
-        pgs_wide_body(props, invInertiaWorld, lin, ang, info[BTG_SOFT_WIDE + l], live[l], rowsA + 8 * l);
-        pgs_wide_body(props, invInertiaWorld, lin, ang, info[2 * BTG_SOFT_WIDE + l], live[l], rowsB + 8 * l);
+        pgs_wide_body(record, kinds, lin, ang, info[BTG_SOFT_WIDE + l], live[l], rowsA + 8 * l);
+        pgs_wide_body(record, kinds, lin, ang, info[2 * BTG_SOFT_WIDE + l], live[l], rowsB + 8 * l);
     }
     BtgBodyW a, b;
     BtgVelW va, vb;
@@ -145,15 +155,14 @@ static void pgs_wide_chunk(int chunk, int next, int mode, int twoFriction, PGS_W
 /* A colour's velocity sweep, each work-item a run of consecutive chunks (their blocks stream
  * through memory in order). */
 __kernel void solve_color_wide(__global const uint* restrict colorStart, PGS_WIDE_ARGS, int color, int mode,
-                               int twoFriction, __global const BtgBodyProps* restrict props,
-                               __global const BtgFloat4* restrict invInertiaWorld, __global BtgFloat4* lin,
-                               __global BtgFloat4* ang)
+                               int twoFriction, __global const BtgFloat4* restrict record,
+                               __global const int* restrict kinds, __global BtgFloat4* lin, __global BtgFloat4* ang)
 {
     const int chunks = (int)(wideStart[color + 1] - wideStart[color]);
     const int2 run = btgWideRun(chunks, (int)get_global_id(0), (int)get_global_size(0));
     for (int m = run.x; m < run.y; ++m)
         pgs_wide_chunk((int)wideStart[color] + m, m + 1 < run.y ? (int)wideStart[color] + m + 1 : -1, mode, twoFriction,
-                       PGS_WIDE_PASS, props, invInertiaWorld, lin, ang);
+                       PGS_WIDE_PASS, record, kinds, lin, ang);
 }
 
 #endif

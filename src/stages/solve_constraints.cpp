@@ -210,6 +210,10 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
         sc.softWideLanes.reserve(ctx, chunks * 3 * BTG_SOFT_WIDE);
         cl::Launch(ctx, prog.kernel("pgs_wide_offsets"), &w.profiler).arg(sc.colorStart).arg(sc.softWideStart)
             .arg(numColors).run(1, 1);
+        sc.wideBodies.reserve(ctx, 4 * std::max<size_t>(bodies, 1));
+        sc.wideKinds.reserve(ctx, std::max<size_t>(bodies, 1));
+        cl::Launch(ctx, prog.kernel("pgs_wide_bodies"), &w.profiler).arg(int(bodies)).arg(w.props)
+            .arg(w.invInertiaWorld).arg(sc.wideBodies).arg(sc.wideKinds).run(bodies);
         cl::Launch(ctx, prog.kernel("pgs_wide_pack"), &w.profiler).arg(w.contacts).arg(sc.colorStart).arg(sc.colorOrder)
             .arg(numColors).arg(sc.softWideStart).arg(sc.softWideBlock).arg(sc.softWideLanes).run(slots);
     }
@@ -225,8 +229,8 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             if (wide && phase == 0 && wideMode && color != numColors - 1) {
                 // groups of eight chunks: a CPU device runs a group on one core
                 cl::Launch(ctx, wideSweep, &w.profiler).arg(sc.colorStart).arg(sc.softWideStart).arg(sc.softWideBlock)
-                    .arg(sc.softWideLanes).arg(color).arg(mode).arg(rows & BTG_ROWS_TWO_FRICTION ? 1 : 0).arg(w.props)
-                    .arg(w.invInertiaWorld).arg(lin).arg(ang).run(wideItems, 8);
+                    .arg(sc.softWideLanes).arg(color).arg(mode).arg(rows & BTG_ROWS_TWO_FRICTION ? 1 : 0)
+                    .arg(sc.wideBodies).arg(sc.wideKinds).arg(lin).arg(ang).run(wideItems, 8);
             } else if (color == numColors - 1) {
                 cl::Launch(ctx, serial, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.rollingContacts)
                     .arg(w.frictionDirs).arg(w.frictionAnchors).arg(w.counters)

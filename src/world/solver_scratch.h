@@ -21,6 +21,9 @@ struct SolverScratch {
     // solve_constraints' per-colour launches: list 0's contacts copied in colour order (slot k:
     // contact colorOrder[k]), which the velocity sweeps solve (contacts_gather / contacts_scatter)
     cl::DeviceArray<BtgContact> sortedContacts;
+    // ... and with the wide sweeps (pgs_wide_passes.h) each body's solver record (4 rows) and kind
+    cl::DeviceArray<BtgFloat4> wideBodies;
+    cl::DeviceArray<int> wideKinds;
     cl::DeviceArray<uint> gridBarrier; // solve_resident's arrival count, generation, timeout flag
     cl::DeviceArray<uint> softBarrier; // soft_resident's (btgGridBarrierCounting: zeroed before each launch)
     // solve_soft (SolverKind::SoftStep): each contact slot's soft rows, and BTG_SOFT_BODY_ROWS per
