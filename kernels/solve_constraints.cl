@@ -401,7 +401,8 @@ __kernel void solve_resident(__global const int* restrict edgeColor, __global Bt
                              BTG_SHARED __global BtgFloat4* pushLin, BTG_SHARED __global BtgFloat4* pushAng,
                              volatile __global BtgGridBarrier* bar, int numColors, int orderStride, int iterations,
                              int splitImpulse, int rows, int spinLimit, JOINT_ARGS, int jointIterations, uint seed,
-                             __global const uint* restrict flowMasks, volatile __global uint* flowDone, int flow)
+                             __global const uint* restrict flowMasks, volatile __global uint* flowDone, int flow,
+                             int passFirst)
 {
     __local int quit;
     /* the flow orders every sweep by the bodies' counts: only where every sweep is in colour
@@ -417,7 +418,9 @@ __kernel void solve_resident(__global const int* restrict edgeColor, __global Bt
     const int walkLast = walk_leftovers(counters, last);
     const int velocity = velocity_passes(iterations, numJoints, jointIterations);
     const int passes = 1 + velocity + (splitImpulse ? iterations : 0);
-    for (int pass = 0; pass < passes; ++pass) {
+    /* passFirst: where the host's per-colour launches took the passes before it (a CPU device's
+     * push passes, one group, in one launch: they were a hundred launches of mostly empty colours) */
+    for (int pass = passFirst; pass < passes; ++pass) {
         const int mode = pass_mode(pass, velocity);
         const int iteration = pass - 1;
         BTG_SHARED __global BtgFloat4* lin = mode == 2 ? pushLin : linVel;

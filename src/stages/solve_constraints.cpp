@@ -187,7 +187,7 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             .arg(w.pushAng).arg(gridBarrier(w)).arg(numColors).arg(orderStride).arg(iterations)
             .arg(params.splitImpulse ? 1 : 0).arg(rows).arg(gridBarrierSpins(w)).arg(w.joints).arg(w.jointState)
             .arg(w.jointRows).arg(numJoints).arg(w.jointIterations).arg(cl_uint(params.randomSeed))
-            .arg(sc.pgsFlowMasks).arg(sc.pgsFlowDone).arg(flow ? 1 : 0)
+            .arg(sc.pgsFlowMasks).arg(sc.pgsFlowDone).arg(flow ? 1 : 0).arg(0)
             .run(groups * group, group);
         return;
     }
@@ -267,8 +267,25 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             if (rows & BTG_ROWS_ROLLING) pass(BTG_PASS_ROLLING, 0, it, w.linVel, w.angVel);
         }
     }
-    if (params.splitImpulse)
+    if (params.splitImpulse && !ctx.device().isGpu) {
+        // A CPU device: the push passes (the contacts with a push target: usually few) in one
+        // launch on one group, solve_resident from its first push pass, not one launch a colour
+        // (PoCL: 130 launches a step, mostly of empty colours, each its host and wake-up cost).
+        cl_kernel k = prog.kernel("solve_resident");
+        const size_t group = residentSolveGroupSize(cl::kernelGroupLimit(ctx, k), false, 128);
+        sc.pgsFlowMasks.reserve(ctx, 4);
+        sc.pgsFlowDone.reserve(ctx, 2);
+        cl::Launch(ctx, k, &w.profiler).arg(w.edgeColor).arg(w.contacts).arg(w.rollingContacts).arg(w.frictionDirs)
+            .arg(w.frictionAnchors).arg(w.counters).arg(edgeCapacity).arg(sc.colorStart).arg(sc.colorOrder)
+            .arg(w.props).arg(w.invInertiaWorld).arg(w.linVel).arg(w.angVel).arg(w.pushLin).arg(w.pushAng)
+            .arg(gridBarrier(w)).arg(numColors).arg(orderStride).arg(iterations).arg(1).arg(rows)
+            .arg(gridBarrierSpins(w)).arg(w.joints).arg(w.jointState).arg(w.jointRows).arg(numJoints)
+            .arg(w.jointIterations).arg(cl_uint(params.randomSeed)).arg(sc.pgsFlowMasks).arg(sc.pgsFlowDone).arg(0)
+            .arg(1 + velocityPasses)
+            .run(group, group);
+    } else if (params.splitImpulse) {
         for (int it = 0; it < iterations; ++it) pass(BTG_PASS_PUSH, 0, iterations + it, w.pushLin, w.pushAng);
+    }
     if (wide)
         cl::Launch(ctx, prog.kernel("pgs_wide_unpack"), &w.profiler).arg(w.contacts).arg(sc.colorStart)
             .arg(sc.colorOrder).arg(numColors).arg(sc.softWideStart).arg(sc.softWideBlock).arg(sc.softWideLanes)
