@@ -128,7 +128,7 @@ void btGpuDynamicsWorld::synchronizeMotionStates()
     // set in parallel chunks; the app's own motion states are called after, serially, in order.
     // Right after a GPU step's write-back, Bullet's own ones are already set (same pass).
     const bool ownDone = m_gpu->fusedWriteBackPending();
-    const size_t minPerThread = 4096;
+    const size_t minPerThread = btgpu::kBodyRowsPerThread;
     std::vector<std::vector<btRigidBody*>> serial(btgpu::chunkCount(n, minPerThread));
     btgpu::forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
         for (size_t i = begin; i < end; ++i) {

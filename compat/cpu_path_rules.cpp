@@ -455,7 +455,7 @@ std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool ja
     BodyRuleContext context = bodyRuleContext(world);
     context.jacobi = jacobi;
     const size_t n = size_t(objs.size());
-    const size_t minPerThread = 4096;
+    const size_t minPerThread = kBodyRowsPerThread;
     struct Found {
         int index = -1;
         std::string why;

@@ -106,7 +106,7 @@ std::vector<BodyRowUpdate> GpuWorld::changedRows(bool all)
     // leave no other trace). Rows are independent: compared in parallel chunks, each with its
     // own update list, merged in row order so the upload does not depend on thread timing.
     const size_t n = m_rows.size();
-    const size_t minPerThread = 4096;
+    const size_t minPerThread = kBodyRowsPerThread;
     const int chunks = chunkCount(n, minPerThread);
     std::vector<std::vector<BodyRowUpdate>> found(chunks);
     m_woken.assign(n, 0);

@@ -26,7 +26,7 @@ void GpuWorld::writeBack(const BodyReadback& rb, bool last, bool sleepRead)
     const bool fuse = last && typeid(m_world) == typeid(btGpuDynamicsWorld) &&
                       !m_world.m_synchronizeAllMotionStates && !m_world.m_internalTickCallback;
     const size_t n = m_rows.size();
-    const size_t minPerThread = 4096;
+    const size_t minPerThread = kBodyRowsPerThread;
     const int chunks = chunkCount(n, minPerThread);
     std::vector<std::vector<size_t>> bad(chunks), fellAsleep(chunks);
     forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
