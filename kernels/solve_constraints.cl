@@ -131,9 +131,10 @@ __kernel void color_count(__global const int* restrict edgeColor, __global const
     if (edge_has_push(contacts, i)) atomic_inc(&colorCount[numColors + 1 + c]);
 }
 
-__kernel void color_offsets(__global uint* colorCount, __global uint* colorStart, int numColors, int numLists)
+/* Each list's colour starts from its counts (the last colour, the leftovers', gets none), the
+ * counts zeroed to serve as the fill's cursors. */
+static void color_offsets_of(__global uint* colorCount, __global uint* colorStart, int numColors, int numLists)
 {
-    if (get_global_id(0) != 0) return;
     for (int list = 0; list < numLists; ++list) {
         const int base = list * (numColors + 1);
         uint sum = 0u;
@@ -144,6 +145,10 @@ __kernel void color_offsets(__global uint* colorCount, __global uint* colorStart
         }
         colorStart[base + numColors] = sum;
     }
+}
+__kernel void color_offsets(__global uint* colorCount, __global uint* colorStart, int numColors, int numLists)
+{
+    if (get_global_id(0) == 0) color_offsets_of(colorCount, colorStart, numColors, numLists);
 }
 
 __kernel void color_fill(__global const int* restrict edgeColor, __global const BtgContact* restrict contacts,
@@ -219,16 +224,7 @@ __kernel void color_lists_serial(__global const int* restrict edgeColor, __globa
             if (edge_has_push(contacts, i)) ++colorCount[numColors + 1 + c];
         }
     }
-    for (int list = 0; list < numLists; ++list) {
-        const int base = list * (numColors + 1);
-        uint sum = 0u;
-        for (int c = 0; c < numColors; ++c) {
-            colorStart[base + c] = sum;
-            sum += c < numColors - 1 ? colorCount[base + c] : 0u;
-            colorCount[base + c] = 0u;
-        }
-        colorStart[base + numColors] = sum;
-    }
+    color_offsets_of(colorCount, colorStart, numColors, numLists);
     for (int i = 0; i < n; ++i) {
         const int c = edgeColor[i];
         if (c < 0 || c >= numColors - 1) continue;

@@ -55,12 +55,7 @@ static BTG_ALWAYS_INLINE void btgPwPutContact(__global float* blk, int l, __glob
     for (int k = 0; k < BTG_MAX_POINTS; ++k) {
         const int on = k < points;
         const BtgFloat4 rA = on ? c->rA[k] : z, rB = on ? c->rB[k] : z;
-        BTG_W_PUT(blk, BTG_PW_AT(k, BTG_PW_AX), l, rA.x);
-        BTG_W_PUT(blk, BTG_PW_AT(k, BTG_PW_AY), l, rA.y);
-        BTG_W_PUT(blk, BTG_PW_AT(k, BTG_PW_AZ), l, rA.z);
-        BTG_W_PUT(blk, BTG_PW_AT(k, BTG_PW_BX), l, rB.x);
-        BTG_W_PUT(blk, BTG_PW_AT(k, BTG_PW_BY), l, rB.y);
-        BTG_W_PUT(blk, BTG_PW_AT(k, BTG_PW_BZ), l, rB.z);
+        btgWPutArms(blk, BTG_PW_AT(k, BTG_PW_AX), l, rA, rB);
         BTG_W_PUT(blk, BTG_PW_AT(k, BTG_PW_NMASS), l, on ? btgLane(nm, k) : 0.0f);
         BTG_W_PUT(blk, BTG_PW_AT(k, BTG_PW_NTARGET), l, on ? btgLane(nt, k) : 0.0f);
         BTG_W_PUT(blk, BTG_PW_AT(k, BTG_PW_NIMP), l, on ? btgLane(ni, k) : 0.0f);

@@ -95,13 +95,7 @@ static void pgs_wide_store(const BtgVelW* v, BtgW kinds, __global const int* bod
                            __global BtgFloat4* lin, __global BtgFloat4* ang)
 {
     float x[7 * BTG_SOFT_WIDE];
-    vstore8(kinds, 6, x);
-    vstore8(v->lin.x, 0, x);
-    vstore8(v->lin.y, 1, x);
-    vstore8(v->lin.z, 2, x);
-    vstore8(v->ang.x, 3, x);
-    vstore8(v->ang.y, 4, x);
-    vstore8(v->ang.z, 5, x);
+    btgWVelLanes(v, kinds, x);
     for (int l = 0; l < BTG_SOFT_WIDE; ++l) {
         if (!live[l] || !(x[6 * BTG_SOFT_WIDE + l] >= 2.0f)) continue;
         const int i = body[l];

@@ -175,6 +175,29 @@ static BTG_ALWAYS_INLINE void btgWRowApply(const BtgJacobianW* j, const BtgBodyW
     btgWApplySide(va, j->linear, j->responseA, a, impulse);
     btgWApplySide(vb, btgW3Neg(j->linear), j->responseB, b, impulse);
 }
+/* The lanes' velocities and kinds spilled lane by lane for their stores: x[f * 8 + l], f 0-2
+ * the linear velocity, 3-5 the angular, 6 the kind. */
+static BTG_ALWAYS_INLINE void btgWVelLanes(const BtgVelW* v, BtgW kinds, float* x)
+{
+    vstore8(kinds, 6, x);
+    vstore8(v->lin.x, 0, x);
+    vstore8(v->lin.y, 1, x);
+    vstore8(v->lin.z, 2, x);
+    vstore8(v->ang.x, 3, x);
+    vstore8(v->ang.y, 4, x);
+    vstore8(v->ang.z, 5, x);
+}
+/* Lever arms rA, rB of lane l into fields f.. f + 5 (x, y, z of A's, then of B's). */
+static BTG_ALWAYS_INLINE void btgWPutArms(__global float* c, int f, int l, BtgFloat4 rA, BtgFloat4 rB)
+{
+    BTG_W_PUT(c, f, l, rA.x);
+    BTG_W_PUT(c, f + 1, l, rA.y);
+    BTG_W_PUT(c, f + 2, l, rA.z);
+    BTG_W_PUT(c, f + 3, l, rB.x);
+    BTG_W_PUT(c, f + 4, l, rB.y);
+    BTG_W_PUT(c, f + 5, l, rB.z);
+}
+
 /* A row's velocity change kept only in the lanes that solve it (the scalar rows return early). */
 static BTG_ALWAYS_INLINE void btgWKeep(BtgVelW* v, BtgVelW before, int8 solved)
 {
@@ -216,12 +239,7 @@ static BTG_ALWAYS_INLINE void btgWPutContact(__global float* c, int l, __global 
 #pragma unroll
     for (int k = 0; k < BTG_MAX_POINTS; ++k) {
         const BtgFloat4 rA = k < points ? s->rA[k] : z, rB = k < points ? s->rB[k] : z;
-        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_AX), l, rA.x);
-        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_AY), l, rA.y);
-        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_AZ), l, rA.z);
-        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_BX), l, rB.x);
-        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_BY), l, rB.y);
-        BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_BZ), l, rB.z);
+        btgWPutArms(c, BTG_WC_AT(k, BTG_WC_AX), l, rA, rB);
         BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_MASS), l, rA.w); /* the anchors' w: the normal mass (btgSoftPack) */
         BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_BASE), l, btgLane(base, k));
         BTG_W_PUT(c, BTG_WC_AT(k, BTG_WC_T1MASS), l, btgLane(m1, k));

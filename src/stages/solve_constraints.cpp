@@ -197,17 +197,12 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     cl_kernel serial = prog.kernel("solve_color_serial");
     // phase 1: the joints' edges, 0: the contacts' (see solve_resident).
     const cl_uint seed = params.randomSeed;
-    // the wide sweeps' blocks (pgs_wide_passes.h), in the soft step's scratch (the two solvers
-    // never share a step): a chunk of eight slots per regular colour's eight, up to one part
-    // empty per colour
+    // the wide sweeps' blocks (pgs_wide_passes.h), in the soft step's scratch
     const bool wide = pgsWide(ctx, params, rows);
     cl_kernel wideSweep = wide ? prog.kernel("solve_color_wide") : nullptr;
     const size_t wideItems = (rangeItems + BTG_SOFT_WIDE - 1) / BTG_SOFT_WIDE;
     if (wide) {
-        const size_t chunks = slots / BTG_SOFT_WIDE + size_t(numColors);
-        sc.softWideStart.reserve(ctx, size_t(numColors));
-        sc.softWideBlock.reserve(ctx, chunks * BTG_PGS_WIDE_FIELDS * BTG_SOFT_WIDE);
-        sc.softWideLanes.reserve(ctx, chunks * 3 * BTG_SOFT_WIDE);
+        sc.reserveWide(ctx, slots, numColors, BTG_PGS_WIDE_FIELDS);
         cl::Launch(ctx, prog.kernel("pgs_wide_offsets"), &w.profiler).arg(sc.colorStart).arg(sc.softWideStart)
             .arg(numColors).run(1, 1);
         sc.wideBodies.reserve(ctx, 4 * std::max<size_t>(bodies, 1));

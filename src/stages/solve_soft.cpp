@@ -212,11 +212,7 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     const bool resident = useResident(w);
     const bool wideOn = wideSweeps(ctx, params) && numColors > 1;
     if (wideOn) {
-        // chunks: at most one partial one a colour beyond the slots' eighths
-        const size_t chunks = slots / BTG_SOFT_WIDE + size_t(numColors);
-        sc.softWideStart.reserve(ctx, size_t(numColors));
-        sc.softWideBlock.reserve(ctx, chunks * BTG_SOFT_WIDE_FIELDS * BTG_SOFT_WIDE);
-        sc.softWideLanes.reserve(ctx, chunks * 3 * BTG_SOFT_WIDE);
+        sc.reserveWide(ctx, slots, numColors, BTG_SOFT_WIDE_FIELDS);
         cl::Launch(ctx, prog.kernel("soft_wide_offsets"), &w.profiler).arg(sc.colorStart).arg(sc.softWideStart)
             .arg(numColors).run(1, 1);
     } else {

@@ -45,6 +45,16 @@ struct SolverScratch {
     cl::DeviceArray<uint> softWideStart;  // numColors
     cl::DeviceArray<float> softWideBlock;
     cl::DeviceArray<int> softWideLanes;   // 3 x 8 per chunk
+    // Room for the wide sweeps' chunks (the soft step's or the bullet mode's: they never share a
+    // step) over `slots` edge slots in numColors colours, at most one part-empty chunk a colour
+    // beyond the slots' eighths, `fields` floats a lane.
+    void reserveWide(cl::Context& ctx, size_t slots, int numColors, size_t fields)
+    {
+        const size_t chunks = slots / BTG_SOFT_WIDE + size_t(numColors);
+        softWideStart.reserve(ctx, size_t(numColors));
+        softWideBlock.reserve(ctx, chunks * fields * BTG_SOFT_WIDE);
+        softWideLanes.reserve(ctx, chunks * 3 * BTG_SOFT_WIDE);
+    }
     // the resident soft step's flow (solve_soft.cl): 2 per edge slot (each side's place among its
     // body's edges, and their number), 1 per body (its edges done so far this step)
     cl::DeviceArray<uint> softFlowRank;

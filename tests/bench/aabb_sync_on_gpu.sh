@@ -6,20 +6,11 @@
 # (BTGPU_PROFILE_KERNELS=1: every stage's median, in $OUT/profile_<n>.txt). Pack first:
 #   cp <older btgpu_bench> build/btgpu_bench_base
 #   ../shared/gpu/pack build/tests/bench/btgpu_bench build/btgpu_bench_base [build/tests/btgpu_unit_tests]
-#   cp tests/bench/aabb_sync_on_gpu.sh .gpu/
+#   cp tests/bench/aabb_sync_on_gpu.sh tests/bench/gpu_bench_lines.sh .gpu/
 # then run  bash .gpu/aabb_sync_on_gpu.sh  with carry [".gpu"]. Lines go to $OUT/summary.txt.
-export BTGPU_DEVICE=gpu
 B=./.gpu/bin/btgpu_bench; BB=./.gpu/bin/btgpu_bench_base
-S=${OUT:-/tmp}/summary.txt
-nvidia-smi -L 2>/dev/null | tee -a "$S"
-one() {
-  local label=$1; shift
-  local out; out=$(timeout 150 "$@" 2>&1)
-  local line="== $label: $(echo "$out" | grep -E '^\| btgpu \|' | awk -F'|' '{print "frame", $7, "step", $5, "wb", $6}')"
-  line="$line $(echo "$out" | grep -E '^\| host: (Bullet.s broadphase AABB sync|write-back, of it the manifold fill)[^|]* \|' | awk -F'|' '{print $2, $3}' | tr '\n' ' ')"
-  line="$line $(echo "$out" | grep -oE 'state hash [0-9a-f]+') $(echo "$out" | grep -iE 'error|invalid' | head -3)"
-  echo "$line" | tee -a "$S"
-}
+STAGES="host: (Bullet.s broadphase AABB sync|write-back, of it the manifold fill)[^|]*"
+. "$(dirname "$0")/gpu_bench_lines.sh"
 # the unit tests of the kernels a build changed, on the GPU (packed beside the benches: UNITS)
 if [ -x ./.gpu/bin/btgpu_unit_tests ]; then
   timeout 300 bash .gpu/run ./.gpu/bin/btgpu_unit_tests --gtest_filter="${UNITS:-*}" > "${OUT:-/tmp}/units.txt" 2>&1

@@ -6,23 +6,14 @@
 # 1..300, sleeping on. Pack first, from the repository root:
 #   cp <b4e1194's btgpu_bench> build/btgpu_bench_b4
 #   ../shared/gpu/pack build/tests/bench/btgpu_bench build/btgpu_bench_b4
-#   cp tests/bench/soft_cost_on_gpu.sh .gpu/
+#   cp tests/bench/soft_cost_on_gpu.sh tests/bench/gpu_bench_lines.sh .gpu/
 # then run  bash .gpu/soft_cost_on_gpu.sh  with carry [".gpu"] (SPECS="n:frames ..." to choose).
 # Prints one line a run (median whole frame, step, write-back, the solve stage, the host's
 # sync-in and checks, the state hash) and keeps them in $OUT/summary.txt as they come, so a run
 # cut short still brings back what it measured.
-export BTGPU_DEVICE=gpu
 B=./.gpu/bin/btgpu_bench; B4=./.gpu/bin/btgpu_bench_b4
-S=${OUT:-/tmp}/summary.txt
-nvidia-smi -L 2>/dev/null | tee -a "$S"
-one() {
-  local label=$1; shift
-  local out; out=$(timeout 150 "$@" 2>&1)
-  local line="== $label: $(echo "$out" | grep -E '^\| btgpu \|' | awk -F'|' '{print "frame", $7, "step", $5, "wb", $6}')"
-  line="$line $(echo "$out" | grep -E '^\| (solve|solve_soft|host: sync-in[^|]*|host: checks[^|]*) \|' | awk -F'|' '{print $2, $3}' | tr '\n' ' ')"
-  line="$line $(echo "$out" | grep -oE 'state hash [0-9a-f]+') $(echo "$out" | grep -iE 'error|invalid' | head -3)"
-  echo "$line" | tee -a "$S"
-}
+STAGES='solve|solve_soft|host: sync-in[^|]*|host: checks[^|]*'
+. "$(dirname "$0")/gpu_bench_lines.sh"
 for spec in ${SPECS:-32768:100 112500:60 1000:150}; do
   n=${spec%%:*}; f=${spec##*:}
   C="--scene cubes --n $n --frames $f --backends btgpu --no-aabb-sync"
