@@ -141,6 +141,26 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     // of 128 work-items on a GPU (H200, solve stage ms at 256 / 128 / 64 work-items a group:
     // cubes 32,768 2.92 / 2.36 / 2.73, 112,500 4.20 / 3.81 / 4.46).
     const bool resident = useResident(w);
+    // A CPU device's wide sweeps (pgs_wide_passes.h): the contacts packed into blocks of lanes
+    // (in the soft step's scratch: the two solvers never share a step) and each body's record,
+    // once a step; the impulses unpacked after the last sweep.
+    const bool wide = pgsWide(ctx, params, rows);
+    auto widePack = [&] {
+        sc.reserveWide(ctx, slots, numColors, BTG_PGS_WIDE_FIELDS);
+        cl::Launch(ctx, prog.kernel("pgs_wide_offsets"), &w.profiler).arg(sc.colorStart).arg(sc.softWideStart)
+            .arg(numColors).run(1, 1);
+        sc.wideBodies.reserve(ctx, 4 * std::max<size_t>(bodies, 1));
+        sc.wideKinds.reserve(ctx, std::max<size_t>(bodies, 1));
+        cl::Launch(ctx, prog.kernel("pgs_wide_bodies"), &w.profiler).arg(int(bodies)).arg(w.props)
+            .arg(w.invInertiaWorld).arg(sc.wideBodies).arg(sc.wideKinds).run(bodies);
+        cl::Launch(ctx, prog.kernel("pgs_wide_pack"), &w.profiler).arg(w.contacts).arg(sc.colorStart).arg(sc.colorOrder)
+            .arg(numColors).arg(sc.softWideStart).arg(sc.softWideBlock).arg(sc.softWideLanes).run(slots);
+    };
+    auto wideUnpack = [&] {
+        cl::Launch(ctx, prog.kernel("pgs_wide_unpack"), &w.profiler).arg(w.contacts).arg(sc.colorStart)
+            .arg(sc.colorOrder).arg(numColors).arg(sc.softWideStart).arg(sc.softWideBlock).arg(sc.softWideLanes)
+            .run(slots);
+    };
     if (pgsLocal(w, bodies, pgsFlow(w))) {
         cl_kernel k = prog.kernel("solve_local");
         // As large as the kernel allows (its registers cap it: clang's sm_90 build uses 242 a
@@ -159,14 +179,31 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             .run(group, group);
         return;
     }
-    const int oneGroupMax = pgsWide(ctx, params, rows) ? kOneGroupMaxContactsWide : kOneGroupMaxContacts;
-    if (resident || w.lastContactCount <= oneGroupMax) {
-        cl_kernel k = prog.kernel("solve_resident");
-        size_t groups = resident ? residentPgsGroups(w) : 1;
+    const int oneGroupMax = wide ? kOneGroupMaxContactsWide : kOneGroupMaxContacts;
+    // With the wide sweeps a CPU device takes the whole solve in one launch too, a group a core
+    // with grid barriers between the colours (as the soft step's): the per-colour path enqueues
+    // some 400 launches a step.
+    const bool wideResident = wide && w.lastContactCount > oneGroupMax && residentAllowed(w);
+    if (resident || wideResident || w.lastContactCount <= oneGroupMax) {
+        cl_kernel k = prog.kernel(wideResident ? "solve_resident_wide" : "solve_resident");
+        size_t groups = resident ? residentPgsGroups(w) : (wideResident ? residentSolveGroups(w) : 1);
         // The flow (solve_constraints.cl): every sweep ordered by the bodies' counts instead of a
         // grid barrier per colour; on a CPU device in groups of one work-item.
         const bool flow = resident && groups > 1 && pgsFlow(w) && params.randomSeed == 0u && numColors - 1 <= 32;
-        size_t group = flow && !ctx.device().isGpu ? 1 : residentSolveGroupSize(cl::kernelGroupLimit(ctx, k), resident, 128);
+        // the wide sweeps' work-items take a chunk of eight contacts each, a few hundred chunks a
+        // colour: small groups
+        size_t group = flow && !ctx.device().isGpu
+                           ? 1
+                           : (wideResident ? size_t(8) : residentSolveGroupSize(cl::kernelGroupLimit(ctx, k), resident, 128));
+        if (wideResident) {
+            widePack();
+        } else {
+            sc.softWideStart.reserve(ctx, 1);
+            sc.softWideBlock.reserve(ctx, 1);
+            sc.softWideLanes.reserve(ctx, 1);
+            sc.wideBodies.reserve(ctx, 1);
+            sc.wideKinds.reserve(ctx, 1);
+        }
         if (flow) {
             sc.pgsFlowMasks.reserve(ctx, 4 * bodies);
             sc.pgsFlowMasks.zero(ctx, 4 * bodies);
@@ -187,8 +224,10 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             .arg(w.pushAng).arg(gridBarrier(w)).arg(numColors).arg(orderStride).arg(iterations)
             .arg(params.splitImpulse ? 1 : 0).arg(rows).arg(gridBarrierSpins(w)).arg(w.joints).arg(w.jointState)
             .arg(w.jointRows).arg(numJoints).arg(w.jointIterations).arg(cl_uint(params.randomSeed))
-            .arg(sc.pgsFlowMasks).arg(sc.pgsFlowDone).arg(flow ? 1 : 0).arg(0)
+            .arg(sc.pgsFlowMasks).arg(sc.pgsFlowDone).arg(flow ? 1 : 0).arg(0).arg(wideResident ? 1 : 0)
+            .arg(sc.softWideStart).arg(sc.softWideBlock).arg(sc.softWideLanes).arg(sc.wideBodies).arg(sc.wideKinds)
             .run(groups * group, group);
+        if (wideResident) wideUnpack();
         return;
     }
     // Per-color launches stride over their range: a few work-groups per compute unit.
@@ -197,21 +236,9 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     cl_kernel serial = prog.kernel("solve_color_serial");
     // phase 1: the joints' edges, 0: the contacts' (see solve_resident).
     const cl_uint seed = params.randomSeed;
-    // the wide sweeps' blocks (pgs_wide_passes.h), in the soft step's scratch
-    const bool wide = pgsWide(ctx, params, rows);
     cl_kernel wideSweep = wide ? prog.kernel("solve_color_wide") : nullptr;
     const size_t wideItems = (rangeItems + BTG_SOFT_WIDE - 1) / BTG_SOFT_WIDE;
-    if (wide) {
-        sc.reserveWide(ctx, slots, numColors, BTG_PGS_WIDE_FIELDS);
-        cl::Launch(ctx, prog.kernel("pgs_wide_offsets"), &w.profiler).arg(sc.colorStart).arg(sc.softWideStart)
-            .arg(numColors).run(1, 1);
-        sc.wideBodies.reserve(ctx, 4 * std::max<size_t>(bodies, 1));
-        sc.wideKinds.reserve(ctx, std::max<size_t>(bodies, 1));
-        cl::Launch(ctx, prog.kernel("pgs_wide_bodies"), &w.profiler).arg(int(bodies)).arg(w.props)
-            .arg(w.invInertiaWorld).arg(sc.wideBodies).arg(sc.wideKinds).run(bodies);
-        cl::Launch(ctx, prog.kernel("pgs_wide_pack"), &w.profiler).arg(w.contacts).arg(sc.colorStart).arg(sc.colorOrder)
-            .arg(numColors).arg(sc.softWideStart).arg(sc.softWideBlock).arg(sc.softWideLanes).run(slots);
-    }
+    if (wide) widePack();
     auto pass = [&](int mode, int phase, int iteration, cl::DeviceArray<BtgFloat4>& lin, cl::DeviceArray<BtgFloat4>& ang) {
         // SOLVER_RANDMIZE_ORDER: the sweep's colours in its permuted order (the leftovers last),
         // as the one-launch kernel takes them
@@ -276,15 +303,14 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             .arg(gridBarrier(w)).arg(numColors).arg(orderStride).arg(iterations).arg(1).arg(rows)
             .arg(gridBarrierSpins(w)).arg(w.joints).arg(w.jointState).arg(w.jointRows).arg(numJoints)
             .arg(w.jointIterations).arg(cl_uint(params.randomSeed)).arg(sc.pgsFlowMasks).arg(sc.pgsFlowDone).arg(0)
-            .arg(1 + velocityPasses)
+            .arg(1 + velocityPasses).arg(0).arg(sc.softWideStart).arg(sc.softWideBlock).arg(sc.softWideLanes)
+            .arg(sc.wideBodies).arg(sc.wideKinds)
             .run(group, group);
     } else if (params.splitImpulse) {
         for (int it = 0; it < iterations; ++it) pass(BTG_PASS_PUSH, 0, iterations + it, w.pushLin, w.pushAng);
     }
     if (wide)
-        cl::Launch(ctx, prog.kernel("pgs_wide_unpack"), &w.profiler).arg(w.contacts).arg(sc.colorStart)
-            .arg(sc.colorOrder).arg(numColors).arg(sc.softWideStart).arg(sc.softWideBlock).arg(sc.softWideLanes)
-            .run(slots);
+        wideUnpack();
     else
         cl::Launch(ctx, prog.kernel("contacts_scatter"), &w.profiler).arg(w.contacts).arg(sc.colorStart)
             .arg(sc.colorOrder).arg(numColors).arg(sc.sortedContacts).run(slots);
