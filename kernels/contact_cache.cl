@@ -90,7 +90,11 @@ __kernel void write_contacts(__global const BtgManifoldRange* restrict pairManif
         if ((params.solverFlags & BTG_SOLVER_FRICTION_ANCHORS) && slot < (uint)gjkCapacity &&
             btgAnchoredPair(props[m.bodyA].flags, props[m.bodyB].flags) && gjkPairState[slot].kind != BTG_PAIR_NONE)
             btgAnchorLeverArms(&c, gjkPairState[slot], pos[m.bodyA], rot[m.bodyA]);
-        int prev = btgFindPrevContact(cache, prevCount, m);
+        /* the entry this manifold had, where the last substep's contacts lie as this one's: the
+         * search starts at its own slot (a bisection over the whole cache for every contact was a
+         * tenth of this kernel on PoCL) */
+        int hint = (int)dst;
+        int prev = btgFindPrevContactNear(cache, prevCount, m, &hint);
         /* the manifold's processing threshold only where a body has one (props untouched otherwise) */
         const float processing = (params.solverFlags & BTG_SOLVER_PROCESSING_THRESHOLD)
                                      ? btgProcessingThreshold(props[m.bodyA], props[m.bodyB])

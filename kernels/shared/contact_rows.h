@@ -214,16 +214,22 @@ static inline int btgCachedLowerBound(BTG_CONST_GLOBAL BtgCachedContact* prev, i
     }
     return lo;
 }
-/* The same bound found from *hint, the bound of a pair at or below this one (a caller walking
- * pairs in order: the entries it seeks are near each other), by doubling steps from there and
- * bisecting the last; *hint is then this pair's bound. A hint past the bound bisects [0, hint).
- * *hint < 0: no hint, plain bisection. Either way the same entry. */
+/* The same bound found from *hint, a guess near it (the bound of the pair before, for a caller
+ * walking pairs in order; or the slot the entry would have if nothing changed since the last
+ * substep), by doubling steps from there, forwards or backwards, and bisecting the last; *hint is
+ * then this pair's bound. *hint < 0: no hint, plain bisection. Either way the same entry. */
 static inline int btgCachedLowerBoundNear(BTG_CONST_GLOBAL BtgCachedContact* prev, int count, int ka, int kb, int* hint)
 {
     if (*hint < 0) return btgCachedLowerBound(prev, 0, count, ka, kb);
     int lo = *hint < count ? *hint : count;
     if (lo > 0 && !btgCachedPairBelow(prev, lo - 1, ka, kb)) {
-        lo = btgCachedLowerBound(prev, 0, lo, ka, kb);
+        /* the bound is at or before lo - 1: step back until an entry below the pair */
+        int hi = lo - 1, step = 1;
+        while (hi - step >= 0 && !btgCachedPairBelow(prev, hi - step, ka, kb)) {
+            hi -= step;
+            step *= 2;
+        }
+        lo = btgCachedLowerBound(prev, hi - step + 1 > 0 ? hi - step + 1 : 0, hi, ka, kb);
     } else {
         int step = 1;
         while (lo + step - 1 < count && btgCachedPairBelow(prev, lo + step - 1, ka, kb)) {
