@@ -90,16 +90,7 @@ __kernel void write_contacts(__global const BtgManifoldRange* restrict pairManif
         if ((params.solverFlags & BTG_SOLVER_FRICTION_ANCHORS) && slot < (uint)gjkCapacity &&
             btgAnchoredPair(props[m.bodyA].flags, props[m.bodyB].flags) && gjkPairState[slot].kind != BTG_PAIR_NONE)
             btgAnchorLeverArms(&c, gjkPairState[slot], pos[m.bodyA], rot[m.bodyA]);
-        /* a CPU device: the entry this manifold had, where the last substep's contacts lie as this
-         * one's: the search starts at its own slot (a bisection over the whole cache for every
-         * contact was a tenth of this kernel on PoCL). GPUs bisect: on the H100 the hinted search
-         * failed five SolveConstraints warm-start tests (cause not found yet). */
-#ifdef BTG_CPU_DEVICE
-        int hint = (int)dst;
-#else
-        int hint = -1;
-#endif
-        int prev = btgFindPrevContactNear(cache, prevCount, m, &hint);
+        int prev = btgFindPrevContact(cache, prevCount, m);
         /* the manifold's processing threshold only where a body has one (props untouched otherwise) */
         const float processing = (params.solverFlags & BTG_SOLVER_PROCESSING_THRESHOLD)
                                      ? btgProcessingThreshold(props[m.bodyA], props[m.bodyB])
