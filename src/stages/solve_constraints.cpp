@@ -269,8 +269,10 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
             }
         }
     };
+    // bound in every launch of solve_color_range; one placeholder element where the wide sweeps
+    // take the velocity sweeps (it is then not read)
+    sc.sortedContacts.reserve(ctx, wide ? 1 : slots);
     if (!wide) {
-        sc.sortedContacts.reserve(ctx, slots);
         cl::Launch(ctx, prog.kernel("contacts_gather"), &w.profiler).arg(w.contacts).arg(sc.colorStart)
             .arg(sc.colorOrder).arg(numColors).arg(sc.sortedContacts).run(slots);
     }
