@@ -256,3 +256,60 @@ void radix_tile_sort(__global uint* keys, __global uint* vals, uint n, uint pass
         }
     }
 }
+
+/* A CPU device's whole sort in one work-item: 8-bit digits over `bits` bits (the passes' 4-bit
+ * digits' bits, so the same keys are compared: the same stable order, the same bits), every
+ * pass's counts from one read of the keys, and a pass whose keys all share one digit skipped (a
+ * stable scatter into one bucket keeps the order). The passes took four launches each there
+ * (counts, the scan's two, scatter; PoCL, cubes 8,000: the leaves' sort of 32,000 keys 2.3 ms a
+ * step over eight passes). Ping-pongs through keysAlt / valsAlt and ends in keys / vals.
+ * Launch: one work-item. */
+__kernel void radix_serial_sort(__global uint* restrict keys, __global uint* restrict vals,
+                                __global uint* restrict keysAlt, __global uint* restrict valsAlt, uint n, uint bits)
+{
+    if (get_global_id(0) != 0u) return;
+    const uint passes = (bits + 7u) / 8u;
+    /* the last pass's digit holds only the bits left (4 when bits is 4 mod 8) */
+    uint masks[4];
+    uint counts[4][256];
+    for (uint p = 0u; p < passes; ++p) {
+        masks[p] = bits - 8u * p >= 8u ? 255u : (1u << (bits - 8u * p)) - 1u;
+        for (uint d = 0u; d < 256u; ++d) counts[p][d] = 0u;
+    }
+    for (uint i = 0u; i < n; ++i) {
+        const uint k = keys[i];
+        for (uint p = 0u; p < passes; ++p) counts[p][(k >> (8u * p)) & masks[p]]++;
+    }
+    __global uint* kIn = keys;
+    __global uint* vIn = vals;
+    __global uint* kOut = keysAlt;
+    __global uint* vOut = valsAlt;
+    for (uint p = 0u; p < passes; ++p) {
+        const uint shift = 8u * p, mask = masks[p];
+        uint sum = 0u, single = 0u;
+        for (uint d = 0u; d <= mask; ++d) {
+            const uint c = counts[p][d];
+            single |= c == n;
+            counts[p][d] = sum;
+            sum += c;
+        }
+        if (single) continue;
+        for (uint i = 0u; i < n; ++i) {
+            const uint k = kIn[i];
+            const uint o = counts[p][(k >> shift) & mask]++;
+            kOut[o] = k;
+            vOut[o] = vIn[i];
+        }
+        __global uint* t = kIn;
+        kIn = kOut;
+        kOut = t;
+        t = vIn;
+        vIn = vOut;
+        vOut = t;
+    }
+    if (kIn != keys)
+        for (uint i = 0u; i < n; ++i) {
+            keys[i] = kIn[i];
+            vals[i] = vIn[i];
+        }
+}

@@ -12,6 +12,7 @@ struct SolverScratch {
     cl::DeviceArray<uint> blockSums;  // contact_cache: per-work-group counts, then offsets
     cl::DeviceArray<uint> bodyClaim;  // color_constraints: lowest contact priority claiming a body (two halves and a word a sub-round in color_resident)
     cl::DeviceArray<int> bodyColor;   // color_constraints: the color that last took the body
+    cl::DeviceArray<int> colorActive; // color_serial: the edges still uncoloured and those still eligible in a colour
     // solve_constraints: contacts of color c are colorOrder[colorStart[c], colorStart[c + 1]);
     // a second list (counts and starts after numColors + 1, indices after one per contact
     // slot) holds only the contacts with a split-impulse target, for the push passes

@@ -77,8 +77,10 @@ std::vector<int> runDevice(const Graph& g, int maxColors, bool fused = false,
 
 TEST(ColorConstraints, MatchesReferenceAndIsAValidColoring)
 {
-    for (int maxColors : {1, 4, 12}) {
-        Graph g = randomGraph(80, 600, 5);
+    // dense (80 bodies, 600 edges) and sparse (3,000 bodies, 9,000 edges: most edges colored in
+    // the first sub-round, the later ones' few candidates)
+    for (int maxColors : {1, 4, 12, 24}) {
+        Graph g = maxColors == 24 ? randomGraph(3000, 9000, 8) : randomGraph(80, 600, 5);
         std::vector<int> got = runDevice(g, maxColors);
         std::vector<int> want = ref::colorConstraints(g.edges, g.bodies, maxColors);
         ASSERT_EQ(got.size(), g.edges.size());

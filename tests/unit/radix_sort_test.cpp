@@ -1,7 +1,7 @@
 // radix_sort_test.cpp — the device radix sort equals a CPU stable sort exactly (keys and the
 // values they carry, so stability is checked), for several sizes and key widths, with the
-// caller's 0xffffffff padding beyond the real count; every way (chunks, the CPU devices', tiles,
-// the GPUs', and one tile in one launch) on whatever device the tests run.
+// caller's 0xffffffff padding beyond the real count; every way (the serial sort and the chunks,
+// the CPU devices', tiles, the GPUs', and one tile in one launch) on whatever device the tests run.
 #include "reference/prims/radix_sort.h"
 #include "stages/prims/radix_sort.h"
 #include "test_device.h"
@@ -63,6 +63,44 @@ TEST(RadixSort, OneTileAgreesWithTheReference)
         for (int bits : {1, 4, 9, 13, 30, 32})
             checkSort(n, bits, unsigned(n * 13 + bits), 0, RadixPath::OneTile);
     checkSort(900, 13, 77, 124, RadixPath::OneTile);
+}
+
+// A CPU device's one-work-item sort (8-bit digits): an odd and an even number of its passes, a
+// last pass of 4 bits, padding, and passes skipped where every key shares the digit.
+TEST(RadixSort, SerialAgreesWithTheReference)
+{
+    for (size_t n : {size_t(1), size_t(2), size_t(1000), size_t(5000), size_t(100000)})
+        for (int bits : {1, 4, 9, 12, 13, 20, 30, 32})
+            checkSort(n, bits, unsigned(n * 11 + bits), n % 2 == 0 ? 37 : 0, RadixPath::Serial);
+}
+
+// Keys with bits above keyBits (within its last 4-bit digit) order as the chunks' passes order
+// them: the serial sort compares the same bits.
+TEST(RadixSort, SerialComparesTheChunksBits)
+{
+    cl::Context& ctx = test::context();
+    std::mt19937 rng(3);
+    for (int bits : {5, 13, 22}) {
+        std::vector<uint> keys(3000), values(3000);
+        for (size_t i = 0; i < keys.size(); ++i) {
+            keys[i] = rng();
+            values[i] = uint(i);
+        }
+        std::vector<uint> got[2][2];
+        int k = 0;
+        for (RadixPath path : {RadixPath::Chunks, RadixPath::Serial}) {
+            cl::DeviceArray<uint> dk, dv;
+            dk.upload(ctx, keys);
+            dv.upload(ctx, values);
+            RadixScratch scratch;
+            radixSort(ctx, nullptr, dk, dv, keys.size(), bits, scratch, path);
+            got[k][0] = dk.download(ctx, keys.size());
+            got[k][1] = dv.download(ctx, keys.size());
+            ++k;
+        }
+        EXPECT_EQ(got[0][0], got[1][0]) << "bits " << bits;
+        EXPECT_EQ(got[0][1], got[1][1]) << "bits " << bits;
+    }
 }
 
 TEST(RadixSort, PaddingSortsLast)
