@@ -17,6 +17,9 @@ static inline int btgIsMoving(uint flags)
 /* btRigidBody::applyDamping: v *= (1 - d)^dt. */
 static inline BtgFloat4 btgDamp(BtgFloat4 v, float damping, float dt)
 {
+    /* Undamped (Bullet's default) skips the pow: pow(1, dt) is exactly 1, so the same bits, and
+     * a CPU device's software pow was 3% of a PoCL frame of cubes 8,000. */
+    if (damping == 0.0f) return btgXyz(v);
     return btgXyz(v) * btgPow(1.0f - damping, dt);
 }
 
