@@ -135,6 +135,8 @@ LeafChanges readLeafChanges(DeviceWorld& w)
         // The leaves stay as the call left them: only the list is made again, in a bigger buffer.
         const size_t found = std::max(counts[BTG_LEAF_FOUND], counts[BTG_LEAF_TRANSIENT]);
         reserveLeafPairs(w, std::max(l.capacity + l.capacity / 4, found + found / 4 + 64));
+        // its own label: profiles had counted it under the step's last stage (update_activation)
+        w.profiler.stage = "broadphase_leaves (list redone)";
         leafPairs(w, l.cell);
         l.counts.download(w.ctx, counts, BTG_LEAF_NUM_COUNTS);
         c.redone = true;
