@@ -3,7 +3,7 @@
 // claim/assign passes on the device, then the leftovers take the last color (solved serially;
 // counted so the next step runs more rounds). The host reads no count inside the step. On GPUs
 // all of it is one launch (color_resident, stages/resident.h); on CPUs one work-item's
-// (color_serial).
+// (color_serial) where it has a few cores.
 #include "stages/color_constraints.h"
 
 #include "cl/program.h"
@@ -18,9 +18,9 @@ namespace {
 // Claim/assign passes per color: the first takes the local minima, the next fill the color up
 // to nearly a maximal matching, which keeps the number of colors near the bodies' degree.
 constexpr int kSubRounds = BTG_COLOR_SUB_ROUNDS;
-// Small scenes (as of the last readback) color in one launch on one work-group on a GPU that
-// went over to per-round launches
-// (counted in contacts, the edges' bulk).
+// Small scenes (as of the last readback) color in one launch on one work-group on a CPU device of
+// many cores and on a GPU that went over to per-round launches (counted in contacts, the edges'
+// bulk).
 constexpr int kOneGroupMaxContacts = 4096;
 constexpr int kOneGroupMaxBodies = 16384;
 }  // namespace
@@ -43,8 +43,8 @@ void colorConstraints(DeviceWorld& w, int maxColors)
     // The whole batching in one launch: on a GPU over resident groups sized for one round's
     // work; on a CPU over one group for small scenes, where launch overhead would dominate.
     const bool resident = useResident(w);
-    if (!resident && !ctx.device().isGpu) {
-        // A CPU device: one work-item, the same coloring (color_serial's comment).
+    if (!resident && ctx.device().fewCpuCores()) {
+        // A CPU device of a few cores: one work-item, the same coloring (color_serial's comment).
         w.solverScratch.colorActive.reserve(ctx, 8 * slots);  // two lists, four ints an edge
         cl::Launch(ctx, prog.kernel("color_serial"), &w.profiler).arg(w.edges).arg(w.edgeColor).arg(w.counters)
             .arg(edgeCapacity).arg(w.props).arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor)

@@ -76,15 +76,15 @@ void radixSort(cl::Context& ctx, cl::Profiler* profiler, cl::DeviceArray<uint>& 
     const bool tileGroups = cl::kernelGroupLimit(ctx, prog.kernel("radix_tile_scatter")) >= kTileGroup &&
                             cl::kernelGroupLimit(ctx, prog.kernel("radix_tile_sort")) >= kTileGroup;
     if (n <= kTile && tileGroups &&
-        (path == RadixPath::OneTile || (path == RadixPath::Auto && ctx.device().isGpu && !chunksKnob && !oneTileOff))) {
+        (path == RadixPath::OneTile || (path == RadixPath::Auto && !ctx.device().fewCpuCores() && !chunksKnob && !oneTileOff))) {
         cl::Launch(ctx, prog.kernel("radix_tile_sort"), profiler)
             .arg(keys).arg(values).arg(cl_uint(n)).arg(cl_uint((keyBits + kRadixBits - 1) / kRadixBits))
             .run(kTileGroup, kTileGroup);
         return;
     }
-    // A CPU device: one work-item sorts it all (radix_serial_sort) where the passes took four
-    // launches each. BTGPU_RADIX_CHUNKS=1 takes the chunks there too.
-    if (path == RadixPath::Serial || (path == RadixPath::Auto && !ctx.device().isGpu && !chunksKnob)) {
+    // A CPU device of a few cores: one work-item sorts it all (radix_serial_sort) where the
+    // passes took four launches each. BTGPU_RADIX_CHUNKS=1 takes the chunks there too.
+    if (path == RadixPath::Serial || (path == RadixPath::Auto && ctx.device().fewCpuCores() && !chunksKnob)) {
         scratch.keysAlt.reserve(ctx, n);
         scratch.valuesAlt.reserve(ctx, n);
         const cl_uint bits = cl_uint((keyBits + kRadixBits - 1) / kRadixBits * kRadixBits);  // the passes' bits

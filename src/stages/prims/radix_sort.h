@@ -19,8 +19,9 @@ struct RadixScratch {
 // Sorts keys[0, n) and values[0, n) by (key & ((1 << keyBits) - 1)), stably. n is a host-side
 // count or capacity: the caller pads keys beyond the real count with 0xffffffff so they sort
 // last (give keyBits one bit more than the real keys need if they may reach all ones).
-// Auto: a CPU device the serial sort; a GPU up to 1,024 keys one tile in one launch, else
-// tiles; the others for tests and measuring (OneTile beyond 1,024 keys: the chunks).
+// Auto: a CPU device of a few cores (DeviceInfo::fewCpuCores) the serial sort; else up to
+// 1,024 keys one tile in one launch, beyond that tiles on a GPU and chunks on a CPU device; the
+// others for tests and measuring (OneTile beyond 1,024 keys: the chunks).
 enum class RadixPath { Auto, Chunks, Tiles, OneTile, Serial };
 void radixSort(cl::Context& ctx, cl::Profiler* profiler, cl::DeviceArray<uint>& keys,
                cl::DeviceArray<uint>& values, size_t n, int keyBits, RadixScratch& scratch,
