@@ -8,6 +8,13 @@
 
 #define BTG_RADIX 16u
 #define BTG_RADIX_MASK 15u
+/* the ping-pong of two pointers (of either address space) between passes */
+#define BTG_RADIX_SWAP(T, a, b) \
+    do {                        \
+        T swapped_ = (a);       \
+        (a) = (b);              \
+        (b) = swapped_;         \
+    } while (0)
 
 __kernel void radix_histogram(__global const uint* restrict keys, __global uint* restrict hist, uint n,
                               uint shift, uint chunk, uint numChunks)
@@ -241,12 +248,8 @@ void radix_tile_sort(__global uint* keys, __global uint* vals, uint n, uint pass
             valsOut[o] = valsIn[first + k];
         }
         barrier(CLK_LOCAL_MEM_FENCE);
-        __local uint* t = keysIn;
-        keysIn = keysOut;
-        keysOut = t;
-        t = valsIn;
-        valsIn = valsOut;
-        valsOut = t;
+        BTG_RADIX_SWAP(__local uint*, keysIn, keysOut);
+        BTG_RADIX_SWAP(__local uint*, valsIn, valsOut);
     }
     for (uint j = 0; j < BTG_RADIX_PER_ITEM; ++j) {
         const uint i = j * BTG_RADIX_GROUP + l;
@@ -300,12 +303,8 @@ __kernel void radix_serial_sort(__global uint* restrict keys, __global uint* res
             kOut[o] = k;
             vOut[o] = vIn[i];
         }
-        __global uint* t = kIn;
-        kIn = kOut;
-        kOut = t;
-        t = vIn;
-        vIn = vOut;
-        vOut = t;
+        BTG_RADIX_SWAP(__global uint*, kIn, kOut);
+        BTG_RADIX_SWAP(__global uint*, vIn, vOut);
     }
     if (kIn != keys)
         for (uint i = 0u; i < n; ++i) {
