@@ -136,6 +136,12 @@ __kernel void color_finish(__global int* edgeColor, __global uint* counters, int
  * colour); and claims stamped with their sub-round instead of reset: claim[b] is body b's
  * lowest bid, claim[numBodies + b] the sub-round it was made in (a stale stamp reads as no
  * claim). `lists` holds both lists, four ints an edge each. */
+/* color_serial's bid of priority p for body b in sub-round r (a claim of an older sub-round is none) */
+static void serial_bid(__global uint* restrict claim, __global uint* restrict stamp, int b, uint p, uint r)
+{
+    claim[b] = stamp[b] == r ? min(claim[b], p) : p;
+    stamp[b] = r;
+}
 __kernel void color_serial(__global const BtgEdge* restrict edges, __global int* restrict edgeColor,
                            __global uint* counters, int edgeCapacity, __global const BtgBodyProps* restrict props,
                            __global uint* restrict claim, __global int* restrict bodyColor, int numBodies, int rounds,
@@ -167,17 +173,10 @@ __kernel void color_serial(__global const BtgEdge* restrict edges, __global int*
             if (edgeColor[e.x] >= 0) continue;
             active[kept++] = e;
             const uint p = (uint)e.w;
-            if (bodyColor[e.y] != BODY_FIXED) {
-                claim[e.y] = stamp[e.y] == r ? min(claim[e.y], p) : p;
-                stamp[e.y] = r;
-            }
-            if (bodyColor[e.z] != BODY_FIXED) {
-                claim[e.z] = stamp[e.z] == r ? min(claim[e.z], p) : p;
-                stamp[e.z] = r;
-            }
+            if (bodyColor[e.y] != BODY_FIXED) serial_bid(claim, stamp, e.y, p, r);
+            if (bodyColor[e.z] != BODY_FIXED) serial_bid(claim, stamp, e.z, p, r);
         }
         left = kept;
-        int ncand = 0;
         __global int4* src = active;
         int nsrc = left;
         for (int sub = 0;; ++sub) {
@@ -196,25 +195,18 @@ __kernel void color_serial(__global const BtgEdge* restrict edges, __global int*
                     cand[losers++] = e;
                 }
             }
-            ncand = losers;
-            if (sub + 1 == BTG_COLOR_SUB_ROUNDS || ncand == 0) break;
+            if (sub + 1 == BTG_COLOR_SUB_ROUNDS || losers == 0) break;
             /* the next sub-round's claims: the losers whose bodies are both still out of the colour */
             r = (uint)(color * BTG_COLOR_SUB_ROUNDS + sub + 1);
             int eligible = 0;
-            for (int k = 0; k < ncand; ++k) {
+            for (int k = 0; k < losers; ++k) {
                 const int4 e = cand[k];
                 const int ca = bodyColor[e.y], cb = bodyColor[e.z];
                 if (ca == color || cb == color) continue;
                 cand[eligible++] = e;
                 const uint p = (uint)e.w;
-                if (ca != BODY_FIXED) {
-                    claim[e.y] = stamp[e.y] == r ? min(claim[e.y], p) : p;
-                    stamp[e.y] = r;
-                }
-                if (cb != BODY_FIXED) {
-                    claim[e.z] = stamp[e.z] == r ? min(claim[e.z], p) : p;
-                    stamp[e.z] = r;
-                }
+                if (ca != BODY_FIXED) serial_bid(claim, stamp, e.y, p, r);
+                if (cb != BODY_FIXED) serial_bid(claim, stamp, e.z, p, r);
             }
             src = cand;
             nsrc = eligible;
