@@ -190,29 +190,31 @@ void GpuWorld::makePlan()
     in.largeBodyFactor = m_config.largeBodyFactor;
     in.contactThreshold = m_config.contactThreshold;
     in.numJoints = m_world.getNumConstraints();  // all served while on the GPU path
-    in.bodies.reserve(m_rows.size());
-    for (size_t r = 0; r < m_rows.size(); ++r) {
-        const btCollisionObject* o = m_rows.at(r);
-        PlanBody b;
-        const bool ghost = o && o->getInternalType() == btCollisionObject::CO_GHOST_OBJECT;
-        if (!o) {
-            b.live = false;
-            in.bodies.push_back(b);
-            continue;
+    // Each row's facts read in parallel chunks (a shape lookup and a walk into each scattered
+    // object: 90 ms a rebuild at 1,000,000 bodies on one core), each at its own index.
+    in.bodies.resize(m_rows.size());
+    forEachChunk(m_rows.size(), kBodyRowsPerThread, [&](size_t begin, size_t end, int) {
+        for (size_t r = begin; r < end; ++r) {
+            const btCollisionObject* o = m_rows.at(r);
+            PlanBody& b = in.bodies[r];
+            if (!o) {
+                b.live = false;
+                continue;
+            }
+            const bool ghost = o->getInternalType() == btCollisionObject::CO_GHOST_OBJECT;
+            const BtgShape& s = m_shapes.shapes[size_t(m_shapes.rowOf.at(o->getCollisionShape()))];
+            b.shapeType = s.type;
+            for (int k = 0; k < s.numChildren && s.type == BTG_SHAPE_COMPOUND; ++k)
+                b.leafKinds |= 1u << m_shapes.shapes[size_t(m_shapes.children[size_t(s.firstChild + k)].shape)].type;
+            b.size = s.type == BTG_SHAPE_PLANE ? 0.0f : 2.0f * boundingRadius(s);
+            // A kinematic body made with mass 0 keeps CF_STATIC_OBJECT beside CF_KINEMATIC_OBJECT.
+            b.movable = !o->isStaticObject() || o->isKinematicObject() || ghost;
+            b.dynamic = !o->isStaticOrKinematicObject() && !ghost;
+            const btRigidBody* rb = btRigidBody::upcast(o);
+            b.gyroscopic = rb && (rb->getFlags() & (BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY | BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT |
+                                                   BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD));
         }
-        const BtgShape& s = m_shapes.shapes[size_t(m_shapes.rowOf.at(o->getCollisionShape()))];
-        b.shapeType = s.type;
-        for (int k = 0; k < s.numChildren && s.type == BTG_SHAPE_COMPOUND; ++k)
-            b.leafKinds |= 1u << m_shapes.shapes[size_t(m_shapes.children[size_t(s.firstChild + k)].shape)].type;
-        b.size = s.type == BTG_SHAPE_PLANE ? 0.0f : 2.0f * boundingRadius(s);
-        // A kinematic body made with mass 0 keeps CF_STATIC_OBJECT beside CF_KINEMATIC_OBJECT.
-        b.movable = !o->isStaticObject() || o->isKinematicObject() || ghost;
-        b.dynamic = !o->isStaticOrKinematicObject() && !ghost;
-        const btRigidBody* rb = btRigidBody::upcast(o);
-        b.gyroscopic = rb && (rb->getFlags() & (BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY | BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT |
-                                               BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD));
-        in.bodies.push_back(b);
-    }
+    });
     DerivedPlan d = derivePlan(in);
     m_plan = d.plan;
     m_plan.hasIgnoredPairs = m_ignored.any();
@@ -300,8 +302,9 @@ void GpuWorld::rebuild()
     w.sleepTime.zero(w.ctx, std::max<size_t>(n, 1));
     std::vector<uint> never(std::max<size_t>(n, 1), 0x7f800000u);  // +inf: no island yet
     w.islandTime.upload(w.ctx, never);
-    m_mirror.assign(n, Mirror());
-    syncIn(w, changedRows(true));
+    m_mirror.clear();
+    m_mirror.resize(n);  // unwritten: everyRow starts each row's mirror
+    writeColumns(w, everyRow());
     // The sleep state read back before a step's deactivation (the actions' part) is the app's
     // until the device's deactivation writes it; left unwritten it was whatever the buffer held.
     std::vector<uint> asleep(std::max<size_t>(n, 1), 0u);
@@ -627,7 +630,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
                 if (stockPairs) m_manifolds.notePairs(m_world.getDispatcher(), m_world.getPairCache(), m_rows, m_removed);
                 m_report.ghostBroadphaseMs += msBetween(g0, Clock::now());
             }
-            syncIn(*m_dev, changedRows(false));
+            syncIn(*m_dev, changedRows());
             afterSyncIn();
             m_joints.upload(m_world, m_rows, *m_dev);  // limits, pivots, enabled, ... as the app left them
             if (m_ignored.update(m_rows, *m_dev)) {
@@ -698,7 +701,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
         // Nothing to simulate this call, but what the app changed is still looked at: a body
         // made bad is named now, as on the CPU path, not at the next call that steps.
         Clock::time_point t0 = Clock::now();
-        syncIn(*m_dev, changedRows(false));
+        syncIn(*m_dev, changedRows());
         afterSyncIn();
         m_report.syncInMs += msBetween(t0, Clock::now());
     }

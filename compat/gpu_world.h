@@ -61,11 +61,23 @@ public:
     float m_appThreshold;  // Config::contactThreshold as the app gave it (m_config's follows gContactBreakingThreshold)
 
 private:
-    struct Mirror {  // what the device holds for a row, as last written or read back
-        btTransform xf = btTransform::getIdentity();
-        btVector3 linVel{0, 0, 0}, angVel{0, 0, 0}, force{0, 0, 0}, torque{0, 0, 0};
-        BtgBodyProps props{};
-        bool excluded = false;
+    // What the device holds for a row, as last written or read back. Plain data without
+    // initialisers, so that m_mirror can be sized without writing it (the rebuild writes every
+    // row's in parallel): a row starts as fresh().
+    struct Mirror {
+        btTransform xf;
+        btVector3 linVel, angVel, force, torque;
+        BtgBodyProps props;
+        bool excluded;
+        static Mirror fresh()
+        {
+            Mirror m;
+            m.xf.setIdentity();
+            m.linVel = m.angVel = m.force = m.torque = btVector3(0, 0, 0);
+            m.props = BtgBodyProps{};
+            m.excluded = false;
+            return m;
+        }
     };
 
     bool ensureDevice();
@@ -88,7 +100,13 @@ private:
     void makePlan();
     // True when a collision object's shape is no longer the one the tables were built for.
     bool shapesSwapped() const;
-    std::vector<BodyRowUpdate> changedRows(bool all);
+    // The rows whose Bullet state differs from their mirror, in row order.
+    BodyRowUploads changedRows();
+    // Every row, each mirror started fresh (the rebuild's).
+    BodyColumns everyRow();
+    // Row r holds no body: excluded from everything, its mirror saying so.
+    BodyRowUpdate retireRow(size_t r);
+    void reportNewlyBad(const std::vector<std::vector<std::pair<size_t, std::string>>>& newlyBad);
     // One row against its mirror: true (and the update, and a reason when the row has just
     // turned bad) when the device must be told. Touches only row r: safe in parallel.
     bool compareRow(size_t r, bool all, BodyRowUpdate* u, std::string* newlyBad);
@@ -195,7 +213,7 @@ private:
     size_t m_uploadedShapeRows[13] = {};  // rows of each shape and mesh table on the device
     std::unordered_set<const btCollisionObject*> m_removed;  // since the rows last followed the world
     bool m_rowsStale = true;  // objects added or removed since the rows last followed them
-    std::vector<Mirror> m_mirror;
+    UntouchedVector<Mirror> m_mirror;
     unsigned m_solverFlags = 0;  // BTG_SOLVER_* the bodies call for (bodiesReason, each step)
     std::vector<bool> m_large;  // rows paired by brute force instead of the grid
     // Per row, set by compareRow: the app woke this sleeping body (activate()), which restarts

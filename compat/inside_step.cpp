@@ -143,7 +143,7 @@ void GpuWorld::runActions(btScalar dt)
     // Velocities, impulses, forces and transforms the actions set, and bodies they woke. What
     // they added or removed joins or leaves the rows at the next internal step (removed
     // objects are skipped until then).
-    syncIn(*m_dev, changedRows(false));
+    syncIn(*m_dev, changedRows());
     afterSyncIn();
 }
 

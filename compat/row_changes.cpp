@@ -56,23 +56,17 @@ void GpuWorld::followRows()
     w.manifolds.reserveExact(w.ctx, w.pairCapacity);
     w.contacts.reserveExact(w.ctx, w.contactCapacity);
     w.contactCache.reserveExact(w.ctx, w.contactCapacity, true);  // the untouched pairs warm-start
+    const size_t had = m_mirror.size();
     m_mirror.resize(n);
+    for (size_t r = had; r < n; ++r) m_mirror[r] = Mirror::fresh();
     // A retired row takes no part in anything; a fresh one starts with its timers cleared and
     // is written whole by the next comparison (its mirror can match nothing).
-    std::vector<BodyRowUpdate> retired;
-    for (size_t r : changes.retired) {
-        BodyRowUpdate u{};
-        u.row = int(r);
-        u.rot = btgMake4(0, 0, 0, 1);
-        u.props.flags = BTG_BODY_EXCLUDED;
-        retired.push_back(u);
-        m_mirror[r] = Mirror();
-        m_mirror[r].props = u.props;
-    }
+    BodyRowUploads retired;
+    for (size_t r : changes.retired) retired.add(retireRow(r));
     syncIn(w, retired);
     std::vector<int> fresh;
     for (size_t r : changes.fresh) {
-        m_mirror[r] = Mirror();
+        m_mirror[r] = Mirror::fresh();
         m_mirror[r].props.flags = 0xffffffffu;
         fresh.push_back(int(r));
     }
@@ -100,7 +94,31 @@ bool GpuWorld::shapesSwapped() const
     return std::find(swapped.begin(), swapped.end(), 1) != swapped.end();
 }
 
-std::vector<BodyRowUpdate> GpuWorld::changedRows(bool all)
+BodyRowUpdate GpuWorld::retireRow(size_t r)
+{
+    BodyRowUpdate u{};
+    u.row = int(r);
+    u.rot = btgMake4(0, 0, 0, 1);
+    u.props.flags = BTG_BODY_EXCLUDED;
+    m_mirror[r] = Mirror::fresh();
+    m_mirror[r].props = u.props;
+    return u;
+}
+
+void GpuWorld::reportNewlyBad(const std::vector<std::vector<std::pair<size_t, std::string>>>& newlyBad)
+{
+    for (const auto& list : newlyBad)
+        for (const auto& [r, bad] : list) {
+            btCollisionObject* o = m_rows.at(r);
+            int index = m_world.getCollisionObjectArray().findLinearSearch(o);
+            report({Issue::Kind::BadBody,
+                    "body " + std::to_string(index) + " (user index " + std::to_string(o->getUserIndex()) + ", shape " +
+                        o->getCollisionShape()->getName() + "): " + bad + "; kept out of the simulation until fixed",
+                    index, o->getUserIndex(), o->getCollisionShape()->getShapeType()});
+        }
+}
+
+BodyRowUploads GpuWorld::changedRows()
 {
     // Every row is compared with what the device holds (impulses and forces set between steps
     // leave no other trace). Rows are independent: compared in parallel chunks, each with its
@@ -108,10 +126,10 @@ std::vector<BodyRowUpdate> GpuWorld::changedRows(bool all)
     const size_t n = m_rows.size();
     const size_t minPerThread = kBodyRowsPerThread;
     const int chunks = chunkCount(n, minPerThread);
-    std::vector<std::vector<BodyRowUpdate>> found(chunks);
+    std::vector<BodyRowUploads> found(static_cast<size_t>(chunks));
     m_woken.assign(n, 0);
     m_reshaped.assign(n, 0);
-    std::vector<std::vector<std::pair<size_t, std::string>>> newlyBad(chunks);
+    std::vector<std::vector<std::pair<size_t, std::string>>> newlyBad(static_cast<size_t>(chunks));
     forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
         for (size_t r = begin; r < end; ++r) {
             // compareRow reads most of each body (objects scattered over the heap): the body a
@@ -123,26 +141,49 @@ std::vector<BodyRowUpdate> GpuWorld::changedRows(bool all)
             if (!m_removed.empty() && m_removed.count(m_rows.at(r))) continue;
             BodyRowUpdate u;
             std::string bad;
-            if (!compareRow(r, all, &u, &bad)) continue;
-            if (!bad.empty()) newlyBad[chunk].emplace_back(r, std::move(bad));
-            found[chunk].push_back(u);
+            if (!compareRow(r, false, &u, &bad)) continue;
+            if (!bad.empty()) newlyBad[size_t(chunk)].emplace_back(r, std::move(bad));
+            found[size_t(chunk)].add(u);
         }
     });
-    for (const auto& list : newlyBad)
-        for (const auto& [r, bad] : list) {
-            btCollisionObject* o = m_rows.at(r);
-            int index = m_world.getCollisionObjectArray().findLinearSearch(o);
-            report({Issue::Kind::BadBody,
-                    "body " + std::to_string(index) + " (user index " + std::to_string(o->getUserIndex()) + ", shape " +
-                        o->getCollisionShape()->getName() + "): " + bad + "; kept out of the simulation until fixed",
-                    index, o->getUserIndex(), o->getCollisionShape()->getShapeType()});
-        }
-    std::vector<BodyRowUpdate> out;
+    reportNewlyBad(newlyBad);
+    BodyRowUploads out;
     size_t total = 0;
     for (const auto& list : found) total += list.size();
-    out.reserve(total);
-    for (const auto& list : found) out.insert(out.end(), list.begin(), list.end());
+    out.rows.reserve(total);
+    out.states.reserve(6 * total);
+    out.props.reserve(total);
+    for (const auto& list : found) out.append(list);
     return out;
+}
+
+BodyColumns GpuWorld::everyRow()
+{
+    // The rebuild's: every row written at its own index, its mirror started fresh there, in
+    // parallel chunks, into arrays sized without writing them, so each page of the 1,000,000
+    // rows is first touched by the chunk that fills it; no lists to merge, and the columns go
+    // to the device as they are (no staging copy, no scatter).
+    const size_t n = m_rows.size();
+    const size_t minPerThread = kBodyRowsPerThread;
+    BodyColumns cols;
+    cols.resize(n);
+    m_woken.assign(n, 0);
+    m_reshaped.assign(n, 0);
+    std::vector<std::vector<std::pair<size_t, std::string>>> newlyBad(size_t(chunkCount(n, minPerThread)));
+    forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
+        for (size_t r = begin; r < end; ++r) {
+            m_mirror[r] = Mirror::fresh();
+            if (r + 4 < end)
+                if (const btCollisionObject* ahead = m_rows.at(r + 4)) prefetchObject(ahead, sizeof(btRigidBody), false);
+            BodyRowUpdate u;
+            std::string bad;
+            if (!compareRow(r, true, &u, &bad)) u = retireRow(r);  // no object (none after a rebuild's reset)
+            if (!bad.empty()) newlyBad[size_t(chunk)].emplace_back(r, std::move(bad));
+            cols.set(r, u);
+        }
+    });
+    reportNewlyBad(newlyBad);
+    return cols;
 }
 
 void GpuWorld::afterSyncIn()

@@ -11,6 +11,7 @@ void RowMap::reset(const btAlignedObjectArray<btCollisionObject*>& objects)
 {
     m_rows.assign(size_t(objects.size()), nullptr);
     m_rowOf.clear();
+    m_rowOf.reserve(size_t(objects.size()));  // no rehashes on the way (1,000,000 objects)
     m_free.clear();
     m_retiring.clear();
     for (int i = 0; i < objects.size(); ++i) {

@@ -32,28 +32,30 @@ void resizeBodies(DeviceWorld& w, int n)
     w.numBodies = n;
 }
 
-void syncIn(DeviceWorld& w, const std::vector<BodyRowUpdate>& updates)
+void syncIn(DeviceWorld& w, const BodyRowUploads& updates)
 {
     if (updates.empty()) return;
-    std::vector<int> rows;
-    std::vector<BtgFloat4> states;
-    std::vector<BtgBodyProps> props;
-    rows.reserve(updates.size());
-    states.reserve(6 * updates.size());
-    props.reserve(updates.size());
-    for (const BodyRowUpdate& u : updates) {
-        rows.push_back(u.row);
-        states.insert(states.end(), {u.pos, u.rot, u.linVel, u.angVel, u.force, u.torque});
-        props.push_back(u.props);
-    }
-    w.stagingRows.upload(w.ctx, rows);
-    w.stagingStates.upload(w.ctx, states);
-    w.stagingProps.upload(w.ctx, props);
+    w.stagingRows.upload(w.ctx, updates.rows.data(), updates.rows.size());
+    w.stagingStates.upload(w.ctx, updates.states.data(), updates.states.size());
+    w.stagingProps.upload(w.ctx, updates.props.data(), updates.props.size());
     int n = int(updates.size());
     cl::Launch(w.ctx, w.ctx.program("sync_bodies").kernel("scatter_bodies"), &w.profiler)
         .arg(n).arg(w.stagingRows).arg(w.stagingStates).arg(w.stagingProps).arg(w.pos).arg(w.rot).arg(w.linVel).arg(w.angVel)
         .arg(w.extForce).arg(w.extTorque).arg(w.props)
         .run(size_t(n));
+}
+
+void writeColumns(DeviceWorld& w, const BodyColumns& c)
+{
+    const size_t n = c.size();
+    if (n == 0) return;
+    w.pos.upload(w.ctx, c.pos.data(), n);
+    w.rot.upload(w.ctx, c.rot.data(), n);
+    w.linVel.upload(w.ctx, c.linVel.data(), n);
+    w.angVel.upload(w.ctx, c.angVel.data(), n);
+    w.extForce.upload(w.ctx, c.force.data(), n);
+    w.extTorque.upload(w.ctx, c.torque.data(), n);
+    w.props.upload(w.ctx, c.props.data(), n);
 }
 
 void resetRows(DeviceWorld& w, const std::vector<int>& rows)

@@ -4,6 +4,7 @@
 #pragma once
 #include "cl/pinned.h"
 #include "world/device_world.h"
+#include "world/untouched_vector.h"
 
 #include <vector>
 
@@ -16,10 +17,77 @@ struct BodyRowUpdate {
     BtgBodyProps props;
 };
 
+// Rows to write, held as syncIn uploads them (row numbers, six states a row, props): built in
+// place, never repacked. Sized without writing (UntouchedVector), so the rebuild's every-row
+// list can be filled in parallel at each row's own index.
+struct BodyRowUploads {
+    UntouchedVector<int> rows;
+    UntouchedVector<BtgFloat4> states;  // pos, rot, linVel, angVel, force, torque
+    UntouchedVector<BtgBodyProps> props;
+
+    size_t size() const { return rows.size(); }
+    bool empty() const { return rows.empty(); }
+    void resize(size_t n)
+    {
+        rows.resize(n);
+        states.resize(6 * n);
+        props.resize(n);
+    }
+    void set(size_t i, const BodyRowUpdate& u)
+    {
+        rows[i] = u.row;
+        BtgFloat4* s = &states[6 * i];
+        s[0] = u.pos;
+        s[1] = u.rot;
+        s[2] = u.linVel;
+        s[3] = u.angVel;
+        s[4] = u.force;
+        s[5] = u.torque;
+        props[i] = u.props;
+    }
+    void add(const BodyRowUpdate& u)
+    {
+        resize(size() + 1);
+        set(size() - 1, u);
+    }
+    void append(const BodyRowUploads& o)
+    {
+        rows.insert(rows.end(), o.rows.begin(), o.rows.end());
+        states.insert(states.end(), o.states.begin(), o.states.end());
+        props.insert(props.end(), o.props.begin(), o.props.end());
+    }
+};
+
+// Every row 0..n-1 by column, as the body columns hold them (the rebuild's: written as they
+// are, with no staging copy and no scatter). Sized without writing, filled in parallel.
+struct BodyColumns {
+    UntouchedVector<BtgFloat4> pos, rot, linVel, angVel, force, torque;
+    UntouchedVector<BtgBodyProps> props;
+
+    size_t size() const { return pos.size(); }
+    void resize(size_t n)
+    {
+        for (UntouchedVector<BtgFloat4>* c : {&pos, &rot, &linVel, &angVel, &force, &torque}) c->resize(n);
+        props.resize(n);
+    }
+    void set(size_t r, const BodyRowUpdate& u)
+    {
+        pos[r] = u.pos;
+        rot[r] = u.rot;
+        linVel[r] = u.linVel;
+        angVel[r] = u.angVel;
+        force[r] = u.force;
+        torque[r] = u.torque;
+        props[r] = u.props;
+    }
+};
+
 // Sizes every body column for n rows (contents of new rows undefined until written).
 void resizeBodies(DeviceWorld& w, int n);
 // Writes the given rows through staging buffers and one scatter launch.
-void syncIn(DeviceWorld& w, const std::vector<BodyRowUpdate>& rows);
+void syncIn(DeviceWorld& w, const BodyRowUploads& rows);
+// Writes every row (the columns' size must be the world's numBodies).
+void writeColumns(DeviceWorld& w, const BodyColumns& rows);
 // Clears the sleeping and island timers of rows that now hold a new body.
 void resetRows(DeviceWorld& w, const std::vector<int>& rows);
 

@@ -47,7 +47,7 @@ void writeMarkdown(std::ostream& out, const Scene& scene, int frames, const std:
         << scene.bodies.size() - scene.dynamicCount() << " static), frames 1.." << frames << ", dt 1/"
         << int(1 / scene.dt + 0.5f) << ", " << scene.iterations << " iterations\n\n";
     out << "| backend | device | frames | step ms med / p90 / max | write-back ms med / p90 / max | total ms med | "
-           "vs bullet | first frame s | pairs | manifolds | points | device MB | lowest y (frame) | final lowest y | NaN | below ground |\n";
+           "vs bullet | set-up s / first step s | pairs | manifolds | points | device MB | lowest y (frame) | final lowest y | NaN | below ground |\n";
     out << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     const RunResult* base = bullet(results);
     for (const RunResult& r : results) {
@@ -60,7 +60,8 @@ void writeMarkdown(std::ostream& out, const Scene& scene, int frames, const std:
         out << "| " << r.backend << " | " << r.device << " | " << r.framesRun << (r.cutShort ? " (cut: budget)" : "")
             << " | " << num(r.stepMs.median) << " / " << num(r.stepMs.p90) << " / " << num(r.stepMs.max) << " | "
             << num(r.writebackMs.median) << " / " << num(r.writebackMs.p90) << " / " << num(r.writebackMs.max)
-            << " | " << num(r.totalMs.median) << " | " << speed << " | " << num(r.firstFrameS, "%.2f") << " | "
+            << " | " << num(r.totalMs.median) << " | " << speed << " | " << num(r.setUpS, "%.2f") << " / "
+            << num(r.firstStepS, "%.2f") << " | "
             << count(r.last.pairs) << " | " << count(r.last.manifolds) << " | " << count(r.last.points) << " | "
             << mb(r.last.deviceBytes) << " | " << signedNum(r.minLowestY, "%.3f") << " (" << r.minLowestFrame << ") | "
             << signedNum(r.finalLowestY, "%.3f") << " | "
@@ -85,7 +86,7 @@ void writeMarkdown(std::ostream& out, const Scene& scene, int frames, const std:
 void writeCsv(std::ostream& out, const Scene& scene, const std::vector<RunResult>& results)
 {
     out << "scene,dynamic,backend,device,ran,skipped,frames,cut_short,step_med_ms,step_p90_ms,step_max_ms,"
-           "writeback_med_ms,writeback_p90_ms,writeback_max_ms,total_med_ms,total_p90_ms,total_max_ms,first_frame_s,"
+           "writeback_med_ms,writeback_p90_ms,writeback_max_ms,total_med_ms,total_p90_ms,total_max_ms,set_up_s,first_step_s,"
            "pairs,manifolds,points,device_bytes,lowest_y,lowest_y_frame,final_lowest_y,nan_bodies,below_ground,overflow,stages,notes\n";
     for (const RunResult& r : results) {
         std::string stages;
@@ -95,7 +96,8 @@ void writeCsv(std::ostream& out, const Scene& scene, const std::vector<RunResult
             << num(r.stepMs.median, "%.4f") << ',' << num(r.stepMs.p90, "%.4f") << ',' << num(r.stepMs.max, "%.4f")
             << ',' << num(r.writebackMs.median, "%.4f") << ',' << num(r.writebackMs.p90, "%.4f") << ','
             << num(r.writebackMs.max, "%.4f") << ',' << num(r.totalMs.median, "%.4f") << ','
-            << num(r.totalMs.p90, "%.4f") << ',' << num(r.totalMs.max, "%.4f") << ',' << num(r.firstFrameS, "%.3f")
+            << num(r.totalMs.p90, "%.4f") << ',' << num(r.totalMs.max, "%.4f") << ',' << num(r.setUpS, "%.3f")
+            << ',' << num(r.firstStepS, "%.3f")
             << ',' << r.last.pairs << ',' << r.last.manifolds << ',' << r.last.points << ',' << r.last.deviceBytes
             << ',' << (r.ran ? signedNum(r.minLowestY, "%.4f") : "") << ',' << r.minLowestFrame << ','
             << (r.ran ? signedNum(r.finalLowestY, "%.4f") : "") << ',' << r.nanBodies << ','

@@ -20,7 +20,8 @@ struct RunResult {
     std::string skipped;             // why it did not run (or stopped after frame 0)
     int framesRun = 0;               // timed frames (1..F), fewer than asked when over budget
     bool cutShort = false;
-    double firstFrameS = 0;          // set-up + frame 0, kernel builds included
+    double setUpS = 0;               // the app's part: the scene's Bullet objects made and added (stock's own cost)
+    double firstStepS = 0;           // frame 0's stepSimulation alone: the backend's one-time work, kernel builds included
     Percentiles stepMs, writebackMs, totalMs;
     std::map<std::string, double> stageMedianMs;
     FrameInfo last;                  // counts after the last frame

@@ -23,6 +23,10 @@ struct BtInfrastructure {
 class BtBodies {
 public:
     ~BtBodies();
+    // Before the world is deleted, in place of removing every body from it: the joints leave,
+    // the bodies are let go with the world (see bt_bodies.cpp), and the destructor then deletes
+    // them without touching it.
+    void leaveWithWorld();
     void build(const Scene& scene, const Options& options, btDiscreteDynamicsWorld* world);
     void poses(std::vector<Pose>& out) const;
     // Broadphase pairs, manifolds with points and their points, as the dispatcher holds them.

@@ -29,8 +29,9 @@ class BulletBackend : public Backend {
 public:
     ~BulletBackend() override
     {
-        m_bodies.reset();  // bodies leave the world before it goes
+        if (m_bodies) m_bodies->leaveWithWorld();
         m_world.reset();
+        m_bodies.reset();
     }
     std::string name() const override { return "bullet"; }
     std::string device() const override { return "CPU (1 thread)"; }

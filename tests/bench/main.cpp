@@ -51,8 +51,8 @@ int runScene(const Scene& scene, const std::string& backends, const Options& opt
         results.push_back(runBackend(*b, scene, options, frames, budgetS));
         const RunResult& r = results.back();
         if (r.ran)
-            std::fprintf(stderr, "  %s: %d frames, median %.3f ms, first frame %.2f s\n", name.c_str(), r.framesRun,
-                         r.totalMs.median, r.firstFrameS);
+            std::fprintf(stderr, "  %s: %d frames, median %.3f ms, set-up %.2f s, first step %.2f s\n", name.c_str(),
+                         r.framesRun, r.totalMs.median, r.setUpS, r.firstStepS);
         else
             std::fprintf(stderr, "  %s: skipped: %s\n", name.c_str(), r.skipped.c_str());
     }
