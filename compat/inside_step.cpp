@@ -56,6 +56,7 @@ bool GpuWorld::aabbsBesideFill() const
 
 void GpuWorld::fillManifolds(const std::function<void()>& beforeEvents)
 {
+    awaitReports(*m_dev, m_readback);  // their read travelled while the bodies were written back
     if (!m_config.fillDispatcherManifolds) return;
     const auto t0 = std::chrono::steady_clock::now();
     m_manifolds.fill(m_world.getDispatcher(), m_rows, m_readback, m_removed, beforeEvents);

@@ -91,12 +91,13 @@ public:
         if (n == 0) return;
         BTGPU_CL_CHECK(clEnqueueCopyBuffer(ctx.queue(), src.mem(), m_buf.mem(), 0, 0, n * sizeof(T), 0, nullptr, nullptr));
     }
-    // Queues a read of the first n elements into host memory, without waiting (Context::finish
-    // waits for all).
-    void readAsync(Context& ctx, T* data, size_t n) const
+    // Queues a read of n elements from offset into host memory, without waiting (Context::finish
+    // waits for all; *done, when given, is an event of this read alone, the caller's to release).
+    void readAsync(Context& ctx, T* data, size_t n, size_t offset = 0, cl_event* done = nullptr) const
     {
         if (n == 0) return;
-        BTGPU_CL_CHECK(clEnqueueReadBuffer(ctx.queue(), m_buf.mem(), CL_FALSE, 0, n * sizeof(T), data, 0, nullptr, nullptr));
+        BTGPU_CL_CHECK(clEnqueueReadBuffer(ctx.queue(), m_buf.mem(), CL_FALSE, offset * sizeof(T), n * sizeof(T), data, 0,
+                                           nullptr, done));
     }
     void copyFrom(Context& ctx, const DeviceArray<T>& src, size_t n)
     {

@@ -101,6 +101,7 @@ struct BodyReadback {
     cl::PinnedArray<BtgContactReport> contacts;
     size_t numContacts = 0;
     bool contactsValid = false;
+    bool reportsPending = false;  // their read still travelling: awaitReports before reading them
     void release()
     {
         pos.release();
@@ -112,9 +113,13 @@ struct BodyReadback {
         contacts.release();
         numContacts = 0;
         contactsValid = false;
+        reportsPending = false;  // (each release waits for the queue)
     }
 };
-// Blocking readback of every row's state and the counters.
+// Readback of every row's state and the counters (waited for), and of the contact reports when
+// the call wrote them (queued behind: out.reportsPending until awaitReports).
 void syncOut(DeviceWorld& w, BodyReadback& out);
+// Waits for the contact reports' read, when one is travelling.
+void awaitReports(DeviceWorld& w, BodyReadback& out);
 
 }  // namespace btgpu
