@@ -115,9 +115,10 @@ public:
             // scratch fall in the checks, the programs' builds in the device part.
             char first[256];
             std::snprintf(first, sizeof first,
-                          "first step %.0f ms: checks and rows built %.0f, sync-in %.0f, device part %.0f (program "
-                          "builds included), write-back %.0f",
-                          total, r.checkMs, r.syncInMs, r.deviceMs, r.writeBackMs);
+                          "first step %.0f ms: checks and rows built %.0f, sync-in %.0f, device part %.0f (of it "
+                          "%zu program builds %.0f), write-back %.0f",
+                          total, r.checkMs, r.syncInMs, r.deviceMs, r.builtPrograms.size(), 1000.0 * r.buildSeconds,
+                          r.writeBackMs);
             m_firstStep = first;
         }
         return {total - host, host};
