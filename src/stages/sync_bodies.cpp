@@ -92,8 +92,10 @@ void syncOut(DeviceWorld& w, BodyReadback& out)
     out.contactsValid = w.contactReportsWritten;
     size_t ahead = 0;
     if (w.contactReportsWritten) {
+        // (None ahead when there was no last call, whose count stands at a huge placeholder
+        // until then: the first step read the whole capacity, 736 MB at 1,000,000 cubes.)
         const size_t last = size_t(std::max(w.lastContactCount, 0));
-        ahead = std::min(w.contactReports.capacity(), last + last / 8 + 64);
+        ahead = last >= w.contactReports.capacity() ? 0 : std::min(w.contactReports.capacity(), last + last / 8 + 64);
         // The pinned copy holds what is read, grown a quarter past it (it was sized to the
         // whole contact capacity: 736 MB pinned at 1,000,000 falling cubes with none touching).
         if (out.contacts.size() < ahead) out.contacts.resize(w.ctx, std::min(w.contactReports.capacity(), ahead + ahead / 4));
