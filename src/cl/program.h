@@ -27,6 +27,10 @@ private:
     std::map<std::string, cl_kernel> m_kernels;
 };
 
+// Programs this process built from the binary of an earlier build of the same source, options
+// and device (a later context's: see program.cpp), for tests and diagnostics.
+size_t programsBuiltFromBinaries();
+
 // The largest work-group this kernel runs with on the context's device.
 size_t kernelWorkGroupSize(const Context& context, cl_kernel kernel);
 
