@@ -17,13 +17,12 @@ struct BodyRowUpdate {
     BtgBodyProps props;
 };
 
-// Rows to write, held as syncIn uploads them (row numbers, six states a row, props): built in
-// place, never repacked. Sized without writing (UntouchedVector), so the rebuild's every-row
-// list can be filled in parallel at each row's own index.
+// The rows an app changed, held as syncIn uploads them (row numbers, six states a row, props):
+// built in place, never repacked. (The rebuild's every row goes as BodyColumns instead.)
 struct BodyRowUploads {
-    UntouchedVector<int> rows;
-    UntouchedVector<BtgFloat4> states;  // pos, rot, linVel, angVel, force, torque
-    UntouchedVector<BtgBodyProps> props;
+    std::vector<int> rows;
+    std::vector<BtgFloat4> states;  // pos, rot, linVel, angVel, force, torque
+    std::vector<BtgBodyProps> props;
 
     size_t size() const { return rows.size(); }
     bool empty() const { return rows.empty(); }
