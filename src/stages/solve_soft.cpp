@@ -24,6 +24,17 @@ constexpr int kOneGroupMaxContactsWide = 1024;
 // ... and as many bodies: one group runs the substeps' body passes on one core (PoCL cubes
 // 32,768 while they fall, few contacts: frame 87.6 ms against b4e1194's 33.2).
 constexpr int kOneGroupMaxBodiesWide = 4096;
+// Past one group, the one-launch kernel (a group a core, grid barriers between the colours) only
+// up to this many contacts; above it the per-colour launches. The one-launch kernel saves the
+// launches' host cost (about 300 a step), which wins in small scenes, but its groups spin at
+// every barrier for each other: a core slowed by anything else on the machine stalls both, and
+// its compiled code runs slower than the per-colour kernels' (one group alone 86 ms a step at
+// cubes 8,000, where two take 42-46 and the launches 36). PoCL, 2 cores, 2026-12-06, solve
+// stage one launch / launches, alternating runs: cubes 729 (2,400 contacts) 5.7 / 4.2 ms at
+// equal frames; 1,000 7.6-7.8 / 5.3-5.4 (frame 10.9-11.1 / 10.1-10.2); 8,000 61-63 / 36-37
+// (and 42-83 / 36 on other runs: the spin's spread); 32,768 326-356 / 179-197. Both give the
+// same bits (state hashes).
+constexpr int kResidentMaxContactsWide = 2048;
 constexpr int kMaxSubsteps = 256;
 
 // A CPU device takes the solve and relax sweeps eight contacts a work-item (soft_wide.h): it
@@ -221,10 +232,11 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
         sc.softWideLanes.reserve(ctx, 1);
     }
     // With the wide sweeps a CPU device takes the whole stage in one launch too, a group a core
-    // with grid barriers between the colours: the per-colour path enqueues about 300 launches a
-    // step, whose host cost was about 4 ms a frame on PoCL (cubes 1,000 and 8,000 alike).
+    // with grid barriers between the colours, up to kResidentMaxContactsWide contacts: the
+    // per-colour path enqueues about 300 launches a step (host cost about 1.5 ms a frame on PoCL).
     const bool wideOneGroup = w.lastContactCount <= kOneGroupMaxContactsWide && numBodies <= kOneGroupMaxBodiesWide;
-    const bool wideResident = wideOn && residentAllowed(w) && !wideOneGroup;
+    const bool wideResident =
+        wideOn && residentAllowed(w) && !wideOneGroup && w.lastContactCount <= kResidentMaxContactsWide;
     const bool oneGroup = wideOn ? wideOneGroup : w.lastContactCount <= kOneGroupMaxContacts;
     if (resident || wideResident || oneGroup) {
         cl_kernel k = prog.kernel("soft_resident");
