@@ -13,7 +13,7 @@ namespace btgpu::demos {
 
 struct RunOptions {
     int steps = 0;       // 0: the demo's default
-    Config config;
+    Config config = Config::bulletMode();
     bool chaos = true;   // also run the nudged stock world
     int worst = 0;       // list this many bodies that end farthest from stock
 };

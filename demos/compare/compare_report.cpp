@@ -72,7 +72,7 @@ std::string summary(const CompareResult& r)
     }
     o << "btgpu_compare " << r.path << ": " << r.bodies << " bodies (" << r.dynamicBodies << " dynamic), "
       << r.constraints << " constraints, " << r.steps << " steps of " << g6(r.dt) << " s\n";
-    o << "  device: " << (r.device.empty() ? "none" : r.device) << "; ms/step stock " << fmt("%.3f", r.stockMsPerStep)
+    o << "  device: " << (r.device.empty() ? "none" : r.device) << "; solver: " << r.solver << "; ms/step stock " << fmt("%.3f", r.stockMsPerStep)
       << ", btgpu " << fmt("%.3f", r.gpuMsPerStep) << "\n";
     if (r.gpuPathEveryStep) o << "  GPU path: every step; stages " << joined(r.gpuStages) << "\n";
     else
@@ -107,7 +107,7 @@ std::string markdown(const CompareResult& r)
       << "up = " << vec(r.up) << " (against gravity)\n";
     o << "- run: " << r.steps << " steps of " << g6(r.dt) << " s (`stepSimulation(dt, 1, dt)`), stock Bullet "
       << fmt("%.3f", r.stockMsPerStep) << " ms/step, btgpu " << fmt("%.3f", r.gpuMsPerStep) << " ms/step on "
-      << (r.device.empty() ? "no device" : r.device) << "\n";
+      << (r.device.empty() ? "no device" : r.device) << ", solver: " << r.solver << "\n";
     if (r.gpuPathEveryStep)
         o << "- GPU path: **every step**; the plan's stages: " << joined(r.gpuStages) << "; programs built: " << joined(r.gpuPrograms)
           << "\n";

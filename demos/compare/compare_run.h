@@ -17,7 +17,7 @@ struct CompareOptions {
     std::string path;
     int steps = 300;
     double dt = 0.0;  // 0: the file's own fixed step (solver info), else 1/60
-    Config config;
+    Config config = Config::bulletMode();
     bool verbose = false;  // progress on stderr
     // Judge the aggregates after every step, not only at the end (the regression tests judge the
     // end state; a landing absorbed a step later is a transient outside the band).
@@ -49,6 +49,7 @@ struct CompareResult {
     int steps = 0;
     btVector3 up{0, 1, 0};
     std::string device;
+    std::string solver;  // the solver btgpu's last step ran (CompareOptions::config.solver, Auto resolved)
     // GPU path: every step, or the first step that was not and the world's reason.
     bool gpuPathEveryStep = false;
     int cpuPathSteps = 0, firstCpuPathStep = -1;

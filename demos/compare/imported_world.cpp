@@ -185,7 +185,7 @@ std::string probeImport(const FileCheck& file)
     if (child < 0) return "";  // no probe possible; the import itself runs next
     if (child == 0) {
         std::string error;
-        std::unique_ptr<ImportedWorld> w = ImportedWorld::load(file, Engine::Stock, Config(), error);
+        std::unique_ptr<ImportedWorld> w = ImportedWorld::load(file, Engine::Stock, Config::bulletMode(), error);
         ::_exit(w ? 0 : 3);
     }
     // A damaged count can also make the importer loop for hours (a hull's points are added one by

@@ -12,7 +12,7 @@
 using namespace btgpu::compare;
 
 static const char* kUsage =
-    "usage: btgpu_compare scene.bullet [--steps N] [--dt S] [--out DIR] [--device D] [--every-step] [--quiet]\n"
+    "usage: btgpu_compare scene.bullet [--steps N] [--dt S] [--out DIR] [--device D] [--solver S] [--every-step] [--quiet]\n"
     "  Loads a .bullet file (btgpu::saveWorld, or any Bullet app's btDefaultSerializer + world->serialize())\n"
     "  into stock btDiscreteDynamicsWorld and into btGpuDynamicsWorld, runs both and stock again with every\n"
     "  start nudged by 0.1 mm (8 fixed seeds), and reports how far btgpu is from stock relative to that chaos.\n"
@@ -20,6 +20,9 @@ static const char* kUsage =
     "  --dt S      fixed step in seconds (default: the file's own, else 1/60)\n"
     "  --out DIR   write compare.md, timeline.csv, bodies.csv, divergence.svg there\n"
     "  --device D  OpenCL device for btgpu: gpu, cpu or a name substring (as BTGPU_DEVICE)\n"
+    "  --solver S  btgpu's solver: bullet (default: Config::bulletMode(), the mode whose answers follow\n"
+    "              stock's), auto (the library's default: the soft step, which holds stiff scenes up where\n"
+    "              stock's solver lets them sag or fall, so it may land outside stock's chaos there) or soft\n"
     "  --every-step  judge the aggregates after every step, not only at the end\n"
     "  exit: 0 within stock's chaos on the GPU path, 1 outside it, 2 bad input, 3 ran on the CPU path\n";
 
@@ -64,6 +67,15 @@ int main(int argc, char** argv)
             out = value("--out");
         } else if (a == "--device") {
             o.config.device = value("--device");
+        } else if (a == "--solver") {
+            const std::string s = value("--solver");
+            if (s == "bullet") o.config.solver = btgpu::SolverKind::BatchedPgs;
+            else if (s == "auto") o.config.solver = btgpu::SolverKind::Auto;
+            else if (s == "soft") o.config.solver = btgpu::SolverKind::SoftStep;
+            else {
+                std::fprintf(stderr, "btgpu_compare: --solver takes bullet, auto or soft, not %s\n%s", s.c_str(), kUsage);
+                return kBadInput;
+            }
         } else if (a == "--every-step") {
             o.everyStep = true;
         } else if (a == "--quiet") {

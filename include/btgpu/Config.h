@@ -22,9 +22,11 @@ struct Issue;
 // substeps (the narrowphase still runs once a step), restitution after the substeps; joints as
 // their Bullet rows, solved each substep. Stiff scenes (mass ratios, tall stacks, pyramids)
 // stand where the batched PGS drifts; it is not stock's trajectory (see README, solver modes).
-// Auto: the soft step, or the batched PGS while the world uses a Bullet feature only the batched
-// PGS serves (friction anchors, m_sor, a negative m_globalCfm), where
-// SoftStep would send the world to the CPU path.
+// Auto (the default): the soft step, or the batched PGS while the world uses a Bullet feature only
+// the batched PGS serves (friction anchors, m_sor, a negative m_globalCfm), where SoftStep would
+// send the world to the CPU path. BatchedPgs (Config::bulletMode()) is the mode whose answers
+// follow stock's solver: pick it where the app's behaviour must match stock Bullet's (regression
+// runs against stock, tuned games); the default is the one that holds stiff scenes up.
 // Report::solver says which ran, Report::solverReason why not the soft step. A switch between
 // them (the app starts or stops using such a feature) starts the contacts afresh, as a
 // rebuild does: one step without warm start.
@@ -134,7 +136,7 @@ struct Config {
     // m: points closer than this become contacts (Bullet's gContactBreakingThreshold). Left at
     // 0.02, the world follows gContactBreakingThreshold when the app changes it.
     float contactThreshold = 0.02f;
-    SolverKind solver = SolverKind::BatchedPgs;
+    SolverKind solver = SolverKind::Auto;
     SoftStepConfig softStep;
     // Device substeps per fixed step (stepSimulation's own substeps are not touched: the app
     // sees the same steps, motion states and interpolation). Stiff scenes (mass ratios, tall
@@ -154,6 +156,16 @@ struct Config {
     std::size_t deviceMemoryLimit = 0;
     // Called for each problem the world reports (bad body input, OpenCL failure, fallback).
     std::function<void(const Issue&)> onIssue;
+
+    // The defaults with the bullet mode's solver (SolverKind::BatchedPgs): Bullet's
+    // sequential-impulse rows, order, friction and split impulse, batched; the mode to compare
+    // against stock Bullet with.
+    static Config bulletMode()
+    {
+        Config c;
+        c.solver = SolverKind::BatchedPgs;
+        return c;
+    }
 };
 
 }  // namespace btgpu

@@ -36,7 +36,8 @@ struct Options {
     bool noAabbSync = false;        // btgpu: Config::syncBroadphaseAabbs off (apps that never query)
     bool jacobi = false;            // btgpu: Config::solver = JacobiMassSplitting
     bool soft = false;              // btgpu: Config::solver = SoftStep
-    bool autoSolver = false;        // btgpu: Config::solver = Auto
+    bool autoSolver = false;        // btgpu: Config::solver = Auto (the library's default)
+    bool bulletMode = false;        // btgpu: Config::solver = BatchedPgs (Config::bulletMode())
     int softSubsteps = 0;           // btgpu: SoftStepConfig::substeps (0: m_numIterations')
     bool requireGpuPath = false;    // btgpu: skip (not fail) when the world is not on the GPU path
     bool b3NativeInertia = false;   // b3gpu: keep Bullet3's own (inflated) box inertia

@@ -78,7 +78,8 @@ public:
         if (options.soft) config.solver = btgpu::SolverKind::SoftStep;
         if (options.softSubsteps > 0) config.softStep.substeps = options.softSubsteps;
         if (options.autoSolver) config.solver = btgpu::SolverKind::Auto;
-        m_auto = options.autoSolver;
+        if (options.bulletMode) config.solver = btgpu::SolverKind::BatchedPgs;
+        m_auto = config.solver == btgpu::SolverKind::Auto;  // the library's default, or asked for
         m_soft = options.soft;
         m_world.reset(new btGpuDynamicsWorld(&m_infra.dispatcher, &m_infra.broadphase, &m_infra.solver, &m_infra.config,
                                         config));

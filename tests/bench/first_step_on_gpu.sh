@@ -6,7 +6,7 @@
 #   ../shared/gpu/pack build/tests/bench/btgpu_bench build/btgpu_bench_prev && cp tests/bench/first_step_on_gpu.sh .gpu/
 # then run  bash .gpu/first_step_on_gpu.sh  with carry [".gpu"]. One line a run goes to $OUT/summary.txt.
 # ROUNDS (A/B rounds, 2), M1 (runs at 1,000,000 cubes, 2) and GATES=0 (skip the peers' scenes)
-# trim it to a short device lease.
+# trim it to a short device lease. The runs after the A/B take the library's default solver (Auto).
 export BTGPU_DEVICE=gpu
 R="bash .gpu/run"
 O=${OUT:-/tmp}
@@ -23,9 +23,11 @@ echo "warm-up $(( $(date +%s)-t0 )) s" >> "$S"
 if [ -x .gpu/bin/btgpu_bench_prev ]; then
   for r in $(seq 1 "${ROUNDS:-2}"); do
     for b in btgpu_bench_prev btgpu_bench; do
-      timeout 60 $R ./.gpu/bin/$b --scene cubes --n 8000 --frames 200 --backends btgpu --no-aabb-sync > "$O/ab8k_${b}_$r.txt" 2>&1
+      # the bullet mode on both (an earlier bench's default; this one's takes --bullet-mode)
+      m=$([ $b = btgpu_bench ] && echo --bullet-mode)
+      timeout 60 $R ./.gpu/bin/$b --scene cubes --n 8000 --frames 200 --backends btgpu --no-aabb-sync $m > "$O/ab8k_${b}_$r.txt" 2>&1
       line "$O/ab8k_${b}_$r.txt" "AB 8000 r$r $b"
-      timeout 90 $R ./.gpu/bin/$b --scene cubes --n 32768 --frames 150 --backends btgpu --no-aabb-sync > "$O/ab32k_${b}_$r.txt" 2>&1
+      timeout 90 $R ./.gpu/bin/$b --scene cubes --n 32768 --frames 150 --backends btgpu --no-aabb-sync $m > "$O/ab32k_${b}_$r.txt" 2>&1
       line "$O/ab32k_${b}_$r.txt" "AB 32768 r$r $b"
     done
   done

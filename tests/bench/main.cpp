@@ -25,7 +25,7 @@ const char* kUsage =
     "                   [--ragdolls COUNT (ragdolls of 11 capsules and 10 joints; default 100)]\n"
     "                   pile, stacks, hulls: BenchmarkDemo's tests 1, 2 and 4 (3,008 boxes, 1,076 boxes, 960 barrels)\n"
     "                   [--frames F] [--backends btgpu,bullet,b3gpu] [--csv PATH] [--budget-s S]\n"
-    "                   [--no-sleep] [--no-aabb-sync] [--no-manifolds] [--empty-manifolds] [--no-empty-manifolds] [--contact-callback ground|all|processed] [--jacobi] [--soft] [--soft-substeps N] [--auto-solver] [--b3-native-inertia] [--absolute-thresholds] [--smoke]\n"
+    "                   [--no-sleep] [--no-aabb-sync] [--no-manifolds] [--empty-manifolds] [--no-empty-manifolds] [--contact-callback ground|all|processed] [--jacobi] [--soft] [--soft-substeps N] [--auto-solver] [--bullet-mode] [--b3-native-inertia] [--absolute-thresholds] [--smoke]\n"
     "  BTGPU_DEVICE=gpu|cpu|<name substring> picks the OpenCL device (btgpu and b3gpu alike).\n";
 
 [[noreturn]] void usage(const char* why)
@@ -117,6 +117,7 @@ int main(int argc, char** argv)
         else if (a == "--jacobi") options.jacobi = true;
         else if (a == "--soft") options.soft = true;
         else if (a == "--auto-solver") options.autoSolver = true;
+        else if (a == "--bullet-mode") options.bulletMode = true;
         else if (a == "--soft-substeps") {
             options.soft = true;
             options.softSubsteps = std::max(1, std::atoi(next()));

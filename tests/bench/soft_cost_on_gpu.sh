@@ -20,7 +20,7 @@ for spec in ${SPECS:-32768:100 112500:60 1000:150}; do
   for r in 1 2; do
     one "b4e1194 $n r$r" bash .gpu/run $B4 $C
     one "soft $n r$r" bash .gpu/run $B $C --no-manifolds --soft
-    one "bullet $n r$r" bash .gpu/run $B $C --no-manifolds
+    one "bullet $n r$r" bash .gpu/run $B $C --no-manifolds --bullet-mode
     [ -n "$QUADS_OFF" ] && one "soft quads off $n r$r" env BTGPU_SOFT_QUAD=0 bash .gpu/run $B $C --no-manifolds --soft
   done
 done

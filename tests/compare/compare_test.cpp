@@ -184,7 +184,7 @@ TEST(SaveWorld, BodiesComeBackAsSaved)
     btCollisionObjectArray& saved = scene->world().getCollisionObjectArray();
     for (Engine e : {Engine::Stock, Engine::Gpu}) {
         std::string error;
-        std::unique_ptr<ImportedWorld> w = ImportedWorld::load(file, e, Config(), error);
+        std::unique_ptr<ImportedWorld> w = ImportedWorld::load(file, e, Config::bulletMode(), error);
         ASSERT_TRUE(w) << error;
         ASSERT_EQ(int(w->bodies().size()), saved.size());
         for (int i = 0; i < saved.size(); ++i) expectSameBody(*btRigidBody::upcast(saved[i]), *w->bodies()[size_t(i)], i);
@@ -202,7 +202,7 @@ TEST(SaveWorld, BodiesComeBackAsSaved)
     OddBodies odd2(fresh->world());
     const std::string path2 = savedScene("fresh", *fresh);
     std::string error;
-    std::unique_ptr<ImportedWorld> w = ImportedWorld::load(checkBulletFile(path2), Engine::Stock, Config(), error);
+    std::unique_ptr<ImportedWorld> w = ImportedWorld::load(checkBulletFile(path2), Engine::Stock, Config::bulletMode(), error);
     ASSERT_TRUE(w) << error;
     for (int s = 0; s < 120; ++s) {
         fresh->world().stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
@@ -280,7 +280,7 @@ TEST(Compare, DamagedFilesNeverCrash)
             continue;
         }
         std::string error;
-        std::unique_ptr<ImportedWorld> w = ImportedWorld::load(c, Engine::Stock, Config(), error);
+        std::unique_ptr<ImportedWorld> w = ImportedWorld::load(c, Engine::Stock, Config::bulletMode(), error);
         loaded += w ? 1 : 0;
     }
     std::printf("damaged files: %d rejected by the check, %d by the importer in the probe, %d loaded\n", rejected, probed, loaded);
@@ -346,7 +346,7 @@ TEST(Compare, PileStaysWithinStocksChaos)
 
 TEST(Compare, StackStaysWithinStocksChaos)
 {
-    scenes::ScenePtr scene = scenes::boxStack(WorldKind::Stock, Config(), 6);
+    scenes::ScenePtr scene = scenes::boxStack(WorldKind::Stock, Config::bulletMode(), 6);
     const CompareResult r = compareFile(savedScene("stack", *scene), 180);
     std::fputs(summary(r).c_str(), stdout);
     EXPECT_TRUE(r.gpuPathEveryStep) << r.cpuPathReason;
@@ -397,7 +397,7 @@ TEST(Compare, JointedSceneRunsOnTheGpuPath)
 // The executable itself, once: its exit code is the verdict's, and --out gets the four files.
 TEST(Compare, ToolExitCodes)
 {
-    scenes::ScenePtr scene = scenes::boxStack(WorldKind::Stock, Config(), 3);
+    scenes::ScenePtr scene = scenes::boxStack(WorldKind::Stock, Config::bulletMode(), 3);
     const std::string path = savedScene("tool_stack", *scene);
     const std::string out = tempDir() + "/tool_out";
     auto run = [](const std::string& args) {
@@ -470,7 +470,7 @@ TEST(Compare, DoublePrecisionFileLoads)
     ASSERT_TRUE(file.ok) << file.error;
     EXPECT_TRUE(file.doublePrecision);
     std::string error;
-    std::unique_ptr<ImportedWorld> w = ImportedWorld::load(file, Engine::Stock, Config(), error);
+    std::unique_ptr<ImportedWorld> w = ImportedWorld::load(file, Engine::Stock, Config::bulletMode(), error);
     ASSERT_TRUE(w) << error;
     ASSERT_EQ(int(w->bodies().size()), ds::kBoxes + 1);
     for (int i = 0; i < ds::kBoxes; ++i) {
@@ -499,7 +499,7 @@ TEST(SaveWorld, GpuWorldSavesAndReloads)
     ASSERT_TRUE(running->gpuWorld()->isGpuPath()) << running->report()->cpuPathReason;
     std::string error;
     std::unique_ptr<ImportedWorld> w =
-        ImportedWorld::load(checkBulletFile(savedScene("gpu_running", *running)), Engine::Gpu, Config(), error);
+        ImportedWorld::load(checkBulletFile(savedScene("gpu_running", *running)), Engine::Gpu, Config::bulletMode(), error);
     ASSERT_TRUE(w) << error;
     btCollisionObjectArray& saved = running->world().getCollisionObjectArray();
     ASSERT_EQ(int(w->bodies().size()), saved.size());
@@ -507,7 +507,7 @@ TEST(SaveWorld, GpuWorldSavesAndReloads)
 
     scenes::ScenePtr fresh = scenes::basicDemo(WorldKind::Gpu);
     std::unique_ptr<ImportedWorld> g =
-        ImportedWorld::load(checkBulletFile(savedScene("gpu_fresh", *fresh)), Engine::Gpu, Config(), error);
+        ImportedWorld::load(checkBulletFile(savedScene("gpu_fresh", *fresh)), Engine::Gpu, Config::bulletMode(), error);
     ASSERT_TRUE(g) << error;
     for (int s = 0; s < 120; ++s) {
         fresh->step();

@@ -122,7 +122,7 @@ public:
         m_broadphase = std::make_unique<btDbvtBroadphase>();
         m_solver = std::make_unique<btSequentialImpulseConstraintSolver>();
         if (engine == Engine::Gpu) {
-            btgpu::Config config;
+            btgpu::Config config = btgpu::Config::bulletMode();
             config.internalSubsteps = r.internalSubsteps;
             config.solver = r.jacobi ? btgpu::SolverKind::JacobiMassSplitting : btgpu::SolverKind::BatchedPgs;
             config.profile = r.profiling;

@@ -28,8 +28,8 @@ struct LambdaAction : btActionInterface {
 
 void driveStraight(scenes::VehicleGround ground)
 {
-    auto stock = scenes::raycastVehicle(scenes::WorldKind::Stock, Config(), ground);
-    auto gpu = scenes::raycastVehicle(scenes::WorldKind::Gpu, Config(), ground);
+    auto stock = scenes::raycastVehicle(scenes::WorldKind::Stock, Config::bulletMode(), ground);
+    auto gpu = scenes::raycastVehicle(scenes::WorldKind::Gpu, Config::bulletMode(), ground);
     const btVector3 start = stock->chassis->getWorldTransform().getOrigin();
     for (int i = 0; i < 300; ++i) {  // 5 s: 1 s settling, then 4 s at full engine force
         const btScalar force = i < 60 ? 0 : 1000;

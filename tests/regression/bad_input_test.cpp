@@ -114,7 +114,7 @@ void expectNamedAndContained(const Config& config, bool gpuPath)
     for (const BadCase& c : badCases()) {
         SCOPED_TRACE(c.name);
         ScenePtr gpu = layout(WorldKind::Gpu, config, c.shape);
-        ScenePtr clean = layout(WorldKind::Stock, Config(), nullptr);
+        ScenePtr clean = layout(WorldKind::Stock, Config::bulletMode(), nullptr);
         for (int i = 0; i < 3; ++i) {
             gpu->step();
             clean->step();
@@ -141,11 +141,11 @@ void expectNamedAndContained(const Config& config, bool gpuPath)
 
 }  // namespace
 
-TEST(BadInput, NamedAndContainedOnTheGpuPath) { expectNamedAndContained(Config(), true); }
+TEST(BadInput, NamedAndContainedOnTheGpuPath) { expectNamedAndContained(Config::bulletMode(), true); }
 
 TEST(BadInput, NamedAndContainedOnTheCpuPath)
 {
-    Config config;
+    Config config = Config::bulletMode();
     config.forceCpu = true;
     expectNamedAndContained(config, false);
 }
@@ -154,7 +154,7 @@ TEST(BadInput, FixedBodyComesBack)
 {
     for (bool cpu : {false, true}) {
         SCOPED_TRACE(cpu ? "CPU path" : "GPU path");
-        Config config;
+        Config config = Config::bulletMode();
         config.forceCpu = cpu;
         ScenePtr gpu = layout(WorldKind::Gpu, config, nullptr);
         btRigidBody* b = gpu->body(2);
@@ -174,7 +174,7 @@ TEST(BadInput, NanWorldGravityIsNamed)
 {
     for (bool cpu : {false, true}) {
         SCOPED_TRACE(cpu ? "CPU path" : "GPU path");
-        Config config;
+        Config config = Config::bulletMode();
         config.forceCpu = cpu;
         ScenePtr gpu = layout(WorldKind::Gpu, config, nullptr);
         gpu->step();

@@ -18,7 +18,7 @@ using scenes::WorldKind;
 
 constexpr int kSteps = 240;  // 4 s at 1/60 s: every barrel has landed and settled
 
-double gpuUpright(const BarrelDrop& drop, int* offPathSteps, const Config& config = Config())
+double gpuUpright(const BarrelDrop& drop, int* offPathSteps, const Config& config = Config::bulletMode())
 {
     auto gpu = scenes::barrelDrop(WorldKind::Gpu, config, drop);
     for (int s = 0; s < kSteps; ++s) {
@@ -34,7 +34,7 @@ TEST(Barrels, UprightFractionWithinStocksChaos)
         BarrelDrop drop;
         drop.polyhedral = polyhedral;
         const auto bands = scenes::stockChaos(
-            [&](WorldKind kind) { return scenes::barrelDrop(kind, Config(), drop); }, kSteps,
+            [&](WorldKind kind) { return scenes::barrelDrop(kind, Config::bulletMode(), drop); }, kSteps,
             [](const scenes::Scene& s) { return std::vector<double>{scenes::uprightFraction(s)}; }, {"upright"},
             {tol::kChaosStandingFloor});
         int offPath = 0;
@@ -54,10 +54,10 @@ TEST(Barrels, SoftStepUprightFractionWithinStocksChaos)
 {
     BarrelDrop drop;
     const auto bands = scenes::stockChaos(
-        [&](WorldKind kind) { return scenes::barrelDrop(kind, Config(), drop); }, kSteps,
+        [&](WorldKind kind) { return scenes::barrelDrop(kind, Config::bulletMode(), drop); }, kSteps,
         [](const scenes::Scene& s) { return std::vector<double>{scenes::uprightFraction(s)}; }, {"upright"},
         {tol::kChaosStandingFloor});
-    Config soft;
+    Config soft = Config::bulletMode();
     soft.solver = SolverKind::SoftStep;
     int offPath = 0;
     const double gpu = gpuUpright(drop, &offPath, soft);

@@ -208,10 +208,10 @@ TEST(Callbacks, CustomFrictionSlidesAsStock)
 TEST(Callbacks, SoftStepTakesTheCallbacksMaterial)
 {
     Globals restore;
-    Config soft;
+    Config soft = Config::bulletMode();
     soft.solver = SolverKind::SoftStep;
     auto side = [&](const SceneBuilder& make, int steps, const std::function<double(const Scene&)>& measure) {
-        ScenePtr stock = make(WorldKind::Stock, Config()), gpu = make(WorldKind::Gpu, soft);
+        ScenePtr stock = make(WorldKind::Stock, Config::bulletMode()), gpu = make(WorldKind::Gpu, soft);
         std::vector<double> ys, yg;
         for (int step = 0; step < steps; ++step) {
             stock->step();
@@ -254,7 +254,7 @@ TEST(Callbacks, UnservedCasesFallBackNamingThemselves)
     Globals restore;
     gContactAddedCallback = bouncy;
     {  // several device substeps per internal step: the callback would run more often than stock's
-        Config c;
+        Config c = Config::bulletMode();
         c.internalSubsteps = 2;
         ScenePtr gpu = scenes::trampoline(WorldKind::Gpu, c);
         gpu->step();
@@ -278,7 +278,7 @@ TEST(Callbacks, UnservedCasesFallBackNamingThemselves)
         gContactAddedCallback = nullptr;
         Combiners undo;
         gCalculateCombinedFrictionCallback = smallerFriction;
-        Config c;
+        Config c = Config::bulletMode();
         c.internalSubsteps = 2;
         ScenePtr gpu = scenes::slidingBox(WorldKind::Gpu, c);
         gpu->step();
@@ -289,7 +289,7 @@ TEST(Callbacks, UnservedCasesFallBackNamingThemselves)
     for (int which = 0; which < 2; ++which) {  // the manifold events: several device substeps, or no fill
         gContactAddedCallback = nullptr;
         gContactEndedCallback = [](btPersistentManifold* const&) {};
-        Config c;
+        Config c = Config::bulletMode();
         if (which == 0) c.internalSubsteps = 2;
         else c.fillDispatcherManifolds = false;
         ScenePtr gpu = scenes::slidingBox(WorldKind::Gpu, c);
@@ -508,7 +508,7 @@ TEST(Callbacks, OverlapFilterLetsRefusedBodiesPassAsStock)
     }
     // Several device substeps an internal step: still the CPU path, naming it.
     RefusePair filter;
-    Config c;
+    Config c = Config::bulletMode();
     c.internalSubsteps = 2;
     ScenePtr gpu = scenes::boxOverBox(WorldKind::Gpu, c);
     gpu->world().getPairCache()->setOverlapFilterCallback(&filter);

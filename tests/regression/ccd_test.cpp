@@ -21,7 +21,7 @@ using namespace btgpu::test;
 TEST(Ccd, PileThatNeverMovesFastIsUnchanged)
 {
     auto make = [](bool ccd) {
-        ScenePtr s = scenes::cubes(WorldKind::Gpu, 4, 4, 4, Config());
+        ScenePtr s = scenes::cubes(WorldKind::Gpu, 4, 4, 4, Config::bulletMode());
         if (ccd)
             for (btRigidBody* b : s->bodies())
                 if (b->getInvMass() > 0) {
@@ -92,7 +92,7 @@ TEST(Ccd, FastBallStopsAtAThinWallAsStock)
 TEST(Ccd, BesideACharacterControllerAsStock)
 {
     auto make = [](WorldKind k) {
-        auto g = scenes::characterWalk(k, Config());
+        auto g = scenes::characterWalk(k, Config::bulletMode());
         btRigidBody* ball = g->scene->addBody(g->scene->sphereShape(btScalar(0.1)), 1, btVector3(btScalar(1.5), 2, 2));
         ball->setLinearVelocity(btVector3(0, 0, 150));
         ball->setCcdMotionThreshold(btScalar(0.1));

@@ -233,7 +233,7 @@ TEST(Compound, ChildChangesBetweenStepsTakeEffect)
 TEST(Compound, UnservedCompoundsFallBackWithTheirReason)
 {
     {
-        auto scene = scenes::tableStack(WorldKind::Gpu, Config(), 1);
+        auto scene = scenes::tableStack(WorldKind::Gpu, Config::bulletMode(), 1);
         auto* outer = scene->ownShape(new btCompoundShape(false));
         outer->addChildShape(btTransform::getIdentity(), scenes::tableShape(*scene));
         btRigidBody* b = scene->addBody(outer, 1, btVector3(5, 1, 0));
@@ -247,7 +247,7 @@ TEST(Compound, UnservedCompoundsFallBackWithTheirReason)
         EXPECT_TRUE(scene->gpuWorld()->isGpuPath()) << scene->report()->cpuPathReason;
     }
     {
-        auto scene = scenes::tableStack(WorldKind::Gpu, Config(), 1);
+        auto scene = scenes::tableStack(WorldKind::Gpu, Config::bulletMode(), 1);
         auto* outer = scene->ownShape(new btCompoundShape());
         outer->addChildShape(btTransform::getIdentity(), scenes::tableShape(*scene));
         scene->addBody(outer, 1, btVector3(5, 1, 0));
@@ -258,7 +258,7 @@ TEST(Compound, UnservedCompoundsFallBackWithTheirReason)
             << scene->report()->cpuPathReason;
     }
     {
-        auto scene = scenes::tableStack(WorldKind::Gpu, Config(), 1);
+        auto scene = scenes::tableStack(WorldKind::Gpu, Config::bulletMode(), 1);
         auto* withPlane = scene->ownShape(new btCompoundShape());
         withPlane->addChildShape(btTransform::getIdentity(), scene->ownShape(new btStaticPlaneShape(btVector3(0, 1, 0), 0)));
         scene->addBody(withPlane, 0, btVector3(5, 0, 0));

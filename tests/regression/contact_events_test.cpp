@@ -105,7 +105,7 @@ TEST(Callbacks, EventCountsOnABoxPileAsStock)
     gContactProcessedCallback = onProcessed;
     gContactAddedCallback = onAdded;
     auto make = [](WorldKind k, const Config&) {
-        ScenePtr s = scenes::cubes(k, 4, 4, 4, Config());
+        ScenePtr s = scenes::cubes(k, 4, 4, 4, Config::bulletMode());
         btRigidBody* ground = s->body(0);
         ground->setCollisionFlags(ground->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
         return s;
@@ -114,7 +114,7 @@ TEST(Callbacks, EventCountsOnABoxPileAsStock)
     // and largest distance.
     double chaosMean[3] = {0, 0, 0}, chaosLo[3] = {1e30, 1e30, 1e30}, chaosHi[3] = {0, 0, 0};
     for (int run = 0; run < tol::kChaosRuns; ++run) {
-        ScenePtr s = make(WorldKind::Stock, Config());
+        ScenePtr s = make(WorldKind::Stock, Config::bulletMode());
         scenes::nudge(*s, 1000u + unsigned(run), tol::kChaosNudge);
         double counts[3] = {0, 0, 0};
         for (int step = 0; step < 200; ++step) {
@@ -257,11 +257,11 @@ KeptRun keptRun(const std::function<ScenePtr(WorldKind)>& scene, int steps)
 TEST(Callbacks, KeptBoxPointsKeepTheCallbacksMaterialAsStock)
 {
     Events restore;
-    const KeptRun pile = keptRun([](WorldKind k) { return scenes::cubes(k, 4, 4, 4, Config()); }, 90);
+    const KeptRun pile = keptRun([](WorldKind k) { return scenes::cubes(k, 4, 4, 4, Config::bulletMode()); }, 90);
     EXPECT_GT(pile.checked[1], 64 * 60);
     EXPECT_GT(pile.kept[0], 0);
     EXPECT_GT(pile.kept[1], 0);  // the path is taken on the GPU path too
-    const KeptRun tables = keptRun([](WorldKind k) { return scenes::tableStack(k, Config(), 3); }, 90);
+    const KeptRun tables = keptRun([](WorldKind k) { return scenes::tableStack(k, Config::bulletMode(), 3); }, 90);
     EXPECT_GT(tables.checked[1], 4 * 60);
     EXPECT_GT(tables.added[1], 0);
 }
@@ -419,7 +419,7 @@ TEST(Callbacks, CpuPathExcursionContinuesContactsAsStock)
     EXPECT_NEAR(allocated[1], allocated[0], 4);
     // The same excursion on a second btgpu world (other addresses, so the manifold map keeps
     // another order): bitwise the same bodies — the hand-overs follow the pair cache's order.
-    ScenePtr again = scenes::boxStack(WorldKind::Gpu, Config(), 4);
+    ScenePtr again = scenes::boxStack(WorldKind::Gpu, Config::bulletMode(), 4);
     auto near = [&](btNearCallback cb) { static_cast<btCollisionDispatcher*>(again->world().getDispatcher())->setNearCallback(cb); };
     for (int i = 0; i < 30; ++i) again->step();
     near(nearAsStock);

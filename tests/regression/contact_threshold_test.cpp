@@ -69,7 +69,7 @@ TEST(ContactThreshold, FollowsGContactBreakingThresholdAsStock)
     }
     {
         gContactBreakingThreshold = 0.05f;
-        Config config;
+        Config config = Config::bulletMode();
         config.contactThreshold = 0.03f;
         ScenePtr scene = coastingSphere(WorldKind::Gpu, config, false);
         scene->step();

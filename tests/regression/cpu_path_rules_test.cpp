@@ -277,7 +277,7 @@ TEST(CpuPathRules, EachRuleFallsBackAndComesBack)
 // A drop-row scene with Config::solver = `kind`, after a first step on the GPU path.
 ScenePtr dropRowStepped(SolverKind kind)
 {
-    Config config;
+    Config config = Config::bulletMode();
     config.solver = kind;
     ScenePtr scene = scenes::dropRow(WorldKind::Gpu, config);
     scene->step();
@@ -416,7 +416,7 @@ TEST(CpuPathRules, AutoSolverSwitchesBetweenCalls)
 TEST(CpuPathRules, AutoSolverRunsTheChosenSolverBitwise)
 {
     auto run = [](SolverKind kind, bool anchors) {
-        Config config;
+        Config config = Config::bulletMode();
         config.solver = kind;
         ScenePtr scene = scenes::dropRow(WorldKind::Gpu, config);
         if (anchors)
@@ -430,6 +430,32 @@ TEST(CpuPathRules, AutoSolverRunsTheChosenSolverBitwise)
     EXPECT_EQ(run(SolverKind::SoftStep, false), run(SolverKind::Auto, false));
     EXPECT_EQ(run(SolverKind::BatchedPgs, true), run(SolverKind::Auto, true));
     EXPECT_NE(run(SolverKind::BatchedPgs, false), run(SolverKind::Auto, false));
+}
+
+// The library's default is Auto (issue 13: the default holds stiff scenes up): a world made
+// with Config's defaults, as the one-line swap makes it, runs the soft step bit for bit, and the
+// bullet mode takes over on the GPU path where the world uses what only it serves (m_sor here).
+// Config::bulletMode() is the defaults with the batched PGS.
+TEST(CpuPathRules, TheDefaultIsAutoAndRunsTheSoftStep)
+{
+    EXPECT_EQ(SolverKind::Auto, Config().solver);
+    EXPECT_EQ(SolverKind::BatchedPgs, Config::bulletMode().solver);
+    auto run = [](const Config& config, btScalar sor) {
+        ScenePtr scene = scenes::dropRow(WorldKind::Gpu, config);
+        scene->world().getSolverInfo().m_sor = sor;
+        for (int i = 0; i < 30; ++i) {
+            scene->step();
+            EXPECT_TRUE(scene->report()->gpuPath) << scene->report()->cpuPathReason;
+        }
+        const bool soft = config.solver != SolverKind::BatchedPgs && sor == btScalar(1);
+        EXPECT_EQ(soft ? SolverKind::SoftStep : SolverKind::BatchedPgs, scene->report()->solver);
+        return scene->gpuWorld()->stateHash();
+    };
+    Config soft = Config::bulletMode();
+    soft.solver = SolverKind::SoftStep;
+    EXPECT_EQ(run(soft, 1), run(Config(), 1));
+    EXPECT_EQ(run(Config::bulletMode(), btScalar(0.9)), run(Config(), btScalar(0.9)));
+    EXPECT_NE(run(Config::bulletMode(), 1), run(Config(), 1));
 }
 
 TEST(CpuPathRules, ComingBackAgreesWithStock)
@@ -585,7 +611,7 @@ TEST(CpuPathRules, BreakingThresholdKeptAlikeInConfigStaysOnGpu)
 {
     const btScalar saved = gContactBreakingThreshold;
     gContactBreakingThreshold = btScalar(0.03);
-    Config config;
+    Config config = Config::bulletMode();
     config.contactThreshold = 0.03f;
     ScenePtr scene = scenes::restingBox(WorldKind::Gpu, config);
     scene->step();

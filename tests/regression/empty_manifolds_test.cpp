@@ -42,13 +42,13 @@ Held held(Scene& s)
 
 Config stockEmpties()
 {
-    Config c;
+    Config c = Config::bulletMode();
     c.stockEmptyManifolds = true;
     return c;
 }
 
 // The default: stock's pairs from the device's leaves.
-Config deviceEmpties() { return Config{}; }
+Config deviceEmpties() { return Config::bulletMode(); }
 
 // The mode's stage ran on the btgpu world's last call (and the other mode's did not).
 void expectMode(const Scene& gpu, const Config& c, int step)
@@ -321,7 +321,7 @@ TEST(EmptyManifolds, LazyPairRemovalAsStock)
 // with points only, as stock's with points; raised again, the stage and the empty ones come back.
 TEST(EmptyManifolds, BigWorldsHoldPointsOnly)
 {
-    Config capped;
+    Config capped = Config::bulletMode();
     capped.deviceEmptyManifoldsUpTo = 100;  // BasicDemo has 126 collision objects
     ScenePtr s = scenes::basicDemo(WorldKind::Gpu, capped);
     for (int step = 0; step < 80; ++step) {
@@ -341,7 +341,7 @@ TEST(EmptyManifolds, BigWorldsHoldPointsOnly)
             EXPECT_NE(i.message.find("deviceEmptyManifoldsUpTo (100)"), std::string::npos) << i.message;
         }
     EXPECT_EQ(said, 1);
-    ScenePtr open = scenes::basicDemo(WorldKind::Gpu, Config());
+    ScenePtr open = scenes::basicDemo(WorldKind::Gpu, Config::bulletMode());
     for (int step = 0; step < 80; ++step) open->step();
     EXPECT_TRUE(hasStage(*open, "broadphase_leaves"));
     EXPECT_GT(held(*open).manifolds, held(*open).touching);

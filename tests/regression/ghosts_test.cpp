@@ -163,7 +163,7 @@ TriggerTimes triggerTimes(const Config& config,
 // pair that stopped overlapping up to ~10 steps); the list never holds a body stock's does not.
 TEST(Ghosts, TriggerInABigWorldFromTheTree)
 {
-    Config big;
+    Config big = Config::bulletMode();
     big.ghostPairsExactUpTo = 0;
     big.ghostPairsFromDevice = false;
     const TriggerTimes t = triggerTimes(big, [](int i, const std::vector<int>& s, const std::vector<int>& g, GhostScene&) {
@@ -184,7 +184,7 @@ TEST(Ghosts, TriggerInABigWorldFromTheTree)
 // trigger is followed; the pair cache of a btPairCachingGhostObject holds the list's pairs.
 TEST(Ghosts, TriggerInABigWorldFromTheDevice)
 {
-    Config big;
+    Config big = Config::bulletMode();
     big.ghostPairsExactUpTo = 0;
     double hostMs = 0.0;
     const TriggerTimes t = triggerTimes(big, [&hostMs](int i, const std::vector<int>&, const std::vector<int>& g, GhostScene& gpu) {
@@ -209,8 +209,8 @@ TEST(Ghosts, GhostSubclassGetsStockCalls)
             return static_cast<btGhostObject*>(g);
         };
     };
-    auto stock = scenes::triggerFall(WorldKind::Stock, Config(), maker(&stockLog));
-    auto gpu = scenes::triggerFall(WorldKind::Gpu, Config(), maker(&gpuLog));
+    auto stock = scenes::triggerFall(WorldKind::Stock, Config::bulletMode(), maker(&stockLog));
+    auto gpu = scenes::triggerFall(WorldKind::Gpu, Config::bulletMode(), maker(&gpuLog));
     static_cast<LoggingGhost*>(stock->ghost())->world = &stock->scene->world();
     static_cast<LoggingGhost*>(gpu->ghost())->world = &gpu->scene->world();
     for (int i = 0; i < 180; ++i) {
@@ -257,12 +257,12 @@ void walkIntoAStepAndAWall(const Config& config)
     EXPECT_LT((end - gEnd).length(), 0.01);
 }
 
-TEST(Ghosts, CharacterWalksIntoAStepAndAWallAsStock) { walkIntoAStepAndAWall(Config()); }
+TEST(Ghosts, CharacterWalksIntoAStepAndAWallAsStock) { walkIntoAStepAndAWall(Config::bulletMode()); }
 
 // The same as a big world runs it: the character's ghost pairs from Bullet's tree only.
 TEST(Ghosts, CharacterInABigWorldWalksAsStock)
 {
-    Config big;
+    Config big = Config::bulletMode();
     big.ghostPairsExactUpTo = 0;
     big.ghostPairsFromDevice = false;
     walkIntoAStepAndAWall(big);
@@ -273,7 +273,7 @@ TEST(Ghosts, CharacterInABigWorldWalksAsStock)
 // do not follow (it lands 12 cm late off the step without the tree).
 TEST(Ghosts, CharacterInABigWorldKeepsTheTree)
 {
-    Config big;
+    Config big = Config::bulletMode();
     big.ghostPairsExactUpTo = 0;
     walkIntoAStepAndAWall(big);
     auto gpu = scenes::characterWalk(WorldKind::Gpu, big);
@@ -289,8 +289,8 @@ TEST(Ghosts, CharacterInABigWorldKeepsTheTree)
 // in stock's solver). Both worlds alike every step.
 TEST(Ghosts, BodyAgainstACharacterStaysAwakeAsStock)
 {
-    auto stock = scenes::characterWalk(WorldKind::Stock, Config(), true);
-    auto gpu = scenes::characterWalk(WorldKind::Gpu, Config(), true);
+    auto stock = scenes::characterWalk(WorldKind::Stock, Config::bulletMode(), true);
+    auto gpu = scenes::characterWalk(WorldKind::Gpu, Config::bulletMode(), true);
     bool farSlept = false;
     double worstPushed = 0;
     for (int i = 0; i < 240; ++i) {

@@ -16,7 +16,7 @@ namespace {
 
 Config jacobiConfig()
 {
-    Config c;
+    Config c = Config::bulletMode();
     c.solver = SolverKind::JacobiMassSplitting;
     return c;
 }
@@ -29,7 +29,7 @@ struct StackOutcome {
 
 StackOutcome runStack(SolverKind solver, int iterations)
 {
-    Config c;
+    Config c = Config::bulletMode();
     c.solver = solver;
     ScenePtr s = scenes::boxStack(WorldKind::Gpu, c, 8);
     s->world().getSolverInfo().m_numIterations = iterations;
@@ -53,7 +53,7 @@ TEST(Jacobi, PlanReplacesBatchingAndPgs)
     EXPECT_TRUE(has("solve_jacobi"));
     EXPECT_FALSE(has("color_constraints"));
     EXPECT_FALSE(has("solve_constraints"));
-    ScenePtr pgs = scenes::boxStack(WorldKind::Gpu, Config(), 2);
+    ScenePtr pgs = scenes::boxStack(WorldKind::Gpu, Config::bulletMode(), 2);
     pgs->step(kStep);
     const std::vector<std::string>& pgsStages = pgs->report()->stages;
     EXPECT_EQ(std::count(pgsStages.begin(), pgsStages.end(), "solve_jacobi"), 0);

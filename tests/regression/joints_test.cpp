@@ -127,7 +127,7 @@ TEST(Joints, MoreJointIterationsStretchLess)
     // longer: the chain stretches less, on both.
     double stretch[2] = {0, 0};
     for (int k = 0; k < 2; ++k) {
-        ScenePtr gpu = scenes::chain(WorldKind::Gpu, Config(), 20);
+        ScenePtr gpu = scenes::chain(WorldKind::Gpu, Config::bulletMode(), 20);
         for (int j = 0; j < gpu->numJoints(); ++j) gpu->joint(j)->setOverrideNumSolverIterations(k ? 60 : 0);
         const double start = gpu->body(21)->getWorldTransform().getOrigin().y();
         for (int i = 0; i < 120; ++i) {
@@ -262,14 +262,14 @@ TEST(Joints, UnservedJointsKeepTheCpuPathNamingThem)
         struct AppHinge : btHingeAccumulatedAngleConstraint {
             using btHingeAccumulatedAngleConstraint::btHingeAccumulatedAngleConstraint;
         };
-        ScenePtr s = scenes::chain(WorldKind::Gpu, Config(), 2);
+        ScenePtr s = scenes::chain(WorldKind::Gpu, Config::bulletMode(), 2);
         s->addJoint(new AppHinge(*s->body(2), btVector3(0, 0, 0), btVector3(0, 1, 0)));
         s->step();
         EXPECT_FALSE(s->gpuWorld()->isGpuPath());
         EXPECT_NE(s->report()->cpuPathReason.find("AppHinge"), std::string::npos) << s->report()->cpuPathReason;
     }
     {
-        Config c;
+        Config c = Config::bulletMode();
         c.solver = SolverKind::JacobiMassSplitting;
         ScenePtr s = scenes::pendulum(WorldKind::Gpu, c);
         s->step();
@@ -502,8 +502,8 @@ TEST(Joints, RagdollsFallOntoTheGroundAsOnStock)
 
 TEST(Joints, SameRagdollSceneTwiceGivesSameHashes)
 {
-    ScenePtr a = scenes::ragdolls(WorldKind::Gpu, Config(), 4);
-    ScenePtr b = scenes::ragdolls(WorldKind::Gpu, Config(), 4);
+    ScenePtr a = scenes::ragdolls(WorldKind::Gpu, Config::bulletMode(), 4);
+    ScenePtr b = scenes::ragdolls(WorldKind::Gpu, Config::bulletMode(), 4);
     for (int i = 0; i < 90; ++i) {
         a->step();
         b->step();
@@ -677,10 +677,10 @@ void expectBench3WithinStocksChaos(int rows, const std::vector<int>& steps)
         scenes::Aggregates a = scenes::aggregates(scene);
         return std::vector<double>{a.meanHeight, a.spread, a.kineticEnergy};
     };
-    scenes::ScenePtr gpu = scenes::bench3Ragdolls(WorldKind::Gpu, Config(), rows);
+    scenes::ScenePtr gpu = scenes::bench3Ragdolls(WorldKind::Gpu, Config::bulletMode(), rows);
     int done = 0;
     for (int at : steps) {
-        const auto bands = scenes::stockChaos([rows](WorldKind kind) { return scenes::bench3Ragdolls(kind, Config(), rows); },
+        const auto bands = scenes::stockChaos([rows](WorldKind kind) { return scenes::bench3Ragdolls(kind, Config::bulletMode(), rows); },
                                               at, measure, {"mean height", "spread", "kinetic energy"},
                                               {tol::kChaosHeightFloor, tol::kChaosSpreadFloor, tol::kChaosEnergyFloor});
         for (; done < at; ++done) {

@@ -170,7 +170,7 @@ bool onTriangle(const btCollisionObject* mesh, int part, int index, const btVect
 TEST(Manifolds, BoxPileCountsAsStock)
 {
     // The manifolds with points only (stock's empty ones too by default: empty_manifolds_test.cpp).
-    Config withPoints;
+    Config withPoints = Config::bulletMode();
     withPoints.deviceEmptyManifolds = false;
     auto make = [&](WorldKind k) { return scenes::cubes(k, 4, 4, 4, withPoints); };
     const int steps = 240, first = 40;
@@ -526,7 +526,7 @@ TEST(Manifolds, HeightfieldPointsNameTheirCell)
 // Config::fillDispatcherManifolds off: no report stage, no leaf pairs, and the dispatcher stays empty.
 TEST(Manifolds, SwitchOffLeavesTheDispatcherEmpty)
 {
-    Config off;
+    Config off = Config::bulletMode();
     off.fillDispatcherManifolds = false;
     SideBySide sb([](WorldKind k, const Config& c) { return scenes::boxStack(k, c, 4); }, off);
     for (int step = 0; step < 40; ++step) {

@@ -211,7 +211,7 @@ TEST(Mesh, EditedVerticesAndRefittedTreeArePickedUp)
     // The box lands on the lowered mesh from 0.3 m on one point a triangle and rocks sideways:
     // its drift judged against stock's own chaos.
     expectRestHeights(run, starts, 1, 2, 1.0);
-    expectDriftWithinStocksChaos([&make](WorldKind k) { return make(k, Config()); }, 150, run, starts, 1, 2);
+    expectDriftWithinStocksChaos([&make](WorldKind k) { return make(k, Config::bulletMode()); }, 150, run, starts, 1, 2);
     EXPECT_NEAR(run.gpuY(1), 0.2, 0.01);
 }
 
@@ -331,7 +331,7 @@ TEST(Mesh, UnservedMeshCasesKeepTheCpuPathWithTheirReason)
 TEST(Mesh, SameLandscapeTwiceGivesSameHashes)
 {
     // Bitwise the same, step by step (the midphase's count/scan/write order, the gather's).
-    auto make = [] { return scenes::landscape(WorldKind::Gpu, Config(), 120); };
+    auto make = [] { return scenes::landscape(WorldKind::Gpu, Config::bulletMode(), 120); };
     ScenePtr a = make(), b = make();
     for (int i = 0; i < 90; ++i) {
         a->step();
@@ -349,7 +349,7 @@ TEST(Mesh, SubPairOverflowGrowsAndRedoesTheStep)
     // every box rests on the mesh as stock's, both engines' sinking up to about 2 cm into it here
     // (one GJK point per triangle a frame, replacing each other in a manifold of 4).
     std::vector<Issue> issues;
-    Config config;
+    Config config = Config::bulletMode();
     config.onIssue = [&issues](const Issue& i) { issues.push_back(i); };
     auto make = [](WorldKind kind, const Config& c) {
         auto scene = std::make_unique<scenes::Scene>(kind, c, "fine_mesh");
@@ -418,7 +418,7 @@ TEST(Mesh, BoxSlidesDownAnInclinedMeshAsOnStock)
         slid[mesh][0] = (run.stock->body(1)->getWorldTransform().getOrigin() - s0).length();
         slid[mesh][1] = (run.gpu->body(1)->getWorldTransform().getOrigin() - g0).length();
     }
-    const auto bands = scenes::stockChaos([&make](WorldKind k) { return make(true)(k, Config()); }, steps,
+    const auto bands = scenes::stockChaos([&make](WorldKind k) { return make(true)(k, Config::bulletMode()); }, steps,
                                           [start](const scenes::Scene& s) {
                                               return std::vector<double>{
                                                   (s.body(1)->getWorldTransform().getOrigin() - start).length()};
@@ -441,10 +441,10 @@ TEST(Mesh, LandscapeWithinStocksChaos)
         const scenes::Aggregates a = scenes::aggregates(s);
         return std::vector<double>{a.meanHeight, a.spread, a.kineticEnergy};
     };
-    const auto bands = scenes::stockChaos([](WorldKind kind) { return scenes::landscape(kind, Config(), 200); }, steps,
+    const auto bands = scenes::stockChaos([](WorldKind kind) { return scenes::landscape(kind, Config::bulletMode(), 200); }, steps,
                                           measure, {"mean height", "spread", "kinetic energy"},
                                           {tol::kChaosHeightFloor, tol::kChaosSpreadFloor, tol::kChaosEnergyFloor});
-    ScenePtr gpu = scenes::landscape(WorldKind::Gpu, Config(), 200);
+    ScenePtr gpu = scenes::landscape(WorldKind::Gpu, Config::bulletMode(), 200);
     for (int i = 0; i < steps; ++i) {
         gpu->step();
         ASSERT_TRUE(gpu->gpuWorld()->isGpuPath()) << "step " << i;

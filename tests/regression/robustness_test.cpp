@@ -15,7 +15,7 @@ TEST(Robustness, EverySceneRunsOnGpuPath)
 {
     for (const scenes::SceneEntry& entry : scenes::catalog()) {
         SCOPED_TRACE(entry.name);
-        ScenePtr scene = entry.make(WorldKind::Gpu, Config());
+        ScenePtr scene = entry.make(WorldKind::Gpu, Config::bulletMode());
         for (int i = 0; i < 3; ++i) scene->step();
         const Report& report = *scene->report();
         EXPECT_TRUE(report.gpuPath) << report.cpuPathReason;
@@ -41,7 +41,7 @@ TEST(Robustness, SameSceneTwiceGivesSameHashes)
 TEST(Robustness, BadBodiesAreNamedAndOthersKeepSimulating)
 {
     int callbacks = 0;
-    Config config;
+    Config config = Config::bulletMode();
     config.onIssue = [&callbacks](const Issue&) { ++callbacks; };
     ScenePtr gpu = scenes::dropRow(WorldKind::Gpu, config);
     ScenePtr clean = scenes::dropRow(WorldKind::Stock);

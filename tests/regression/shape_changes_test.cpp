@@ -44,7 +44,7 @@ ScenePtr hulls(WorldKind kind, const Config& config, bool capsule)
 
 TEST(ShapeChanges, HullsAreReadNotChanged)
 {
-    ScenePtr gpu = hulls(WorldKind::Gpu, Config(), false);
+    ScenePtr gpu = hulls(WorldKind::Gpu, Config::bulletMode(), false);
     gpu->step();
     ASSERT_TRUE(gpu->gpuWorld()->isGpuPath());
     auto* hull = static_cast<const btConvexHullShape*>(gpu->body(1)->getCollisionShape());

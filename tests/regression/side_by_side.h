@@ -22,7 +22,7 @@ struct SideBySide {
     ScenePtr stock;
     ScenePtr gpu;
 
-    explicit SideBySide(const SceneBuilder& make, const Config& config = Config())
+    explicit SideBySide(const SceneBuilder& make, const Config& config = Config::bulletMode())
         : stock(make(WorldKind::Stock, config)), gpu(make(WorldKind::Gpu, config))
     {
     }

@@ -28,7 +28,7 @@ namespace features = btgpu::scenes::features;
 // stay on the GPU path in the soft step every step.
 TEST(SolverFeatures, SoftStepAnisotropicFrictionAsStock)
 {
-    Config soft;
+    Config soft = Config::bulletMode();
     soft.solver = SolverKind::SoftStep;
     const std::vector<std::pair<std::string, SceneBuilder>> scenes = {{"box", SceneBuilder(features::anisotropicBox)},
                                                                       {"pair", SceneBuilder(features::anisotropicPair)}};
@@ -38,7 +38,7 @@ TEST(SolverFeatures, SoftStepAnisotropicFrictionAsStock)
         for (const auto& [name, base] : scenes) {
             SCOPED_TRACE(name + " mode " + std::to_string(mode));
             const SceneBuilder make = with(base, solverMode(mode));
-            ScenePtr stock = make(WorldKind::Stock, Config()), gpu = make(WorldKind::Gpu, soft);
+            ScenePtr stock = make(WorldKind::Stock, Config::bulletMode()), gpu = make(WorldKind::Gpu, soft);
             ScenePtr plain = make(WorldKind::Gpu, soft);
             const int moving = name == "box" ? 1 : 2;
             for (int b = 1; b <= moving; ++b)
@@ -70,11 +70,11 @@ TEST(SolverFeatures, SoftStepAnisotropicFrictionAsStock)
 // first substep let the box slide: 1.4, 3.3 and 17.5 mm in the 4 s (stock 0.01, 0.02, 0.77).
 TEST(SolverFeatures, SoftStepHoldsABoxOnASlope)
 {
-    Config soft;
+    Config soft = Config::bulletMode();
     soft.solver = SolverKind::SoftStep;
     for (btScalar angle : {btScalar(0.1), btScalar(0.2), btScalar(0.24)}) {
         SCOPED_TRACE(angle);
-        ScenePtr stock = features::anchorSlope(WorldKind::Stock, Config(), angle, false, 0);
+        ScenePtr stock = features::anchorSlope(WorldKind::Stock, Config::bulletMode(), angle, false, 0);
         ScenePtr gpu = features::anchorSlope(WorldKind::Gpu, soft, angle, false, 0);
         const btVector3 start = stock->body(2)->getWorldTransform().getOrigin();
         for (int i = 0; i < 240; ++i) {
@@ -96,11 +96,11 @@ TEST(SolverFeatures, SoftStepHoldsABoxOnASlope)
 // each step, so the top box still creeps (4.9 and 10.9 mm), far less than stock's.
 TEST(SolverFeatures, SoftStepHoldsAStackOnASlope)
 {
-    Config soft;
+    Config soft = Config::bulletMode();
     soft.solver = SolverKind::SoftStep;
     for (btScalar angle : {btScalar(0.1), btScalar(0.2)}) {
         SCOPED_TRACE(angle);
-        ScenePtr stock = features::slopeStack(WorldKind::Stock, Config(), angle, 2);
+        ScenePtr stock = features::slopeStack(WorldKind::Stock, Config::bulletMode(), angle, 2);
         ScenePtr gpu = features::slopeStack(WorldKind::Gpu, soft, angle, 2);
         const btVector3 start[2] = {stock->body(2)->getWorldTransform().getOrigin(),
                                     stock->body(3)->getWorldTransform().getOrigin()};
@@ -124,7 +124,7 @@ TEST(SolverFeatures, SoftStepHoldsAStackOnASlope)
 // Config::solver = SoftStep each sends the world to the CPU path naming it (and back when unset).
 TEST(SolverFeatures, SoftStepFallsBackForTheBulletModesContactFeatures)
 {
-    Config soft;
+    Config soft = Config::bulletMode();
     soft.solver = SolverKind::SoftStep;
     const std::vector<std::pair<std::string, std::function<void(scenes::Scene&, bool)>>> cases = {
         {"m_sor",

@@ -42,13 +42,13 @@ double drift(const AccuracyScene& a, const std::vector<double>& e0)
 
 TEST(SoftStepMotion, TumblingBoxTurnsAsTheBulletMode)
 {
-    Config soft;
+    Config soft = Config::bulletMode();
     soft.solver = SolverKind::SoftStep;
     // Four copies, 12 m apart: the world has pairs to look for, so the soft step runs its
     // substeps (a world with one body integrates as the bullet mode does).
     const int copies = 4;
-    AccuracyScene stock = accuracyTumblingBox(WorldKind::Stock, Config(), copies);
-    AccuracyScene bullet = accuracyTumblingBox(WorldKind::Gpu, Config(), copies);
+    AccuracyScene stock = accuracyTumblingBox(WorldKind::Stock, Config::bulletMode(), copies);
+    AccuracyScene bullet = accuracyTumblingBox(WorldKind::Gpu, Config::bulletMode(), copies);
     AccuracyScene gpuSoft = accuracyTumblingBox(WorldKind::Gpu, soft, copies);
     std::vector<double> e0;
     for (int c = 0; c < copies; ++c) e0.push_back(rotationalEnergy(stock, c));

@@ -63,7 +63,7 @@ std::vector<double> pileAggregates(const Scene& s)
 }
 std::vector<scenes::ChaosBand> pileBands(const SceneBuilder& make, int steps)
 {
-    return scenes::stockChaos([&](WorldKind k) { return make(k, Config()); }, steps, pileAggregates,
+    return scenes::stockChaos([&](WorldKind k) { return make(k, Config::bulletMode()); }, steps, pileAggregates,
                               {"mean height", "spread", "kinetic energy"},
                               {tol::kChaosHeightFloor, tol::kChaosSpreadFloor, tol::kChaosEnergyFloor});
 }
@@ -111,8 +111,8 @@ TEST(SolverFeatures, FrictionDirectionCachingIsStockNoOp)
 {
     for (int mode : {0, SOLVER_USE_2_FRICTION_DIRECTIONS | SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION}) {
         SCOPED_TRACE(mode);
-        ScenePtr plain = features::boxPile(WorldKind::Stock, Config(), 4);
-        ScenePtr cached = features::boxPile(WorldKind::Stock, Config(), 4);
+        ScenePtr plain = features::boxPile(WorldKind::Stock, Config::bulletMode(), 4);
+        ScenePtr cached = features::boxPile(WorldKind::Stock, Config::bulletMode(), 4);
         solverMode(mode)(*plain);
         solverMode(mode | SOLVER_ENABLE_FRICTION_DIRECTION_CACHING)(*cached);
         for (int i = 0; i < 240; ++i) {
@@ -240,14 +240,14 @@ TEST(SolverFeatures, SpinningSphereSpinsDownAsStock)
 // spinning sphere spins down as fast (tol::kSoftRollDistanceRel; the spin within 5%).
 TEST(SolverFeatures, SoftStepRollingAndSpinningFrictionAsStock)
 {
-    Config soft;
+    Config soft = Config::bulletMode();
     soft.solver = SolverKind::SoftStep;
     const std::vector<std::pair<std::string, SceneBuilder>> rollers = {
         {"sphere", [](WorldKind k, const Config& c) { return features::rollingSphere(k, c); }},
         {"capsule", SceneBuilder(features::rollingCapsule)}};
     for (const auto& [name, make] : rollers) {
         SCOPED_TRACE(name);
-        ScenePtr stock = make(WorldKind::Stock, Config()), gpu = make(WorldKind::Gpu, soft);
+        ScenePtr stock = make(WorldKind::Stock, Config::bulletMode()), gpu = make(WorldKind::Gpu, soft);
         const btVector3 start = stock->body(1)->getWorldTransform().getOrigin();
         int stockRest = -1, gpuRest = -1;
         for (int i = 0; i < 900 && (stockRest < 0 || gpuRest < 0); ++i) {
@@ -267,7 +267,7 @@ TEST(SolverFeatures, SoftStepRollingAndSpinningFrictionAsStock)
             << "stopped at step " << gpuRest << " (stock " << stockRest << ")";
         EXPECT_NEAR(gpuRest, stockRest, tol::kSoftRollDistanceRel * stockRest + 2);
     }
-    ScenePtr stock = features::spinningSphere(WorldKind::Stock, Config()), gpu = features::spinningSphere(WorldKind::Gpu, soft);
+    ScenePtr stock = features::spinningSphere(WorldKind::Stock, Config::bulletMode()), gpu = features::spinningSphere(WorldKind::Gpu, soft);
     int stockSteps = -1, gpuSteps = -1;
     for (int i = 0; i < 900 && (stockSteps < 0 || gpuSteps < 0); ++i) {
         stock->step();
@@ -335,13 +335,13 @@ TEST(SolverFeatures, SoftContactRestsAtStockDepth)
 // within 5% as the bullet mode does; and deeper for the softer spring (about twice).
 TEST(SolverFeatures, SoftStepContactSpringRestsAtStockDepth)
 {
-    Config soft;
+    Config soft = Config::bulletMode();
     soft.solver = SolverKind::SoftStep;
     std::vector<double> depths;
     for (btScalar k : {btScalar(500), btScalar(1000)}) {
         SCOPED_TRACE(k);
         auto make = [k](WorldKind kind, const Config& c) { return features::softBox(kind, c, k); };
-        ScenePtr stock = make(WorldKind::Stock, Config()), gpu = make(WorldKind::Gpu, soft);
+        ScenePtr stock = make(WorldKind::Stock, Config::bulletMode()), gpu = make(WorldKind::Gpu, soft);
         stepBesideStock(*stock, *gpu, 120);
         const double stockDepth = restDepth(*stock), gpuDepth = restDepth(*gpu);
         RecordProperty(std::string("soft_step_depth_") + std::to_string(int(k)), std::to_string(gpuDepth));
@@ -372,11 +372,11 @@ TEST(SolverFeatures, GlobalCfmRestsAtStockDepth)
 // constant of about 0.6 s here, 3% short at 2 s, where stock's has settled).
 TEST(SolverFeatures, SoftStepGlobalCfmRestsAtStockDepth)
 {
-    Config soft;
+    Config soft = Config::bulletMode();
     soft.solver = SolverKind::SoftStep;
     auto make = with([](WorldKind k, const Config& c) { return scenes::restingBox(k, c); },
                      [](Scene& sc) { sc.world().getSolverInfo().m_globalCfm = btScalar(0.05); });
-    ScenePtr stock = make(WorldKind::Stock, Config()), gpu = make(WorldKind::Gpu, soft);
+    ScenePtr stock = make(WorldKind::Stock, Config::bulletMode()), gpu = make(WorldKind::Gpu, soft);
     stepBesideStock(*stock, *gpu, 300);
     const double stockDepth = restDepth(*stock), gpuDepth = restDepth(*gpu);
     RecordProperty("soft_step_depth", std::to_string(gpuDepth));
@@ -403,7 +403,7 @@ TEST(SolverFeatures, SorLandingAsStock)
             if (!warm) sc.world().getSolverInfo().m_solverMode &= ~SOLVER_USE_WARMSTARTING;
         };
         SideBySide s(with([](WorldKind k, const Config& c) { return scenes::dropRow(k, c); }, sor));
-        ScenePtr plain = scenes::dropRow(WorldKind::Stock, Config());
+        ScenePtr plain = scenes::dropRow(WorldKind::Stock, Config::bulletMode());
         plain->world().getSolverInfo().m_numIterations = 4;
         double apart = 0, worst = 0;
         for (int i = 0; i < 90; ++i) {
@@ -431,7 +431,7 @@ TEST(SolverFeatures, AnisotropicFrictionSlidesAsStock)
     for (int mode : {0, int(SOLVER_USE_2_FRICTION_DIRECTIONS)}) {
         SCOPED_TRACE(mode);
         SideBySide s(with(features::anisotropicBox, solverMode(mode)));
-        ScenePtr plain = features::anisotropicBox(WorldKind::Stock, Config());
+        ScenePtr plain = features::anisotropicBox(WorldKind::Stock, Config::bulletMode());
         solverMode(mode)(*plain);
         plain->body(1)->setAnisotropicFriction(btVector3(1, 1, 1));
         const btVector3 start = s.stock->body(1)->getWorldTransform().getOrigin();
@@ -469,7 +469,7 @@ TEST(SolverFeatures, AnisotropicFrictionOnBothBodiesAsStock)
         SideBySide s(with(features::anisotropicPair, solverMode(mode)));
         s.both(reorder);
         ASSERT_EQ(s.gpu->world().getCollisionObjectArray()[0], s.gpu->body(2));  // the rows' order is not the proxies'
-        ScenePtr plain = features::anisotropicPair(WorldKind::Stock, Config());
+        ScenePtr plain = features::anisotropicPair(WorldKind::Stock, Config::bulletMode());
         solverMode(mode)(*plain);
         reorder(*plain);
         plain->body(1)->setAnisotropicFriction(btVector3(1, 1, 1), btCollisionObject::CF_ANISOTROPIC_FRICTION_DISABLED);
@@ -519,7 +519,7 @@ TEST(SolverFeatures, ProcessingThresholdLandsAsStock)
     const btScalar threshold = btScalar(0.001);
     SideBySide s(
         [&](WorldKind k, const Config& c) { return features::thresholdStack(k, c, threshold, btScalar(0.05), true); });
-    ScenePtr plain = features::thresholdStack(WorldKind::Stock, Config(), btScalar(BT_LARGE_FLOAT), btScalar(0.05), true);
+    ScenePtr plain = features::thresholdStack(WorldKind::Stock, Config::bulletMode(), btScalar(BT_LARGE_FLOAT), btScalar(0.05), true);
     int beyondSeen = 0;
     double apart = 0, plainApart = 0;
     for (int i = 0; i < 90; ++i) {
@@ -546,7 +546,7 @@ TEST(SolverFeatures, NegativeProcessingThresholdSinksAsStock)
 {
     const btScalar threshold = btScalar(-0.01);
     SideBySide s([&](WorldKind k, const Config& c) { return features::thresholdStack(k, c, threshold); });
-    ScenePtr plain = features::thresholdStack(WorldKind::Stock, Config(), btScalar(BT_LARGE_FLOAT));
+    ScenePtr plain = features::thresholdStack(WorldKind::Stock, Config::bulletMode(), btScalar(BT_LARGE_FLOAT));
     for (int i = 0; i < 120; ++i) {
         s.step();
         plain->step();
@@ -565,9 +565,9 @@ TEST(SolverFeatures, NegativeProcessingThresholdSinksAsStock)
 TEST(SolverFeatures, SoftStepNegativeProcessingThresholdSinksAsStock)
 {
     const btScalar threshold = btScalar(-0.01);
-    Config soft;
+    Config soft = Config::bulletMode();
     soft.solver = SolverKind::SoftStep;
-    ScenePtr stock = features::thresholdStack(WorldKind::Stock, Config(), threshold);
+    ScenePtr stock = features::thresholdStack(WorldKind::Stock, Config::bulletMode(), threshold);
     ScenePtr gpu = features::thresholdStack(WorldKind::Gpu, soft, threshold);
     ScenePtr plain = features::thresholdStack(WorldKind::Gpu, soft, btScalar(BT_LARGE_FLOAT));
     for (int i = 0; i < 120; ++i) {
@@ -598,8 +598,8 @@ TEST(SolverFeatures, FrictionAnchorsHoldAndSlideAsStock)
     for (auto [angle, speed] : std::vector<std::pair<btScalar, btScalar>>{{0.24f, 0.0f}, {0.0f, 1.0f}, {0.2f, 1.0f}}) {
         SCOPED_TRACE(testing::Message() << "angle " << angle << ", speed " << speed);
         SideBySide s([&](WorldKind k, const Config& c) { return features::anchorSlope(k, c, angle, true, speed); });
-        ScenePtr plain = features::anchorSlope(WorldKind::Stock, Config(), angle, false, speed);
-        ScenePtr plainGpu = features::anchorSlope(WorldKind::Gpu, Config(), angle, false, speed);
+        ScenePtr plain = features::anchorSlope(WorldKind::Stock, Config::bulletMode(), angle, false, speed);
+        ScenePtr plainGpu = features::anchorSlope(WorldKind::Gpu, Config::bulletMode(), angle, false, speed);
         const btVector3 start = s.stock->body(2)->getWorldTransform().getOrigin();
         for (int i = 0; i < 240; ++i) {
             s.step();
@@ -637,8 +637,8 @@ TEST(SolverFeatures, RandomizedOrderPyramidAndPileLikeStock)
         auto make = with(plainMake, solverMode(SOLVER_RANDMIZE_ORDER));
         const std::vector<scenes::ChaosBand> bands = pileBands(make, steps);
         SideBySide s(make);
-        ScenePtr twin = make(WorldKind::Gpu, Config());
-        ScenePtr inOrder = plainMake(WorldKind::Gpu, Config());
+        ScenePtr twin = make(WorldKind::Gpu, Config::bulletMode());
+        ScenePtr inOrder = plainMake(WorldKind::Gpu, Config::bulletMode());
         bool differs = false;
         for (int i = 0; i < steps; ++i) {
             s.step();
@@ -660,7 +660,7 @@ TEST(SolverFeatures, RandomizedOrderPyramidAndPileLikeStock)
 // as a twin world, not as the plain soft step, and standing (no box 5 cm from its start).
 TEST(SolverFeatures, SoftStepServesTheOrderBits)
 {
-    Config soft;
+    Config soft = Config::bulletMode();
     soft.solver = SolverKind::SoftStep;
     for (int bits : {int(SOLVER_RANDMIZE_ORDER), int(SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS)}) {
         SCOPED_TRACE(bits);

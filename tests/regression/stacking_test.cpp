@@ -80,9 +80,9 @@ TEST(Stacking, BenchTowerStaysLikeStock)
     const int rings = 8, steps = 300;
     auto measure = [&](const Scene& scene) { return towerDrift(scene, rings); };
     std::vector<scenes::ChaosBand> bands = scenes::stockChaos(
-        [&](WorldKind kind) { return scenes::benchTower(kind, Config(), rings); }, steps, measure,
+        [&](WorldKind kind) { return scenes::benchTower(kind, Config::bulletMode(), rings); }, steps, measure,
         {"mean radial drift", "top ring's radial drift"}, {tol::kChaosRadialFloor, tol::kChaosRadialFloor});
-    scenes::ScenePtr gpu = scenes::benchTower(WorldKind::Gpu, Config(), rings);
+    scenes::ScenePtr gpu = scenes::benchTower(WorldKind::Gpu, Config::bulletMode(), rings);
     for (int i = 0; i < steps; ++i) {
         gpu->step();
         ASSERT_TRUE(gpu->gpuWorld()->isGpuPath()) << gpu->report()->cpuPathReason;
@@ -110,10 +110,10 @@ TEST(Stacking, BenchPileWithinStocksChaos)
         return std::vector<double>{a.meanHeight, a.spread};
     };
     const std::vector<scenes::ChaosBand> bands = scenes::stockChaos(
-        [](WorldKind kind) { return scenes::benchPile(kind, Config()); }, steps, measure, {"mean height", "spread"},
+        [](WorldKind kind) { return scenes::benchPile(kind, Config::bulletMode()); }, steps, measure, {"mean height", "spread"},
         {tol::kChaosHeightFloor, tol::kChaosSpreadFloor});
     for (SolverKind mode : {SolverKind::BatchedPgs}) {
-        Config config;
+        Config config = Config::bulletMode();
         config.solver = mode;
         scenes::ScenePtr gpu = scenes::benchPile(WorldKind::Gpu, config);
         for (int i = 0; i < steps; ++i) {

@@ -58,7 +58,7 @@ TEST(StepArguments, OddArgumentsSimulateNothingAndAreNamed)
     };
     for (bool cpu : {false, true}) {
         SCOPED_TRACE(cpu ? "CPU path" : "GPU path");
-        Config config;
+        Config config = Config::bulletMode();
         config.forceCpu = cpu;
         ScenePtr scene = scenes::dropRow(WorldKind::Gpu, config);
         for (int i = 0; i < 10; ++i) scene->step();
@@ -84,13 +84,13 @@ TEST(StepArguments, OddArgumentsSimulateNothingAndAreNamed)
 // local time on).
 TEST(StepArguments, OutOfDeviceMemoryKeepsTheCallsTime)
 {
-    Config probe;
+    Config probe = Config::bulletMode();
     ScenePtr sized = scenes::dropRow(WorldKind::Gpu, probe);
     sized->step(1 / 120.f, 1, 1 / 60.f);  // builds the rows, takes no fixed step yet
     const size_t bytes = sized->report()->deviceBytes;
     ASSERT_GT(bytes, 0u);
 
-    Config config;
+    Config config = Config::bulletMode();
     config.deviceMemoryLimit = bytes;  // the first device step needs more (its scratch buffers)
     SideBySide s(scenes::dropRow, config);
     int stockSteps = 0, gpuSteps = 0;

@@ -60,7 +60,7 @@ TEST(WorldApi, RayTestSeesBodiesWhereTheGpuMovedThem)
 
 TEST(WorldApi, NoSuchDeviceRunsTheCpuPathAndSaysSo)
 {
-    Config config;
+    Config config = Config::bulletMode();
     config.device = "no-such-opencl-device";
     if (std::getenv("BTGPU_DEVICE")) GTEST_SKIP() << "BTGPU_DEVICE overrides Config::device";
     ScenePtr scene = scenes::restingBox(WorldKind::Gpu, config);

@@ -19,7 +19,7 @@ constexpr double kBarrelHalfHeight = 0.6;  // m
 constexpr double kBarrelPitch = 3.0;       // m
 
 // The ground box (half extent 50, top at y = 0) is body 0; barrels follow, mass 1, friction 0.5.
-ScenePtr barrelDrop(WorldKind kind, const Config& config = Config(), const BarrelDrop& drop = BarrelDrop());
+ScenePtr barrelDrop(WorldKind kind, const Config& config = Config::bulletMode(), const BarrelDrop& drop = BarrelDrop());
 // Fraction of the barrels whose axis is within `degrees` of vertical.
 double uprightFraction(const Scene& scene, double degrees = 20.0);
 

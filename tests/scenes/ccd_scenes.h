@@ -11,6 +11,6 @@ namespace btgpu::scenes {
 // `speed` m/s along x (2 m a step at the default 120), CCD motion threshold 0.1, swept radius
 // 0.08. With `wall` false there is no wall (body 1 is a far-off static box) and the ball starts
 // 20 m up, clear of the ground for a second.
-ScenePtr ballAtWall(WorldKind kind, const Config& config = Config(), btScalar speed = 120, bool wall = true);
+ScenePtr ballAtWall(WorldKind kind, const Config& config = Config::bulletMode(), btScalar speed = 120, bool wall = true);
 
 }  // namespace btgpu::scenes

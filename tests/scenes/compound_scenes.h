@@ -17,28 +17,28 @@ constexpr double kTableHeight = 0.7;     // m, feet to top
 // `count` tables stacked, each released 1 cm above the one below (the first 1 cm above a box
 // ground); bodies 1..count, body 0 the ground. Without their dynamic AABB trees
 // (btCompoundShape(false)) two tables meet by stock's nested compound algorithms.
-ScenePtr tableStack(WorldKind kind, const Config& config = Config(), int count = 1, bool dynamicTree = true);
+ScenePtr tableStack(WorldKind kind, const Config& config = Config::bulletMode(), int count = 1, bool dynamicTree = true);
 // `count` unit boxes, each wrapped as game engines wrap a body to put its centre of mass at its
 // origin (a btCompoundShape(false) of one child, shifted by (0.1, -0.2, 0)), stacked 1 cm apart
 // on a box ground, each 2 cm further along x than the one below (bodies 1..count).
-ScenePtr wrappedBoxStack(WorldKind kind, const Config& config = Config(), int count = 4);
+ScenePtr wrappedBoxStack(WorldKind kind, const Config& config = Config::bulletMode(), int count = 4);
 // A table 1 cm above a flat triangle-mesh ground, or a flat heightfield (body 1; body 0 the ground).
 // A table resting on a box ground and a ball resting beside one of its legs, 6 cm from it but
 // inside the leg's AABB: stock holds an empty manifold for that child pair.
-ScenePtr tableBesideSphere(WorldKind kind, const Config& config = Config());
-ScenePtr tableOnMesh(WorldKind kind, const Config& config = Config());
-ScenePtr tableOnHeightfield(WorldKind kind, const Config& config = Config());
+ScenePtr tableBesideSphere(WorldKind kind, const Config& config = Config::bulletMode());
+ScenePtr tableOnMesh(WorldKind kind, const Config& config = Config::bulletMode());
+ScenePtr tableOnHeightfield(WorldKind kind, const Config& config = Config::bulletMode());
 // A cart of support-function children (GJK leaves): two cylinders (radius 0.3, half width 0.1,
 // axes along z) at x = +-0.6 on a capsule axle (radius 0.05, along x), and a cone upright on top,
 // 1 cm above a box ground (body 1).
-ScenePtr convexCart(WorldKind kind, const Config& config = Config());
+ScenePtr convexCart(WorldKind kind, const Config& config = Config::bulletMode());
 // A dumbbell: spheres of radius 0.3 at x = +-0.5 on a bar (box half extents 0.5, 0.08, 0.08),
 // resting on a box ground and set rolling along +z at 1 m/s (body 1).
-ScenePtr dumbbellRolling(WorldKind kind, const Config& config = Config());
+ScenePtr dumbbellRolling(WorldKind kind, const Config& config = Config::bulletMode());
 constexpr double kDumbbellRadius = 0.3;    // m
 constexpr double kDumbbellSpeed = 1.0;     // m/s
 // scene_specs.h makeCompounds: `count` bodies, tables and dumbbells alternating on a square lattice 2 m apart, released in
 // layers from 1 m up onto a box ground (the bench's `compounds` scene; bodies 1..count).
-ScenePtr compoundDrop(WorldKind kind, const Config& config = Config(), int count = 100);
+ScenePtr compoundDrop(WorldKind kind, const Config& config = Config::bulletMode(), int count = 100);
 
 }  // namespace btgpu::scenes

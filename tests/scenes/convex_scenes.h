@@ -17,11 +17,11 @@ enum class ConvexKind {
 // One body of `kind` (up axis `axis` for capsules, cylinders and cones) dropped from `height`
 // onto a box ground, turned by `tilt` rad about z (pi/2 lays a y-axis capsule on its side).
 ScenePtr convexLanding(WorldKind kind, ConvexKind shape, int axis, double tilt, double height,
-                       const Config& config = Config());
+                       const Config& config = Config::bulletMode());
 // A cylinder (radius 0.5, half height 0.5, axis z) rolling down a box ramp tilted 15 degrees.
-ScenePtr cylinderRamp(WorldKind kind, const Config& config = Config());
+ScenePtr cylinderRamp(WorldKind kind, const Config& config = Config::bulletMode());
 // 12 mixed convex bodies (capsules, cylinders, cones, a multi-sphere, a convex mesh, boxes,
 // spheres) dropped in a loose column onto the ground.
-ScenePtr convexPile(WorldKind kind, const Config& config = Config());
+ScenePtr convexPile(WorldKind kind, const Config& config = Config::bulletMode());
 
 }  // namespace btgpu::scenes

@@ -36,18 +36,18 @@ using GhostMaker = std::function<btGhostObject*()>;
 // ground far below (top at y = -60), so for 3 s nothing touches: Bullet's broadphase drops a
 // pair lazily (a rotating share of its pairs each step), so its ghost lists are only stock's
 // step by step while every body's AABB history is (see the README). Bodies: ground 0, boxes 1..9.
-std::unique_ptr<GhostScene> triggerFall(WorldKind kind, const Config& config = Config(), const GhostMaker& make = nullptr);
+std::unique_ptr<GhostScene> triggerFall(WorldKind kind, const Config& config = Config::bulletMode(), const GhostMaker& make = nullptr);
 
 // Bullet's kinematic character (a capsule of radius 0.3 m and cylinder height 1 m on a
 // btPairCachingGhostObject with CF_CHARACTER_OBJECT, step height 0.35 m) dropped at the origin
 // onto a static 20 x 1 x 20 m half-extent box ground with its top at y = 0; a 0.3 m high step (static box, z from 1 to 5) and a wall (static box
 // 0.5 m thick at z = 8) ahead along +z. withBoxes adds two dynamic 0.4 m half-extent boxes on
 // the ground: body 3 touching the capsule's side (at x = 0.7), body 4 far from it (x = 5).
-std::unique_ptr<GhostScene> characterWalk(WorldKind kind, const Config& config = Config(), bool withBoxes = false);
+std::unique_ptr<GhostScene> characterWalk(WorldKind kind, const Config& config = Config::bulletMode(), bool withBoxes = false);
 
 // A ghost object as btCollisionObject starts (CF_STATIC_OBJECT, contact response) used as a
 // platform: a 2 x 0.25 x 2 m half-extent box ghost with its top at y = 0, and a 0.4 m
 // half-extent box (body 0, the only rigid body) dropped onto it from 1 m, off centre.
-std::unique_ptr<GhostScene> ghostPlatform(WorldKind kind, const Config& config = Config());
+std::unique_ptr<GhostScene> ghostPlatform(WorldKind kind, const Config& config = Config::bulletMode());
 
 }  // namespace btgpu::scenes

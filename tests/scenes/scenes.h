@@ -29,7 +29,7 @@ struct Material {
 
 class Scene {
 public:
-    explicit Scene(WorldKind kind, const Config& config = Config(), std::string name = "");
+    explicit Scene(WorldKind kind, const Config& config = Config::bulletMode(), std::string name = "");
     ~Scene();
     Scene(const Scene&) = delete;
     Scene& operator=(const Scene&) = delete;
@@ -125,36 +125,36 @@ using ScenePtr = std::unique_ptr<Scene>;
 
 // Bullet's examples/BasicDemo: 5x5x5 boxes of half extent 0.1, mass 1, at
 // (0.2 i, 2 + 0.2 k, 0.2 j), over a ground box of half extent 50 centred at y = -50.
-ScenePtr basicDemo(WorldKind kind, const Config& config = Config());
+ScenePtr basicDemo(WorldKind kind, const Config& config = Config::bulletMode());
 // One box (half extent 0.5, mass 1) released at y = 30: 2 s of free fall before it lands.
-ScenePtr freeFall(WorldKind kind, const Config& config = Config());
+ScenePtr freeFall(WorldKind kind, const Config& config = Config::bulletMode());
 // Three unit boxes released at y = 3, at x = -2, 0, 2 (bodies 1, 2, 3): apart, so a test can
 // change one without disturbing the others.
-ScenePtr dropRow(WorldKind kind, const Config& config = Config());
+ScenePtr dropRow(WorldKind kind, const Config& config = Config::bulletMode());
 // A unit box (half extent 0.5) placed exactly on the ground (centre y = 0.5).
-ScenePtr restingBox(WorldKind kind, const Config& config = Config());
+ScenePtr restingBox(WorldKind kind, const Config& config = Config::bulletMode());
 // A sphere (radius 0.5) released at y = 2; it lands and rolls nowhere (flat ground, no spin).
-ScenePtr sphereLanding(WorldKind kind, const Config& config = Config());
+ScenePtr sphereLanding(WorldKind kind, const Config& config = Config::bulletMode());
 // A 10-point convex hull with a flat bottom face, released at y = 2.
-ScenePtr hullLanding(WorldKind kind, const Config& config = Config());
+ScenePtr hullLanding(WorldKind kind, const Config& config = Config::bulletMode());
 // A sphere (radius 0.5) released at y = 5; restitution 0.5 (sphere) x 1 (ground) = 0.5.
-ScenePtr bouncingSphere(WorldKind kind, const Config& config = Config());
+ScenePtr bouncingSphere(WorldKind kind, const Config& config = Config::bulletMode());
 // `count` unit boxes stacked exactly touching (centres 0.5, 1.5, ...).
-ScenePtr boxStack(WorldKind kind, const Config& config = Config(), int count = 8);
+ScenePtr boxStack(WorldKind kind, const Config& config = Config::bulletMode(), int count = 8);
 // Three unit boxes in a row along x; a kinematic box (half extents 0.5, 0.5, 1.5) starts at
 // x = -2 and moves at kPusherSpeed along +x for kPusherSeconds, pushing them.
-ScenePtr kinematicPush(WorldKind kind, const Config& config = Config());
+ScenePtr kinematicPush(WorldKind kind, const Config& config = Config::bulletMode());
 constexpr double kPusherSpeed = 1.0;    // m/s
 constexpr double kPusherSeconds = 4.0;  // s, then it stops
 // nx*ny*nz boxes of half extent 1, mass 1, friction 1, restitution 0; pitch 2.2 in x, y, z;
 // odd layers shifted +1 in x and z; bottom layer 0.2 above a ground box of half extent 400.
-ScenePtr cubes(WorldKind kind, int nx, int ny, int nz, const Config& config = Config());
+ScenePtr cubes(WorldKind kind, int nx, int ny, int nz, const Config& config = Config::bulletMode());
 // The same lattice of spheres of radius 1.
-ScenePtr spheres(WorldKind kind, int nx, int ny, int nz, const Config& config = Config());
+ScenePtr spheres(WorldKind kind, int nx, int ny, int nz, const Config& config = Config::bulletMode());
 // 5x5x5 spheres of radius 0.5, 6 cm apart, without gravity, flying apart from the centre one
 // (velocity = 1/s x offset): no contacts ever, only broadphase pairs that come apart (stock's
 // empty manifolds and its lazy pair removal).
-ScenePtr dispersingSpheres(WorldKind kind, const Config& config = Config());
+ScenePtr dispersingSpheres(WorldKind kind, const Config& config = Config::bulletMode());
 
 // --- by name, for the benchmark, demos and tests that run every scene. ---
 struct SceneEntry {
@@ -165,7 +165,7 @@ struct SceneEntry {
 // Every scene, with small defaults for cubes and spheres (4x4x4).
 const std::vector<SceneEntry>& catalog();
 // A catalog name, or "cubes:NXxNYxNZ" / "spheres:NXxNYxNZ"; nullptr when the name is unknown.
-ScenePtr makeScene(const std::string& name, WorldKind kind, const Config& config = Config());
+ScenePtr makeScene(const std::string& name, WorldKind kind, const Config& config = Config::bulletMode());
 
 // --- measures over the dynamic bodies (inverse mass > 0), paired by scene index. ---
 struct StateDifference {

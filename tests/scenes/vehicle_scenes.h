@@ -30,7 +30,7 @@ struct VehicleScene {
 // damping 2.3/4.4, friction slip 1000, roll influence 0.1), resting above the ground at the
 // origin facing +z. Box ground: a static 100 x 1 x 100 m half-extent box with its top at y = 0.
 // Heightfield: 128 x 128 float heights 1 m apart, gentle waves (up to 0.4 m) along z.
-std::unique_ptr<VehicleScene> raycastVehicle(WorldKind kind, const Config& config = Config(),
+std::unique_ptr<VehicleScene> raycastVehicle(WorldKind kind, const Config& config = Config::bulletMode(),
                                              VehicleGround ground = VehicleGround::Box);
 
 }  // namespace btgpu::scenes

@@ -22,7 +22,7 @@ constexpr double kUnjudged = std::numeric_limits<double>::infinity();
 void beyondReason(const std::string& caseName, const Builder& make, double seconds, bool measure = true,
                   bool withStock = true)
 {
-    const Config config;
+    const Config config = Config::bulletMode();
     Criteria c;
     c.seconds = seconds;
     c.speed = kUnjudged;
@@ -78,7 +78,7 @@ TEST(FastSmall, SphereAgainstThinWall)
     c.seconds = 0.5;
     Outcome out[2];
     for (WorldKind kind : {WorldKind::Stock, WorldKind::Gpu}) {
-        ScenePtr scene = st::bulletVsWall(kind, Config());
+        ScenePtr scene = st::bulletVsWall(kind, Config::bulletMode());
         Outcome o = run(*scene, c);
         const double x = scene->body(1)->getWorldTransform().getOrigin().x();
         const bool tunnelled = x > 0.1;
@@ -132,8 +132,8 @@ TEST(FarFromOrigin, PileAt1e4BehavesAsAtOrigin)
     const btVector3 far(1e4, 0, 1e4);
     Outcome out[2];
     for (WorldKind kind : {WorldKind::Stock, WorldKind::Gpu}) {
-        ScenePtr home = st::smallPile(kind, Config(), btVector3(0, 0, 0));
-        ScenePtr away = st::smallPile(kind, Config(), far);
+        ScenePtr home = st::smallPile(kind, Config::bulletMode(), btVector3(0, 0, 0));
+        ScenePtr away = st::smallPile(kind, Config::bulletMode(), far);
         run(*home, c);
         Outcome o = run(*away, c);
         double worst = 0;

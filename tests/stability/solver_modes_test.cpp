@@ -24,7 +24,7 @@ namespace {
 
 Config modeConfig(SolverKind solver)
 {
-    Config c;
+    Config c = Config::bulletMode();
     c.solver = solver;
     // The measurement of the substep mapping (README's table): any other count than the default
     // m_numIterations. Recorded, not asserted differently.

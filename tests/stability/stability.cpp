@@ -289,7 +289,7 @@ void runBoth(const std::string& caseName, const Builder& make, const Criteria& c
 
 void runEarned(const std::string& caseName, const Builder& make, const Criteria& criteria, int internalSubsteps)
 {
-    Config config;
+    Config config = Config::bulletMode();
     config.internalSubsteps = internalSubsteps;
     const Outcome gpu = run(make, WorldKind::Gpu, criteria, config);
     recordAs(caseName, "btgpu, " + std::to_string(internalSubsteps) + " internal substeps", gpu, figure(gpu));

@@ -67,7 +67,7 @@ struct Outcome {
 
 // Steps the scene under the criteria and judges it.
 Outcome run(Scene& scene, const Criteria& criteria);
-Outcome run(const Builder& make, WorldKind kind, const Criteria& criteria, const Config& config = Config());
+Outcome run(const Builder& make, WorldKind kind, const Criteria& criteria, const Config& config = Config::bulletMode());
 
 // Deepest penetration now: a dynamic body's lowest point below the ground top (y = groundY),
 // and between two dynamic bodies the deepest contact Bullet's own narrowphase finds
