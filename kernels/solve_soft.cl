@@ -236,6 +236,17 @@ static void soft_body(int i, int mode, SOFT_FN_ARGS)
         /* the substep's warm start, gathered from the body's edges in list order */
         const BtgSolverBody body = soft_solver_body(softSolver, soft_kind(flags), i);
         BtgBodyVel vel = btgMakeBodyVel(1, v, w);
+#ifdef BTG_CPU_DEVICE
+        /* the body's contacts lie anywhere among the soft contacts: all of them asked for before
+         * the first is read, so their cache misses overlap (the pass waited for each in turn) */
+        for (uint q = listStart[i]; q < listStart[i + 1]; ++q) {
+            const uint entry = listEntries[q];
+            if (entry & BTG_SOFT_ENTRY_JOINT) continue;
+            __global const char* c = (__global const char*)(softContacts + slotOf[entry >> 2]);
+            for (int b = 0; b < (int)sizeof(BtgSoftContact); b += 64) btgPrefetch(c + b);
+            btgPrefetch(c + sizeof(BtgSoftContact) - 1);
+        }
+#endif
         for (uint q = listStart[i]; q < listStart[i + 1]; ++q) {
             const uint entry = listEntries[q];
             const int side = (int)(entry & 1u);
@@ -421,13 +432,31 @@ __kernel void soft_list_sort(int numBodies, __global const uint* restrict start,
 __kernel void soft_bodies(int n, int mode, SOFT_ARGS)
 {
     int i = (int)get_global_id(0);
+    /* the step's first pass clears the bounce flag prepare sets (soft_resident's does the same) */
+    if (i == 0 && mode == BTG_SOFT_BODY_BEGIN) counters[BTG_COUNTER_SOFT_BOUNCE] = 0u;
     if (i < n) soft_body(i, mode, SOFT_PASS);
 }
+/* The substeps' body passes with their mode known when compiled: soft_body's branches and row
+ * loops for the other modes fall away (a CPU device runs each pass's bodies as straight code). The
+ * same arithmetic, so the same bits. */
+#define SOFT_BODIES_OF_MODE(name, m)                                                                        \
+    __kernel void name(int n, SOFT_ARGS)                                                                    \
+    {                                                                                                      \
+        const int i = (int)get_global_id(0);                                                               \
+        if (i < n) soft_body(i, m, SOFT_PASS);                                                             \
+    }
+SOFT_BODIES_OF_MODE(soft_bodies_velocity, BTG_SOFT_BODY_VELOCITY)
+SOFT_BODIES_OF_MODE(soft_bodies_carry, BTG_SOFT_BODY_CARRY)
+SOFT_BODIES_OF_MODE(soft_bodies_position, BTG_SOFT_BODY_POSITION)
 
+/* colours color .. lastColor - 1 (one colour in a sweep; a pass that touches each edge alone takes
+ * every regular colour in one launch, as soft_resident does) */
 __kernel void soft_color_range(__global const uint* restrict colorStart, __global const int* restrict colorOrder,
-                               int edgeCapacity, int numJoints, int color, int mode, uint key, SOFT_ARGS)
+                               int edgeCapacity, int numJoints, int color, int lastColor, int mode, uint key, SOFT_ARGS)
 {
-    const int begin = (int)colorStart[color], end = (int)colorStart[color + 1];
+    /* no contact of the step bounces (prepare noted none): nothing to read */
+    if (btgSoftBaseMode(mode) == BTG_SOFT_RESTITUTION && counters[BTG_COUNTER_SOFT_BOUNCE] == 0u) return;
+    const int begin = (int)colorStart[color], end = (int)colorStart[lastColor];
     const int nc = contact_edges(counters, edgeCapacity, numJoints);
     for (int k = begin + (int)get_global_id(0); k < end; k += (int)get_global_size(0))
         soft_edge(colorOrder[k], k, nc, mode, key, SOFT_PASS);
@@ -439,6 +468,17 @@ __kernel void soft_color_range(__global const uint* restrict colorStart, __globa
 #ifdef BTG_CPU_DEVICE
 #include "shared/soft_wide_passes.h"
 #endif
+
+/* Prepare (where it notes no supports) by contact rather than by slot: work-item i reads the
+ * narrowphase's contact i (400 bytes) in order and writes its soft contact at its slot (the
+ * leftovers' too: their slots are storage only). By slot, a colour's contacts came scattered over
+ * the narrowphase's records (PoCL cubes 8,000: most of the pass waited for them). Each edge
+ * alone, so the same bits in any order. */
+__kernel void soft_prepare_by_contact(__global const int* restrict edgeColor, int edgeCapacity, int numJoints, SOFT_ARGS)
+{
+    const int i = (int)get_global_id(0), nc = contact_edges(counters, edgeCapacity, numJoints);
+    if (i < nc && edgeColor[i] >= 0) soft_edge(i, slotOf[i], nc, BTG_SOFT_PREPARE, 0u, SOFT_PASS);
+}
 
 __kernel void soft_color_serial(__global const int* restrict edgeColor, int edgeCapacity, int numJoints, int color,
                                 int mode, uint key, SOFT_ARGS)
