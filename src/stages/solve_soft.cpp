@@ -33,7 +33,10 @@ constexpr int kOneGroupMaxBodiesWide = 4096;
 // stage one launch / launches, alternating runs: cubes 729 (2,400 contacts) 5.7 / 4.2 ms at
 // equal frames; 1,000 7.6-7.8 / 5.3-5.4 (frame 10.9-11.1 / 10.1-10.2); 8,000 61-63 / 36-37
 // (and 42-83 / 36 on other runs: the spin's spread); 32,768 326-356 / 179-197. Both give the
-// same bits (state hashes).
+// same bits (state hashes). And only up to kOneGroupMaxBodiesWide bodies: its body passes over
+// many bodies lose as well (cubes falling, few contacts, frame one launch / launches, 45-50
+// frames: 32,768 90.5-96.6 / 53.2-62.0 ms, 8,000 27.1-30.7 / 17.7-25.7; 4,096 even, 14.3-14.7 /
+// 13.5-15.1).
 constexpr int kResidentMaxContactsWide = 2048;
 constexpr int kMaxSubsteps = 256;
 
@@ -242,7 +245,8 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     // per-colour path enqueues about 300 launches a step (host cost about 1.5 ms a frame on PoCL).
     const bool wideOneGroup = w.lastContactCount <= kOneGroupMaxContactsWide && numBodies <= kOneGroupMaxBodiesWide;
     const bool wideResident =
-        wideOn && residentAllowed(w) && !wideOneGroup && w.lastContactCount <= kResidentMaxContactsWide;
+        wideOn && residentAllowed(w) && !wideOneGroup && w.lastContactCount <= kResidentMaxContactsWide &&
+        numBodies <= kOneGroupMaxBodiesWide;
     const bool oneGroup = wideOn ? wideOneGroup : w.lastContactCount <= kOneGroupMaxContacts;
     if (resident || wideResident || oneGroup) {
         cl_kernel k = prog.kernel("soft_resident");
