@@ -62,6 +62,7 @@ std::string describe(const Recipe& r)
     os << toString(r.profile) << " seed " << r.seed << ": " << (r.groundPlane ? "plane" + vec(r.planeNormal) : "no plane");
     if (r.internalSubsteps != 1) os << " internalSubsteps=" << r.internalSubsteps;
     if (r.jacobi) os << " jacobi";
+    if (r.soft) os << " soft";
     if (r.profiling) os << " profiling";
     if (!r.syncAabbs) os << " no-aabb-sync";
     for (size_t c = 0; c < r.clusters.size(); ++c) {

@@ -97,6 +97,7 @@ struct Recipe {
     // btgpu's Config (public): device substeps, solver kind, profiling, AABB sync.
     int internalSubsteps = 1;
     bool jacobi = false;
+    bool soft = false;  // Config::solver = Auto (the default: the soft step) instead of BatchedPgs
     bool profiling = false;
     bool syncAabbs = true;
     int probe = -1;      // body index of the free-falling probe

@@ -124,7 +124,9 @@ public:
         if (engine == Engine::Gpu) {
             btgpu::Config config = btgpu::Config::bulletMode();
             config.internalSubsteps = r.internalSubsteps;
-            config.solver = r.jacobi ? btgpu::SolverKind::JacobiMassSplitting : btgpu::SolverKind::BatchedPgs;
+            config.solver = r.jacobi ? btgpu::SolverKind::JacobiMassSplitting
+                            : r.soft ? btgpu::SolverKind::Auto
+                                     : btgpu::SolverKind::BatchedPgs;
             config.profile = r.profiling;
             config.syncBroadphaseAabbs = r.syncAabbs;
             m_gpu = new btGpuDynamicsWorld(m_dispatcher.get(), m_broadphase.get(), m_solver.get(), m_config.get(), config);
