@@ -136,6 +136,8 @@ struct Config {
     // m: points closer than this become contacts (Bullet's gContactBreakingThreshold). Left at
     // 0.02, the world follows gContactBreakingThreshold when the app changes it.
     float contactThreshold = 0.02f;
+    // The contact solver (SolverKind above): Auto, the soft step, by default since 2026-12-06;
+    // bulletMode() below for the batched PGS whose answers follow stock Bullet's.
     SolverKind solver = SolverKind::Auto;
     SoftStepConfig softStep;
     // Device substeps per fixed step (stepSimulation's own substeps are not touched: the app
