@@ -26,10 +26,10 @@ struct LambdaAction : btActionInterface {
     void debugDraw(btIDebugDraw*) override {}
 };
 
-void driveStraight(scenes::VehicleGround ground)
+void driveStraight(scenes::VehicleGround ground, const Config& config = Config::bulletMode(), double heightTol = 0.02)
 {
     auto stock = scenes::raycastVehicle(scenes::WorldKind::Stock, Config::bulletMode(), ground);
-    auto gpu = scenes::raycastVehicle(scenes::WorldKind::Gpu, Config::bulletMode(), ground);
+    auto gpu = scenes::raycastVehicle(scenes::WorldKind::Gpu, config, ground);
     const btVector3 start = stock->chassis->getWorldTransform().getOrigin();
     for (int i = 0; i < 300; ++i) {  // 5 s: 1 s settling, then 4 s at full engine force
         const btScalar force = i < 60 ? 0 : 1000;
@@ -48,7 +48,7 @@ void driveStraight(scenes::VehicleGround ground)
                 int(gpu->vehicle->getWheelInfo(0).m_raycastInfo.m_isInContact));
     EXPECT_GT(stockRun, 5.0);  // it drove
     EXPECT_NEAR(gpuRun, stockRun, 0.05 * stockRun);
-    EXPECT_NEAR(gpuY, stockY, 0.02);
+    EXPECT_NEAR(gpuY, stockY, heightTol);
     const btVector3 sideways = gpu->chassis->getWorldTransform().getOrigin() - start;
     EXPECT_LT(std::fabs(sideways.x()), 0.05 * gpuRun);  // straight
     for (int w = 0; w < 4; ++w) EXPECT_TRUE(gpu->vehicle->getWheelInfo(w).m_raycastInfo.m_isInContact) << "wheel " << w;
@@ -59,6 +59,15 @@ void driveStraight(scenes::VehicleGround ground)
 TEST(Actions, RaycastVehicleDrivesAsStockOnABox) { driveStraight(scenes::VehicleGround::Box); }
 
 TEST(Actions, RaycastVehicleDrivesAsStockOnAHeightfield) { driveStraight(scenes::VehicleGround::Heightfield); }
+
+// The library's default solver (Auto: the soft step): the same run, the chassis 1.6 cm higher
+// (0.7927 m against stock's 0.7763 on PoCL): its substeps integrate gravity within the step,
+// where the vehicle's suspension pushes once a step (the action's impulse), so the two balance
+// at another height.
+TEST(Actions, RaycastVehicleDrivesAsStockOnTheDefaultSolver)
+{
+    driveStraight(scenes::VehicleGround::Box, Config(), 0.03);
+}
 
 // A box pushed against a wall by an action (touching it from the start): after the solve it is
 // still, after the action it moves at 1 m/s (above Bullet's 0.8 m/s sleeping threshold). Bullet's deactivation runs after
