@@ -94,7 +94,7 @@ int main(int argc, char** argv)
     std::printf("device       %s\n", report.device.empty() ? "(none)" : report.device.c_str());
     std::printf("path         %s%s%s\n", report.gpuPath ? "GPU" : "CPU fallback",
                 report.gpuPath ? "" : ": ", report.gpuPath ? "" : report.cpuPathReason.c_str());
-    std::printf("solver       %s%s%s\n", report.solver == SolverKind::SoftStep ? "soft step" : "bullet mode (batched PGS)",
+    std::printf("solver       %s%s%s\n", scenes::solverName(report.solver),
                 report.solverReason.empty() ? "" : ": ", report.solverReason.c_str());
     std::printf("stock        %8.3f ms/step (median)\n", median(stockMs));
     std::printf("btgpu        %8.3f ms/step (median); first step %.1f ms, program builds %.2f s\n",

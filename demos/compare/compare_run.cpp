@@ -165,7 +165,7 @@ CompareResult runCompare(const CompareOptions& o)
     });
     res.gpuPathEveryStep = res.cpuPathSteps == 0;
     res.device = gpuWorld->report().device;
-    res.solver = gpuWorld->report().solver == SolverKind::SoftStep ? "soft step" : "bullet mode (batched PGS)";
+    res.solver = scenes::solverName(gpuWorld->report().solver);
     res.gpuStages = gpuWorld->report().stages;
     res.gpuPrograms = gpuWorld->report().builtPrograms;
     res.gpuMsPerStep = median(gpu.stepMs);

@@ -309,13 +309,14 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     cl_kernel wide = wideOn ? prog.kernel("soft_color_wide") : nullptr;
     const size_t wideItems = (rangeItems + BTG_SOFT_WIDE - 1) / BTG_SOFT_WIDE;
     // key: a solve or relax sweep's order (SOLVER_RANDMIZE_ORDER), as soft_resident takes it
-    // Store, and prepare where it notes no supports, touch each edge alone: the regular colours in
-    // one launch, as soft_resident takes them (PoCL cubes 8,000: 24 launches a step fewer).
+    // Prepare where it notes no supports, and store, touch each edge alone: prepare by contact,
+    // the store's regular colours in one launch, as soft_resident takes them (PoCL cubes 8,000: 24
+    // launches a step fewer).
     const bool heldPrepare = params.heldMassRatio > 0.0f;
     auto edgePass = [&](int mode, cl_uint key) {
         const int base = btgSoftBaseMode(mode);
         const bool sweep = wide && (base == BTG_SOFT_SOLVE || base == BTG_SOFT_RELAX);
-        const bool independent = (base == BTG_SOFT_PREPARE && !heldPrepare) || base == BTG_SOFT_STORE;
+        const bool store = base == BTG_SOFT_STORE;
         if (base == BTG_SOFT_PREPARE && !heldPrepare) {
             // every contact in its own order, the leftovers with them (soft_prepare_by_contact)
             cl::Launch l(ctx, prog.kernel("soft_prepare_by_contact"), &w.profiler);
@@ -323,12 +324,12 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
             soft(l).run(slots);
             return;
         }
-        if (independent && numColors > 1) {
+        if (store && numColors > 1) {
             cl::Launch l(ctx, range, &w.profiler);
             l.arg(sc.colorStart).arg(sc.colorOrder).arg(edgeCapacity).arg(numJoints).arg(0).arg(numColors - 1).arg(mode).arg(key);
             soft(l).run(rangeItems, 64);
         }
-        for (int ci = independent ? numColors - 1 : 0; ci < numColors; ++ci) {
+        for (int ci = store ? numColors - 1 : 0; ci < numColors; ++ci) {
             if (ci == numColors - 1) {
                 cl::Launch l(ctx, serial, &w.profiler);
                 l.arg(w.edgeColor).arg(edgeCapacity).arg(numJoints).arg(ci).arg(mode).arg(key);

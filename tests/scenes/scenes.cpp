@@ -24,6 +24,17 @@ const char* toString(WorldKind kind)
     return kind == WorldKind::Stock ? "stock" : "btgpu";
 }
 
+const char* solverName(SolverKind kind)
+{
+    switch (kind) {
+    case SolverKind::SoftStep: return "soft step";
+    case SolverKind::JacobiMassSplitting: return "Jacobi with mass splitting";
+    case SolverKind::Auto: return "auto";
+    case SolverKind::BatchedPgs: break;
+    }
+    return "bullet mode (batched PGS)";
+}
+
 Scene::Scene(WorldKind kind, const Config& config, std::string name)
     : m_name(std::move(name)), m_kind(kind)
 {

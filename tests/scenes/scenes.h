@@ -19,6 +19,8 @@ namespace btgpu::scenes {
 
 enum class WorldKind { Stock, Gpu };
 const char* toString(WorldKind kind);
+// What Report::solver names, for the tools' output ("soft step", "bullet mode (batched PGS)", ...).
+const char* solverName(SolverKind kind);
 
 // Bullet's defaults (btRigidBodyConstructionInfo); Bullet multiplies the two bodies' values,
 // so a scene that needs a value sets it on both bodies of the contact.
