@@ -45,6 +45,11 @@ DemoResult runDemo(const Demo& demo, const RunOptions& options, const StepHook& 
         nudged = demo.make(scenes::WorldKind::Stock, options.config);
         scenes::nudge(*nudged.scene, 1u, 1e-4);
     }
+    if (options.noSleep)
+        for (DemoWorld* world : {&stock, &gpu, &nudged})
+            if (world->scene)
+                for (btRigidBody* b : world->scene->bodies())
+                    if (!b->isStaticOrKinematicObject()) b->setActivationState(DISABLE_DEACTIVATION);
     r.bodies = int(stock.scene->bodies().size());
     for (const btRigidBody* b : stock.scene->bodies()) r.dynamicBodies += !b->isStaticOrKinematicObject();
 
@@ -78,6 +83,7 @@ DemoResult runDemo(const Demo& demo, const RunOptions& options, const StepHook& 
 
     const Report& report = *gpu.scene->report();
     r.device = report.device;
+    r.solver = scenes::solverName(report.solver);
     r.buildSeconds = report.buildSeconds;
     r.stockMs = median(stockMs);
     r.gpuMs = median(std::vector<double>(gpuMs.begin() + (gpuMs.size() > 1 ? 1 : 0), gpuMs.end()));
@@ -126,6 +132,7 @@ void printResult(const DemoResult& r)
     std::printf("demo         %s: %d bodies (%d dynamic), %d steps of 1/60 s\n", r.name.c_str(), r.bodies, r.dynamicBodies,
                 r.steps);
     std::printf("device       %s\n", r.device.empty() ? "(none)" : r.device.c_str());
+    std::printf("solver       %s\n", r.solver.c_str());
     if (r.gpuEveryStep)
         std::printf("path         GPU on every step\n");
     else

@@ -16,6 +16,7 @@ struct RunOptions {
     Config config = Config::bulletMode();
     bool chaos = true;   // also run the nudged stock world
     int worst = 0;       // list this many bodies that end farthest from stock
+    bool noSleep = false; // every dynamic body DISABLE_DEACTIVATION, in every world
 };
 
 struct BodyGap {
@@ -25,7 +26,7 @@ struct BodyGap {
 };
 
 struct DemoResult {
-    std::string name, device;
+    std::string name, device, solver;  // solver: the one btgpu's world ran at the end
     int bodies = 0, dynamicBodies = 0, steps = 0;
     bool gpuEveryStep = false;     // btgpu's world was on the GPU path after every step
     int firstCpuStep = -1;         // the first step it was not, -1 if none

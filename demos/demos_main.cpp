@@ -25,10 +25,14 @@ void usage(FILE* out)
 {
     std::fprintf(out,
                  "usage: btgpu_demos [--demo NAME|all] [--list] [--steps N] [--device gpu|cpu|<name>] [--no-chaos] [--worst K]\n"
-                 "                   [--png DIR [--every N]] [--still FILE] [--size WxH] [--window]\n"
+                 "                   [--solver bullet|auto|soft] [--no-sleep] [--png DIR [--every N]] [--still FILE] [--size WxH] [--window]\n"
                  "  --demo NAME   one of --list (default basic); all runs each and prints a Markdown table\n"
                  "  --steps N     steps of 1/60 s (default: the demo's, 300)\n"
                  "  --no-chaos    skip the third world (stock nudged by 0.1 mm) that measures stock's own chaos\n"
+                 "  --solver S    btgpu's solver: bullet (the default here: the bullet mode, Config::bulletMode(),\n"
+                 "                whose answers follow stock's), auto (the library's default, the soft step) or soft\n"
+                 "  --no-sleep    every dynamic body of every world DISABLE_DEACTIVATION (Bullet's BenchmarkDemo\n"
+                 "                sleeps; this times it awake)\n"
                  "  --worst K     lists the K bodies that end farthest from stock (scene index, both centres)\n"
                  "  --png DIR     writes DIR/<demo>_<step>.png every N steps (default 30) and at the last, headless\n"
                  "  --still FILE  writes the last step's picture to FILE\n"
@@ -119,6 +123,17 @@ int main(int argc, char** argv)
         else if (a == "--steps" && hasValue) options.steps = std::max(1, std::atoi(argv[++i]));
         else if (a == "--device" && hasValue) options.config.device = argv[++i];
         else if (a == "--no-chaos") options.chaos = false;
+        else if (a == "--no-sleep") options.noSleep = true;
+        else if (a == "--solver" && hasValue) {
+            const std::string v = argv[++i];
+            if (v == "bullet") options.config.solver = SolverKind::BatchedPgs;
+            else if (v == "auto") options.config.solver = SolverKind::Auto;
+            else if (v == "soft") options.config.solver = SolverKind::SoftStep;
+            else {
+                std::fprintf(stderr, "btgpu_demos: --solver takes bullet, auto or soft, not %s\n", v.c_str());
+                return 2;
+            }
+        }
         else if (a == "--worst" && hasValue) options.worst = std::max(0, std::atoi(argv[++i]));
         else if (a == "--png" && hasValue) pictures.dir = argv[++i];
         else if (a == "--still" && hasValue) pictures.still = argv[++i];

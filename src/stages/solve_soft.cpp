@@ -68,16 +68,38 @@ BtgSoftParams substepFields(const SoftStepConfig& c, int iterations)
 }
 
 // Work-items a resident group takes (resident.h): about one per contact of a colour over the
-// compute units, 64 to 256. H200, solve stage ms at 256 / 128 / 64 work-items a group (132
-// groups): cubes 1,000 2.27 / 2.27 / 1.95, 8,000 - / 2.74 / 2.23, 32,768 4.91 / 4.12 / 5.64,
-// 112,500 5.96 / 6.44 / 8.72 (at 32,768, 124,000 contacts in 14 colours, 72 a compute unit): the
-// rule takes 64, 64, 128 and 256.
-size_t softGroupSize(const DeviceWorld& w, int numColors, bool quad)
+// groups, 64 to 256 with a group per compute unit. H200, solve stage ms at 256 / 128 / 64
+// work-items a group (132 groups): cubes 1,000 2.27 / 2.27 / 1.95, 8,000 - / 2.74 / 2.23, 32,768
+// 4.91 / 4.12 / 5.64, 112,500 5.96 / 6.44 / 8.72 (at 32,768, 124,000 contacts in 14 colours, 72 a
+// compute unit): the rule takes 64, 64, 128 and 256. Fewer groups (softGroups) take up to 1,024
+// work-items each, so that a colour still fits them in one round.
+size_t softGroupSize(const DeviceWorld& w, int numColors, bool quad, size_t groups)
 {
     const size_t units = std::max<cl_uint>(w.ctx.device().computeUnits, 1);
     const size_t perColor = size_t(std::max(w.lastContactCount, 0)) / size_t(std::max(numColors - 1, 1));
-    const size_t want = (quad ? 4 : 1) * perColor / units;
-    return want <= 64 ? 64 : (want <= 128 ? 128 : 256);
+    const size_t want = (quad ? 4 : 1) * perColor / std::max<size_t>(groups, 1);
+    const size_t cap = groups < units ? 1024 : 256;
+    size_t size = 64;
+    while (size < want && size < cap) size *= 2;
+    return size;
+}
+
+// The soft step's resident groups on a GPU: a group per compute unit, or fewer in a small scene:
+// every group arrives at each of the step's grid barriers (some 300 of them: ten substeps of
+// solve and relax sweeps, a barrier a colour), an atomic on one word, and one group alone passes
+// them as a local barrier. BTGPU_SOFT_CONTACTS_PER_GROUP=k (an experiment knob): a group per k
+// contacts of the last readback, at least one.
+size_t softGroups(const DeviceWorld& w)
+{
+    const size_t all = residentSolveGroups(w);
+    if (std::getenv("BTGPU_RESIDENT_GROUPS")) return all;
+    static const long perGroup = [] {
+        const char* e = std::getenv("BTGPU_SOFT_CONTACTS_PER_GROUP");
+        return e && e[0] ? std::max(0L, std::atol(e)) : 0L;
+    }();
+    if (perGroup <= 0) return all;
+    const size_t contacts = size_t(std::max(w.lastContactCount, 0));
+    return std::clamp<size_t>((contacts + size_t(perGroup) - 1) / size_t(perGroup), 1, all);
 }
 
 // Whether the resident solve and relax sweeps take a contact on four work-items (NVIDIA's GPUs:
@@ -251,7 +273,7 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     if (resident || wideResident || oneGroup) {
         cl_kernel k = prog.kernel("soft_resident");
         const bool many = resident || wideResident;
-        const size_t groups = many ? residentSolveGroups(w) : 1;
+        const size_t groups = resident ? softGroups(w) : many ? residentSolveGroups(w) : 1;
         const int flow = resident && groups > 1 ? softFlow(w) : 0;
         const int wideIn = wideOn && flow == 0;
         int quad = resident && flow == 0 && softQuad(w, params) ? 1 : 0;
@@ -262,7 +284,7 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
                                  ? 1
                                  : wideResident && !resident ? size_t(8)
                                                              : residentSolveGroupSize(cl::kernelGroupLimit(ctx, k), many,
-                                                                                      softGroupSize(w, numColors, quad != 0));
+                                                                                      softGroupSize(w, numColors, quad != 0, groups));
         if (group % 32 != 0) quad = 0;  // a quad's four work-items must share a warp
         if (flow) {
             // the ranks, then the kinematic flag after them (soft_flow_ranks)
