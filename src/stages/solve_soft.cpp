@@ -84,6 +84,26 @@ size_t softGroupSize(const DeviceWorld& w, int numColors, bool quad, size_t grou
     return size;
 }
 
+// A read in flight into host memory the caller holds: waited for (and its event released) at
+// wait() or, should a launch throw first, when the caller's frame unwinds.
+struct ReadWait {
+    cl_event event = nullptr;
+    void wait()
+    {
+        if (!event) return;
+        const cl_int err = clWaitForEvents(1, &event);
+        clReleaseEvent(event);
+        event = nullptr;
+        BTGPU_CL_CHECK(err);
+    }
+    ~ReadWait()
+    {
+        if (!event) return;
+        clWaitForEvents(1, &event);
+        clReleaseEvent(event);
+    }
+};
+
 // The soft step's resident groups on a GPU: a group per compute unit, or fewer in a small scene:
 // every group arrives at each of the step's grid barriers (some 300 of them: ten substeps of
 // solve and relax sweeps, a barrier a colour), an atomic on one word, and one group alone passes
@@ -396,6 +416,12 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     };
     bodyPass(BTG_SOFT_BODY_BEGIN);
     edgePass(BTG_SOFT_PREPARE, 0u);
+    // Whether prepare found a contact that may bounce, read behind it while the substeps are
+    // enqueued: when none does, the restitution pass (a launch a colour, each returning at once)
+    // is not enqueued at all, as soft_resident skips it.
+    cl_uint bounce = 1u;
+    ReadWait bounceRead;  // declared after `bounce`: a launch that throws still waits for the read first
+    w.counters.readAsync(ctx, &bounce, 1, kSoftBounce, &bounceRead.event);
     for (int s = 0; s < params.substeps; ++s) {
         bodyPass(btgSoftVelocityMode(params, s));  // and the warm start (gathered, or carried)
         if (s == 0 && wide) widePack();
@@ -404,7 +430,8 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
         edgePass(btgSoftSweepMode(params, s, 1), btgSoftSweepKey(params, s, 1));
     }
     if (wide) wideUnpack();
-    edgePass(BTG_SOFT_RESTITUTION, 0u);
+    bounceRead.wait();
+    if (bounce != 0u) edgePass(BTG_SOFT_RESTITUTION, 0u);
     edgePass(BTG_SOFT_STORE, 0u);
     bodyPass(BTG_SOFT_BODY_END);
 }

@@ -32,6 +32,7 @@ enum Counter : int {
     kEdgeCount = BTG_COUNTER_EDGES,               // constraint-graph edges (contacts first, then other kinds)
     kSubPairCount = BTG_COUNTER_SUB_PAIRS,        // midphase sub-pairs (may exceed subPairCapacity: overflow)
     kSoftMassRatio = BTG_COUNTER_SOFT_MASS_RATIO, // the soft step's largest edge mass ratio (float bits)
+    kSoftBounce = BTG_COUNTER_SOFT_BOUNCE,        // the soft step's prepare found a contact that may bounce
     kNumCounters = BTG_NUM_COUNTERS
 };
 
