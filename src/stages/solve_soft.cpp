@@ -84,6 +84,17 @@ size_t softGroupSize(const DeviceWorld& w, int numColors, bool quad, size_t grou
     return size;
 }
 
+// Whether one resident group on a GPU takes solve_soft's one-group build (BTG_SOFT_ONE_GROUP:
+// plain loads); BTGPU_SOFT_ONE_GROUP_PLAIN=0 keeps the usual build there (for measuring).
+bool plainOneGroup()
+{
+    static const bool off = [] {
+        const char* e = std::getenv("BTGPU_SOFT_ONE_GROUP_PLAIN");
+        return e && e[0] == '0';
+    }();
+    return !off;
+}
+
 // A read in flight into host memory the caller holds: waited for (and its event released) at
 // wait() or, should a launch throw first, when the caller's frame unwinds.
 struct ReadWait {
@@ -291,9 +302,12 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
         numBodies <= kOneGroupMaxBodiesWide;
     const bool oneGroup = wideOn ? wideOneGroup : w.lastContactCount <= kOneGroupMaxContacts;
     if (resident || wideResident || oneGroup) {
-        cl_kernel k = prog.kernel("soft_resident");
         const bool many = resident || wideResident;
         const size_t groups = resident ? softGroups(w) : many ? residentSolveGroups(w) : 1;
+        // One group on a GPU: the build whose shared data goes through plain loads (soft_kernel_args.h)
+        cl_kernel k = resident && groups == 1 && ctx.device().isGpu && plainOneGroup()
+                          ? ctx.program("solve_soft", "-DBTG_SOFT_ONE_GROUP=1").kernel("soft_resident")
+                          : prog.kernel("soft_resident");
         const int flow = resident && groups > 1 ? softFlow(w) : 0;
         const int wideIn = wideOn && flow == 0;
         int quad = resident && flow == 0 && softQuad(w, params) ? 1 : 0;

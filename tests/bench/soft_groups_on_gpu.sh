@@ -7,7 +7,9 @@
 # repository root:
 #   ../shared/gpu/pack build/tests/bench/btgpu_bench && cp tests/bench/soft_groups_on_gpu.sh tests/bench/gpu_bench_lines.sh .gpu/
 # then run  bash .gpu/soft_groups_on_gpu.sh  with carry [".gpu"]. Lines go to $OUT/summary.txt.
-# ROUNDS (2), PER_GROUP ("0 4096 2048 1024 512 1000000000"), SCENES (below) override.
+# ROUNDS (2), PER_GROUP ("0 4096 2048 1024 512 1000000000"), SCENES (below) override. One group
+# takes solve_soft's one-group build (plain loads: BTG_SOFT_ONE_GROUP); a line "one group,
+# usual build" (BTGPU_SOFT_ONE_GROUP_PLAIN=0) follows each scene's lines.
 . "$(dirname "$0")/gpu_bench_lines.sh"
 B=${B:-"bash .gpu/run ./.gpu/bin/btgpu_bench"}
 ROUNDS=${ROUNDS:-2}
@@ -21,6 +23,7 @@ for r in $(seq "$ROUNDS"); do
     for k in $PER_GROUP; do
       one "r$r $name per-group $k" env BTGPU_SOFT_CONTACTS_PER_GROUP=$k $B $args --frames 300 --backends btgpu --no-aabb-sync --no-manifolds
     done
+    one "r$r $name one group, usual build" env BTGPU_SOFT_CONTACTS_PER_GROUP=1000000000 BTGPU_SOFT_ONE_GROUP_PLAIN=0 $B $args --frames 300 --backends btgpu --no-aabb-sync --no-manifolds
   done
 done
 exit 0
