@@ -411,7 +411,7 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
         for (size_t i = begin; i < end + 2 * kAhead; ++i) {
             if (i < end) {
                 Side& side = m_sides[i];
-                const BtgContactReport& r = rb.contacts[i];
+                const BtgContactReport& r = rb.reports[i];
                 side = orient(rows, r.bodyA, r.bodyB, r.indexA, r.indexB, removed);
                 side.node = nullptr;
                 hashes[i] = KeyHash()(side.key);
@@ -452,7 +452,7 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
             const Side& side = m_sides[i];
             size_t last = i + 1;
             while (last < n && m_sides[last].valid && m_sides[last].key == side.key) ++last;
-            const BtgContactReport& r = rb.contacts[i];
+            const BtgContactReport& r = rb.reports[i];
             Group& g = m_groups[k];
             g.entry = side.node;
             g.first = i;
@@ -513,7 +513,7 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
             merged[k].first = sides.size();
             for (size_t i : members[k]) {
                 sides.push_back(m_sides[i]);
-                reports.push_back(rb.contacts[i]);
+                reports.push_back(rb.reports[i]);
             }
             merged[k].last = sides.size();
         }
@@ -531,7 +531,7 @@ void ManifoldSync::fill(btDispatcher* dispatcher, const RowMap& rows, const Body
                 // ahead is fetched (for writing) while this one is refilled, its node four ahead.
                 if (k + 4 < end) __builtin_prefetch(m_groups[k + 4].entry);
                 if (k + 2 < end) prefetchObject(m_groups[k + 2].entry->second.manifold, sizeof(btPersistentManifold), true);
-                refill(m_groups[k], rb.contacts.data());
+                refill(m_groups[k], rb.reports);
             }
         });
         for (const Group& g : m_groups) m_nextLive.push_back(g.entry);

@@ -3,6 +3,7 @@
 #include "stages/report_contacts.h"
 
 #include "cl/program.h"
+#include "stages/sync_bodies.h"
 
 #include <algorithm>
 
@@ -11,6 +12,7 @@ namespace btgpu {
 void reportContacts(DeviceWorld& w)
 {
     cl::Context& ctx = w.ctx;
+    unmapReports(w);  // the last call's reports, mapped for the fill on a CPU device: written anew now
     const int contactCapacity = int(std::min({w.contactCapacity, w.contacts.capacity(), w.contactManifolds.capacity()}));
     w.contactReports.reserveExact(ctx, size_t(std::max(contactCapacity, 1)));
     w.subPairs.reserve(ctx, 1);  // read only for a manifold past the pair slots: a convex–concave group

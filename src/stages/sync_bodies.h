@@ -98,6 +98,9 @@ struct BodyReadback {
     cl::PinnedArray<uint> counters;
     // The call's contact reports (report_contacts), when that stage ran: contacts[0, numContacts).
     cl::PinnedArray<BtgContactReport> contacts;
+    // What the fill reads: contacts.data(), or on a CPU device the mapped device buffer
+    // (DeviceWorld::reportsMapped), valid until the next call's report_contacts.
+    const BtgContactReport* reports = nullptr;
     size_t numContacts = 0;
     bool contactsValid = false;
     bool reportsPending = false;  // their read still travelling: awaitReports before reading them
@@ -110,11 +113,14 @@ struct BodyReadback {
         sleepState.release();
         counters.release();
         contacts.release();
+        reports = nullptr;
         numContacts = 0;
         contactsValid = false;
         reportsPending = false;  // (each release waits for the queue)
     }
 };
+// Undoes syncOut's mapping of the contact reports (a CPU device's), if any.
+void unmapReports(DeviceWorld& w);
 // Readback of every row's state and the counters (waited for), and of the contact reports when
 // the call wrote them (queued behind: out.reportsPending until awaitReports).
 void syncOut(DeviceWorld& w, BodyReadback& out);

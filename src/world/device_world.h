@@ -38,6 +38,9 @@ enum Counter : int {
 
 struct DeviceWorld {
     explicit DeviceWorld(cl::Context& c) : ctx(c) {}
+    DeviceWorld(const DeviceWorld&) = delete;
+    DeviceWorld& operator=(const DeviceWorld&) = delete;
+    ~DeviceWorld();
     cl::Context& ctx;
     cl::Profiler profiler;
     int numBodies = 0;  // rows in use (some may be BTG_BODY_EXCLUDED)
@@ -144,6 +147,10 @@ struct DeviceWorld {
     // while Config::fillDispatcherManifolds): read back by syncOut when written since its last read.
     cl::DeviceArray<BtgContactReport> contactReports;
     bool contactReportsWritten = false;
+    // On a CPU device syncOut maps contactReports for the fill instead of copying them out (the
+    // device's memory is the host's): the mapping, undone before report_contacts writes them
+    // again (unmapReports) and when the world goes.
+    void* reportsMapped = nullptr;
     // The app's contact callbacks before the solve (stage contact_callbacks, only while a
     // CF_CUSTOM_MATERIAL_CALLBACK body meets gContactAddedCallback): the flagged pairs' manifolds
     // gathered for the host (slot, copy; count in callbackCount[0]), the ones it changed sent
