@@ -123,6 +123,7 @@ struct ReadWait {
 size_t softGroups(const DeviceWorld& w)
 {
     const size_t all = residentSolveGroups(w);
+    if (w.softResidentGroups > 0) return std::min(w.softResidentGroups, all);
     if (std::getenv("BTGPU_RESIDENT_GROUPS")) return all;
     static const long perGroup = [] {
         const char* e = std::getenv("BTGPU_SOFT_CONTACTS_PER_GROUP");

@@ -50,10 +50,11 @@ struct Result {
 Result runDevice(const ref::ContactBodies& b, const std::vector<BtgManifold>& ms, const std::vector<BtgContact>& prev,
                  const BtgStepParams& p, const BtgSoftParams& sp, int maxColors, bool fused,
                  DeviceWorld::Resident resident = DeviceWorld::Resident::Auto,
-                 DeviceWorld::Resident flow = DeviceWorld::Resident::Off, bool softPrepare = true)
+                 DeviceWorld::Resident flow = DeviceWorld::Resident::Off, bool softPrepare = true, size_t groups = 0)
 {
     DeviceWorld w(test::context());
     w.resident = resident;
+    w.softResidentGroups = groups;
     w.softFlow = flow;
     w.lastContactCount = fused ? 0 : (1 << 30);
     test::uploadWorld(w, b, ms, uint(ms.size()), prev, ms.size() + 4);
@@ -178,7 +179,8 @@ TEST(SolveSoft, CarriedWarmStartIsTheGatheredOne)
 // The three launch shapes compute the same arithmetic in the same color order: per-color
 // launches, one launch on one group, and one launch over resident groups (where the device
 // keeps them resident; a CPU device may time out at the grid barrier, which the pipeline
-// redoes). On a CPU device the first three take the solve and relax sweeps eight contacts at a
+// redoes), and that one launch on a single resident group (on a GPU, solve_soft's one-group
+// build). On a CPU device the first three take the solve and relax sweeps eight contacts at a
 // time in float8 lanes (soft_wide.h) and the flow's launch the scalar rows, so the flow checks
 // the wide rows against the scalar ones bit for bit.
 // Twice: with the scene's moving kinematic body (whose position passes keep their barriers in the
@@ -204,12 +206,15 @@ TEST_P(SolveSoftLaunch, LaunchShapesAgreeBitwise)
     Result perColor = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, false, Resident::Off);
     Result oneGroup = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, true, Resident::Off);
     Result resident = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, false, Resident::On);
+    // the resident launch on one group (on a GPU solve_soft's one-group build: plain loads)
+    Result residentOne = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, false, Resident::On, Resident::Off, true, 1);
     // the resident launch with the flow (per-body counts, no barrier between colours): on a CPU
     // device in groups of one work-item, so it must not time out anywhere
     Result flow = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, false, Resident::On, Resident::On);
     EXPECT_EQ(perColor.status & BTG_STATUS_GRID_BARRIER_TIMEOUT, 0u);
     EXPECT_EQ(flow.status & BTG_STATUS_GRID_BARRIER_TIMEOUT, 0u) << "the flow timed out";
-    std::vector<const Result*> others = {&oneGroup, &flow};
+    EXPECT_EQ(residentOne.status & BTG_STATUS_GRID_BARRIER_TIMEOUT, 0u) << "one group timed out";
+    std::vector<const Result*> others = {&oneGroup, &flow, &residentOne};
     if (resident.status & BTG_STATUS_GRID_BARRIER_TIMEOUT)
         EXPECT_FALSE(test::context().device().isGpu) << "a GPU must keep one group per compute unit resident";
     else
