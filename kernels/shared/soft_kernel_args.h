@@ -12,14 +12,7 @@
  * hit a compute unit's stale L1, took 0.8 ms and changed the hash run to run: the stage's time
  * is its dependent loads' latency. The held pairs' support (soft_held_rows.h) stays volatile.
  * BTG_SOFT_VOLATILE=1 (a build option through BTGPU_CL_OPTIONS) keeps volatile, for measuring. */
-/* BTG_SOFT_ONE_GROUP (from the host, GPUs only): soft_resident launched as one work-group. Every
- * datum its work-items share is then written and read on one compute unit, whose work-group
- * barriers (CLK_GLOBAL_MEM_FENCE) order them: plain loads, through the unit's L1, serve, and
- * the dependent loads of a small scene's hundreds of phases wait for the L1, not the L2. */
-#if defined(BTG_SOFT_ONE_GROUP)
-#undef BTG_SHARED
-#define BTG_SHARED
-#elif defined(BTG_NVIDIA) && !defined(BTG_SOFT_VOLATILE)
+#if defined(BTG_NVIDIA) && !defined(BTG_SOFT_VOLATILE)
 #undef BTG_SHARED
 #define BTG_SHARED
 #define BTG_LOAD_CG 1

@@ -84,17 +84,6 @@ size_t softGroupSize(const DeviceWorld& w, int numColors, bool quad, size_t grou
     return size;
 }
 
-// Whether one resident group on a GPU takes solve_soft's one-group build (BTG_SOFT_ONE_GROUP:
-// plain loads); BTGPU_SOFT_ONE_GROUP_PLAIN=0 keeps the usual build there (for measuring).
-bool plainOneGroup()
-{
-    static const bool off = [] {
-        const char* e = std::getenv("BTGPU_SOFT_ONE_GROUP_PLAIN");
-        return e && e[0] == '0';
-    }();
-    return !off;
-}
-
 // A read in flight into host memory the caller holds: waited for (and its event released) at
 // wait() or, should a launch throw first, when the caller's frame unwinds.
 struct ReadWait {
@@ -115,23 +104,17 @@ struct ReadWait {
     }
 };
 
-// The soft step's resident groups on a GPU: a group per compute unit, or fewer in a small scene:
-// every group arrives at each of the step's grid barriers (some 300 of them: ten substeps of
-// solve and relax sweeps, a barrier a colour), an atomic on one word, and one group alone passes
-// them as a local barrier. BTGPU_SOFT_CONTACTS_PER_GROUP=k (an experiment knob): a group per k
-// contacts of the last readback, at least one.
+// The soft step's resident groups on a GPU: one per compute unit (DeviceWorld::softResidentGroups
+// sets another count, for tests). Fewer groups in small scenes lose, though every group arrives
+// at each of the step's some 300 grid barriers: H100, 2026-12-07, median frame ms over 300,
+// a group per unit / one group of up to 1,024 work-items / one group read through plain loads
+// (its barriers order them on one compute unit): cubes 125 1.63 / 1.68 / 1.68, 1,000 2.27 / 4.55 /
+// 4.51, ragdolls 20 1.27 / 1.57 / 1.50, voronoi 2.38 / 2.66 / 2.50; the same state hashes. A
+// small scene's phases wait on their dependent loads, not on the barrier's arrivals.
 size_t softGroups(const DeviceWorld& w)
 {
     const size_t all = residentSolveGroups(w);
-    if (w.softResidentGroups > 0) return std::min(w.softResidentGroups, all);
-    if (std::getenv("BTGPU_RESIDENT_GROUPS")) return all;
-    static const long perGroup = [] {
-        const char* e = std::getenv("BTGPU_SOFT_CONTACTS_PER_GROUP");
-        return e && e[0] ? std::max(0L, std::atol(e)) : 0L;
-    }();
-    if (perGroup <= 0) return all;
-    const size_t contacts = size_t(std::max(w.lastContactCount, 0));
-    return std::clamp<size_t>((contacts + size_t(perGroup) - 1) / size_t(perGroup), 1, all);
+    return w.softResidentGroups > 0 ? std::min(w.softResidentGroups, all) : all;
 }
 
 // Whether the resident solve and relax sweeps take a contact on four work-items (NVIDIA's GPUs:
@@ -305,10 +288,7 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     if (resident || wideResident || oneGroup) {
         const bool many = resident || wideResident;
         const size_t groups = resident ? softGroups(w) : many ? residentSolveGroups(w) : 1;
-        // One group on a GPU: the build whose shared data goes through plain loads (soft_kernel_args.h)
-        cl_kernel k = resident && groups == 1 && ctx.device().isGpu && plainOneGroup()
-                          ? ctx.program("solve_soft", "-DBTG_SOFT_ONE_GROUP=1").kernel("soft_resident")
-                          : prog.kernel("soft_resident");
+        cl_kernel k = prog.kernel("soft_resident");
         const int flow = resident && groups > 1 ? softFlow(w) : 0;
         const int wideIn = wideOn && flow == 0;
         int quad = resident && flow == 0 && softQuad(w, params) ? 1 : 0;

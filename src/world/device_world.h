@@ -192,7 +192,7 @@ struct DeviceWorld {
     int numColors = 0;                       // batches the solver launches (host estimate)
     int colorRounds = 8;                     // coloring rounds to run: set from the last readback
     int lastContactCount = 1 << 30;          // contacts at the last readback (chooses launch shapes)
-    size_t softResidentGroups = 0;           // the soft step's resident groups where set (tests), else its rule
+    size_t softResidentGroups = 0;           // the soft step's resident groups where set (tests), else one a unit
     BtgSoftParams softParams{};              // the soft step's scalars as the host chose them, last step
     int lastColorsUsed = 0;                  // colors the last readback's coloring used
     int lastSoftSubsteps = 0;                // substeps the soft step took at the last readback (its mass ratio's)

@@ -179,8 +179,7 @@ TEST(SolveSoft, CarriedWarmStartIsTheGatheredOne)
 // The three launch shapes compute the same arithmetic in the same color order: per-color
 // launches, one launch on one group, and one launch over resident groups (where the device
 // keeps them resident; a CPU device may time out at the grid barrier, which the pipeline
-// redoes), and that one launch on a single resident group (on a GPU, solve_soft's one-group
-// build). On a CPU device the first three take the solve and relax sweeps eight contacts at a
+// redoes), and that one launch on a single resident group. On a CPU device the first three take the solve and relax sweeps eight contacts at a
 // time in float8 lanes (soft_wide.h) and the flow's launch the scalar rows, so the flow checks
 // the wide rows against the scalar ones bit for bit.
 // Twice: with the scene's moving kinematic body (whose position passes keep their barriers in the
@@ -206,7 +205,7 @@ TEST_P(SolveSoftLaunch, LaunchShapesAgreeBitwise)
     Result perColor = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, false, Resident::Off);
     Result oneGroup = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, true, Resident::Off);
     Result resident = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, false, Resident::On);
-    // the resident launch on one group (on a GPU solve_soft's one-group build: plain loads)
+    // the resident launch on one group (its grid barriers the group's own)
     Result residentOne = runDevice(s.bodies, s.manifolds, {}, p, sp, 8, false, Resident::On, Resident::Off, true, 1);
     // the resident launch with the flow (per-body counts, no barrier between colours): on a CPU
     // device in groups of one work-item, so it must not time out anywhere
