@@ -248,3 +248,31 @@ TEST(Demo, EachTakesThePathItShouldAndSaysWhy)
         }
     }
 }
+
+// btgpu_demos' --solver and --no-sleep: the solver the world ran is the one asked for (the bullet
+// mode unless told), and every dynamic body of btgpu's world stays awake on request.
+TEST(Demo, SolverAndNoSleepTakeEffect)
+{
+    const demos::Demo* demo = demos::find("voronoi");
+    ASSERT_NE(demo, nullptr);
+    demos::RunOptions options;
+    options.steps = 3;
+    options.chaos = false;
+    const demos::DemoResult bullet = demos::runDemo(*demo, options);
+    EXPECT_EQ(bullet.solver, scenes::solverName(SolverKind::BatchedPgs));
+    options.config.solver = SolverKind::Auto;
+    options.noSleep = true;
+    int awake = 0, dynamic = 0;
+    const demos::DemoResult soft = demos::runDemo(*demo, options, [&](int step, demos::DemoWorld& world, const demos::RayView&) {
+        if (step != 3) return;
+        for (const btRigidBody* b : world.scene->bodies()) {
+            if (b->isStaticOrKinematicObject()) continue;
+            ++dynamic;
+            awake += b->getActivationState() == DISABLE_DEACTIVATION;
+        }
+    });
+    EXPECT_TRUE(soft.gpuEveryStep) << soft.cpuReason;
+    EXPECT_EQ(soft.solver, scenes::solverName(SolverKind::SoftStep));
+    EXPECT_EQ(dynamic, 90);
+    EXPECT_EQ(awake, dynamic);
+}
