@@ -459,13 +459,16 @@ void JointSync::upload(btDiscreteDynamicsWorld& world, const RowMap& rows, Devic
             trackAccumulatedAngle(*c);
         }
     });
-    int nextRow = 0, iterations = 0;
+    int nextRow = 0, iterations = 0, springs = 0;
     for (BtgJoint& j : table) {
         j.firstRow = nextRow;
         nextRow += j.type == BTG_JOINT_SIXDOF2 ? btgSixDofMaxRows(j.sixdof) : btgJointMaxRows(j.type);
         iterations = std::max(iterations, j.iterations);
+        if (j.type == BTG_JOINT_SIXDOF2 || j.type == BTG_JOINT_SIXDOF)
+            for (const BtgSixDofAxis& x : j.sixdof.axis) springs += (x.mode & BTG_SIXDOF_SPRING) != 0u;
     }
     w.numJoints = n;
+    w.jointSprings = springs;
     w.jointIterations = iterations;
     if (n == 0) {
         m_uploaded.clear();

@@ -160,7 +160,9 @@ static void soft_joint(int j, int mode, SOFT_FN_ARGS)
     if (rows == 0 || mode == BTG_SOFT_PREPARE || mode == BTG_SOFT_RESTITUTION) return;
     const BtgJoint joint = joints[j];
     if (mode == BTG_SOFT_STORE) {
-        for (int k = 0; k < rows; ++k) jointRows[joint.firstRow + k].impulse *= (float)params.substeps;
+        for (int k = 0; k < rows; ++k)
+            if (!(jointRows[joint.firstRow + k].flags & BTG_JOINT_ROW_SPRING)) /* a spring's is the step's already */
+                jointRows[joint.firstRow + k].impulse *= (float)params.substeps;
         return;
     }
     BtgBodyVel va = btgMakeBodyVel(0, btgZero4(), btgZero4()), vb = va;
@@ -256,6 +258,7 @@ static void soft_body(int i, int mode, SOFT_FN_ARGS)
                  * side, each read as shared data: the joint's work-item (another group) wrote it */
                 BTG_SHARED __global const BtgJointRow* rowsShared = (BTG_SHARED __global const BtgJointRow*)jointRows;
                 for (int r = joints[j].firstRow; r < joints[j].firstRow + jointState[j].numRows; ++r) {
+                    if (jointRows[r].flags & BTG_JOINT_ROW_SPRING) continue; /* applied once, where it was solved */
                     const BtgJacobian jac = jointRows[r].jacobian;
                     btgSoftApplySide(jac.linear, side ? jac.responseB : jac.responseA, side, body, &vel,
                                      btgLoadSharedFloat(&rowsShared[r].impulse));

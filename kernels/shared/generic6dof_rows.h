@@ -161,11 +161,13 @@ static inline BtgSixDofAxis btgG6DofSpringMotor(BtgSixDofAxis x, float position,
     return x;
 }
 
-/* getInfo1 and getInfo2 of a btGeneric6DofConstraint: rows[0, returned count). */
+/* getInfo1 and getInfo2 of a btGeneric6DofConstraint: rows[0, returned count); bit k of
+ * springRows set where rows[k] is the row of an axis whose spring drives its motor. */
 static inline int btgG6DofInfoRows(BtgJoint j, BtgJointBody a, BtgJointBody b, float fps, float erp, float globalCfm,
-                                   int numIterations, BtgJointInfoRow* rows)
+                                   int numIterations, BtgJointInfoRow* rows, uint* springRows)
 {
     const BtgSixDofParams p = j.sixdof;
+    *springRows = 0u;
     rows[0] = btgEmptyInfoRow(globalCfm);
     BtgFloat4 colA[3], colB[3];
     for (int c = 0; c < 3; ++c) {
@@ -206,12 +208,14 @@ static inline int btgG6DofInfoRows(BtgJoint j, BtgJointBody a, BtgJointBody b, f
     for (int pass = 0; pass < 2; ++pass) {
         const int angular = arms.offset ? pass == 0 : pass == 1;
         for (int i = 0; i < 3; ++i) {
+            const int before = n;
             if (angular) {
                 btgG6DofAxisRow(x[3 + i], lim[3 + i], axis[i], 1, 1, arms, a.angVel0, b.angVel0, fps, erp, rows, &n);
             } else {
                 const int rotAllowed = !(lim[3 + (i + 1) % 3].limit && lim[3 + (i + 2) % 3].limit);
                 btgG6DofAxisRow(x[i], lim[i], colA[i], 0, rotAllowed, arms, a.linVel0, b.linVel0, fps, erp, rows, &n);
             }
+            if (n > before && (p.axis[angular ? 3 + i : i].mode & BTG_SIXDOF_SPRING)) *springRows |= 1u << before;
         }
     }
     return n;

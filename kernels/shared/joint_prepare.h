@@ -44,15 +44,23 @@ static inline void btgPrepareJoint(BtgJoint j, BtgJointState* s, BTG_GLOBAL BtgJ
         s->numRows = n;
     } else if (j.type == BTG_JOINT_SIXDOF) {
         BtgJointInfoRow info[BTG_JOINT_SIXDOF_ROWS];
-        const int n = btgG6DofInfoRows(j, a, b, fps, p.erp, p.globalCfm, p.numIterations, info);
-        for (int k = 0; k < n; ++k)
-            rows[j.firstRow + k] = btgFinishJointRow(info[k], a, b, p.damping, j.breakingThreshold);
+        uint springRows = 0u;
+        const int n = btgG6DofInfoRows(j, a, b, fps, p.erp, p.globalCfm, p.numIterations, info, &springRows);
+        for (int k = 0; k < n; ++k) {
+            BtgJointRow r = btgFinishJointRow(info[k], a, b, p.damping, j.breakingThreshold);
+            if ((springRows >> k) & 1u) r.flags = BTG_JOINT_ROW_SPRING;
+            rows[j.firstRow + k] = r;
+        }
         s->numRows = n;
     } else if (j.type == BTG_JOINT_SIXDOF2) {
         BtgJointInfoRow info[BTG_JOINT_SIXDOF2_ROWS];
-        const int n = btgSixDofInfoRows(j, a, b, fps, p.erp, p.globalCfm, info);
-        for (int k = 0; k < n; ++k)
-            rows[j.firstRow + k] = btgFinishJointRow(info[k], a, b, p.damping, j.breakingThreshold);
+        uint springRows = 0u;
+        const int n = btgSixDofInfoRows(j, a, b, fps, p.erp, p.globalCfm, info, &springRows);
+        for (int k = 0; k < n; ++k) {
+            BtgJointRow r = btgFinishJointRow(info[k], a, b, p.damping, j.breakingThreshold);
+            if ((springRows >> k) & 1u) r.flags = BTG_JOINT_ROW_SPRING;
+            rows[j.firstRow + k] = r;
+        }
         s->numRows = n;
     }
 }

@@ -156,9 +156,15 @@ typedef struct {
     float upper;
     float impulse; /* accumulated this substep, N s */
     float cfm;     /* m_cfm * m_jacDiagABInv: the impulse's own feedback (dimensionless) */
-    int pad0;
+    int flags;     /* BTG_JOINT_ROW_* */
     int pad1;
 } BtgJointRow;
+
+/* BtgJointRow.flags: a spring's row (a 6-DoF spring2 spring row, get_limit_motor_info2's; the
+ * row of a btGeneric6DofSpringConstraint axis whose spring drives its motor): its bounds are the
+ * impulse of one step of the spring force from the step's start, which the soft step spends
+ * over the step's substeps as one budget (btgSoftJointSolve), not as a force held each substep. */
+#define BTG_JOINT_ROW_SPRING 1
 
 /* What the device keeps of each joint and the host reads back every call (writeBackJoints'
  * results of the last substep; a break holds until the host has disabled the joint). */
@@ -375,7 +381,7 @@ static inline BtgJointRow btgFinishJointRow(BtgJointInfoRow in, BtgJointBody a, 
     r.target = in.error - v0 * damping + v0;
     r.impulse = 0.0f;
     r.cfm = in.cfm * r.mass;
-    r.pad0 = 0;
+    r.flags = 0;
     r.pad1 = 0;
     return r;
 }

@@ -188,7 +188,7 @@ static inline void btgSixDofSpringRow(BtgSixDofAxis x, BtgSixDofLimit l, BtgFloa
 /* calculateJacobi plus get_limit_motor_info2 for one axis: rows appended at rows[*n]. */
 static inline void btgSixDofAxisRows(BtgSixDofAxis x, BtgSixDofLimit l, BtgFloat4 ax, int rotational, BtgSixDofBodies s,
                                      float jScaleA, float jScaleB, float vel, float fps, float erp,
-                                     BtgJointInfoRow* rows, int* n)
+                                     BtgJointInfoRow* rows, int* n, uint* springRows)
 {
     const BtgFloat4 relA = s.relA, relB = s.relB;
     /* Unset values take info->cfm[0] as it stands now: row 0's cfm, which an earlier row may
@@ -266,6 +266,7 @@ static inline void btgSixDofAxisRows(BtgSixDofAxis x, BtgSixDofLimit l, BtgFloat
     if (x.mode & BTG_SIXDOF_SPRING) {
         BtgJointInfoRow r = j;
         btgSixDofSpringRow(x, l, ax, rotational, s, fps, &r);
+        *springRows |= 1u << *n;
         rows[(*n)++] = r;
     }
 }
@@ -278,11 +279,13 @@ static inline int btgSixDofViolated(BtgSixDofLimit l)
            (l.limit == 4 && (l.error < -t || l.errorHi > t));
 }
 
-/* getInfo1 and getInfo2 of a 6-DoF spring2 joint: rows[0, returned count). */
+/* getInfo1 and getInfo2 of a 6-DoF spring2 joint: rows[0, returned count), the spring rows'
+ * places in springRows. */
 static inline int btgSixDofInfoRows(BtgJoint j, BtgJointBody a, BtgJointBody b, float fps, float erp, float globalCfm,
-                                    BtgJointInfoRow* rows)
+                                    BtgJointInfoRow* rows, uint* springRows)
 {
     const BtgSixDofParams p = j.sixdof;
+    *springRows = 0u; /* bit k: rows[k] is a spring row */
     rows[0] = btgEmptyInfoRow(globalCfm);
     /* calculateTransforms */
     BtgFloat4 colA[3], colB[3];
@@ -348,7 +351,7 @@ static inline int btgSixDofInfoRows(BtgJoint j, BtgJointBody a, BtgJointBody b, 
         BtgSixDofAxis x = p.axis[3 + i];
         if (!ang[i].limit && !(x.mode & (BTG_SIXDOF_MOTOR | BTG_SIXDOF_SPRING))) continue;
         const float vel = btgDot3(a.angVel0, axis[i]) - btgDot3(b.angVel0, axis[i]);
-        btgSixDofAxisRows(x, ang[i], axis[i], 1, s, 1.0f, 1.0f, vel, fps, erp, rows, &n);
+        btgSixDofAxisRows(x, ang[i], axis[i], 1, s, 1.0f, 1.0f, vel, fps, erp, rows, &n, springRows);
     }
     /* setLinearLimits */
     for (int i = 0; i < 3; ++i) {
@@ -357,7 +360,7 @@ static inline int btgSixDofInfoRows(BtgJoint j, BtgJointBody a, BtgJointBody b, 
         const int rotAllowed = !(btgSixDofViolated(ang[(i + 1) % 3]) && btgSixDofViolated(ang[(i + 2) % 3]));
         const int scale = hasStaticBody && !rotAllowed;
         const float vel = btgDot3(a.linVel0, colA[i]) - btgDot3(b.linVel0, colA[i]);
-        btgSixDofAxisRows(x, lin[i], colA[i], 0, s, scale ? factA : 1.0f, scale ? factB : 1.0f, vel, fps, erp, rows, &n);
+        btgSixDofAxisRows(x, lin[i], colA[i], 0, s, scale ? factA : 1.0f, scale ? factB : 1.0f, vel, fps, erp, rows, &n, springRows);
     }
     return n;
 }

@@ -187,6 +187,9 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     if (numBodies == 0) return;
     const int edgeCapacity = int(slots);
     numColors = std::max(numColors, 1);
+    // A spring row's impulse is the step's, applied once (btgSoftJointSolve): the carried warm
+    // start would apply its last substep's share again, so the substeps gather.
+    if (w.jointSprings > 0) params.gather = 1;
     cl::Program& prog = ctx.program("solve_soft");
     SolverScratch& sc = w.solverScratch;
     sc.softContacts.reserve(ctx, std::max<size_t>(slots, 1));

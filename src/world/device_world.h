@@ -224,6 +224,7 @@ struct DeviceWorld {
     cl::DeviceArray<BtgJointRow> jointRows;
     int numJoints = 0;
     int jointIterations = 0;  // the largest of the joints' iteration counts
+    int jointSprings = 0;     // 6-DoF spring2 axes with their spring on (the soft step then gathers)
     // Pairs of rows (a < b, sorted) that ignore each other's collision check (filter_pairs).
     cl::DeviceArray<BtgPair> ignoredPairs;
     int numIgnoredPairs = 0;
