@@ -168,7 +168,7 @@ static void soft_joint(int j, int mode, SOFT_FN_ARGS)
     BtgBodyVel va = btgMakeBodyVel(0, btgZero4(), btgZero4()), vb = va;
     BtgSolverBody a = joint.bodyA >= 0 ? load_body(softSolver, softBodies, joint.bodyA, &va) : btgFixedJointBody().body;
     BtgSolverBody b = joint.bodyB >= 0 ? load_body(softSolver, softBodies, joint.bodyB, &vb) : btgFixedJointBody().body;
-    btgSoftJointSolve(jointRows, joint.firstRow, rows, a, b, &va, &vb, params.jointBoundScale);
+    btgSoftJointSolve(jointRows, joint.firstRow, rows, a, b, &va, &vb, params.jointBoundScale, mode == BTG_SOFT_RELAX);
     if (a.dynamic) store_vel(va, a, softBodies, joint.bodyA);
     if (b.dynamic) store_vel(vb, b, softBodies, joint.bodyB);
 }

@@ -22,9 +22,13 @@ static inline void btgPrepareJoint(BtgJoint j, BtgJointState* s, BTG_GLOBAL BtgJ
     const float fps = 1.0f / p.dt;
     if (j.type == BTG_JOINT_POINT2POINT) {
         /* btPoint2PointConstraint sets info->m_damping to its own setting. */
-        for (int k = 0; k < BTG_JOINT_P2P_ROWS; ++k)
-            rows[j.firstRow + k] =
-                btgFinishJointRow(btgP2PInfoRow(j, a, b, k, fps, p.erp, p.globalCfm), a, b, j.damping, j.breakingThreshold);
+        for (int k = 0; k < BTG_JOINT_P2P_ROWS; ++k) {
+            const BtgJointInfoRow info = btgP2PInfoRow(j, a, b, k, fps, p.erp, p.globalCfm);
+            BtgJointRow r = btgFinishJointRow(info, a, b, j.damping, j.breakingThreshold);
+            r.flags = BTG_JOINT_ROW_POSITION;
+            r.bias = info.error;
+            rows[j.firstRow + k] = r;
+        }
         s->numRows = BTG_JOINT_P2P_ROWS;
     } else if (j.type == BTG_JOINT_GEAR) {
         rows[j.firstRow] = btgFinishJointRow(btgGearInfoRow(j, a, b, p.globalCfm), a, b, p.damping, j.breakingThreshold);

@@ -157,7 +157,7 @@ typedef struct {
     float impulse; /* accumulated this substep, N s */
     float cfm;     /* m_cfm * m_jacDiagABInv: the impulse's own feedback (dimensionless) */
     int flags;     /* BTG_JOINT_ROW_* */
-    int pad1;
+    float bias;    /* the share of target that corrects position error (BTG_JOINT_ROW_POSITION rows) */
 } BtgJointRow;
 
 /* BtgJointRow.flags: a spring's row (a 6-DoF spring2 spring row, get_limit_motor_info2's; the
@@ -165,6 +165,10 @@ typedef struct {
  * impulse of one step of the spring force from the step's start, which the soft step spends
  * over the step's substeps as one budget (btgSoftJointSolve), not as a force held each substep. */
 #define BTG_JOINT_ROW_SPRING 1
+/* BtgJointRow.flags: a row whose target's bias is only position error (a point-to-point row):
+ * the soft step's relax drives it without (bias), as Box2D's relax does, so that the correction
+ * leaves no velocity behind. */
+#define BTG_JOINT_ROW_POSITION 2
 
 /* What the device keeps of each joint and the host reads back every call (writeBackJoints'
  * results of the last substep; a break holds until the host has disabled the joint). */
@@ -382,7 +386,7 @@ static inline BtgJointRow btgFinishJointRow(BtgJointInfoRow in, BtgJointBody a, 
     r.impulse = 0.0f;
     r.cfm = in.cfm * r.mass;
     r.flags = 0;
-    r.pad1 = 0;
+    r.bias = 0.0f;
     return r;
 }
 
