@@ -640,7 +640,7 @@ bool GpuWorld::step(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep, 
             // The transforms this device call collides at, for the fill's refresh of old points
             // (one device substep: the reports are of it).
             if (m_config.fillDispatcherManifolds) {
-                if (perBatch * std::max(m_config.internalSubsteps, 1) == 1) m_manifolds.noteCollidedAt(m_rows);
+                if (perBatch * std::max(m_config.internalSubsteps, 1) == 1) m_manifolds.noteCollidedAt(m_rows, m_world.getForceUpdateAllAabbs());
                 else m_manifolds.forgetCollidedAt();
             }
             Clock::time_point t1 = Clock::now();

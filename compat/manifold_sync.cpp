@@ -614,13 +614,16 @@ bool ManifoldSync::keepsOldPoints(Node* node, const RowMap& rows)
     const btTransform& t1 = m_collidedAt[size_t(r1)];
     const btScalar breaking = m->getContactBreakingThreshold();
     // Only while stock's broadphase would still hold the pair: the AABBs as its world expands
-    // them (the contact threshold) and, for a moving body, as its Dbvt leaf is fattened (0.05 m;
-    // stock's lazy removal of pairs that stopped overlapping is not followed).
+    // them (the contact threshold) and as its Dbvt leaves are fattened (0.05 m): a moving body's,
+    // and a static one's too where the world updates every AABB each step (Bullet's default:
+    // its first update, with the contact threshold, fattens the leaf it was inserted with, and
+    // the leaf stays; a ball falling out of a static trigger keeps its point a step longer).
+    // Stock's lazy removal of pairs that stopped overlapping is not followed.
     btVector3 min0, max0, min1, max1;
     k.body0->getCollisionShape()->getAabb(t0, min0, max0);
     k.body1->getCollisionShape()->getAabb(t1, min1, max1);
-    const btScalar pad0 = breaking + (k.body0->isStaticObject() ? 0 : btScalar(0.05));
-    const btScalar pad1 = breaking + (k.body1->isStaticObject() ? 0 : btScalar(0.05));
+    const btScalar pad0 = breaking + (k.body0->isStaticObject() && !m_staticLeavesFattened ? 0 : btScalar(0.05));
+    const btScalar pad1 = breaking + (k.body1->isStaticObject() && !m_staticLeavesFattened ? 0 : btScalar(0.05));
     if (!TestAabbAgainstAabb2(min0 - btVector3(pad0, pad0, pad0), max0 + btVector3(pad0, pad0, pad0),
                               min1 - btVector3(pad1, pad1, pad1), max1 + btVector3(pad1, pad1, pad1)))
         return false;
@@ -644,8 +647,9 @@ bool ManifoldSync::keepsOldPoints(Node* node, const RowMap& rows)
     return m->getNumContacts() > 0;
 }
 
-void ManifoldSync::noteCollidedAt(const RowMap& rows)
+void ManifoldSync::noteCollidedAt(const RowMap& rows, bool staticLeavesFattened)
 {
+    m_staticLeavesFattened = staticLeavesFattened;
     m_collidedAt.resize(rows.size());
     forEachChunk(rows.size(), 4096, [&](size_t begin, size_t end, int) {
         for (size_t r = begin; r < end; ++r) {

@@ -64,7 +64,9 @@ public:
     // old points its detector did not replace while they stay within the breaking threshold at
     // those transforms; without them (a call of several device substeps: only the last one's
     // contacts come back) the fill keeps only the device's points.
-    void noteCollidedAt(const RowMap& rows);
+    // staticLeavesFattened: stock's world updates every AABB each step (getForceUpdateAllAabbs,
+    // its default), so a static body's Dbvt leaf is fattened by the leaf margin as a moving one's.
+    void noteCollidedAt(const RowMap& rows, bool staticLeavesFattened);
     void forgetCollidedAt() { m_collidedAtValid = false; }
     // Config::stockEmptyManifolds: the pairs stock's dispatcher has collided, from its pair cache
     // just updated as stock's at an internal step's start (pair_manifolds.cpp). The next fill
@@ -231,6 +233,7 @@ private:
     Table m_map;
     std::vector<btTransform> m_collidedAt;  // per row (noteCollidedAt)
     bool m_collidedAtValid = false;
+    bool m_staticLeavesFattened = true;
     // Every entry by each of its two bodies, so that removing a body costs its own manifolds,
     // not a walk of the whole map (an app clearing a level removes thousands).
     std::unordered_map<const btCollisionObject*, std::vector<Node*>> m_byObject;

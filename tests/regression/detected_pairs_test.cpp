@@ -47,7 +47,8 @@ int sceneIndex(const scenes::Scene& s, const btCollisionObject* o)
 // Pair-steps only one engine's dispatcher shows. Stock keeps a manifold's last points while its
 // refreshContactPoints finds them still within the breaking threshold, after its algorithm has
 // stopped adding any (a body leaving through a face, two kinematic boxes passing through each
-// other): stockOnly counts those trailing steps. gpuOnly counts pairs btgpu shows first.
+// other), for as long as its broadphase holds the pair (btgpu follows the fattened leaves, not
+// the Dbvt's lazy removal of pairs): stockOnly counts those trailing steps. gpuOnly counts pairs btgpu shows first.
 struct Tally {
     int stockOnly = 0, gpuOnly = 0;
     void add(const std::set<std::pair<int, int>>& stock, const std::set<std::pair<int, int>>& gpu, int step)
@@ -89,7 +90,8 @@ TEST(DetectedPairs, StaticTriggerIsInTheManifoldsAsStock)
         }
     }
     EXPECT_GT(withTrigger, 60);  // pair-steps of bodies inside the trigger
-    EXPECT_LE(t.stockOnly, 8) << "stock's trailing steps as bodies leave the trigger (measured 5)";
+    // 6 before a static body's Dbvt leaf was taken as fattened as stock's world leaves it
+    EXPECT_LE(t.stockOnly, 4) << "stock's trailing steps as bodies leave the trigger (measured 3)";
     EXPECT_LE(t.gpuOnly, 3) << "a box's entry a step early";
     for (int i = 2; i < 8; ++i) EXPECT_LT(sb.gpu->body(i)->getWorldTransform().getOrigin().y(), 0.5) << i;
     EXPECT_LT(sb.gpu->body(8)->getWorldTransform().getOrigin().y(), -5);
@@ -119,7 +121,8 @@ TEST(DetectedPairs, KinematicPairsWithCustomMasksAsStock)
     EXPECT_GT(kk, 40);  // btgpu collided the two kinematic boxes
     EXPECT_GT(ks, 60);  // and the kinematic sphere with the static box
     EXPECT_LE(t.gpuOnly, 2);
-    EXPECT_LE(t.stockOnly, 13) << "stock's trailing steps at the two exits (measured 11)";
+    // 11 before a static body's Dbvt leaf was taken as fattened as stock's world leaves it
+    EXPECT_LE(t.stockOnly, 7) << "stock's trailing steps at the two exits (measured 6)";
 }
 
 // The trigger ghost of ghost_scenes (CF_NO_CONTACT_RESPONSE, a btPairCachingGhostObject): stock's
