@@ -77,19 +77,22 @@ static BTG_ALWAYS_INLINE void btgSoftSolveQuad(BtgSoftContact* s, BtgSolverBody 
     else if (useBias && s->springStiffness > 0.0f) bias = btgSoftPairSpringBias(s, mass, sep, p, &massScale, &impulseScale);
     else if (useBias) bias = btgSoftSpringBias(spring, sep, p, &massScale, &impulseScale);
     const BtgJacobian jn = btgPointJacobian(s->normal, rA, rB, a, b);
-    BTG_FOR_POINTS(k, n) {
-        const float mk = btgLane(s->normalMass, k);
-        if (mk == 0.0f) continue;
-        const BtgJacobian j = btgQuadJacobian(jn, k, mask);
-        const float bk = btgQuadGet(bias, k, mask), msk = btgQuadGet(massScale, k, mask);
-        const float isk = btgQuadGet(impulseScale, k, mask);
-        const float old = btgLane(s->normalImpulse, k);
-        const float vn = btgRowVelocity(j, *va, *vb);
-        float next = old - mk * (msk * vn + bk) - isk * old;
-        if (!(next > 0.0f)) next = 0.0f;
-        btgSetLane(&s->normalImpulse, k, next);
-        btgSetLane(&s->totalNormal, k, btgLane(s->totalNormal, k) + (next - old));
-        btgRowApply(j, a, b, va, vb, next - old);
+    const int sweeps = btgSoftNormalSweeps(s, useBias);
+    for (int pass = 0; pass < sweeps; ++pass) {
+        BTG_FOR_POINTS(k, n) {
+            const float mk = btgLane(s->normalMass, k);
+            if (mk == 0.0f) continue;
+            const BtgJacobian j = btgQuadJacobian(jn, k, mask);
+            const float bk = btgQuadGet(bias, k, mask), msk = btgQuadGet(massScale, k, mask);
+            const float isk = btgQuadGet(impulseScale, k, mask);
+            const float old = btgLane(s->normalImpulse, k);
+            const float vn = btgRowVelocity(j, *va, *vb);
+            float next = old - mk * (msk * vn + bk) - isk * old;
+            if (!(next > 0.0f)) next = 0.0f;
+            btgSetLane(&s->normalImpulse, k, next);
+            btgSetLane(&s->totalNormal, k, btgLane(s->totalNormal, k) + (next - old));
+            btgRowApply(j, a, b, va, vb, next - old);
+        }
     }
     if (!friction) return;
     const BtgJacobian j1 = btgPointJacobian(s->tangent1, rA, rB, a, b);

@@ -298,10 +298,10 @@ static BTG_ALWAYS_INLINE void btgWPlaneSpace(BtgV3W n, BtgV3W* p, BtgV3W* q)
 static BTG_ALWAYS_INLINE void btgWNormalRow(__global float* c, int k, BtgV3W n, const BtgBodyW* a, const BtgBodyW* b, BtgVelW* va,
                                             BtgVelW* vb, const BtgDeltaW* dA, const BtgDeltaW* dB, int useBias,
                                             BtgSoftParams p, BtgW springMassScale, BtgW springImpulseScale,
-                                            BtgW springBiasRate)
+                                            BtgW springBiasRate, int8 take)
 {
     const BtgW mass = btgWLoadG(c, BTG_WC_AT(k, BTG_WC_MASS));
-    const int8 solved = mass != 0.0f;
+    const int8 solved = (mass != 0.0f) & take;
     if (!any(solved)) return;
     const BtgV3W rA = btgW3LoadG(c, BTG_WC_AT(k, BTG_WC_AX)), rB = btgW3LoadG(c, BTG_WC_AT(k, BTG_WC_BX));
     /* btgSoftSeparation */
@@ -394,8 +394,9 @@ static BTG_ALWAYS_INLINE void btgWCarriedTotals(__global float* c, int normal, i
     }
 }
 
-/* btgSoftSolve for the lanes: the normal rows point by point (soft while biased), then, in the
- * relax (or with frictionInSolve), the friction rows. */
+/* btgSoftSolve for the lanes: the normal rows point by point (soft while biased; twice in the
+ * relax where a lane has two or more solved points), then, in the relax (or with
+ * frictionInSolve), the friction rows. */
 static BTG_ALWAYS_INLINE void btgWSoftSolve(__global float* c, const BtgBodyW* a, const BtgBodyW* b, BtgVelW* va, BtgVelW* vb,
                                             const BtgDeltaW* dA, const BtgDeltaW* dB, int useBias, BtgSoftParams p)
 {
@@ -403,7 +404,16 @@ static BTG_ALWAYS_INLINE void btgWSoftSolve(__global float* c, const BtgBodyW* a
     const int8 fixed = btgWLoadG(c, BTG_WC_FIXED) != 0.0f;
     BtgW ms = (BtgW)(1.0f), is = (BtgW)(0.0f), rate = (BtgW)(0.0f);
     if (useBias) btgWContactSpring(btgWLoadG(c, BTG_WC_STIFFENING), fixed, p, &ms, &is, &rate);
-    for (int k = 0; k < BTG_MAX_POINTS; ++k) btgWNormalRow(c, k, n, a, b, va, vb, dA, dB, useBias, p, ms, is, rate);
+    const int8 all = (int8)(-1);
+    for (int k = 0; k < BTG_MAX_POINTS; ++k) btgWNormalRow(c, k, n, a, b, va, vb, dA, dB, useBias, p, ms, is, rate, all);
+    if (!useBias) {
+        /* btgSoftNormalSweeps: the relax's second pass, in the lanes with two or more solved points */
+        int8 solvedPoints = (int8)(0);
+        for (int k = 0; k < BTG_MAX_POINTS; ++k) solvedPoints -= btgWLoadG(c, BTG_WC_AT(k, BTG_WC_MASS)) != 0.0f;
+        const int8 multi = solvedPoints > 1;
+        if (any(multi))
+            for (int k = 0; k < BTG_MAX_POINTS; ++k) btgWNormalRow(c, k, n, a, b, va, vb, dA, dB, useBias, p, ms, is, rate, multi);
+    }
     if (!(!useBias || p.frictionInSolve)) return;
     BtgV3W t1, t2;
     btgWPlaneSpace(n, &t1, &t2);
