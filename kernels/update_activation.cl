@@ -7,9 +7,15 @@
  *                 free), wake (a sleeping body touched by a moving, non-slow body, or jointed
  *                 to an awake one: the edges past the contacts are joints).
  * apply_sleep     one work-item per body. Reads islandTime, wake, sleepTime. Writes props.flags
- *                 (BTG_BODY_SLEEPING), linVel/angVel (zero when falling asleep), sleepState. */
+ *                 (BTG_BODY_SLEEPING), linVel/angVel (zero when falling asleep), sleepState.
+ * wake_touched    one work-item per contact, before the contacts' rows are made (wakeTouched).
+ *                 Reads contacts, counters[kContactCount], props, sleepTime. Writes wake (a
+ *                 sleeping body a moving one touches, btgWakes, as island_min judges it).
+ * wake_apply      one work-item per body, after wake_touched. Reads wake. Writes props.flags
+ *                 (SLEEPING cleared), sleepTime (0), sleepState (0), wake (cleared). */
 #include "shared/activation.h"
 #include "shared/counters.h"
+#include "shared/types.h"
 
 __kernel void own_timers(int n, __global const BtgFloat4* restrict linVel, __global const BtgFloat4* restrict angVel,
                          __global const BtgBodyProps* restrict props, __global float* sleepTime,
@@ -76,4 +82,38 @@ __kernel void apply_sleep(int n, __global const uint* restrict islandTime, __glo
         return;
     }
     sleepState[i] = (f & BTG_BODY_SLEEPING) ? 1u : 0u;
+}
+
+/* Stock wakes a sleeping body that a moving one touches before its solve (buildIslands: the
+ * island of an active body, or one a moving kinematic body touches, is activated whole), so the
+ * blow moves it in the same step. Woken only at the step's end (apply_sleep), it was solved as a
+ * fixed body for the step it was hit in: a ball shot into a sleeping stack bounced off it as off
+ * a wall. The toucher's own timer is the last step's (the same rule as island_min's); a body
+ * woken here wakes what it touches in the next step (one contact a step, as island_min). Marks
+ * first, then clears the flags: the marks read the flags as the step found them, whatever the
+ * order of the work-items. */
+__kernel void wake_touched(__global const BtgContact* restrict contacts, __global const uint* restrict counters,
+                           int capacity, __global const BtgBodyProps* restrict props,
+                           __global const float* restrict sleepTime, __global uint* wake)
+{
+    const int k = get_global_id(0);
+    if (k >= (int)min(counters[BTG_COUNTER_CONTACTS], (uint)capacity)) return;
+    const int a = contacts[k].bodyA, b = contacts[k].bodyB;
+    if (contacts[k].numPoints <= 0 || a < 0 || b < 0) return;
+    const uint fa = props[a].flags, fb = props[b].flags;
+    if (btgWakes(fa, fb, sleepTime[a])) wake[b] = 1u;
+    if (btgWakes(fb, fa, sleepTime[b])) wake[a] = 1u;
+}
+
+__kernel void wake_apply(int n, __global uint* wake, __global BtgBodyProps* props, __global float* sleepTime,
+                         __global uint* sleepState)
+{
+    const int i = get_global_id(0);
+    if (i >= n || !wake[i]) return;
+    wake[i] = 0u;
+    const uint f = props[i].flags;
+    if (!(f & BTG_BODY_SLEEPING)) return;
+    props[i].flags = f & ~BTG_BODY_SLEEPING;
+    sleepTime[i] = 0.0f;
+    sleepState[i] = 0u;
 }

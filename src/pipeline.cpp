@@ -52,7 +52,12 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::NarrowphaseMesh: narrowphaseMesh(w, plan.kinds); break;
         case Stage::FilterPairs: filterPairs(w); break;
         case Stage::ApplyForces: applyForces(w, p.dt, p.maxGyroscopicForce); break;
-        case Stage::ContactCache: buildContacts(w, p); break;
+        case Stage::ContactCache:
+            buildContacts(w, p);
+            // With deactivation on, sleeping bodies a moving one touches wake before their rows
+            // are made (stock activates the island before its solve).
+            if (p.deactivationTime > 0.0f) wakeTouched(w);
+            break;
         case Stage::PrepareContacts: prepareContacts(w, p, plan.solver == SolverKind::SoftStep); break;
         case Stage::ContactCallbacks: applyContactMaterials(w, p); break;
         case Stage::PrepareJoints: prepareJoints(w, s.joints); break;

@@ -76,4 +76,21 @@ void updateActivation(ActivationState& s, const std::vector<BtgEdge>& edges, flo
     }
 }
 
+void wakeTouched(ActivationState& s, const std::vector<BtgContact>& contacts)
+{
+    std::vector<uint> wake(s.props.size(), 0u);
+    for (const BtgContact& c : contacts) {
+        if (c.numPoints <= 0 || c.bodyA < 0 || c.bodyB < 0) continue;
+        const uint fa = s.props[size_t(c.bodyA)].flags, fb = s.props[size_t(c.bodyB)].flags;
+        if (btgWakes(fa, fb, s.sleepTime[size_t(c.bodyA)])) wake[size_t(c.bodyB)] = 1u;
+        if (btgWakes(fb, fa, s.sleepTime[size_t(c.bodyB)])) wake[size_t(c.bodyA)] = 1u;
+    }
+    for (size_t i = 0; i < wake.size(); ++i) {
+        if (!wake[i] || !(s.props[i].flags & BTG_BODY_SLEEPING)) continue;
+        s.props[i].flags &= ~BTG_BODY_SLEEPING;
+        s.sleepTime[i] = 0.0f;
+        s.sleepState[i] = 0;
+    }
+}
+
 }  // namespace btgpu::reference

@@ -20,4 +20,8 @@ struct ActivationState {
 void updateActivation(ActivationState& s, const std::vector<BtgEdge>& edges, float dt, float deactivationTime,
                       int rounds = 4, int firstJointEdge = -1);
 
+// wake_touched and wake_apply: before the contacts' rows are made, a sleeping body a moving one
+// touches wakes (contacts without points touch nothing).
+void wakeTouched(ActivationState& s, const std::vector<BtgContact>& contacts);
+
 }  // namespace btgpu::reference

@@ -30,4 +30,21 @@ void updateActivation(DeviceWorld& w, float dt, float deactivationTime, int roun
         .run(n);
 }
 
+void wakeTouched(DeviceWorld& w)
+{
+    cl::Program& prog = w.ctx.program("update_activation");
+    const int n = w.numBodies;
+    // The marks of the last step's island_min stay after apply_sleep woke their bodies; an app
+    // may have put such a body to sleep since.
+    w.wake.fill(w.ctx, 0u, 0, size_t(n));
+    const int capacity = int(std::min(w.contactCapacity, w.contacts.capacity()));
+    if (capacity > 0)
+        cl::Launch(w.ctx, prog.kernel("wake_touched"), &w.profiler)
+            .arg(w.contacts).arg(w.counters).arg(capacity).arg(w.props).arg(w.sleepTime).arg(w.wake)
+            .run(size_t(capacity));
+    cl::Launch(w.ctx, prog.kernel("wake_apply"), &w.profiler)
+        .arg(n).arg(w.wake).arg(w.props).arg(w.sleepTime).arg(w.sleepState)
+        .run(n);
+}
+
 }  // namespace btgpu

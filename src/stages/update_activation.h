@@ -11,4 +11,8 @@
 
 namespace btgpu {
 void updateActivation(DeviceWorld& w, float dt, float deactivationTime, int rounds = 4);
+// Before the contacts' rows are made: a sleeping body a moving one touches wakes now, so this
+// step's solve moves it (stock activates the island before its solve). Reads contacts,
+// counters[kContactCount], props, sleepTime. Writes props.flags, sleepTime, sleepState, wake.
+void wakeTouched(DeviceWorld& w);
 }

@@ -113,3 +113,47 @@ TEST(UpdateActivation, WholeIslandSleepsThenWakes)
     st = d.sleepState();
     EXPECT_EQ(st[3], 0u);  // woken by the moving body
 }
+
+// Before the solve (wakeTouched): a sleeping body that a moving body's contact touches wakes in
+// the same step, its flags, timers and sleep state as the reference's; one touched by a slow
+// body, or by a contact without points, sleeps on; a stale wake mark from the last step's end
+// wakes nothing.
+TEST(UpdateActivation, WakeTouchedBeforeTheSolveMatchesReference)
+{
+    Scene sc = chain();
+    for (int i = 0; i < 4; ++i) {
+        sc.s.props[i].flags |= BTG_BODY_SLEEPING;
+        sc.s.sleepTime[i] = 2.5f;
+        sc.s.sleepState[i] = 1;
+    }
+    sc.s.sleepTime[4] = 0.0f;  // body 4 moving (its own timer 0)
+    Device d(sc);
+    BtgContact touch{}, slow{}, empty{};
+    touch.bodyA = 4, touch.bodyB = 1, touch.numPoints = 2;  // the moving body on sleeper 1
+    slow.bodyA = 3, slow.bodyB = 0, slow.numPoints = 1;     // two sleepers
+    empty.bodyA = 2, empty.bodyB = 4, empty.numPoints = 0;  // no points: no touch
+    const std::vector<BtgContact> contacts = {touch, slow, empty};
+    d.w.contactCapacity = contacts.size();
+    d.w.contacts.upload(d.w.ctx, contacts);
+    std::vector<uint> counters(kNumCounters, 0);
+    counters[kContactCount] = uint(contacts.size());
+    d.w.counters.upload(d.w.ctx, counters);
+    std::vector<uint> stale(6, 0u);
+    stale[3] = 1u;  // left by the last step's island_min
+    d.w.wake.upload(d.w.ctx, stale);
+    d.w.sleepState.upload(d.w.ctx, sc.s.sleepState);
+    wakeTouched(d.w);
+    reference::ActivationState ref = sc.s;
+    reference::wakeTouched(ref, contacts);
+    const std::vector<BtgBodyProps> props = d.w.props.download(d.w.ctx, 6);
+    const std::vector<float> timers = d.w.sleepTime.download(d.w.ctx, 6);
+    const std::vector<uint> st = d.sleepState();
+    for (int i = 0; i < 6; ++i) {
+        EXPECT_EQ(props[size_t(i)].flags, ref.props[size_t(i)].flags) << i;
+        EXPECT_EQ(timers[size_t(i)], ref.sleepTime[size_t(i)]) << i;
+        EXPECT_EQ(st[size_t(i)], ref.sleepState[size_t(i)]) << i;
+    }
+    EXPECT_FALSE(props[1].flags & BTG_BODY_SLEEPING);  // touched by the moving body
+    EXPECT_EQ(timers[1], 0.0f);
+    for (int i : {0, 2, 3}) EXPECT_TRUE(props[size_t(i)].flags & BTG_BODY_SLEEPING) << i;
+}
