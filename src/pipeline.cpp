@@ -56,7 +56,10 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
             buildContacts(w, p);
             // With deactivation on, sleeping bodies a moving one touches wake before their rows
             // are made (stock activates the island before its solve).
-            if (p.deactivationTime > 0.0f) wakeTouched(w);
+            if (p.deactivationTime > 0.0f) {
+                w.profiler.stage = stageName(Stage::UpdateActivation);  // its kernels' stage, in profiles
+                wakeTouched(w);
+            }
             break;
         case Stage::PrepareContacts: prepareContacts(w, p, plan.solver == SolverKind::SoftStep); break;
         case Stage::ContactCallbacks: applyContactMaterials(w, p); break;
