@@ -11,10 +11,14 @@
  * wake_touched    one work-item per contact, before the contacts' rows are made (wakeTouched).
  *                 Reads contacts, counters[kContactCount], props, sleepTime. Writes wake (a
  *                 sleeping body a moving one touches, btgWakes, as island_min judges it).
- * wake_apply      one work-item per body, after wake_touched. Reads wake. Writes props.flags
+ * wake_jointed    one work-group, after wake_touched, only with joints. Reads joints, props.
+ *                 Writes wake (the bodies joined by enabled joints to an awake or woken one,
+ *                 followed joint by joint until none is added: stock wakes the whole island).
+ * wake_apply      one work-item per body, after wake_touched (and wake_jointed). Reads wake. Writes props.flags
  *                 (SLEEPING cleared), sleepTime (0), sleepState (0), wake (cleared). */
 #include "shared/activation.h"
 #include "shared/counters.h"
+#include "shared/joint_rows.h"
 #include "shared/types.h"
 
 __kernel void own_timers(int n, __global const BtgFloat4* restrict linVel, __global const BtgFloat4* restrict angVel,
@@ -103,6 +107,41 @@ __kernel void wake_touched(__global const BtgContact* restrict contacts, __globa
     const uint fa = props[a].flags, fb = props[b].flags;
     if (btgWakes(fa, fb, sleepTime[a])) wake[b] = 1u;
     if (btgWakes(fb, fa, sleepTime[b])) wake[a] = 1u;
+}
+
+/* A sleeping body joined to one that is awake, or woken above, wakes too, and so on along the
+ * joints: stock's island is every body its joints join, activated whole before the solve. Only
+ * joints (an app's ragdolls and robots: few edges) are followed to the end, in one work-group;
+ * contacts wake one hop a step, as island_min. A mark only ever goes from 0 to 1, so the marks
+ * this ends with are the joints' closure whatever the order of the work-items. */
+__kernel void wake_jointed(__global const BtgJoint* restrict joints, int numJoints,
+                           __global const BtgBodyProps* restrict props, __global uint* wake)
+{
+    __local int changed;
+    const int lid = (int)get_local_id(0), size = (int)get_local_size(0);
+    /* every round but the last wakes a body, so numJoints + 1 rounds reach the closure */
+    for (int round = 0; round <= numJoints; ++round) {
+        barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE); /* the last round's look at `changed` */
+        if (lid == 0) changed = 0;
+        barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+        for (int j = lid; j < numJoints; j += size) {
+            const int a = joints[j].bodyA, b = joints[j].bodyB;
+            if (!(joints[j].flags & BTG_JOINT_ENABLED) || a < 0 || b < 0) continue;
+            /* a body marked is awake for this rule (its flag is cleared by wake_apply) */
+            const uint fa = wake[a] ? props[a].flags & ~BTG_BODY_SLEEPING : props[a].flags;
+            const uint fb = wake[b] ? props[b].flags & ~BTG_BODY_SLEEPING : props[b].flags;
+            if (btgJointWakes(fa, fb) && !wake[b]) {
+                wake[b] = 1u;
+                changed = 1;
+            }
+            if (btgJointWakes(fb, fa) && !wake[a]) {
+                wake[a] = 1u;
+                changed = 1;
+            }
+        }
+        barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+        if (!changed) break;
+    }
 }
 
 __kernel void wake_apply(int n, __global uint* wake, __global BtgBodyProps* props, __global float* sleepTime,

@@ -76,7 +76,7 @@ void updateActivation(ActivationState& s, const std::vector<BtgEdge>& edges, flo
     }
 }
 
-void wakeTouched(ActivationState& s, const std::vector<BtgContact>& contacts)
+void wakeTouched(ActivationState& s, const std::vector<BtgContact>& contacts, const std::vector<BtgJoint>& joints)
 {
     std::vector<uint> wake(s.props.size(), 0u);
     for (const BtgContact& c : contacts) {
@@ -84,6 +84,18 @@ void wakeTouched(ActivationState& s, const std::vector<BtgContact>& contacts)
         const uint fa = s.props[size_t(c.bodyA)].flags, fb = s.props[size_t(c.bodyB)].flags;
         if (btgWakes(fa, fb, s.sleepTime[size_t(c.bodyA)])) wake[size_t(c.bodyB)] = 1u;
         if (btgWakes(fb, fa, s.sleepTime[size_t(c.bodyB)])) wake[size_t(c.bodyA)] = 1u;
+    }
+    // The joints' closure: a marked body counts as awake, until a pass marks nothing more.
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (const BtgJoint& j : joints) {
+            if (!(j.flags & BTG_JOINT_ENABLED) || j.bodyA < 0 || j.bodyB < 0) continue;
+            const size_t a = size_t(j.bodyA), b = size_t(j.bodyB);
+            const uint fa = wake[a] ? s.props[a].flags & ~BTG_BODY_SLEEPING : s.props[a].flags;
+            const uint fb = wake[b] ? s.props[b].flags & ~BTG_BODY_SLEEPING : s.props[b].flags;
+            if (btgJointWakes(fa, fb) && !wake[b]) wake[b] = 1u, changed = true;
+            if (btgJointWakes(fb, fa) && !wake[a]) wake[a] = 1u, changed = true;
+        }
     }
     for (size_t i = 0; i < wake.size(); ++i) {
         if (!wake[i] || !(s.props[i].flags & BTG_BODY_SLEEPING)) continue;

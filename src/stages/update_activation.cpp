@@ -42,6 +42,15 @@ void wakeTouched(DeviceWorld& w)
         cl::Launch(w.ctx, prog.kernel("wake_touched"), &w.profiler)
             .arg(w.contacts).arg(w.counters).arg(capacity).arg(w.props).arg(w.sleepTime).arg(w.wake)
             .run(size_t(capacity));
+    if (w.numJoints > 0) {
+        // One work-group: the joints' closure takes rounds with a group barrier between them.
+        cl_kernel k = prog.kernel("wake_jointed");
+        const size_t group = std::max<size_t>(
+            1, std::min({cl::kernelWorkGroupSize(w.ctx, k), w.ctx.device().maxWorkGroupSize, size_t(256)}));
+        cl::Launch(w.ctx, k, &w.profiler)
+            .arg(w.joints).arg(w.numJoints).arg(w.props).arg(w.wake)
+            .run(group, group);
+    }
     cl::Launch(w.ctx, prog.kernel("wake_apply"), &w.profiler)
         .arg(n).arg(w.wake).arg(w.props).arg(w.sleepTime).arg(w.sleepState)
         .run(n);

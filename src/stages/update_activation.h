@@ -12,7 +12,9 @@
 namespace btgpu {
 void updateActivation(DeviceWorld& w, float dt, float deactivationTime, int rounds = 4);
 // Before the contacts' rows are made: a sleeping body a moving one touches wakes now, so this
-// step's solve moves it (stock activates the island before its solve). Reads contacts,
-// counters[kContactCount], props, sleepTime. Writes props.flags, sleepTime, sleepState, wake.
+// step's solve moves it (stock activates the island before its solve), and so does every
+// sleeping body the joints join to an awake or woken one. Reads contacts,
+// counters[kContactCount], joints, props, sleepTime. Writes props.flags, sleepTime, sleepState,
+// wake.
 void wakeTouched(DeviceWorld& w);
 }

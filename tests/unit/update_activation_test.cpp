@@ -157,3 +157,49 @@ TEST(UpdateActivation, WakeTouchedBeforeTheSolveMatchesReference)
     EXPECT_EQ(timers[1], 0.0f);
     for (int i : {0, 2, 3}) EXPECT_TRUE(props[size_t(i)].flags & BTG_BODY_SLEEPING) << i;
 }
+
+// Joints before the solve (wake_jointed): a sleeping body joined to an awake one wakes, and so
+// does the one joined to it in turn, as stock activates the whole island; joints between sleepers
+// only, disabled joints and joints to static bodies or the fixed body wake nothing. The joint
+// that reaches the awake body is listed last, so one pass in list order would not wake body 2.
+TEST(UpdateActivation, WakeJointedFollowsTheJointsAsTheReference)
+{
+    Scene sc = chain();
+    for (int i = 0; i < 4; ++i) {
+        sc.s.props[i].flags |= BTG_BODY_SLEEPING;
+        sc.s.sleepTime[i] = 2.5f;
+        sc.s.sleepState[i] = 1;
+    }
+    auto joint = [](int a, int b, bool enabled) {
+        BtgJoint j{};
+        j.type = BTG_JOINT_HINGE;
+        j.bodyA = a;
+        j.bodyB = b;
+        j.flags = enabled ? BTG_JOINT_ENABLED : 0u;
+        return j;
+    };
+    const std::vector<BtgJoint> joints = {joint(2, 3, true), joint(1, 0, true), joint(2, 1, false),
+                                          joint(5, 0, true), joint(BTG_JOINT_FIXED_BODY, 1, true), joint(4, 3, true)};
+    Device d(sc);
+    d.w.contactCapacity = 1;
+    d.w.contacts.reserve(d.w.ctx, 1);
+    std::vector<uint> counters(kNumCounters, 0);  // no contacts
+    d.w.counters.upload(d.w.ctx, counters);
+    d.w.joints.upload(d.w.ctx, joints);
+    d.w.numJoints = int(joints.size());
+    d.w.sleepState.upload(d.w.ctx, sc.s.sleepState);
+    wakeTouched(d.w);
+    reference::ActivationState ref = sc.s;
+    reference::wakeTouched(ref, {}, joints);
+    const std::vector<BtgBodyProps> props = d.w.props.download(d.w.ctx, 6);
+    const std::vector<float> timers = d.w.sleepTime.download(d.w.ctx, 6);
+    const std::vector<uint> st = d.sleepState();
+    for (int i = 0; i < 6; ++i) {
+        EXPECT_EQ(props[size_t(i)].flags, ref.props[size_t(i)].flags) << i;
+        EXPECT_EQ(timers[size_t(i)], ref.sleepTime[size_t(i)]) << i;
+        EXPECT_EQ(st[size_t(i)], ref.sleepState[size_t(i)]) << i;
+    }
+    for (int i : {2, 3}) EXPECT_FALSE(props[size_t(i)].flags & BTG_BODY_SLEEPING) << i;
+    for (int i : {0, 1}) EXPECT_TRUE(props[size_t(i)].flags & BTG_BODY_SLEEPING) << i;
+    EXPECT_EQ(d.w.wake.download(d.w.ctx, 6), std::vector<uint>(6, 0u));  // the marks cleared for the step's end
+}
