@@ -1,6 +1,7 @@
 // joint_rows.cpp — btTypedConstraint → BtgJoint, the per-step comparison and upload of the
 // joint table, and the write-back of applied impulses, feedback and breaks.
 #include "joint_rows.h"
+#include "joint_order.h"
 
 #include "parallel_rows.h"
 #include "private_member.h"
@@ -493,6 +494,7 @@ void JointSync::upload(btDiscreteDynamicsWorld& world, const RowMap& rows, Devic
     m_anyFeedback = std::find(anyFeedback.begin(), anyFeedback.end(), 1) != anyFeedback.end();
     std::vector<size_t> changed;
     for (const std::vector<size_t>& list : found) changed.insert(changed.end(), list.begin(), list.end());
+    uploadLevels(world, w, resized || !changed.empty());
     if (changed.empty()) return;
     // The device keeps what it last wrote (a joint whose island sleeps keeps its feedback, as
     // stock's); a joint new to the table starts at zero.
@@ -510,6 +512,23 @@ void JointSync::upload(btDiscreteDynamicsWorld& world, const RowMap& rows, Devic
         }
     }
     m_uploaded = std::move(table);
+}
+
+void JointSync::uploadLevels(const btDiscreteDynamicsWorld& world, DeviceWorld& w, bool jointsChanged)
+{
+    // Stock's order of the joints that share a body (the bullet mode's batching reads it). It
+    // moves when the app adds, removes, disables or re-links joints (the table changed) or the
+    // world's objects change places (the island ids are places in its object array); else the
+    // last levels hold, and the device keeps them.
+    const int objects = world.getNumCollisionObjects();
+    if (!jointsChanged && objects == m_levelObjects && m_levelsCurrent) return;
+    m_levelObjects = objects;
+    m_levelsCurrent = true;
+    std::vector<int> levels = stockJointLevels(world);
+    w.maxJointLevel = levels.empty() ? 0 : *std::max_element(levels.begin(), levels.end());
+    if (levels.empty()) return;
+    w.jointLevels.reserveExact(w.ctx, levels.size());
+    w.jointLevels.upload(w.ctx, levels);
 }
 
 void JointSync::writeBack(DeviceWorld& w)

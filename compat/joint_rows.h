@@ -34,9 +34,18 @@ public:
     // After a call: the device's joint state into the constraints, as stock's writeBackJoints.
     void writeBack(DeviceWorld& w);
     // Forget the device's copy (a rebuild or the CPU path ran): everything travels next time.
-    void reset() { m_uploaded.clear(); }
+    void reset()
+    {
+        m_uploaded.clear();
+        m_levelsCurrent = false;
+    }
 
 private:
+    // Stock's solve order of the joints as colour levels (joint_order.h) into w.jointLevels and
+    // w.maxJointLevel, worked out again when the joints or the world's objects changed.
+    void uploadLevels(const btDiscreteDynamicsWorld& world, DeviceWorld& w, bool jointsChanged);
+    int m_levelObjects = -1;       // the world's objects when the levels were worked out
+    bool m_levelsCurrent = false;  // the device holds them
     std::vector<btTypedConstraint*> m_constraints;  // as of the last upload, in world order
     std::vector<BtgJoint> m_uploaded;               // what the device holds
     std::vector<BtgJointState> m_state;             // the device's state as last read

@@ -6,7 +6,13 @@
  * this color claims them with atomic_min of a hashed priority (a fixed bijection of its index,
  * so neighbouring edges do not form long chains of losers); those that own all their bodies
  * take the color and mark the bodies used. Integer atomics only: the coloring is a pure
- * function of the edge list. Reads counters[kEdgeCount], props (flags), edges.
+ * function of the edge list. Ordered joints (the bullet mode, where stock's solve order of
+ * joints that share a body matters; `ordered` from the host): joint j takes colour
+ * jointLevels[j] (the host's: one above every joint before it in stock's order that shares a
+ * body with it), before any contact bids in that colour (color_joints, or the same pass at the
+ * colour's start), and bids for nothing; the contacts fill the colours around them. The solve
+ * runs every joint colour before the next, so joints that share a body run in stock's order.
+ * Reads counters[kEdgeCount, kContactCount], props (flags), edges, jointLevels (ordered only).
  * Writes edgeColor, claim and bodyColor (per-body scratch), counters[kColorsUsed],
  * counters[kLeftovers]. */
 #include "shared/types.h"
@@ -22,6 +28,20 @@
 static int edge_count(__global const uint* restrict counters, int edgeCapacity)
 {
     return (int)min(counters[BTG_COUNTER_EDGES], (uint)edgeCapacity);
+}
+
+/* The colouring's view of the joints: the buffers and counts every batching kernel takes
+ * (jointLevels a one-element placeholder unless ordered). */
+#define ORDER_ARGS __global const int* restrict jointLevels, int numJoints, int ordered
+#define ORDER_PASS jointLevels, numJoints, ordered
+
+/* Edge i's fixed colour where it is an ordered joint, else -1 (a contact, or joints unordered).
+ * Edges below the contact count are contacts, the joints' follow (as prepare_joints appends). */
+static int joint_level(__global const uint* restrict counters, int edgeCapacity, int i, ORDER_ARGS)
+{
+    if (!ordered) return -1;
+    const int nc = (int)min(counters[BTG_COUNTER_CONTACTS], (uint)(edgeCapacity - numJoints));
+    return i >= nc && i < nc + numJoints ? jointLevels[i - nc] : -1;
 }
 
 __kernel void color_init(__global int* edgeColor, __global const uint* restrict counters, int edgeCapacity)
@@ -67,9 +87,10 @@ static int body_dynamic(BTG_SHARED __global const int* bodyColor, int body)
  * this color bids for them with its priority. */
 static int claim_edge(__global const BtgEdge* restrict edges, __global const int* edgeColor, int i,
                       BTG_SHARED __global uint* claim,
-                      BTG_SHARED __global const int* bodyColor, int color)
+                      BTG_SHARED __global const int* bodyColor, int color, int level)
 {
     if (edgeColor[i] >= 0) return 0;
+    if (level >= 0) return 1; /* an ordered joint: its colour is its level (mark_joint), no bid */
     int a = edges[i].bodyA, b = edges[i].bodyB;
     if (!body_free(bodyColor, a, color) || !body_free(bodyColor, b, color)) return 1;
     const uint p = btgColorPriority(i);
@@ -81,9 +102,9 @@ static int claim_edge(__global const BtgEdge* restrict edges, __global const int
 /* One edge's assignment: it takes the color when it won every dynamic body it bid for. */
 static void assign_edge(__global const BtgEdge* restrict edges, __global int* edgeColor, int i, __global uint* counters,
                         BTG_SHARED __global const uint* claim,
-                        BTG_SHARED __global int* bodyColor, int color)
+                        BTG_SHARED __global int* bodyColor, int color, int level)
 {
-    if (edgeColor[i] >= 0) return;
+    if (edgeColor[i] >= 0 || level >= 0) return;
     int a = edges[i].bodyA, b = edges[i].bodyB;
     if (!body_free(bodyColor, a, color) || !body_free(bodyColor, b, color)) return;
     const uint p = btgColorPriority(i);
@@ -100,19 +121,45 @@ static void assign_edge(__global const BtgEdge* restrict edges, __global int* ed
         atomic_max(&counters[BTG_COUNTER_COLORS_USED], (uint)(color + 1));
 }
 
+/* An ordered joint of level `color` takes the colour and its dynamic bodies, before any
+ * contact's bid in it: joints of one level share no dynamic body (the host's levels), and no
+ * contact has the colour yet. */
+static void mark_joint(__global const BtgEdge* restrict edges, __global int* edgeColor, int i, __global uint* counters,
+                       BTG_SHARED __global int* bodyColor, int color, int level)
+{
+    if (level != color) return;
+    edgeColor[i] = color;
+    const int a = edges[i].bodyA, b = edges[i].bodyB;
+    if (body_dynamic(bodyColor, a)) bodyColor[a] = color;
+    if (body_dynamic(bodyColor, b)) bodyColor[b] = color;
+    atomic_max(&counters[BTG_COUNTER_COLORS_USED], (uint)(color + 1));
+}
+
+__kernel void color_joints(__global const BtgEdge* restrict edges, __global int* edgeColor, __global uint* counters,
+                           int edgeCapacity, __global int* bodyColor, int color, ORDER_ARGS)
+{
+    const int j = (int)get_global_id(0);
+    if (j >= numJoints) return;
+    const int nc = (int)min(counters[BTG_COUNTER_CONTACTS], (uint)(edgeCapacity - numJoints));
+    if (nc + j < edge_count(counters, edgeCapacity)) mark_joint(edges, edgeColor, nc + j, counters, bodyColor, color, jointLevels[j]);
+}
+
 __kernel void color_claim(__global const BtgEdge* restrict edges, __global const int* restrict edgeColor,
                           __global const uint* restrict counters, int edgeCapacity, __global uint* claim,
-                          __global const int* restrict bodyColor, int color)
+                          __global const int* restrict bodyColor, int color, ORDER_ARGS)
 {
     int i = (int)get_global_id(0);
-    if (i < edge_count(counters, edgeCapacity)) claim_edge(edges, edgeColor, i, claim, bodyColor, color);
+    if (i < edge_count(counters, edgeCapacity))
+        claim_edge(edges, edgeColor, i, claim, bodyColor, color, joint_level(counters, edgeCapacity, i, ORDER_PASS));
 }
 
 __kernel void color_assign(__global const BtgEdge* restrict edges, __global int* edgeColor, __global uint* counters,
-                           int edgeCapacity, __global const uint* restrict claim, __global int* bodyColor, int color)
+                           int edgeCapacity, __global const uint* restrict claim, __global int* bodyColor, int color,
+                           ORDER_ARGS)
 {
     int i = (int)get_global_id(0);
-    if (i < edge_count(counters, edgeCapacity)) assign_edge(edges, edgeColor, i, counters, claim, bodyColor, color);
+    if (i < edge_count(counters, edgeCapacity))
+        assign_edge(edges, edgeColor, i, counters, claim, bodyColor, color, joint_level(counters, edgeCapacity, i, ORDER_PASS));
 }
 
 /* Edges left after the rounds share the last color, which the solver runs serially. */
@@ -145,10 +192,13 @@ static void serial_bid(__global uint* restrict claim, __global uint* restrict st
 __kernel void color_serial(__global const BtgEdge* restrict edges, __global int* restrict edgeColor,
                            __global uint* counters, int edgeCapacity, __global const BtgBodyProps* restrict props,
                            __global uint* restrict claim, __global int* restrict bodyColor, int numBodies, int rounds,
-                           __global int4* restrict lists)
+                           __global int4* restrict lists, ORDER_ARGS)
 {
     if (get_global_id(0) != 0) return;
     const int n = edge_count(counters, edgeCapacity);
+    const int nc = (int)min(counters[BTG_COUNTER_CONTACTS], (uint)(edgeCapacity - numJoints));
+    /* ordered joints stay out of the lists: each takes its level's colour at that colour's start */
+    const int firstJoint = ordered ? nc : n, endJoint = ordered ? min(nc + numJoints, n) : n;
     __global uint* restrict stamp = claim + numBodies;
     __global int4* restrict active = lists;
     __global int4* restrict cand = lists + edgeCapacity;
@@ -156,13 +206,22 @@ __kernel void color_serial(__global const BtgEdge* restrict edges, __global int*
         bodyColor[b] = reset_color(props, b);
         stamp[b] = NO_CLAIM;
     }
+    int left = 0;
     for (int i = 0; i < n; ++i) {
         edgeColor[i] = -1;
-        active[i] = (int4)(i, edges[i].bodyA, edges[i].bodyB, (int)btgColorPriority(i));
+        if (i < firstJoint || i >= endJoint) active[left++] = (int4)(i, edges[i].bodyA, edges[i].bodyB, (int)btgColorPriority(i));
     }
-    int left = n;
+    int jointsLeft = endJoint - firstJoint;
     uint used = 0u;
-    for (int color = 0; color < rounds && left > 0; ++color) {
+    for (int color = 0; color < rounds && left + jointsLeft > 0; ++color) {
+        for (int i = firstJoint; i < endJoint; ++i) {
+            if (jointLevels[i - nc] != color) continue;
+            edgeColor[i] = color;
+            if (bodyColor[edges[i].bodyA] != BODY_FIXED) bodyColor[edges[i].bodyA] = color;
+            if (bodyColor[edges[i].bodyB] != BODY_FIXED) bodyColor[edges[i].bodyB] = color;
+            used = (uint)(color + 1);
+            --jointsLeft;
+        }
         /* Sub-round 0 over every uncoloured edge (each eligible: no body has this colour yet),
          * dropping those the last colour's later sub-rounds took; its losers are the next's
          * candidates. */
@@ -172,6 +231,8 @@ __kernel void color_serial(__global const BtgEdge* restrict edges, __global int*
             const int4 e = active[k];
             if (edgeColor[e.x] >= 0) continue;
             active[kept++] = e;
+            /* a body an ordered joint took in this colour is not free (without joints none is) */
+            if (bodyColor[e.y] == color || bodyColor[e.z] == color) continue;
             const uint p = (uint)e.w;
             if (bodyColor[e.y] != BODY_FIXED) serial_bid(claim, stamp, e.y, p, r);
             if (bodyColor[e.z] != BODY_FIXED) serial_bid(claim, stamp, e.z, p, r);
@@ -186,6 +247,9 @@ __kernel void color_serial(__global const BtgEdge* restrict edges, __global int*
                 const int4 e = src[k];
                 const int ca = bodyColor[e.y], cb = bodyColor[e.z];
                 const uint p = (uint)e.w;
+                /* out of the colour (a body in it): made no bid this sub-round, and the next
+                 * sub-round's candidates leave it out (as the claim pass's body_free) */
+                if (ca == color || cb == color) continue;
                 if ((ca == BODY_FIXED || claim[e.y] == p) && (cb == BODY_FIXED || claim[e.z] == p)) {
                     edgeColor[e.x] = color;
                     if (ca != BODY_FIXED) bodyColor[e.y] = color;
@@ -218,6 +282,11 @@ __kernel void color_serial(__global const BtgEdge* restrict edges, __global int*
             edgeColor[active[k].x] = rounds;
             ++leftovers;
         }
+    for (int i = firstJoint; i < endJoint; ++i)
+        if (edgeColor[i] < 0) {
+            edgeColor[i] = rounds;
+            ++leftovers;
+        }
     counters[BTG_COUNTER_LEFTOVERS] += (uint)leftovers;
     if (counters[BTG_COUNTER_COLORS_USED] < used) counters[BTG_COUNTER_COLORS_USED] = used;
 }
@@ -238,7 +307,7 @@ __kernel void color_serial(__global const BtgEdge* restrict edges, __global int*
 __kernel void color_resident(__global const BtgEdge* restrict edges, __global int* edgeColor, __global uint* counters,
                              int edgeCapacity, __global const BtgBodyProps* restrict props,
                              BTG_SHARED __global uint* claim, BTG_SHARED __global int* bodyColor, int numBodies,
-                             int rounds, volatile __global BtgGridBarrier* bar, int spinLimit)
+                             int rounds, volatile __global BtgGridBarrier* bar, int spinLimit, ORDER_ARGS)
 {
     __local int quit;
     __local int metUncolored;
@@ -253,6 +322,16 @@ __kernel void color_resident(__global const BtgEdge* restrict edges, __global in
     for (int r = gid; r < rounds * BTG_COLOR_SUB_ROUNDS; r += gsize) met[r] = 0u;
     int stop = btgGridBarrier(bar, spinLimit, &quit);
     for (int color = 0; color < rounds && !stop; ++color) {
+        if (ordered) {
+            /* the colour's ordered joints first, seen by every claim after the barrier; each
+             * edge by the work-item that owns it in the other passes (i = gid mod gsize) */
+            const int nc = (int)min(counters[BTG_COUNTER_CONTACTS], (uint)(edgeCapacity - numJoints));
+            const int end = min(n, nc + numJoints);
+            for (int i = nc <= gid ? gid : gid + (nc - gid + gsize - 1) / gsize * gsize; i < end; i += gsize)
+                mark_joint(edges, edgeColor, i, counters, bodyColor, color, jointLevels[i - nc]);
+            stop = btgGridBarrier(bar, spinLimit, &quit);
+            if (stop) break;
+        }
         for (int sub = 0; sub < BTG_COLOR_SUB_ROUNDS && !stop; ++sub) {
             const int r = color * BTG_COLOR_SUB_ROUNDS + sub;
             BTG_SHARED __global uint* cur = claim + (r & 1) * numBodies;
@@ -260,7 +339,8 @@ __kernel void color_resident(__global const BtgEdge* restrict edges, __global in
             if (get_local_id(0) == 0) metUncolored = 0;
             barrier(CLK_LOCAL_MEM_FENCE);
             int mine = 0;
-            for (int i = gid; i < n; i += gsize) mine |= claim_edge(edges, edgeColor, i, cur, bodyColor, color);
+            for (int i = gid; i < n; i += gsize)
+                mine |= claim_edge(edges, edgeColor, i, cur, bodyColor, color, joint_level(counters, edgeCapacity, i, ORDER_PASS));
             if (mine) metUncolored = 1;
             barrier(CLK_LOCAL_MEM_FENCE);
             if (get_local_id(0) == 0 && metUncolored) met[r] = 1u;
@@ -272,7 +352,7 @@ __kernel void color_resident(__global const BtgEdge* restrict edges, __global in
                 break;
             }
             for (int i = gid; i < n; i += gsize)
-                assign_edge(edges, edgeColor, i, counters, cur, bodyColor, color);
+                assign_edge(edges, edgeColor, i, counters, cur, bodyColor, color, joint_level(counters, edgeCapacity, i, ORDER_PASS));
             for (int b = gid; b < numBodies; b += gsize) next[b] = NO_CLAIM;
             stop = btgGridBarrier(bar, spinLimit, &quit);
         }

@@ -65,7 +65,7 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::ContactCallbacks: applyContactMaterials(w, p); break;
         case Stage::PrepareJoints: prepareJoints(w, s.joints); break;
         case Stage::FinishJoints: finishJoints(w, s.joints); break;
-        case Stage::ColorConstraints: colorConstraints(w, s.maxColors); break;
+        case Stage::ColorConstraints: colorConstraints(w, s.maxColors, plan.solver == SolverKind::BatchedPgs); break;
         case Stage::SolveConstraints: solveConstraints(w, p, s.iterations, w.numColors); break;
         case Stage::SolveJacobi: solveJacobi(w, p, s.iterations); break;
         case Stage::SolveSoft: {

@@ -62,7 +62,10 @@ std::vector<BtgEdge> prepareContacts(std::vector<BtgContact>& contacts, const Co
                                      std::vector<BtgFrictionAnchor>* anchors = nullptr);
 
 // colorConstraints: the device's rounds replayed in order; returns every edge's color.
-std::vector<int> colorConstraints(const std::vector<BtgEdge>& edges, const ContactBodies& bodies, int maxColors);
+// jointLevels: the bullet mode's ordered joints, edge firstJointEdge + j taking colour
+// jointLevels[j] before the contacts bid in it (empty: none).
+std::vector<int> colorConstraints(const std::vector<BtgEdge>& edges, const ContactBodies& bodies, int maxColors,
+                                  const std::vector<int>& jointLevels = {}, int firstJointEdge = -1);
 
 // solveConstraints: colors in order, the edges (contacts) of a color in index order; colors
 // are the edges'; updates linVel/angVel and (zeroed first when params.splitImpulse)

@@ -25,11 +25,16 @@ constexpr int kOneGroupMaxContacts = 4096;
 constexpr int kOneGroupMaxBodies = 16384;
 }  // namespace
 
-void colorConstraints(DeviceWorld& w, int maxColors)
+void colorConstraints(DeviceWorld& w, int maxColors, bool orderJoints)
 {
     cl::Context& ctx = w.ctx;
     if (maxColors < 1) maxColors = 1;
-    const int rounds = std::clamp(w.colorRounds, 0, maxColors - 1);
+    // Joints in stock's order (the host's levels; none where no two joints share a body): each
+    // level a colour of its own, so the rounds reach the last level (beyond maxColors the rest
+    // are leftovers, solved serially in joint order).
+    const int ordered = orderJoints && w.numJoints > 0 && w.maxJointLevel > 0 ? 1 : 0;
+    const int rounds = std::clamp(ordered ? std::max(w.colorRounds, w.maxJointLevel + 1) : w.colorRounds, 0, maxColors - 1);
+    w.jointLevels.reserve(ctx, 1);  // bound even when unordered
     w.numColors = rounds + 1;  // the last one is the serial pass for leftovers
     cl::Program& prog = ctx.program("color_constraints");
     size_t slots = std::min({w.edgeCapacity, w.edges.capacity(), w.edgeColor.capacity()});
@@ -48,7 +53,8 @@ void colorConstraints(DeviceWorld& w, int maxColors)
         w.solverScratch.colorActive.reserve(ctx, 8 * slots);  // two lists, four ints an edge
         cl::Launch(ctx, prog.kernel("color_serial"), &w.profiler).arg(w.edges).arg(w.edgeColor).arg(w.counters)
             .arg(edgeCapacity).arg(w.props).arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor)
-            .arg(w.numBodies).arg(rounds).arg(w.solverScratch.colorActive).run(1);
+            .arg(w.numBodies).arg(rounds).arg(w.solverScratch.colorActive).arg(w.jointLevels).arg(w.numJoints)
+            .arg(ordered).run(1);
         return;
     }
     if (resident || (w.lastContactCount <= kOneGroupMaxContacts && w.numBodies <= kOneGroupMaxBodies)) {
@@ -58,7 +64,8 @@ void colorConstraints(DeviceWorld& w, int maxColors)
         size_t groups = resident ? residentGroups(w, std::max(items, size_t(w.numBodies)), group) : 1;
         cl::Launch(ctx, k, &w.profiler).arg(w.edges).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity).arg(w.props)
             .arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(w.numBodies).arg(rounds)
-            .arg(gridBarrier(w)).arg(gridBarrierSpins(w)).run(groups * group, group);
+            .arg(gridBarrier(w)).arg(gridBarrierSpins(w)).arg(w.jointLevels).arg(w.numJoints).arg(ordered)
+            .run(groups * group, group);
         return;
     }
     cl_kernel reset = prog.kernel("claim_reset");
@@ -68,12 +75,18 @@ void colorConstraints(DeviceWorld& w, int maxColors)
     cl::Launch(ctx, prog.kernel("color_init"), &w.profiler).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity).run(slots);
     cl::Launch(ctx, prog.kernel("body_color_reset"), &w.profiler).arg(w.solverScratch.bodyColor).arg(w.props).arg(w.numBodies).run(bodies);
     for (int color = 0; color < rounds; ++color) {
+        if (ordered)
+            cl::Launch(ctx, prog.kernel("color_joints"), &w.profiler).arg(w.edges).arg(w.edgeColor).arg(w.counters)
+                .arg(edgeCapacity).arg(w.solverScratch.bodyColor).arg(color).arg(w.jointLevels).arg(w.numJoints)
+                .arg(ordered).run(size_t(w.numJoints));
         for (int sub = 0; sub < kSubRounds; ++sub) {
             cl::Launch(ctx, reset, &w.profiler).arg(w.solverScratch.bodyClaim).arg(w.numBodies).run(bodies);
             cl::Launch(ctx, claim, &w.profiler).arg(w.edges).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity)
-                .arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(color).run(slots);
+                .arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(color).arg(w.jointLevels)
+                .arg(w.numJoints).arg(ordered).run(slots);
             cl::Launch(ctx, assign, &w.profiler).arg(w.edges).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity)
-                .arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(color).run(slots);
+                .arg(w.solverScratch.bodyClaim).arg(w.solverScratch.bodyColor).arg(color).arg(w.jointLevels)
+                .arg(w.numJoints).arg(ordered).run(slots);
         }
     }
     cl::Launch(ctx, prog.kernel("color_finish"), &w.profiler).arg(w.edgeColor).arg(w.counters).arg(edgeCapacity)

@@ -4,12 +4,15 @@
 // edge list (deterministic). Runs `maxColors - 1` rounds on the device; edges still uncolored
 // after them get color maxColors - 1, which the solver runs serially (one work-item), so no
 // host round trip is needed.
-// Reads edges, props (flags), counters[kEdgeCount].
+// orderJoints (the bullet mode): joint j takes colour w.jointLevels[j] (stock's order of the
+// joints that share a body: compat's levels, w.maxJointLevel the largest; 0 or less: none
+// shares), the contacts colour around them.
+// Reads edges, props (flags), counters[kEdgeCount, kContactCount], jointLevels.
 // Writes edgeColor, solverScratch.bodyClaim/bodyColor, counters[kColorsUsed, kLeftovers],
 // w.numColors (= maxColors).
 #pragma once
 #include "world/device_world.h"
 
 namespace btgpu {
-void colorConstraints(DeviceWorld& w, int maxColors);
+void colorConstraints(DeviceWorld& w, int maxColors, bool orderJoints = false);
 }

@@ -225,6 +225,12 @@ struct DeviceWorld {
     int numJoints = 0;
     int jointIterations = 0;  // the largest of the joints' iteration counts
     int jointSprings = 0;     // 6-DoF spring2 axes with their spring on (the soft step then gathers)
+    // Stock's solve order of the joints that share a body (compat/joint_order.h): joint j's
+    // colour in the bullet mode's batching, one above every joint before it in stock's order
+    // that shares a body with it; maxJointLevel the largest (0 or less: no two joints share a
+    // body, and the batching colours them as contacts).
+    cl::DeviceArray<int> jointLevels;
+    int maxJointLevel = 0;
     // Pairs of rows (a < b, sorted) that ignore each other's collision check (filter_pairs).
     cl::DeviceArray<BtgPair> ignoredPairs;
     int numIgnoredPairs = 0;

@@ -42,8 +42,11 @@ Graph randomGraph(int numBodies, int numEdges, unsigned seed)
 // fused: the one-work-group launch small scenes take (chosen by the last contact count).
 // resident: the one-launch batching over resident groups (Auto: GPUs); *status gets the
 // status word after the batching.
+// levels: the last levels.size() edges are ordered joints (the bullet mode's batching), the
+// edges before them contacts.
 std::vector<int> runDevice(const Graph& g, int maxColors, bool fused = false,
-                           DeviceWorld::Resident resident = DeviceWorld::Resident::Auto, uint* status = nullptr)
+                           DeviceWorld::Resident resident = DeviceWorld::Resident::Auto, uint* status = nullptr,
+                           const std::vector<int>& levels = {})
 {
     DeviceWorld w(test::context());
     w.resident = resident;
@@ -55,9 +58,17 @@ std::vector<int> runDevice(const Graph& g, int maxColors, bool fused = false,
     w.edgeColor.upload(w.ctx, std::vector<int>(w.edgeCapacity, 1234));  // the stage must overwrite stale colors
     std::vector<uint> counters = w.counters.download(w.ctx, kNumCounters);
     counters[kEdgeCount] = uint(g.edges.size());
+    counters[kContactCount] = uint(g.edges.size() - levels.size());
     w.counters.upload(w.ctx, counters);
     w.colorRounds = maxColors - 1;
-    colorConstraints(w, maxColors);
+    if (!levels.empty()) {
+        // the joints' edges end the edge slots, as prepare_joints appends them after the contacts
+        w.edgeCapacity = g.edges.size();
+        w.numJoints = int(levels.size());
+        w.jointLevels.upload(w.ctx, levels);
+        w.maxJointLevel = *std::max_element(levels.begin(), levels.end());
+    }
+    colorConstraints(w, maxColors, !levels.empty());
     EXPECT_EQ(w.numColors, maxColors);
     std::vector<uint> after = w.counters.download(w.ctx, kNumCounters);
     if (status) *status = after[kStatus];
@@ -164,4 +175,53 @@ TEST(ColorPriority, UniqueOverFourMillionEdges)
     EXPECT_EQ(old(88337), old(112962));
     std::sort(p.begin(), p.end());
     EXPECT_EQ(std::adjacent_find(p.begin(), p.end()), p.end()) << "two edges share a priority";
+}
+
+// The bullet mode's ordered joints (stock's solve order, compat/joint_order.h): each joint takes
+// the colour of its level, the contacts colour around them, exactly as the reference, on every
+// launch shape; no dynamic body twice in a colour; levels past the rounds are leftovers.
+TEST(ColorConstraints, OrderedJointsTakeTheirLevelsAsTheReference)
+{
+    Graph g = randomGraph(80, 400, 21);
+    // 12 joints: a chain 10-11-...-16 (levels 0..5 in the chain's order), a chain of three
+    // ending at a static body, and three on bodies of their own or shared with the chain's start
+    std::vector<BtgEdge> joints;
+    std::vector<int> levels;
+    for (int k = 0; k < 6; ++k) {
+        joints.push_back(BtgEdge{10 + k, 11 + k});
+        levels.push_back(k);
+    }
+    joints.push_back(BtgEdge{40, 41});
+    levels.push_back(0);
+    joints.push_back(BtgEdge{41, 42});
+    levels.push_back(1);
+    joints.push_back(BtgEdge{42, 2});  // to a static body
+    levels.push_back(2);
+    joints.push_back(BtgEdge{50, 51});
+    levels.push_back(0);
+    joints.push_back(BtgEdge{10, 60});  // shares body 10 with the chain's first joint
+    levels.push_back(1);
+    joints.push_back(BtgEdge{61, 62});
+    levels.push_back(0);
+    const int firstJoint = int(g.edges.size());
+    g.edges.insert(g.edges.end(), joints.begin(), joints.end());
+    for (int maxColors : {4, 24}) {
+        std::vector<int> want = ref::colorConstraints(g.edges, g.bodies, maxColors, levels, firstJoint);
+        std::vector<int> got = runDevice(g, maxColors, false, DeviceWorld::Resident::Off, nullptr, levels);
+        ASSERT_EQ(got, want) << "maxColors " << maxColors;
+        EXPECT_EQ(runDevice(g, maxColors, true, DeviceWorld::Resident::Auto, nullptr, levels), want) << "one group";
+        uint status = 0;
+        std::vector<int> resident = runDevice(g, maxColors, false, DeviceWorld::Resident::On, &status, levels);
+        if (!(status & BTG_STATUS_GRID_BARRIER_TIMEOUT)) EXPECT_EQ(resident, want) << "resident";
+        for (size_t j = 0; j < levels.size(); ++j)
+            EXPECT_EQ(got[size_t(firstJoint) + j], std::min(levels[j], maxColors - 1)) << "joint " << j;
+        std::vector<std::set<int>> used(static_cast<size_t>(maxColors));
+        for (size_t i = 0; i < got.size(); ++i) {
+            if (got[i] == maxColors - 1) continue;  // the serial colour may repeat bodies
+            for (int b : {g.edges[i].bodyA, g.edges[i].bodyB}) {
+                if (!btgIsSolverDynamic(g.bodies.props[size_t(b)].flags)) continue;
+                EXPECT_TRUE(used[size_t(got[i])].insert(b).second) << "body " << b << " twice in colour " << got[i];
+            }
+        }
+    }
 }
