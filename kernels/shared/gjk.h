@@ -12,6 +12,7 @@
 
 #define BTG_GJK_MAX_ITERATIONS 64
 #define BTG_GJK_REL_ERROR2 1.0e-6f /* Bullet's REL_ERROR2 */
+#define BTG_GJK_EQUAL_VERTEX2 1.0e-4f /* m^2: btVoronoiSimplexSolver's equal-vertex threshold (single precision) */
 #define BTG_EPA_MAX_VERTS 48
 #define BTG_EPA_MAX_FACES 96
 #define BTG_EPA_MAX_EDGES 48
@@ -148,9 +149,14 @@ static inline void btgSimplexKeep(BtgSimplex* s, const int* keep, const float* l
     *s = r;
 }
 
-static inline BtgFloat4 btgSimplexClosest(BtgSimplex* s, float* lambda, int* inside)
+/* *inside: the origin lies within the tetrahedron; *degenerate: the tetrahedron is flat (six
+ * times its volume below 1e-4, btVoronoiSimplexSolver's CATCH_DEGENERATE_TETRAHEDRON in single
+ * precision), where no side of a face can be told: the caller keeps the simplex before the last
+ * vertex, as Bullet's closest() fails there and its pair detector keeps the last points. */
+static inline BtgFloat4 btgSimplexClosest(BtgSimplex* s, float* lambda, int* inside, int* degenerate)
 {
     *inside = 0;
+    *degenerate = 0;
     if (s->n == 1) {
         lambda[0] = 1.0f;
         return s->v[0].w;
@@ -182,7 +188,15 @@ static inline BtgFloat4 btgSimplexClosest(BtgSimplex* s, float* lambda, int* ins
         btgSimplexKeep(s, keep, l, lambda);
         return p;
     }
-    /* tetrahedron: the faces the origin lies outside of (all four when it is flat) */
+    /* tetrahedron: the faces the origin lies outside of */
+    {
+        const BtgFloat4 a = s->v[0].w;
+        const float vol6 = btgDot3(s->v[3].w - a, btgCross3(s->v[1].w - a, s->v[2].w - a));
+        if (vol6 * vol6 < 1.0e-4f * 1.0e-4f) {
+            *degenerate = 1;
+            return btgZero4();
+        }
+    }
     const int faces[4][4] = {{0, 1, 2, 3}, {0, 2, 3, 1}, {0, 3, 1, 2}, {1, 3, 2, 0}};
     float bestD2 = 3.0e38f;
     BtgFloat4 best = btgZero4();
@@ -237,20 +251,41 @@ static inline int btgGjkCores(BtgCollider a, BtgCollider b, BTG_CONST_GLOBAL Btg
     BtgFloat4 axis = btgMake4(0.0f, 1.0f, 0.0f, 0.0f); /* Bullet's first separating axis */
     float vv = 3.0e38f;
     const float maxDist2 = maxDist * maxDist;
+    BtgFloat4 lastW = btgZero4();
+    int haveLast = 0;
     for (int it = 0; it < BTG_GJK_MAX_ITERATIONS; ++it) {
         BtgSupportVert w = btgMinkowskiSupport(a, b, verts, -axis, offset, 0);
         float delta = btgDot3(axis, w.w);
         if (delta > 0.0f && delta * delta > vv * maxDist2) return -1;
-        int dup = 0;
-        for (int i = 0; i < s.n; ++i)
-            if (s.v[i].w.x == w.w.x && s.v[i].w.y == w.w.y && s.v[i].w.z == w.w.z) dup = 1;
+        /* Bullet's inSimplex: a support point within 1 cm (squared distance 1e-4,
+         * VORONOI_DEFAULT_EQUAL_VERTEX_THRESHOLD) of one the simplex holds, or the last one added
+         * (even if the simplex dropped it since), ends the search. Only exact repeats did: a
+         * long box's face corner met again 0.1 mm off made a sliver the closest point of which
+         * was metres off, and the wheel on it lost its contact or got one 4 m away. */
+        int dup = haveLast && w.w.x == lastW.x && w.w.y == lastW.y && w.w.z == lastW.z;
+        for (int i = 0; i < s.n; ++i) {
+            const BtgFloat4 e = s.v[i].w - w.w;
+            if (btgDot3(e, e) <= BTG_GJK_EQUAL_VERTEX2) dup = 1;
+        }
         if (dup) break;
         if (vv - delta <= vv * BTG_GJK_REL_ERROR2) break;
+        const BtgSimplex before = s;
+        const float lambdaBefore[4] = {lambda[0], lambda[1], lambda[2], lambda[3]};
         s.v[s.n++] = w;
-        int inside = 0;
-        BtgFloat4 nv = btgSimplexClosest(&s, lambda, &inside);
-        if (inside) return 0;
+        lastW = w.w;
+        haveLast = 1;
+        int inside = 0, flat = 0;
+        BtgFloat4 nv = btgSimplexClosest(&s, lambda, &inside, &flat);
         float nvv = btgDot3(nv, nv);
+        /* a flat tetrahedron (the box's four face corners): Bullet's closest() fails and the
+         * last points stand, so the simplex before this vertex is the answer (taken as inside,
+         * it sent a resting contact to EPA, whose witness was 3.9 m off) */
+        if (flat) {
+            s = before;
+            for (int k = 0; k < 4; ++k) lambda[k] = lambdaBefore[k];
+            break;
+        }
+        if (inside) return 0;
         if (nvv < BTG_GJK_REL_ERROR2) return 0; /* touching cores: EPA decides */
         float prev = vv;
         axis = nv;

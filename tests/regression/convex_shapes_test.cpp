@@ -45,7 +45,7 @@ void expectRestsAsStock(const Landing& c, int steps = 180)
     ASSERT_NO_FATAL_FAILURE(stepOnGpu(s, steps, c.gjk));
     EXPECT_NEAR(s.gpuY(1), s.stockY(1), tol::kRestHeight) << c.name;
     // at rest, not still falling or rolling away
-    EXPECT_LT(s.gpu->body(1)->getLinearVelocity().length(), 0.05) << c.name;
+    EXPECT_LT(s.gpu->body(1)->getLinearVelocity().length(), 0.05) << c.name << " stock " << s.stock->body(1)->getLinearVelocity().length() << " y " << s.gpuY(1) << " " << s.stockY(1);
 }
 
 }  // namespace
@@ -92,7 +92,10 @@ TEST(ConvexShapes, LocallyScaledShapesRestAsStock)
     for (int axis = 0; axis < 3; ++axis) {
         expectRestsAsStock({"scaled capsule", ConvexKind::ScaledCapsule, axis, 0.0, true});
         expectRestsAsStock({"scaled cylinder", ConvexKind::ScaledCylinder, axis, 0.0, true});
-        expectRestsAsStock({"scaled cone", ConvexKind::ScaledCone, axis, 0.0, true});
+        // On its side (axes x and z) a cone rolls about its apex until it falls asleep (2 s
+        // slow): its landing on the rim is chaotic (the friction direction of a flat contact is
+        // the normal's rounding, stock's as well), so 4 s let both worlds' cones come to rest.
+        expectRestsAsStock({"scaled cone", ConvexKind::ScaledCone, axis, 0.0, true}, axis == 1 ? 180 : 240);
     }
     expectRestsAsStock({"scaled multi-sphere", ConvexKind::ScaledMultiSphere, 1, 0.0, true});
     expectRestsAsStock({"scaled sphere", ConvexKind::ScaledSphere, 1, 0.0, false});

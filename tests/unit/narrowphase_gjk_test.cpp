@@ -650,3 +650,40 @@ TEST(NarrowphaseGjk, AabbsAreBullets)
         }
     }
 }
+
+// A wheel (a z-axis cylinder, radius 0.3) resting on a 40 m ramp turned 15 degrees, in twelve
+// turns about its own axis (the same contact each time): the GJK point under the wheel, as
+// Bullet's. The box's face corners come back around the flat contact a fraction of a millimetre
+// apart; taken as new vertices they made a sliver or a flat tetrahedron, and the point was
+// 3.86 m from the wheel (its lever stopped the wheel rolling down) or missing (5 of the 12)
+// until the search ended as Bullet's does (a vertex within 1 cm of one it holds, a flat
+// tetrahedron: the last simplex stands).
+TEST(NarrowphaseGjk, WheelOnALongRampTouchesUnderTheWheel)
+{
+    Fixture f;
+    btBoxShape* ramp = f.own(new btBoxShape(btVector3(20, 0.5f, 3)));
+    auto* wheel = f.own(new btCylinderShapeZ(btVector3(0.3f, 0.3f, 0.1f)));
+    const int a = f.body(ramp, btVector3(0, 0, 0), btVector3(0, 0, 1), btScalar(-M_PI / 12));
+    // a pose the rolling wheel of the ramp probe reached (bits as written back)
+    const btQuaternion q(-0x1.e2d746p-8f, 0x1.510658p-8f, 0x1.d4f316p-1f, -0x1.9ae5bcp-2f);
+    const btVector3 centre(-0x1.0095bap+2f, 0x1.e6740cp+0f, 0x1.069ca8p-7f);
+    for (int k = 0; k < 12; ++k) {
+        const int b = f.body(wheel, centre);
+        f.bodies[size_t(b)].pose.setRotation(q * btQuaternion(btVector3(0, 0, 1), btScalar(k * 0.0137)));
+        f.pair(a, b);
+    }
+    f.build();
+    std::vector<BtgPersistentManifold> states;
+    std::vector<BtgManifold> dev = runDevice(test::context(), f, {}, {}, &states);
+    for (size_t i = 0; i < f.pairs.size(); ++i) {
+        SCOPED_TRACE("turn " + std::to_string(i));
+        StockPoint s = stockPoint(f.bodies[size_t(f.pairs[i].a)], f.bodies[size_t(f.pairs[i].b)]);
+        ASSERT_TRUE(s.found);
+        ASSERT_EQ(dev[i].numPoints, 1) << "the wheel touches (before: no point for 5 of the 12 turns)";
+        const BtgManifoldPoint& p = dev[i].points[0];
+        const btVector3 point(p.px, p.py, p.pz);
+        EXPECT_LT((point - s.pointB).length(), 0.01) << "metres from Bullet's point (before: 3.86 for 4 of the 12)";
+        EXPECT_NEAR(p.distance, s.distance, kMillimetre);
+        EXPECT_GE(p.nx * s.normal.x() + p.ny * s.normal.y() + p.nz * s.normal.z(), kDegree);
+    }
+}
