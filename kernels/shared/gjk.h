@@ -235,11 +235,12 @@ static inline BtgFloat4 btgSimplexClosest(BtgSimplex* s, float* lambda, int* ins
     return best;
 }
 
-/* The closest points of the cores. Returns 1 with *v the closest point of A - B (from B's to
- * A's), *pa A's core point (both relative to offset); 0 when the cores overlap or touch;
- * -1 when they are farther apart than maxDist (Bullet's early out). */
+/* The closest points of the cores. Returns 1 with *v the separating axis (the closest point of
+ * A - B, from B's to A's), *pa and *pb the cores' points (relative to offset; pa - pb is v but
+ * where the last vertex made the distance grow, below); 0 when the cores overlap or touch; -1
+ * when they are farther apart than maxDist (Bullet's early out). */
 static inline int btgGjkCores(BtgCollider a, BtgCollider b, BTG_CONST_GLOBAL BtgFloat4* verts, BtgFloat4 offset,
-                              float maxDist, BtgFloat4* v, BtgFloat4* pa)
+                              float maxDist, BtgFloat4* v, BtgFloat4* pa, BtgFloat4* pb)
 {
     BtgSimplex s;
     s.n = 0;
@@ -251,6 +252,7 @@ static inline int btgGjkCores(BtgCollider a, BtgCollider b, BTG_CONST_GLOBAL Btg
     BtgFloat4 axis = btgMake4(0.0f, 1.0f, 0.0f, 0.0f); /* Bullet's first separating axis */
     float vv = 3.0e38f;
     const float maxDist2 = maxDist * maxDist;
+    BtgFloat4 closest = axis; /* the simplex's closest point (the axis until the last step) */
     BtgFloat4 lastW = btgZero4();
     int haveLast = 0;
     for (int it = 0; it < BTG_GJK_MAX_ITERATIONS; ++it) {
@@ -287,15 +289,25 @@ static inline int btgGjkCores(BtgCollider a, BtgCollider b, BTG_CONST_GLOBAL Btg
         }
         if (inside) return 0;
         if (nvv < BTG_GJK_REL_ERROR2) return 0; /* touching cores: EPA decides */
-        float prev = vv;
+        /* No progress (Bullet's previous - squared <= epsilon x previous), or a closest point
+         * farther than the last, which only rounding makes (a 100 m box's corners 50 m out and a
+         * capsule's segment parallel to its face: 0.2403 after 0.2400, the axis tilted 2 to 4
+         * degrees): Bullet stops with the last axis (its normal and distance) and the new
+         * simplex's points. Taking the new axis tilted a resting capsule's normals, and their
+         * sideways push rolled it. */
+        if (vv - nvv <= BTG_SUPPORT_EPSILON * vv) {
+            closest = nv;
+            break;
+        }
         axis = nv;
+        closest = nv;
         vv = nvv;
-        if (prev - vv <= BTG_SUPPORT_EPSILON * prev) break;
     }
     BtgFloat4 p = btgZero4();
     for (int i = 0; i < s.n; ++i) p = p + s.v[i].a * lambda[i];
     *v = axis;
     *pa = p;
+    *pb = p - closest;
     return 1;
 }
 
@@ -511,13 +523,12 @@ static inline BtgConvexPoint btgGjkPoint(BtgCollider a, BtgCollider b, BTG_CONST
 {
     const BtgFloat4 offset = btgXyz(a.pose.pos + b.pose.pos) * 0.5f;
     const float ma = btgCoreMargin(a.shape), mb = btgCoreMargin(b.shape);
-    BtgFloat4 v = btgMake4(0.0f, 1.0f, 0.0f, 0.0f), pa = btgZero4();
-    const int r = btgGjkCores(a, b, verts, offset, ma + mb + threshold, &v, &pa);
+    BtgFloat4 v = btgMake4(0.0f, 1.0f, 0.0f, 0.0f), pa = btgZero4(), pbCore = btgZero4();
+    const int r = btgGjkCores(a, b, verts, offset, ma + mb + threshold, &v, &pa, &pbCore);
     if (r < 0) return btgNoPoint();
     if (r > 0) {
         const float s = btgLength3(v);
         BtgFloat4 n = v * (1.0f / s);
-        BtgFloat4 pbCore = pa - v;
         BtgConvexPoint p = btgMakeConvexPoint(n, pbCore + n * mb + offset, s - ma - mb);
         return p.distance <= threshold ? p : btgNoPoint();
     }
