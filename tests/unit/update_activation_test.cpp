@@ -114,6 +114,31 @@ TEST(UpdateActivation, WholeIslandSleepsThenWakes)
     EXPECT_EQ(st[3], 0u);  // woken by the moving body
 }
 
+namespace {
+// The chain's bodies 0-3 asleep (timers past the deactivation time), 4 and 5 as they were.
+void sleepChain(Scene& sc)
+{
+    for (int i = 0; i < 4; ++i) {
+        sc.s.props[i].flags |= BTG_BODY_SLEEPING;
+        sc.s.sleepTime[i] = 2.5f;
+        sc.s.sleepState[i] = 1;
+    }
+}
+
+// The device's flags, timers and sleep states, body by body, as the reference's.
+void expectAsReference(Device& d, const reference::ActivationState& ref)
+{
+    const std::vector<BtgBodyProps> props = d.w.props.download(d.w.ctx, 6);
+    const std::vector<float> timers = d.w.sleepTime.download(d.w.ctx, 6);
+    const std::vector<uint> st = d.sleepState();
+    for (int i = 0; i < 6; ++i) {
+        EXPECT_EQ(props[size_t(i)].flags, ref.props[size_t(i)].flags) << i;
+        EXPECT_EQ(timers[size_t(i)], ref.sleepTime[size_t(i)]) << i;
+        EXPECT_EQ(st[size_t(i)], ref.sleepState[size_t(i)]) << i;
+    }
+}
+}  // namespace
+
 // Before the solve (wakeTouched): a sleeping body that a moving body's contact touches wakes in
 // the same step, its flags, timers and sleep state as the reference's; one touched by a slow
 // body, or by a contact without points, sleeps on; a stale wake mark from the last step's end
@@ -121,11 +146,7 @@ TEST(UpdateActivation, WholeIslandSleepsThenWakes)
 TEST(UpdateActivation, WakeTouchedBeforeTheSolveMatchesReference)
 {
     Scene sc = chain();
-    for (int i = 0; i < 4; ++i) {
-        sc.s.props[i].flags |= BTG_BODY_SLEEPING;
-        sc.s.sleepTime[i] = 2.5f;
-        sc.s.sleepState[i] = 1;
-    }
+    sleepChain(sc);
     sc.s.sleepTime[4] = 0.0f;  // body 4 moving (its own timer 0)
     Device d(sc);
     BtgContact touch{}, slow{}, empty{};
@@ -147,12 +168,7 @@ TEST(UpdateActivation, WakeTouchedBeforeTheSolveMatchesReference)
     reference::wakeTouched(ref, contacts);
     const std::vector<BtgBodyProps> props = d.w.props.download(d.w.ctx, 6);
     const std::vector<float> timers = d.w.sleepTime.download(d.w.ctx, 6);
-    const std::vector<uint> st = d.sleepState();
-    for (int i = 0; i < 6; ++i) {
-        EXPECT_EQ(props[size_t(i)].flags, ref.props[size_t(i)].flags) << i;
-        EXPECT_EQ(timers[size_t(i)], ref.sleepTime[size_t(i)]) << i;
-        EXPECT_EQ(st[size_t(i)], ref.sleepState[size_t(i)]) << i;
-    }
+    expectAsReference(d, ref);
     EXPECT_FALSE(props[1].flags & BTG_BODY_SLEEPING);  // touched by the moving body
     EXPECT_EQ(timers[1], 0.0f);
     for (int i : {0, 2, 3}) EXPECT_TRUE(props[size_t(i)].flags & BTG_BODY_SLEEPING) << i;
@@ -165,11 +181,7 @@ TEST(UpdateActivation, WakeTouchedBeforeTheSolveMatchesReference)
 TEST(UpdateActivation, WakeJointedFollowsTheJointsAsTheReference)
 {
     Scene sc = chain();
-    for (int i = 0; i < 4; ++i) {
-        sc.s.props[i].flags |= BTG_BODY_SLEEPING;
-        sc.s.sleepTime[i] = 2.5f;
-        sc.s.sleepState[i] = 1;
-    }
+    sleepChain(sc);
     auto joint = [](int a, int b, bool enabled) {
         BtgJoint j{};
         j.type = BTG_JOINT_HINGE;
@@ -192,13 +204,7 @@ TEST(UpdateActivation, WakeJointedFollowsTheJointsAsTheReference)
     reference::ActivationState ref = sc.s;
     reference::wakeTouched(ref, {}, joints);
     const std::vector<BtgBodyProps> props = d.w.props.download(d.w.ctx, 6);
-    const std::vector<float> timers = d.w.sleepTime.download(d.w.ctx, 6);
-    const std::vector<uint> st = d.sleepState();
-    for (int i = 0; i < 6; ++i) {
-        EXPECT_EQ(props[size_t(i)].flags, ref.props[size_t(i)].flags) << i;
-        EXPECT_EQ(timers[size_t(i)], ref.sleepTime[size_t(i)]) << i;
-        EXPECT_EQ(st[size_t(i)], ref.sleepState[size_t(i)]) << i;
-    }
+    expectAsReference(d, ref);
     for (int i : {2, 3}) EXPECT_FALSE(props[size_t(i)].flags & BTG_BODY_SLEEPING) << i;
     for (int i : {0, 1}) EXPECT_TRUE(props[size_t(i)].flags & BTG_BODY_SLEEPING) << i;
     EXPECT_EQ(d.w.wake.download(d.w.ctx, 6), std::vector<uint>(6, 0u));  // the marks cleared for the step's end
