@@ -58,8 +58,13 @@ struct SoftStepConfig {
     // the exact towers of 20 and 30 unit boxes that 30 Hz lets rock (README, solver modes).
     float contactHertz = 60.0f;
     float dampingRatio = 10.0f;
-    // m/s: the fastest the spring pushes a penetration apart (Box2D's contactSpeed).
-    float pushSpeed = 3.0f;
+    // m/s: the fastest the spring pushes a penetration apart (Box2D's contactSpeed). 0: the
+    // fastest stock pushes one with real velocity, m_erp x |m_splitImpulsePenetrationThreshold| /
+    // the fixed step (0.48 m/s at Bullet's defaults; deeper, its split impulse moves the bodies
+    // without velocity), or Box2D's 3 m/s with m_splitImpulse off. Box2D's 3 m/s for every
+    // penetration made bodies spawned overlapping (a stack of convex-hull crates, whose margins
+    // overlap by 8 cm) fly apart: the relax does not take all of that velocity back.
+    float pushSpeed = 0.0f;
     // Friction rows in the biased solve as well as the relax (as Box2D's current sources do).
     // Off by default: with them in both, the tower of 30 rocks. Friction against fixed bodies is
     // warm-started across steps either way (a box resting on a slope creeps without it).

@@ -8,6 +8,7 @@
 #include "stages/resident.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 
@@ -151,6 +152,19 @@ int softFlow(const DeviceWorld& w)
 
 }  // namespace
 
+float pushSpeedFor(const SoftStepConfig& c, const BtgStepParams& params)
+{
+    if (c.pushSpeed > 0.0f) return c.pushSpeed;
+    // Stock pushes a penetration shallower than the split-impulse threshold with real velocity
+    // (erp x depth / dt) and a deeper one by split impulse (positions only): the most velocity a
+    // penetration gets there is erp x |threshold| / dt. Without split impulse every penetration
+    // is pushed with real velocity, unbounded: Box2D's cap then.
+    constexpr float kBox2dContactSpeed = 3.0f;
+    if (!params.splitImpulse || !(params.dt > 0.0f)) return kBox2dContactSpeed;
+    const float v = params.erp * std::fabs(params.splitPenetrationThreshold) / params.dt;
+    return v > 0.0f ? std::min(v, kBox2dContactSpeed) : kBox2dContactSpeed;
+}
+
 int softSubsteps(const SoftStepConfig& c, int iterations, float massRatio)
 {
     return btgSoftSubstepsFor(substepFields(c, iterations), massRatio);
@@ -163,7 +177,7 @@ BtgSoftParams makeSoftParams(const SoftStepConfig& c, const BtgStepParams& param
     p.hertz = c.contactHertz;
     p.zeta = c.dampingRatio;
     p.warmstartFactor = params.warmstartFactor;
-    p.pushSpeed = c.pushSpeed;
+    p.pushSpeed = pushSpeedFor(c, params);
     p.restitutionThreshold = params.restitutionThreshold;
     p.frictionInSolve = c.frictionInSolve ? 1 : 0;
     p.maxSag = std::max(c.maxSag, 0.0f);

@@ -14,6 +14,10 @@ namespace btgpu {
 // Substeps of a fixed step: SoftStepConfig::substeps; when that is 0, m_numIterations, raised
 // to what the largest mass ratio of the step's edges (massRatio) needs.
 int softSubsteps(const SoftStepConfig& c, int iterations, float massRatio = 0.0f);
+// The fastest the soft contacts push a penetration apart: c.pushSpeed, or where it is 0 what
+// stock's solver info gives (m_erp x |m_splitImpulsePenetrationThreshold| / dt with split
+// impulse on, else Box2D's 3 m/s).
+float pushSpeedFor(const SoftStepConfig& c, const BtgStepParams& params);
 // The kernels' scalars for a fixed step of params.dt at softSubsteps(c, iterations); the stage
 // raises them to what this step's mass ratio needs (btgSoftSubstepsFor).
 BtgSoftParams makeSoftParams(const SoftStepConfig& c, const BtgStepParams& params, int iterations);

@@ -484,6 +484,28 @@ TEST(SolveSoft, SubstepsFollowTheMassRatio)
     EXPECT_EQ(0, std::memcmp(&p, &same, sizeof p)) << "the host's scalars are the device's formula";
 }
 
+// The push speed the default takes from the app's solver info: stock's largest real-velocity push
+// of a penetration (m_erp x |m_splitImpulsePenetrationThreshold| / dt: 0.2 x 0.04 x 60 = 0.48
+// m/s at Bullet's defaults), Box2D's 3 m/s without split impulse; a set value stands.
+TEST(SolveSoft, PushSpeedFollowsTheSolverInfo)
+{
+    const SoftStepConfig d;
+    BtgStepParams params = test::defaultParams(3);
+    params.dt = 1.0f / 60.0f;
+    params.erp = 0.2f;
+    params.splitPenetrationThreshold = -0.04f;
+    params.splitImpulse = 1;
+    EXPECT_NEAR(pushSpeedFor(d, params), 0.48f, 1e-5f);
+    EXPECT_NEAR(makeSoftParams(d, params, 10).pushSpeed, 0.48f, 1e-5f);
+    params.erp = 0.4f;
+    EXPECT_NEAR(pushSpeedFor(d, params), 0.96f, 1e-5f);
+    params.splitImpulse = 0;
+    EXPECT_EQ(pushSpeedFor(d, params), 3.0f);
+    SoftStepConfig set = d;
+    set.pushSpeed = 1.5f;
+    EXPECT_EQ(pushSpeedFor(set, params), 1.5f);
+}
+
 // The held pair on the device, both launch shapes, against the reference over a cold and a
 // warm-started step, bitwise repeatable; the ground takes the pair's weight in the first step already (within 10%;
 // without holding, Gauss-Seidel passes it on a thousandth at a time: under half of it).
