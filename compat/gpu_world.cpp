@@ -290,8 +290,11 @@ void GpuWorld::rebuild()
     makePlan();
     // Rows changed meaning: the warm-start cache is dropped (one step without warm start).
     size_t n = m_rows.size();
-    w.pairCapacity = std::max(w.pairCapacity, std::max<size_t>(256, 4 * n));
-    w.contactCapacity = std::max(w.contactCapacity, std::max<size_t>(256, 2 * n));
+    // A first guess of one pair and one contact a body (a pile settles at about four, a scene
+    // of bodies apart needs none): the buffers then grow from the counts of a step that
+    // overflowed (pipeline.cpp's grow, which redoes that step), so memory follows the scene.
+    w.pairCapacity = std::max(w.pairCapacity, std::max<size_t>(256, n));
+    w.contactCapacity = std::max(w.contactCapacity, std::max<size_t>(256, n));
     w.pairs.reserveExact(w.ctx, w.pairCapacity);
     w.manifolds.reserveExact(w.ctx, w.pairCapacity);
     w.contacts.reserveExact(w.ctx, w.contactCapacity);

@@ -119,9 +119,7 @@ __kernel void store_contact_cache(__global const BtgContact* restrict contacts,
                                   int contactCapacity, __global const BtgFloat4* restrict rot,
                                   __global BtgCachedContact* cache, int cacheCapacity)
 {
-    const uint redo = BTG_STATUS_PAIR_OVERFLOW | BTG_STATUS_CONTACT_OVERFLOW | BTG_STATUS_GRID_BARRIER_TIMEOUT |
-                      BTG_STATUS_SUB_PAIR_OVERFLOW;
-    if ((counters[BTG_COUNTER_STATUS] & redo) != 0u) return;
+    if ((counters[BTG_COUNTER_STATUS] & BTG_STATUS_REDO) != 0u) return;
     uint n = min(counters[BTG_COUNTER_CONTACTS], (uint)min(contactCapacity, cacheCapacity));
     uint i = (uint)get_global_id(0);
     if (i == 0) counters[BTG_COUNTER_PREV_CONTACTS] = n;

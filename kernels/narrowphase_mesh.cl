@@ -94,7 +94,7 @@ __kernel void gather_mesh_manifolds(__global const uint* restrict kindRanges, __
                                     __global const BtgChild* restrict children, __global const uint* restrict counters,
                                     __global const BtgCachedContact* restrict cache, int cacheCapacity,
                                     __global const BtgPersistentManifold* restrict gjkCache, int gjkCapacity,
-                                    __global BtgPersistentManifold* restrict gjkPairState)
+                                    __global BtgPersistentManifold* restrict gjkPairState, int stateCapacity)
 {
     uint start, end;
     btgMeshPairRange(kindRanges, &start, &end);
@@ -112,6 +112,7 @@ __kernel void gather_mesh_manifolds(__global const uint* restrict kindRanges, __
         r.start = (int)(base + lo);
         r.count = btgGatherMeshManifolds(manifolds + base, (int)lo, (int)hi);
         pairManifolds[slot] = r;
-        gjkPairState[slot] = btgEmptyPersistent(p.a, p.b, BTG_PAIR_NONE); /* nothing kept: the store finds no kind */
+        /* nothing kept: the store finds no kind (and without GJK pairs no state is held at all) */
+        if ((int)slot < stateCapacity) gjkPairState[slot] = btgEmptyPersistent(p.a, p.b, BTG_PAIR_NONE);
     }
 }

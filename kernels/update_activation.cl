@@ -8,6 +8,8 @@
  *                 to an awake one: the edges past the contacts are joints).
  * apply_sleep     one work-item per body. Reads islandTime, wake, sleepTime. Writes props.flags
  *                 (BTG_BODY_SLEEPING), linVel/angVel (zero when falling asleep), sleepState.
+ * The three above do nothing in a substep whose status asks for a redo (BTG_STATUS_REDO): the
+ *                 call is redone from a snapshot that holds no timers or flags.
  * wake_touched    one work-item per contact, before the contacts' rows are made (wakeTouched).
  *                 Reads contacts, counters[kContactCount], props, sleepTime. Writes wake (a
  *                 sleeping body a moving one touches, btgWakes, as island_min judges it).
@@ -23,10 +25,10 @@
 
 __kernel void own_timers(int n, __global const BtgFloat4* restrict linVel, __global const BtgFloat4* restrict angVel,
                          __global const BtgBodyProps* restrict props, __global float* sleepTime,
-                         __global uint* islandTime, __global uint* wake, float dt)
+                         __global uint* islandTime, __global uint* wake, float dt, __global const uint* restrict counters)
 {
     int i = get_global_id(0);
-    if (i >= n) return;
+    if (i >= n || (counters[BTG_COUNTER_STATUS] & BTG_STATUS_REDO) != 0u) return; /* redone: nothing counted */
     BtgBodyProps p = props[i];
     wake[i] = 0u;
     if (!btgCanSleep(p.flags)) {
@@ -47,7 +49,7 @@ __kernel void island_min(__global const BtgEdge* restrict edges, __global const 
 {
     int k = get_global_id(0);
     int count = (int)min(counters[BTG_COUNTER_EDGES], (uint)capacity);
-    if (k >= count) return;
+    if (k >= count || (counters[BTG_COUNTER_STATUS] & BTG_STATUS_REDO) != 0u) return;
     BtgEdge c = edges[k];
     uint fa = props[c.bodyA].flags, fb = props[c.bodyB].flags;
     /* Joints unite any two dynamic bodies (stock's calculateSimulationIslands), contacts only
@@ -67,10 +69,11 @@ __kernel void island_min(__global const BtgEdge* restrict edges, __global const 
 
 __kernel void apply_sleep(int n, __global const uint* restrict islandTime, __global const uint* restrict wake,
                           __global float* sleepTime, __global BtgBodyProps* props, __global BtgFloat4* linVel,
-                          __global BtgFloat4* angVel, __global uint* sleepState, float deactivationTime)
+                          __global BtgFloat4* angVel, __global uint* sleepState, float deactivationTime,
+                          __global const uint* restrict counters)
 {
     int i = get_global_id(0);
-    if (i >= n) return;
+    if (i >= n || (counters[BTG_COUNTER_STATUS] & BTG_STATUS_REDO) != 0u) return;
     uint f = props[i].flags;
     if ((f & BTG_BODY_SLEEPING) && wake[i]) {
         props[i].flags = f & ~BTG_BODY_SLEEPING;

@@ -76,7 +76,7 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::StoreContactCache:
             storeContactCache(w);
             // A cache stored without the persistent manifolds beside it leaves those stale.
-            if (!anyPersistent(plan.kinds)) w.gjkCacheCurrent = false;
+            if (!keepsPersistentManifolds(plan.kinds, w.speculativeContacts)) w.gjkCacheCurrent = false;
             break;
         case Stage::StorePersistentManifolds: storePersistentManifolds(w, plan.kinds, p.solverFlags); break;
         case Stage::ReportContacts: reportContacts(w); break;

@@ -59,7 +59,8 @@ static BtgPersistentManifold btgPreviousManifold(BtgPair p, int kind, __global c
                                      __global const BtgPersistentManifold* restrict gjkCache, int gjkCapacity,        \
                                      __global BtgManifold* restrict manifolds,                                        \
                                      __global BtgManifoldRange* restrict pairManifolds,                               \
-                                     __global BtgPersistentManifold* restrict gjkPairState, int speculative)          \
+                                     __global BtgPersistentManifold* restrict gjkPairState, int speculative,          \
+                                     int stateCapacity)                                                               \
     {                                                                                                                 \
         const int kinds[] = {TABLE(BTG_PERSISTENT_KIND_ITEM)};                                                        \
         const int numKinds = (int)(sizeof(kinds) / sizeof(kinds[0]));                                                \
@@ -106,7 +107,8 @@ static BtgPersistentManifold btgPreviousManifold(BtgPair p, int kind, __global c
                 m = btgManifoldFromPersistent(pm, dist, b.pose);                                                      \
             }                                                                                                         \
             m = btgWithChildKeys(btgWithThreshold(m, t), p, children);                                                \
-            gjkPairState[slot] = pm;                                                                                  \
+            /* none held where no pair keeps a manifold (the soft step's boxes alone) */                              \
+            if ((int)slot < stateCapacity) gjkPairState[slot] = pm;                                                   \
             manifolds[slot] = m;                                                                                      \
             pairManifolds[slot] = btgOneManifold((int)slot, m);                                                       \
         }                                                                                                             \
@@ -144,8 +146,8 @@ __kernel void store_persistent_manifolds(__global const uint* restrict contactMa
                                          __global const BtgContact* restrict contacts, uint solverFlags, uint base,
                                          __global const BtgSubPair* restrict subPairs, uint subPairCapacity)
 {
-    const uint redo = BTG_STATUS_PAIR_OVERFLOW | BTG_STATUS_CONTACT_OVERFLOW | BTG_STATUS_GRID_BARRIER_TIMEOUT;
-    if ((counters[BTG_COUNTER_STATUS] & redo) != 0u) return;
+    /* as store_contact_cache, which leaves the cache alone then: the two caches share indices */
+    if ((counters[BTG_COUNTER_STATUS] & BTG_STATUS_REDO) != 0u) return;
     const uint n = min(counters[BTG_COUNTER_CONTACTS], (uint)min(contactCapacity, gjkCapacity));
     const uint i = (uint)get_global_id(0);
     if (i >= n) return;

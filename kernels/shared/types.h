@@ -429,6 +429,12 @@ typedef struct {
 #define BTG_STATUS_NAN 4u
 #define BTG_STATUS_GRID_BARRIER_TIMEOUT 8u /* a one-launch solve gave up waiting: redo per color */
 #define BTG_STATUS_SUB_PAIR_OVERFLOW 16u   /* the midphase found more triangles than subPairs holds */
+/* The statuses on which the host redoes the call from its snapshot (poses, velocities, joint
+ * state): the stages that keep state across steps (the caches, the deactivation's timers and
+ * flags) leave it alone under any of them. */
+#define BTG_STATUS_REDO                                                                            \
+    (BTG_STATUS_PAIR_OVERFLOW | BTG_STATUS_CONTACT_OVERFLOW | BTG_STATUS_GRID_BARRIER_TIMEOUT |     \
+     BTG_STATUS_SUB_PAIR_OVERFLOW)
 
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(BtgBodyProps) == 160, "BtgBodyProps layout");

@@ -43,7 +43,7 @@ void narrowphaseMesh(DeviceWorld& w, const PairKinds& kinds)
     if (!kinds.anyIn(program) || w.pairCapacity == 0) return;
     cl::Context& ctx = w.ctx;
     w.pairManifolds.reserveExact(ctx, w.pairCapacity);
-    preparePersistent(w);
+    preparePersistent(w, kinds);
     // The bullet mode steps each pair's persistent manifold as stock's; the soft step clips afresh.
     const cl_int persistent = w.speculativeContacts ? 0 : 1;
     const size_t units = size_t(std::max<cl_uint>(ctx.device().computeUnits, 1)) * 1024;
@@ -69,7 +69,7 @@ void narrowphaseMesh(DeviceWorld& w, const PairKinds& kinds)
         .arg(w.subPairOffsets).arg(countSlots).arg(capacity).arg(w.manifolds).arg(base).arg(w.pairManifolds)
         .arg(persistent).arg(w.pos).arg(w.rot).arg(w.props).arg(w.shapes).arg(w.children).arg(w.counters)
         .arg(w.contactCache).arg(int(w.contactCache.capacity())).arg(w.gjkCache).arg(int(w.gjkCache.capacity()))
-        .arg(w.gjkPairState)
+        .arg(w.gjkPairState).arg(persistentStateCapacity(w, kinds))
         .run(std::min(w.pairCapacity, units));
 }
 

@@ -23,9 +23,24 @@ void reserveGjk(DeviceWorld& w)
 }
 }  // namespace
 
-void preparePersistent(DeviceWorld& w)
+void preparePersistent(DeviceWorld& w, const PairKinds& kinds)
 {
     w.contactCache.reserveExact(w.ctx, std::max<size_t>(w.contactCache.capacity(), 1), true);
+    if (!keepsPersistentManifolds(kinds, w.speculativeContacts)) {
+        // No pair keeps a manifold: one entry of no kind each, for the kernels that bind them
+        // (the readers find no persistent state at slot 0; the collide kernels write none).
+        if (w.gjkPairState.capacity() != 1 || w.gjkCache.capacity() != 1) {
+            const std::vector<BtgPersistentManifold> none(1, BtgPersistentManifold{});
+            w.gjkPairState.release();
+            w.gjkPairState.reserveExact(w.ctx, 1);
+            w.gjkPairState.upload(w.ctx, none);
+            w.gjkCache.release();
+            w.gjkCache.reserveExact(w.ctx, 1);
+            w.gjkCache.upload(w.ctx, none);
+        }
+        w.gjkCacheCurrent = false;
+        return;
+    }
     reserveGjk(w);
     if (!w.gjkCacheCurrent) {
         // Entries no store of this kind wrote (a fresh buffer, or one left from before the plan
@@ -36,11 +51,9 @@ void preparePersistent(DeviceWorld& w)
     }
 }
 
-bool anyPersistent(const PairKinds& kinds)
+int persistentStateCapacity(const DeviceWorld& w, const PairKinds& kinds)
 {
-    for (const char* program : kPersistentPrograms)
-        if (kinds.anyIn(program)) return true;
-    return false;
+    return keepsPersistentManifolds(kinds, w.speculativeContacts) ? int(w.gjkPairState.capacity()) : 0;
 }
 
 void narrowphasePersistent(DeviceWorld& w, const PairKinds& kinds, const char* kProgram)
@@ -48,7 +61,7 @@ void narrowphasePersistent(DeviceWorld& w, const PairKinds& kinds, const char* k
     if (!kinds.anyIn(kProgram) || w.pairCapacity == 0) return;
     w.manifolds.reserveExact(w.ctx, w.pairCapacity);
     w.pairManifolds.reserveExact(w.ctx, w.pairCapacity);
-    preparePersistent(w);
+    preparePersistent(w, kinds);
     const size_t items = std::min(w.pairCapacity, size_t(std::max<cl_uint>(w.ctx.device().computeUnits, 1)) * 1024);
     const cl_int indirect = w.pairKindsIndirect ? 1 : 0;
     const int cacheCapacity = int(w.contactCache.capacity());
@@ -61,7 +74,7 @@ void narrowphasePersistent(DeviceWorld& w, const PairKinds& kinds, const char* k
         .arg(w.shapes).arg(w.children).arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges)
         .arg(w.counters).arg(w.contactCache).arg(cacheCapacity)
         .arg(w.gjkCache).arg(gjkCapacity).arg(w.manifolds).arg(w.pairManifolds).arg(w.gjkPairState).arg(speculative)
-        .run(items);
+        .arg(persistentStateCapacity(w, kinds)).run(items);
 }
 
 void storePersistentManifolds(DeviceWorld& w, const PairKinds& kinds, unsigned solverFlags)

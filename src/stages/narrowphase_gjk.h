@@ -13,12 +13,13 @@
 #include <vector>
 
 namespace btgpu {
-// Whether any kind in `kinds` keeps a persistent manifold (programs narrowphase_sat,
-// narrowphase_gjk, and narrowphase_mesh's convex–concave pairs in the bullet mode).
-bool anyPersistent(const PairKinds& kinds);
 // The buffers a narrowphase with persistent manifolds reads and writes, sized, and the GJK
-// cache's stale entries cleared (once after it was left unstored).
-void preparePersistent(DeviceWorld& w);
+// cache's stale entries cleared (once after it was left unstored); where no pair of `kinds`
+// keeps a manifold (keepsPersistentManifolds), one entry of no kind each instead.
+void preparePersistent(DeviceWorld& w, const PairKinds& kinds);
+// The slots of gjkPairState the collide kernels write: all of them, or none where no pair
+// keeps a manifold.
+int persistentStateCapacity(const DeviceWorld& w, const PairKinds& kinds);
 // The kernels of `program` (one of those two) for the kinds in `kinds`.
 void narrowphasePersistent(DeviceWorld& w, const PairKinds& kinds, const char* program);
 // After storeContactCache: contact i's persistent manifold to gjkCache[i], with the friction

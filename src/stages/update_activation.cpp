@@ -12,7 +12,7 @@ void updateActivation(DeviceWorld& w, float dt, float deactivationTime, int roun
     const int n = w.numBodies;
     cl::Launch(w.ctx, prog.kernel("own_timers"), &w.profiler)
         .arg(n).arg(w.linVel).arg(w.angVel).arg(w.props).arg(w.sleepTime).arg(w.islandTime).arg(w.wake).arg(dt)
-        .run(n);
+        .arg(w.counters).run(n);
     const int capacity = int(std::min(w.edgeCapacity, w.edges.capacity()));
     // With deactivation off only apply_sleep runs, to report the sleep state the app set.
     if (deactivationTime <= 0.0f) rounds = 0;
@@ -26,7 +26,7 @@ void updateActivation(DeviceWorld& w, float dt, float deactivationTime, int roun
     }
     cl::Launch(w.ctx, prog.kernel("apply_sleep"), &w.profiler)
         .arg(n).arg(w.islandTime).arg(w.wake).arg(w.sleepTime).arg(w.props).arg(w.linVel).arg(w.angVel)
-        .arg(w.sleepState).arg(deactivationTime)
+        .arg(w.sleepState).arg(deactivationTime).arg(w.counters)
         .run(n);
 }
 

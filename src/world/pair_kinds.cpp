@@ -31,4 +31,10 @@ bool PairKinds::anyIn(const char* program) const
     return false;
 }
 
+bool keepsPersistentManifolds(const PairKinds& kinds, bool speculative)
+{
+    if (kinds.anyIn("narrowphase_gjk")) return true;
+    return !speculative && (kinds.anyIn("narrowphase_sat") || kinds.anyIn("narrowphase_mesh"));
+}
+
 }  // namespace btgpu

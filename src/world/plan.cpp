@@ -87,8 +87,7 @@ std::vector<Stage> Plan::substep() const
         // Before the bodies move: the cache keys use A's rotation as the contacts were built.
         if (collide) {
             s.push_back(Stage::StoreContactCache);
-            if (kinds.anyIn("narrowphase_gjk") || kinds.anyIn("narrowphase_sat") || kinds.anyIn("narrowphase_mesh"))
-                s.push_back(Stage::StorePersistentManifolds);
+            if (keepsPersistentManifolds(kinds, solver == SolverKind::SoftStep)) s.push_back(Stage::StorePersistentManifolds);
             if (reportContacts) s.push_back(Stage::ReportContacts);
         }
     }

@@ -75,9 +75,13 @@ BtgFloat4 normalOf(const BtgManifold& m) { return btgPointNormal(m.points[0]); }
 
 constexpr int kSpareSlots = 3;  // slots past the pair count: must stay untouched
 
-std::vector<BtgManifold> runDevice(cl::Context& ctx, const Scene& s)
+// speculative: the soft step's collision (two boxes clipped afresh); *stateSlots: the
+// persistent-manifold entries the world then holds (gjkPairState, gjkCache).
+std::vector<BtgManifold> runDevice(cl::Context& ctx, const Scene& s, bool speculative = false,
+                                   std::pair<size_t, size_t>* stateSlots = nullptr)
 {
     DeviceWorld w(ctx);
+    w.speculativeContacts = speculative;
     w.numBodies = int(s.pos.size());
     w.pos.upload(ctx, s.pos);
     w.rot.upload(ctx, s.rot);
@@ -96,6 +100,7 @@ std::vector<BtgManifold> runDevice(cl::Context& ctx, const Scene& s)
     groupPairsByKind(w, s.kinds());
     narrowphase(w, s.kinds());
     std::vector<BtgManifold> out = w.manifolds.download(ctx, w.pairCapacity);
+    if (stateSlots) *stateSlots = {w.gjkPairState.capacity(), w.gjkCache.capacity()};
     for (size_t i = s.pairs.size(); i < out.size(); ++i) EXPECT_EQ(out[i].numPoints, -1) << "slot past the count written";
     out.resize(s.pairs.size());
     return out;
@@ -178,6 +183,28 @@ TEST(Narrowphase, BoxOnBoxFaceFace)
     apart.body(ground, btgMake4(0, 0, 0, 0));
     apart.pair(0, 1);
     EXPECT_EQ(collide(apart)[0].numPoints, 0);
+}
+
+TEST(Narrowphase, TheSoftStepsBoxesHoldNoPersistentManifolds)
+{
+    // The bullet mode keeps each box pair's manifold (stock's box detector): an entry a pair
+    // slot. The soft step clips two boxes afresh every substep and keeps nothing, so it holds
+    // one placeholder entry, not 256 bytes a pair slot and a contact slot (device memory at
+    // 1,000,000 cubes), and its clip is the same whether or not a world held them before.
+    Scene s;
+    int ground = s.t.addBox(btgMake4(2, 0.5f, 2, 0)), cube = s.t.addBox(btgMake4(0.5f, 0.5f, 0.5f, 0));
+    s.body(cube, btgMake4(0, 0.99f, 0, 0));
+    s.body(ground, btgMake4(0, 0, 0, 0));
+    s.pair(0, 1);
+    std::pair<size_t, size_t> held;
+    runDevice(test::context(), s, false, &held);
+    EXPECT_GE(held.first, s.pairs.size());
+    const std::vector<BtgManifold> soft = runDevice(test::context(), s, true, &held);
+    EXPECT_EQ(held.first, 1u);
+    EXPECT_EQ(held.second, 1u);
+    ASSERT_EQ(soft[0].numPoints, 4);
+    expectNormal(soft[0], btgMake4(0, 1, 0, 0));
+    expectAllDepths(soft[0], -0.01f);
 }
 
 TEST(Narrowphase, CrossedBoxesEdgeEdge)

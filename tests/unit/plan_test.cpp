@@ -91,6 +91,23 @@ TEST(Plan, ConvexShapesBringTheGjkStagesAndNothingElseDoes)
     EXPECT_LT(at(Stage::NarrowphaseGjk), at(Stage::ContactCache));
 }
 
+TEST(Plan, TheSoftStepKeepsPersistentManifoldsForGjkPairsOnly)
+{
+    // The soft step collides two boxes (and convex–mesh pairs) afresh every substep: nothing to
+    // store for them. GJK pairs keep stock's persistent manifold in both solvers.
+    PlanInput in;
+    in.bodies = {body(BTG_SHAPE_BOX, 0, false), body(BTG_SHAPE_BOX, 1, true), body(BTG_SHAPE_BOX, 1, true)};
+    in.solver = SolverKind::SoftStep;
+    EXPECT_FALSE(has(derivePlan(in).plan.substep(), Stage::StorePersistentManifolds));
+    EXPECT_FALSE(keepsPersistentManifolds(derivePlan(in).plan.kinds, true));
+    in.solver = SolverKind::BatchedPgs;
+    EXPECT_TRUE(has(derivePlan(in).plan.substep(), Stage::StorePersistentManifolds));
+    in.solver = SolverKind::SoftStep;
+    in.bodies.push_back(body(BTG_SHAPE_CONVEX, 1, true));
+    EXPECT_TRUE(has(derivePlan(in).plan.substep(), Stage::StorePersistentManifolds));
+    EXPECT_TRUE(keepsPersistentManifolds(derivePlan(in).plan.kinds, true));
+}
+
 TEST(Plan, PairsFollowStocksAlgorithmChoice)
 {
     // Stock clips two boxes (btBoxBoxDetector) and two hulls with polyhedral features; a box

@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 using namespace btgpu;
 
 namespace {
@@ -138,6 +140,45 @@ void expectAsReference(Device& d, const reference::ActivationState& ref)
     }
 }
 }  // namespace
+
+// A substep that overflowed (or gave up at a grid barrier) is redone from the state before the
+// call, and the snapshot holds poses and velocities only: the deactivation of the attempt must
+// leave the timers, the island timers, the wake marks and the flags as it found them, else the
+// redo starts with the step counted once already (a body could fall asleep a step early, and
+// start its redo asleep). Found by a landscape's results changing with the pair buffers' size.
+TEST(UpdateActivation, AnOverflowedStepLeavesTheTimersAndFlagsAlone)
+{
+    Scene sc = chain();
+    Device d(sc);
+    const float dt = 1.0f / 60.0f;
+    for (int step = 0; step < 119; ++step) {
+        updateActivation(d.w, dt, 2.0f);
+        reference::updateActivation(sc.s, sc.edges, dt, 2.0f);
+    }
+    auto state = [&] {
+        return std::make_tuple(d.w.sleepTime.download(d.w.ctx, 6), d.w.islandTime.download(d.w.ctx, 6),
+                               d.w.wake.download(d.w.ctx, 6), d.w.sleepState.download(d.w.ctx, 6));
+    };
+    const auto before = state();
+    const std::vector<BtgBodyProps> propsBefore = d.w.props.download(d.w.ctx, 6);
+    for (uint status : {BTG_STATUS_PAIR_OVERFLOW, BTG_STATUS_CONTACT_OVERFLOW, BTG_STATUS_SUB_PAIR_OVERFLOW,
+                        BTG_STATUS_GRID_BARRIER_TIMEOUT}) {
+        d.w.counters.fill(d.w.ctx, status, size_t(kStatus), 1);
+        for (int attempt = 0; attempt < 3; ++attempt) updateActivation(d.w, dt, 2.0f);
+        EXPECT_TRUE(state() == before) << "status " << status;
+        const std::vector<BtgBodyProps> props = d.w.props.download(d.w.ctx, 6);
+        for (int i = 0; i < 6; ++i) EXPECT_EQ(props[size_t(i)].flags, propsBefore[size_t(i)].flags) << status << " body " << i;
+    }
+    // The redo then goes on as if the attempts never ran: the chain falls asleep at the
+    // reference's step (2 s), not before.
+    d.w.counters.fill(d.w.ctx, 0u, size_t(kStatus), 1);
+    for (int step = 0; step < 3; ++step) {
+        updateActivation(d.w, dt, 2.0f);
+        reference::updateActivation(sc.s, sc.edges, dt, 2.0f);
+        EXPECT_EQ(d.sleepState(), sc.s.sleepState) << "step " << step;
+        EXPECT_EQ(d.w.sleepTime.download(d.w.ctx, 6), sc.s.sleepTime) << "step " << step;
+    }
+}
 
 // Before the solve (wakeTouched): a sleeping body that a moving body's contact touches wakes in
 // the same step, its flags, timers and sleep state as the reference's; one touched by a slow
