@@ -290,15 +290,7 @@ void GpuWorld::rebuild()
     makePlan();
     // Rows changed meaning: the warm-start cache is dropped (one step without warm start).
     size_t n = m_rows.size();
-    // A first guess of one pair and one contact a body (a pile settles at about four, a scene
-    // of bodies apart needs none): the buffers then grow from the counts of a step that
-    // overflowed (pipeline.cpp's grow, which redoes that step), so memory follows the scene.
-    w.pairCapacity = std::max(w.pairCapacity, std::max<size_t>(256, n));
-    w.contactCapacity = std::max(w.contactCapacity, std::max<size_t>(256, n));
-    w.pairs.reserveExact(w.ctx, w.pairCapacity);
-    w.manifolds.reserveExact(w.ctx, w.pairCapacity);
-    w.contacts.reserveExact(w.ctx, w.contactCapacity);
-    w.contactCache.reserveExact(w.ctx, w.contactCapacity);
+    reservePairsAndContacts(n, false);
     std::vector<uint> counters(kNumCounters, 0u);
     counters[kNanBody] = 0xffffffffu;
     w.counters.upload(w.ctx, counters);
@@ -728,6 +720,20 @@ std::string GpuWorld::ccdReason() const
                "solve or an overlap filter (a step CCD acts in runs again on the CPU path, which would call them "
                "twice)";
     return "";
+}
+
+void GpuWorld::reservePairsAndContacts(size_t rows, bool keepCache)
+{
+    // A first guess of one pair and one contact a body (a pile settles at about four, a scene
+    // of bodies apart needs none): the buffers then grow from the counts of a step that
+    // overflowed (pipeline.cpp's grow, which redoes that step), so memory follows the scene.
+    DeviceWorld& w = *m_dev;
+    w.pairCapacity = std::max(w.pairCapacity, std::max<size_t>(256, rows));
+    w.contactCapacity = std::max(w.contactCapacity, std::max<size_t>(256, rows));
+    w.pairs.reserveExact(w.ctx, w.pairCapacity);
+    w.manifolds.reserveExact(w.ctx, w.pairCapacity);
+    w.contacts.reserveExact(w.ctx, w.contactCapacity);
+    w.contactCache.reserveExact(w.ctx, w.contactCapacity, keepCache);
 }
 
 bool GpuWorld::finishCall(bool profiled, bool gpuPath)

@@ -69,6 +69,9 @@ private:
         btVector3 linVel, angVel, force, torque;
         BtgBodyProps props;
         bool excluded;
+        // The app changed this sleeping dynamic body before the call (a teleport, a velocity
+        // without activate()): its write-back does what stock's step does to a sleeper.
+        bool touchedAsleep;
         static Mirror fresh()
         {
             Mirror m;
@@ -76,6 +79,7 @@ private:
             m.linVel = m.angVel = m.force = m.torque = btVector3(0, 0, 0);
             m.props = BtgBodyProps{};
             m.excluded = false;
+            m.touchedAsleep = false;
             return m;
         }
     };
@@ -181,6 +185,9 @@ private:
     void dropCpuPathManifolds();
     // synchronizeMotionStates, clearForces, the AABB sync and the report's totals.
     bool finishCall(bool profiled, bool gpuPath);
+    // The pair and contact buffers for `rows` bodies, never smaller than they are; keepCache:
+    // the warm-start cache's contents stay (rows followed, not rebuilt).
+    void reservePairsAndContacts(size_t rows, bool keepCache);
     // Results into the btRigidBody objects; `last`: the call's final write-back, which may also
     // do synchronizeMotionStates' and clearForces' work in the same pass (see takeFusedWriteBack).
     // sleepRead: rb's sleep states are this step's (false after a part stopped before the
@@ -188,6 +195,8 @@ private:
     void writeBack(const BodyReadback& rb, bool last, bool sleepRead = true);
     // One row; true when the body fell asleep in this step. Touches only row r.
     bool writeRow(size_t r, btRigidBody* body, const BodyReadback& rb, bool sleepRead, std::vector<size_t>* bad);
+    // A sleeping body the app changed before the call, after a call it slept through.
+    void settleSleeper(btRigidBody* body, Mirror& m);
     StepSettings settings(int substeps, btScalar dt) const;
 
     btGpuDynamicsWorld& m_world;

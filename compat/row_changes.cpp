@@ -50,12 +50,7 @@ void GpuWorld::followRows()
     resizeBodies(w, int(n));  // keeps every row's contents
     if (m_shapes.takeGrown()) uploadShapeTables(true);
     makePlan();
-    w.pairCapacity = std::max(w.pairCapacity, std::max<size_t>(256, 4 * n));
-    w.contactCapacity = std::max(w.contactCapacity, std::max<size_t>(256, 2 * n));
-    w.pairs.reserveExact(w.ctx, w.pairCapacity);
-    w.manifolds.reserveExact(w.ctx, w.pairCapacity);
-    w.contacts.reserveExact(w.ctx, w.contactCapacity);
-    w.contactCache.reserveExact(w.ctx, w.contactCapacity, true);  // the untouched pairs warm-start
+    reservePairsAndContacts(n, true);  // the untouched pairs warm-start
     const size_t had = m_mirror.size();
     m_mirror.resize(n);
     for (size_t r = had; r < n; ++r) m_mirror[r] = Mirror::fresh();
@@ -253,6 +248,7 @@ bool GpuWorld::compareRow(size_t r, bool all, BodyRowUpdate* u, std::string* new
     m.torque = torque;
     m.props = props;
     m.excluded = excluded;
+    m.touchedAsleep = (props.flags & BTG_BODY_SLEEPING) && (props.flags & BTG_BODY_DYNAMIC) && rb;
     return true;
 }
 

@@ -86,7 +86,10 @@ bool GpuWorld::writeRow(size_t r, btRigidBody* body, const BodyReadback& rb, boo
     bool wasAsleep = (f & BTG_BODY_SLEEPING) != 0;
     // Before the deactivation ran (actions in between) the sleep states are not this step's.
     bool asleep = sleepRead ? rb.sleepState[r] != 0 : wasAsleep;
-    if (wasAsleep && asleep) return false;  // nothing moved
+    if (wasAsleep && asleep) {  // nothing moved
+        if (m.touchedAsleep && sleepRead) settleSleeper(body, m);  // after the deactivation, as stock
+        return false;
+    }
     BtgFloat4 p = rb.pos[r], q = rb.rot[r], v = rb.linVel[r], a = rb.angVel[r];
     if (!btgIsFinite4(p) || !btgIsFinite4(q) || !btgIsFinite4(v) || !btgIsFinite4(a)) {
         bad->push_back(r);
@@ -110,6 +113,30 @@ bool GpuWorld::writeRow(size_t r, btRigidBody* body, const BodyReadback& rb, boo
     m.linVel = body->getLinearVelocity();
     m.angVel = body->getAngularVelocity();
     return asleep;
+}
+
+void GpuWorld::settleSleeper(btRigidBody* body, Mirror& m)
+{
+    // Stock's step for a sleeping body (predictUnconstraintMotion, then updateActivationState):
+    // damped, its interpolation transform predicted from where the app put it (which
+    // synchronizeMotionStates reads with setSynchronizeAllMotionStates), then, while
+    // deactivation is on, its velocities zeroed (apply_sleep zeroes the device's copy).
+    const bool moving = !(body->getLinearVelocity() == btVector3(0, 0, 0)) || !(body->getAngularVelocity() == btVector3(0, 0, 0));
+    m.touchedAsleep = false;
+    body->applyDamping(m_stepDt);
+    btTransform predicted;
+    body->predictIntegratedTransform(m_stepDt, predicted);
+    body->setInterpolationWorldTransform(predicted);
+    if (gDisableDeactivation || gDeactivationTime == btScalar(0)) {
+        m.linVel = body->getLinearVelocity();
+        m.angVel = body->getAngularVelocity();
+        return;
+    }
+    body->setLinearVelocity(btVector3(0, 0, 0));
+    body->setAngularVelocity(btVector3(0, 0, 0));
+    m.linVel = m.angVel = btVector3(0, 0, 0);
+    // The next step predicts from rest: the interpolation transform back on the body then.
+    m.touchedAsleep = moving;
 }
 
 bool GpuWorld::takeFusedWriteBack()

@@ -7,7 +7,8 @@
  *                 free), wake (a sleeping body touched by a moving, non-slow body, or jointed
  *                 to an awake one: the edges past the contacts are joints).
  * apply_sleep     one work-item per body. Reads islandTime, wake, sleepTime. Writes props.flags
- *                 (BTG_BODY_SLEEPING), linVel/angVel (zero when falling asleep), sleepState.
+ *                 (BTG_BODY_SLEEPING), linVel/angVel (zero when falling asleep, and while asleep
+ *                 as stock's), sleepState.
  * The three above do nothing in a substep whose status asks for a redo (BTG_STATUS_REDO): the
  *                 call is redone from a snapshot that holds no timers or flags.
  * wake_touched    one work-item per contact, before the contacts' rows are made (wakeTouched).
@@ -79,6 +80,17 @@ __kernel void apply_sleep(int n, __global const uint* restrict islandTime, __glo
         props[i].flags = f & ~BTG_BODY_SLEEPING;
         sleepTime[i] = 0.0f;
         sleepState[i] = 0u;
+        return;
+    }
+    /* Stock's updateActivationState zeroes a sleeping body's velocities every step (wantsSleeping
+     * holds while deactivation is on): one the app set without activate() is gone by the step's
+     * end, and does not move the body when it wakes later. */
+    if ((f & BTG_BODY_SLEEPING) && deactivationTime > 0.0f) {
+        if (any(linVel[i] != (float4)(0.0f)) || any(angVel[i] != (float4)(0.0f))) {
+            linVel[i] = (float4)(0.0f);
+            angVel[i] = (float4)(0.0f);
+        }
+        sleepState[i] = 1u;
         return;
     }
     if (btgCanSleep(f) && deactivationTime > 0.0f && as_float(islandTime[i]) > deactivationTime) {

@@ -219,3 +219,47 @@ TEST(Landing, KickedLinkPullsItsSleepingChainAsOnStock)
         }
     }
 }
+
+// Stock zeroes a sleeping body's velocities in every step (updateActivationState), so one the app
+// sets without activate() is gone by the step's end: the body neither moves then nor when it
+// wakes later. btgpu kept it, and the body slid 0.75 m off when the app activated it. And with
+// setSynchronizeAllMotionStates, stock's step predicts a sleeper's interpolation transform from
+// where the app put it, so a sleeping body teleported by setWorldTransform has its motion state
+// follow (btgpu's stayed where the body fell asleep).
+TEST(Landing, ASleepersVelocityAndTeleportAreAsOnStock)
+{
+    for (const Config& config : {Config(), Config::bulletMode()}) {
+        SCOPED_TRACE(config.solver == SolverKind::Auto ? "default" : "bullet mode");
+        scenes::ScenePtr worlds[2] = {scenes::restingBox(WorldKind::Stock, config), scenes::restingBox(WorldKind::Gpu, config)};
+        for (auto& w : worlds) {
+            w->body(1)->setDamping(0.5f, 0.5f);
+            for (int step = 0; step < 200; ++step) w->step();
+            ASSERT_EQ(w->body(1)->getActivationState(), ISLAND_SLEEPING);
+            w->body(1)->setLinearVelocity(btVector3(5, 0, 0));
+            w->body(1)->setAngularVelocity(btVector3(0, 3, 0));
+            w->step();
+            EXPECT_EQ(w->body(1)->getLinearVelocity(), btVector3(0, 0, 0));
+            EXPECT_EQ(w->body(1)->getAngularVelocity(), btVector3(0, 0, 0));
+            for (int step = 0; step < 5; ++step) w->step();
+            w->body(1)->activate();
+            for (int step = 0; step < 10; ++step) w->step();
+        }
+        ASSERT_TRUE(worlds[1]->gpuWorld()->isGpuPath());
+        // measured: before, 0.7488 (default) / 0.7462 m (bullet mode) off; after, 1e-3 at most
+        EXPECT_LT((worlds[1]->body(1)->getWorldTransform().getOrigin() - worlds[0]->body(1)->getWorldTransform().getOrigin()).length(), 0.01);
+        for (auto& w : worlds) {
+            for (int step = 0; step < 200; ++step) w->step();
+            ASSERT_EQ(w->body(1)->getActivationState(), ISLAND_SLEEPING);
+            w->world().setSynchronizeAllMotionStates(true);
+            w->body(1)->setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(3, 0.5f, 1)));
+            w->step();
+            btTransform shown;
+            w->body(1)->getMotionState()->getWorldTransform(shown);
+            EXPECT_EQ(w->body(1)->getActivationState(), ISLAND_SLEEPING);
+            // (stock's own integrateTransform rounds the height to 0.49999997)
+            EXPECT_LT((shown.getOrigin() - btVector3(3, 0.5f, 1)).length(), 1e-6) << "the motion state follows the teleported sleeper";
+            EXPECT_LT((w->body(1)->getInterpolationWorldTransform().getOrigin() - btVector3(3, 0.5f, 1)).length(), 1e-6);
+        }
+        ASSERT_TRUE(worlds[1]->gpuWorld()->isGpuPath());
+    }
+}
