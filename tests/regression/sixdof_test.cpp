@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -419,4 +420,62 @@ TEST(SoftStepSprings, Hinge2SuspensionSettlesAsOnStock)
     EXPECT_GT(swing[0][1] - swing[0][0], 0.05);
     EXPECT_NEAR(swing[1][0], swing[0][0], 5e-3);
     EXPECT_NEAR(swing[1][1], swing[0][1], 5e-3);
+}
+
+// Stock's solve calls each enabled joint's getInfo1 at every step with the step's start poses,
+// and leaves there what apps read back: getAngle and getRelativePivotPosition of the 6-DoF
+// family (btUniversalConstraint's and btHinge2Constraint's getAngle1/2 among them), the limit
+// motors' current positions, a cone-twist's twist angle. On the GPU path nothing called it: a
+// 6-DoF servo arm's getAngle read 0 at every angle (a new-user probe). Each joint's readouts
+// against stock's after the scene ran a while, on the GPU path every step.
+TEST(SixDof, JointReadoutsAreStocks)
+{
+    struct Case {
+        const char* name;
+        std::function<scenes::ScenePtr(WorldKind, const Config&)> make;
+        int joint;
+    };
+    const Case cases[] = {
+        {"6-DoF spring2 servos", [](WorldKind k, const Config& c) { return scenes::sixDofServos(k, c, 1.0); }, 0},
+        {"hinge2 wheels", [](WorldKind k, const Config& c) { return scenes::hinge2Wheels(k, c); }, 2},
+        {"universal pendulum", [](WorldKind k, const Config& c) { return scenes::universalPendulum(k, c); }, 0},
+        {"old 6-DoF motors", [](WorldKind k, const Config& c) { return scenes::generic6DofMotors(k, c, 2.0, true); }, 0},
+        {"cone-twist motor", [](WorldKind k, const Config& c) { return scenes::coneTwistMotor(k, c, 0); }, 0},
+    };
+    for (const Case& cs : cases) {
+        SCOPED_TRACE(cs.name);
+        SideBySide s(cs.make);
+        for (int i = 0; i < 45; ++i) {
+            s.step();
+            ASSERT_TRUE(s.onGpu()) << "step " << i << ": " << s.gpu->report()->cpuPathReason;
+        }
+        btTypedConstraint* jointOf[2] = {s.stock->joint(cs.joint), s.gpu->joint(cs.joint)};
+        std::vector<double> read[2];
+        bool moved = false;
+        for (int w = 0; w < 2; ++w) {
+            btTypedConstraint* j = jointOf[w];
+            if (auto* d = dynamic_cast<btGeneric6DofSpring2Constraint*>(j)) {
+                for (int a = 0; a < 3; ++a) {
+                    read[w].push_back(d->getAngle(a));
+                    read[w].push_back(d->getRelativePivotPosition(a));
+                    read[w].push_back(d->getRotationalLimitMotor(a)->m_currentPosition);
+                }
+            } else if (auto* d = dynamic_cast<btGeneric6DofConstraint*>(j)) {
+                for (int a = 0; a < 3; ++a) {
+                    read[w].push_back(d->getAngle(a));
+                    read[w].push_back(d->getRelativePivotPosition(a));
+                    read[w].push_back(d->getRotationalLimitMotor(a)->m_currentPosition);
+                }
+            } else if (auto* c = dynamic_cast<btConeTwistConstraint*>(j)) {
+                read[w].push_back(c->getTwistAngle());
+                read[w].push_back(c->getSwingSpan1());
+                read[w].push_back(c->isPastSwingLimit() ? 1.0 : 0.0);
+            }
+            for (double v : read[w]) moved |= std::fabs(v) > 0.05;
+        }
+        ASSERT_FALSE(read[0].empty());
+        EXPECT_TRUE(moved) << "the joint turned or slid (else the readouts prove nothing)";
+        for (size_t k = 0; k < read[0].size(); ++k)
+            EXPECT_NEAR(read[1][k], read[0][k], 2e-3) << "readout " << k << " (before: stale, the value the joint was built with)";
+    }
 }
