@@ -297,6 +297,8 @@ void GpuWorld::rebuild()
     w.sleepTime.zero(w.ctx, std::max<size_t>(n, 1));
     std::vector<uint> never(std::max<size_t>(n, 1), 0x7f800000u);  // +inf: no island yet
     w.islandTime.upload(w.ctx, never);
+    w.islandLabel.fill(w.ctx, 0xffffffffu, 0, std::max<size_t>(n, 1));  // rows renumbered: no island kept
+    w.islandWake.fill(w.ctx, 0u, 0, std::max<size_t>(n, 1));
     m_mirror.clear();
     m_mirror.resize(n);  // unwritten: everyRow starts each row's mirror
     writeColumns(w, everyRow());

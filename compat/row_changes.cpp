@@ -65,7 +65,7 @@ void GpuWorld::followRows()
         m_mirror[r].props.flags = 0xffffffffu;
         fresh.push_back(int(r));
     }
-    resetRows(w, fresh);
+    resetRows(w, fresh, false);
 }
 
 bool GpuWorld::shapesSwapped() const
@@ -187,7 +187,7 @@ void GpuWorld::afterSyncIn()
     for (size_t r = 0; r < m_woken.size(); ++r)
         if (m_woken[r]) rows.push_back(int(r));
     m_woken.clear();
-    resetRows(*m_dev, rows);
+    resetRows(*m_dev, rows, true);
     rows.clear();
     for (size_t r = 0; r < m_reshaped.size(); ++r)
         if (m_reshaped[r]) rows.push_back(int(r));

@@ -2,8 +2,8 @@
  * the per-row timers of rows that take a new body.
  * Launch: one work-item per changed (or fresh) row. scatter_bodies reads rows, states (6 float4
  * per row: pos, rot, linVel, angVel, force, torque), rowProps and writes pos, rot, linVel,
- * angVel, extForce, extTorque, props at those rows; reset_rows writes sleepTime, islandTime,
- * sleepState at its rows. */
+ * angVel, extForce, extTorque, props at those rows; reset_rows (rows the app woke) writes
+ * sleepTime, islandTime, sleepState, islandLabel at its rows and marks their islands in islandWake. */
 #include "shared/types.h"
 
 __kernel void scatter_bodies(int n, __global const int* restrict rows, __global const BtgFloat4* restrict states,
@@ -26,11 +26,17 @@ __kernel void scatter_bodies(int n, __global const int* restrict rows, __global 
 /* A row that takes a new body starts as rebuild() starts every row: no time under the sleeping
  * thresholds, no island yet (+inf), awake. */
 __kernel void reset_rows(int n, __global const int* restrict rows, __global float* sleepTime,
-                         __global uint* islandTime, __global uint* sleepState)
+                         __global uint* islandTime, __global uint* sleepState, __global uint* islandLabel,
+                         __global uint* islandWake, int numBodies, int woken)
 {
     int k = get_global_id(0);
     if (k >= n) return;
     int r = rows[k];
+    /* a sleeping body the app woke wakes its island before the next solve, as stock's (a fresh
+       row, perhaps a retired one's, marks nothing) */
+    const uint l = islandLabel[r];
+    if (woken && l < (uint)numBodies) islandWake[l] = 1u;
+    islandLabel[r] = (uint)r;
     sleepTime[r] = 0.0f;
     islandTime[r] = 0x7f800000u;
     sleepState[r] = 0u;

@@ -26,12 +26,17 @@
 
 __kernel void own_timers(int n, __global const BtgFloat4* restrict linVel, __global const BtgFloat4* restrict angVel,
                          __global const BtgBodyProps* restrict props, __global float* sleepTime,
-                         __global uint* islandTime, __global uint* wake, float dt, __global const uint* restrict counters)
+                         __global uint* islandTime, __global uint* wake, float dt, __global const uint* restrict counters,
+                         __global uint* islandLabel, __global uint* islandWake)
 {
     int i = get_global_id(0);
     if (i >= n || (counters[BTG_COUNTER_STATUS] & BTG_STATUS_REDO) != 0u) return; /* redone: nothing counted */
     BtgBodyProps p = props[i];
     wake[i] = 0u;
+    islandWake[i] = 0u; /* this step's marks are spent (wake_island_spread) */
+    /* an awake body's island is found afresh each step (island_min); a sleeper keeps the one it
+       fell asleep in */
+    if (!(p.flags & BTG_BODY_SLEEPING)) islandLabel[i] = (uint)i;
     if (!btgCanSleep(p.flags)) {
         islandTime[i] = BTG_NEVER_UINT;
         return;
@@ -46,7 +51,7 @@ __kernel void own_timers(int n, __global const BtgFloat4* restrict linVel, __glo
 __kernel void island_min(__global const BtgEdge* restrict edges, __global const uint* restrict counters,
                          int capacity, __global const BtgBodyProps* restrict props, __global const float* restrict sleepTime,
                          __global const uint* restrict islandSrc, __global uint* islandDst, __global uint* wake,
-                         int numJoints)
+                         int numJoints, __global const uint* restrict labelSrc, __global uint* labelDst)
 {
     int k = get_global_id(0);
     int count = (int)min(counters[BTG_COUNTER_EDGES], (uint)capacity);
@@ -59,6 +64,12 @@ __kernel void island_min(__global const BtgEdge* restrict edges, __global const 
     if (joint ? btgCanSleep(fa) && btgCanSleep(fb) : btgMergesIslands(fa) && btgMergesIslands(fb)) {
         atomic_min(&islandDst[c.bodyA], islandSrc[c.bodyB]);
         atomic_min(&islandDst[c.bodyB], islandSrc[c.bodyA]);
+        /* the least row of the island, a hop a round, among awake bodies (a sleeper keeps the
+           label it fell asleep with) */
+        if (!((fa | fb) & BTG_BODY_SLEEPING)) {
+            atomic_min(&labelDst[c.bodyA], labelSrc[c.bodyB]);
+            atomic_min(&labelDst[c.bodyB], labelSrc[c.bodyA]);
+        }
     }
     if (joint) {
         if (btgJointWakes(fa, fb)) wake[c.bodyB] = 1u;
@@ -157,6 +168,32 @@ __kernel void wake_jointed(__global const BtgJoint* restrict joints, int numJoin
         barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
         if (!changed) break;
     }
+}
+
+/* Stock activates a sleeping island whole before its solve once any of its bodies is active
+ * (buildIslands): the islands of the bodies marked so far (wake_touched, wake_jointed, and the
+ * app's activate(): reset_rows) are marked, then every sleeping dynamic body of a marked island
+ * is. An island is the label island_min gave its bodies when they fell asleep: the least row
+ * within its rounds' hops of each, so a large island may hold several labels and wakes label by
+ * label as before, a contact a step. */
+__kernel void wake_island_mark(int n, __global const uint* restrict wake, __global const BtgBodyProps* restrict props,
+                               __global const uint* restrict islandLabel, __global uint* islandWake)
+{
+    const int i = get_global_id(0);
+    if (i >= n || !wake[i] || !(props[i].flags & BTG_BODY_SLEEPING)) return;
+    const uint l = islandLabel[i];
+    if (l < (uint)n) islandWake[l] = 1u;
+}
+
+__kernel void wake_island_spread(int n, __global uint* wake, __global const BtgBodyProps* restrict props,
+                                 __global const uint* restrict islandLabel, __global const uint* restrict islandWake)
+{
+    const int i = get_global_id(0);
+    if (i >= n || wake[i]) return;
+    const uint f = props[i].flags;
+    if (!(f & BTG_BODY_SLEEPING) || !(f & BTG_BODY_DYNAMIC) || (f & BTG_BODY_EXCLUDED)) return;
+    const uint l = islandLabel[i];
+    if (l < (uint)n && islandWake[l]) wake[i] = 1u;
 }
 
 __kernel void wake_apply(int n, __global uint* wake, __global BtgBodyProps* props, __global float* sleepTime,

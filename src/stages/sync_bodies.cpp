@@ -9,6 +9,15 @@ void resizeBodies(DeviceWorld& w, int n)
 {
     cl::Context& c = w.ctx;
     size_t rows = size_t(n > 0 ? n : 1);
+    // New rows belong to no sleeping island and mark none.
+    const size_t hadLabels = std::min(w.islandLabel.capacity(), size_t(std::max(w.numBodies, 0)));
+    w.islandLabel.reserve(c, rows, true);
+    w.islandLabelScratch.reserve(c, rows);
+    w.islandWake.reserve(c, rows, true);
+    if (rows > hadLabels) {
+        w.islandLabel.fill(c, 0xffffffffu, hadLabels, rows - hadLabels);
+        w.islandWake.fill(c, 0u, hadLabels, rows - hadLabels);
+    }
     w.pos.reserve(c, rows, true);
     w.rot.reserve(c, rows, true);
     w.linVel.reserve(c, rows, true);
@@ -58,12 +67,13 @@ void writeColumns(DeviceWorld& w, const BodyColumns& c)
     w.props.upload(w.ctx, c.props.data(), n);
 }
 
-void resetRows(DeviceWorld& w, const std::vector<int>& rows)
+void resetRows(DeviceWorld& w, const std::vector<int>& rows, bool woken)
 {
     if (rows.empty()) return;
     w.stagingRows.upload(w.ctx, rows);
     cl::Launch(w.ctx, w.ctx.program("sync_bodies").kernel("reset_rows"), &w.profiler)
         .arg(int(rows.size())).arg(w.stagingRows).arg(w.sleepTime).arg(w.islandTime).arg(w.sleepState)
+        .arg(w.islandLabel).arg(w.islandWake).arg(w.numBodies).arg(woken ? 1 : 0)
         .run(rows.size());
 }
 

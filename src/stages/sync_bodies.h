@@ -88,7 +88,9 @@ void syncIn(DeviceWorld& w, const BodyRowUploads& rows);
 // Writes every row (the columns' size must be the world's numBodies).
 void writeColumns(DeviceWorld& w, const BodyColumns& rows);
 // Clears the sleeping and island timers of rows that now hold a new body.
-void resetRows(DeviceWorld& w, const std::vector<int>& rows);
+// woken: rows of sleeping bodies the app woke (their islands wake before the next solve, as
+// stock's); else fresh rows.
+void resetRows(DeviceWorld& w, const std::vector<int>& rows, bool woken = false);
 
 // In page-locked host memory (cl/pinned.h): the readback is the step's one large transfer.
 // Release before the context goes.

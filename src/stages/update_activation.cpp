@@ -12,17 +12,19 @@ void updateActivation(DeviceWorld& w, float dt, float deactivationTime, int roun
     const int n = w.numBodies;
     cl::Launch(w.ctx, prog.kernel("own_timers"), &w.profiler)
         .arg(n).arg(w.linVel).arg(w.angVel).arg(w.props).arg(w.sleepTime).arg(w.islandTime).arg(w.wake).arg(dt)
-        .arg(w.counters).run(n);
+        .arg(w.counters).arg(w.islandLabel).arg(w.islandWake).run(n);
     const int capacity = int(std::min(w.edgeCapacity, w.edges.capacity()));
     // With deactivation off only apply_sleep runs, to report the sleep state the app set.
     if (deactivationTime <= 0.0f) rounds = 0;
     for (int r = 0; r < rounds; ++r) {
         w.islandScratch.copyFrom(w.ctx, w.islandTime, size_t(n));
+        w.islandLabelScratch.copyFrom(w.ctx, w.islandLabel, size_t(n));
         cl::Launch(w.ctx, prog.kernel("island_min"), &w.profiler)
             .arg(w.edges).arg(w.counters).arg(capacity).arg(w.props).arg(w.sleepTime).arg(w.islandTime)
-            .arg(w.islandScratch).arg(w.wake).arg(w.numJoints)
+            .arg(w.islandScratch).arg(w.wake).arg(w.numJoints).arg(w.islandLabel).arg(w.islandLabelScratch)
             .run(size_t(capacity));
         std::swap(w.islandTime, w.islandScratch);
+        std::swap(w.islandLabel, w.islandLabelScratch);
     }
     cl::Launch(w.ctx, prog.kernel("apply_sleep"), &w.profiler)
         .arg(n).arg(w.islandTime).arg(w.wake).arg(w.sleepTime).arg(w.props).arg(w.linVel).arg(w.angVel)
@@ -51,6 +53,10 @@ void wakeTouched(DeviceWorld& w)
             .arg(w.joints).arg(w.numJoints).arg(w.props).arg(w.wake)
             .run(group, group);
     }
+    cl::Launch(w.ctx, prog.kernel("wake_island_mark"), &w.profiler)
+        .arg(n).arg(w.wake).arg(w.props).arg(w.islandLabel).arg(w.islandWake).run(n);
+    cl::Launch(w.ctx, prog.kernel("wake_island_spread"), &w.profiler)
+        .arg(n).arg(w.wake).arg(w.props).arg(w.islandLabel).arg(w.islandWake).run(n);
     cl::Launch(w.ctx, prog.kernel("wake_apply"), &w.profiler)
         .arg(n).arg(w.wake).arg(w.props).arg(w.sleepTime).arg(w.sleepState)
         .run(n);

@@ -62,6 +62,12 @@ struct DeviceWorld {
     cl::DeviceArray<uint> islandTime;      // float bits: least timer over the body's island
     cl::DeviceArray<uint> islandScratch;   // ping-pong partner of islandTime
     cl::DeviceArray<uint> wake;            // 1: a moving body touched this sleeping one
+    // The body's island as island_min last found it (the least row over up to its rounds' hops),
+    // frozen while the body sleeps (0xffffffff: none), so that a sleeping island wakes whole
+    // before the solve as stock's does; islandWake[l]: island l has a body woken this step.
+    cl::DeviceArray<uint> islandLabel;
+    cl::DeviceArray<uint> islandLabelScratch;
+    cl::DeviceArray<uint> islandWake;
     cl::DeviceArray<uint> sleepState;      // 1: asleep after this step (read back)
     cl::DeviceArray<BtgFloat4> linVel0;    // m/s before this substep's forces (restitution uses it, as Bullet)
     cl::DeviceArray<BtgFloat4> angVel0;    // rad/s before this substep's forces

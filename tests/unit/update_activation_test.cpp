@@ -215,6 +215,39 @@ TEST(UpdateActivation, WakeTouchedBeforeTheSolveMatchesReference)
     for (int i : {0, 2, 3}) EXPECT_TRUE(props[size_t(i)].flags & BTG_BODY_SLEEPING) << i;
 }
 
+// Stock activates a sleeping island whole before its solve once any body of it is active: the
+// app's activate() on the top box of a sleeping stack wakes the boxes under it in the same step.
+// btgpu woke them a contact a step (the end-of-step path). The chain 0-1-2-3 falls asleep as one
+// island (labelled by island_min), body 4 alone in another; the app wakes body 3 (its flags
+// uploaded awake, reset_rows marking its island): before the solve 0, 1 and 2 wake too, 4 sleeps.
+TEST(UpdateActivation, AnIslandWakesWholeBeforeTheSolve)
+{
+    Scene sc = chain();
+    Device d(sc);
+    const float dt = 1.0f / 60.0f;
+    for (int step = 0; step < 130; ++step) updateActivation(d.w, dt, 2.0f);
+    std::vector<BtgBodyProps> props = d.w.props.download(d.w.ctx, 6);
+    for (int i = 0; i < 5; ++i) ASSERT_TRUE(props[size_t(i)].flags & BTG_BODY_SLEEPING) << i;
+    props[3].flags &= ~BTG_BODY_SLEEPING;  // the app's activate(), as sync-in uploads it
+    d.w.props.upload(d.w.ctx, props);
+    resetRows(d.w, {3}, true);
+    d.w.contactCapacity = 0;  // no contacts this step: only the island wakes them
+    wakeTouched(d.w);
+    props = d.w.props.download(d.w.ctx, 6);
+    const std::vector<uint> st = d.sleepState();
+    for (int i = 0; i < 4; ++i) {
+        EXPECT_FALSE(props[size_t(i)].flags & BTG_BODY_SLEEPING) << "body " << i << " of the woken island";
+        EXPECT_EQ(st[size_t(i)], 0u) << i;
+    }
+    EXPECT_TRUE(props[4].flags & BTG_BODY_SLEEPING) << "another island sleeps on";
+    // A fresh row (a body added, perhaps in a removed one's row) marks no island.
+    for (int step = 0; step < 130; ++step) updateActivation(d.w, dt, 2.0f);
+    resetRows(d.w, {0}, false);
+    wakeTouched(d.w);
+    props = d.w.props.download(d.w.ctx, 6);
+    for (int i : {1, 2, 3}) EXPECT_TRUE(props[size_t(i)].flags & BTG_BODY_SLEEPING) << i;
+}
+
 // Joints before the solve (wake_jointed): a sleeping body joined to an awake one wakes, and so
 // does the one joined to it in turn, as stock activates the whole island; joints between sleepers
 // only, disabled joints and joints to static bodies or the fixed body wake nothing. The joint
