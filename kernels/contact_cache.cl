@@ -109,21 +109,111 @@ __kernel void write_contacts(__global const BtgManifoldRange* restrict pairManif
     }
 }
 
-/* After the solve, before the bodies move: the solved contacts become the next substep's cache.
- * A substep that overflowed, or whose one-launch solve gave up at its grid barrier, leaves the
- * cache as it was, so the redo of a one-substep call finds it unchanged (its results are
- * thrown away anyway). */
+/* After the solve, before the bodies move: the solved contacts become the next substep's cache,
+ * written into `next` (the host then swaps the two buffers), with the entries carried through a
+ * sleep merged in by pair key (carry_flags, carry_contact_cache): neither engine collides a pair
+ * of sleeping or static bodies, and stock keeps such a pair's manifold, points and impulses,
+ * through the sleep; so a woken pile warm-starts as stock's instead of starting cold. A substep
+ * that overflowed, or whose one-launch solve gave up at its grid barrier, copies the cache as
+ * it was instead, so the redo of a one-substep call finds it unchanged (its results are thrown
+ * away anyway). cachePos[i]: where contact i's entry went (store_persistent_manifolds puts the
+ * pair's manifold there too). */
+static inline int btgSleepsOrStands(uint f)
+{
+    if (f & (BTG_BODY_EXCLUDED | BTG_BODY_NO_SHAPE)) return 0;
+    if (f & BTG_BODY_STATIC) return 1;
+    return (f & (BTG_BODY_DYNAMIC | BTG_BODY_KINEMATIC)) && (f & BTG_BODY_SLEEPING);
+}
+
+/* Before the wake (the flags as the pairs were found): rank[j] 1 for a cache entry whose bodies
+ * both sleep or stand (its pair was not collided, and is not among this substep's contacts),
+ * else 0, over all cacheCapacity + 1 entries; exclusive-scanned into ranks by the host. */
+__kernel void carry_flags(__global const BtgCachedContact* restrict cache, __global const uint* restrict counters,
+                          int cacheCapacity, int numBodies, __global const BtgBodyProps* restrict props,
+                          __global uint* rank)
+{
+    const int j = get_global_id(0);
+    if (j > cacheCapacity) return;
+    const int prevCount = (int)min(counters[BTG_COUNTER_PREV_CONTACTS], (uint)cacheCapacity);
+    uint flag = 0u;
+    if (j < prevCount) {
+        const int a = cache[j].bodyA, b = cache[j].bodyB;
+        if (a >= 0 && b >= 0 && a < numBodies && b < numBodies && btgSleepsOrStands(props[a].flags) &&
+            btgSleepsOrStands(props[b].flags))
+            flag = 1u;
+    }
+    rank[j] = flag;
+}
+
+/* The entries carried (all or none: none when they and this substep's contacts overflow the
+ * cache, or with carry 0). */
+static inline uint btgCarried(__global const uint* restrict rank, int carry, uint n, int cacheCapacity)
+{
+    if (!carry) return 0u;
+    const uint k = rank[cacheCapacity];
+    return n + k <= (uint)cacheCapacity ? k : 0u;
+}
+
+/* The first of contacts[0, n) whose pair key is not below (ka, kb). */
+static inline uint btgContactsLowerBound(__global const BtgContact* restrict contacts, uint n, int ka, int kb)
+{
+    uint lo = 0u, hi = n;
+    while (lo < hi) {
+        const uint mid = lo + (hi - lo) / 2u;
+        const int ma = contacts[mid].bodyA, mb = contacts[mid].bodyB;
+        if (btgPairKeyLess(ma < mb ? ma : mb, ma < mb ? mb : ma, ka, kb)) lo = mid + 1u;
+        else hi = mid;
+    }
+    return lo;
+}
+
 __kernel void store_contact_cache(__global const BtgContact* restrict contacts,
                                   __global const uint* restrict contactManifolds,
-                                  __global const BtgManifold* restrict manifolds, __global uint* counters,
+                                  __global const BtgManifold* restrict manifolds, __global const uint* restrict counters,
                                   int contactCapacity, __global const BtgFloat4* restrict rot,
-                                  __global BtgCachedContact* cache, int cacheCapacity)
+                                  __global const BtgCachedContact* restrict cache, int cacheCapacity,
+                                  __global BtgCachedContact* next, __global const uint* restrict rank, int carry,
+                                  __global uint* cachePos)
+{
+    const uint i = (uint)get_global_id(0);
+    const uint prevCount = min(counters[BTG_COUNTER_PREV_CONTACTS], (uint)cacheCapacity);
+    if ((counters[BTG_COUNTER_STATUS] & BTG_STATUS_REDO) != 0u) {
+        if (i < prevCount) next[i] = cache[i];
+        return;
+    }
+    const uint n = min(counters[BTG_COUNTER_CONTACTS], (uint)min(contactCapacity, cacheCapacity));
+    if (i >= n) return;
+    const BtgContact c = contacts[i];
+    uint pos = i;
+    if (btgCarried(rank, carry, n, cacheCapacity) > 0u) {
+        const int ka = min(c.bodyA, c.bodyB), kb = max(c.bodyA, c.bodyB);
+        pos += rank[btgCachedLowerBound(cache, 0, (int)prevCount, ka, kb)];
+    }
+    next[pos] = btgCachedContactFrom(c, rot[c.bodyA], &manifolds[contactManifolds[i]]);
+    cachePos[i] = pos;
+}
+
+__kernel void carry_contact_cache(__global const BtgCachedContact* restrict cache, __global const uint* restrict counters,
+                                  int cacheCapacity, int contactCapacity, __global const BtgContact* restrict contacts,
+                                  __global const uint* restrict rank, int carry, __global BtgCachedContact* next,
+                                  __global uint* carryPos)
+{
+    const uint j = (uint)get_global_id(0);
+    if ((counters[BTG_COUNTER_STATUS] & BTG_STATUS_REDO) != 0u) return;
+    const uint prevCount = min(counters[BTG_COUNTER_PREV_CONTACTS], (uint)cacheCapacity);
+    const uint n = min(counters[BTG_COUNTER_CONTACTS], (uint)min(contactCapacity, cacheCapacity));
+    if (j >= prevCount || btgCarried(rank, carry, n, cacheCapacity) == 0u || rank[j + 1u] == rank[j]) return;
+    const int a = cache[j].bodyA, b = cache[j].bodyB;
+    const uint pos = rank[j] + btgContactsLowerBound(contacts, n, min(a, b), max(a, b));
+    next[pos] = cache[j];
+    carryPos[j] = pos;
+}
+
+/* Last, after both caches are written: the next substep's count of cached entries. */
+__kernel void count_cache(__global uint* counters, int contactCapacity, int cacheCapacity,
+                          __global const uint* restrict rank, int carry)
 {
     if ((counters[BTG_COUNTER_STATUS] & BTG_STATUS_REDO) != 0u) return;
-    uint n = min(counters[BTG_COUNTER_CONTACTS], (uint)min(contactCapacity, cacheCapacity));
-    uint i = (uint)get_global_id(0);
-    if (i == 0) counters[BTG_COUNTER_PREV_CONTACTS] = n;
-    if (i >= n) return;
-    BtgContact c = contacts[i];
-    cache[i] = btgCachedContactFrom(c, rot[c.bodyA], &manifolds[contactManifolds[i]]);
+    const uint n = min(counters[BTG_COUNTER_CONTACTS], (uint)min(contactCapacity, cacheCapacity));
+    counters[BTG_COUNTER_PREV_CONTACTS] = n + btgCarried(rank, carry, n, cacheCapacity);
 }

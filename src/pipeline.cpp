@@ -54,6 +54,8 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::ApplyForces: applyForces(w, p.dt, p.maxGyroscopicForce); break;
         case Stage::ContactCache:
             buildContacts(w, p);
+            // before the wake: the flags the pairs were found with say which were not collided
+            noteCarried(w, p.deactivationTime > 0.0f);
             // With deactivation on, sleeping bodies a moving one touches wake before their rows
             // are made (stock activates the island before its solve).
             if (p.deactivationTime > 0.0f) {
@@ -74,11 +76,15 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
             break;
         }
         case Stage::StoreContactCache:
-            storeContactCache(w);
+            // the count waits for the persistent manifolds' store where there is one
+            storeContactCache(w, !keepsPersistentManifolds(plan.kinds, w.speculativeContacts));
             // A cache stored without the persistent manifolds beside it leaves those stale.
             if (!keepsPersistentManifolds(plan.kinds, w.speculativeContacts)) w.gjkCacheCurrent = false;
             break;
-        case Stage::StorePersistentManifolds: storePersistentManifolds(w, plan.kinds, p.solverFlags); break;
+        case Stage::StorePersistentManifolds:
+            storePersistentManifolds(w, plan.kinds, p.solverFlags);
+            countCache(w);
+            break;
         case Stage::ReportContacts: reportContacts(w); break;
         case Stage::IntegrateTransforms: integrateTransforms(w, p.dt, p.splitTurnErp); break;
         case Stage::SoftTransforms: softTransforms(w); break;

@@ -144,12 +144,18 @@ __kernel void store_persistent_manifolds(__global const uint* restrict contactMa
                                          __global const BtgPersistentManifold* restrict gjkPairState, int pairCapacity,
                                          __global BtgPersistentManifold* restrict gjkCache, int gjkCapacity,
                                          __global const BtgContact* restrict contacts, uint solverFlags, uint base,
-                                         __global const BtgSubPair* restrict subPairs, uint subPairCapacity)
+                                         __global const BtgSubPair* restrict subPairs, uint subPairCapacity,
+                                         __global BtgPersistentManifold* restrict gjkNext,
+                                         __global const uint* restrict cachePos)
 {
-    /* as store_contact_cache, which leaves the cache alone then: the two caches share indices */
-    if ((counters[BTG_COUNTER_STATUS] & BTG_STATUS_REDO) != 0u) return;
-    const uint n = min(counters[BTG_COUNTER_CONTACTS], (uint)min(contactCapacity, gjkCapacity));
     const uint i = (uint)get_global_id(0);
+    /* as store_contact_cache, which keeps the cache as it was then (copied into the buffer the
+       host swaps in): the two caches share indices */
+    if ((counters[BTG_COUNTER_STATUS] & BTG_STATUS_REDO) != 0u) {
+        if (i < min(counters[BTG_COUNTER_PREV_CONTACTS], (uint)gjkCapacity)) gjkNext[i] = gjkCache[i];
+        return;
+    }
+    const uint n = min(counters[BTG_COUNTER_CONTACTS], (uint)min(contactCapacity, gjkCapacity));
     if (i >= n) return;
     const uint slot = contactManifolds[i];
     const BtgManifold m = manifolds[slot];
@@ -164,7 +170,24 @@ __kernel void store_persistent_manifolds(__global const uint* restrict contactMa
     pm.anchorMask = 0u;
     if ((solverFlags & BTG_SOLVER_FRICTION_ANCHORS) != 0u && pm.kind != BTG_PAIR_NONE)
         pm.anchorMask = btgAnchorMask(contacts[i], pm, props[m.bodyA].flags | props[m.bodyB].flags);
-    gjkCache[i] = pm;
+    const uint pos = cachePos[i];
+    if (pos < (uint)gjkCapacity) gjkNext[pos] = pm;
+}
+
+/* The manifolds of the entries store_contact_cache carried through a sleep, to the same places
+ * (carryPos), before count_cache sets the new count. */
+__kernel void carry_persistent_manifolds(__global const BtgPersistentManifold* restrict gjkCache, int gjkCapacity,
+                                         __global const uint* restrict counters, int cacheCapacity, int contactCapacity,
+                                         __global const uint* restrict rank, __global const uint* restrict carryPos,
+                                         __global BtgPersistentManifold* restrict gjkNext)
+{
+    const uint j = (uint)get_global_id(0);
+    if ((counters[BTG_COUNTER_STATUS] & BTG_STATUS_REDO) != 0u) return;
+    const uint prevCount = min(counters[BTG_COUNTER_PREV_CONTACTS], (uint)min(cacheCapacity, gjkCapacity));
+    const uint n = min(counters[BTG_COUNTER_CONTACTS], (uint)min(contactCapacity, cacheCapacity));
+    if (j >= prevCount || n + rank[cacheCapacity] > (uint)cacheCapacity || rank[j + 1u] == rank[j]) return;
+    const uint pos = carryPos[j];
+    if (pos < (uint)gjkCapacity) gjkNext[pos] = gjkCache[j];
 }
 
 #endif

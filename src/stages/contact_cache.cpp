@@ -5,6 +5,7 @@
 #include "stages/contact_cache.h"
 
 #include "cl/program.h"
+#include "stages/prims/scan.h"
 
 #include <algorithm>
 
@@ -50,16 +51,56 @@ void buildContacts(DeviceWorld& w, const BtgStepParams& params)
             .run(numBlocks * group, group);
 }
 
-void storeContactCache(DeviceWorld& w)
+void noteCarried(DeviceWorld& w, bool carry)
+{
+    cl::Context& ctx = w.ctx;
+    const size_t cacheCapacity = std::max<size_t>(w.contactCache.capacity(), 1);
+    w.carryRank.reserve(ctx, cacheCapacity + 1);
+    w.carrying = carry;
+    w.carryCapacity = cacheCapacity;
+    if (!carry) return;
+    cl::Launch(ctx, ctx.program("contact_cache").kernel("carry_flags"), &w.profiler)
+        .arg(w.contactCache).arg(w.counters).arg(int(cacheCapacity)).arg(w.numBodies).arg(w.props).arg(w.carryRank)
+        .run(cacheCapacity + 1);
+    exclusiveScan(ctx, &w.profiler, w.carryRank, cacheCapacity + 1, w.carryScan);
+}
+
+void storeContactCache(DeviceWorld& w, bool count)
 {
     cl::Context& ctx = w.ctx;
     w.contactCache.reserveExact(ctx, std::max<size_t>(w.contactCapacity, 1), true);
+    const size_t cacheCapacity = w.contactCache.capacity();
+    w.contactCacheNext.reserveExact(ctx, cacheCapacity);
+    w.carryRank.reserve(ctx, cacheCapacity + 1);
+    w.cachePos.reserve(ctx, std::max<size_t>(w.contactCapacity, 1));
+    w.carryPos.reserve(ctx, cacheCapacity);
+    // ranked against a smaller cache (grown since): carry nothing this substep
+    const int carry = w.carrying && w.carryCapacity == cacheCapacity ? 1 : 0;
     int contactCapacity = int(std::min({w.contactCapacity, w.contacts.capacity(), w.contactManifolds.capacity()}));
-    int cacheCapacity = int(w.contactCache.capacity());
-    cl::Launch(ctx, ctx.program("contact_cache").kernel("store_contact_cache"), &w.profiler)
+    cl::Program& prog = ctx.program("contact_cache");
+    cl::Launch(ctx, prog.kernel("store_contact_cache"), &w.profiler)
         .arg(w.contacts).arg(w.contactManifolds).arg(w.manifolds).arg(w.counters).arg(contactCapacity).arg(w.rot)
-        .arg(w.contactCache).arg(cacheCapacity)
-        .run(size_t(std::max(contactCapacity, 1)));
+        .arg(w.contactCache).arg(int(cacheCapacity)).arg(w.contactCacheNext).arg(w.carryRank).arg(carry).arg(w.cachePos)
+        .run(std::max({size_t(std::max(contactCapacity, 1)), cacheCapacity}));
+    if (carry)
+        cl::Launch(ctx, prog.kernel("carry_contact_cache"), &w.profiler)
+            .arg(w.contactCache).arg(w.counters).arg(int(cacheCapacity)).arg(contactCapacity).arg(w.contacts)
+            .arg(w.carryRank).arg(carry).arg(w.contactCacheNext).arg(w.carryPos)
+            .run(cacheCapacity);
+    std::swap(w.contactCache, w.contactCacheNext);
+    w.carrying = carry != 0;
+    if (count) countCache(w);
+}
+
+void countCache(DeviceWorld& w)
+{
+    cl::Context& ctx = w.ctx;
+    const size_t cacheCapacity = w.contactCache.capacity();
+    int contactCapacity = int(std::min({w.contactCapacity, w.contacts.capacity(), w.contactManifolds.capacity()}));
+    cl::Launch(ctx, ctx.program("contact_cache").kernel("count_cache"), &w.profiler)
+        .arg(w.counters).arg(contactCapacity).arg(int(cacheCapacity)).arg(w.carryRank).arg(w.carrying ? 1 : 0)
+        .run(1, 1);
+    w.carrying = false;
 }
 
 }  // namespace btgpu

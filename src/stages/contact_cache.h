@@ -15,10 +15,19 @@
 // with A's rotation as the contacts were built): writes contactCache (BtgCachedContact: keys,
 // normal impulses, the manifold's sub-shape keys and feature ids, read through
 // contactManifolds) and counters[kPrevContactCount], unless the substep overflowed.
+// The cache's entries of pairs whose bodies both sleep or stand (not collided, as on stock) are
+// carried into the new cache, merged in by pair key, so a woken pile warm-starts from them:
+// noteCarried (before the wake, with the flags the pairs were found with) ranks them;
+// storeContactCache writes the new cache into contactCacheNext and swaps the two; countCache,
+// after the persistent manifolds' store when there is one, sets the count.
 #pragma once
 #include "world/device_world.h"
 
 namespace btgpu {
 void buildContacts(DeviceWorld& w, const BtgStepParams& params);
-void storeContactCache(DeviceWorld& w);
+// carry: deactivation is on (bodies may sleep); else nothing is carried.
+void noteCarried(DeviceWorld& w, bool carry);
+// count: set the cache's count now (no persistent manifolds' store follows).
+void storeContactCache(DeviceWorld& w, bool count = true);
+void countCache(DeviceWorld& w);
 }

@@ -87,14 +87,29 @@ void storePersistentManifolds(DeviceWorld& w, const PairKinds& kinds, unsigned s
             break;
         }
     reserveGjk(w);
+    w.gjkCacheNext.reserveExact(w.ctx, w.gjkCache.capacity());
+    w.cachePos.reserve(w.ctx, std::max<size_t>(w.contactCapacity, 1));
+    w.carryRank.reserve(w.ctx, 1);
+    w.carryPos.reserve(w.ctx, 1);
     w.subPairs.reserve(w.ctx, 1);  // read only for a manifold past the pair slots: a convex–concave group
     const int contactCapacity = int(std::min({w.contactCapacity, w.contacts.capacity(), w.contactManifolds.capacity()}));
-    cl::Launch(w.ctx, w.ctx.program(kProgram).kernel("store_persistent_manifolds"), &w.profiler)
+    const int gjkCapacity = int(w.gjkCache.capacity());
+    cl::Program& prog = w.ctx.program(kProgram);
+    cl::Launch(w.ctx, prog.kernel("store_persistent_manifolds"), &w.profiler)
         .arg(w.contactManifolds).arg(w.manifolds).arg(w.counters).arg(contactCapacity).arg(w.props).arg(w.shapes)
-        .arg(w.pairs).arg(w.children).arg(w.gjkPairState).arg(int(w.gjkPairState.capacity())).arg(w.gjkCache).arg(int(w.gjkCache.capacity()))
+        .arg(w.pairs).arg(w.children).arg(w.gjkPairState).arg(int(w.gjkPairState.capacity())).arg(w.gjkCache).arg(gjkCapacity)
         .arg(w.contacts).arg(cl_uint(solverFlags)).arg(cl_uint(w.pairCapacity)).arg(w.subPairs)
-        .arg(cl_uint(w.subPairCapacity))
-        .run(size_t(std::max(contactCapacity, 1)));
+        .arg(cl_uint(w.subPairCapacity)).arg(w.gjkCacheNext).arg(w.cachePos)
+        .run(size_t(std::max({contactCapacity, gjkCapacity, 1})));
+    // the entries storeContactCache carried through a sleep (it ranked them over the cache's capacity)
+    const size_t cacheCapacity = w.contactCache.capacity();
+    if (w.carrying && w.carryCapacity == cacheCapacity && w.carryRank.capacity() > cacheCapacity &&
+        w.carryPos.capacity() >= cacheCapacity)
+        cl::Launch(w.ctx, prog.kernel("carry_persistent_manifolds"), &w.profiler)
+            .arg(w.gjkCache).arg(gjkCapacity).arg(w.counters).arg(int(cacheCapacity)).arg(contactCapacity)
+            .arg(w.carryRank).arg(w.carryPos).arg(w.gjkCacheNext)
+            .run(cacheCapacity);
+    std::swap(w.gjkCache, w.gjkCacheNext);
 }
 
 void forgetConcaveManifolds(DeviceWorld& w, const std::vector<int>& rows)

@@ -173,6 +173,17 @@ struct DeviceWorld {
     // warm start read (112 bytes against a contact's 352), in the same pair order.
     cl::DeviceArray<BtgCachedContact> contactCache;
     size_t contactCapacity = 0;              // contacts and contactCache hold this many
+    // The new cache is written here beside the old one (which it merges entries of), then the two
+    // swap; carryRank: per old entry, carried entries before it (exclusive scan of carry_flags;
+    // the total at cacheCapacity); cachePos / carryPos: where each contact's and each carried
+    // entry's went (the GJK cache takes the same places); carrying: this substep ranked them.
+    cl::DeviceArray<BtgCachedContact> contactCacheNext;
+    cl::DeviceArray<uint> carryRank;
+    cl::DeviceArray<uint> cachePos;
+    cl::DeviceArray<uint> carryPos;
+    ScanScratch carryScan;
+    bool carrying = false;
+    size_t carryCapacity = 0;  // the cache capacity carryRank was ranked over
     // The cache as this call found it, for a redo; only while a call runs several substeps.
     cl::DeviceArray<BtgCachedContact> contactCacheAtCall;
     bool contactCacheKept = false;
@@ -181,6 +192,7 @@ struct DeviceWorld {
     // redo starts from. Allocated only when the plan has those kinds.
     cl::DeviceArray<BtgPersistentManifold> gjkPairState;
     cl::DeviceArray<BtgPersistentManifold> gjkCache;
+    cl::DeviceArray<BtgPersistentManifold> gjkCacheNext;  // written beside gjkCache, then swapped
     cl::DeviceArray<BtgPersistentManifold> gjkCacheAtCall;
     bool gjkCacheCurrent = false;  // gjkCache was stored by the last substep that stored the cache
     // The soft step's contacts: box pairs take each step's SAT clip with speculative points, and
