@@ -437,6 +437,15 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     if (context.jacobi && o->getContactProcessingThreshold() < btScalar(BT_LARGE_FLOAT))
         return "contact processing threshold (setContactProcessingThreshold) with Config::solver = JacobiMassSplitting";
     const btRigidBody* rb = btRigidBody::upcast(o);
+    // A body made kinematic by its flag alone keeps its mass, and stock's solver moves it by it
+    // (initSolverBody reads getInvMass()): what rests on it pushes it back and friction carries
+    // less. btgpu takes every kinematic body as infinitely heavy, as Bullet asks kinematic bodies
+    // to be (setMassProps(0, ...)): the bullet mode, whose answers are stock's, leaves such a world
+    // to stock; the default solver is judged on physics and keeps it.
+    if (context.bulletMode && rb && rb->isKinematicObject() && rb->getInvMass() != btScalar(0) &&
+        rb->hasContactResponse())
+        return "a kinematic body with mass (CF_KINEMATIC_OBJECT without setMassProps(0, ...)) in the bullet mode: "
+               "stock's solver moves it by its inverse mass, btgpu's holds kinematic bodies still";
     if (!rb || rb->isStaticOrKinematicObject()) return "";
     if (isMeshType(o->getCollisionShape()->getShapeType()))
         return "dynamic triangle mesh or heightfield body (the GPU path takes static and kinematic ones)";
@@ -447,13 +456,15 @@ std::string bodyReason(const btCollisionObject* o, const BodyRuleContext& contex
     return "";
 }
 
-std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool jacobi, unsigned* solverFlags,
+std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, SolverKind solver, unsigned* solverFlags,
                          std::vector<btRigidBody*>* ccdBodies, ShapeWalk* shapes)
 {
     *bodyIndex = -1;
     const btCollisionObjectArray& objs = world.getCollisionObjectArray();
     BodyRuleContext context = bodyRuleContext(world);
+    const bool jacobi = solver == SolverKind::JacobiMassSplitting;
     context.jacobi = jacobi;
+    context.bulletMode = solver == SolverKind::BatchedPgs;
     const size_t n = size_t(objs.size());
     const size_t minPerThread = kBodyRowsPerThread;
     struct Found {

@@ -4,6 +4,8 @@
 // different answer is worse than a slow one. What was left on the GPU path, and why, is said
 // next to the rules in cpu_path_rules.cpp.
 #pragma once
+#include "btgpu/Config.h"
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -34,6 +36,7 @@ struct BodyRuleContext {
     bool continuous = true;            // getDispatchInfo().m_useContinuous: CCD bodies sweep
     bool contactAddedCallback = false;  // gContactAddedCallback is set
     bool jacobi = false;               // Config::solver is JacobiMassSplitting (its rows are plainer)
+    bool bulletMode = false;           // Config::solver is BatchedPgs (the bullet mode: stock's answers)
 };
 BodyRuleContext bodyRuleContext(btDiscreteDynamicsWorld& world);
 
@@ -55,7 +58,7 @@ struct ShapeWalk {
     bool complete = false;
     bool swapped = false;
 };
-std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, bool jacobi = false,
+std::string bodiesReason(btDiscreteDynamicsWorld& world, int* bodyIndex, SolverKind solver = SolverKind::Auto,
                          unsigned* solverFlags = nullptr, std::vector<btRigidBody*>* ccdBodies = nullptr,
                          ShapeWalk* shapes = nullptr);
 

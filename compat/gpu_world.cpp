@@ -133,7 +133,7 @@ std::string GpuWorld::cpuPathReason(int* bodyIndex, ShapeWalk* shapes)
     std::string why = worldReason(m_world, m_config);
     if (why.empty()) {
         if (shapes) shapes->expected = &m_shapeOfObject;
-        why = bodiesReason(m_world, bodyIndex, m_config.solver == SolverKind::JacobiMassSplitting, &m_solverFlags,
+        why = bodiesReason(m_world, bodyIndex, m_config.solver, &m_solverFlags,
                            &m_ccdBodies, shapes);
     }
     if (why.empty() && !m_ccdBodies.empty()) why = ccdReason();
