@@ -153,3 +153,24 @@ TEST(BodyProperties, GyroscopicTermsAsStock)
     for (int i = 0; i < 3; ++i) EXPECT_LT(lowest[i], -3.0) << "body " << i << " flips over";
     EXPECT_NEAR(lowest[3], 6.0, 1e-3);  // no term: the spin keeps its axis
 }
+
+// A body made kinematic by its flag alone keeps its mass, which stock's solver moves it by: the
+// bullet mode (stock's answers) leaves such a world to the CPU path (cpu_path_rules.cpp's rule);
+// the default solver (judged on physics) holds it still as every kinematic body, and a kinematic
+// body without mass is served in both.
+TEST(CpuPathRules, KinematicBodyWithMassLeavesOnlyTheBulletMode)
+{
+    for (bool massless : {false, true})
+        for (const Config& config : {Config(), Config::bulletMode()}) {
+            const bool bullet = config.solver == SolverKind::BatchedPgs;
+            SCOPED_TRACE(std::string(bullet ? "bullet mode" : "default") + (massless ? ", setMassProps(0)" : ""));
+            scenes::ScenePtr scene = scenes::dropRow(WorldKind::Gpu, config);
+            scene->step();
+            btRigidBody* b = scene->body(2);
+            b->setCollisionFlags(b->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+            if (massless) b->setMassProps(0, btVector3(0, 0, 0));
+            scene->step();
+            const Report& r = *scene->report();
+            EXPECT_EQ(r.gpuPath, !bullet || massless) << r.cpuPathReason;
+        }
+}

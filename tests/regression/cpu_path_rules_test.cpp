@@ -278,25 +278,6 @@ TEST(CpuPathRules, EachRuleFallsBackAndComesBack)
     EXPECT_TRUE(scenes::allFinite(*scene));
 }
 
-// The rule above is the bullet mode's: the default solver (judged on physics) holds such a
-// body still as every kinematic body, and a kinematic body without mass is served in both.
-TEST(CpuPathRules, KinematicBodyWithMassLeavesOnlyTheBulletMode)
-{
-    for (bool massless : {false, true})
-        for (const Config& config : {Config(), Config::bulletMode()}) {
-            const bool bullet = config.solver == SolverKind::BatchedPgs;
-            SCOPED_TRACE(std::string(bullet ? "bullet mode" : "default") + (massless ? ", setMassProps(0)" : ""));
-            ScenePtr scene = scenes::dropRow(WorldKind::Gpu, config);
-            scene->step();
-            btRigidBody* b = scene->body(2);
-            b->setCollisionFlags(b->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
-            if (massless) b->setMassProps(0, btVector3(0, 0, 0));
-            scene->step();
-            const Report& r = *scene->report();
-            EXPECT_EQ(r.gpuPath, !bullet || massless) << r.cpuPathReason;
-        }
-}
-
 // A drop-row scene with Config::solver = `kind`, after a first step on the GPU path.
 ScenePtr dropRowStepped(SolverKind kind)
 {
