@@ -123,15 +123,14 @@ void GpuWorld::settleSleeper(btRigidBody* body, Mirror& m)
     // deactivation is on, its velocities zeroed (apply_sleep zeroes the device's copy).
     const bool moving = !(body->getLinearVelocity() == btVector3(0, 0, 0)) || !(body->getAngularVelocity() == btVector3(0, 0, 0));
     m.touchedAsleep = false;
-    body->applyDamping(m_stepDt);
+    // With deactivation off the velocities stay (the device keeps its copy as it is: no damping
+    // here either, so the two agree).
+    const bool zeroed = !gDisableDeactivation && gDeactivationTime != btScalar(0);
+    if (zeroed) body->applyDamping(m_stepDt);
     btTransform predicted;
     body->predictIntegratedTransform(m_stepDt, predicted);
     body->setInterpolationWorldTransform(predicted);
-    if (gDisableDeactivation || gDeactivationTime == btScalar(0)) {
-        m.linVel = body->getLinearVelocity();
-        m.angVel = body->getAngularVelocity();
-        return;
-    }
+    if (!zeroed) return;
     body->setLinearVelocity(btVector3(0, 0, 0));
     body->setAngularVelocity(btVector3(0, 0, 0));
     m.linVel = m.angVel = btVector3(0, 0, 0);
