@@ -145,15 +145,6 @@ __kernel void carry_flags(__global const BtgCachedContact* restrict cache, __glo
     rank[j] = flag;
 }
 
-/* The entries carried (all or none: none when they and this substep's contacts overflow the
- * cache, or with carry 0). */
-static inline uint btgCarried(__global const uint* restrict rank, int carry, uint n, int cacheCapacity)
-{
-    if (!carry) return 0u;
-    const uint k = rank[cacheCapacity];
-    return n + k <= (uint)cacheCapacity ? k : 0u;
-}
-
 /* The first of contacts[0, n) whose pair key is not below (ka, kb). */
 static inline uint btgContactsLowerBound(__global const BtgContact* restrict contacts, uint n, int ka, int kb)
 {

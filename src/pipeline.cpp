@@ -75,12 +75,14 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
             solveSoft(w, w.softParams, w.numColors);
             break;
         }
-        case Stage::StoreContactCache:
-            // the count waits for the persistent manifolds' store where there is one
-            storeContactCache(w, !keepsPersistentManifolds(plan.kinds, w.speculativeContacts));
-            // A cache stored without the persistent manifolds beside it leaves those stale.
-            if (!keepsPersistentManifolds(plan.kinds, w.speculativeContacts)) w.gjkCacheCurrent = false;
+        case Stage::StoreContactCache: {
+            // The count waits for the persistent manifolds' store where there is one; a cache
+            // stored without them beside it leaves those stale.
+            const bool persistent = keepsPersistentManifolds(plan.kinds, w.speculativeContacts);
+            storeContactCache(w, !persistent);
+            if (!persistent) w.gjkCacheCurrent = false;
             break;
+        }
         case Stage::StorePersistentManifolds:
             storePersistentManifolds(w, plan.kinds, p.solverFlags);
             countCache(w);

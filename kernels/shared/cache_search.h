@@ -71,6 +71,15 @@ static inline int btgFindPrevContactNear(BTG_CONST_GLOBAL BtgCachedContact* prev
     }
     return -1;
 }
+/* The entries store_contact_cache carries through a sleep beside this substep's n contacts:
+ * rank is carry_flags' exclusive scan (the total at cacheCapacity); all or none, none when they
+ * would overflow the cache or with carry 0. */
+static inline uint btgCarried(BTG_CONST_GLOBAL uint* rank, int carry, uint n, int cacheCapacity)
+{
+    if (!carry) return 0u;
+    const uint k = rank[cacheCapacity];
+    return n + k <= (uint)cacheCapacity ? k : 0u;
+}
 static inline int btgFindPrevContact(BTG_CONST_GLOBAL BtgCachedContact* prev, int count, BtgManifold m)
 {
     int none = -1;

@@ -185,7 +185,7 @@ __kernel void carry_persistent_manifolds(__global const BtgPersistentManifold* r
     if ((counters[BTG_COUNTER_STATUS] & BTG_STATUS_REDO) != 0u) return;
     const uint prevCount = min(counters[BTG_COUNTER_PREV_CONTACTS], (uint)min(cacheCapacity, gjkCapacity));
     const uint n = min(counters[BTG_COUNTER_CONTACTS], (uint)min(contactCapacity, cacheCapacity));
-    if (j >= prevCount || n + rank[cacheCapacity] > (uint)cacheCapacity || rank[j + 1u] == rank[j]) return;
+    if (j >= prevCount || btgCarried(rank, 1, n, cacheCapacity) == 0u || rank[j + 1u] == rank[j]) return;
     const uint pos = carryPos[j];
     if (pos < (uint)gjkCapacity) gjkNext[pos] = gjkCache[j];
 }

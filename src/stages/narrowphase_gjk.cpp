@@ -101,10 +101,9 @@ void storePersistentManifolds(DeviceWorld& w, const PairKinds& kinds, unsigned s
         .arg(w.contacts).arg(cl_uint(solverFlags)).arg(cl_uint(w.pairCapacity)).arg(w.subPairs)
         .arg(cl_uint(w.subPairCapacity)).arg(w.gjkCacheNext).arg(w.cachePos)
         .run(size_t(std::max({contactCapacity, gjkCapacity, 1})));
-    // the entries storeContactCache carried through a sleep (it ranked them over the cache's capacity)
+    // the entries storeContactCache carried through a sleep (w.carrying: it did, ranked over this capacity)
     const size_t cacheCapacity = w.contactCache.capacity();
-    if (w.carrying && w.carryCapacity == cacheCapacity && w.carryRank.capacity() > cacheCapacity &&
-        w.carryPos.capacity() >= cacheCapacity)
+    if (w.carrying)
         cl::Launch(w.ctx, prog.kernel("carry_persistent_manifolds"), &w.profiler)
             .arg(w.gjkCache).arg(gjkCapacity).arg(w.counters).arg(int(cacheCapacity)).arg(contactCapacity)
             .arg(w.carryRank).arg(w.carryPos).arg(w.gjkCacheNext)
