@@ -200,6 +200,19 @@ __kernel void carry_contact_cache(__global const BtgCachedContact* restrict cach
     carryPos[j] = pos;
 }
 
+/* The soft step's store wrote the new cache into its rows' storage (dead after its solve: the
+ * world keeps one cache buffer): its entries back over the old ones. Under a redo the store
+ * copied the old entries unchanged, so none move. */
+__kernel void copy_cache_back(__global const BtgCachedContact* restrict stored, __global const uint* restrict counters,
+                              int contactCapacity, int cacheCapacity, __global const uint* restrict rank, int carry,
+                              __global BtgCachedContact* cache)
+{
+    const uint i = (uint)get_global_id(0);
+    if ((counters[BTG_COUNTER_STATUS] & BTG_STATUS_REDO) != 0u) return;
+    const uint n = min(counters[BTG_COUNTER_CONTACTS], (uint)min(contactCapacity, cacheCapacity));
+    if (i < n + btgCarried(rank, carry, n, cacheCapacity)) cache[i] = stored[i];
+}
+
 /* Last, after both caches are written: the next substep's count of cached entries. */
 __kernel void count_cache(__global uint* counters, int contactCapacity, int cacheCapacity,
                           __global const uint* restrict rank, int carry)

@@ -22,6 +22,7 @@
 #include "stages/solve_constraints.h"
 #include "stages/solve_jacobi.h"
 #include "stages/solve_soft.h"
+#include "stages/sync_bodies.h"
 #include "stages/update_aabbs.h"
 #include "stages/update_activation.h"
 
@@ -79,7 +80,7 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
             // The count waits for the persistent manifolds' store where there is one; a cache
             // stored without them beside it leaves those stale.
             const bool persistent = keepsPersistentManifolds(plan.kinds, w.speculativeContacts);
-            storeContactCache(w, !persistent);
+            storeContactCache(w, !persistent, plan.solver == SolverKind::SoftStep);
             if (!persistent) w.gjkCacheCurrent = false;
             break;
         }
@@ -87,7 +88,7 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
             storePersistentManifolds(w, plan.kinds, p.solverFlags);
             countCache(w);
             break;
-        case Stage::ReportContacts: reportContacts(w); break;
+        case Stage::ReportContacts: reportContacts(w, plan.solver == SolverKind::SoftStep); break;
         case Stage::IntegrateTransforms: integrateTransforms(w, p.dt, p.splitTurnErp); break;
         case Stage::SoftTransforms: softTransforms(w); break;
         case Stage::UpdateActivation: updateActivation(w, p.dt, p.deactivationTime); break;
@@ -132,6 +133,9 @@ void runSubstep(DeviceWorld& w, const Plan& plan, const std::vector<Stage>& stag
 void runSubsteps(DeviceWorld& w, const Plan& plan, const StepSettings& s)
 {
     if (w.numBodies == 0) return;
+    // The last call's reports, mapped for the fill on a CPU device, may lie over the soft
+    // step's rows, which its solve writes: unmapped before any stage runs.
+    unmapReports(w);
     if (s.lastPart == SubstepPart::ActivationOnly) {
         runSubstep(w, plan, {}, s, SubstepPart::ActivationOnly, true);
         return;

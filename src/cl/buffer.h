@@ -130,6 +130,49 @@ private:
     size_t m_capacity = 0;
 };
 
+// A typed window on an array's storage, holding no bytes of its own: a column that lives only
+// while the array under it is dead (the soft step's rows hold the new warm-start cache and then
+// the contact reports after its solve: SolverScratch::rowsAs). Taken afresh where it is used:
+// the array may be reallocated between uses.
+template <typename T>
+class ArrayView {
+public:
+    ArrayView() = default;
+    explicit ArrayView(const DeviceArray<T>& a) : m_mem(a.mem()), m_capacity(a.capacity()) {}
+    // U's storage seen as n T's (fewer where its bytes hold fewer).
+    template <typename U>
+    static ArrayView over(const DeviceArray<U>& a, size_t n)
+    {
+        ArrayView v;
+        v.m_mem = a.mem();
+        v.m_capacity = a.mem() ? std::min(n, a.capacity() * sizeof(U) / sizeof(T)) : 0;
+        return v;
+    }
+    cl_mem mem() const { return m_mem; }
+    size_t capacity() const { return m_capacity; }
+    void upload(Context& ctx, const std::vector<T>& v) const
+    {
+        if (!v.empty())
+            BTGPU_CL_CHECK(clEnqueueWriteBuffer(ctx.queue(), m_mem, CL_TRUE, 0, v.size() * sizeof(T), v.data(), 0, nullptr, nullptr));
+    }
+    void readAsync(Context& ctx, T* data, size_t n, size_t offset = 0) const
+    {
+        if (n == 0) return;
+        BTGPU_CL_CHECK(clEnqueueReadBuffer(ctx.queue(), m_mem, CL_FALSE, offset * sizeof(T), n * sizeof(T), data, 0,
+                                           nullptr, nullptr));
+    }
+    std::vector<T> download(Context& ctx, size_t n) const
+    {
+        std::vector<T> v(n);
+        if (n) BTGPU_CL_CHECK(clEnqueueReadBuffer(ctx.queue(), m_mem, CL_TRUE, 0, n * sizeof(T), v.data(), 0, nullptr, nullptr));
+        return v;
+    }
+
+private:
+    cl_mem m_mem = nullptr;
+    size_t m_capacity = 0;
+};
+
 // Total bytes of all live Buffers per context (device memory in use).
 size_t bytesInUse(const Context& ctx);
 

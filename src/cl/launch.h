@@ -44,6 +44,13 @@ public:
         BTGPU_CL_CHECK(clSetKernelArg(m_kernel, m_index++, sizeof(cl_mem), &m));
         return *this;
     }
+    template <typename T>
+    Launch& arg(const ArrayView<T>& a)
+    {
+        cl_mem m = a.mem();
+        BTGPU_CL_CHECK(clSetKernelArg(m_kernel, m_index++, sizeof(cl_mem), &m));
+        return *this;
+    }
     Launch& local(size_t bytes)
     {
         BTGPU_CL_CHECK(clSetKernelArg(m_kernel, m_index++, bytes, nullptr));

@@ -65,12 +65,21 @@ void noteCarried(DeviceWorld& w, bool carry)
     exclusiveScan(ctx, &w.profiler, w.carryRank, cacheCapacity + 1, w.carryScan);
 }
 
-void storeContactCache(DeviceWorld& w, bool count)
+void storeContactCache(DeviceWorld& w, bool count, bool overSoftRows)
 {
     cl::Context& ctx = w.ctx;
     w.contactCache.reserveExact(ctx, std::max<size_t>(w.contactCapacity, 1), true);
     const size_t cacheCapacity = w.contactCache.capacity();
-    w.contactCacheNext.reserveExact(ctx, cacheCapacity);
+    // The new cache beside the old one: the soft step's dead rows (then copied back), or a
+    // second buffer the two swap with.
+    cl::ArrayView<BtgCachedContact> next;
+    if (overSoftRows) {
+        w.contactCacheNext.release();
+        next = w.solverScratch.rowsAs<BtgCachedContact>(ctx, cacheCapacity);
+    } else {
+        w.contactCacheNext.reserveExact(ctx, cacheCapacity);
+        next = cl::ArrayView<BtgCachedContact>(w.contactCacheNext);
+    }
     w.carryRank.reserve(ctx, cacheCapacity + 1);
     w.cachePos.reserve(ctx, std::max<size_t>(w.contactCapacity, 1));
     w.carryPos.reserve(ctx, cacheCapacity);
@@ -80,14 +89,19 @@ void storeContactCache(DeviceWorld& w, bool count)
     cl::Program& prog = ctx.program("contact_cache");
     cl::Launch(ctx, prog.kernel("store_contact_cache"), &w.profiler)
         .arg(w.contacts).arg(w.contactManifolds).arg(w.manifolds).arg(w.counters).arg(contactCapacity).arg(w.rot)
-        .arg(w.contactCache).arg(int(cacheCapacity)).arg(w.contactCacheNext).arg(w.carryRank).arg(carry).arg(w.cachePos)
+        .arg(w.contactCache).arg(int(cacheCapacity)).arg(next).arg(w.carryRank).arg(carry).arg(w.cachePos)
         .run(std::max({size_t(std::max(contactCapacity, 1)), cacheCapacity}));
     if (carry)
         cl::Launch(ctx, prog.kernel("carry_contact_cache"), &w.profiler)
             .arg(w.contactCache).arg(w.counters).arg(int(cacheCapacity)).arg(contactCapacity).arg(w.contacts)
-            .arg(w.carryRank).arg(carry).arg(w.contactCacheNext).arg(w.carryPos)
+            .arg(w.carryRank).arg(carry).arg(next).arg(w.carryPos)
             .run(cacheCapacity);
-    std::swap(w.contactCache, w.contactCacheNext);
+    if (overSoftRows)
+        cl::Launch(ctx, prog.kernel("copy_cache_back"), &w.profiler)
+            .arg(next).arg(w.counters).arg(contactCapacity).arg(int(cacheCapacity)).arg(w.carryRank).arg(carry)
+            .arg(w.contactCache).run(cacheCapacity);
+    else
+        std::swap(w.contactCache, w.contactCacheNext);
     w.carrying = carry != 0;
     if (count) countCache(w);
 }

@@ -18,7 +18,8 @@
 // The cache's entries of pairs whose bodies both sleep or stand (not collided, as on stock) are
 // carried into the new cache, merged in by pair key, so a woken pile warm-starts from them:
 // noteCarried (before the wake, with the flags the pairs were found with) ranks them;
-// storeContactCache writes the new cache into contactCacheNext and swaps the two; countCache,
+// storeContactCache writes the new cache into contactCacheNext and swaps the two (the soft step:
+// into its rows' storage, dead after its solve, and copies it back over the old); countCache,
 // after the persistent manifolds' store when there is one, sets the count.
 #pragma once
 #include "world/device_world.h"
@@ -28,6 +29,7 @@ void buildContacts(DeviceWorld& w, const BtgStepParams& params);
 // carry: deactivation is on (bodies may sleep); else nothing is carried.
 void noteCarried(DeviceWorld& w, bool carry);
 // count: set the cache's count now (no persistent manifolds' store follows).
-void storeContactCache(DeviceWorld& w, bool count = true);
+// overSoftRows: the soft step solved this substep (SolverScratch::rowsAs).
+void storeContactCache(DeviceWorld& w, bool count = true, bool overSoftRows = false);
 void countCache(DeviceWorld& w);
 }

@@ -1,5 +1,6 @@
 // report_contacts.cpp — host launcher of the contact report: one work-item per contact slot
-// into contactReports (sized as the contact list), flagged for syncOut to read back.
+// into the reports (sized as the contact list: contactReports, or the soft step's dead rows),
+// flagged for syncOut to read back.
 #include "stages/report_contacts.h"
 
 #include "cl/program.h"
@@ -9,19 +10,26 @@
 
 namespace btgpu {
 
-void reportContacts(DeviceWorld& w)
+void reportContacts(DeviceWorld& w, bool overSoftRows)
 {
     cl::Context& ctx = w.ctx;
     unmapReports(w);  // the last call's reports, mapped for the fill on a CPU device: written anew now
     const int contactCapacity = int(std::min({w.contactCapacity, w.contacts.capacity(), w.contactManifolds.capacity()}));
-    w.contactReports.reserveExact(ctx, size_t(std::max(contactCapacity, 1)));
+    const size_t n = size_t(std::max(contactCapacity, 1));
+    if (overSoftRows) {
+        w.contactReports.release();
+        w.reports = w.solverScratch.rowsAs<BtgContactReport>(ctx, n);
+    } else {
+        w.contactReports.reserveExact(ctx, n);
+        w.reports = cl::ArrayView<BtgContactReport>(w.contactReports);
+    }
     w.subPairs.reserve(ctx, 1);  // read only for a manifold past the pair slots: a convex–concave group
     cl::Launch(ctx, ctx.program("report_contacts").kernel("report_contacts"), &w.profiler)
         .arg(w.contacts).arg(w.contactManifolds).arg(w.manifolds).arg(w.counters).arg(contactCapacity).arg(w.pos)
-        .arg(w.rot).arg(w.contactReports).arg(w.pairs).arg(w.props).arg(w.shapes).arg(w.children).arg(w.gjkPairState)
+        .arg(w.rot).arg(w.reports).arg(w.pairs).arg(w.props).arg(w.shapes).arg(w.children).arg(w.gjkPairState)
         .arg(int(std::min({w.gjkPairState.capacity(), w.pairCapacity, w.pairs.capacity()})))
         .arg(cl_uint(w.pairCapacity)).arg(w.subPairs).arg(cl_uint(w.subPairCapacity))
-        .run(size_t(std::max(contactCapacity, 1)));
+        .run(n);
     w.contactReportsWritten = true;
 }
 

@@ -206,7 +206,9 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     if (w.jointSprings > 0) params.gather = 1;
     cl::Program& prog = ctx.program("solve_soft");
     SolverScratch& sc = w.solverScratch;
-    sc.softContacts.reserve(ctx, std::max<size_t>(slots, 1));
+    // exactly: the slots grow geometrically already (contactCapacity), and the store and the
+    // reports may have grown this storage to their own size (SolverScratch::rowsAs)
+    sc.softContacts.reserveExact(ctx, std::max<size_t>(slots, 1));
     sc.softBodies.reserve(ctx, size_t(BTG_SOFT_BODY_ROWS) * size_t(numBodies));
     sc.softSolver.reserve(ctx, size_t(BTG_SOFT_SOLVER_ROWS) * size_t(numBodies));
     // Bound buffers even without contacts or joints.

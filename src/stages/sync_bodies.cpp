@@ -109,20 +109,20 @@ void syncOut(DeviceWorld& w, BodyReadback& out)
         // (None ahead when there was no last call, whose count stands at a huge placeholder
         // until then: the first step read the whole capacity, 736 MB at 1,000,000 cubes.)
         const size_t last = size_t(std::max(w.lastContactCount, 0));
-        ahead = last >= w.contactReports.capacity() ? 0 : std::min(w.contactReports.capacity(), last + last / 8 + 64);
+        ahead = last >= w.reports.capacity() ? 0 : std::min(w.reports.capacity(), last + last / 8 + 64);
         // The pinned copy holds what is read, grown a quarter past it (it was sized to the
         // whole contact capacity: 736 MB pinned at 1,000,000 falling cubes with none touching).
-        if (out.contacts.size() < ahead) out.contacts.resize(w.ctx, std::min(w.contactReports.capacity(), ahead + ahead / 4));
-        w.contactReports.readAsync(w.ctx, out.contacts.data(), ahead);
+        if (out.contacts.size() < ahead) out.contacts.resize(w.ctx, std::min(w.reports.capacity(), ahead + ahead / 4));
+        w.reports.readAsync(w.ctx, out.contacts.data(), ahead);
     }
     BTGPU_CL_CHECK(clFlush(w.ctx.queue()));  // the reads under way before the host blocks
     const cl_int waited = clWaitForEvents(1, &counted);
     clReleaseEvent(counted);
     BTGPU_CL_CHECK(waited);
     if (w.contactReportsWritten && mapped) {
-        const size_t count = std::min<size_t>(out.counters[kContactCount], w.contactReports.capacity());
+        const size_t count = std::min<size_t>(out.counters[kContactCount], w.reports.capacity());
         cl_int err = CL_SUCCESS;
-        void* p = clEnqueueMapBuffer(w.ctx.queue(), w.contactReports.mem(), CL_TRUE, CL_MAP_READ, 0,
+        void* p = clEnqueueMapBuffer(w.ctx.queue(), w.reports.mem(), CL_TRUE, CL_MAP_READ, 0,
                                      std::max<size_t>(count, 1) * sizeof(BtgContactReport), 0, nullptr, nullptr, &err);
         BTGPU_CL_CHECK(err);
         w.reportsMapped = p;
@@ -131,15 +131,15 @@ void syncOut(DeviceWorld& w, BodyReadback& out)
         out.reportsPending = false;
         w.contactReportsWritten = false;
     } else if (w.contactReportsWritten) {
-        const size_t count = std::min<size_t>(out.counters[kContactCount], w.contactReports.capacity());
+        const size_t count = std::min<size_t>(out.counters[kContactCount], w.reports.capacity());
         if (count > ahead && out.contacts.size() < count) {
             // More than the copy holds: what was read ahead is waited for and kept.
             w.ctx.finish();
             const std::vector<BtgContactReport> kept(out.contacts.data(), out.contacts.data() + ahead);
-            out.contacts.resize(w.ctx, std::min(w.contactReports.capacity(), count + count / 4));
+            out.contacts.resize(w.ctx, std::min(w.reports.capacity(), count + count / 4));
             std::copy(kept.begin(), kept.end(), out.contacts.data());
         }
-        if (count > ahead) w.contactReports.readAsync(w.ctx, out.contacts.data() + ahead, count - ahead, ahead);
+        if (count > ahead) w.reports.readAsync(w.ctx, out.contacts.data() + ahead, count - ahead, ahead);
         out.reports = out.contacts.data();
         out.numContacts = count;
         out.reportsPending = true;
@@ -152,7 +152,7 @@ void unmapReports(DeviceWorld& w)
     if (!w.reportsMapped) return;
     void* p = w.reportsMapped;
     w.reportsMapped = nullptr;
-    BTGPU_CL_CHECK(clEnqueueUnmapMemObject(w.ctx.queue(), w.contactReports.mem(), p, 0, nullptr, nullptr));
+    BTGPU_CL_CHECK(clEnqueueUnmapMemObject(w.ctx.queue(), w.reports.mem(), p, 0, nullptr, nullptr));
 }
 
 void awaitReports(DeviceWorld& w, BodyReadback& out)

@@ -151,11 +151,14 @@ struct DeviceWorld {
     cl::DeviceArray<BtgFrictionAnchor> frictionAnchors;
     // The last substep's contacts packed for the app's dispatcher (stage report_contacts, only
     // while Config::fillDispatcherManifolds): read back by syncOut when written since its last read.
+    // `reports` is where they lie: contactReports, or (the soft step) its rows' storage, dead
+    // after its solve (SolverScratch::rowsAs), with no buffer of their own.
     cl::DeviceArray<BtgContactReport> contactReports;
+    cl::ArrayView<BtgContactReport> reports;
     bool contactReportsWritten = false;
-    // On a CPU device syncOut maps contactReports for the fill instead of copying them out (the
-    // device's memory is the host's): the mapping, undone before report_contacts writes them
-    // again (unmapReports) and when the world goes.
+    // On a CPU device syncOut maps the reports for the fill instead of copying them out (the
+    // device's memory is the host's): the mapping, undone before the next call's stages run
+    // (unmapReports: the soft step's solve writes their storage) and when the world goes.
     void* reportsMapped = nullptr;
     // The app's contact callbacks before the solve (stage contact_callbacks, only while a
     // CF_CUSTOM_MATERIAL_CALLBACK body meets gContactAddedCallback): the flagged pairs' manifolds
@@ -177,6 +180,8 @@ struct DeviceWorld {
     // swap; carryRank: per old entry, carried entries before it (exclusive scan of carry_flags;
     // the total at cacheCapacity); cachePos / carryPos: where each contact's and each carried
     // entry's went (the GJK cache takes the same places); carrying: this substep ranked them.
+    // (The soft step has no contactCacheNext: its store writes into its rows' dead storage and
+    // copies back, SolverScratch::rowsAs.)
     cl::DeviceArray<BtgCachedContact> contactCacheNext;
     cl::DeviceArray<uint> carryRank;
     cl::DeviceArray<uint> cachePos;

@@ -6,6 +6,8 @@
 #include "shared/types.h"
 #include "stages/prims/scan.h"
 
+#include <algorithm>
+
 namespace btgpu {
 
 struct SolverScratch {
@@ -32,6 +34,18 @@ struct SolverScratch {
     // ranges above hold one list there, over every edge (the last range the leftovers);
     // a contact's soft rows sit at its place in that list (edgeSlot), read in color order
     cl::DeviceArray<BtgSoftContact> softContacts;
+    // After the solve the soft rows are dead until the next substep's: their storage then holds
+    // the new warm-start cache (storeContactCache, copied back over the old) and, in a call's
+    // last substep, the contact reports until syncOut has read them (reportContacts). So the
+    // soft step keeps one cache buffer and no report buffer of its own: 144 + 368 bytes a
+    // contact slot less. n elements of T, the storage grown to hold them where it must.
+    template <typename T>
+    cl::ArrayView<T> rowsAs(cl::Context& ctx, size_t n)
+    {
+        n = std::max<size_t>(n, 1);
+        softContacts.reserveExact(ctx, (n * sizeof(T) + sizeof(BtgSoftContact) - 1) / sizeof(BtgSoftContact));
+        return cl::ArrayView<T>::over(softContacts, n);
+    }
     cl::DeviceArray<int> edgeSlot;
     // each body's edges (dynamic sides only, sorted), the warm start's gather:
     // softListEntries[softListStart[b], softListStart[b + 1])

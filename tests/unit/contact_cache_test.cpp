@@ -4,7 +4,7 @@
 // that moved less than the contact threshold in A's frame, and only of such a point, from the
 // cached manifold of the same sub-shape keys, and the cache store keeps exactly the keys,
 // impulses and ids the next warm start reads, leaving the cache alone when the substep
-// overflowed.
+// overflowed; the soft step's store (through its rows' storage) leaves the same cache.
 #include "contact_fixture.h"
 #include "stages/contact_cache.h"
 #include "test_device.h"
@@ -203,48 +203,54 @@ TEST(ContactCache, StoreKeepsKeysImpulsesAndIds)
     }
     std::vector<BtgCachedContact> expect = ref::storeContactCache(contacts, built.manifoldOf, ms, bodies);
 
-    DeviceWorld w(test::context());
-    test::uploadWorld(w, bodies, ms, 600, {}, contacts.size());
-    w.contacts.upload(w.ctx, contacts);
-    w.contactManifolds.upload(w.ctx, built.manifoldOf);
-    std::vector<uint> counters = w.counters.download(w.ctx, kNumCounters);
-    counters[kContactCount] = uint(contacts.size());
-    w.counters.upload(w.ctx, counters);
-    storeContactCache(w);
-    counters = w.counters.download(w.ctx, kNumCounters);
-    ASSERT_EQ(counters[kPrevContactCount], contacts.size());
-    std::vector<BtgCachedContact> got = w.contactCache.download(w.ctx, contacts.size());
-    for (size_t i = 0; i < got.size(); ++i) {
-        const BtgCachedContact &g = got[i], &e = expect[i];
-        const BtgManifold& m = ms[built.manifoldOf[i]];
-        ASSERT_EQ(g.bodyA, contacts[i].bodyA) << i;
-        ASSERT_EQ(g.bodyB, contacts[i].bodyB) << i;
-        ASSERT_EQ(g.numPoints, contacts[i].numPoints) << i;
-        EXPECT_EQ(g.indexB, m.indexB) << i;
-        EXPECT_EQ(g.partIdA, BTG_NO_SUB_SHAPE) << i;
-        for (int k = 0; k < g.numPoints; ++k) {
-            for (int c = 0; c < 3; ++c)
-                EXPECT_NEAR(btgLane(g.point[k], c), btgLane(e.point[k], c), tol::kStageAbs) << i;
-            EXPECT_EQ(g.point[k].w, btgLane(contacts[i].normalImpulse, k)) << i;
-            EXPECT_EQ(g.featureId[k], m.points[k].featureId) << i;
-            // The key is the point on A in A's frame: rotated back, it is rA again.
-            BtgFloat4 back = btgQuatRotate(bodies.rot[g.bodyA], g.point[k]);
-            for (int c = 0; c < 3; ++c) EXPECT_NEAR(btgLane(back, c), btgLane(contacts[i].rA[k], c), 1e-5f) << i;
+    // The soft step stores through its rows' dead storage and copies back (one cache buffer,
+    // no second to swap with): the same cache.
+    for (bool overSoftRows : {false, true}) {
+        SCOPED_TRACE(overSoftRows ? "over the soft rows" : "swapped");
+        DeviceWorld w(test::context());
+        test::uploadWorld(w, bodies, ms, 600, {}, contacts.size());
+        w.contacts.upload(w.ctx, contacts);
+        w.contactManifolds.upload(w.ctx, built.manifoldOf);
+        std::vector<uint> counters = w.counters.download(w.ctx, kNumCounters);
+        counters[kContactCount] = uint(contacts.size());
+        w.counters.upload(w.ctx, counters);
+        storeContactCache(w, true, overSoftRows);
+        if (overSoftRows) EXPECT_EQ(w.contactCacheNext.capacity(), 0u);
+        counters = w.counters.download(w.ctx, kNumCounters);
+        ASSERT_EQ(counters[kPrevContactCount], contacts.size());
+        std::vector<BtgCachedContact> got = w.contactCache.download(w.ctx, contacts.size());
+        for (size_t i = 0; i < got.size(); ++i) {
+            const BtgCachedContact &g = got[i], &e = expect[i];
+            const BtgManifold& m = ms[built.manifoldOf[i]];
+            ASSERT_EQ(g.bodyA, contacts[i].bodyA) << i;
+            ASSERT_EQ(g.bodyB, contacts[i].bodyB) << i;
+            ASSERT_EQ(g.numPoints, contacts[i].numPoints) << i;
+            EXPECT_EQ(g.indexB, m.indexB) << i;
+            EXPECT_EQ(g.partIdA, BTG_NO_SUB_SHAPE) << i;
+            for (int k = 0; k < g.numPoints; ++k) {
+                for (int c = 0; c < 3; ++c)
+                    EXPECT_NEAR(btgLane(g.point[k], c), btgLane(e.point[k], c), tol::kStageAbs) << i;
+                EXPECT_EQ(g.point[k].w, btgLane(contacts[i].normalImpulse, k)) << i;
+                EXPECT_EQ(g.featureId[k], m.points[k].featureId) << i;
+                // The key is the point on A in A's frame: rotated back, it is rA again.
+                BtgFloat4 back = btgQuatRotate(bodies.rot[g.bodyA], g.point[k]);
+                for (int c = 0; c < 3; ++c) EXPECT_NEAR(btgLane(back, c), btgLane(contacts[i].rA[k], c), 1e-5f) << i;
+            }
+            EXPECT_EQ(g.friction1Impulse.y, -2.0f);
         }
-        EXPECT_EQ(g.friction1Impulse.y, -2.0f);
-    }
 
-    // An overflowed substep is redone from the cache as it was: the store leaves it alone.
-    std::vector<BtgContact> other(contacts.begin(), contacts.begin() + 10);
-    w.contacts.upload(w.ctx, other);
-    counters[kContactCount] = 10;
-    counters[kStatus] = BTG_STATUS_CONTACT_OVERFLOW;
-    w.counters.upload(w.ctx, counters);
-    storeContactCache(w);
-    std::vector<uint> after = w.counters.download(w.ctx, kNumCounters);
-    EXPECT_EQ(after[kPrevContactCount], contacts.size());
-    std::vector<BtgCachedContact> kept = w.contactCache.download(w.ctx, contacts.size());
-    EXPECT_EQ(0, std::memcmp(kept.data(), got.data(), got.size() * sizeof(BtgCachedContact)));
+        // An overflowed substep is redone from the cache as it was: the store leaves it alone.
+        std::vector<BtgContact> other(contacts.begin(), contacts.begin() + 10);
+        w.contacts.upload(w.ctx, other);
+        counters[kContactCount] = 10;
+        counters[kStatus] = BTG_STATUS_CONTACT_OVERFLOW;
+        w.counters.upload(w.ctx, counters);
+        storeContactCache(w, true, overSoftRows);
+        std::vector<uint> after = w.counters.download(w.ctx, kNumCounters);
+        EXPECT_EQ(after[kPrevContactCount], contacts.size());
+        std::vector<BtgCachedContact> kept = w.contactCache.download(w.ctx, contacts.size());
+        EXPECT_EQ(0, std::memcmp(kept.data(), got.data(), got.size() * sizeof(BtgCachedContact)));
+    }
 }
 
 // Pairs that own several manifolds (what compounds and meshes will give): each pair's range

@@ -1,7 +1,7 @@
 // report_contacts_test.cpp — the contact report: on the device, each contact's record is the
 // reference's (bodies, sub-shape keys, counts and feature ids exactly; points, frames and
 // impulses within kStageAbs / kStageRel), a count past capacity is clamped, and slots past the
-// count are left untouched.
+// count are left untouched; the same where they lie over the soft step's rows.
 #include "reference/report_contacts.h"
 #include "stages/report_contacts.h"
 #include "test_device.h"
@@ -91,18 +91,31 @@ TEST(ReportContacts, DeviceMatchesReference)
     w.pos.upload(w.ctx, pos);
     w.rot.upload(w.ctx, rot);
     std::vector<uint> counters(kNumCounters, 0u);
+    // The soft step's reports lie over its rows' storage (dead after its solve), with no buffer
+    // of their own: the same reports there.
+    for (bool overSoftRows : {false, true})
     for (int count : {numContacts, capacity + 30}) {  // the second past capacity: clamped
+        SCOPED_TRACE(overSoftRows ? "over the soft rows" : "own buffer");
         counters[kContactCount] = uint(count);
         w.counters.upload(w.ctx, counters);
         std::vector<BtgContactReport> sentinel(capacity);
         for (BtgContactReport& r : sentinel) r.bodyA = -7;
-        w.contactReports.reserveExact(w.ctx, capacity);
-        w.contactReports.upload(w.ctx, sentinel);
+        if (overSoftRows) {
+            w.solverScratch.rowsAs<BtgContactReport>(w.ctx, capacity).upload(w.ctx, sentinel);
+        } else {
+            w.contactReports.reserveExact(w.ctx, capacity);
+            w.contactReports.upload(w.ctx, sentinel);
+        }
         w.contactReportsWritten = false;
-        reportContacts(w);
+        reportContacts(w, overSoftRows);
         EXPECT_TRUE(w.contactReportsWritten);
+        EXPECT_EQ(w.reports.capacity(), size_t(capacity));
+        if (overSoftRows) {
+            EXPECT_EQ(w.contactReports.capacity(), 0u);
+            EXPECT_EQ(w.reports.mem(), w.solverScratch.softContacts.mem());
+        }
         const int n = std::min(count, capacity);
-        std::vector<BtgContactReport> got = w.contactReports.download(w.ctx, capacity);
+        std::vector<BtgContactReport> got = w.reports.download(w.ctx, capacity);
         std::vector<BtgContact> used(contacts.begin(), contacts.begin() + n);
         std::vector<uint> usedManifolds(contactManifolds.begin(), contactManifolds.begin() + n);
         std::vector<BtgContactReport> want = ref::reportContacts(used, usedManifolds, manifolds, pos, rot);
