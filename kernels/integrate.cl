@@ -2,7 +2,8 @@
  * predict_motion   Reads props. Writes linVel, angVel (damping, additional damping).
  * apply_forces     Reads rot, props, extForce, extTorque. Writes invInertiaWorld, linVel0,
  *                  angVel0 (velocities before forces, for restitution), linVel, angVel,
- *                  pushLin/pushAng (zeroed for the split-impulse passes).
+ *                  pushLin/pushAng (zeroed for the split-impulse passes; not with push 0, the
+ *                  soft step's, which holds a placeholder row of each).
  * integrate_transforms  Reads linVel, angVel, pushLin, pushAng, props. Writes pos, rot;
  *                  flags non-finite results in counters (status BTG_STATUS_NAN, lowest row). */
 #include "shared/integrate.h"
@@ -26,7 +27,7 @@ __kernel void apply_forces(int n, __global const BtgFloat4* restrict rot, __glob
                            __global const BtgFloat4* restrict extForce, __global const BtgFloat4* restrict extTorque,
                            __global BtgFloat4* invInertiaWorld, __global BtgFloat4* linVel0, __global BtgFloat4* angVel0,
                            __global BtgFloat4* linVel, __global BtgFloat4* angVel, __global BtgFloat4* pushLin,
-                           __global BtgFloat4* pushAng, float dt, float maxGyroscopicForce)
+                           __global BtgFloat4* pushAng, int push, float dt, float maxGyroscopicForce)
 {
     int i = get_global_id(0);
     if (i >= n) return;
@@ -42,8 +43,10 @@ __kernel void apply_forces(int n, __global const BtgFloat4* restrict rot, __glob
     BtgFloat4 w = angVel[i];
     linVel0[i] = v;
     angVel0[i] = w;
-    pushLin[i] = btgZero4();
-    pushAng[i] = btgZero4();
+    if (push) {  /* else one placeholder row each: the soft step has no split-impulse passes */
+        pushLin[i] = btgZero4();
+        pushAng[i] = btgZero4();
+    }
     if (!btgIsMoving(p.flags)) return;
     linVel[i] = btgApplyLinearForces(v, extForce[i], p, dt);
     angVel[i] = btgApplyAngularForces(w, extTorque[i], q, iw, p, dt, maxGyroscopicForce);

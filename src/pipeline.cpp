@@ -52,7 +52,7 @@ void runStage(Stage stage, DeviceWorld& w, const Plan& plan, const StepSettings&
         case Stage::NarrowphaseGjk: narrowphaseProgram(w, plan.kinds, narrowphaseProgramOf(stage)); break;
         case Stage::NarrowphaseMesh: narrowphaseMesh(w, plan.kinds); break;
         case Stage::FilterPairs: filterPairs(w); break;
-        case Stage::ApplyForces: applyForces(w, p.dt, p.maxGyroscopicForce); break;
+        case Stage::ApplyForces: applyForces(w, p.dt, p.maxGyroscopicForce, plan.solver != SolverKind::SoftStep); break;
         case Stage::ContactCache:
             buildContacts(w, p);
             // before the wake: the flags the pairs were found with say which were not collided

@@ -7,6 +7,8 @@
 
 namespace btgpu {
 void predictMotion(DeviceWorld& w, float dt);
-void applyForces(DeviceWorld& w, float dt, float maxGyroscopicForce = 100.0f);  // m_maxGyroscopicForce
+// push: the solver has split-impulse passes and integrateTransforms reads pushLin/pushAng (not
+// the soft step): they are held a row a body and zeroed here; else one placeholder row each.
+void applyForces(DeviceWorld& w, float dt, float maxGyroscopicForce = 100.0f, bool push = true);  // m_maxGyroscopicForce
 void integrateTransforms(DeviceWorld& w, float dt, float splitTurnErp);
 }  // namespace btgpu

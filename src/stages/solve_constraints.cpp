@@ -91,6 +91,9 @@ void solveConstraints(DeviceWorld& w, const BtgStepParams& params, int iteration
     if (params.splitImpulse && bodies > 0) {
         w.pushLin.zero(ctx, bodies);
         w.pushAng.zero(ctx, bodies);
+    } else {  // bound, not read
+        w.pushLin.reserve(ctx, 1);
+        w.pushAng.reserve(ctx, 1);
     }
     if (slots == 0) return;
     cl::Program& prog = ctx.program("solve_constraints");

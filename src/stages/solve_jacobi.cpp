@@ -22,6 +22,9 @@ void solveJacobi(DeviceWorld& w, const BtgStepParams& params, int iterations)
     if (params.splitImpulse && bodies > 0) {
         w.pushLin.zero(ctx, bodies);
         w.pushAng.zero(ctx, bodies);
+    } else {  // bound, not read
+        w.pushLin.reserve(ctx, 1);
+        w.pushAng.reserve(ctx, 1);
     }
     if (slots == 0 || bodies == 0) return;
     SolverScratch& s = w.solverScratch;

@@ -26,8 +26,6 @@ void resizeBodies(DeviceWorld& w, int n)
     w.extForce.reserve(c, rows, true);
     w.extTorque.reserve(c, rows, true);
     w.invInertiaWorld.reserve(c, 3 * rows);
-    w.pushLin.reserve(c, rows);
-    w.pushAng.reserve(c, rows);
     w.linVel0.reserve(c, rows);
     w.angVel0.reserve(c, rows);
     w.aabbMin.reserve(c, rows);

@@ -54,7 +54,9 @@ struct DeviceWorld {
     cl::DeviceArray<BtgFloat4> extForce;   // N, app forces for this stepSimulation call
     cl::DeviceArray<BtgFloat4> extTorque;  // N m
     cl::DeviceArray<BtgFloat4> invInertiaWorld;  // 3 rows per body (3N): R diag(I^-1) R^T
-    cl::DeviceArray<BtgFloat4> pushLin;    // split-impulse velocities, m/s (solver scratch)
+    // split-impulse velocities, m/s (solver scratch; held by applyForces, a placeholder row in
+    // the soft step)
+    cl::DeviceArray<BtgFloat4> pushLin;
     cl::DeviceArray<BtgFloat4> pushAng;    // rad/s
     cl::DeviceArray<BtgFloat4> aabbMin;    // m, world AABB grown by the contact threshold
     cl::DeviceArray<BtgFloat4> aabbMax;
