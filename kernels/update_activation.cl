@@ -18,7 +18,13 @@
  *                 Writes wake (the bodies joined by enabled joints to an awake or woken one,
  *                 followed joint by joint until none is added: stock wakes the whole island).
  * wake_apply      one work-item per body, after wake_touched (and wake_jointed). Reads wake. Writes props.flags
- *                 (SLEEPING cleared), sleepTime (0), sleepState (0), wake (cleared). */
+ *                 (SLEEPING cleared), sleepTime (0), sleepState (0), wake (cleared).
+ * wake_paired     one work-item per pair, last in the step (after apply_sleep). Reads pairs,
+ *                 counters[kPairCount], props, sleepTime, islandLabel. Writes islandWake (the
+ *                 island of a sleeping body whose pair a moving one is in, btgWakes).
+ * wake_paired_apply  one work-item per body, after wake_paired. Reads islandLabel, islandWake.
+ *                 Writes props.flags (SLEEPING cleared), sleepTime (0), sleepState (0).
+ * These two do nothing under a redo status either. */
 #include "shared/activation.h"
 #include "shared/counters.h"
 #include "shared/joint_rows.h"
@@ -204,6 +210,45 @@ __kernel void wake_apply(int n, __global uint* wake, __global BtgBodyProps* prop
     wake[i] = 0u;
     const uint f = props[i].flags;
     if (!(f & BTG_BODY_SLEEPING)) return;
+    props[i].flags = f & ~BTG_BODY_SLEEPING;
+    sleepTime[i] = 0.0f;
+    sleepState[i] = 0u;
+}
+
+/* Stock's islands are its broadphase pairs (findUnions over the overlapping pairs: bodies whose
+ * AABBs, grown by the contact threshold and swept to their predicted poses, overlap), so a
+ * moving body wakes a sleeping island as soon as their AABBs meet, a step or more before they
+ * touch, and by the time the blow lands the island's own pairs are collided again. Woken only by
+ * a contact (wake_touched, before the solve), the island's own pairs had not been collided in
+ * that step (both asleep when the pairs were found), so its bodies fell free for the step: a box
+ * dropped onto a sleeping stack of three pushed the top box 6 cm down in one step where stock's
+ * moved 3 cm. At the step's end, then, the island (its label) of a sleeper that this step's
+ * pairs put beside a moving body (btgWakes, as wake_touched judges a touch) is marked, and
+ * wake_paired_apply wakes it whole: the next step finds its pairs. */
+__kernel void wake_paired(__global const BtgPair* restrict pairs, __global const uint* restrict counters, int capacity,
+                          int n, __global const BtgBodyProps* restrict props, __global const float* restrict sleepTime,
+                          __global const uint* restrict islandLabel, __global uint* islandWake)
+{
+    const int k = get_global_id(0);
+    if (k >= (int)min(counters[BTG_COUNTER_PAIRS], (uint)capacity) || (counters[BTG_COUNTER_STATUS] & BTG_STATUS_REDO) != 0u)
+        return;
+    const int a = pairs[k].a, b = pairs[k].b;
+    if (a < 0 || b < 0 || a >= n || b >= n || a == b) return;
+    const uint fa = props[a].flags, fb = props[b].flags;
+    if (btgWakes(fa, fb, sleepTime[a]) && islandLabel[b] < (uint)n) islandWake[islandLabel[b]] = 1u;
+    if (btgWakes(fb, fa, sleepTime[b]) && islandLabel[a] < (uint)n) islandWake[islandLabel[a]] = 1u;
+}
+
+__kernel void wake_paired_apply(int n, __global BtgBodyProps* props, __global float* sleepTime, __global uint* sleepState,
+                                __global const uint* restrict islandLabel, __global const uint* restrict islandWake,
+                                __global const uint* restrict counters)
+{
+    const int i = get_global_id(0);
+    if (i >= n || (counters[BTG_COUNTER_STATUS] & BTG_STATUS_REDO) != 0u) return;
+    const uint f = props[i].flags;
+    if (!(f & BTG_BODY_SLEEPING) || !(f & BTG_BODY_DYNAMIC) || (f & BTG_BODY_EXCLUDED)) return;
+    const uint l = islandLabel[i];
+    if (l >= (uint)n || !islandWake[l]) return;
     props[i].flags = f & ~BTG_BODY_SLEEPING;
     sleepTime[i] = 0.0f;
     sleepState[i] = 0u;

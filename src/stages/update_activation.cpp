@@ -30,6 +30,17 @@ void updateActivation(DeviceWorld& w, float dt, float deactivationTime, int roun
         .arg(n).arg(w.islandTime).arg(w.wake).arg(w.sleepTime).arg(w.props).arg(w.linVel).arg(w.angVel)
         .arg(w.sleepState).arg(deactivationTime).arg(w.counters)
         .run(n);
+    // Stock's islands are its broadphase pairs: a sleeping island a moving body's pair reaches
+    // wakes whole now, so that the next step collides its own pairs (wake_paired).
+    const int pairCapacity = int(std::min(w.pairCapacity, w.pairs.capacity()));
+    if (deactivationTime > 0.0f && pairCapacity > 0) {
+        cl::Launch(w.ctx, prog.kernel("wake_paired"), &w.profiler)
+            .arg(w.pairs).arg(w.counters).arg(pairCapacity).arg(n).arg(w.props).arg(w.sleepTime).arg(w.islandLabel)
+            .arg(w.islandWake).run(size_t(pairCapacity));
+        cl::Launch(w.ctx, prog.kernel("wake_paired_apply"), &w.profiler)
+            .arg(n).arg(w.props).arg(w.sleepTime).arg(w.sleepState).arg(w.islandLabel).arg(w.islandWake).arg(w.counters)
+            .run(n);
+    }
 }
 
 void wakeTouched(DeviceWorld& w)
