@@ -7,6 +7,7 @@
  * Launch: expand_count / expand_write any number of work-items striding over the count slots
  * (pairCapacity + 1: the last, always 0, ends up holding the total); expand_total one
  * work-item; expand_copy one work-item per pair slot.
+ * speculative (the soft step): the culling tests grown by the pair's threshold (compound.h).
  * Reads pairs, pos, rot, props, shapes, children, counters[BTG_COUNTER_PAIRS]. Writes offsets,
  * expanded, then pairs and pairManifolds (empty), counters[BTG_COUNTER_PAIRS] (every leaf pair
  * found, even past capacity) and BTG_STATUS_PAIR_OVERFLOW, on which the host grows the pair
@@ -18,11 +19,11 @@ __kernel void expand_count(__global const BtgPair* restrict pairs, __global cons
                            __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,
                            __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes,
                            __global const BtgChild* restrict children, __global uint* restrict counts,
-                           uint countSlots)
+                           uint countSlots, int speculative)
 {
     const uint n = min(counters[BTG_COUNTER_PAIRS], countSlots - 1u);
     for (uint i = (uint)get_global_id(0); i < countSlots; i += (uint)get_global_size(0))
-        counts[i] = i < n ? btgExpandPair(pairs[i], pos, rot, props, shapes, children, 0, 0u, 0u) : 0u;
+        counts[i] = i < n ? btgExpandPair(pairs[i], pos, rot, props, shapes, children, 0, 0u, 0u, speculative) : 0u;
 }
 
 /* When the broadphase itself overflowed, only the pairs that fit were expanded: the total is
@@ -42,14 +43,14 @@ __kernel void expand_write(__global const BtgPair* restrict pairs, __global cons
                            __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,
                            __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes,
                            __global const BtgChild* restrict children, __global const uint* restrict offsets,
-                           uint countSlots, __global BtgPair* restrict expanded)
+                           uint countSlots, __global BtgPair* restrict expanded, int speculative)
 {
     const uint capacity = countSlots - 1u;
     const uint n = min(counters[BTG_COUNTER_PAIRS], capacity);
     for (uint i = (uint)get_global_id(0); i < n; i += (uint)get_global_size(0)) {
         const uint first = offsets[i];
         if (offsets[i + 1u] == first || first >= capacity) continue;
-        btgExpandPair(pairs[i], pos, rot, props, shapes, children, expanded, first, capacity);
+        btgExpandPair(pairs[i], pos, rot, props, shapes, children, expanded, first, capacity, speculative);
     }
 }
 

@@ -10,8 +10,11 @@
  * step) because its resting bodies sink a little, so their leaves' boxes overlap; btgpu's
  * speculative contacts rest a body at zero separation, where an ungrown test drops the leaf
  * pair every few steps and the body falls a step's worth onto it (measured: 2.8 mm for a
- * table). Both tests are grown by the pair's breaking threshold here, as the midphase grows its
- * box for the same reason: a leaf within the threshold gets its (speculative) points. */
+ * table). Both tests are grown by the pair's breaking threshold there (`speculative`, the soft
+ * step), as the midphase grows its box for the same reason: a leaf within the threshold gets its
+ * (speculative) points. The bullet mode, whose bodies rest as stock's, tests as stock does
+ * (btgLeafTestGrowth): a grown test there found a kinematic arm's leaf a step before stock and
+ * stopped a ball early. */
 #ifndef BTG_COMPOUND_H
 #define BTG_COMPOUND_H
 #include "aabb.h"
@@ -108,6 +111,17 @@ static inline BtgAabb btgGrown(BtgAabb a, float by)
     return a;
 }
 
+/* How far the leaf culling grows its boxes: the pair's threshold where speculative (the
+ * deviation above), else BTG_LEAF_TEST_SLACK, 0.1 mm: stock's exact boxes, but for the last
+ * bits of their float arithmetic, which is not Bullet's operation for operation here (a table
+ * standing exactly on the ground: stock's leg box reaches 1e-8 below the ground's top, btgpu's
+ * stopped at it, and two legs' pairs were missing for the first steps). */
+#define BTG_LEAF_TEST_SLACK 1e-4f
+static inline float btgLeafTestGrowth(int speculative, BtgShape a, BtgShape b)
+{
+    return speculative ? btgPairThreshold(a, b) : BTG_LEAF_TEST_SLACK;
+}
+
 static inline BtgAabb btgStockAabb(BtgFloat4 pos, BtgFloat4 rot, BtgShape s)
 {
     if (s.type == BTG_SHAPE_PLANE) {
@@ -154,9 +168,10 @@ static inline uint btgEmitLeafPair(BtgPair p, int ra, int rb, BTG_GLOBAL BtgPair
  * row, as the pair cache orders proxies by creation) and their world AABBs overlap. */
 static inline uint btgExpandCompoundCompound(BtgPair p, BtgShape sa, BtgShape sb, BTG_CONST_GLOBAL BtgFloat4* pos,
                                              BTG_CONST_GLOBAL BtgFloat4* rot, BTG_CONST_GLOBAL BtgShape* shapes,
-                                             BTG_CHILD_TABLE, BTG_GLOBAL BtgPair* out, uint first, uint capacity)
+                                             BTG_CHILD_TABLE, BTG_GLOBAL BtgPair* out, uint first, uint capacity,
+                                             int speculative)
 {
-    const float t = btgPairThreshold(sa, sb);
+    const float t = btgLeafTestGrowth(speculative, sa, sb);
     const BtgFloat4 qa = rot[p.a], qb = rot[p.b];
     const BtgFloat4 relPos = btgQuatRotate(btgQuatConj(qa), btgXyz(pos[p.b] - pos[p.a]));
     const BtgFloat4 relRot = btgQuatMul(btgQuatConj(qa), qb);
@@ -205,9 +220,10 @@ static inline int btgLeafMeets(BtgChild c, BtgFloat4 pos, BtgFloat4 rot, BtgAabb
  * first (ManifoldSync::orient). */
 static inline uint btgExpandCompoundNested(BtgPair p, BtgShape sa, BtgShape sb, BTG_CONST_GLOBAL BtgFloat4* pos,
                                            BTG_CONST_GLOBAL BtgFloat4* rot, BTG_CONST_GLOBAL BtgShape* shapes,
-                                           BTG_CHILD_TABLE, BTG_GLOBAL BtgPair* out, uint first, uint capacity)
+                                           BTG_CHILD_TABLE, BTG_GLOBAL BtgPair* out, uint first, uint capacity,
+                                           int speculative)
 {
-    const float t = btgPairThreshold(sa, sb);
+    const float t = btgLeafTestGrowth(speculative, sa, sb);
     const BtgFloat4 qa = rot[p.a], qb = rot[p.b];
     const BtgAabb wholeB = btgGrown(btgStockAabb(pos[p.b], qb, sb), t);
     const BtgAabb bInA = btgGrown(btgStockAabb(btgQuatRotate(btgQuatConj(qa), btgXyz(pos[p.b] - pos[p.a])),
@@ -242,10 +258,11 @@ static inline int btgCompoundHasTree(BtgShape s, BTG_CHILD_TABLE)
 
 /* The leaf pairs of body pair p (a < b) with a compound side: those stock processes, in child
  * order. Writes them to out[first, capacity) when out is given; returns how many. A pair with
- * no compound is itself. */
+ * no compound is itself. speculative: the tests grown by the pair's threshold (the deviation
+ * above: the soft step), else stock's. */
 static inline uint btgExpandPair(BtgPair p, BTG_CONST_GLOBAL BtgFloat4* pos, BTG_CONST_GLOBAL BtgFloat4* rot,
                                  BTG_CONST_GLOBAL BtgBodyProps* props, BTG_CONST_GLOBAL BtgShape* shapes, BTG_CHILD_TABLE,
-                                 BTG_GLOBAL BtgPair* out, uint first, uint capacity)
+                                 BTG_GLOBAL BtgPair* out, uint first, uint capacity, int speculative)
 {
     const BtgShape sa = shapes[props[p.a].shape], sb = shapes[props[p.b].shape];
     const int compoundIsA = sa.type == BTG_SHAPE_COMPOUND;
@@ -255,13 +272,13 @@ static inline uint btgExpandPair(BtgPair p, BTG_CONST_GLOBAL BtgFloat4* pos, BTG
     }
     if (compoundIsA && sb.type == BTG_SHAPE_COMPOUND) {
         if (btgCompoundHasTree(sa, children) && btgCompoundHasTree(sb, children))
-            return btgExpandCompoundCompound(p, sa, sb, pos, rot, shapes, children, out, first, capacity);
-        return btgExpandCompoundNested(p, sa, sb, pos, rot, shapes, children, out, first, capacity);
+            return btgExpandCompoundCompound(p, sa, sb, pos, rot, shapes, children, out, first, capacity, speculative);
+        return btgExpandCompoundNested(p, sa, sb, pos, rot, shapes, children, out, first, capacity, speculative);
     }
     const int cb = compoundIsA ? p.a : p.b, ob = compoundIsA ? p.b : p.a;
     const BtgShape cs = compoundIsA ? sa : sb, os = compoundIsA ? sb : sa;
-    /* The other body's boxes grown by the pair's threshold (see the deviation above). */
-    const float t = btgPairThreshold(cs, os);
+    /* The other body's boxes grown by the pair's threshold where speculative (the deviation above). */
+    const float t = btgLeafTestGrowth(speculative, cs, os);
     const BtgAabb other = btgGrown(btgStockAabb(pos[ob], rot[ob], os), t);
     /* The other body in the compound's frame, for the tree's query (otherInCompoundSpace). */
     const BtgFloat4 cq = rot[cb];

@@ -6,14 +6,14 @@ namespace btgpu::ref {
 
 std::vector<BtgPair> referenceExpandCompounds(const std::vector<BtgPair>& pairs, const BtgFloat4* pos,
                                               const BtgFloat4* rot, const BtgBodyProps* props, const BtgShape* shapes,
-                                              const BtgChild* children)
+                                              const BtgChild* children, bool speculative)
 {
     std::vector<BtgPair> out;
     for (const BtgPair& p : pairs) {
-        const uint n = btgExpandPair(p, pos, rot, props, shapes, children, nullptr, 0u, 0u);
+        const uint n = btgExpandPair(p, pos, rot, props, shapes, children, nullptr, 0u, 0u, speculative ? 1 : 0);
         const size_t first = out.size();
         out.resize(first + n);
-        btgExpandPair(p, pos, rot, props, shapes, children, out.data(), uint(first), uint(out.size()));
+        btgExpandPair(p, pos, rot, props, shapes, children, out.data(), uint(first), uint(out.size()), speculative ? 1 : 0);
     }
     return out;
 }

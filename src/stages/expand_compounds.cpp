@@ -24,12 +24,12 @@ void expandCompounds(DeviceWorld& w, const PairKinds& kinds)
         cl::Program& prog = ctx.program("expand_compounds");
         cl::Launch(ctx, prog.kernel("expand_count"), &w.profiler)
             .arg(w.pairs).arg(w.counters).arg(w.pos).arg(w.rot).arg(w.props).arg(w.shapes).arg(w.children)
-            .arg(w.compoundOffsets).arg(countSlots)
+            .arg(w.compoundOffsets).arg(countSlots).arg(w.speculativeContacts ? 1 : 0)
             .run(items);
         exclusiveScan(ctx, &w.profiler, w.compoundOffsets, slots, w.compoundScan);
         cl::Launch(ctx, prog.kernel("expand_write"), &w.profiler)
             .arg(w.pairs).arg(w.counters).arg(w.pos).arg(w.rot).arg(w.props).arg(w.shapes).arg(w.children)
-            .arg(w.compoundOffsets).arg(countSlots).arg(w.compoundPairs)
+            .arg(w.compoundOffsets).arg(countSlots).arg(w.compoundPairs).arg(w.speculativeContacts ? 1 : 0)
             .run(items);
         // After the write pass, which reads the broadphase's count that this replaces.
         cl::Launch(ctx, prog.kernel("expand_total"), &w.profiler).arg(w.compoundOffsets).arg(countSlots).arg(w.counters).run(1, 1);

@@ -135,10 +135,13 @@ struct DeviceResult {
 };
 
 // found: the broadphase's count (more than capacity: it overflowed; 0: the pairs that fit).
-DeviceResult runExpand(const CompoundScene& s, const std::vector<BtgPair>& pairs, size_t capacity, uint found = 0)
+// speculative: the soft step's grown culling tests (compound.h), else the bullet mode's stock ones.
+DeviceResult runExpand(const CompoundScene& s, const std::vector<BtgPair>& pairs, size_t capacity, uint found = 0,
+                       bool speculative = true)
 {
     cl::Context& ctx = test::context();
     DeviceWorld w(ctx);
+    w.speculativeContacts = speculative;
     w.numBodies = int(s.pos.size());
     w.pos.upload(ctx, s.pos);
     w.rot.upload(ctx, s.rot);
@@ -192,6 +195,42 @@ TEST(ExpandCompounds, MatchesReferenceExactly)
                     (p.a == q.a && p.b == q.b && p.childA + p.childB < q.childA + q.childB));
     }
     for (const BtgPair& p : ref) EXPECT_TRUE((p.childA == BTG_WHOLE_BODY) != (p.childB == BTG_WHOLE_BODY));
+}
+
+// The bullet mode culls leaves as stock's btCompoundCollisionAlgorithm does (ungrown boxes): a
+// leaf whose box is within the pair's threshold of the other body's but apart is a leaf pair of
+// the soft step's (its speculative points) and not of the bullet mode's. Grown there too, a
+// kinematic compound's turning arm met a ball a step before stock's and stopped it early.
+TEST(ExpandCompounds, TheBulletModeCullsWithStocksBoxes)
+{
+    std::vector<BtgPair> pairs;
+    CompoundScene s = scatteredScene(5, &pairs);
+    for (bool speculative : {true, false}) {
+        SCOPED_TRACE(speculative ? "soft step" : "bullet mode");
+        const std::vector<BtgPair> ref = ref::referenceExpandCompounds(pairs, s.pos.data(), s.rot.data(), s.props.data(),
+                                                                       s.tables.shapes.data(), s.tables.children.data(),
+                                                                       speculative);
+        const DeviceResult dev = runExpand(s, pairs, std::max(ref.size(), pairs.size()) + 16, 0, speculative);
+        ASSERT_EQ(dev.total, ref.size());
+        for (size_t i = 0; i < ref.size(); ++i) {
+            EXPECT_EQ(dev.pairs[i].a, ref[i].a) << i;
+            EXPECT_EQ(dev.pairs[i].childA, ref[i].childA) << i;
+            EXPECT_EQ(dev.pairs[i].childB, ref[i].childB) << i;
+        }
+    }
+    // A table's legs 5 mm above the ground, within the pair's threshold (the table's, about 1.6
+    // cm), apart.
+    CompoundScene t;
+    const int ground = t.add(&t.ground, pose(0, -50, 0), BTG_BODY_STATIC);
+    const int table = t.add(&t.table, pose(0, 0.3f + 0.005f, 0), BTG_BODY_DYNAMIC);
+    const std::vector<BtgPair> body = {BtgPair{ground, table, 0, 0}};
+    const auto leaves = [&](bool speculative) {
+        return ref::referenceExpandCompounds(body, t.pos.data(), t.rot.data(), t.props.data(), t.tables.shapes.data(),
+                                             t.tables.children.data(), speculative)
+            .size();
+    };
+    EXPECT_EQ(leaves(false), 0u) << "stock culls every leaf 5 mm away";
+    EXPECT_GT(leaves(true), 0u) << "the soft step keeps the legs within its threshold";
 }
 
 TEST(ExpandCompounds, OverflowCountsOnAndRaisesTheStatusBit)
