@@ -1,7 +1,8 @@
 // update_activation_test.cpp — deactivation on the device against the CPU reference, and
 // Bullet's rules: an island sleeps only when all its bodies have been slow for the
 // deactivation time; one moving body keeps its island awake; a moving body touching a
-// sleeper wakes it; DISABLE_DEACTIVATION never sleeps.
+// sleeper wakes it, and so does its pair at the step's end (the whole island); DISABLE_DEACTIVATION
+// never sleeps.
 #include "reference/update_activation.h"
 #include "shared/activation.h"
 #include "stages/sync_bodies.h"
@@ -246,6 +247,53 @@ TEST(UpdateActivation, AnIslandWakesWholeBeforeTheSolve)
     wakeTouched(d.w);
     props = d.w.props.download(d.w.ctx, 6);
     for (int i : {1, 2, 3}) EXPECT_TRUE(props[size_t(i)].flags & BTG_BODY_SLEEPING) << i;
+}
+
+// At the step's end a sleeping island one of whose bodies a moving body's pair reaches (AABBs
+// met, no contact yet) wakes whole (wake_paired): stock's islands are its broadphase pairs, and
+// the next step then collides the island's own pairs. A slow body's pair wakes nothing (btgWakes,
+// as for a touch), nor does any pair under a redo status.
+TEST(UpdateActivation, APairWithAMovingBodyWakesTheSleepingIslandAtTheStepsEnd)
+{
+    Scene sc = chain();
+    sc.s.linVel[4] = btgMake4(3, 0, 0, 0);  // body 4 stays awake, apart from the chain
+    Device d(sc);
+    const float dt = 1.0f / 60.0f;
+    for (int step = 0; step < 130; ++step) updateActivation(d.w, dt, 2.0f);
+    std::vector<BtgBodyProps> props = d.w.props.download(d.w.ctx, 6);
+    for (int i = 0; i < 4; ++i) ASSERT_TRUE(props[size_t(i)].flags & BTG_BODY_SLEEPING) << i;
+    ASSERT_FALSE(props[4].flags & BTG_BODY_SLEEPING);
+    // Body 4 comes to rest (its own timer runs: slow), then its pair with body 3 (the chain's far
+    // end) is found: nothing wakes.
+    d.w.linVel.upload(d.w.ctx, std::vector<BtgFloat4>(6, btgZero4()));
+    updateActivation(d.w, dt, 2.0f);
+    d.w.pairCapacity = 1;
+    d.w.pairs.upload(d.w.ctx, std::vector<BtgPair>{BtgPair{3, 4, BTG_WHOLE_BODY, BTG_WHOLE_BODY}});
+    std::vector<uint> counters = d.w.counters.download(d.w.ctx, kNumCounters);
+    counters[kPairCount] = 1;
+    d.w.counters.upload(d.w.ctx, counters);
+    updateActivation(d.w, dt, 2.0f);
+    props = d.w.props.download(d.w.ctx, 6);
+    for (int i = 0; i < 4; ++i) EXPECT_TRUE(props[size_t(i)].flags & BTG_BODY_SLEEPING) << "slow pair, body " << i;
+    // Body 4 moving: under a redo status nothing wakes; then the whole chain does.
+    std::vector<BtgFloat4> v(6, btgZero4());
+    v[4] = btgMake4(3, 0, 0, 0);
+    d.w.linVel.upload(d.w.ctx, v);
+    counters = d.w.counters.download(d.w.ctx, kNumCounters);
+    counters[kStatus] = BTG_STATUS_PAIR_OVERFLOW;
+    d.w.counters.upload(d.w.ctx, counters);
+    updateActivation(d.w, dt, 2.0f);
+    props = d.w.props.download(d.w.ctx, 6);
+    for (int i = 0; i < 4; ++i) EXPECT_TRUE(props[size_t(i)].flags & BTG_BODY_SLEEPING) << "redo, body " << i;
+    counters[kStatus] = 0;
+    d.w.counters.upload(d.w.ctx, counters);
+    updateActivation(d.w, dt, 2.0f);
+    props = d.w.props.download(d.w.ctx, 6);
+    const std::vector<uint> st = d.sleepState();
+    for (int i = 0; i < 4; ++i) {
+        EXPECT_FALSE(props[size_t(i)].flags & BTG_BODY_SLEEPING) << "body " << i << " of the paired island";
+        EXPECT_EQ(st[size_t(i)], 0u) << i;
+    }
 }
 
 // Joints before the solve (wake_jointed): a sleeping body joined to an awake one wakes, and so
