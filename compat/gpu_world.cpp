@@ -302,6 +302,7 @@ void GpuWorld::rebuild()
     m_mirror.clear();
     m_mirror.resize(n);  // unwritten: everyRow starts each row's mirror
     writeColumns(w, everyRow());
+    uploadTimers();
     // The sleep state read back before a step's deactivation (the actions' part) is the app's
     // until the device's deactivation writes it; left unwritten it was whatever the buffer held.
     std::vector<uint> asleep(std::max<size_t>(n, 1), 0u);

@@ -72,6 +72,9 @@ private:
         // The app changed this sleeping dynamic body before the call (a teleport, a velocity
         // without activate()): its write-back does what stock's step does to a sleeper.
         bool touchedAsleep;
+        // The body's m_deactivationTime as the last write-back left it (the device's timer): the
+        // app's activate() zeroes it, which keeps a slow body awake on stock.
+        float deactivation;
         static Mirror fresh()
         {
             Mirror m;
@@ -80,6 +83,7 @@ private:
             m.props = BtgBodyProps{};
             m.excluded = false;
             m.touchedAsleep = false;
+            m.deactivation = 0.0f;
             return m;
         }
     };
@@ -229,6 +233,11 @@ private:
     // its deactivation timer in Bullet; the device's timers are reset to match.
     std::vector<char> m_woken;
     std::vector<char> m_reshaped;  // per row: its mesh or heightfield was edited (compareRow)
+    // per row: the app set its deactivation timer (activate(), setDeactivationTime), and to what
+    std::vector<char> m_timerSet;
+    std::vector<float> m_timerValue;
+    // The rows' timers the app set, to the device (after the rows' own upload).
+    void uploadTimers();
     bool m_softCapReported = false;   // the Difference issue of SoftStepConfig::maxSubsteps was made
     bool m_emptyCapReported = false;  // the Difference issue of Config::deviceEmptyManifoldsUpTo was made
     // After a syncIn: the woken rows' timers reset, the edited concave rows' kept points dropped.

@@ -124,6 +124,8 @@ BodyRowUploads GpuWorld::changedRows()
     std::vector<BodyRowUploads> found(static_cast<size_t>(chunks));
     m_woken.assign(n, 0);
     m_reshaped.assign(n, 0);
+    m_timerSet.assign(n, 0);
+    m_timerValue.resize(n);
     std::vector<std::vector<std::pair<size_t, std::string>>> newlyBad(static_cast<size_t>(chunks));
     forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
         for (size_t r = begin; r < end; ++r) {
@@ -164,6 +166,8 @@ BodyColumns GpuWorld::everyRow()
     cols.resize(n);
     m_woken.assign(n, 0);
     m_reshaped.assign(n, 0);
+    m_timerSet.assign(n, 0);
+    m_timerValue.resize(n);
     std::vector<std::vector<std::pair<size_t, std::string>>> newlyBad(size_t(chunkCount(n, minPerThread)));
     forEachChunk(n, minPerThread, [&](size_t begin, size_t end, int chunk) {
         for (size_t r = begin; r < end; ++r) {
@@ -188,11 +192,25 @@ void GpuWorld::afterSyncIn()
         if (m_woken[r]) rows.push_back(int(r));
     m_woken.clear();
     resetRows(*m_dev, rows, true);
+    uploadTimers();
     rows.clear();
     for (size_t r = 0; r < m_reshaped.size(); ++r)
         if (m_reshaped[r]) rows.push_back(int(r));
     m_reshaped.clear();
     forgetConcaveManifolds(*m_dev, rows);
+}
+
+void GpuWorld::uploadTimers()
+{
+    std::vector<int> rows;
+    std::vector<float> times;
+    for (size_t r = 0; r < m_timerSet.size(); ++r)
+        if (m_timerSet[r]) {
+            rows.push_back(int(r));
+            times.push_back(m_timerValue[r]);
+        }
+    m_timerSet.clear();
+    setSleepTimes(*m_dev, rows, times);
 }
 
 bool GpuWorld::compareRow(size_t r, bool all, BodyRowUpdate* u, std::string* newlyBad)
@@ -219,6 +237,15 @@ bool GpuWorld::compareRow(size_t r, bool all, BodyRowUpdate* u, std::string* new
     btVector3 ang = rb ? rb->getAngularVelocity() : btVector3(0, 0, 0);
     btVector3 force = rb ? rb->getTotalForce() : btVector3(0, 0, 0);
     btVector3 torque = rb ? rb->getTotalTorque() : btVector3(0, 0, 0);
+    // The app's activate() zeroes the body's deactivation timer (stock keeps a slow body awake
+    // that way); the device's timer follows any value the app set (a rebuild: every timer but 0,
+    // the device's start).
+    const float deactivation = o->getDeactivationTime();
+    if ((all && deactivation != 0.0f) || (!all && deactivation != m.deactivation)) {
+        m_timerSet[r] = 1;
+        m_timerValue[r] = deactivation;
+    }
+    m.deactivation = deactivation;
     bool changed = all || excluded != m.excluded || std::memcmp(&props, &m.props, sizeof(props)) != 0 ||
                    !sameTransform(o->getWorldTransform(), m.xf) || !sameVec(lin, m.linVel) || !sameVec(ang, m.angVel) ||
                    !sameVec(force, m.force) || !sameVec(torque, m.torque);

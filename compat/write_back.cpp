@@ -109,6 +109,10 @@ bool GpuWorld::writeRow(size_t r, btRigidBody* body, const BodyReadback& rb, boo
         body->setDeactivationTime(0);
         m.props.flags &= ~BTG_BODY_SLEEPING;
     }
+    // The device's own timer, as stock's updateDeactivation leaves m_deactivationTime (read by
+    // apps; the next call sees the app's activate() by it)
+    if (sleepRead) body->setDeactivationTime(rb.sleepTime[r]);
+    m.deactivation = body->getDeactivationTime();
     m.xf = body->getWorldTransform();
     m.linVel = body->getLinearVelocity();
     m.angVel = body->getAngularVelocity();

@@ -23,6 +23,15 @@ __kernel void scatter_bodies(int n, __global const int* restrict rows, __global 
     props[r] = rowProps[k];
 }
 
+/* The app's own deactivation timers (Bullet's m_deactivationTime: activate() zeroes it, an app
+ * may set it) for the rows whose timer it changed since the last readback. */
+__kernel void set_sleep_times(int n, __global const int* restrict rows, __global const float* restrict times,
+                              __global float* sleepTime)
+{
+    int k = get_global_id(0);
+    if (k < n) sleepTime[rows[k]] = times[k];
+}
+
 /* A row that takes a new body starts as rebuild() starts every row: no time under the sleeping
  * thresholds, no island yet (+inf), awake. */
 __kernel void reset_rows(int n, __global const int* restrict rows, __global float* sleepTime,

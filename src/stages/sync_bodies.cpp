@@ -75,6 +75,16 @@ void resetRows(DeviceWorld& w, const std::vector<int>& rows, bool woken)
         .run(rows.size());
 }
 
+void setSleepTimes(DeviceWorld& w, const std::vector<int>& rows, const std::vector<float>& times)
+{
+    if (rows.empty()) return;
+    w.stagingRows.upload(w.ctx, rows);
+    w.stagingTimes.upload(w.ctx, times);
+    cl::Launch(w.ctx, w.ctx.program("sync_bodies").kernel("set_sleep_times"), &w.profiler)
+        .arg(int(rows.size())).arg(w.stagingRows).arg(w.stagingTimes).arg(w.sleepTime)
+        .run(rows.size());
+}
+
 void syncOut(DeviceWorld& w, BodyReadback& out)
 {
     size_t n = size_t(w.numBodies);
@@ -83,6 +93,7 @@ void syncOut(DeviceWorld& w, BodyReadback& out)
     out.linVel.resize(w.ctx, n);
     out.angVel.resize(w.ctx, n);
     out.sleepState.resize(w.ctx, n);
+    out.sleepTime.resize(w.ctx, n);
     out.counters.resize(w.ctx, kNumCounters);
     // Non-blocking reads queued together, one wait: a single round trip per call.
     w.pos.readAsync(w.ctx, out.pos.data(), n);
@@ -90,6 +101,7 @@ void syncOut(DeviceWorld& w, BodyReadback& out)
     w.linVel.readAsync(w.ctx, out.linVel.data(), n);
     w.angVel.readAsync(w.ctx, out.angVel.data(), n);
     w.sleepState.readAsync(w.ctx, out.sleepState.data(), n);
+    w.sleepTime.readAsync(w.ctx, out.sleepTime.data(), n);
     cl_event counted = nullptr;
     w.counters.readAsync(w.ctx, out.counters.data(), kNumCounters, 0, &counted);
     // The contact reports are queued behind those: as many as the last call had plus an eighth

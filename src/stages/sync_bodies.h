@@ -87,6 +87,8 @@ void resizeBodies(DeviceWorld& w, int n);
 void syncIn(DeviceWorld& w, const BodyRowUploads& rows);
 // Writes every row (the columns' size must be the world's numBodies).
 void writeColumns(DeviceWorld& w, const BodyColumns& rows);
+// Sets the rows' own deactivation timers (the app's setDeactivationTime, or activate()'s reset).
+void setSleepTimes(DeviceWorld& w, const std::vector<int>& rows, const std::vector<float>& times);
 // Clears the sleeping and island timers of rows that now hold a new body.
 // woken: rows of sleeping bodies the app woke (their islands wake before the next solve, as
 // stock's); else fresh rows.
@@ -97,6 +99,7 @@ void resetRows(DeviceWorld& w, const std::vector<int>& rows, bool woken = false)
 struct BodyReadback {
     cl::PinnedArray<BtgFloat4> pos, rot, linVel, angVel;
     cl::PinnedArray<uint> sleepState;  // 1: asleep
+    cl::PinnedArray<float> sleepTime;  // each body's own deactivation timer (its m_deactivationTime)
     cl::PinnedArray<uint> counters;
     // The call's contact reports (report_contacts), when that stage ran: contacts[0, numContacts).
     cl::PinnedArray<BtgContactReport> contacts;
@@ -113,6 +116,7 @@ struct BodyReadback {
         linVel.release();
         angVel.release();
         sleepState.release();
+        sleepTime.release();
         counters.release();
         contacts.release();
         reports = nullptr;

@@ -263,6 +263,7 @@ struct DeviceWorld {
     // --- sync_in staging (kept across calls: a quiet step allocates nothing) ---
     cl::DeviceArray<int> stagingRows;
     cl::DeviceArray<BtgFloat4> stagingStates;  // 6 per row: pos, rot, linVel, angVel, force, torque
+    cl::DeviceArray<float> stagingTimes;       // setSleepTimes: a deactivation timer per row
     cl::DeviceArray<BtgBodyProps> stagingProps;
 
     // --- counts and status ---

@@ -169,6 +169,49 @@ TEST(Landing, BallKnocksTheTopOffASleepingStackAsOnStock)
     }
 }
 
+// An app that calls activate() every step keeps a slow body awake, as on stock: activate() zeroes
+// the body's deactivation timer (m_deactivationTime), which btgpu never read, so its device timer
+// ran on and put a box sliding at 0.2 m/s on ice to sleep after 2 s (its velocity zeroed: it
+// stopped at x 0.37 where stock's slides on to 1.0). The timer the app reads back
+// (getDeactivationTime) is stock's too (it read 0 on btgpu). Both modes, the GPU path every step.
+TEST(Landing, ActivateEveryStepKeepsASlowBodyAwakeAsOnStock)
+{
+    for (const Config& config : {Config(), Config::bulletMode()}) {
+        SCOPED_TRACE(config.solver == SolverKind::Auto ? "default" : "bullet mode");
+        scenes::ScenePtr worlds[2];
+        btRigidBody* box[2] = {};
+        float timers[2][4] = {};
+        for (int w = 0; w < 2; ++w) {
+            worlds[w] = std::make_unique<scenes::Scene>(w == 0 ? WorldKind::Stock : WorldKind::Gpu, config, "ice");
+            scenes::Scene& sc = *worlds[w];
+            sc.addBody(sc.boxShape(btVector3(50, 1, 50)), 0, btVector3(0, -1, 0))->setFriction(0);
+            box[w] = sc.addBody(sc.boxShape(btVector3(btScalar(.3), btScalar(.3), btScalar(.3))), 1, btVector3(0, btScalar(.3), 0));
+            box[w]->setFriction(0);
+            for (int k = 0; k < 10; ++k) sc.step();
+            // the timer each second of a box left to come to rest, first
+            for (int t = 0; t < 2; ++t) {
+                for (int k = 0; k < 60; ++k) sc.step();
+                timers[w][t] = float(box[w]->getDeactivationTime());
+            }
+            box[w]->activate();
+            box[w]->setLinearVelocity(btVector3(btScalar(.2), 0, 0));
+            for (int k = 0; k < 300; ++k) {
+                box[w]->activate();
+                sc.step();
+                if (w == 1) ASSERT_TRUE(sc.gpuWorld()->isGpuPath()) << k;
+            }
+            timers[w][2] = float(box[w]->getDeactivationTime());
+        }
+        const double xs = box[0]->getWorldTransform().getOrigin().x(), xg = box[1]->getWorldTransform().getOrigin().x();
+        std::printf("kept awake on ice: x stock %.4f btgpu %.4f; timers %.3f %.3f %.3f / %.3f %.3f %.3f\n", xs, xg,
+                    timers[0][0], timers[0][1], timers[0][2], timers[1][0], timers[1][1], timers[1][2]);
+        EXPECT_NEAR(xs, 1.0, 0.01) << "stock's box slid on (the scene is wrong otherwise)";
+        EXPECT_NEAR(xg, xs, 1e-3) << "measured before: 0.37 (put to sleep, stopped)";
+        EXPECT_EQ(box[1]->getActivationState(), box[0]->getActivationState());
+        for (int t = 0; t < 3; ++t) EXPECT_NEAR(timers[1][t], timers[0][t], 1e-5) << "timer " << t << " (before: 0)";
+    }
+}
+
 // A 3 kg box dropped from 1 m onto a stack that has fallen asleep, as on stock. Stock's islands
 // are its broadphase pairs: the box's pair wakes the stack a step before the box lands, so the
 // stack's own pairs are collided when the blow comes. btgpu woke it only when the box touched
