@@ -72,14 +72,8 @@ void storeContactCache(DeviceWorld& w, bool count, bool overSoftRows)
     const size_t cacheCapacity = w.contactCache.capacity();
     // The new cache beside the old one: the soft step's dead rows (then copied back), or a
     // second buffer the two swap with.
-    cl::ArrayView<BtgCachedContact> next;
-    if (overSoftRows) {
-        w.contactCacheNext.release();
-        next = w.solverScratch.rowsAs<BtgCachedContact>(ctx, cacheCapacity);
-    } else {
-        w.contactCacheNext.reserveExact(ctx, cacheCapacity);
-        next = cl::ArrayView<BtgCachedContact>(w.contactCacheNext);
-    }
+    const cl::ArrayView<BtgCachedContact> next =
+        w.solverScratch.afterSolve(ctx, w.contactCacheNext, cacheCapacity, overSoftRows);
     w.carryRank.reserve(ctx, cacheCapacity + 1);
     w.cachePos.reserve(ctx, std::max<size_t>(w.contactCapacity, 1));
     w.carryPos.reserve(ctx, cacheCapacity);

@@ -16,13 +16,7 @@ void reportContacts(DeviceWorld& w, bool overSoftRows)
     unmapReports(w);  // the last call's reports, mapped for the fill on a CPU device: written anew now
     const int contactCapacity = int(std::min({w.contactCapacity, w.contacts.capacity(), w.contactManifolds.capacity()}));
     const size_t n = size_t(std::max(contactCapacity, 1));
-    if (overSoftRows) {
-        w.contactReports.release();
-        w.reports = w.solverScratch.rowsAs<BtgContactReport>(ctx, n);
-    } else {
-        w.contactReports.reserveExact(ctx, n);
-        w.reports = cl::ArrayView<BtgContactReport>(w.contactReports);
-    }
+    w.reports = w.solverScratch.afterSolve(ctx, w.contactReports, n, overSoftRows);
     w.subPairs.reserve(ctx, 1);  // read only for a manifold past the pair slots: a convex–concave group
     cl::Launch(ctx, ctx.program("report_contacts").kernel("report_contacts"), &w.profiler)
         .arg(w.contacts).arg(w.contactManifolds).arg(w.manifolds).arg(w.counters).arg(contactCapacity).arg(w.pos)

@@ -46,6 +46,18 @@ struct SolverScratch {
         softContacts.reserveExact(ctx, (n * sizeof(T) + sizeof(BtgSoftContact) - 1) / sizeof(BtgSoftContact));
         return cl::ArrayView<T>::over(softContacts, n);
     }
+    // n elements of a column that lives only after the solve: over the soft rows (the soft step
+    // solved: `own` released) or in its own buffer (the other solvers).
+    template <typename T>
+    cl::ArrayView<T> afterSolve(cl::Context& ctx, cl::DeviceArray<T>& own, size_t n, bool overSoftRows)
+    {
+        if (overSoftRows) {
+            own.release();
+            return rowsAs<T>(ctx, n);
+        }
+        own.reserveExact(ctx, std::max<size_t>(n, 1));
+        return cl::ArrayView<T>(own);
+    }
     cl::DeviceArray<int> edgeSlot;
     // each body's edges (dynamic sides only, sorted), the warm start's gather:
     // softListEntries[softListStart[b], softListStart[b + 1])
