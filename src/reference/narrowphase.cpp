@@ -3,6 +3,7 @@
 // exactly as the kernels the table expands into do.
 #include "reference/narrowphase.h"
 
+#include "shared/cache_search.h"
 #include "shared/clip.h"
 #include "shared/compound.h"
 #include "shared/concave_manifold.h"
@@ -17,8 +18,9 @@ int pairKind(const BtgPair& pair, const BtgBodyProps* props, const ShapeTablesVi
     return btgPairKindOf(pair, props, t.shapes, t.children);
 }
 
-BtgManifold referenceContact(const BtgPair& pair, const BtgFloat4* pos, const BtgFloat4* rot,
-                             const BtgBodyProps* props, const ShapeTablesView& t)
+namespace {
+BtgManifold routineContact(const BtgPair& pair, const BtgFloat4* pos, const BtgFloat4* rot, const BtgBodyProps* props,
+                           const ShapeTablesView& t)
 {
     BtgCollider a = btgLoadPairCollider(pair, 0, pos, rot, props, t.shapes, t.children);
     BtgCollider b = btgLoadPairCollider(pair, 1, pos, rot, props, t.shapes, t.children);
@@ -37,14 +39,26 @@ BtgManifold referenceContact(const BtgPair& pair, const BtgFloat4* pos, const Bt
     default: return btgWithChildKeys(btgEmptyManifold(pair.a, pair.b), pair, t.children);
     }
 }
+}  // namespace
+
+BtgManifold referenceContact(const BtgPair& pair, const BtgFloat4* pos, const BtgFloat4* rot,
+                             const BtgBodyProps* props, const ShapeTablesView& t, bool speculative, CacheView cache)
+{
+    BtgManifold m = routineContact(pair, pos, rot, props, t);
+    // As BTG_NARROWPHASE_KERNEL: the bullet mode's sphere–sphere point apart needs a held pair.
+    if (!speculative && pairKind(pair, props, t) == BTG_PAIR_SPHERE_SPHERE && m.numPoints > 0 &&
+        m.points[0].distance > 0.0f)
+        m = btgSphereSphereAsStock(m, cache.count > 0 && btgFindPrevContact(cache.entries, cache.count, m) >= 0);
+    return m;
+}
 
 std::vector<BtgManifold> referenceNarrowphase(const std::vector<BtgPair>& pairs, const BtgFloat4* pos,
                                               const BtgFloat4* rot, const BtgBodyProps* props,
-                                              const ShapeTablesView& t)
+                                              const ShapeTablesView& t, bool speculative, CacheView cache)
 {
     std::vector<BtgManifold> out;
     out.reserve(pairs.size());
-    for (const BtgPair& p : pairs) out.push_back(referenceContact(p, pos, rot, props, t));
+    for (const BtgPair& p : pairs) out.push_back(referenceContact(p, pos, rot, props, t, speculative, cache));
     return out;
 }
 
