@@ -5,10 +5,7 @@
  * kind-grouped pairs (kindRanges[BTG_KIND_RANGE_*(kind)], read on the device), so each pair is
  * written by exactly one kernel.
  * Reads pairs, kindOrder, kindRanges, pos, rot, props (shape), shapes, hullVertices/Faces/Indices.
- * Writes manifolds[slot] for the pair slots of the kernel's kind (numPoints 0 when apart). The
- * bullet mode's sphere–sphere kernel also reads the warm-start cache (stock's keeps a point
- * apart only when it had one). */
-#include "shared/cache_search.h"
+ * Writes manifolds[slot] for the pair slots of the kernel's kind (numPoints 0 when apart). */
 #include "shared/compound.h"
 #include "shared/simple_contacts.h"
 

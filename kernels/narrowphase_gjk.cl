@@ -1,6 +1,6 @@
 /* narrowphase_gjk.cl — Stage: narrowphase_gjk, the pairs with a convex shape known by its
  * support function (capsule, cylinder, cone, multi-sphere, convex triangle mesh, uniformly
- * scaled convex) against any convex or a plane: the one point Bullet's algorithm adds a step
+ * scaled convex) against any convex or a plane, and two spheres: the one point Bullet's algorithm adds a step
  * (shared/gjk.h) into the pair's persistent manifold (shared/persistent_manifold.h); and,
  * after the solve, store_persistent_manifolds keeps those manifolds for the next substep.
  * Launch: collide_persistent, one kernel for every kind of the sub-table, any number of work-items
@@ -11,8 +11,12 @@
  * Writes manifolds[slot], pairManifolds[slot] and gjkPairState[slot] of the kind's pairs;
  * then gjkCache (in the warm-start cache's order). */
 #include "shared/polyhedral_contacts.h"
+#include "shared/simple_contacts.h"
 #define BTG_PERSISTENT_STEP btgPairStep
-#define BTG_SPECULATIVE_COLLIDE btgCollideGjk /* the host never asks it of these kinds */
+/* The soft step collides two spheres afresh, with its speculative points (Box2D's); every other
+ * kind here keeps its persistent manifold in both modes. */
+#define BTG_SPECULATIVE_COLLIDE btgCollideSphereSphere
+#define BTG_SPECULATIVE_KIND(kind) ((kind) == BTG_PAIR_SPHERE_SPHERE)
 #include "shared/persistent_kernels.h"
 
 BTG_PERSISTENT_PROGRAM_KERNEL(BTG_PAIR_KINDS_NARROWPHASE_GJK)

@@ -598,10 +598,25 @@ static inline BtgConvexPoint btgPlanePoint(BtgCollider c, BtgCollider p, BTG_CON
     return btgMakeConvexPoint(n, vtx - n * dist, dist);
 }
 
+#define BTG_SPHERE_PAIR_EPSILON 1.1920929e-07f /* Bullet's SIMD_EPSILON (float build) */
+/* btSphereSphereCollisionAlgorithm: a point only while the two spheres touch (the distance of
+ * their centres <= the radii's sum; none apart, however near), on B's surface along the line of
+ * the centres (+x for concentric ones, as Bullet: a length below its SIMD_EPSILON). */
+static inline BtgConvexPoint btgSpherePairPoint(BtgCollider a, BtgCollider b)
+{
+    const BtgFloat4 d = btgXyz(a.pose.pos - b.pose.pos);
+    const float len = btgLength3(d);
+    const float ra = a.shape.param.x, rb = b.shape.param.x;
+    if (len > ra + rb) return btgNoPoint();
+    const BtgFloat4 n = len > BTG_SPHERE_PAIR_EPSILON ? d * (1.0f / len) : btgMake4(1.0f, 0.0f, 0.0f, 0.0f);
+    return btgMakeConvexPoint(n, btgXyz(b.pose.pos) + n * rb, len - (ra + rb));
+}
+
 /* The point Bullet's algorithm for this pair adds in one step (pair order: A = a). */
 static inline BtgConvexPoint btgConvexPairPoint(BtgCollider a, BtgCollider b, BTG_CONST_GLOBAL BtgFloat4* verts,
                                                 float threshold)
 {
+    if (a.shape.type == BTG_SHAPE_SPHERE && b.shape.type == BTG_SHAPE_SPHERE) return btgSpherePairPoint(a, b);
     if (b.shape.type == BTG_SHAPE_PLANE) return btgPlanePoint(a, b, verts, threshold);
     if (a.shape.type == BTG_SHAPE_PLANE) {
         BtgConvexPoint p = btgPlanePoint(b, a, verts, threshold);

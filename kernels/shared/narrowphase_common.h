@@ -175,9 +175,7 @@ static inline BtgManifoldRange btgOneManifold(int slot, BtgManifold m)
  * only (find_pairs then sorts nothing). A pair whose shapes are not this row's (a stale plan)
  * gets no points rather than another kind's routine. Writes manifolds[slot] of each pair in the
  * range (numPoints 0 when apart; manifolds stay in pair order) and pairManifolds[slot], the
- * pair's range of manifolds with points (btgOneManifold). stockSpheres (the bullet mode): a
- * sphere–sphere point apart only for a pair the warm-start cache holds (btgSphereSphereAsStock,
- * simple_contacts.h; counters[BTG_COUNTER_PREV_CONTACTS] entries of cache). */
+ * pair's range of manifolds with points (btgOneManifold). */
 #define BTG_NARROWPHASE_KERNEL(program, kind, shapeA, shapeB, routine, kernel)                                     \
     __kernel void kernel(__global const BtgPair* restrict pairs, __global const uint* restrict kindOrder,          \
                          __global const uint* restrict kindRanges, int indirect,                                    \
@@ -187,9 +185,7 @@ static inline BtgManifoldRange btgOneManifold(int slot, BtgManifold m)
                          __global const BtgFloat4* restrict verts, __global const BtgFace* restrict faces,          \
                          __global const int* restrict indices, __global const BtgFloat4* restrict edges,            \
                          __global BtgManifold* restrict manifolds,                                                  \
-                         __global BtgManifoldRange* restrict pairManifolds,                                         \
-                         __global const BtgCachedContact* restrict cache, int cacheCapacity,                        \
-                         __global const uint* restrict counters, int stockSpheres)                                  \
+                         __global BtgManifoldRange* restrict pairManifolds)                                         \
     {                                                                                                               \
         const uint end = kindRanges[BTG_KIND_RANGE_END(kind)];                                                      \
         for (uint i = kindRanges[BTG_KIND_RANGE_START(kind)] + (uint)get_global_id(0); i < end;                    \
@@ -199,15 +195,11 @@ static inline BtgManifoldRange btgOneManifold(int slot, BtgManifold m)
             BtgCollider a = btgLoadPairCollider(p, 0, pos, rot, props, shapes, children);                           \
             BtgCollider b = btgLoadPairCollider(p, 1, pos, rot, props, shapes, children);                           \
             const float t = btgPairThreshold(a.shape, b.shape);                                                     \
-            BtgManifold m = btgWithChildKeys(                                                                       \
+            const BtgManifold m = btgWithChildKeys(                                                                 \
                 btgPairKind(a.shape.type, b.shape.type) == (kind)                                                   \
                     ? btgWithThreshold(routine(a, b, verts, faces, indices, edges, t), t)                           \
                     : btgEmptyManifold(p.a, p.b),                                                                   \
                 p, children);                                                                                       \
-            if ((kind) == BTG_PAIR_SPHERE_SPHERE && stockSpheres && m.numPoints > 0 && m.points[0].distance > 0.0f) { \
-                const int prevCount = (int)min(counters[BTG_COUNTER_PREV_CONTACTS], (uint)cacheCapacity);          \
-                m = btgSphereSphereAsStock(m, btgFindPrevContact(cache, prevCount, m) >= 0);                        \
-            }                                                                                                       \
             manifolds[slot] = m;                                                                                    \
             pairManifolds[slot] = btgOneManifold((int)slot, m);                                                     \
         }                                                                                                           \

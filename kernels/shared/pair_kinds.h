@@ -58,8 +58,6 @@
  * (A = pair.a, whichever shape that is), the shape tables and the pair's breaking threshold,
  * and returns the pair's manifold (BTG_COLLIDE_ROUTINE in narrowphase_common.h). */
 #define BTG_PAIR_KINDS_NARROWPHASE(X)                                                                          \
-    X(narrowphase, BTG_PAIR_SPHERE_SPHERE, BTG_SHAPE_SPHERE, BTG_SHAPE_SPHERE, btgCollideSphereSphere,         \
-      collide_sphere_sphere)                                                                                   \
     X(narrowphase, BTG_PAIR_SPHERE_HULL, BTG_SHAPE_SPHERE, BTG_SHAPE_HULL, btgCollideSphereHull,               \
       collide_sphere_hull)                                                                                     \
     X(narrowphase, BTG_PAIR_SPHERE_PLANE, BTG_SHAPE_SPHERE, BTG_SHAPE_PLANE, btgCollideSpherePlane,            \
@@ -73,8 +71,12 @@
  * (btConvexPlaneCollisionAlgorithm, boxes and hulls included): one point a substep into a
  * persistent manifold (persistent_manifold.h); two hulls with polyhedral features add their
  * clipped faces after the GJK point (polyhedral_contacts.h). Their kernels also read and write
- * the manifold each pair kept (narrowphase_gjk.cl); the routine is the first step of a new pair. */
+ * the manifold each pair kept (narrowphase_gjk.cl); the routine is the first step of a new pair.
+ * Two spheres are here for their persistent manifold (btSphereSphereCollisionAlgorithm's closed
+ * form point, made only while they touch: btgSpherePairPoint); the soft step collides them afresh
+ * (btgCollideSphereSphere, speculative points) and keeps nothing. */
 #define BTG_PAIR_KINDS_NARROWPHASE_GJK(X)                                                                               \
+    X(narrowphase_gjk, BTG_PAIR_SPHERE_SPHERE, BTG_SHAPE_SPHERE, BTG_SHAPE_SPHERE, btgCollideGjk, collide_sphere_sphere) \
     X(narrowphase_gjk, BTG_PAIR_SPHERE_CONVEX, BTG_SHAPE_SPHERE, BTG_SHAPE_CONVEX, btgCollideGjk, collide_sphere_convex) \
     X(narrowphase_gjk, BTG_PAIR_HULL_CONVEX, BTG_SHAPE_HULL, BTG_SHAPE_CONVEX, btgCollideGjk, collide_hull_convex)       \
     X(narrowphase_gjk, BTG_PAIR_PLANE_CONVEX, BTG_SHAPE_PLANE, BTG_SHAPE_CONVEX, btgCollideGjk, collide_plane_convex)    \

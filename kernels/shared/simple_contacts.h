@@ -64,20 +64,6 @@ static inline BtgManifold btgCollideSphereSphere(BtgCollider a, BtgCollider b, B
     return m;
 }
 
-/* Stock's btSphereSphereCollisionAlgorithm makes a point only while the spheres touch (their
- * distance <= 0) and keeps the one it made (refreshContactPoints) while it stays within the
- * breaking threshold. So in the bullet mode a sphere–sphere point apart is kept only when the
- * pair had one the substep before (`held`: its manifold is in the warm-start cache); the soft
- * step keeps every point within the threshold (speculative, as Box2D's). Without the rule two
- * balls closing at 2 m/s met a speculative point a step early, whose restitution target came
- * before the impact (stock's solver subtracts distance / dt from it) and was spent against the
- * approach: they parted at 0.13-0.49 m/s where stock's part at 0.74-0.81. */
-static inline BtgManifold btgSphereSphereAsStock(BtgManifold m, int held)
-{
-    if (m.numPoints > 0 && m.points[0].distance > 0.0f && !held) m.numPoints = 0;
-    return m;
-}
-
 /* Canonical order: sphere s is A, plane p is B. */
 static inline BtgManifold btgSpherePlaneCanonical(BtgCollider s, BtgCollider p, float threshold)
 {

@@ -3,7 +3,6 @@
 // exactly as the kernels the table expands into do.
 #include "reference/narrowphase.h"
 
-#include "shared/cache_search.h"
 #include "shared/clip.h"
 #include "shared/compound.h"
 #include "shared/concave_manifold.h"
@@ -18,9 +17,8 @@ int pairKind(const BtgPair& pair, const BtgBodyProps* props, const ShapeTablesVi
     return btgPairKindOf(pair, props, t.shapes, t.children);
 }
 
-namespace {
-BtgManifold routineContact(const BtgPair& pair, const BtgFloat4* pos, const BtgFloat4* rot, const BtgBodyProps* props,
-                           const ShapeTablesView& t)
+BtgManifold referenceContact(const BtgPair& pair, const BtgFloat4* pos, const BtgFloat4* rot,
+                             const BtgBodyProps* props, const ShapeTablesView& t, bool speculative)
 {
     BtgCollider a = btgLoadPairCollider(pair, 0, pos, rot, props, t.shapes, t.children);
     BtgCollider b = btgLoadPairCollider(pair, 1, pos, rot, props, t.shapes, t.children);
@@ -28,6 +26,10 @@ BtgManifold routineContact(const BtgPair& pair, const BtgFloat4* pos, const BtgF
     const BtgFloat4 *verts = t.hullVertices, *edges = t.hullEdges;
     const BtgFace* faces = t.hullFaces;
     const int* indices = t.hullIndices;
+    if (speculative && pairKind(pair, props, t) == BTG_PAIR_SPHERE_SPHERE)  // narrowphase_gjk.cl's soft step
+        return btgWithChildKeys(
+            btgWithThreshold(btgCollideSphereSphere(a, b, verts, faces, indices, edges, threshold), threshold), pair,
+            t.children);
     switch (pairKind(pair, props, t)) {
 #define BTGPU_REFERENCE_ROW(program, kind, shapeA, shapeB, routine, kernel) \
     case kind:                                                              \
@@ -39,26 +41,14 @@ BtgManifold routineContact(const BtgPair& pair, const BtgFloat4* pos, const BtgF
     default: return btgWithChildKeys(btgEmptyManifold(pair.a, pair.b), pair, t.children);
     }
 }
-}  // namespace
-
-BtgManifold referenceContact(const BtgPair& pair, const BtgFloat4* pos, const BtgFloat4* rot,
-                             const BtgBodyProps* props, const ShapeTablesView& t, bool speculative, CacheView cache)
-{
-    BtgManifold m = routineContact(pair, pos, rot, props, t);
-    // As BTG_NARROWPHASE_KERNEL: the bullet mode's sphere–sphere point apart needs a held pair.
-    if (!speculative && pairKind(pair, props, t) == BTG_PAIR_SPHERE_SPHERE && m.numPoints > 0 &&
-        m.points[0].distance > 0.0f)
-        m = btgSphereSphereAsStock(m, cache.count > 0 && btgFindPrevContact(cache.entries, cache.count, m) >= 0);
-    return m;
-}
 
 std::vector<BtgManifold> referenceNarrowphase(const std::vector<BtgPair>& pairs, const BtgFloat4* pos,
                                               const BtgFloat4* rot, const BtgBodyProps* props,
-                                              const ShapeTablesView& t, bool speculative, CacheView cache)
+                                              const ShapeTablesView& t)
 {
     std::vector<BtgManifold> out;
     out.reserve(pairs.size());
-    for (const BtgPair& p : pairs) out.push_back(referenceContact(p, pos, rot, props, t, speculative, cache));
+    for (const BtgPair& p : pairs) out.push_back(referenceContact(p, pos, rot, props, t));
     return out;
 }
 

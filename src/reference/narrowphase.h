@@ -21,25 +21,16 @@ struct ShapeTablesView {
 // BTG_PAIR_* kind of a pair (shared/pair_kinds.h).
 int pairKind(const BtgPair& pair, const BtgBodyProps* props, const ShapeTablesView& t);
 
-// The warm-start cache the bullet mode's sphere–sphere rule reads (btgSphereSphereAsStock):
-// `count` entries in pair order; an empty one holds no pair.
-struct CacheView {
-    const BtgCachedContact* entries = nullptr;
-    int count = 0;
-};
-
-// The manifold the device writes for one pair (bodyA = pair.a, bodyB = pair.b). speculative:
-// the soft step's (every sphere–sphere point within the threshold); else the bullet mode's, a
-// sphere–sphere point apart only for a pair `cache` holds.
+// The manifold the device writes for one pair (bodyA = pair.a, bodyB = pair.b); a pair of a
+// kind with a persistent manifold as its first step (the manifold it had is empty).
+// speculative: the soft step's (two spheres collided afresh, with speculative points).
 BtgManifold referenceContact(const BtgPair& pair, const BtgFloat4* pos, const BtgFloat4* rot,
-                             const BtgBodyProps* props, const ShapeTablesView& t, bool speculative = false,
-                             CacheView cache = {});
+                             const BtgBodyProps* props, const ShapeTablesView& t, bool speculative = false);
 
 // Every pair in order; plane–plane pairs (owned by no kernel) come back empty.
 std::vector<BtgManifold> referenceNarrowphase(const std::vector<BtgPair>& pairs, const BtgFloat4* pos,
                                               const BtgFloat4* rot, const BtgBodyProps* props,
-                                              const ShapeTablesView& t, bool speculative = false,
-                                              CacheView cache = {});
+                                              const ShapeTablesView& t);
 
 // One convex–mesh pair as the midphase and "narrowphase_mesh" make it: the manifold of each
 // of its sub-pairs by the kind's triangle routine, then gathered (btgGatherMeshManifolds);

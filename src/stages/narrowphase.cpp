@@ -26,9 +26,6 @@ void narrowphaseProgram(DeviceWorld& w, const PairKinds& kinds, const char* prog
     // enough to fill the device, never more than there are pair slots.
     const size_t items = std::min(w.pairCapacity, size_t(std::max<cl_uint>(w.ctx.device().computeUnits, 1)) * 1024);
     const cl_int indirect = w.pairKindsIndirect ? 1 : 0;
-    // The bullet mode's sphere–sphere pairs keep a point apart only when they had one (stock's
-    // algorithm makes points only while the spheres touch): the cache says which had.
-    const cl_int stockSpheres = w.speculativeContacts ? 0 : 1;
     cl::Program& prog = w.ctx.program(program);
     for (int r = 0; r < kNumPairKindRows; ++r) {
         const PairKindRow& row = kPairKindRows[r];
@@ -36,8 +33,7 @@ void narrowphaseProgram(DeviceWorld& w, const PairKinds& kinds, const char* prog
         cl::Launch(w.ctx, prog.kernel(row.kernel), &w.profiler)
             .arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)
             .arg(w.shapes).arg(w.children).arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges)
-            .arg(w.manifolds).arg(w.pairManifolds).arg(w.contactCache).arg(int(w.contactCache.capacity()))
-            .arg(w.counters).arg(stockSpheres).run(items);
+            .arg(w.manifolds).arg(w.pairManifolds).run(items);
     }
 }
 

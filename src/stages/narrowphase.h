@@ -1,12 +1,10 @@
 // narrowphase.h — Stage: contact points for every pair, one kernel per row of the pair-kind
 // table (kernels/shared/pair_kinds.h) whose kind the plan has. Programs: "narrowphase"
-// (sphere–sphere, sphere–hull, sphere–plane, hull–plane) and "narrowphase_sat" (hull–hull:
-// SAT over face normals and edge–edge axes, Sutherland–Hodgman clipping, reduction to <= 4
-// points). A program whose kinds are absent is never built.
+// (sphere–hull, sphere–plane, sphere–box: closed forms, one fresh point a step; two spheres keep
+// stock's persistent manifold in "narrowphase_gjk") and "narrowphase_sat" (two boxes). A program
+// whose kinds are absent is never built.
 // Reads pairs, pairOrder and pairKindRanges (find_pairs' grouping by kind: each kernel strides
-// over its kind's range), pos, rot, props (shape), shapes and hull tables; in the bullet mode
-// (not speculativeContacts) the sphere–sphere kernel also contactCache and counters (a point
-// apart only for a pair that had one, as stock's algorithm: btgSphereSphereAsStock).
+// over its kind's range), pos, rot, props (shape), shapes and hull tables.
 // Writes manifolds[i] for each pair i < min(count, pairCapacity): bodyA/bodyB = the pair's
 // rows, sub-shape keys (BTG_NO_SUB_SHAPE for today's whole convex shapes), points on B with
 // signed distance, normal from B to A and feature id (kept below the pair's threshold: the

@@ -66,8 +66,9 @@ void narrowphasePersistent(DeviceWorld& w, const PairKinds& kinds, const char* k
     const cl_int indirect = w.pairKindsIndirect ? 1 : 0;
     const int cacheCapacity = int(w.contactCache.capacity());
     const int gjkCapacity = int(w.gjkCache.capacity());
-    // Only the box program clips speculatively, for the soft step.
-    const cl_int speculative = std::strcmp(kProgram, "narrowphase_sat") == 0 && w.speculativeContacts ? 1 : 0;
+    // The soft step collides box pairs and sphere pairs afresh (each program's
+    // BTG_SPECULATIVE_KIND); the other kinds keep their manifolds in both modes.
+    const cl_int speculative = w.speculativeContacts ? 1 : 0;
     // One kernel strides over all the program's kinds (collide_persistent).
     cl::Launch(w.ctx, w.ctx.program(kProgram).kernel("collide_persistent"), &w.profiler)
         .arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)

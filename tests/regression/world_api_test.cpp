@@ -19,7 +19,8 @@ bool has(const std::vector<std::string>& v, const std::string& s) { return std::
 
 TEST(WorldApi, PlanLeavesOutSatUntilABoxPairExists)
 {
-    // Spheres over a static plane: no hull at all, so no SAT/clipping program and no stage.
+    // Spheres over a static plane: no hull at all, so no SAT/clipping program and no stage; the
+    // GJK program keeps two spheres' persistent manifold (stock's sphere–sphere algorithm).
     btStaticPlaneShape plane(btVector3(0, 1, 0), 0);  // outlives the scene that uses it
     Scene scene(WorldKind::Gpu);
     scene.addBody(&plane, 0, btVector3(0, 0, 0));
@@ -29,8 +30,8 @@ TEST(WorldApi, PlanLeavesOutSatUntilABoxPairExists)
     ASSERT_TRUE(r->gpuPath) << r->cpuPathReason;
     EXPECT_FALSE(has(r->builtPrograms, "narrowphase_sat"));
     EXPECT_FALSE(has(r->stages, "narrowphase_sat"));
-    EXPECT_FALSE(has(r->builtPrograms, "narrowphase_gjk"));  // no convex shape: no GJK program
-    EXPECT_FALSE(has(r->stages, "narrowphase_gjk"));
+    EXPECT_TRUE(has(r->builtPrograms, "narrowphase_gjk"));
+    EXPECT_TRUE(has(r->stages, "narrowphase_gjk"));
     EXPECT_TRUE(has(r->builtPrograms, "narrowphase"));
     // Two boxes arrive: a box–box pair kind now exists, and the program comes in; the lower box
     // meets the plane as stock's convex–plane algorithm does, one point a step (the GJK program).

@@ -77,11 +77,8 @@ constexpr int kSpareSlots = 3;  // slots past the pair count: must stay untouche
 
 // speculative: the soft step's collision (two boxes clipped afresh); *stateSlots: the
 // persistent-manifold entries the world then holds (gjkPairState, gjkCache).
-// cache: the warm-start cache the substep before left (the bullet mode's sphere–sphere rule
-// reads it).
 std::vector<BtgManifold> runDevice(cl::Context& ctx, const Scene& s, bool speculative = false,
-                                   std::pair<size_t, size_t>* stateSlots = nullptr,
-                                   const std::vector<BtgCachedContact>& cache = {})
+                                   std::pair<size_t, size_t>* stateSlots = nullptr)
 {
     DeviceWorld w(ctx);
     w.speculativeContacts = speculative;
@@ -96,9 +93,7 @@ std::vector<BtgManifold> runDevice(cl::Context& ctx, const Scene& s, bool specul
     w.pairs.upload(ctx, pairs);
     std::vector<uint> counters(kNumCounters, 0);
     counters[kPairCount] = uint(s.pairs.size());
-    counters[kPrevContactCount] = uint(cache.size());
     w.counters.upload(ctx, counters);
-    if (!cache.empty()) w.contactCache.upload(ctx, cache);
     BtgManifold sentinel{};
     sentinel.numPoints = -1;
     w.manifolds.upload(ctx, std::vector<BtgManifold>(w.pairCapacity, sentinel));
@@ -314,46 +309,6 @@ TEST(Narrowphase, SphereSphereAndPlane)
     EXPECT_TRUE(hasPoint(m[2], btgMake4(0, -0.25f, 0, 0)));
 }
 
-// Two balls 1 cm apart (inside the 2 cm breaking threshold): stock's sphere–sphere algorithm
-// makes no point while they are apart and keeps the one it had (its persistent manifold), so the
-// bullet mode's kernel gives a point only to the pair the warm-start cache holds; the soft step
-// gives both (speculative points). The cache's entries are matched by body pair and sub-shape
-// keys: an entry of another pair (2, 3 here) holds nothing for pair (0, 1).
-TEST(Narrowphase, BulletModeSpheresApartKeepOnlyAPointTheyHad)
-{
-    Scene s;
-    int ball = s.t.addSphere(0.5f);
-    s.body(ball, btgMake4(0, 0, 0, 0));
-    s.body(ball, btgMake4(1.01f, 0, 0, 0));
-    s.body(ball, btgMake4(0, 0, 5, 0));
-    s.body(ball, btgMake4(1.01f, 0, 5, 0));
-    s.body(ball, btgMake4(0, 0, 9, 0));
-    s.body(ball, btgMake4(0.99f, 0, 9, 0));  // 1 cm into each other: a point in every mode
-    s.pair(0, 1);
-    s.pair(2, 3);
-    s.pair(4, 5);
-    BtgCachedContact held{};
-    held.bodyA = 2;
-    held.bodyB = 3;
-    held.partIdA = held.indexA = held.partIdB = held.indexB = BTG_NO_SUB_SHAPE;
-    held.numPoints = 1;
-    const std::vector<BtgCachedContact> cache = {held};
-    cl::Context& ctx = test::context();
-    const std::vector<BtgManifold> bullet = runDevice(ctx, s, false, nullptr, cache);
-    const std::vector<BtgManifold> soft = runDevice(ctx, s, true, nullptr, cache);
-    const std::vector<BtgManifold> ref = ref::referenceNarrowphase(s.pairs, s.pos.data(), s.rot.data(), s.props.data(),
-                                                                   s.t.view(), false, {cache.data(), int(cache.size())});
-    EXPECT_EQ(bullet[0].numPoints, 0);  // apart, not held
-    EXPECT_EQ(bullet[1].numPoints, 1);  // apart, held
-    EXPECT_EQ(bullet[2].numPoints, 1);  // touching
-    for (int i = 0; i < 3; ++i) {
-        expectSame(bullet[size_t(i)], ref[size_t(i)], size_t(i));
-        EXPECT_EQ(soft[size_t(i)].numPoints, 1) << "pair " << i;
-    }
-    EXPECT_NEAR(pointB(bullet[1], 0).w, 0.01f, tol::kContactDepth);
-    EXPECT_NEAR(pointB(soft[0], 0).w, 0.01f, tol::kContactDepth);
-}
-
 TEST(Narrowphase, SeparatedPairsHaveNoPoints)
 {
     Scene s;
@@ -389,18 +344,24 @@ TEST(Narrowphase, DeterministicAcrossRuns)
     EXPECT_GT(a[1].numPoints, 0);
 }
 
+// Spheres on a box: the sphere–box program and, for the two balls' persistent manifold, the GJK
+// program's; never the box–box SAT's.
 TEST(Narrowphase, SpheresOnlyBuildsNoSatProgram)
 {
     cl::Context ctx(cl::selectDevice(""));
     Scene s;
-    int ball = s.t.addSphere(0.5f);
+    int ball = s.t.addSphere(0.5f), cube = s.t.addBox(btgMake4(2, 0.5f, 2, 0));
     s.body(ball, btgMake4(0, 0, 0, 0));
     s.body(ball, btgMake4(0.9f, 0, 0, 0));
+    s.body(cube, btgMake4(0, -0.99f, 0, 0));
     s.pair(0, 1);
+    s.pair(0, 2);
     std::vector<BtgManifold> m = runDevice(ctx, s);
     EXPECT_EQ(m[0].numPoints, 1);
+    EXPECT_EQ(m[1].numPoints, 1);
     const std::vector<std::string>& built = ctx.builtPrograms();
     EXPECT_NE(std::find(built.begin(), built.end(), "narrowphase"), built.end());
+    EXPECT_NE(std::find(built.begin(), built.end(), "narrowphase_gjk"), built.end());
     EXPECT_EQ(std::find(built.begin(), built.end(), "narrowphase_sat"), built.end());
 }
 

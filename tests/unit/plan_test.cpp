@@ -65,13 +65,24 @@ TEST(Plan, StagesInTheTalksOrder)
 
 TEST(Plan, ConvexShapesBringTheGjkStagesAndNothingElseDoes)
 {
-    // Spheres and boxes: no GJK program (sphere-box pairs are closed form); two boxes keep a
+    // A sphere and boxes: no GJK program (sphere-box pairs are closed form); two boxes keep a
     // persistent manifold (stock's box detector), so the store comes with the box program.
     PlanInput in;
-    in.bodies = {body(BTG_SHAPE_SPHERE, 0, false), body(BTG_SHAPE_SPHERE, 1, true), body(BTG_SHAPE_BOX, 1, true)};
+    in.bodies = {body(BTG_SHAPE_SPHERE, 0, false), body(BTG_SHAPE_BOX, 1, true)};
     std::vector<Stage> stages = derivePlan(in).plan.substep();
     EXPECT_FALSE(has(stages, Stage::NarrowphaseGjk));
     EXPECT_FALSE(has(stages, Stage::StorePersistentManifolds));
+    // Two spheres keep stock's sphere-sphere manifold in the GJK program's persistent state (the
+    // bullet mode); the soft step collides them afresh and keeps nothing.
+    in.bodies.push_back(body(BTG_SHAPE_SPHERE, 1, true));
+    stages = derivePlan(in).plan.substep();
+    EXPECT_TRUE(has(stages, Stage::NarrowphaseGjk));
+    EXPECT_TRUE(has(stages, Stage::StorePersistentManifolds));
+    in.solver = SolverKind::SoftStep;
+    stages = derivePlan(in).plan.substep();
+    EXPECT_TRUE(has(stages, Stage::NarrowphaseGjk));
+    EXPECT_FALSE(has(stages, Stage::StorePersistentManifolds));
+    in.solver = PlanInput{}.solver;
     in.bodies = {body(BTG_SHAPE_BOX, 0, false), body(BTG_SHAPE_SPHERE, 1, true), body(BTG_SHAPE_BOX, 1, true)};
     stages = derivePlan(in).plan.substep();
     EXPECT_FALSE(has(stages, Stage::NarrowphaseGjk));
