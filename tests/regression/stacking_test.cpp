@@ -130,3 +130,54 @@ TEST(Stacking, BenchPileWithinStocksChaos)
         }
     }
 }
+
+// 300 marbles (radius 0.1 m, restitution 0.3) poured from random heights into a 2.2 m box: two
+// spheres keep stock's persistent manifold (btSphereSphereCollisionAlgorithm: a point only while
+// they touch, refreshed and kept), so the heap settles within stock's own chaos (PoCL,
+// 2026-12-07: mean height 0.2317 m against stock's 0.2313 +- 0.0217, spread 0.863 against
+// 0.869 +- 0.040). A pour from a grid (marbles in exact columns) is a knife edge where stock's
+// columns topple sooner; see README, Known differences.
+TEST(Stacking, MarblesPouredSettleLikeStock)
+{
+    const int steps = 180;
+    auto make = [](WorldKind kind) {
+        auto s = std::make_unique<Scene>(kind, Config::bulletMode(), "marbles");
+        s->addBody(s->boxShape(btVector3(50, 1, 50)), 0, btVector3(0, -1, 0));
+        btBoxShape* wallX = s->boxShape(btVector3(btScalar(1.1), 1, btScalar(.1)));
+        btBoxShape* wallZ = s->boxShape(btVector3(btScalar(.1), 1, btScalar(1.1)));
+        s->addBody(wallX, 0, btVector3(0, 1, btScalar(1.2)));
+        s->addBody(wallX, 0, btVector3(0, 1, btScalar(-1.2)));
+        s->addBody(wallZ, 0, btVector3(btScalar(1.2), 1, 0));
+        s->addBody(wallZ, 0, btVector3(btScalar(-1.2), 1, 0));
+        btSphereShape* marble = s->sphereShape(btScalar(.1));
+        uint32_t seed = 11u;
+        auto rnd = [&seed](double lo, double hi) {
+            seed = seed * 1664525u + 1013904223u;
+            return btScalar(lo + (hi - lo) * double(seed >> 8) / double(1u << 24));
+        };
+        for (int i = 0; i < 300; ++i) {
+            const btScalar x = rnd(-.85, .85), z = rnd(-.85, .85), y = rnd(.3, 5.0);
+            s->addBody(marble, btScalar(.05), btVector3(x, y, z))->setRestitution(btScalar(.3));
+        }
+        return s;
+    };
+    auto measure = [](const Scene& scene) {
+        scenes::Aggregates a = scenes::aggregates(scene);
+        return std::vector<double>{a.meanHeight, a.spread};
+    };
+    const std::vector<scenes::ChaosBand> bands = scenes::stockChaos(make, steps, measure, {"mean height", "spread"},
+                                                                    {tol::kChaosHeightFloor, tol::kChaosSpreadFloor});
+    scenes::ScenePtr gpu = make(WorldKind::Gpu);
+    for (int i = 0; i < steps; ++i) {
+        gpu->step();
+        ASSERT_TRUE(gpu->gpuWorld()->isGpuPath()) << gpu->report()->cpuPathReason;
+    }
+    const std::vector<double> got = measure(*gpu);
+    for (size_t k = 0; k < bands.size(); ++k) {
+        std::printf("marbles %s: btgpu %.4f, stock %.4f +- %.4f\n", bands[k].name.c_str(), got[k], bands[k].stockMean,
+                    bands[k].bound());
+        EXPECT_TRUE(bands[k].admits(got[k])) << bands[k].name << ": btgpu " << got[k] << ", stock mean "
+                                             << bands[k].stockMean << " +- " << bands[k].bound();
+    }
+    EXPECT_TRUE(scenes::allFinite(*gpu));
+}
