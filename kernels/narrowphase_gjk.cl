@@ -13,10 +13,10 @@
 #include "shared/polyhedral_contacts.h"
 #include "shared/simple_contacts.h"
 #define BTG_PERSISTENT_STEP btgPairStep
-/* The soft step collides two spheres afresh, with its speculative points (Box2D's); every other
- * kind here keeps its persistent manifold in both modes. */
-#define BTG_SPECULATIVE_COLLIDE btgCollideSphereSphere
-#define BTG_SPECULATIVE_KIND(kind) ((kind) == BTG_PAIR_SPHERE_SPHERE)
+/* The soft step collides two spheres, and a box or hull on a plane, afresh with speculative
+ * points (Box2D's); every other pair here keeps its persistent manifold in both modes. */
+#define BTG_SPECULATIVE_COLLIDE btgCollideSoftAfresh
+#define BTG_SPECULATIVE_PAIR(kind, shapeA, shapeB) btgSoftCollidesAfresh(kind, shapeA, shapeB)
 #include "shared/persistent_kernels.h"
 
 BTG_PERSISTENT_PROGRAM_KERNEL(BTG_PAIR_KINDS_NARROWPHASE_GJK)

@@ -16,7 +16,7 @@
 #include "shared/clip.h"
 #define BTG_PERSISTENT_STEP btgBoxBoxPairStep
 #define BTG_SPECULATIVE_COLLIDE btgCollideHullHull
-#define BTG_SPECULATIVE_KIND(kind) 1
+#define BTG_SPECULATIVE_PAIR(kind, shapeA, shapeB) 1
 #include "shared/persistent_kernels.h"
 
 BTG_PERSISTENT_PROGRAM_KERNEL(BTG_PAIR_KINDS_NARROWPHASE_SAT)

@@ -73,8 +73,8 @@
  * clipped faces after the GJK point (polyhedral_contacts.h). Their kernels also read and write
  * the manifold each pair kept (narrowphase_gjk.cl); the routine is the first step of a new pair.
  * Two spheres are here for their persistent manifold (btSphereSphereCollisionAlgorithm's closed
- * form point, made only while they touch: btgSpherePairPoint); the soft step collides them afresh
- * (btgCollideSphereSphere, speculative points) and keeps nothing. */
+ * form point, made only while they touch: btgSpherePairPoint). The soft step collides the kinds
+ * of BTG_SOFT_COLLIDES_AFRESH afresh (btgCollideSoftAfresh) and keeps nothing for them. */
 #define BTG_PAIR_KINDS_NARROWPHASE_GJK(X)                                                                               \
     X(narrowphase_gjk, BTG_PAIR_SPHERE_SPHERE, BTG_SHAPE_SPHERE, BTG_SHAPE_SPHERE, btgCollideGjk, collide_sphere_sphere) \
     X(narrowphase_gjk, BTG_PAIR_SPHERE_CONVEX, BTG_SHAPE_SPHERE, BTG_SHAPE_CONVEX, btgCollideGjk, collide_sphere_convex) \
@@ -86,6 +86,16 @@
     X(narrowphase_gjk, BTG_PAIR_HULL_BOX, BTG_SHAPE_HULL, BTG_SHAPE_BOX, btgCollideGjk, collide_hull_box)                \
     X(narrowphase_gjk, BTG_PAIR_PLANE_BOX, BTG_SHAPE_PLANE, BTG_SHAPE_BOX, btgCollideGjk, collide_plane_box)             \
     X(narrowphase_gjk, BTG_PAIR_CONVEX_BOX, BTG_SHAPE_CONVEX, BTG_SHAPE_BOX, btgCollideGjk, collide_convex_box)
+
+/* The GJK program's kinds the soft step collides afresh each substep, keeping no manifold: two
+ * spheres (their closed form, with speculative points) and a box or hull on a plane (every
+ * vertex within the threshold, reduced to four: a box dropped flat on a btStaticPlaneShape meets
+ * it with its face, where the one support point a step of stock's convex–plane algorithm lands
+ * it on a corner and spins it). A hull without polyhedral features on a plane (kind
+ * PLANE_CONVEX, a row of points) is collided so too, pair by pair (btgSoftCollidesAfresh,
+ * simple_contacts.h); its kind keeps its state buffers for the curved shapes it also holds. */
+#define BTG_SOFT_COLLIDES_AFRESH(kind) \
+    ((kind) == BTG_PAIR_SPHERE_SPHERE || (kind) == BTG_PAIR_HULL_PLANE || (kind) == BTG_PAIR_PLANE_BOX)
 
 /* Convex against mesh: the midphase (kernels/midphase.cl) splits each pair into (convex,
  * triangle) sub-pairs; a row's routine takes one of them (BTG_TRIANGLE_ROUTINE in

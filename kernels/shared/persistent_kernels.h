@@ -2,7 +2,7 @@
  * manifold (narrowphase_gjk.cl: the GJK kinds; narrowphase_sat.cl: two boxes): each collide
  * kernel (collide_persistent, one a program) reads the manifold its pair kept last substep, steps it (BTG_PERSISTENT_STEP, which the
  * program defines before including this) and writes it beside the pair's manifold, or with
- * `speculative` (the soft step) collides a pair of the kinds BTG_SPECULATIVE_KIND names afresh
+ * `speculative` (the soft step) collides a pair BTG_SPECULATIVE_PAIR names afresh
  * (BTG_SPECULATIVE_COLLIDE) and keeps nothing; after the
  * solve, store_persistent_manifolds keeps those manifolds for the next substep. OpenCL only. */
 #ifndef BTG_PERSISTENT_KERNELS_H
@@ -93,7 +93,8 @@ static BtgPersistentManifold btgPreviousManifold(BtgPair p, int kind, __global c
             const float t = btgPairThreshold(a.shape, b.shape);                                                       \
             BtgPersistentManifold pm = btgEmptyPersistent(p.a, p.b, kind);                                           \
             BtgManifold m = btgEmptyManifold(p.a, p.b);                                                               \
-            if (btgPairKind(a.shape.type, b.shape.type) == kind && speculative && BTG_SPECULATIVE_KIND(kind)) {       \
+            if (btgPairKind(a.shape.type, b.shape.type) == kind && speculative &&                                     \
+                BTG_SPECULATIVE_PAIR(kind, a.shape, b.shape)) {                                                       \
                 /* this step's own points, no manifold kept: kind NONE, which no pair takes */                        \
                 m = BTG_SPECULATIVE_COLLIDE(a, b, verts, faces, indices, edges, t);                                   \
                 pm = btgEmptyPersistent(p.a, p.b, BTG_PAIR_NONE);                                                     \

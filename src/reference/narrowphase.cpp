@@ -26,9 +26,9 @@ BtgManifold referenceContact(const BtgPair& pair, const BtgFloat4* pos, const Bt
     const BtgFloat4 *verts = t.hullVertices, *edges = t.hullEdges;
     const BtgFace* faces = t.hullFaces;
     const int* indices = t.hullIndices;
-    if (speculative && pairKind(pair, props, t) == BTG_PAIR_SPHERE_SPHERE)  // narrowphase_gjk.cl's soft step
+    if (speculative && btgSoftCollidesAfresh(pairKind(pair, props, t), a.shape, b.shape))  // narrowphase_gjk.cl's
         return btgWithChildKeys(
-            btgWithThreshold(btgCollideSphereSphere(a, b, verts, faces, indices, edges, threshold), threshold), pair,
+            btgWithThreshold(btgCollideSoftAfresh(a, b, verts, faces, indices, edges, threshold), threshold), pair,
             t.children);
     switch (pairKind(pair, props, t)) {
 #define BTGPU_REFERENCE_ROW(program, kind, shapeA, shapeB, routine, kernel) \

@@ -23,7 +23,8 @@ int pairKind(const BtgPair& pair, const BtgBodyProps* props, const ShapeTablesVi
 
 // The manifold the device writes for one pair (bodyA = pair.a, bodyB = pair.b); a pair of a
 // kind with a persistent manifold as its first step (the manifold it had is empty).
-// speculative: the soft step's (two spheres collided afresh, with speculative points).
+// speculative: the soft step's (the pairs btgSoftCollidesAfresh names collided afresh, with
+// speculative points).
 BtgManifold referenceContact(const BtgPair& pair, const BtgFloat4* pos, const BtgFloat4* rot,
                              const BtgBodyProps* props, const ShapeTablesView& t, bool speculative = false);
 

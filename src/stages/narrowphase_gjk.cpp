@@ -66,8 +66,8 @@ void narrowphasePersistent(DeviceWorld& w, const PairKinds& kinds, const char* k
     const cl_int indirect = w.pairKindsIndirect ? 1 : 0;
     const int cacheCapacity = int(w.contactCache.capacity());
     const int gjkCapacity = int(w.gjkCache.capacity());
-    // The soft step collides box pairs and sphere pairs afresh (each program's
-    // BTG_SPECULATIVE_KIND); the other kinds keep their manifolds in both modes.
+    // The soft step collides box pairs, sphere pairs and hulls on planes afresh (each program's
+    // BTG_SPECULATIVE_PAIR); the other pairs keep their manifolds in both modes.
     const cl_int speculative = w.speculativeContacts ? 1 : 0;
     // One kernel strides over all the program's kinds (collide_persistent).
     cl::Launch(w.ctx, w.ctx.program(kProgram).kernel("collide_persistent"), &w.profiler)

@@ -33,11 +33,11 @@ bool PairKinds::anyIn(const char* program) const
 
 bool keepsPersistentManifolds(const PairKinds& kinds, bool speculative)
 {
-    // The soft step (speculative) collides sphere pairs afresh; every other GJK kind keeps its
-    // manifold in both modes.
+    // The soft step (speculative) collides the kinds of BTG_SOFT_COLLIDES_AFRESH afresh; every
+    // other GJK kind keeps its manifold in both modes.
     for (int r = 0; r < kNumPairKindRows; ++r)
         if (kinds.has(kPairKindRows[r].kind) && std::strcmp(kPairKindRows[r].program, "narrowphase_gjk") == 0 &&
-            !(speculative && kPairKindRows[r].kind == BTG_PAIR_SPHERE_SPHERE))
+            !(speculative && BTG_SOFT_COLLIDES_AFRESH(kPairKindRows[r].kind)))
             return true;
     return !speculative && (kinds.anyIn("narrowphase_sat") || kinds.anyIn("narrowphase_mesh"));
 }

@@ -36,7 +36,8 @@ static_assert(BTG_NUM_PAIR_KINDS <= 32, "PairKinds holds one bit per kind");
 
 // Whether some pair of these kinds keeps a persistent manifold from substep to substep (the
 // buffers gjkPairState and gjkCache, the stage store_persistent_manifolds): the GJK kinds in
-// both solvers but two spheres; spheres, two boxes and convex–mesh pairs only in the bullet mode, since the soft step
+// both solvers but those of BTG_SOFT_COLLIDES_AFRESH (two spheres, a box or hull on a plane);
+// those, two boxes and convex–mesh pairs only in the bullet mode, since the soft step
 // (`speculative`) collides those afresh every substep and keeps nothing. Without any, those
 // buffers (256 bytes a pair slot and a contact slot) are not held.
 bool keepsPersistentManifolds(const PairKinds& kinds, bool speculative);

@@ -378,6 +378,45 @@ TEST(NarrowphaseGjk, SpheresMakeAPointOnlyTouchingAndKeepItApart)
     for (size_t i = 0; i < 2; ++i) expectSame(dev2[i], ref2.manifolds[i], i);
 }
 
+// A box and a hull without polyhedral features (a row of points) resting 1 cm into a static
+// plane, tilted a little: the bullet mode's first step
+// is stock's convex–plane algorithm's one support point; the soft step collides them afresh with
+// every vertex within reach, reduced to four (btgCollideSoftAfresh), so a box dropped flat meets
+// the plane with its face (BoxApproach.ABoxDroppedFlatOnAPlaneLandsFlat), and keeps nothing.
+TEST(NarrowphaseGjk, TheSoftStepMeetsAPlaneWithTheWholeFace)
+{
+    Fixture f;
+    auto* plane = f.own(new btStaticPlaneShape(btVector3(0, 1, 0), 0));
+    auto* box = f.own(new btBoxShape(btVector3(.5, .25, .5)));
+    std::vector<btVector3> pts;
+    for (int i = 0; i < 8; ++i) pts.push_back(btVector3(i & 1 ? .4 : -.4, i & 2 ? .2 : -.2, i & 4 ? .3 : -.3));
+    auto* hull = f.own(new btConvexHullShape(&pts[0].x(), int(pts.size()), sizeof(btVector3)));
+    const int p0 = f.body(plane, btVector3(0, 0, 0));
+    const int b0 = f.body(box, btVector3(0, btScalar(0.25 - 0.01), 0), btVector3(1, 0, 1), btScalar(0.002));
+    const int p1 = f.body(plane, btVector3(10, 0, 0));
+    const int h1 = f.body(hull, btVector3(10, btScalar(0.2 + 0.04 - 0.01), 0), btVector3(1, 0, 0), btScalar(0.002));
+    f.pair(p0, b0);
+    f.pair(p1, h1);
+    f.build();
+    cl::Context& ctx = test::context();
+    std::vector<BtgPersistentManifold> states, softStates;
+    const std::vector<BtgManifold> bullet = runDevice(ctx, f, {}, {}, &states);
+    const std::vector<BtgManifold> soft = runDevice(ctx, f, {}, {}, &softStates, true);
+    for (size_t i = 0; i < 2; ++i) {
+        SCOPED_TRACE("pair " + std::to_string(i));
+        EXPECT_EQ(bullet[i].numPoints, 1);
+        ASSERT_EQ(soft[i].numPoints, 4);
+        EXPECT_EQ(softStates[i].numPoints, 0);  // nothing kept
+        const BtgManifold ref = ref::referenceContact(f.pairs[i], f.pos.data(), f.rot.data(), f.props.data(),
+                                                      f.view.view(), true);
+        expectSame(soft[i], ref, i);
+        for (int k = 0; k < 4; ++k) {
+            EXPECT_NEAR(soft[i].points[k].distance, -0.01f, 0.003f) << "point " << k;  // the tilt: +-2 mm
+            EXPECT_LE(soft[i].points[k].ny, -0.9999f) << "point " << k;  // from the box (B) to the plane (A)
+        }
+    }
+}
+
 TEST(NarrowphaseGjk, PointMatchesBulletsAlgorithm)
 {
     Fixture f;
