@@ -711,11 +711,16 @@ static inline void btgSoftRolling(BtgRollingContact r, const BtgSoftContact* s, 
 }
 
 /* ApplyRestitution, after the substeps: a point that approached faster than the threshold and
- * took an impulse leaves at restitution x its approach speed. */
+ * took an impulse leaves at restitution x its approach speed. A contact's points are swept
+ * BTG_SOFT_RESTITUTION_SWEEPS times (Box2D sweeps them once): a face landing flat on four points
+ * is one impact, and one Gauss–Seidel sweep over its points hands most of it to the first,
+ * turning the body (a box bouncing at 0.8 rose to 1.27 m where the rigid answer is 1.37). */
+#define BTG_SOFT_RESTITUTION_SWEEPS 4
 static inline void btgSoftRestitution(BtgSoftContact* s, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
                                       BtgBodyVel* vb, BtgSoftParams p)
 {
     if (s->restitution == 0.0f) return;
+    for (int sweep = 0; sweep < (s->numPoints > 1 ? BTG_SOFT_RESTITUTION_SWEEPS : 1); ++sweep)
     BTG_FOR_POINTS(k, s->numPoints) {
         float mass = btgLane(s->normalMass, k), rel = btgLane(s->relativeVelocity, k);
         if (mass == 0.0f || rel > -p.restitutionThreshold || btgLane(s->totalNormal, k) == 0.0f) continue;
