@@ -17,6 +17,7 @@
 #define BTG_PERSISTENT_STEP btgBoxBoxPairStep
 #define BTG_SPECULATIVE_COLLIDE btgCollideHullHull
 #define BTG_SPECULATIVE_PAIR(kind, shapeA, shapeB) 1
+#define BTG_FRESH_KERNEL 0 /* collide_persistent clips the soft step's box pairs itself */
 #include "shared/persistent_kernels.h"
 
 BTG_PERSISTENT_PROGRAM_KERNEL(BTG_PAIR_KINDS_NARROWPHASE_SAT)

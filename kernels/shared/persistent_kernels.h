@@ -65,9 +65,12 @@ static BtgPersistentManifold btgPreviousManifold(BtgPair p, int kind, __global c
     {                                                                                                                 \
         const int kinds[] = {TABLE(BTG_PERSISTENT_KIND_ITEM)};                                                        \
         const int numKinds = (int)(sizeof(kinds) / sizeof(kinds[0]));                                                \
+        /* the kinds collide_fresh takes whole in the soft step are not walked here at all */                         \
+        const int skipFresh = BTG_FRESH_KERNEL && speculative;                                                        \
         uint total = 0u;                                                                                              \
         for (int k = 0; k < numKinds; ++k)                                                                            \
-            total += kindRanges[BTG_KIND_RANGE_END(kinds[k])] - kindRanges[BTG_KIND_RANGE_START(kinds[k])];           \
+            if (!(skipFresh && BTG_SOFT_COLLIDES_AFRESH(kinds[k])))                                                   \
+                total += kindRanges[BTG_KIND_RANGE_END(kinds[k])] - kindRanges[BTG_KIND_RANGE_START(kinds[k])];       \
         const uint per = BTG_PERSISTENT_RUNS ? (total + (uint)get_global_size(0) - 1u) / (uint)get_global_size(0) : 1u; \
         const uint start = BTG_PERSISTENT_RUNS ? (uint)get_global_id(0) * per : (uint)get_global_id(0);               \
         const uint stop = BTG_PERSISTENT_RUNS ? min(total, start + per) : total;                                      \
@@ -77,6 +80,7 @@ static BtgPersistentManifold btgPreviousManifold(BtgPair p, int kind, __global c
             int kind = BTG_PAIR_NONE;                                                                                 \
             uint i = 0u, rest = idx;                                                                                  \
             for (int k = 0; k < numKinds && kind == BTG_PAIR_NONE; ++k) {                                            \
+                if (skipFresh && BTG_SOFT_COLLIDES_AFRESH(kinds[k])) continue;                                        \
                 const uint first = kindRanges[BTG_KIND_RANGE_START(kinds[k])];                                        \
                 const uint n = kindRanges[BTG_KIND_RANGE_END(kinds[k])] - first;                                      \
                 if (rest < n) {                                                                                       \
@@ -93,6 +97,9 @@ static BtgPersistentManifold btgPreviousManifold(BtgPair p, int kind, __global c
             const float t = btgPairThreshold(a.shape, b.shape);                                                       \
             BtgPersistentManifold pm = btgEmptyPersistent(p.a, p.b, kind);                                           \
             BtgManifold m = btgEmptyManifold(p.a, p.b);                                                               \
+            if (BTG_FRESH_KERNEL && btgPairKind(a.shape.type, b.shape.type) == kind && speculative &&                 \
+                BTG_SPECULATIVE_PAIR(kind, a.shape, b.shape))                                                         \
+                continue; /* collide_fresh's */                                                                       \
             if (btgPairKind(a.shape.type, b.shape.type) == kind && speculative &&                                     \
                 BTG_SPECULATIVE_PAIR(kind, a.shape, b.shape)) {                                                       \
                 /* this step's own points, no manifold kept: kind NONE, which no pair takes */                        \
@@ -111,6 +118,56 @@ static BtgPersistentManifold btgPreviousManifold(BtgPair p, int kind, __global c
             m = btgWithChildKeys(btgWithThreshold(m, t), p, children);                                                \
             /* none held where no pair keeps a manifold (the soft step's boxes alone) */                              \
             if ((int)slot < stateCapacity) gjkPairState[slot] = pm;                                                   \
+            manifolds[slot] = m;                                                                                      \
+            pairManifolds[slot] = btgOneManifold((int)slot, m);                                                       \
+        }                                                                                                             \
+    }
+
+/* The soft step's fresh pairs of a program whose collide_persistent leaves them (BTG_FRESH_KERNEL
+ * 1): collide_fresh strides over the kinds its arguments list, collides each pair BTG_SPECULATIVE_PAIR
+ * names afresh (BTG_SPECULATIVE_COLLIDE) and keeps nothing for it; the other pairs of those kinds
+ * are collide_persistent's. A kernel of its own: the closed forms on the GJK kernel's registers
+ * ran at its occupancy. */
+#define BTG_FRESH_PROGRAM_KERNEL(...)                                                                                \
+    __kernel void collide_fresh(__global const BtgPair* restrict pairs, __global const uint* restrict kindOrder,     \
+                                __global const uint* restrict kindRanges, int indirect,                              \
+                                __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,      \
+                                __global const BtgBodyProps* restrict props, __global const BtgShape* restrict shapes, \
+                                __global const BtgChild* restrict children,                                          \
+                                __global const BtgFloat4* restrict verts, __global const BtgFace* restrict faces,    \
+                                __global const int* restrict indices, __global const BtgFloat4* restrict edges,      \
+                                __global BtgManifold* restrict manifolds,                                            \
+                                __global BtgManifoldRange* restrict pairManifolds,                                   \
+                                __global BtgPersistentManifold* restrict gjkPairState, int stateCapacity)            \
+    {                                                                                                                 \
+        const int kinds[] = {__VA_ARGS__};                                                                            \
+        const int numKinds = (int)(sizeof(kinds) / sizeof(kinds[0]));                                                \
+        uint total = 0u;                                                                                              \
+        for (int k = 0; k < numKinds; ++k)                                                                            \
+            total += kindRanges[BTG_KIND_RANGE_END(kinds[k])] - kindRanges[BTG_KIND_RANGE_START(kinds[k])];           \
+        for (uint idx = (uint)get_global_id(0); idx < total; idx += (uint)get_global_size(0)) {                      \
+            int kind = BTG_PAIR_NONE;                                                                                 \
+            uint i = 0u, rest = idx;                                                                                  \
+            for (int k = 0; k < numKinds && kind == BTG_PAIR_NONE; ++k) {                                            \
+                const uint first = kindRanges[BTG_KIND_RANGE_START(kinds[k])];                                        \
+                const uint n = kindRanges[BTG_KIND_RANGE_END(kinds[k])] - first;                                      \
+                if (rest < n) {                                                                                       \
+                    kind = kinds[k];                                                                                  \
+                    i = first + rest;                                                                                 \
+                } else {                                                                                              \
+                    rest -= n;                                                                                        \
+                }                                                                                                     \
+            }                                                                                                         \
+            const uint slot = indirect ? kindOrder[i] : i;                                                            \
+            const BtgPair p = pairs[slot];                                                                            \
+            BtgCollider a = btgLoadPairCollider(p, 0, pos, rot, props, shapes, children);                             \
+            BtgCollider b = btgLoadPairCollider(p, 1, pos, rot, props, shapes, children);                             \
+            if (btgPairKind(a.shape.type, b.shape.type) != kind || !BTG_SPECULATIVE_PAIR(kind, a.shape, b.shape))    \
+                continue; /* collide_persistent's (or, a stale plan's, no kernel's: as there) */                      \
+            const float t = btgPairThreshold(a.shape, b.shape);                                                       \
+            BtgManifold m = BTG_SPECULATIVE_COLLIDE(a, b, verts, faces, indices, edges, t);                           \
+            m = btgWithChildKeys(btgWithThreshold(m, t), p, children);                                                \
+            if ((int)slot < stateCapacity) gjkPairState[slot] = btgEmptyPersistent(p.a, p.b, BTG_PAIR_NONE);          \
             manifolds[slot] = m;                                                                                      \
             pairManifolds[slot] = btgOneManifold((int)slot, m);                                                       \
         }                                                                                                             \

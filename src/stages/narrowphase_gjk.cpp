@@ -76,6 +76,16 @@ void narrowphasePersistent(DeviceWorld& w, const PairKinds& kinds, const char* k
         .arg(w.counters).arg(w.contactCache).arg(cacheCapacity)
         .arg(w.gjkCache).arg(gjkCapacity).arg(w.manifolds).arg(w.pairManifolds).arg(w.gjkPairState).arg(speculative)
         .arg(persistentStateCapacity(w, kinds)).run(items);
+    // The soft step's fresh pairs of the GJK program (btgSoftCollidesAfresh: two spheres, a box
+    // or hull on a plane) have a kernel of their own, which collide_persistent leaves them to.
+    const bool fresh = kinds.has(BTG_PAIR_SPHERE_SPHERE) || kinds.has(BTG_PAIR_HULL_PLANE) ||
+                       kinds.has(BTG_PAIR_PLANE_BOX) || kinds.has(BTG_PAIR_PLANE_CONVEX);
+    if (speculative && fresh && std::strcmp(kProgram, "narrowphase_gjk") == 0)
+        cl::Launch(w.ctx, w.ctx.program(kProgram).kernel("collide_fresh"), &w.profiler)
+            .arg(w.pairs).arg(w.pairOrder).arg(w.pairKindRanges).arg(indirect).arg(w.pos).arg(w.rot).arg(w.props)
+            .arg(w.shapes).arg(w.children).arg(w.hullVertices).arg(w.hullFaces).arg(w.hullIndices).arg(w.hullEdges)
+            .arg(w.manifolds).arg(w.pairManifolds).arg(w.gjkPairState).arg(persistentStateCapacity(w, kinds))
+            .run(items);
 }
 
 void storePersistentManifolds(DeviceWorld& w, const PairKinds& kinds, unsigned solverFlags)
