@@ -4,7 +4,9 @@
  * program defines before including this) and writes it beside the pair's manifold, or with
  * `speculative` (the soft step) collides a pair BTG_SPECULATIVE_PAIR names afresh
  * (BTG_SPECULATIVE_COLLIDE) and keeps nothing; after the
- * solve, store_persistent_manifolds keeps those manifolds for the next substep. OpenCL only. */
+ * solve, store_persistent_manifolds keeps those manifolds for the next substep. A program may also
+ * expand collide_fresh (BTG_FRESH_PROGRAM_KERNEL) for the soft step's pairs it keeps nothing for.
+ * OpenCL only. */
 #ifndef BTG_PERSISTENT_KERNELS_H
 #define BTG_PERSISTENT_KERNELS_H
 #include "contact_rows.h"
@@ -31,6 +33,35 @@ static BtgPersistentManifold btgPreviousManifold(BtgPair p, int kind, __global c
             return prev;
     }
     return btgEmptyPersistent(p.a, p.b, kind);
+}
+
+/* The kinds' ranges of the kind-grouped pairs laid end to end (a collide kernel strides over
+ * them), those with `skip` set in skipMask (bit k: kinds[k]) left out: their total, and the
+ * range slot of position idx (*kind its kind; BTG_PAIR_NONE past the end). */
+static inline uint btgKindsTotal(const int* kinds, int numKinds, uint skipMask, __global const uint* restrict kindRanges)
+{
+    uint total = 0u;
+    for (int k = 0; k < numKinds; ++k)
+        if (!((skipMask >> k) & 1u))
+            total += kindRanges[BTG_KIND_RANGE_END(kinds[k])] - kindRanges[BTG_KIND_RANGE_START(kinds[k])];
+    return total;
+}
+static inline uint btgKindsAt(const int* kinds, int numKinds, uint skipMask, __global const uint* restrict kindRanges,
+                              uint idx, int* kind)
+{
+    *kind = BTG_PAIR_NONE;
+    uint rest = idx;
+    for (int k = 0; k < numKinds; ++k) {
+        if ((skipMask >> k) & 1u) continue;
+        const uint first = kindRanges[BTG_KIND_RANGE_START(kinds[k])];
+        const uint n = kindRanges[BTG_KIND_RANGE_END(kinds[k])] - first;
+        if (rest < n) {
+            *kind = kinds[k];
+            return first + rest;
+        }
+        rest -= n;
+    }
+    return 0u;
 }
 
 /* The program's one collide kernel, collide_persistent, for every kind of its sub-table TABLE:
@@ -66,30 +97,18 @@ static BtgPersistentManifold btgPreviousManifold(BtgPair p, int kind, __global c
         const int kinds[] = {TABLE(BTG_PERSISTENT_KIND_ITEM)};                                                        \
         const int numKinds = (int)(sizeof(kinds) / sizeof(kinds[0]));                                                \
         /* the kinds collide_fresh takes whole in the soft step are not walked here at all */                         \
-        const int skipFresh = BTG_FRESH_KERNEL && speculative;                                                        \
-        uint total = 0u;                                                                                              \
+        uint skipMask = 0u;                                                                                           \
         for (int k = 0; k < numKinds; ++k)                                                                            \
-            if (!(skipFresh && BTG_SOFT_COLLIDES_AFRESH(kinds[k])))                                                   \
-                total += kindRanges[BTG_KIND_RANGE_END(kinds[k])] - kindRanges[BTG_KIND_RANGE_START(kinds[k])];       \
+            if (BTG_FRESH_KERNEL && speculative && BTG_SOFT_COLLIDES_AFRESH(kinds[k])) skipMask |= 1u << k;           \
+        const uint total = btgKindsTotal(kinds, numKinds, skipMask, kindRanges);                                      \
         const uint per = BTG_PERSISTENT_RUNS ? (total + (uint)get_global_size(0) - 1u) / (uint)get_global_size(0) : 1u; \
         const uint start = BTG_PERSISTENT_RUNS ? (uint)get_global_id(0) * per : (uint)get_global_id(0);               \
         const uint stop = BTG_PERSISTENT_RUNS ? min(total, start + per) : total;                                      \
         const uint stride = BTG_PERSISTENT_RUNS ? 1u : (uint)get_global_size(0);                                      \
         int hint = BTG_PERSISTENT_RUNS ? 0 : -1; /* none on a GPU: its work-items' pairs lie far apart */          \
         for (uint idx = start; idx < stop; idx += stride) {                                                          \
-            int kind = BTG_PAIR_NONE;                                                                                 \
-            uint i = 0u, rest = idx;                                                                                  \
-            for (int k = 0; k < numKinds && kind == BTG_PAIR_NONE; ++k) {                                            \
-                if (skipFresh && BTG_SOFT_COLLIDES_AFRESH(kinds[k])) continue;                                        \
-                const uint first = kindRanges[BTG_KIND_RANGE_START(kinds[k])];                                        \
-                const uint n = kindRanges[BTG_KIND_RANGE_END(kinds[k])] - first;                                      \
-                if (rest < n) {                                                                                       \
-                    kind = kinds[k];                                                                                  \
-                    i = first + rest;                                                                                 \
-                } else {                                                                                              \
-                    rest -= n;                                                                                        \
-                }                                                                                                     \
-            }                                                                                                         \
+            int kind;                                                                                                 \
+            const uint i = btgKindsAt(kinds, numKinds, skipMask, kindRanges, idx, &kind);                             \
             const uint slot = indirect ? kindOrder[i] : i;                                                            \
             const BtgPair p = pairs[slot];                                                                            \
             BtgCollider a = btgLoadPairCollider(p, 0, pos, rot, props, shapes, children);                             \
@@ -142,22 +161,10 @@ static BtgPersistentManifold btgPreviousManifold(BtgPair p, int kind, __global c
     {                                                                                                                 \
         const int kinds[] = {__VA_ARGS__};                                                                            \
         const int numKinds = (int)(sizeof(kinds) / sizeof(kinds[0]));                                                \
-        uint total = 0u;                                                                                              \
-        for (int k = 0; k < numKinds; ++k)                                                                            \
-            total += kindRanges[BTG_KIND_RANGE_END(kinds[k])] - kindRanges[BTG_KIND_RANGE_START(kinds[k])];           \
+        const uint total = btgKindsTotal(kinds, numKinds, 0u, kindRanges);                                            \
         for (uint idx = (uint)get_global_id(0); idx < total; idx += (uint)get_global_size(0)) {                      \
-            int kind = BTG_PAIR_NONE;                                                                                 \
-            uint i = 0u, rest = idx;                                                                                  \
-            for (int k = 0; k < numKinds && kind == BTG_PAIR_NONE; ++k) {                                            \
-                const uint first = kindRanges[BTG_KIND_RANGE_START(kinds[k])];                                        \
-                const uint n = kindRanges[BTG_KIND_RANGE_END(kinds[k])] - first;                                      \
-                if (rest < n) {                                                                                       \
-                    kind = kinds[k];                                                                                  \
-                    i = first + rest;                                                                                 \
-                } else {                                                                                              \
-                    rest -= n;                                                                                        \
-                }                                                                                                     \
-            }                                                                                                         \
+            int kind;                                                                                                 \
+            const uint i = btgKindsAt(kinds, numKinds, 0u, kindRanges, idx, &kind);                                   \
             const uint slot = indirect ? kindOrder[i] : i;                                                            \
             const BtgPair p = pairs[slot];                                                                            \
             BtgCollider a = btgLoadPairCollider(p, 0, pos, rot, props, shapes, children);                             \
