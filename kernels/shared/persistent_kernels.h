@@ -143,11 +143,12 @@ static inline uint btgKindsAt(const int* kinds, int numKinds, uint skipMask, __g
     }
 
 /* The soft step's fresh pairs of a program whose collide_persistent leaves them (BTG_FRESH_KERNEL
- * 1): collide_fresh strides over the kinds its arguments list, collides each pair BTG_SPECULATIVE_PAIR
+ * 1): collide_fresh strides over the four kinds its arguments name (OpenCL C has no variadic
+ * macros: NVIDIA's compiler refuses them), collides each pair BTG_SPECULATIVE_PAIR
  * names afresh (BTG_SPECULATIVE_COLLIDE) and keeps nothing for it; the other pairs of those kinds
  * are collide_persistent's. A kernel of its own: the closed forms on the GJK kernel's registers
  * ran at its occupancy. */
-#define BTG_FRESH_PROGRAM_KERNEL(...)                                                                                \
+#define BTG_FRESH_PROGRAM_KERNEL(K0, K1, K2, K3)                                                                     \
     __kernel void collide_fresh(__global const BtgPair* restrict pairs, __global const uint* restrict kindOrder,     \
                                 __global const uint* restrict kindRanges, int indirect,                              \
                                 __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,      \
@@ -159,7 +160,7 @@ static inline uint btgKindsAt(const int* kinds, int numKinds, uint skipMask, __g
                                 __global BtgManifoldRange* restrict pairManifolds,                                   \
                                 __global BtgPersistentManifold* restrict gjkPairState, int stateCapacity)            \
     {                                                                                                                 \
-        const int kinds[] = {__VA_ARGS__};                                                                            \
+        const int kinds[] = {K0, K1, K2, K3};                                                                         \
         const int numKinds = (int)(sizeof(kinds) / sizeof(kinds[0]));                                                \
         const uint total = btgKindsTotal(kinds, numKinds, 0u, kindRanges);                                            \
         for (uint idx = (uint)get_global_id(0); idx < total; idx += (uint)get_global_size(0)) {                      \

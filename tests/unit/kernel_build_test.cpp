@@ -27,6 +27,28 @@ TEST(KernelBuild, EveryProgramBuilds)
     }
 }
 
+// OpenCL C 1.2 has no variadic macros: PoCL (CI's device) takes them, NVIDIA's compiler refuses the
+// program ("variadic macros not supported in OpenCL"), so every GPU world with that program fails.
+// A collide kernel's macro once had one; no program text may.
+TEST(KernelBuild, NoProgramUsesAVariadicMacro)
+{
+    for (const std::string& stem : cl::kernelStems()) {
+        const std::string text = cl::kernelSource(stem);
+        EXPECT_EQ(text.find("__VA_ARGS__"), std::string::npos) << stem;
+        // a macro's parameter list with "...": a #define line whose "(...)" or ", ...)" comes
+        // before its first space after the name
+        for (size_t at = text.find("#define"); at != std::string::npos; at = text.find("#define", at + 1)) {
+            const size_t end = text.find('\n', at);
+            const std::string line = text.substr(at, end == std::string::npos ? std::string::npos : end - at);
+            const size_t name = line.find_first_not_of(' ', 7), open = line.find('(', name);
+            const size_t space = line.find(' ', name);
+            if (open == std::string::npos || (space != std::string::npos && space < open)) continue;  // no parameters
+            const size_t close = line.find(')', open);
+            EXPECT_EQ(line.substr(open, close - open).find("..."), std::string::npos) << stem << ": " << line;
+        }
+    }
+}
+
 // A program this process built once is built again from its binary in a later context on the
 // same device (each world has a context of its own), and its kernels compute bit for bit what
 // the first context's do: the damping of predict_motion (pow) on the same velocities.
