@@ -72,8 +72,9 @@
  * persistent manifold (persistent_manifold.h); two hulls with polyhedral features add their
  * clipped faces after the GJK point (polyhedral_contacts.h). Their kernels also read and write
  * the manifold each pair kept (narrowphase_gjk.cl); the routine is the first step of a new pair.
- * Two spheres are here for their persistent manifold (btSphereSphereCollisionAlgorithm's closed
- * form point, made only while they touch: btgSpherePairPoint). The soft step collides the kinds
+ * Two spheres are here for the manifold's point identities (the callbacks'): their step holds
+ * only btSphereSphereCollisionAlgorithm's closed-form point, made while they touch
+ * (btgSpherePairPoint), since Bullet 3.24 clears that manifold every step. The soft step collides the kinds
  * of BTG_SOFT_COLLIDES_AFRESH afresh (btgCollideSoftAfresh) and keeps nothing for them. */
 #define BTG_PAIR_KINDS_NARROWPHASE_GJK(X)                                                                               \
     X(narrowphase_gjk, BTG_PAIR_SPHERE_SPHERE, BTG_SHAPE_SPHERE, BTG_SHAPE_SPHERE, btgCollideGjk, collide_sphere_sphere) \

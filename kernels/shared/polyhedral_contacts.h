@@ -129,6 +129,9 @@ static inline BtgPersistentManifold btgPairStep(BtgPersistentManifold prev, BtgC
         return btgPolyhedralStep(prev, a, b, verts, faces, indices, edges, threshold, dist);
     if (a.shape.type == BTG_SHAPE_BOX && b.shape.type == BTG_SHAPE_BOX) return btgBoxBoxStep(prev, a, b, threshold, dist);
     const BtgConvexPoint p = btgConvexPairPoint(a, b, verts, threshold);
+    /* Bullet 3.24's btSphereSphereCollisionAlgorithm clears its manifold every step
+     * (CLEAR_MANIFOLD): two spheres hold only the point made now, while they touch */
+    if (a.shape.type == BTG_SHAPE_SPHERE && b.shape.type == BTG_SHAPE_SPHERE) prev.numPoints = 0;
     return btgPersistentStep(prev, p, a.pose, b.pose, threshold, dist);
 }
 

@@ -1,7 +1,7 @@
 // narrowphase.h — Stage: contact points for every pair, one kernel per row of the pair-kind
 // table (kernels/shared/pair_kinds.h) whose kind the plan has. Programs: "narrowphase"
-// (sphere–hull, sphere–plane, sphere–box: closed forms, one fresh point a step; two spheres keep
-// stock's persistent manifold in "narrowphase_gjk") and "narrowphase_sat" (two boxes). A program
+// (sphere–hull, sphere–plane, sphere–box: closed forms, one fresh point a step; two spheres are
+// "narrowphase_gjk"'s, stock's point while they touch) and "narrowphase_sat" (two boxes). A program
 // whose kinds are absent is never built.
 // Reads pairs, pairOrder and pairKindRanges (find_pairs' grouping by kind: each kernel strides
 // over its kind's range), pos, rot, props (shape), shapes and hull tables.

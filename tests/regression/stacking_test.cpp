@@ -132,9 +132,9 @@ TEST(Stacking, BenchPileWithinStocksChaos)
 }
 
 // 300 marbles (radius 0.1 m, restitution 0.3) poured from random heights into a 2.2 m box: two
-// spheres keep stock's persistent manifold (btSphereSphereCollisionAlgorithm: a point only while
-// they touch, refreshed and kept), so the heap settles within stock's own chaos (PoCL,
-// 2026-12-07: mean height 0.2317 m against stock's 0.2313 +- 0.0217, spread 0.863 against
+// spheres make their points as btSphereSphereCollisionAlgorithm does (only while they touch,
+// none kept: Bullet 3.24 clears that manifold each step), so the heap settles within stock's own chaos (PoCL,
+// 2026-12-07: mean height 0.2332 m against stock's 0.2313 +- 0.0217, spread 0.872 against
 // 0.869 +- 0.040). A pour from a grid (marbles in exact columns) is a knife edge where stock's
 // columns topple sooner; see README, Known differences.
 TEST(Stacking, MarblesPouredSettleLikeStock)

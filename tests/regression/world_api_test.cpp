@@ -20,7 +20,7 @@ bool has(const std::vector<std::string>& v, const std::string& s) { return std::
 TEST(WorldApi, PlanLeavesOutSatUntilABoxPairExists)
 {
     // Spheres over a static plane: no hull at all, so no SAT/clipping program and no stage; the
-    // GJK program keeps two spheres' persistent manifold (stock's sphere–sphere algorithm).
+    // GJK program takes two spheres (stock's sphere–sphere algorithm, its point only while they touch).
     btStaticPlaneShape plane(btVector3(0, 1, 0), 0);  // outlives the scene that uses it
     Scene scene(WorldKind::Gpu);
     scene.addBody(&plane, 0, btVector3(0, 0, 0));

@@ -72,7 +72,7 @@ TEST(Plan, ConvexShapesBringTheGjkStagesAndNothingElseDoes)
     std::vector<Stage> stages = derivePlan(in).plan.substep();
     EXPECT_FALSE(has(stages, Stage::NarrowphaseGjk));
     EXPECT_FALSE(has(stages, Stage::StorePersistentManifolds));
-    // Two spheres keep stock's sphere-sphere manifold in the GJK program's persistent state (the
+    // Two spheres take stock's sphere-sphere algorithm in the GJK program, with its state buffers (the
     // bullet mode); the soft step collides them afresh and keeps nothing.
     in.bodies.push_back(body(BTG_SHAPE_SPHERE, 1, true));
     stages = derivePlan(in).plan.substep();
