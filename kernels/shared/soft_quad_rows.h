@@ -78,48 +78,67 @@ static BTG_ALWAYS_INLINE void btgSoftSolveQuad(BtgSoftContact* s, BtgSolverBody 
     else if (useBias) bias = btgSoftSpringBias(spring, sep, p, &massScale, &impulseScale);
     const BtgJacobian jn = btgPointJacobian(s->normal, rA, rB, a, b);
     const int sweeps = btgSoftNormalSweeps(s, useBias);
-    for (int pass = 0; pass < sweeps; ++pass) {
+    /* btgSoftSolve's rounds (an impact's relax) */
+    const int rounds = btgSoftRelaxRounds(s, useBias, 1);
+    for (int round = 0; round < rounds; ++round) {
+        for (int pass = 0; pass < sweeps; ++pass) {
+            BTG_FOR_POINTS(k, n) {
+                const float mk = btgLane(s->normalMass, k);
+                if (mk == 0.0f) continue;
+                const BtgJacobian j = btgQuadJacobian(jn, k, mask);
+                const float bk = btgQuadGet(bias, k, mask), msk = btgQuadGet(massScale, k, mask);
+                const float isk = btgQuadGet(impulseScale, k, mask);
+                const float old = btgLane(s->normalImpulse, k);
+                const float vn = btgRowVelocity(j, *va, *vb);
+                float next = old - mk * (msk * vn + bk) - isk * old;
+                if (!(next > 0.0f)) next = 0.0f;
+                btgSetLane(&s->normalImpulse, k, next);
+                btgSetLane(&s->totalNormal, k, btgLane(s->totalNormal, k) + (next - old));
+                btgRowApply(j, a, b, va, vb, next - old);
+            }
+        }
+        if (!friction) continue;
+        const BtgJacobian j1 = btgPointJacobian(s->tangent1, rA, rB, a, b);
+        const BtgJacobian j2 = btgPointJacobian(s->tangent2, rA, rB, a, b);
         BTG_FOR_POINTS(k, n) {
-            const float mk = btgLane(s->normalMass, k);
-            if (mk == 0.0f) continue;
-            const BtgJacobian j = btgQuadJacobian(jn, k, mask);
-            const float bk = btgQuadGet(bias, k, mask), msk = btgQuadGet(massScale, k, mask);
-            const float isk = btgQuadGet(impulseScale, k, mask);
-            const float old = btgLane(s->normalImpulse, k);
-            const float vn = btgRowVelocity(j, *va, *vb);
-            float next = old - mk * (msk * vn + bk) - isk * old;
-            if (!(next > 0.0f)) next = 0.0f;
-            btgSetLane(&s->normalImpulse, k, next);
-            btgSetLane(&s->totalNormal, k, btgLane(s->totalNormal, k) + (next - old));
-            btgRowApply(j, a, b, va, vb, next - old);
+            if (btgLane(s->normalMass, k) == 0.0f) continue;
+            /* btgSoftFrictionRows: Gauss-Seidel within the cone, else the slip's direction onto it */
+            const float o1 = btgLane(s->tangent1Impulse, k), o2 = btgLane(s->tangent2Impulse, k);
+            const float m1 = btgLane(s->tangent1Mass, k), m2 = btgLane(s->tangent2Mass, k);
+            const BtgJacobian k1 = btgQuadJacobian(j1, k, mask);
+            const BtgJacobian k2 = btgQuadJacobian(j2, k, mask);
+            const float slip2 = btgRowVelocity(k2, *va, *vb);
+            float n1 = o1, n2 = o2;
+            if (m1 != 0.0f) {
+                BtgSolverRow r = btgMakeSolverRow(k1, m1, 0.0f, -BTG_SOFT_FRICTION_FREE, BTG_SOFT_FRICTION_FREE, o1);
+                btgRowSolve(&r, a, b, va, vb);
+                n1 = r.impulse;
+            }
+            float d2 = 0.0f;
+            if (m2 != 0.0f) {
+                d2 = (0.0f - btgRowVelocity(k2, *va, *vb)) * m2 - o2 * 0.0f;
+                n2 = o2 + d2;
+            }
+            const float lim = s->friction * btgLane(s->normalImpulse, k);
+            if (btgSoftFrictionCone(lim, n1, n2)) {
+                const float t2 = m2 != 0.0f ? o2 - slip2 * m2 : o2;
+                float c1 = n1, c2 = t2;
+                if (btgSoftFrictionCone(lim, n1, t2)) {
+                    const float scale = btgSoftConeScale(lim, n1, t2);
+                    c1 = n1 * scale;
+                    c2 = t2 * scale;
+                }
+                btgRowApply(k1, a, b, va, vb, c1 - n1);
+                d2 = c2 - o2;
+                n1 = c1;
+                n2 = c2;
+            }
+            if (m2 != 0.0f || d2 != 0.0f) btgRowApply(k2, a, b, va, vb, d2);
+            btgSetLane(&s->tangent1Impulse, k, n1);
+            btgSetLane(&s->tangent2Impulse, k, n2);
+            btgSetLane(&s->total1, k, btgLane(s->total1, k) + (n1 - o1));
+            btgSetLane(&s->total2, k, btgLane(s->total2, k) + (n2 - o2));
         }
-    }
-    if (!friction) return;
-    const BtgJacobian j1 = btgPointJacobian(s->tangent1, rA, rB, a, b);
-    const BtgJacobian j2 = btgPointJacobian(s->tangent2, rA, rB, a, b);
-    BTG_FOR_POINTS(k, n) {
-        if (btgLane(s->normalMass, k) == 0.0f) continue;
-        const float o1 = btgLane(s->tangent1Impulse, k), o2 = btgLane(s->tangent2Impulse, k);
-        const float lim = s->friction * btgLane(s->normalImpulse, k);
-        const float m1 = btgLane(s->tangent1Mass, k), m2 = btgLane(s->tangent2Mass, k);
-        float n1 = o1, n2 = o2;
-        /* btgSoftFrictionRow along each tangent */
-        const BtgJacobian k1 = btgQuadJacobian(j1, k, mask);
-        if (m1 != 0.0f) {
-            BtgSolverRow r = btgMakeSolverRow(k1, m1, 0.0f, -lim, lim, o1);
-            btgRowSolve(&r, a, b, va, vb);
-            n1 = r.impulse;
-        }
-        const BtgJacobian k2 = btgQuadJacobian(j2, k, mask);
-        if (m2 != 0.0f) {
-            BtgSolverRow r = btgMakeSolverRow(k2, m2, 0.0f, -lim, lim, o2);
-            btgRowSolve(&r, a, b, va, vb);
-            n2 = r.impulse;
-        }
-        btgSetLane(&s->tangent1Impulse, k, n1);
-        btgSetLane(&s->tangent2Impulse, k, n2);
-        btgSetLane(&s->total1, k, btgLane(s->total1, k) + (n1 - o1));
-        btgSetLane(&s->total2, k, btgLane(s->total2, k) + (n2 - o2));
     }
 }
 #endif

@@ -208,7 +208,7 @@ static BTG_ALWAYS_INLINE void btgWKeep(BtgVelW* v, BtgVelW before, int8 solved)
 /* A contact's fields in lanes: per point k the anchors (w: the normal mass), base separation,
  * tangent masses, impulses and step totals. */
 enum {
-    BTG_WC_NX, BTG_WC_NY, BTG_WC_NZ, BTG_WC_FRICTION, BTG_WC_STIFFENING, BTG_WC_FIXED,
+    BTG_WC_NX, BTG_WC_NY, BTG_WC_NZ, BTG_WC_FRICTION, BTG_WC_STIFFENING, BTG_WC_FIXED, BTG_WC_IMPACT,
     BTG_WC_POINT0, /* then per point: */
     BTG_WC_AX = 0, BTG_WC_AY, BTG_WC_AZ, BTG_WC_BX, BTG_WC_BY, BTG_WC_BZ, BTG_WC_MASS, BTG_WC_BASE,
     BTG_WC_T1MASS, BTG_WC_T2MASS, BTG_WC_NIMP, BTG_WC_TOTN, BTG_WC_T1IMP, BTG_WC_T2IMP, BTG_WC_TOT1, BTG_WC_TOT2,
@@ -216,6 +216,8 @@ enum {
 };
 #define BTG_WC_FIELDS BTG_SOFT_WIDE_FIELDS /* BTG_WC_POINT0 + BTG_MAX_POINTS * BTG_WC_PER_POINT */
 #define BTG_WC_AT(k, f) (BTG_WC_POINT0 + (k) * BTG_WC_PER_POINT + (f))
+/* the host sizes the blocks by BTG_SOFT_WIDE_FIELDS: a field added here must be counted there */
+typedef char BtgWideFieldsCounted[BTG_WC_POINT0 + BTG_MAX_POINTS * BTG_WC_PER_POINT == BTG_WC_FIELDS ? 1 : -1];
 
 /* Lane l of a chunk's block from soft contact s as load_soft reads it for the solve and relax
  * (s 0: an empty lane, no points), and a point field of lane l back as the contact's float4. */
@@ -231,6 +233,7 @@ static BTG_ALWAYS_INLINE void btgWPutContact(__global float* c, int l, __global 
     BTG_W_PUT(c, BTG_WC_FRICTION, l, live ? s->friction : 0.0f);
     BTG_W_PUT(c, BTG_WC_STIFFENING, l, live ? s->stiffening.x : 0.0f);
     BTG_W_PUT(c, BTG_WC_FIXED, l, live && (s->flags & BTG_SOFT_FIXED) ? 1.0f : 0.0f);
+    BTG_W_PUT(c, BTG_WC_IMPACT, l, live && (s->flags & BTG_SOFT_IMPACT) ? 1.0f : 0.0f);
     const BtgFloat4 normal = live ? s->normalImpulse : z, total = live ? s->totalNormal : z;
     const BtgFloat4 base = live ? s->baseSeparation : z;
     const BtgFloat4 m1 = live ? s->tangent1Mass : z, m2 = live ? s->tangent2Mass : z;
@@ -350,27 +353,48 @@ static BTG_ALWAYS_INLINE BtgW btgWRowSolve(const BtgJacobianW* j, BtgW mass, Btg
     btgWKeep(vb, b0, solved);
     return select(impulse, next, solved);
 }
-/* btgSoftFrictionRow: returns the new impulse (the old one where the lane has no row). */
-static BTG_ALWAYS_INLINE BtgW btgWFrictionRow(__global const float* c, int k, BtgV3W dir, BtgW mass, BtgW impulse, BtgW friction,
-                                              int8 active, const BtgBodyW* a, const BtgBodyW* b, BtgVelW* va,
-                                              BtgVelW* vb)
-{
-    const int8 solved = active & (mass != 0.0f);
-    if (!any(solved)) return impulse;
-    const BtgW lim = friction * btgWLoadG(c, BTG_WC_AT(k, BTG_WC_NIMP));
-    const BtgV3W rA = btgW3LoadG(c, BTG_WC_AT(k, BTG_WC_AX)), rB = btgW3LoadG(c, BTG_WC_AT(k, BTG_WC_BX));
-    const BtgJacobianW j = btgWPointJacobian(dir, rA, rB, a, b);
-    /* btgMakeSolverRow (target 0, cfm 0, bounds -lim..lim) and btgRowSolve */
-    return btgWRowSolve(&j, mass, (BtgW)(0.0f), (BtgW)(0.0f), -lim, lim, impulse, solved, a, b, va, vb);
-}
+/* btgSoftFrictionRows (take: the lanes that run them): Gauss-Seidel where the pair stays within
+ * the cone, else both from the velocities before row 1 scaled onto it. */
 static BTG_ALWAYS_INLINE void btgWFrictionRows(__global float* c, int k, BtgV3W t1, BtgV3W t2, BtgW friction, const BtgBodyW* a,
-                                               const BtgBodyW* b, BtgVelW* va, BtgVelW* vb)
+                                               const BtgBodyW* b, BtgVelW* va, BtgVelW* vb, int8 take)
 {
-    const int8 active = btgWLoadG(c, BTG_WC_AT(k, BTG_WC_MASS)) != 0.0f;
+    const int8 active = (btgWLoadG(c, BTG_WC_AT(k, BTG_WC_MASS)) != 0.0f) & take;
     if (!any(active)) return;
     const BtgW o1 = btgWLoadG(c, BTG_WC_AT(k, BTG_WC_T1IMP)), o2 = btgWLoadG(c, BTG_WC_AT(k, BTG_WC_T2IMP));
-    const BtgW n1 = btgWFrictionRow(c, k, t1, btgWLoadG(c, BTG_WC_AT(k, BTG_WC_T1MASS)), o1, friction, active, a, b, va, vb);
-    const BtgW n2 = btgWFrictionRow(c, k, t2, btgWLoadG(c, BTG_WC_AT(k, BTG_WC_T2MASS)), o2, friction, active, a, b, va, vb);
+    const BtgW m1 = btgWLoadG(c, BTG_WC_AT(k, BTG_WC_T1MASS)), m2 = btgWLoadG(c, BTG_WC_AT(k, BTG_WC_T2MASS));
+    const BtgV3W rA = btgW3LoadG(c, BTG_WC_AT(k, BTG_WC_AX)), rB = btgW3LoadG(c, BTG_WC_AT(k, BTG_WC_BX));
+    const BtgJacobianW j1 = btgWPointJacobian(t1, rA, rB, a, b);
+    const BtgJacobianW j2 = btgWPointJacobian(t2, rA, rB, a, b);
+    const BtgW slip2 = btgWRowVelocity(&j2, va, vb);
+    const BtgW zero = (BtgW)(0.0f), unbounded = (BtgW)(BTG_SOFT_FRICTION_FREE);
+    const int8 row1 = active & (m1 != 0.0f), row2 = active & (m2 != 0.0f);
+    BtgW n1 = any(row1) ? btgWRowSolve(&j1, m1, zero, zero, -unbounded, unbounded, o1, row1, a, b, va, vb) : o1;
+    BtgW d2 = (0.0f - btgWRowVelocity(&j2, va, vb)) * m2 - o2 * 0.0f;
+    d2 = select(zero, d2, row2);
+    BtgW n2 = select(o2, o2 + d2, row2);
+    /* btgSoftFrictionCone, btgSoftConeScale */
+    const BtgW lim = friction * btgWLoadG(c, BTG_WC_AT(k, BTG_WC_NIMP));
+    const int8 slipping = (n1 * n1 + n2 * n2 > lim * lim) & active;
+    if (any(slipping)) {
+        const BtgW tr2 = select(o2, o2 - slip2 * m2, m2 != 0.0f);
+        const int8 over = n1 * n1 + tr2 * tr2 > lim * lim;
+        const BtgW scale = lim / sqrt(n1 * n1 + tr2 * tr2);
+        const BtgW c1 = select(n1, n1 * scale, over), c2 = select(tr2, tr2 * scale, over);
+        const BtgVelW a0 = *va, b0 = *vb;
+        btgWRowApply(&j1, a, b, va, vb, c1 - n1);
+        btgWKeep(va, a0, slipping);
+        btgWKeep(vb, b0, slipping);
+        d2 = select(d2, c2 - o2, slipping);
+        n1 = select(n1, c1, slipping);
+        n2 = select(n2, c2, slipping);
+    }
+    const int8 apply2 = active & ((m2 != 0.0f) | (d2 != 0.0f));
+    if (any(apply2)) {
+        const BtgVelW a0 = *va, b0 = *vb;
+        btgWRowApply(&j2, a, b, va, vb, d2);
+        btgWKeep(va, a0, apply2);
+        btgWKeep(vb, b0, apply2);
+    }
     btgWStoreG(c, BTG_WC_AT(k, BTG_WC_T1IMP), select(o1, n1, active));
     btgWStoreG(c, BTG_WC_AT(k, BTG_WC_T2IMP), select(o2, n2, active));
     const BtgW s1 = btgWLoadG(c, BTG_WC_AT(k, BTG_WC_TOT1)), s2 = btgWLoadG(c, BTG_WC_AT(k, BTG_WC_TOT2));
@@ -396,7 +420,8 @@ static BTG_ALWAYS_INLINE void btgWCarriedTotals(__global float* c, int normal, i
 
 /* btgSoftSolve for the lanes: the normal rows point by point (soft while biased; twice in the
  * relax where a lane has two or more solved points), then, in the relax (or with
- * frictionInSolve), the friction rows. */
+ * frictionInSolve), the friction rows; in the relax, the impacts' lanes again for their other
+ * rounds (btgSoftRelaxRounds), the other lanes kept. */
 static BTG_ALWAYS_INLINE void btgWSoftSolve(__global float* c, const BtgBodyW* a, const BtgBodyW* b, BtgVelW* va, BtgVelW* vb,
                                             const BtgDeltaW* dA, const BtgDeltaW* dB, int useBias, BtgSoftParams p)
 {
@@ -405,20 +430,25 @@ static BTG_ALWAYS_INLINE void btgWSoftSolve(__global float* c, const BtgBodyW* a
     BtgW ms = (BtgW)(1.0f), is = (BtgW)(0.0f), rate = (BtgW)(0.0f);
     if (useBias) btgWContactSpring(btgWLoadG(c, BTG_WC_STIFFENING), fixed, p, &ms, &is, &rate);
     const int8 all = (int8)(-1);
-    for (int k = 0; k < BTG_MAX_POINTS; ++k) btgWNormalRow(c, k, n, a, b, va, vb, dA, dB, useBias, p, ms, is, rate, all);
-    if (!useBias) {
-        /* btgSoftNormalSweeps: the relax's second pass, in the lanes with two or more solved points */
-        int8 solvedPoints = (int8)(0);
-        for (int k = 0; k < BTG_MAX_POINTS; ++k) solvedPoints -= btgWLoadG(c, BTG_WC_AT(k, BTG_WC_MASS)) != 0.0f;
-        const int8 multi = solvedPoints > 1;
-        if (any(multi))
-            for (int k = 0; k < BTG_MAX_POINTS; ++k) btgWNormalRow(c, k, n, a, b, va, vb, dA, dB, useBias, p, ms, is, rate, multi);
-    }
-    if (!(!useBias || p.frictionInSolve)) return;
+    /* btgSoftNormalSweeps: the relax's second pass, in the lanes with two or more solved points */
+    int8 solvedPoints = (int8)(0);
+    for (int k = 0; k < BTG_MAX_POINTS; ++k) solvedPoints -= btgWLoadG(c, BTG_WC_AT(k, BTG_WC_MASS)) != 0.0f;
+    const int8 multi = solvedPoints > 1;
+    const int8 impact = btgWLoadG(c, BTG_WC_IMPACT) != 0.0f;
+    const int friction = !useBias || p.frictionInSolve;
     BtgV3W t1, t2;
-    btgWPlaneSpace(n, &t1, &t2);
-    const BtgW friction = btgWLoadG(c, BTG_WC_FRICTION);
-    for (int k = 0; k < BTG_MAX_POINTS; ++k) btgWFrictionRows(c, k, t1, t2, friction, a, b, va, vb);
+    if (friction) btgWPlaneSpace(n, &t1, &t2);
+    const BtgW frictionCoefficient = btgWLoadG(c, BTG_WC_FRICTION);
+    for (int round = 0; round < (useBias ? 1 : BTG_SOFT_IMPACT_ROUNDS); ++round) {
+        const int8 take = round == 0 ? all : impact;
+        if (!any(take)) break;
+        for (int k = 0; k < BTG_MAX_POINTS; ++k) btgWNormalRow(c, k, n, a, b, va, vb, dA, dB, useBias, p, ms, is, rate, take);
+        if (!useBias && any(multi & take))
+            for (int k = 0; k < BTG_MAX_POINTS; ++k)
+                btgWNormalRow(c, k, n, a, b, va, vb, dA, dB, useBias, p, ms, is, rate, multi & take);
+        if (!friction) continue;
+        for (int k = 0; k < BTG_MAX_POINTS; ++k) btgWFrictionRows(c, k, t1, t2, frictionCoefficient, a, b, va, vb, take);
+    }
 }
 
 #endif

@@ -163,6 +163,30 @@ TEST(SolverFeatures, VelocityIndependentFrictionSlidesAsStock)
     }
 }
 
+// The default (soft step) bounds each point's friction by a cone, not by its two tangents apart:
+// sliding_box's box (friction 0.3 x 0.3), sent along the ground at 2.83 m/s along x, along the
+// diagonal and between, slides to a stop as far as stock's in the throw's direction (within 5%;
+// the analytic answer 8 / (2 x 0.09 x 10) = 4.44 m) and stays on its line (within 1 cm). Each
+// tangent clamped on its own gave the diagonal sqrt 2 times the friction (3.1 m) and bent the
+// slide toward the nearer axis (README, solver modes).
+TEST(SolverFeatures, SoftStepFrictionIsACone)
+{
+    for (const double angle : {0.0, 0.5, M_PI / 4}) {
+        SCOPED_TRACE(testing::Message() << "angle " << angle);
+        const btVector3 dir(btScalar(std::cos(angle)), 0, btScalar(std::sin(angle)));
+        ScenePtr stock = features::slidingBox(WorldKind::Stock, Config{});
+        ScenePtr soft = features::slidingBox(WorldKind::Gpu, Config{});
+        for (Scene* s : {stock.get(), soft.get()}) s->body(1)->setLinearVelocity(dir * btScalar(2 * std::sqrt(2.0)));
+        const btVector3 start = stock->body(1)->getWorldTransform().getOrigin();
+        stepBesideStock(*stock, *soft, 240);
+        const btVector3 a = travel(*stock, 1, start), b = travel(*soft, 1, start);
+        std::printf("sliding at %.2f rad: stock %.4f m along, %.4f across; default %.4f along, %.4f across\n", angle,
+                    a.dot(dir), (a - dir * a.dot(dir)).length(), b.dot(dir), (b - dir * b.dot(dir)).length());
+        EXPECT_NEAR(b.dot(dir), a.dot(dir), tol::kRollDistanceRel * a.dot(dir));
+        EXPECT_LT((b - dir * b.dot(dir)).length(), 0.01);
+    }
+}
+
 namespace {
 
 // Steps until body 1 of both worlds has come to rest (speed below 1 cm/s) or `maxSteps`,
@@ -560,8 +584,10 @@ TEST(SolverFeatures, NegativeProcessingThresholdSinksAsStock)
 }
 
 // The soft step leaves the points beyond the threshold unsolved as well: with -1 cm the box rests
-// as deep in the one below as stock's (within 1 mm after 2 s; without the threshold the soft
-// step's box rests under 2 mm deep), on the GPU path every step, the app seeing as many points.
+// as deep in the one below as stock's (without the threshold the soft step's box rests under 2 mm
+// deep), on the GPU path every step, the app seeing as many points. Both boxes rattle about the
+// threshold (their points solved only below it: stock's between 8 and 12.5 mm deep from step to
+// step), so the depths compared are the means over the second second, within 1 mm.
 TEST(SolverFeatures, SoftStepNegativeProcessingThresholdSinksAsStock)
 {
     const btScalar threshold = btScalar(-0.01);
@@ -570,17 +596,21 @@ TEST(SolverFeatures, SoftStepNegativeProcessingThresholdSinksAsStock)
     ScenePtr stock = features::thresholdStack(WorldKind::Stock, Config::bulletMode(), threshold);
     ScenePtr gpu = features::thresholdStack(WorldKind::Gpu, soft, threshold);
     ScenePtr plain = features::thresholdStack(WorldKind::Gpu, soft, btScalar(BT_LARGE_FLOAT));
+    double stockMean = 0, gpuMean = 0, plainMean = 0;
     for (int i = 0; i < 120; ++i) {
         stock->step();
         gpu->step();
         plain->step();
         ASSERT_TRUE(gpu->report()->gpuPath) << "step " << i << ": " << gpu->report()->cpuPathReason;
         ASSERT_TRUE(plain->report()->gpuPath) << "step " << i << ": " << plain->report()->cpuPathReason;
+        if (i < 60) continue;
+        stockMean += gap(*stock) / 60;
+        gpuMean += gap(*gpu) / 60;
+        plainMean += gap(*plain) / 60;
     }
-    EXPECT_LT(gap(*stock), -0.005) << "stock's box sinks";
-    EXPECT_GT(gap(*plain), -0.002) << "without the threshold the soft step's does not";
-    EXPECT_NEAR(gap(*gpu), gap(*stock), tol::kRestHeight) << "stock " << gap(*stock) << ", without the threshold "
-                                                          << gap(*plain);
+    EXPECT_LT(stockMean, -0.005) << "stock's box sinks";
+    EXPECT_GT(plainMean, -0.002) << "without the threshold the soft step's does not";
+    EXPECT_NEAR(gpuMean, stockMean, tol::kRestHeight) << "stock " << stockMean << ", without the threshold " << plainMean;
     EXPECT_EQ(seenPoints(*gpu, threshold).points, seenPoints(*stock, threshold).points);
 }
 
