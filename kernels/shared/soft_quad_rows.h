@@ -102,12 +102,12 @@ static BTG_ALWAYS_INLINE void btgSoftSolveQuad(BtgSoftContact* s, BtgSolverBody 
         const BtgJacobian j2 = btgPointJacobian(s->tangent2, rA, rB, a, b);
         BTG_FOR_POINTS(k, n) {
             if (btgLane(s->normalMass, k) == 0.0f) continue;
-            /* btgSoftFrictionRows: Gauss-Seidel within the cone, else the slip's direction onto it */
+            /* btgSoftFrictionRows: Gauss-Seidel within the cone, else btgSoftFrictionSlip */
             const float o1 = btgLane(s->tangent1Impulse, k), o2 = btgLane(s->tangent2Impulse, k);
             const float m1 = btgLane(s->tangent1Mass, k), m2 = btgLane(s->tangent2Mass, k);
             const BtgJacobian k1 = btgQuadJacobian(j1, k, mask);
             const BtgJacobian k2 = btgQuadJacobian(j2, k, mask);
-            const float slip2 = btgRowVelocity(k2, *va, *vb);
+            const float slip1 = btgRowVelocity(k1, *va, *vb), slip2 = btgRowVelocity(k2, *va, *vb);
             float n1 = o1, n2 = o2;
             if (m1 != 0.0f) {
                 BtgSolverRow r = btgMakeSolverRow(k1, m1, 0.0f, -BTG_SOFT_FRICTION_FREE, BTG_SOFT_FRICTION_FREE, o1);
@@ -120,14 +120,9 @@ static BTG_ALWAYS_INLINE void btgSoftSolveQuad(BtgSoftContact* s, BtgSolverBody 
                 n2 = o2 + d2;
             }
             const float lim = s->friction * btgLane(s->normalImpulse, k);
-            if (btgSoftFrictionCone(lim, n1, n2)) {
-                const float t2 = m2 != 0.0f ? o2 - slip2 * m2 : o2;
-                float c1 = n1, c2 = t2;
-                if (btgSoftFrictionCone(lim, n1, t2)) {
-                    const float scale = btgSoftConeScale(lim, n1, t2);
-                    c1 = n1 * scale;
-                    c2 = t2 * scale;
-                }
+            if (m1 != 0.0f && btgSoftFrictionCone(lim, n1, n2)) {
+                float c1, c2;
+                btgSoftFrictionSlip(lim, o1, o2, slip1, slip2, m1, m2, &c1, &c2);
                 btgRowApply(k1, a, b, va, vb, c1 - n1);
                 d2 = c2 - o2;
                 n1 = c1;

@@ -354,7 +354,7 @@ static BTG_ALWAYS_INLINE BtgW btgWRowSolve(const BtgJacobianW* j, BtgW mass, Btg
     return select(impulse, next, solved);
 }
 /* btgSoftFrictionRows (take: the lanes that run them): Gauss-Seidel where the pair stays within
- * the cone, else both from the velocities before row 1 scaled onto it. */
+ * the cone, else btgSoftFrictionSlip. */
 static BTG_ALWAYS_INLINE void btgWFrictionRows(__global float* c, int k, BtgV3W t1, BtgV3W t2, BtgW friction, const BtgBodyW* a,
                                                const BtgBodyW* b, BtgVelW* va, BtgVelW* vb, int8 take)
 {
@@ -365,21 +365,23 @@ static BTG_ALWAYS_INLINE void btgWFrictionRows(__global float* c, int k, BtgV3W 
     const BtgV3W rA = btgW3LoadG(c, BTG_WC_AT(k, BTG_WC_AX)), rB = btgW3LoadG(c, BTG_WC_AT(k, BTG_WC_BX));
     const BtgJacobianW j1 = btgWPointJacobian(t1, rA, rB, a, b);
     const BtgJacobianW j2 = btgWPointJacobian(t2, rA, rB, a, b);
-    const BtgW slip2 = btgWRowVelocity(&j2, va, vb);
+    const BtgW slip1 = btgWRowVelocity(&j1, va, vb), slip2 = btgWRowVelocity(&j2, va, vb);
     const BtgW zero = (BtgW)(0.0f), unbounded = (BtgW)(BTG_SOFT_FRICTION_FREE);
     const int8 row1 = active & (m1 != 0.0f), row2 = active & (m2 != 0.0f);
     BtgW n1 = any(row1) ? btgWRowSolve(&j1, m1, zero, zero, -unbounded, unbounded, o1, row1, a, b, va, vb) : o1;
     BtgW d2 = (0.0f - btgWRowVelocity(&j2, va, vb)) * m2 - o2 * 0.0f;
     d2 = select(zero, d2, row2);
     BtgW n2 = select(o2, o2 + d2, row2);
-    /* btgSoftFrictionCone, btgSoftConeScale */
+    /* btgSoftFrictionCone, btgSoftFrictionSlip */
     const BtgW lim = friction * btgWLoadG(c, BTG_WC_AT(k, BTG_WC_NIMP));
-    const int8 slipping = (n1 * n1 + n2 * n2 > lim * lim) & active;
+    const int8 slipping = (n1 * n1 + n2 * n2 > lim * lim) & row1;
     if (any(slipping)) {
-        const BtgW tr2 = select(o2, o2 - slip2 * m2, m2 != 0.0f);
-        const int8 over = n1 * n1 + tr2 * tr2 > lim * lim;
-        const BtgW scale = lim / sqrt(n1 * n1 + tr2 * tr2);
-        const BtgW c1 = select(n1, n1 * scale, over), c2 = select(tr2, tr2 * scale, over);
+        const int8 two = m2 != 0.0f;
+        const BtgW m = select(m1, 2.0f * m1 * m2 / (m1 + m2), two);
+        const BtgW s1 = o1 - m * slip1, s2 = select(o2, o2 - m * slip2, two);
+        const int8 over = s1 * s1 + s2 * s2 > lim * lim;
+        const BtgW scale = lim / sqrt(s1 * s1 + s2 * s2);
+        const BtgW c1 = select(s1, s1 * scale, over), c2 = select(s2, s2 * scale, over);
         const BtgVelW a0 = *va, b0 = *vb;
         btgWRowApply(&j1, a, b, va, vb, c1 - n1);
         btgWKeep(va, a0, slipping);
