@@ -102,33 +102,13 @@ static BTG_ALWAYS_INLINE void btgSoftSolveQuad(BtgSoftContact* s, BtgSolverBody 
         const BtgJacobian j2 = btgPointJacobian(s->tangent2, rA, rB, a, b);
         BTG_FOR_POINTS(k, n) {
             if (btgLane(s->normalMass, k) == 0.0f) continue;
-            /* btgSoftFrictionRows: Gauss-Seidel within the cone, else btgSoftFrictionSlip */
+            /* btgSoftFrictionRows' rows on the fetched Jacobians */
             const float o1 = btgLane(s->tangent1Impulse, k), o2 = btgLane(s->tangent2Impulse, k);
-            const float m1 = btgLane(s->tangent1Mass, k), m2 = btgLane(s->tangent2Mass, k);
             const BtgJacobian k1 = btgQuadJacobian(j1, k, mask);
             const BtgJacobian k2 = btgQuadJacobian(j2, k, mask);
-            const float slip1 = btgRowVelocity(k1, *va, *vb), slip2 = btgRowVelocity(k2, *va, *vb);
-            float n1 = o1, n2 = o2;
-            if (m1 != 0.0f) {
-                BtgSolverRow r = btgMakeSolverRow(k1, m1, 0.0f, -BTG_SOFT_FRICTION_FREE, BTG_SOFT_FRICTION_FREE, o1);
-                btgRowSolve(&r, a, b, va, vb);
-                n1 = r.impulse;
-            }
-            float d2 = 0.0f;
-            if (m2 != 0.0f) {
-                d2 = (0.0f - btgRowVelocity(k2, *va, *vb)) * m2 - o2 * 0.0f;
-                n2 = o2 + d2;
-            }
-            const float lim = s->friction * btgLane(s->normalImpulse, k);
-            if (m1 != 0.0f && btgSoftFrictionCone(lim, n1, n2)) {
-                float c1, c2;
-                btgSoftFrictionSlip(lim, o1, o2, slip1, slip2, m1, m2, &c1, &c2);
-                btgRowApply(k1, a, b, va, vb, c1 - n1);
-                d2 = c2 - o2;
-                n1 = c1;
-                n2 = c2;
-            }
-            if (m2 != 0.0f || d2 != 0.0f) btgRowApply(k2, a, b, va, vb, d2);
+            float n1, n2;
+            btgSoftFrictionPair(k1, k2, btgLane(s->tangent1Mass, k), btgLane(s->tangent2Mass, k), o1, o2,
+                                s->friction * btgLane(s->normalImpulse, k), a, b, va, vb, &n1, &n2);
             btgSetLane(&s->tangent1Impulse, k, n1);
             btgSetLane(&s->tangent2Impulse, k, n2);
             btgSetLane(&s->total1, k, btgLane(s->total1, k) + (n1 - o1));

@@ -655,15 +655,13 @@ static BTG_ALWAYS_INLINE void btgSoftFrictionSlip(float lim, float o1, float o2,
     *c1 = t1 * scale;
     *c2 = t2 * scale;
 }
-static BTG_ALWAYS_INLINE void btgSoftFrictionRows(BtgSoftContact* s, int k, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
-                                                  BtgBodyVel* vb, const BtgFrictionDirs* dirs)
+/* The pair of rows j1, j2 (masses m1, m2, impulses o1, o2 so far) within the cone of radius lim:
+ * the new impulses in n1, n2, the bodies' velocities moved (btgSoftFrictionRows; the quads' rows
+ * call it with their fetched Jacobians). */
+static BTG_ALWAYS_INLINE void btgSoftFrictionPair(BtgJacobian j1, BtgJacobian j2, float m1, float m2, float o1, float o2,
+                                                  float lim, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
+                                                  BtgBodyVel* vb, float* n1Out, float* n2Out)
 {
-    if (btgLane(s->normalMass, k) == 0.0f) return;
-    const float o1 = btgLane(s->tangent1Impulse, k), o2 = btgLane(s->tangent2Impulse, k);
-    const float m1 = btgLane(s->tangent1Mass, k), m2 = btgLane(s->tangent2Mass, k);
-    const BtgFloat4 rA = btgSoftArmA(s, k), rB = btgSoftArmB(s, k);
-    const BtgJacobian j1 = btgPointJacobian(btgSoftDir1(s, dirs, k), rA, rB, a, b);
-    const BtgJacobian j2 = btgPointJacobian(btgSoftDir2(s, dirs, k), rA, rB, a, b);
     /* the slip before row 1 moves the bodies (where the point slips) */
     const float slip1 = btgRowVelocity(j1, *va, *vb), slip2 = btgRowVelocity(j2, *va, *vb);
     float n1 = o1, n2 = o2;
@@ -678,7 +676,6 @@ static BTG_ALWAYS_INLINE void btgSoftFrictionRows(BtgSoftContact* s, int k, BtgS
         d2 = (0.0f - btgRowVelocity(j2, *va, *vb)) * m2 - o2 * 0.0f; /* btgRowSolve's unbounded step */
         n2 = o2 + d2;
     }
-    const float lim = s->friction * btgLane(s->normalImpulse, k);
     if (m1 != 0.0f && btgSoftFrictionCone(lim, n1, n2)) {
         float c1, c2;
         btgSoftFrictionSlip(lim, o1, o2, slip1, slip2, m1, m2, &c1, &c2);
@@ -688,6 +685,20 @@ static BTG_ALWAYS_INLINE void btgSoftFrictionRows(BtgSoftContact* s, int k, BtgS
         n2 = c2;
     }
     if (m2 != 0.0f || d2 != 0.0f) btgRowApply(j2, a, b, va, vb, d2);
+    *n1Out = n1;
+    *n2Out = n2;
+}
+static BTG_ALWAYS_INLINE void btgSoftFrictionRows(BtgSoftContact* s, int k, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
+                                                  BtgBodyVel* vb, const BtgFrictionDirs* dirs)
+{
+    if (btgLane(s->normalMass, k) == 0.0f) return;
+    const float o1 = btgLane(s->tangent1Impulse, k), o2 = btgLane(s->tangent2Impulse, k);
+    const float m1 = btgLane(s->tangent1Mass, k), m2 = btgLane(s->tangent2Mass, k);
+    const BtgFloat4 rA = btgSoftArmA(s, k), rB = btgSoftArmB(s, k);
+    const BtgJacobian j1 = btgPointJacobian(btgSoftDir1(s, dirs, k), rA, rB, a, b);
+    const BtgJacobian j2 = btgPointJacobian(btgSoftDir2(s, dirs, k), rA, rB, a, b);
+    float n1, n2;
+    btgSoftFrictionPair(j1, j2, m1, m2, o1, o2, s->friction * btgLane(s->normalImpulse, k), a, b, va, vb, &n1, &n2);
     btgSetLane(&s->tangent1Impulse, k, n1);
     btgSetLane(&s->tangent2Impulse, k, n2);
     btgSetLane(&s->total1, k, btgLane(s->total1, k) + (n1 - o1));
