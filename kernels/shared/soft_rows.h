@@ -621,89 +621,8 @@ static BTG_ALWAYS_INLINE void btgSoftNormalRow(BtgSoftContact* s, int k, BtgSolv
     btgSetLane(&s->totalNormal, k, btgLane(s->totalNormal, k) + (next - old));
     btgRowApply(j, a, b, va, vb, next - old);
 }
-/* Point k's two friction rows, driven to no slip, bounded together (a friction cone): row 1 and
- * then row 2 solved without a bound (Gauss-Seidel); where that pair lies within friction x the
- * point's normal impulse of this substep it stands, bit for bit the steps of rows clamped each on
- * its own. A point that slips beyond it takes both rows' step from the velocities before either,
- * on one mass for both (the harmonic mean of the rows': the step then points against the slip,
- * Coulomb's sliding friction), scaled onto that circle, row 1's step already applied corrected
- * (btgSoftFrictionSlip). Clamped each on its own (a pyramid), a box sliding across the tangents
- * took up to sqrt 2 times its friction and its slide bent toward a tangent: sent along the ground
- * at (1.2, 0, 1.6) m/s it stopped at (0.29, 0.51), 0.59 m from its start, where stock (its first
- * friction direction follows the slip) and the physics stop it 0.78 m along the throw. Scaled from
- * the Gauss-Seidel pair, a box landing while sliding kept 0.79 m/s of its 2 where stock keeps 0.71
- * (row 2's answer to the turn row 1 gave the box took a share of the cone); on each row's own mass,
- * a box sliding down a slope across the tangents slid 4% fast and 3 degrees off the fall line.
- * Both rows from the same velocities at every point (Jolt's order) threw the opt-in held pairs
- * (heldMassRatio 100: a 1,000:1 pair at 393 m/s). */
-#define BTG_SOFT_FRICTION_FREE 3.0e38f /* a row's bound that never binds */
-static BTG_ALWAYS_INLINE int btgSoftFrictionCone(float lim, float n1, float n2)
-{
-    return n1 * n1 + n2 * n2 > lim * lim;
-}
-/* A slipping point's impulses (c1, c2): from the old ones and the slip before either row (v1, v2)
- * on the rows' masses' harmonic mean, scaled onto the circle of radius lim where beyond it. */
-static BTG_ALWAYS_INLINE void btgSoftFrictionSlip(float lim, float o1, float o2, float v1, float v2, float m1, float m2,
-                                                  float* c1, float* c2)
-{
-    const float m = m2 != 0.0f ? 2.0f * m1 * m2 / (m1 + m2) : m1;
-    const float t1 = o1 - m * v1, t2 = m2 != 0.0f ? o2 - m * v2 : o2;
-    *c1 = t1;
-    *c2 = t2;
-    if (!btgSoftFrictionCone(lim, t1, t2)) return;
-    const float scale = lim / btgSqrt(t1 * t1 + t2 * t2);
-    *c1 = t1 * scale;
-    *c2 = t2 * scale;
-}
-/* The pair of rows j1, j2 (masses m1, m2, impulses o1, o2 so far) within the cone of radius lim:
- * the new impulses in n1, n2, the bodies' velocities moved (btgSoftFrictionRows; the quads' rows
- * call it with their fetched Jacobians). */
-static BTG_ALWAYS_INLINE void btgSoftFrictionPair(BtgJacobian j1, BtgJacobian j2, float m1, float m2, float o1, float o2,
-                                                  float lim, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
-                                                  BtgBodyVel* vb, float* n1Out, float* n2Out)
-{
-    /* the slip before row 1 moves the bodies (where the point slips) */
-    const float slip1 = btgRowVelocity(j1, *va, *vb), slip2 = btgRowVelocity(j2, *va, *vb);
-    float n1 = o1, n2 = o2;
-    /* a row without mass (Bullet's one direction: no second row) keeps its impulse (zero) */
-    if (m1 != 0.0f) {
-        BtgSolverRow r = btgMakeSolverRow(j1, m1, 0.0f, -BTG_SOFT_FRICTION_FREE, BTG_SOFT_FRICTION_FREE, o1);
-        btgRowSolve(&r, a, b, va, vb);
-        n1 = r.impulse;
-    }
-    float d2 = 0.0f;
-    if (m2 != 0.0f) {
-        d2 = (0.0f - btgRowVelocity(j2, *va, *vb)) * m2 - o2 * 0.0f; /* btgRowSolve's unbounded step */
-        n2 = o2 + d2;
-    }
-    if (m1 != 0.0f && btgSoftFrictionCone(lim, n1, n2)) {
-        float c1, c2;
-        btgSoftFrictionSlip(lim, o1, o2, slip1, slip2, m1, m2, &c1, &c2);
-        btgRowApply(j1, a, b, va, vb, c1 - n1);
-        d2 = c2 - o2;
-        n1 = c1;
-        n2 = c2;
-    }
-    if (m2 != 0.0f || d2 != 0.0f) btgRowApply(j2, a, b, va, vb, d2);
-    *n1Out = n1;
-    *n2Out = n2;
-}
-static BTG_ALWAYS_INLINE void btgSoftFrictionRows(BtgSoftContact* s, int k, BtgSolverBody a, BtgSolverBody b, BtgBodyVel* va,
-                                                  BtgBodyVel* vb, const BtgFrictionDirs* dirs)
-{
-    if (btgLane(s->normalMass, k) == 0.0f) return;
-    const float o1 = btgLane(s->tangent1Impulse, k), o2 = btgLane(s->tangent2Impulse, k);
-    const float m1 = btgLane(s->tangent1Mass, k), m2 = btgLane(s->tangent2Mass, k);
-    const BtgFloat4 rA = btgSoftArmA(s, k), rB = btgSoftArmB(s, k);
-    const BtgJacobian j1 = btgPointJacobian(btgSoftDir1(s, dirs, k), rA, rB, a, b);
-    const BtgJacobian j2 = btgPointJacobian(btgSoftDir2(s, dirs, k), rA, rB, a, b);
-    float n1, n2;
-    btgSoftFrictionPair(j1, j2, m1, m2, o1, o2, s->friction * btgLane(s->normalImpulse, k), a, b, va, vb, &n1, &n2);
-    btgSetLane(&s->tangent1Impulse, k, n1);
-    btgSetLane(&s->tangent2Impulse, k, n2);
-    btgSetLane(&s->total1, k, btgLane(s->total1, k) + (n1 - o1));
-    btgSetLane(&s->total2, k, btgLane(s->total2, k) + (n2 - o2));
-}
+#include "soft_friction_rows.h"
+
 /* How many times a sweep runs a contact's normal rows (Gauss-Seidel within the contact before
  * its friction rows): twice in the relax where two or more of its points are solved, else once.
  * One pass leaves the points' impulses in the order they were solved: a box landing flat took
@@ -853,35 +772,6 @@ static inline void btgSoftStore(BTG_GLOBAL BtgContact* contacts, int i, const Bt
     contacts[i].frictionSin = btgZero4();
 }
 
-/* ---- joints (their Bullet rows, built once a step by prepare_joints) ---- */
-
-/* One Gauss-Seidel step on each row, its bounds (N s a step) scaled to a substep: the row's
- * impulse is a substep's, warm-started in each substep as a force held over the step. A spring
- * row (BTG_JOINT_ROW_SPRING) is not: Bullet's is one step's impulse of the spring force from the
- * step's start, which drives the velocity to its target at the step's end, and held over the
- * substeps (the velocity reaching it only at the end, the positions following the ramp) it fed
- * the spring energy: a 2 kg box on a 6-DoF spring2 of 100 N/m, undamped, swung 0.2 m on stock
- * and 0.85 m after 10 s on the soft step's 10 substeps (0.51 on 2, 0.20 on 1). Its impulse is the
- * step's so far, within the step's bounds, never warm-started again (the velocity pass skips it),
- * so the velocity meets the target in the first substep, as symplectic Euler has it on stock.
- * The relax (relax set) drives a point-to-point row (BTG_JOINT_ROW_POSITION) without its bias, as
- * Box2D's relax does, so that its position correction leaves no velocity behind: a chain of three
- * boxes hanging on point-to-point joints gained 11 % of its energy in 60 s with it (150 to 167 J;
- * stock, damped by its own correction, lost 15 %), 0.5 % without. The other rows keep their
- * Bullet bias in the relax: it carries motors and limits as well as position error, which their
- * rows do not tell apart. */
-static inline void btgSoftJointSolve(BTG_GLOBAL BtgJointRow* rows, int first, int count, BtgSolverBody a,
-                                     BtgSolverBody b, BtgBodyVel* va, BtgBodyVel* vb, float boundScale, int relax)
-{
-    for (int k = 0; k < count; ++k) {
-        BtgJointRow r = rows[first + k];
-        if (relax && (r.flags & BTG_JOINT_ROW_POSITION)) r.target -= r.bias; /* no position correction in the relax */
-        const float scale = (r.flags & BTG_JOINT_ROW_SPRING) ? 1.0f : boundScale;
-        r.lower *= scale;
-        r.upper *= scale;
-        btgJointRowSolve(&r, a, b, va, vb);
-        rows[first + k].impulse = r.impulse;
-    }
-}
+#include "soft_joint_rows.h"
 
 #endif
