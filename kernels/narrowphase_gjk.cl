@@ -12,13 +12,15 @@
  * Writes manifolds[slot], pairManifolds[slot] and gjkPairState[slot] of the kind's pairs;
  * then gjkCache (in the warm-start cache's order). */
 #include "shared/polyhedral_contacts.h"
-#include "shared/simple_contacts.h"
+#include "shared/soft_afresh.h"
 #define BTG_PERSISTENT_STEP btgPairStep
-/* The soft step collides two spheres, and a box or hull on a plane, afresh with speculative
- * points (Box2D's); every other pair here keeps its persistent manifold in both modes. */
+/* The soft step collides two spheres, a box or hull on a plane and a capsule on a box or a
+ * plane afresh with speculative points (Box2D's; soft_afresh.h); every other pair here keeps
+ * its persistent manifold in both modes. */
 #define BTG_SPECULATIVE_COLLIDE btgCollideSoftAfresh
 #define BTG_SPECULATIVE_PAIR(kind, shapeA, shapeB) btgSoftCollidesAfresh(kind, shapeA, shapeB)
-#define BTG_FRESH_KERNEL 1 /* those pairs are collide_fresh's, a kernel without GJK's registers */
+#define BTG_FRESH_KERNEL 1 /* those pairs are collide_fresh's, a kernel without GJK's registers, */
+#define BTG_FRESH_PAIR(kind, shapeA, shapeB) btgSoftFreshKernelPair(kind, shapeA, shapeB) /* but a capsule on a box */
 #include "shared/persistent_kernels.h"
 
 BTG_PERSISTENT_PROGRAM_KERNEL(BTG_PAIR_KINDS_NARROWPHASE_GJK)

@@ -14,6 +14,12 @@
 #include "mesh.h"
 #include "persistent_manifold.h"
 
+/* The pairs collide_fresh takes of those BTG_SPECULATIVE_PAIR names (BTG_FRESH_KERNEL 1): all,
+ * unless the program says which. */
+#ifndef BTG_FRESH_PAIR
+#define BTG_FRESH_PAIR(kind, shapeA, shapeB) BTG_SPECULATIVE_PAIR(kind, shapeA, shapeB)
+#endif
+
 /* The manifold the pair kept last substep: found through the warm-start cache (the contacts in
  * pair order), whose entry j the GJK cache holds at j too. None when the pair had no points, or
  * the entry is another kind's (the pair's shapes changed). hint: btgFindPrevContactNear's. */
@@ -117,7 +123,7 @@ static inline uint btgKindsAt(const int* kinds, int numKinds, uint skipMask, __g
             BtgPersistentManifold pm = btgEmptyPersistent(p.a, p.b, kind);                                           \
             BtgManifold m = btgEmptyManifold(p.a, p.b);                                                               \
             if (BTG_FRESH_KERNEL && btgPairKind(a.shape.type, b.shape.type) == kind && speculative &&                 \
-                BTG_SPECULATIVE_PAIR(kind, a.shape, b.shape))                                                         \
+                BTG_FRESH_PAIR(kind, a.shape, b.shape))                                                               \
                 continue; /* collide_fresh's */                                                                       \
             if (btgPairKind(a.shape.type, b.shape.type) == kind && speculative &&                                     \
                 BTG_SPECULATIVE_PAIR(kind, a.shape, b.shape)) {                                                       \
@@ -144,11 +150,11 @@ static inline uint btgKindsAt(const int* kinds, int numKinds, uint skipMask, __g
 
 /* The soft step's fresh pairs of a program whose collide_persistent leaves them (BTG_FRESH_KERNEL
  * 1): collide_fresh strides over the four kinds its arguments name (OpenCL C has no variadic
- * macros: NVIDIA's compiler refuses them), collides each pair BTG_SPECULATIVE_PAIR
- * names afresh (BTG_SPECULATIVE_COLLIDE) and keeps nothing for it; the other pairs of those kinds
- * are collide_persistent's. A kernel of its own: the closed forms on the GJK kernel's registers
+ * macros: NVIDIA's compiler refuses them), collides each pair BTG_FRESH_PAIR (of those
+ * BTG_SPECULATIVE_PAIR names, the ones without GJK) names afresh (BTG_SPECULATIVE_COLLIDE) and
+ * keeps nothing for it; the other pairs of those kinds are collide_persistent's. A kernel of its own: the closed forms on the GJK kernel's registers
  * ran at its occupancy. */
-#define BTG_FRESH_PROGRAM_KERNEL(K0, K1, K2, K3)                                                                     \
+#define BTG_FRESH_PROGRAM_KERNEL(K0, K1, K2, K3)                                                                    \
     __kernel void collide_fresh(__global const BtgPair* restrict pairs, __global const uint* restrict kindOrder,     \
                                 __global const uint* restrict kindRanges, int indirect,                              \
                                 __global const BtgFloat4* restrict pos, __global const BtgFloat4* restrict rot,      \
@@ -170,7 +176,7 @@ static inline uint btgKindsAt(const int* kinds, int numKinds, uint skipMask, __g
             const BtgPair p = pairs[slot];                                                                            \
             BtgCollider a = btgLoadPairCollider(p, 0, pos, rot, props, shapes, children);                             \
             BtgCollider b = btgLoadPairCollider(p, 1, pos, rot, props, shapes, children);                             \
-            if (btgPairKind(a.shape.type, b.shape.type) != kind || !BTG_SPECULATIVE_PAIR(kind, a.shape, b.shape))    \
+            if (btgPairKind(a.shape.type, b.shape.type) != kind || !BTG_FRESH_PAIR(kind, a.shape, b.shape))          \
                 continue; /* collide_persistent's (or, a stale plan's, no kernel's: as there) */                      \
             const float t = btgPairThreshold(a.shape, b.shape);                                                       \
             BtgManifold m = BTG_SPECULATIVE_COLLIDE(a, b, verts, faces, indices, edges, t);                           \

@@ -1,6 +1,6 @@
 /* simple_contacts.h — contacts for the pairs that need no SAT: sphere–hull, sphere–box and
  * sphere–plane (the rows of program "narrowphase" in pair_kinds.h), and the soft step's fresh
- * sphere–sphere and hull–plane (btgCollideSoftAfresh, in program "narrowphase_gjk"). Each
+ * sphere–sphere and hull–plane (btgCollideSoftAfresh, soft_afresh.h, in program "narrowphase_gjk"). Each
  * btgCollide* takes the pair's two colliders in the pair's own order (A = pair.a) and returns
  * its manifold; hull margins grow the polyhedron outwards. */
 #ifndef BTG_SIMPLE_CONTACTS_H
@@ -185,26 +185,6 @@ static inline BtgManifold btgCollideHullPlane(BtgCollider a, BtgCollider b, BTG_
     (void)edges;
     if (b.shape.type == BTG_SHAPE_PLANE) return btgHullPlaneCanonical(a, b, verts, threshold);
     return btgSwapManifold(btgHullPlaneCanonical(b, a, verts, threshold));
-}
-
-/* Whether the soft step collides this pair of the GJK program afresh (btgCollideSoftAfresh):
- * the kinds of BTG_SOFT_COLLIDES_AFRESH, and a plane with a point-cloud convex row (a hull
- * without polyhedral features, a convex triangle mesh). */
-static inline int btgSoftCollidesAfresh(int kind, BtgShape a, BtgShape b)
-{
-    if (BTG_SOFT_COLLIDES_AFRESH(kind)) return 1;
-    return kind == BTG_PAIR_PLANE_CONVEX &&
-           ((a.type == BTG_SHAPE_CONVEX && a.convexType == BTG_CONVEX_POINTS) ||
-            (b.type == BTG_SHAPE_CONVEX && b.convexType == BTG_CONVEX_POINTS));
-}
-
-/* The soft step's fresh collision of the GJK program's pairs it keeps no manifold for
- * (btgSoftCollidesAfresh): two spheres, or a box or hull (any row of vertices) and a plane. */
-static inline BtgManifold btgCollideSoftAfresh(BtgCollider a, BtgCollider b, BTG_SHAPE_TABLES, float threshold)
-{
-    if (a.shape.type == BTG_SHAPE_SPHERE && b.shape.type == BTG_SHAPE_SPHERE)
-        return btgCollideSphereSphere(a, b, verts, faces, indices, edges, threshold);
-    return btgCollideHullPlane(a, b, verts, faces, indices, edges, threshold);
 }
 
 #endif

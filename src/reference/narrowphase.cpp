@@ -7,7 +7,7 @@
 #include "shared/compound.h"
 #include "shared/concave_manifold.h"
 #include "shared/polyhedral_contacts.h"
-#include "shared/simple_contacts.h"
+#include "shared/soft_afresh.h"
 #include "shared/triangle_contacts.h"
 
 namespace btgpu::ref {

@@ -184,12 +184,15 @@ TEST(SolverModes, ChainHoldsInSoftMode)
 }
 
 // Four ragdolls (hinges and cone-twists) dropped on the ground in the soft mode: finite, speeds
-// within the fall's bound, on the GPU path every step, and nearly at rest after 5 s
-// (KE/M below 1e-3 J/kg; the bullet mode is recorded beside it).
+// within the fall's bound, on the GPU path every step, and nearly at rest after 6 s
+// (KE/M below 1e-3 J/kg; the bullet mode is recorded beside it). 6 s since the soft step lays
+// capsules on the ground afresh (round_contacts.h): with no GJK point a few micrometres off,
+// the symmetric drop stays in its plane and its last limb falls at 5 s (KE/M 1.2e-3 then; all
+// asleep at 5.5 s; before, 8.5e-5 at 5 s and asleep at 6.5 s).
 TEST(SolverModes, RagdollsLandInSoftMode)
 {
     Criteria c;
-    c.seconds = 5;
+    c.seconds = 6;
     const auto make = [](WorldKind k, const Config& cf) { return scenes::ragdolls(k, cf, 4); };
     const Outcome stock = run(make, WorldKind::Stock, c);
     const Outcome bullet = run(make, WorldKind::Gpu, c, modeConfig(SolverKind::BatchedPgs));
