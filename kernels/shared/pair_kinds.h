@@ -103,7 +103,8 @@
  * triangle_contacts.h: the convex, the mesh, the triangle's mesh-local vertices) and its
  * kernel strides over the sub-pairs of its kind. Boxes and hulls (a box's row holds its hull)
  * take the same routine; convex shapes known only by their support function take GJK against
- * the triangle (btgCollideConvexTriangle: stock's one point per triangle per step). The mesh
+ * the triangle (btgCollideConvexTriangleFresh: stock's one point per triangle per step, but a
+ * capsule or cylinder lying on the triangle laid on its face). The mesh
  * bullet mode takes one point per triangle for every row (btgCollideTrianglePoint: stock's
  * algorithms) into the pair's persistent manifold (concave_manifold.h); the rows' routines
  * clip each triangle for the soft step, whose pairs keep nothing across steps. */
@@ -120,10 +121,10 @@
       btgCollideHullTriangle, collide_hull_heightfield)                                                       \
     X(narrowphase_mesh, BTG_PAIR_BOX_HEIGHTFIELD, BTG_SHAPE_BOX, BTG_SHAPE_HEIGHTFIELD,                       \
       btgCollideHullTriangle, collide_box_heightfield)                                                        \
-    X(narrowphase_mesh, BTG_PAIR_CONVEX_MESH, BTG_SHAPE_CONVEX, BTG_SHAPE_MESH, btgCollideConvexTriangle,     \
+    X(narrowphase_mesh, BTG_PAIR_CONVEX_MESH, BTG_SHAPE_CONVEX, BTG_SHAPE_MESH, btgCollideConvexTriangleFresh, \
       collide_convex_triangles)                                                                               \
     X(narrowphase_mesh, BTG_PAIR_CONVEX_HEIGHTFIELD, BTG_SHAPE_CONVEX, BTG_SHAPE_HEIGHTFIELD,                 \
-      btgCollideConvexTriangle, collide_convex_heightfield)
+      btgCollideConvexTriangleFresh, collide_convex_heightfield)
 
 /* The pairs of two convex shapes one routine call makes at once (the GJK program's kernels
  * carry their persistent manifolds themselves), and the whole table, program by program in

@@ -34,27 +34,25 @@ static inline int btgRoundOnFace(BtgShape a, BtgShape b)
 }
 
 /* The face the round body r lies on: world normal n (from the face towards r) and constant w
- * (points p with n.p = w on it); a box's face also its axis k, side s (n = s e_k in the box's
- * frame) and the box (its half extents bound the face). */
+ * (points p with n.p = w on it), bounded by up to four side planes (xyz outward, w: a point p
+ * is over the face where every side's xyz.p <= w): a box's face its rectangle's four, a
+ * triangle its three edges', a plane none. */
 typedef struct {
     BtgFloat4 n;
     float w;
-    int k;
-    float s;
-    int bounded;
+    int numSides;
+    BtgFloat4 side[4];
 } BtgRoundFace;
 
 /* 1: a face, 0: nothing within reach, -1: an edge or corner of the box (*g its one point). */
 static inline int btgRoundFaceOf(BtgCollider r, BtgCollider f, BTG_CONST_GLOBAL BtgFloat4* verts, float threshold,
                                  BtgRoundFace* face, BtgConvexPoint* g)
 {
+    face->numSides = 0;
     if (f.shape.type == BTG_SHAPE_PLANE) {
         const BtgFloat4 plane = btgWorldPlane(f);
         face->n = btgXyz(plane);
         face->w = plane.w;
-        face->k = 1;
-        face->s = 1.0f;
-        face->bounded = 0;
         return 1;
     }
     *g = btgGjkPoint(r, f, verts, threshold);
@@ -64,63 +62,54 @@ static inline int btgRoundFaceOf(BtgCollider r, BtgCollider f, BTG_CONST_GLOBAL 
     for (int i = 1; i < 3; ++i)
         if (btgAbs(btgComp(nl, i)) > btgAbs(btgComp(nl, k))) k = i;
     if (btgAbs(btgComp(nl, k)) < BTG_ROUND_FACE_COS) return -1;
-    face->k = k;
-    face->s = btgComp(nl, k) < 0.0f ? -1.0f : 1.0f;
     BtgFloat4 e = btgZero4();
-    btgSetComp(&e, k, face->s);
+    btgSetComp(&e, k, btgComp(nl, k) < 0.0f ? -1.0f : 1.0f);
     face->n = btgMat3MulVec(f.pose.rot, e);
     face->w = btgDot3(face->n, f.pose.pos) + btgComp(f.shape.param, k);
-    face->bounded = 1;
+    for (int i = 0; i < 3; ++i) {
+        if (i == k) continue;
+        BtgFloat4 a = btgZero4();
+        btgSetComp(&a, i, 1.0f);
+        const BtgFloat4 s = btgMat3MulVec(f.pose.rot, a);
+        const float c = btgDot3(s, f.pose.pos), h = btgComp(f.shape.param, i);
+        face->side[face->numSides++] = btgMake4(s.x, s.y, s.z, c + h);
+        face->side[face->numSides++] = btgMake4(-s.x, -s.y, -s.z, h - c);
+    }
     return 1;
 }
 
-/* Whether world point p lies over the face (within the box's other two half extents). */
-static inline int btgOverFace(BtgRoundFace face, BtgCollider f, BtgFloat4 p)
+/* Whether world point p lies over the face (inside every side plane). */
+static inline int btgOverFace(const BtgRoundFace* face, BtgFloat4 p)
 {
-    if (!face.bounded) return 1;
-    const BtgFloat4 q = btgPoseApplyInv(f.pose, p);
-    for (int i = 0; i < 3; ++i)
-        if (i != face.k && btgAbs(btgComp(q, i)) > btgComp(f.shape.param, i)) return 0;
+    for (int i = 0; i < face->numSides; ++i)
+        if (btgDot3(face->side[i], p) > face->side[i].w) return 0;
     return 1;
 }
 
 /* A capsule (segment along upAxis, half height param.y, radius param.x) on the face: its
- * segment clipped to the face's rectangle (a box's) in the box's frame, a point under each end
- * of what is left, within the threshold. 0 when the segment's shadow misses the face. */
-static inline int btgCapsuleOnFaceCanonical(BtgManifold* m, BtgCollider c, BtgCollider f, BtgRoundFace face,
-                                            float threshold)
+ * segment clipped to the face's sides, a point under each end of what is left, within the
+ * threshold. 0 when the segment's shadow misses the face. */
+static inline int btgCapsuleOnFaceCanonical(BtgManifold* m, BtgCollider c, const BtgRoundFace* face, float threshold)
 {
     BtgFloat4 e = btgZero4();
     btgSetComp(&e, c.shape.upAxis, c.shape.param.y);
     const BtgFloat4 d = btgMat3MulVec(c.pose.rot, e);
     const BtgFloat4 p0 = btgXyz(c.pose.pos) - d, p1 = btgXyz(c.pose.pos) + d;
     float t0 = 0.0f, t1 = 1.0f;
-    if (face.bounded) {
-        const BtgFloat4 q0 = btgPoseApplyInv(f.pose, p0), q1 = btgPoseApplyInv(f.pose, p1), dq = q1 - q0;
-        for (int i = 0; i < 3; ++i) {
-            if (i == face.k) continue;
-            const float a = btgComp(q0, i), di = btgComp(dq, i), hi = btgComp(f.shape.param, i);
-            if (di == 0.0f) {
-                if (a < -hi || a > hi) return 0;
-                continue;
-            }
-            float ta = (-hi - a) / di, tb = (hi - a) / di;
-            if (ta > tb) {
-                const float x = ta;
-                ta = tb;
-                tb = x;
-            }
-            t0 = btgMax(t0, ta);
-            t1 = btgMin(t1, tb);
-        }
-        if (t0 > t1) return 0;
+    for (int i = 0; i < face->numSides; ++i) {
+        /* the sides are perpendicular to the face: the shadow's ends are the segment's */
+        const float a = btgDot3(face->side[i], p0) - face->side[i].w, b = btgDot3(face->side[i], p1) - face->side[i].w;
+        if (a > 0.0f && b > 0.0f) return 0;
+        if (a > 0.0f) t0 = btgMax(t0, a / (a - b));
+        else if (b > 0.0f) t1 = btgMin(t1, a / (a - b));
     }
+    if (t0 > t1) return 0;
     for (int end = 0; end < 2; ++end) {
         if (end == 1 && t1 == t0) break;
         const BtgFloat4 p = p0 + (p1 - p0) * (end == 0 ? t0 : t1);
-        const float height = btgDot3(face.n, p) - face.w;
+        const float height = btgDot3(face->n, p) - face->w;
         const float dist = height - c.shape.param.x;
-        if (dist < threshold) btgAddPoint(m, face.n, p - face.n * height, dist, BTG_FEATURE_VERTEX | (uint)end);
+        if (dist < threshold) btgAddPoint(m, face->n, p - face->n * height, dist, BTG_FEATURE_VERTEX | (uint)end);
     }
     return 1;
 }
@@ -129,12 +118,11 @@ static inline int btgCapsuleOnFaceCanonical(BtgManifold* m, BtgCollider c, BtgCo
  * margin around the core) on the face: on each cap the rim point lowest towards the face and its
  * three quarter turns (on a cap facing the face squarely, four points of its rim), each over the
  * face and within the threshold a candidate, reduced to four. 0 when none is. */
-static inline int btgCylinderOnFaceCanonical(BtgManifold* m, BtgCollider c, BtgCollider f, BtgRoundFace face,
-                                             float threshold)
+static inline int btgCylinderOnFaceCanonical(BtgManifold* m, BtgCollider c, const BtgRoundFace* face, float threshold)
 {
     const int up = c.shape.upAxis, xx = up == 0 ? 1 : 0, zz = up == 2 ? 1 : 2;
     const float radius = btgComp(c.shape.param, xx), halfHeight = btgComp(c.shape.param, up);
-    const BtgFloat4 nl = btgMat3TMulVec(c.pose.rot, face.n);
+    const BtgFloat4 nl = btgMat3TMulVec(c.pose.rot, face->n);
     /* the rim's lowest direction in the caps' plane (shape-local): against the face's normal */
     const float vx = -btgComp(nl, xx), vz = -btgComp(nl, zz), len = btgSqrt(vx * vx + vz * vz);
     const float cx = len > 1e-6f ? vx / len : 1.0f, cz = len > 1e-6f ? vz / len : 0.0f;
@@ -151,16 +139,16 @@ static inline int btgCylinderOnFaceCanonical(BtgManifold* m, BtgCollider c, BtgC
             btgSetComp(&onCore, zz, rz * radius);
             btgSetComp(&onCore, up, cap == 0 ? -halfHeight : halfHeight);
             const BtgFloat4 p = btgPoseApply(c.pose, onCore);
-            const float height = btgDot3(face.n, p) - face.w;
+            const float height = btgDot3(face->n, p) - face->w;
             const float dist = height - c.shape.margin;
-            const BtgFloat4 onFace = p - face.n * height;
-            if (dist >= threshold || !btgOverFace(face, f, onFace)) continue;
+            const BtgFloat4 onFace = p - face->n * height;
+            if (dist >= threshold || !btgOverFace(face, onFace)) continue;
             pts[n] = btgMake4(onFace.x, onFace.y, onFace.z, dist);
             ids[n] = BTG_FEATURE_VERTEX | (uint)(4 * cap + q);
             ++n;
         }
     if (n == 0) return 0;
-    btgReduceArray(pts, ids, n, face.n, m);
+    btgReduceArray(pts, ids, n, face->n, m);
     return 1;
 }
 
@@ -174,9 +162,9 @@ static inline BtgManifold btgRoundOnFaceCanonical(BtgCollider r, BtgCollider f, 
     const int found = btgRoundFaceOf(r, f, verts, threshold, &face, &g);
     if (found == 0) return m;
     if (found > 0) {
-        const int laid = btgIsCapsule(r.shape) ? btgCapsuleOnFaceCanonical(&m, r, f, face, threshold)
-                                               : btgCylinderOnFaceCanonical(&m, r, f, face, threshold);
-        if (laid || !face.bounded) return m; /* else overhanging the box's face: GJK's point */
+        const int laid = btgIsCapsule(r.shape) ? btgCapsuleOnFaceCanonical(&m, r, &face, threshold)
+                                               : btgCylinderOnFaceCanonical(&m, r, &face, threshold);
+        if (laid || face.numSides == 0) return m; /* else overhanging the box's face: GJK's point */
     }
     btgAddPoint(&m, g.normal, g.pointB, g.distance, BTG_FEATURE_VERTEX | 8u);
     return m;

@@ -10,6 +10,7 @@
 #include "clip.h"
 #include "concave.h"
 #include "gjk.h"
+#include "round_contacts.h"
 
 #define BTG_FLT_EPSILON 1.1920929e-07f /* Bullet's SIMD_EPSILON (float build) */
 
@@ -245,6 +246,42 @@ static inline BtgManifold btgCollideConvexTriangle(BtgCollider c, BtgCollider me
     const BtgConvexPoint p = btgGjkPoint(c, btgTriangleCollider(mesh, tri), verts, threshold);
     if (p.valid) btgAddPoint(&m, p.normal, p.pointB, p.distance, BTG_FEATURE_SINGLE);
     return m;
+}
+
+/* The soft step's routine for a convex known by its support function against one triangle:
+ * GJK's one point, but a capsule or cylinder lying on the triangle (GJK's normal within
+ * BTG_ROUND_FACE_COS of the triangle's) laid on its face as on a box's (round_contacts.h: the
+ * triangle's edges bound the face; a body across two triangles gets each one's part), so the
+ * points under a rolling body lie under its axis rather than where GJK's point lands. */
+static inline BtgManifold btgCollideConvexTriangleFresh(BtgCollider c, BtgCollider mesh, BtgTriangleVerts tri,
+                                                        BTG_SHAPE_TABLES, float threshold)
+{
+    const BtgManifold m = btgCollideConvexTriangle(c, mesh, tri, verts, faces, indices, edges, threshold);
+    if (m.numPoints == 0 || !btgIsRound(c.shape)) return m;
+    BtgFloat4 w[3];
+    for (int i = 0; i < 3; ++i) w[i] = btgPoseApply(mesh.pose, tri.v[i]);
+    BtgFloat4 n = btgCross3(w[1] - w[0], w[2] - w[0]);
+    const float len = btgLength3(n);
+    if (!(len > 1e-12f)) return m;
+    n = n * (1.0f / len);
+    const BtgFloat4 g = btgMake4(m.points[0].nx, m.points[0].ny, m.points[0].nz, 0.0f);
+    if (btgDot3(n, g) < 0.0f) n = -n; /* towards the convex */
+    if (btgDot3(n, g) < BTG_ROUND_FACE_COS) return m;
+    BtgRoundFace face;
+    face.n = n;
+    face.w = btgDot3(n, w[0]);
+    face.numSides = 3;
+    for (int i = 0; i < 3; ++i) {
+        const BtgFloat4 a = w[i], b = w[i == 2 ? 0 : i + 1], o = w[i == 0 ? 2 : i - 1];
+        BtgFloat4 side = btgNormalize3(btgCross3(b - a, n));
+        if (btgDot3(side, o - a) > 0.0f) side = -side; /* outward: away from the third vertex */
+        face.side[i] = btgMake4(side.x, side.y, side.z, btgDot3(side, a));
+    }
+    face.side[3] = btgZero4();
+    BtgManifold laid = btgEmptyManifold(c.body, mesh.body);
+    const int over = btgIsCapsule(c.shape) ? btgCapsuleOnFaceCanonical(&laid, c, &face, threshold)
+                                           : btgCylinderOnFaceCanonical(&laid, c, &face, threshold);
+    return over ? laid : m;
 }
 
 /* A concave manifold point's feature id is its triangle's sub-shape key, so every point keeps
