@@ -68,3 +68,51 @@ TEST(SoftStepJoints, PointToPointChainKeepsItsEnergy)
     EXPECT_NEAR(end, start, 0.02 * std::fabs(start));
     EXPECT_LE(high, start + 0.02 * std::fabs(start));
 }
+
+// KNOWN DEFECT, disabled until it is fixed (README, Known differences of the default): a rod
+// (0.1 x 1 x 0.1 m, 1 kg) hanging from a point-to-point joint or a hinge at its top end, released
+// 10 degrees out, keeps its swing energy on stock (96 % after 20 s) but gains it on the soft step:
+// 7.3 times in 20 s through a point-to-point joint or a hinge (30 degrees: 3.4 and 3.2 times). The
+// soft step solves Bullet's joint rows, built once a step from the step's start, in each of its
+// substeps: their lever arms stay the start's while the body turns (5 mm a step at the rod's end
+// here), so the substeps hold a point that slides along the rod, and the next step's position
+// correction moves it back without the velocity it would cost. With one substep it loses (28 %)
+// as stock does; more substeps gain faster (2: 2.2x, 4: 4.9x, 10: 7.3x, 20: 8.2x). The fix is
+// Box2D's: each substep's joint rows from the bodies' current anchors (its joints rotate their
+// frames by the substep's delta rotation). Enable with --gtest_also_run_disabled_tests.
+TEST(SoftStepJoints, DISABLED_ARodPendulumKeepsItsEnergy)
+{
+    for (bool hinge : {false, true}) {
+        SCOPED_TRACE(hinge ? "hinge" : "point-to-point");
+        auto make = [&](WorldKind kind, const Config& config) {
+            auto s = std::make_unique<Scene>(kind, config, "rod_pendulum");
+            s->world().setGravity(btVector3(0, btScalar(-9.81), 0));
+            const btQuaternion q(btVector3(0, 0, 1), btScalar(10 * M_PI / 180));
+            const btVector3 com = btVector3(0, 2, 0) + quatRotate(q, btVector3(0, btScalar(-0.5), 0));
+            btRigidBody* rod = s->addBody(s->boxShape(btVector3(btScalar(0.05), btScalar(0.5), btScalar(0.05))), 1,
+                                          btTransform(q, com));
+            rod->setActivationState(DISABLE_DEACTIVATION);
+            if (hinge) s->addJoint(new btHingeConstraint(*rod, btVector3(0, btScalar(0.5), 0), btVector3(0, 0, 1)));
+            else s->addJoint(new btPoint2PointConstraint(*rod, btVector3(0, btScalar(0.5), 0)));
+            return s;
+        };
+        ScenePtr stock = make(WorldKind::Stock, Config::bulletMode());
+        ScenePtr soft = make(WorldKind::Gpu, Config{});
+        auto swing = [](const Scene& s) {  // above the rod's lowest, J
+            const btRigidBody* b = s.body(0);
+            const btVector3 w = b->getAngularVelocity();
+            return 9.81 * (double(b->getWorldTransform().getOrigin().y()) - 1.5) + 0.5 * double(b->getLinearVelocity().length2()) +
+                   0.5 * double(w.dot(b->getInvInertiaTensorWorld().inverse() * w));
+        };
+        const double start = swing(*soft);
+        for (int i = 0; i < 1200; ++i) {
+            stock->step();
+            soft->step();
+            ASSERT_TRUE(soft->gpuWorld()->isGpuPath()) << "step " << i;
+        }
+        std::printf("rod pendulum (%s), 10 degrees, 20 s: swing energy %.1f %% of the start (stock %.1f %%)\n",
+                    hinge ? "hinge" : "point-to-point", 100 * swing(*soft) / start, 100 * swing(*stock) / start);
+        EXPECT_GT(swing(*soft), 0.8 * start);
+        EXPECT_LT(swing(*soft), 1.05 * start);
+    }
+}
