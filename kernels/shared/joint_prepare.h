@@ -36,14 +36,8 @@ static inline void btgPrepareJoint(BtgJoint j, BtgJointState* s, BTG_GLOBAL BtgJ
     } else if (j.type == BTG_JOINT_HINGE) {
         BtgJointInfoRow info[BTG_JOINT_HINGE_ROWS];
         const int n = btgHingeInfoRows(j, a, b, fps, p.erp, p.globalCfm, info);
-        for (int k = 0; k < n; ++k) {
-            BtgJointRow r = btgFinishJointRow(info[k], a, b, p.damping, j.breakingThreshold);
-            if (k < BTG_JOINT_HINGE_POSITION_ROWS) { /* the pivot's three and the axis's two: position error only */
-                r.flags = BTG_JOINT_ROW_POSITION;
-                r.bias = info[k].error;
-            }
-            rows[j.firstRow + k] = r;
-        }
+        for (int k = 0; k < n; ++k)
+            rows[j.firstRow + k] = btgFinishJointRow(info[k], a, b, p.damping, j.breakingThreshold);
         s->numRows = n;
     } else if (j.type == BTG_JOINT_CONE_TWIST || j.type == BTG_JOINT_SLIDER) {
         BtgJointInfoRow info[BTG_JOINT_MAX_ROWS];

@@ -22,7 +22,6 @@
 /* Rows one joint of each type may build (getInfo1's maximum): its slots in the row table. */
 #define BTG_JOINT_P2P_ROWS 3
 #define BTG_JOINT_HINGE_ROWS 6
-#define BTG_JOINT_HINGE_POSITION_ROWS 5 /* its rows 0-4 (the pivot, the axis) hold position error only; row 5 the limit or motor */
 #define BTG_JOINT_CONE_TWIST_ROWS 6
 #define BTG_JOINT_SLIDER_ROWS 6
 #define BTG_JOINT_MAX_ROWS 6

@@ -72,7 +72,7 @@ TEST(SoftStepJoints, PointToPointChainKeepsItsEnergy)
 // KNOWN DEFECT, disabled until it is fixed (README, Known differences of the default): a rod
 // (0.1 x 1 x 0.1 m, 1 kg) hanging from a point-to-point joint or a hinge at its top end, released
 // 10 degrees out, keeps its swing energy on stock (96 % after 20 s) but gains it on the soft step:
-// 7.3 times in 20 s through a point-to-point joint or a hinge (30 degrees: 3.4 and 3.2 times).
+// 7.3 times in 20 s through a point-to-point joint, 8.2 through a hinge (30 degrees: 3.4 and 5.4).
 // With one substep it loses (28 %) as stock does; more substeps gain faster (2: 2.2x, 4: 4.9x,
 // 10: 7.3x, 20: 8.2x). The rows keep the step's start lever arms through the substeps; a
 // prototype that turns them with the bodies and gathers the warm start passes this test (98 and
