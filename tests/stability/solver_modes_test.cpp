@@ -203,6 +203,14 @@ TEST(SolverModes, RagdollsLandInSoftMode)
     EXPECT_TRUE(soft.gpuEveryStep);
     EXPECT_TRUE(soft.pass) << soft.why;
     EXPECT_LT(soft.finalKePerMass, 1e-3);
+    // and still at rest later: limbs that jitter on (a hinge relaxed without its bias had them at
+    // 0.4 m/s after 8 s, KE/M up to 5e-3, with 4.2e-4 at 6 s by its phase) fail one of these
+    for (double later : {7.0, 8.0}) {
+        Criteria l = c;
+        l.seconds = later;
+        const Outcome o = run(make, WorldKind::Gpu, l, modeConfig(SolverKind::SoftStep));
+        EXPECT_LT(o.finalKePerMass, 1e-3) << "at " << later << " s";
+    }
 }
 
 // A mass ratio past what SoftStepConfig::maxSubsteps (128) holds (100,000:1 needs 633): the
