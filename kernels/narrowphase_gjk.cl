@@ -21,6 +21,7 @@
 #define BTG_SPECULATIVE_PAIR(kind, shapeA, shapeB) btgSoftCollidesAfresh(kind, shapeA, shapeB)
 #define BTG_FRESH_KERNEL 1 /* those pairs are collide_fresh's, a kernel without GJK's registers, */
 #define BTG_FRESH_PAIR(kind, shapeA, shapeB) btgSoftFreshKernelPair(kind, shapeA, shapeB) /* but a capsule on a box */
+#define BTG_FRESH_COLLIDE btgCollideSoftFresh
 #include "shared/persistent_kernels.h"
 
 BTG_PERSISTENT_PROGRAM_KERNEL(BTG_PAIR_KINDS_NARROWPHASE_GJK)

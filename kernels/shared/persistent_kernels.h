@@ -19,6 +19,11 @@
 #ifndef BTG_FRESH_PAIR
 #define BTG_FRESH_PAIR(kind, shapeA, shapeB) BTG_SPECULATIVE_PAIR(kind, shapeA, shapeB)
 #endif
+/* ... and how it collides them: BTG_SPECULATIVE_COLLIDE, unless the program names a routine of
+ * its own for them (one without GJK's code, whose registers it would take). */
+#ifndef BTG_FRESH_COLLIDE
+#define BTG_FRESH_COLLIDE BTG_SPECULATIVE_COLLIDE
+#endif
 
 /* The manifold the pair kept last substep: found through the warm-start cache (the contacts in
  * pair order), whose entry j the GJK cache holds at j too. None when the pair had no points, or
@@ -179,7 +184,7 @@ static inline uint btgKindsAt(const int* kinds, int numKinds, uint skipMask, __g
             if (btgPairKind(a.shape.type, b.shape.type) != kind || !BTG_FRESH_PAIR(kind, a.shape, b.shape))          \
                 continue; /* collide_persistent's (or, a stale plan's, no kernel's: as there) */                      \
             const float t = btgPairThreshold(a.shape, b.shape);                                                       \
-            BtgManifold m = BTG_SPECULATIVE_COLLIDE(a, b, verts, faces, indices, edges, t);                           \
+            BtgManifold m = BTG_FRESH_COLLIDE(a, b, verts, faces, indices, edges, t);                                 \
             m = btgWithChildKeys(btgWithThreshold(m, t), p, children);                                                \
             if ((int)slot < stateCapacity) gjkPairState[slot] = btgEmptyPersistent(p.a, p.b, BTG_PAIR_NONE);          \
             manifolds[slot] = m;                                                                                      \

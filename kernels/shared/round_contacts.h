@@ -44,17 +44,22 @@ typedef struct {
     BtgFloat4 side[4];
 } BtgRoundFace;
 
-/* 1: a face, 0: nothing within reach, -1: an edge or corner of the box (*g its one point). */
+/* A plane's face (no sides). */
+static inline BtgRoundFace btgPlaneFace(BtgCollider f)
+{
+    BtgRoundFace face;
+    const BtgFloat4 plane = btgWorldPlane(f);
+    face.n = btgXyz(plane);
+    face.w = plane.w;
+    face.numSides = 0;
+    return face;
+}
+
+/* A box's (f's) face: 1, 0: nothing within reach, -1: an edge or corner (*g its one point). */
 static inline int btgRoundFaceOf(BtgCollider r, BtgCollider f, BTG_CONST_GLOBAL BtgFloat4* verts, float threshold,
                                  BtgRoundFace* face, BtgConvexPoint* g)
 {
     face->numSides = 0;
-    if (f.shape.type == BTG_SHAPE_PLANE) {
-        const BtgFloat4 plane = btgWorldPlane(f);
-        face->n = btgXyz(plane);
-        face->w = plane.w;
-        return 1;
-    }
     *g = btgGjkPoint(r, f, verts, threshold);
     if (!g->valid) return 0;
     const BtgFloat4 nl = btgMat3TMulVec(f.pose.rot, g->normal);
@@ -152,30 +157,51 @@ static inline int btgCylinderOnFaceCanonical(BtgManifold* m, BtgCollider c, cons
     return 1;
 }
 
-/* Canonical order: the capsule or cylinder r is A, the box or plane f is B. */
-static inline BtgManifold btgRoundOnFaceCanonical(BtgCollider r, BtgCollider f, BTG_CONST_GLOBAL BtgFloat4* verts,
-                                                  float threshold)
+/* The body laid on the face (1), or 0 where its shadow misses it. */
+static inline int btgRoundLaid(BtgManifold* m, BtgCollider r, const BtgRoundFace* face, float threshold)
+{
+    return btgIsCapsule(r.shape) ? btgCapsuleOnFaceCanonical(m, r, face, threshold)
+                                 : btgCylinderOnFaceCanonical(m, r, face, threshold);
+}
+
+/* Canonical order: the capsule or cylinder r is A, the plane f is B. No GJK: collide_fresh's. */
+static inline BtgManifold btgRoundOnPlaneCanonical(BtgCollider r, BtgCollider f, float threshold)
+{
+    BtgManifold m = btgEmptyManifold(r.body, f.body);
+    const BtgRoundFace face = btgPlaneFace(f);
+    btgRoundLaid(&m, r, &face, threshold);
+    return m;
+}
+
+/* Canonical order: the capsule or cylinder r is A, the box f is B. */
+static inline BtgManifold btgRoundOnBoxCanonical(BtgCollider r, BtgCollider f, BTG_CONST_GLOBAL BtgFloat4* verts,
+                                                 float threshold)
 {
     BtgManifold m = btgEmptyManifold(r.body, f.body);
     BtgRoundFace face;
     BtgConvexPoint g = btgNoPoint();
     const int found = btgRoundFaceOf(r, f, verts, threshold, &face, &g);
     if (found == 0) return m;
-    if (found > 0) {
-        const int laid = btgIsCapsule(r.shape) ? btgCapsuleOnFaceCanonical(&m, r, &face, threshold)
-                                               : btgCylinderOnFaceCanonical(&m, r, &face, threshold);
-        if (laid || face.numSides == 0) return m; /* else overhanging the box's face: GJK's point */
-    }
+    if (found > 0 && btgRoundLaid(&m, r, &face, threshold)) return m;
+    /* an edge or corner, or overhanging the face: GJK's point */
     btgAddPoint(&m, g.normal, g.pointB, g.distance, BTG_FEATURE_VERTEX | 8u);
     return m;
+}
+
+/* A capsule or cylinder and a plane, either order (no GJK). */
+static inline BtgManifold btgCollideRoundOnPlane(BtgCollider a, BtgCollider b, float threshold)
+{
+    if (btgIsRound(a.shape)) return btgRoundOnPlaneCanonical(a, b, threshold);
+    return btgSwapManifold(btgRoundOnPlaneCanonical(b, a, threshold));
 }
 
 /* A capsule or cylinder and a box or plane, either order. */
 static inline BtgManifold btgCollideRoundOnFace(BtgCollider a, BtgCollider b, BTG_CONST_GLOBAL BtgFloat4* verts,
                                                 float threshold)
 {
-    if (btgIsRound(a.shape)) return btgRoundOnFaceCanonical(a, b, verts, threshold);
-    return btgSwapManifold(btgRoundOnFaceCanonical(b, a, verts, threshold));
+    if (a.shape.type == BTG_SHAPE_PLANE || b.shape.type == BTG_SHAPE_PLANE) return btgCollideRoundOnPlane(a, b, threshold);
+    if (btgIsRound(a.shape)) return btgRoundOnBoxCanonical(a, b, verts, threshold);
+    return btgSwapManifold(btgRoundOnBoxCanonical(b, a, verts, threshold));
 }
 
 #endif

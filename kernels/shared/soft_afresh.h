@@ -26,6 +26,16 @@ static inline int btgSoftFreshKernelPair(int kind, BtgShape a, BtgShape b)
     return kind != BTG_PAIR_CONVEX_BOX && btgSoftCollidesAfresh(kind, a, b);
 }
 
+/* collide_fresh's collision of its pairs (btgSoftFreshKernelPair): btgCollideSoftAfresh's for
+ * them, with no GJK in its code (a round body there lies on a plane). */
+static inline BtgManifold btgCollideSoftFresh(BtgCollider a, BtgCollider b, BTG_SHAPE_TABLES, float threshold)
+{
+    if (a.shape.type == BTG_SHAPE_SPHERE && b.shape.type == BTG_SHAPE_SPHERE)
+        return btgCollideSphereSphere(a, b, verts, faces, indices, edges, threshold);
+    if (btgRoundOnFace(a.shape, b.shape)) return btgCollideRoundOnPlane(a, b, threshold);
+    return btgCollideHullPlane(a, b, verts, faces, indices, edges, threshold);
+}
+
 /* The soft step's fresh collision of the pairs btgSoftCollidesAfresh names. */
 static inline BtgManifold btgCollideSoftAfresh(BtgCollider a, BtgCollider b, BTG_SHAPE_TABLES, float threshold)
 {

@@ -91,8 +91,8 @@ struct Fixture {
 
 // speculative: the soft step's narrowphase (two spheres collided afresh).
 inline std::vector<BtgManifold> runDevice(cl::Context& ctx, const Fixture& f, const std::vector<BtgCachedContact>& cache,
-                                   const std::vector<BtgPersistentManifold>& gjkCache,
-                                   std::vector<BtgPersistentManifold>* states, bool speculative = false)
+                                          const std::vector<BtgPersistentManifold>& gjkCache,
+                                          std::vector<BtgPersistentManifold>* states, bool speculative = false)
 {
     DeviceWorld w(ctx);
     w.speculativeContacts = speculative;
