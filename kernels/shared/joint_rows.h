@@ -169,6 +169,11 @@ typedef struct {
  * the soft step's relax drives it without (bias), as Box2D's relax does, so that the correction
  * leaves no velocity behind. */
 #define BTG_JOINT_ROW_POSITION 2
+/* BtgJointRow.flags (the soft step's; prepare_joints' rows start without them): the row's angular
+ * parts follow its lever arms turned with the bodies (btgSoftTurnLinearRows); on a joint's first
+ * row, the step's start arms are kept in its linear rows' w (soft_joint_rows.h). */
+#define BTG_JOINT_ROW_TURNED 4
+#define BTG_JOINT_ROW_ARMS 8
 
 /* What the device keeps of each joint and the host reads back every call (writeBackJoints'
  * results of the last substep; a break holds until the host has disabled the joint). */

@@ -202,8 +202,12 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     const int edgeCapacity = int(slots);
     numColors = std::max(numColors, 1);
     // A spring row's impulse is the step's, applied once (btgSoftJointSolve): the carried warm
-    // start would apply its last substep's share again, so the substeps gather.
-    if (w.jointSprings > 0) params.gather = 1;
+    // start would apply its last substep's share again, so the substeps gather. And joints turn
+    // their linear rows with the bodies each substep (btgSoftTurnLinearRows): the carried velocity
+    // change of the last substep's rows would leave a part along the turned rows' free motion
+    // (a rod pendulum had 9 times its energy after 20 s), where the gather applies each impulse
+    // along its row as it is now.
+    if (w.jointSprings > 0 || w.numJoints > 0) params.gather = 1;
     cl::Program& prog = ctx.program("solve_soft");
     SolverScratch& sc = w.solverScratch;
     // exactly: the slots grow geometrically already (contactCapacity), and the store and the
