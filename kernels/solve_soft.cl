@@ -168,7 +168,9 @@ static void soft_joint(int j, int mode, SOFT_FN_ARGS)
     BtgBodyVel va = btgMakeBodyVel(0, btgZero4(), btgZero4()), vb = va;
     BtgSolverBody a = joint.bodyA >= 0 ? load_body(softSolver, softBodies, joint.bodyA, &va) : btgFixedJointBody().body;
     BtgSolverBody b = joint.bodyB >= 0 ? load_body(softSolver, softBodies, joint.bodyB, &vb) : btgFixedJointBody().body;
-    {
+    if (mode == BTG_SOFT_RELAX) {
+        /* the relax turns the rows to the poses the substep moved the bodies to; the next
+         * substep's warm start and solve find them so (the first solve: the step's own poses) */
         const BtgMat3 still = btgQuatToMat3(btgMake4(0.0f, 0.0f, 0.0f, 1.0f));
         const BtgMat3 dA = joint.bodyA >= 0 ? load_delta(softBodies, BTG_SOFT_BODY_ROWS * joint.bodyA).rot : still;
         const BtgMat3 dB = joint.bodyB >= 0 ? load_delta(softBodies, BTG_SOFT_BODY_ROWS * joint.bodyB).rot : still;
