@@ -263,13 +263,15 @@ static void soft_body(int i, int mode, SOFT_FN_ARGS)
             if (entry & BTG_SOFT_ENTRY_JOINT) {
                 const int j = (int)((entry & ~BTG_SOFT_ENTRY_JOINT) >> 2);
                 /* the joint rows' impulses of the last substep (zero at the step's start) on this
-                 * side, each read as shared data: the joint's work-item (another group) wrote it */
+                 * side, each read as shared data: the joint's work-item (another group) wrote them */
                 BTG_SHARED __global const BtgJointRow* rowsShared = (BTG_SHARED __global const BtgJointRow*)jointRows;
                 for (int r = joints[j].firstRow; r < joints[j].firstRow + jointState[j].numRows; ++r) {
                     if (jointRows[r].flags & BTG_JOINT_ROW_SPRING) continue; /* applied once, where it was solved */
-                    const BtgJacobian jac = jointRows[r].jacobian;
-                    btgSoftApplySide(jac.linear, side ? jac.responseB : jac.responseA, side, body, &vel,
-                                     btgLoadSharedFloat(&rowsShared[r].impulse));
+                    /* the Jacobian as the joint's last relax turned it (btgSoftTurnLinearRows), shared too */
+                    const BtgFloat4 linear = btgLoadShared4(&rowsShared[r].jacobian.linear);
+                    const BtgFloat4 response = side ? btgLoadShared4(&rowsShared[r].jacobian.responseB)
+                                                    : btgLoadShared4(&rowsShared[r].jacobian.responseA);
+                    btgSoftApplySide(linear, response, side, body, &vel, btgLoadSharedFloat(&rowsShared[r].impulse));
                 }
                 continue;
             }
