@@ -152,6 +152,14 @@ static void soft_contact(int i, int slot, int mode, uint key, int lane, SOFT_FN_
     }
 }
 
+/* A body's carry mark (BTG_SOFT_MARK_ANG) less an angular velocity change: the next substep's
+ * carried warm start gains it (btgSoftBodyCarry). Its body pass wrote the mark in this launch. */
+static void soft_move_mark(BTG_SHARED __global BtgFloat4* softBodies, int i, BtgFloat4 dAng)
+{
+    const int r = BTG_SOFT_BODY_ROWS * i + BTG_SOFT_MARK_ANG;
+    softBodies[r] = btgLoadShared4(&softBodies[r]) - btgXyz(dAng);
+}
+
 static void soft_joint(int j, int mode, SOFT_FN_ARGS)
 {
     SOFT_FN_PARAMS
@@ -174,7 +182,15 @@ static void soft_joint(int j, int mode, SOFT_FN_ARGS)
         const BtgMat3 still = btgQuatToMat3(btgMake4(0.0f, 0.0f, 0.0f, 1.0f));
         const BtgMat3 dA = joint.bodyA >= 0 ? load_delta(softBodies, BTG_SOFT_BODY_ROWS * joint.bodyA).rot : still;
         const BtgMat3 dB = joint.bodyB >= 0 ? load_delta(softBodies, BTG_SOFT_BODY_ROWS * joint.bodyB).rot : still;
-        btgSoftTurnLinearRows(jointRows, joint.firstRow, rows, a, b, dA, dB);
+        BtgFloat4 turnA, turnB;
+        btgSoftTurnLinearRows(jointRows, joint.firstRow, rows, a, b, dA, dB, &turnA, &turnB);
+        if (!params.gather) {
+            /* the next substep carries its warm start (the velocity change since the mark): the
+             * gather would apply the impulses along the turned rows, so the carry takes the
+             * difference too, by the mark moved back (the velocities themselves stay) */
+            if (a.dynamic) soft_move_mark(softBodies, joint.bodyA, turnA);
+            if (b.dynamic) soft_move_mark(softBodies, joint.bodyB, turnB);
+        }
     }
     btgSoftJointSolve(jointRows, joint.firstRow, rows, a, b, &va, &vb, params.jointBoundScale, mode == BTG_SOFT_RELAX);
     if (a.dynamic) store_vel(va, a, softBodies, joint.bodyA);

@@ -26,10 +26,16 @@ static inline int btgSoftLinearRow(BtgJacobian j)
  * The start arms are kept in the w of the two rows' Jacobian parts, where no pass reads
  * (BTG_JOINT_ROW_ARMS on the joint's first row). Each turned row's responses, mass and cfm anew,
  * as btgFinishJointRow makes them; its target, bounds and impulse as they are. A joint with
- * fewer than two orthogonal linear rows (a gear, a 6-DoF with one locked axis) keeps its rows. */
+ * fewer than two orthogonal linear rows (a gear, a 6-DoF with one locked axis) keeps its rows.
+ * turnA, turnB: the change of the bodies' angular velocity that the rows' impulses so far make
+ * along the turned rows less along the rows as they were (the linear parts do not turn): a
+ * carried warm start (btgSoftBodyCarry) adds it to what it carries, so that it carries what the
+ * gather would (solve_soft.cl's soft_joint moves the bodies' marks by it). */
 static inline void btgSoftTurnLinearRows(BTG_GLOBAL BtgJointRow* rows, int first, int count, BtgSolverBody a,
-                                         BtgSolverBody b, BtgMat3 dA, BtgMat3 dB)
+                                         BtgSolverBody b, BtgMat3 dA, BtgMat3 dB, BtgFloat4* turnA, BtgFloat4* turnB)
 {
+    *turnA = btgZero4();
+    *turnB = btgZero4();
     int i0 = -1, i1 = -1;
     for (int k = 0; k < count && i1 < 0; ++k) {
         if (!btgSoftLinearRow(rows[first + k].jacobian)) continue;
@@ -65,6 +71,7 @@ static inline void btgSoftTurnLinearRows(BTG_GLOBAL BtgJointRow* rows, int first
         } else if (!(r.flags & BTG_JOINT_ROW_TURNED)) {
             continue;
         }
+        const BtgFloat4 oldA = btgXyz(r.jacobian.responseA), oldB = btgXyz(r.jacobian.responseB);
         r.jacobian.linear = n;
         r.jacobian.angularA = btgCross3(nowA, n);
         r.jacobian.angularB = -btgCross3(nowB, n);
@@ -76,6 +83,9 @@ static inline void btgSoftTurnLinearRows(BTG_GLOBAL BtgJointRow* rows, int first
         const float mass = btgAbs(sum) > 1.192092896e-07f ? 1.0f / sum : 0.0f;
         r.cfm = r.mass > 0.0f ? r.cfm / r.mass * mass : 0.0f;
         r.mass = mass;
+        /* what the row's impulse so far does to the bodies' spin, turned less as built (as btgRowApply applies it) */
+        *turnA = *turnA + (r.jacobian.responseA - oldA) * (a.angFactor * r.impulse);
+        *turnB = *turnB + (r.jacobian.responseB - oldB) * (b.angFactor * r.impulse);
         rows[first + k].jacobian = r.jacobian;
         rows[first + k].mass = r.mass;
         rows[first + k].cfm = r.cfm;

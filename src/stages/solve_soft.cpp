@@ -202,12 +202,13 @@ void solveSoft(DeviceWorld& w, BtgSoftParams params, int numColors)
     const int edgeCapacity = int(slots);
     numColors = std::max(numColors, 1);
     // A spring row's impulse is the step's, applied once (btgSoftJointSolve): the carried warm
-    // start would apply its last substep's share again, so the substeps gather. And joints turn
-    // their linear rows with the bodies each substep (btgSoftTurnLinearRows): the carried velocity
-    // change of the last substep's rows would leave a part along the turned rows' free motion
-    // (a rod pendulum had 9 times its energy after 20 s), where the gather applies each impulse
-    // along its row as it is now.
-    if (w.jointSprings > 0 || w.numJoints > 0) params.gather = 1;
+    // start would apply its last substep's share again, so the substeps gather. (Joints turn their
+    // linear rows each substep, btgSoftTurnLinearRows; their relax moves the bodies' carry marks
+    // by what the turn changes, so the carry stays the gather's warm start.) BTGPU_SOFT_GATHER=1
+    // gathers every substep anyway (to measure, and to test the carry against).
+    const char* gatherEnv = std::getenv("BTGPU_SOFT_GATHER");
+    const bool forceGather = gatherEnv && std::strcmp(gatherEnv, "1") == 0;
+    if (w.jointSprings > 0 || forceGather) params.gather = 1;
     cl::Program& prog = ctx.program("solve_soft");
     SolverScratch& sc = w.solverScratch;
     // exactly: the slots grow geometrically already (contactCapacity), and the store and the

@@ -108,10 +108,11 @@ TEST(SoftJointTurn, TurnedRowsMeasureThePivotAsBulletsRowsAtTheTurnedPoses)
 
         const BtgMat3 dA = btgQuatToMat3(btgMake4(turnA.x(), turnA.y(), turnA.z(), turnA.w()));
         const BtgMat3 dB = btgQuatToMat3(btgMake4(turnB.x(), turnB.y(), turnB.z(), turnB.w()));
-        btgSoftTurnLinearRows(rows.data(), 0, int(rows.size()), solverBody(bodies, 0), solverBody(bodies, 1), dA, dB);
+        BtgFloat4 spinA, spinB;
+        btgSoftTurnLinearRows(rows.data(), 0, int(rows.size()), solverBody(bodies, 0), solverBody(bodies, 1), dA, dB, &spinA, &spinB);
         // the second sweep of a substep reads its arms back from the rows (BTG_JOINT_ROW_ARMS)
         std::vector<BtgJointRow> again = rows;
-        btgSoftTurnLinearRows(again.data(), 0, int(again.size()), solverBody(bodies, 0), solverBody(bodies, 1), dA, dB);
+        btgSoftTurnLinearRows(again.data(), 0, int(again.size()), solverBody(bodies, 0), solverBody(bodies, 1), dA, dB, &spinA, &spinB);
 
         int turned = 0;
         for (const BtgJointRow& r : rows) turned += (r.flags & BTG_JOINT_ROW_TURNED) != 0;
@@ -151,7 +152,8 @@ TEST(SoftJointTurn, AHingesScaledAxialRowStaysAsBuilt)
     const std::vector<BtgJointRow> start = rows;
     const BtgMat3 dA = btgQuatToMat3(btgMake4(0.0f, 0.0f, std::sin(0.05f), std::cos(0.05f)));
     const BtgMat3 still = btgQuatToMat3(btgMake4(0.0f, 0.0f, 0.0f, 1.0f));
-    btgSoftTurnLinearRows(rows.data(), 0, int(rows.size()), solverBody(bodies, 0), solverBody(bodies, 1), dA, still);
+    BtgFloat4 turnA, turnB;
+    btgSoftTurnLinearRows(rows.data(), 0, int(rows.size()), solverBody(bodies, 0), solverBody(bodies, 1), dA, still, &turnA, &turnB);
     ASSERT_GE(rows.size(), 3u);
     EXPECT_NE(0, rows[0].flags & BTG_JOINT_ROW_TURNED);
     EXPECT_NE(0, rows[1].flags & BTG_JOINT_ROW_TURNED);
