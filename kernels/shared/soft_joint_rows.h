@@ -11,8 +11,8 @@ static inline int btgSoftLinearRow(BtgJacobian j)
 }
 
 /* The soft step's linear rows on lever arms turned with the bodies (dA, dB: their rotations since
- * the step's start), written back each sweep, as Box2D's joints take their anchors turned by the
- * bodies' delta rotations each substep. Bullet's rows, built once a step, keep the step's start
+ * the step's start), written back once a substep (its relax: solve_soft.cl's soft_joint), as
+ * Box2D's joints take their anchors turned by the bodies' delta rotations each substep. Bullet's rows, built once a step, keep the step's start
  * arms: over the substeps the pivot drifts outward about w^2 r h^2 / 2 a substep, the fall
  * outward gains energy, and the next step's correction, relaxed away, returns it free (a rod
  * pendulum swung 10 degrees had 7 to 8 times its swing energy after 20 s on every joint type with
@@ -21,7 +21,7 @@ static inline int btgSoftLinearRow(BtgJacobian j)
  * linear rows from one arm a body (a point-to-point's pivot, a hinge's or slider's relA / relB,
  * a cone twist's, a 6-DoF's frame origin), and for orthonormal n0, n1 and n2 = n0 x n1,
  * n0 x (r x n0) + n1 x (r x n1) = r + n2 (n2 . r). A linear row turns only where its built
- * angular parts are those arms' (at the step's first sweep: BTG_JOINT_ROW_TURNED): a hinge's or
+ * angular parts are those arms' (at the step's first turn: BTG_JOINT_ROW_TURNED): a hinge's or
  * 6-DoF's row that Bullet scales by its masses' factors against a static body stays as built.
  * The start arms are kept in the w of the two rows' Jacobian parts, where no pass reads
  * (BTG_JOINT_ROW_ARMS on the joint's first row). Each turned row's responses, mass and cfm anew,
