@@ -131,6 +131,39 @@ TEST(Stacking, BenchPileWithinStocksChaos)
     }
 }
 
+// The same pile at rest (20 s) on the default (the soft step): issue 13 found btgpu's pile
+// resting 8% taller than stock's. Mid-collapse (4 s, above) the default's stack still stands
+// where stock's has fallen, as refined stock's does (README, solver modes); at rest it lies
+// within stock's own chaos, the spread near the band's edge. Measured on PoCL, 2026-12-08: mean
+// height 1.628 m against stock's 1.586 +- 0.284 (8 nudged runs 1.54-1.64), spread 55.57 m against
+// 52.39 +- 3.34 (51.7-52.8; nudged default runs 55.0-55.6; refined stock, 1/240 s and 20
+// iterations, 57.8-61.0 and still moving: stock's boxes scatter least, as its ragdolls do in
+// bench 3). 133 s on PoCL's 2 cores (eight 20 s stock runs), so kept out of CI: --gtest_also_run_disabled_tests --gtest_filter=Stacking.DISABLED_BenchPile*.
+TEST(Stacking, DISABLED_BenchPileAtRestOnTheDefaultWithinStocksChaos)
+{
+    const int steps = 1200;
+    auto measure = [](const Scene& s) {
+        const scenes::Aggregates a = scenes::aggregates(s);
+        return std::vector<double>{a.meanHeight, a.spread};
+    };
+    const std::vector<scenes::ChaosBand> bands = scenes::stockChaos(
+        [](WorldKind kind) { return scenes::benchPile(kind, Config::bulletMode()); }, steps, measure, {"mean height", "spread"},
+        {tol::kChaosHeightFloor, tol::kChaosSpreadFloor});
+    scenes::ScenePtr gpu = scenes::benchPile(WorldKind::Gpu, Config());
+    for (int i = 0; i < steps; ++i) {
+        gpu->step();
+        ASSERT_TRUE(gpu->gpuWorld()->isGpuPath()) << gpu->report()->cpuPathReason;
+    }
+    EXPECT_EQ(gpu->report()->solver, SolverKind::SoftStep);
+    const std::vector<double> got = measure(*gpu);
+    for (size_t k = 0; k < bands.size(); ++k) {
+        std::printf("bench pile at rest (default) %s: btgpu %.3f, stock %.3f +- %.3f\n", bands[k].name.c_str(), got[k],
+                    bands[k].stockMean, bands[k].bound());
+        EXPECT_TRUE(bands[k].admits(got[k])) << bands[k].name << ": btgpu " << got[k] << ", stock " << bands[k].stockMean
+                                             << " +- " << bands[k].bound();
+    }
+}
+
 // 300 marbles (radius 0.1 m, restitution 0.3) poured from random heights into a 2.2 m box: two
 // spheres make their points as btSphereSphereCollisionAlgorithm does (only while they touch,
 // none kept: Bullet 3.24 clears that manifold each step), so the heap settles within stock's own chaos (PoCL,
