@@ -14,6 +14,15 @@ namespace {
 
 constexpr double kUnjudged = std::numeric_limits<double>::infinity();
 
+// The btgpu runs each case takes: the bullet mode (its rows labelled "btgpu", as runEngines's)
+// and the default solver.
+struct EngineRun {
+    const char* label;
+    bool bulletMode;
+    Config config() const { return bulletMode ? Config::bulletMode() : Config(); }
+};
+const EngineRun kGpuRuns[] = {{"btgpu", true}, {"btgpu default", false}};
+
 // Beyond reason: measured (penetration and speed recorded) but judged only on finiteness, and
 // for btgpu on a clear status: the GPU path ran, or the world said why not, or an issue names
 // the problem (a NaN with an issue reported is a clear status).
@@ -36,22 +45,24 @@ void beyondReason(const std::string& caseName, const Builder& make, double secon
         // Not a result: stock Bullet's pair cache would need n (n - 1) / 2 manifolds.
         appendRowNotRun(caseName, "stock", "not run: stock's pair cache cannot hold n(n-1)/2 pairs");
     }
-    ScenePtr gpuScene = make(WorldKind::Gpu, config);
-    Outcome gpu = run(*gpuScene, c);
-    const Report* r = gpuScene->report();
-    const bool clearStatus = r->gpuPath || !r->cpuPathReason.empty() || !r->issues.empty();
-    if (!gpu.finite && gpu.issues > 0) {
-        gpu.pass = clearStatus;
-        gpu.why = clearStatus ? "" : "no status; ";
-    } else if (!clearStatus) {
-        gpu.pass = false;
-        gpu.why += "no status; ";
+    for (const EngineRun& e : kGpuRuns) {
+        ScenePtr gpuScene = make(WorldKind::Gpu, e.config());
+        Outcome gpu = run(*gpuScene, c);
+        const Report* r = gpuScene->report();
+        const bool clearStatus = r->gpuPath || !r->cpuPathReason.empty() || !r->issues.empty();
+        if (!gpu.finite && gpu.issues > 0) {
+            gpu.pass = clearStatus;
+            gpu.why = clearStatus ? "" : "no status; ";
+        } else if (!clearStatus) {
+            gpu.pass = false;
+            gpu.why += "no status; ";
+        }
+        std::string gpuFigure = figure(gpu);
+        if (!r->gpuPath && !r->cpuPathReason.empty()) gpuFigure += " (cpu path: " + r->cpuPathReason + ")";
+        recordAs(caseName, e.label, gpu, gpuFigure);
+        // Beyond reason btgpu is judged on its own: no NaN without an issue, no crash, a status.
+        EXPECT_TRUE(gpu.pass) << caseName << " (" << e.label << "): " << gpu.why;
     }
-    std::string gpuFigure = figure(gpu);
-    if (!r->gpuPath && !r->cpuPathReason.empty()) gpuFigure += " (cpu path: " + r->cpuPathReason + ")";
-    record(caseName, gpu, gpuFigure);
-    // Beyond reason btgpu is judged on its own: no NaN without an issue, no crash, a status.
-    EXPECT_TRUE(gpu.pass) << caseName << ": " << gpu.why;
 }
 
 }  // namespace
@@ -65,7 +76,7 @@ TEST(DeepOverlap, PyramidOfFourSeparates)
     c.speed = tol::kSeparationSpeed;
     c.penetration = tol::kPenetrationFraction;
     c.measureFrom = 2;
-    runBoth("deep overlap 25 %, pyramid 4", [](WorldKind k, const Config& cf) { return st::pyramid(k, cf, 4, .75); },
+    runEngines("deep overlap 25 %, pyramid 4", [](WorldKind k, const Config& cf) { return st::pyramid(k, cf, 4, .75); },
             c);
 }
 
@@ -76,9 +87,10 @@ TEST(FastSmall, SphereAgainstThinWall)
     // where stock stops it and btgpu does not.
     Criteria c;
     c.seconds = 0.5;
-    Outcome out[2];
-    for (WorldKind kind : {WorldKind::Stock, WorldKind::Gpu}) {
-        ScenePtr scene = st::bulletVsWall(kind, Config::bulletMode());
+    Outcome out[3];
+    for (int k = 0; k < 3; ++k) {
+        const WorldKind kind = k == 0 ? WorldKind::Stock : WorldKind::Gpu;
+        ScenePtr scene = st::bulletVsWall(kind, k == 0 ? Config::bulletMode() : kGpuRuns[k - 1].config());
         Outcome o = run(*scene, c);
         const double x = scene->body(1)->getWorldTransform().getOrigin().x();
         const bool tunnelled = x > 0.1;
@@ -89,11 +101,13 @@ TEST(FastSmall, SphereAgainstThinWall)
         char f[160];
         std::snprintf(f, sizeof f, "%s, sphere ends at x = %.3g m, vmax %.3g m/s%s", tunnelled ? "tunnelled" : "stopped",
                       x, o.maxSpeed, kind == WorldKind::Gpu ? (o.gpuPath ? ", gpu path" : ", CPU fallback") : "");
-        record("sphere r 0.05 at 50 m/s vs wall 0.2", o, f);
-        out[kind == WorldKind::Gpu] = o;
+        recordAs("sphere r 0.05 at 50 m/s vs wall 0.2", k == 0 ? "stock" : kGpuRuns[k - 1].label, o, f);
+        out[k] = o;
     }
-    if (out[0].pass) EXPECT_TRUE(out[1].pass) << "stock stops the sphere, btgpu lets it through";
-    EXPECT_TRUE(out[1].gpuPath);
+    for (int k = 1; k < 3; ++k) {
+        if (out[0].pass) EXPECT_TRUE(out[k].pass) << "stock stops the sphere, " << kGpuRuns[k - 1].label << " lets it through";
+        EXPECT_TRUE(out[k].gpuPath) << kGpuRuns[k - 1].label;
+    }
 }
 
 TEST(Scale, CentimetreBoxes)
@@ -105,7 +119,7 @@ TEST(Scale, CentimetreBoxes)
     c.driftBody = 3;
     c.drift = tol::kTopDriftFraction * 0.01;
     c.drop = 3 * c.penetration;
-    runBoth("3 boxes of 0.01 m resting", [](WorldKind k, const Config& cf) { return st::scaledStack(k, cf, btScalar(.01)); },
+    runEngines("3 boxes of 0.01 m resting", [](WorldKind k, const Config& cf) { return st::scaledStack(k, cf, btScalar(.01)); },
             c);
 }
 
@@ -118,7 +132,7 @@ TEST(Scale, HundredMetreBoxes)
     c.driftBody = 3;
     c.drift = tol::kTopDriftFraction * 100;
     c.drop = 3 * c.penetration;
-    runBoth("3 boxes of 100 m resting", [](WorldKind k, const Config& cf) { return st::scaledStack(k, cf, 100); }, c);
+    runEngines("3 boxes of 100 m resting", [](WorldKind k, const Config& cf) { return st::scaledStack(k, cf, 100); }, c);
 }
 
 TEST(FarFromOrigin, PileAt1e4BehavesAsAtOrigin)
@@ -130,10 +144,12 @@ TEST(FarFromOrigin, PileAt1e4BehavesAsAtOrigin)
     c.driftBody = 5;
     c.drift = tol::kTopDriftFraction;
     const btVector3 far(1e4, 0, 1e4);
-    Outcome out[2];
-    for (WorldKind kind : {WorldKind::Stock, WorldKind::Gpu}) {
-        ScenePtr home = st::smallPile(kind, Config::bulletMode(), btVector3(0, 0, 0));
-        ScenePtr away = st::smallPile(kind, Config::bulletMode(), far);
+    Outcome out[3];
+    for (int k = 0; k < 3; ++k) {
+        const WorldKind kind = k == 0 ? WorldKind::Stock : WorldKind::Gpu;
+        const Config config = k == 0 ? Config::bulletMode() : kGpuRuns[k - 1].config();
+        ScenePtr home = st::smallPile(kind, config, btVector3(0, 0, 0));
+        ScenePtr away = st::smallPile(kind, config, far);
         run(*home, c);
         Outcome o = run(*away, c);
         double worst = 0;
@@ -149,11 +165,13 @@ TEST(FarFromOrigin, PileAt1e4BehavesAsAtOrigin)
         }
         char f[64];
         std::snprintf(f, sizeof f, "; vs origin %.3g mm", worst * 1000);
-        record("small pile at (1e4, 0, 1e4)", o, figure(o) + f);
-        out[kind == WorldKind::Gpu] = o;
+        recordAs("small pile at (1e4, 0, 1e4)", k == 0 ? "stock" : kGpuRuns[k - 1].label, o, figure(o) + f);
+        out[k] = o;
     }
-    if (out[0].pass) EXPECT_TRUE(out[1].pass) << "stock passes, btgpu fails: " << out[1].why;
-    EXPECT_TRUE(out[1].gpuPath);
+    for (int k = 1; k < 3; ++k) {
+        if (out[0].pass) EXPECT_TRUE(out[k].pass) << "stock passes, " << kGpuRuns[k - 1].label << " fails: " << out[k].why;
+        EXPECT_TRUE(out[k].gpuPath) << kGpuRuns[k - 1].label;
+    }
 }
 
 TEST(FarFromOrigin, PileAt1e5StaysCalm)
@@ -162,7 +180,7 @@ TEST(FarFromOrigin, PileAt1e5StaysCalm)
     Criteria c;
     c.seconds = 3;
     c.settleBy = 2;
-    runBoth("small pile at (1e5, 0, 1e5)",
+    runEngines("small pile at (1e5, 0, 1e5)",
             [](WorldKind k, const Config& cf) { return st::smallPile(k, cf, btVector3(1e5, 0, 1e5)); }, c);
 }
 

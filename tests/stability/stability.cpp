@@ -280,11 +280,19 @@ void judge(const std::string& caseName, const Outcome& stock, const Outcome& gpu
     if (requireGpuPath) EXPECT_TRUE(gpu.gpuPath) << caseName << ": btgpu fell back to the CPU path";
 }
 
-void runBoth(const std::string& caseName, const Builder& make, const Criteria& criteria)
+void judgeAs(const std::string& caseName, const std::string& engine, const Outcome& stock, const Outcome& gpu)
+{
+    recordAs(caseName, engine, gpu, figure(gpu));
+    if (stock.pass) EXPECT_TRUE(gpu.pass) << caseName << ": stock Bullet passes, " << engine << " fails: " << gpu.why;
+    EXPECT_TRUE(gpu.gpuPath) << caseName << ": " << engine << " fell back to the CPU path";
+}
+
+void runEngines(const std::string& caseName, const Builder& make, const Criteria& criteria)
 {
     const Outcome stock = run(make, WorldKind::Stock, criteria);
     const Outcome gpu = run(make, WorldKind::Gpu, criteria);
     judge(caseName, stock, gpu);
+    judgeAs(caseName, "btgpu default", stock, run(make, WorldKind::Gpu, criteria, Config()));
 }
 
 void runEarned(const std::string& caseName, const Builder& make, const Criteria& criteria, int internalSubsteps)

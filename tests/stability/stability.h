@@ -88,8 +88,13 @@ void record(const std::string& caseName, const Outcome& o, const std::string& fi
 // A row for a case an engine does not run (and why).
 void appendRowNotRun(const std::string& caseName, const std::string& engine, const std::string& why);
 
-// The usual case: build on both engines, run, judge.
-void runBoth(const std::string& caseName, const Builder& make, const Criteria& criteria);
+// The same judgement for one more btgpu run under its own label (the default solver beside
+// the bullet mode): it must pass whatever stock passes; stock's row is not recorded again.
+void judgeAs(const std::string& caseName, const std::string& engine, const Outcome& stock, const Outcome& gpu);
+// The usual case: build on stock and on btgpu in both solver modes (the bullet mode,
+// Config::bulletMode(), recorded as "btgpu"; the default, Config(), as "btgpu default"), run,
+// judge each btgpu run against stock.
+void runEngines(const std::string& caseName, const Builder& make, const Criteria& criteria);
 // The stiff cases as btgpu earns them: Config::internalSubsteps device substeps per step. The
 // test fails when btgpu does not pass with them.
 void runEarned(const std::string& caseName, const Builder& make, const Criteria& criteria, int internalSubsteps);

@@ -26,14 +26,14 @@ Criteria resting(double seconds, double settleBy, int topBody, double smallest =
 
 void massRatioCase(btScalar m)
 {
-    runBoth("mass ratio " + std::to_string(int(m)) + ":1",
+    runEngines("mass ratio " + std::to_string(int(m)) + ":1",
             [m](WorldKind k, const Config& c) { return st::massRatio(k, c, m); }, resting(3, 2, 2));
 }
 
 void towerCase(int count, btScalar offset)
 {
     const std::string name = "tower " + std::to_string(count) + (offset > 0 ? " offset 1 cm" : " exact");
-    runBoth(name, [count, offset](WorldKind k, const Config& c) { return st::tower(k, c, count, offset); },
+    runEngines(name, [count, offset](WorldKind k, const Config& c) { return st::tower(k, c, count, offset); },
             resting(fullMode() ? 8 : 5, 4, count));
 }
 
@@ -57,7 +57,7 @@ TEST(MassRatio, HeavyPlankOnTwoBoxes)
     // The plank (body 3) is 1 thick: the smallest dimension of every body is 1.
     Criteria c = resting(3, 2, 3);
     c.drop = 2 * c.penetration;  // a box and the ground under it
-    runBoth("plank 400 kg on 2 boxes", st::heavyPlank, c);
+    runEngines("plank 400 kg on 2 boxes", st::heavyPlank, c);
 }
 
 TEST(Tower, TenExact) { towerCase(10, 0); }
@@ -84,7 +84,7 @@ TEST(Pyramid, BaseTwenty)
     // The apex is the last body: 20 * 21 / 2 = 210 boxes after the ground.
     Criteria c = resting(5, 4, 210);
     c.drop = 20 * c.penetration;  // one contact per row
-    runBoth("pyramid base 20", [](WorldKind k, const Config& cf) { return st::pyramid(k, cf, 20); }, c);
+    runEngines("pyramid base 20", [](WorldKind k, const Config& cf) { return st::pyramid(k, cf, 20); }, c);
 }
 
 TEST(Pyramid, BaseFifty)
@@ -92,21 +92,21 @@ TEST(Pyramid, BaseFifty)
     if (!fullMode()) GTEST_SKIP() << "BTGPU_STABILITY_FULL=1 runs it";
     Criteria c = resting(8, 6, 1275);
     c.drop = 50 * c.penetration;
-    runBoth("pyramid base 50", [](WorldKind k, const Config& cf) { return st::pyramid(k, cf, 50); }, c);
+    runEngines("pyramid base 50", [](WorldKind k, const Config& cf) { return st::pyramid(k, cf, 50); }, c);
 }
 
 TEST(TimeStep, Thirtieth)
 {
     Criteria c = resting(5, 4, 10);
     c.timeStep = btScalar(1) / btScalar(30);
-    runBoth("tower 10, dt 1/30", [](WorldKind k, const Config& cf) { return st::tower(k, cf, 10); }, c);
+    runEngines("tower 10, dt 1/30", [](WorldKind k, const Config& cf) { return st::tower(k, cf, 10); }, c);
 }
 
 TEST(TimeStep, Thousandth)
 {
     Criteria c = resting(fullMode() ? 5 : 2, 1, 10);
     c.timeStep = btScalar(1) / btScalar(1000);
-    runBoth("tower 10, dt 1/1000", [](WorldKind k, const Config& cf) { return st::tower(k, cf, 10); }, c);
+    runEngines("tower 10, dt 1/1000", [](WorldKind k, const Config& cf) { return st::tower(k, cf, 10); }, c);
 }
 
 TEST(LongRest, EightBoxStack)
@@ -117,6 +117,6 @@ TEST(LongRest, EightBoxStack)
     c.drift = tol::kLongRestDrift;
     c.energyNeverGrows = true;
     c.noSleep = true;
-    runBoth("8-box stack, " + std::to_string(steps) + " steps",
+    runEngines("8-box stack, " + std::to_string(steps) + " steps",
             [](WorldKind k, const Config& cf) { return scenes::boxStack(k, cf, 8); }, c);
 }
