@@ -2,12 +2,14 @@
 // Bullet's BasicDemo pile of 125 boxes and BenchmarkDemo's round tower against stock Bullet.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "scenes/demo_scenes.h"
 #include "scenes/stock_chaos.h"
 #include "side_by_side.h"
+#include "tolerances.h"
 
 using namespace btgpu;
 using namespace btgpu::test;
@@ -147,6 +149,65 @@ TEST(Stacking, BenchPileWithinStocksChaos)
 TEST(Stacking, DISABLED_BenchPileAtRestOnTheDefaultWithinStocksChaos)
 {
     expectBenchPileWithinStocksChaos(Config(), 1200, "default, at rest");
+}
+
+namespace {
+
+// Mean height at `early` steps and spread at `late` steps of BenchmarkDemo test 1's pile of
+// `layers` layers, nudged by `seed` (0: not), each 1/60 s step cut into `refine` fixed steps at
+// `iterations` iterations (0: the scene's). A btgpu world is asserted on the GPU path every step.
+std::pair<double, double> benchPileCourse(WorldKind kind, const Config& config, int layers, unsigned seed, int early,
+                                          int late, int refine, int iterations)
+{
+    scenes::ScenePtr s = scenes::benchPile(kind, config, layers);
+    if (seed) scenes::nudge(*s, seed, tol::kChaosNudge);
+    if (iterations) s->world().getSolverInfo().m_numIterations = iterations;
+    double height = 0;
+    for (int i = 1; i <= late; ++i) {
+        s->step(btScalar(1) / 60, refine, btScalar(1) / btScalar(60 * refine));
+        if (kind == WorldKind::Gpu && !s->gpuWorld()->isGpuPath()) {
+            ADD_FAILURE() << "step " << i << ": " << s->report()->cpuPathReason;
+            return {0, 0};
+        }
+        if (i == early) height = scenes::aggregates(*s).meanHeight;
+    }
+    return {height, scenes::aggregates(*s).spread};
+}
+
+}  // namespace
+
+// The pile of 16 layers (1,024 boxes) on the default against stock and refined stock (1/240 s,
+// 20 iterations): stock at its own settings lets the leaning columns collapse early (mean height
+// 8.2-8.5 m at 3 s) and scatters the boxes least at rest (spread 23.6-24.1 m at 12 s); refined,
+// stock holds them up (13.5 m) and scatters them farthest (34-35.5 m, 33.8 at 1/600 s and 50
+// iterations); the default lies between, nearer refined stock on the collapse (13.8-13.9 m;
+// 27.2-28.2 m). So here, as on bench 3's ragdolls, stock's own chaos band measures stock's
+// dissipation: the default is outside it on spread (PoCL, 2026-12-08). Fails if the default
+// collapses as early as stock's or scatters beyond refined stock.
+TEST(Stacking, BenchPileOnTheDefaultLiesBetweenStockAndRefinedStock)
+{
+    const int layers = 16, early = 180, late = 720;
+    double stockHeight = 0, refinedHeight = 0, stockSpreadMax = 0, refinedSpreadMin = 1e9;
+    for (unsigned seed : {1u, 2u}) {
+        const auto a = benchPileCourse(WorldKind::Stock, Config::bulletMode(), layers, seed, early, late, 1, 0);
+        const auto b = benchPileCourse(WorldKind::Stock, Config::bulletMode(), layers, seed, early, late, 4, 20);
+        std::printf("bench pile (%d layers), seed %u: stock height %.3f m at 3 s, spread %.3f m at 12 s; refined %.3f, %.3f\n",
+                    layers, seed, a.first, a.second, b.first, b.second);
+        stockHeight += a.first / 2;
+        refinedHeight += b.first / 2;
+        stockSpreadMax = std::max(stockSpreadMax, a.second);
+        refinedSpreadMin = std::min(refinedSpreadMin, b.second);
+    }
+    ASSERT_GT(refinedHeight, stockHeight + 2.0);  // the premise: refined, the columns stand longer
+    ASSERT_GT(refinedSpreadMin, stockSpreadMax);  // and scatter farther
+    for (unsigned seed : {0u, 1u}) {
+        const auto got = benchPileCourse(WorldKind::Gpu, Config(), layers, seed, early, late, 1, 0);
+        std::printf("bench pile (%d layers), seed %u: the default's height %.3f m at 3 s, spread %.3f m at 12 s\n", layers,
+                    seed, got.first, got.second);
+        EXPECT_LT(std::fabs(got.first - refinedHeight), std::fabs(stockHeight - refinedHeight));
+        EXPECT_GT(got.second, stockSpreadMax);
+        EXPECT_LT(got.second, refinedSpreadMin);
+    }
 }
 
 // 300 marbles (radius 0.1 m, restitution 0.3) poured from random heights into a 2.2 m box: two
