@@ -361,4 +361,33 @@ ScenePtr bench3Ragdolls(WorldKind kind, const Config& config, int rows)
     return s;
 }
 
+ScenePtr newtonsCradle(WorldKind kind, const Config& config, int count)
+{
+    auto s = std::make_unique<Scene>(kind, config, "newtons_cradle");
+    s->world().setGravity(btVector3(0, -10, 0));
+    btSphereShape* sphere = s->sphereShape(1);
+    btVector3 position(0, 15, 0);
+    for (int i = 0; i < count; ++i) {
+        btRigidBody* top = s->addBody(sphere, 1, position);
+        btRigidBody* bottom = s->addBody(sphere, 1, position - btVector3(0, 8, 0));
+        bottom->setFriction(0);
+        bottom->setRestitution(1);
+        top->setActivationState(DISABLE_DEACTIVATION);
+        bottom->setActivationState(DISABLE_DEACTIVATION);
+        s->addJoint(new btPoint2PointConstraint(*top, btVector3(0, 0, 0)), true);
+        // the slider's axis (x in its frames) turned onto y, the pivot at the top sphere's centre
+        btQuaternion turn;
+        turn.setEuler(0, 0, -SIMD_HALF_PI);
+        btTransform inTop(turn), inBottom(turn);
+        inBottom.setOrigin(bottom->getWorldTransform().inverse()(top->getWorldTransform().getOrigin()));
+        auto* rod = s->addJoint(new btSliderConstraint(*top, *bottom, inTop, inBottom, true), true);
+        rod->setLowerLinLimit(0);
+        rod->setUpperLinLimit(0);
+        rod->setLowerAngLimit(0);
+        rod->setUpperAngLimit(0);
+        position.setX(position.x() - btScalar(2.1));
+    }
+    return s;
+}
+
 }  // namespace btgpu::scenes

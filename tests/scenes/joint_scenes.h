@@ -121,4 +121,12 @@ btQuaternion coneMotorTarget();
 // btgpu does not serve: left off here (on both worlds).
 ScenePtr bench3Ragdolls(WorldKind kind, const Config& config = Config::bulletMode(), int rows = 16);
 
+// Bullet's own ExtendedTutorials/NewtonsCradle example: `count` pendula, each a sphere of radius
+// 1 (mass 1) pinned at its centre by a btPoint2PointConstraint at y = 15 and a second sphere 8
+// below it, held by a btSliderConstraint whose limits are all 0 (a rigid rod); the pendula 2.1
+// apart along -x (0.1 gaps), the lower spheres frictionless with restitution 1, deactivation off,
+// gravity -10. Body 2 i is pendulum i's top sphere, 2 i + 1 its lower one (the example pushes
+// pendulum 0 with 30 N while a key is held).
+ScenePtr newtonsCradle(WorldKind kind, const Config& config = Config::bulletMode(), int count = 5);
+
 }  // namespace btgpu::scenes
