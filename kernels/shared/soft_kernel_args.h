@@ -25,7 +25,7 @@
     __global const BtgFloat4* restrict softSolver, \
     __global const BtgJoint* restrict joints, __global const BtgJointState* restrict jointState, \
     __global BtgJointRow* jointRows, __global const uint* restrict listStart, __global const uint* restrict listEntries, \
-    __global const int* restrict slotOf, __global uint* counters, __global const BtgRollingContact* restrict rolling, \
+    __global const int* restrict slotOf, __global uint* counters, __global BtgRollingContact* rolling, \
     __global const uint* restrict contactManifolds, __global const BtgContactMaterial* restrict materials, int numMaterials, \
     __global const BtgFrictionDirs* restrict frictionDirs
 #define SOFT_BUFFERS_PASS contacts, softContacts, props, invInertiaWorld, linVel0, angVel0, lin, ang, softBodies, softSolver, joints, \
