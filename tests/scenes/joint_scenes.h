@@ -117,8 +117,9 @@ btQuaternion coneMotorTarget();
 // bodies, 1,360 joints): row r (0-based) holds rows - r ragdolls 6 m apart along x, centred,
 // at y = 1 + 7 r and z = -2 r; each part mass 1, damping 0.05 / 0.85, deactivation time 0.8,
 // sleeping thresholds 1.6 / 2.5; a ground box of half extents 250, 50, 250 at y = -50 (body 0);
-// 5 solver iterations. The demo also sets SOLVER_ENABLE_FRICTION_DIRECTION_CACHING, which
-// btgpu does not serve: left off here (on both worlds).
+// 5 solver iterations. The demo also sets SOLVER_ENABLE_FRICTION_DIRECTION_CACHING, which in
+// Bullet 3.24 changes only anisotropic friction's directions (README, btContactSolverInfo): left
+// off here (on both worlds).
 ScenePtr bench3Ragdolls(WorldKind kind, const Config& config = Config::bulletMode(), int rows = 16);
 
 // Bullet's own ExtendedTutorials/NewtonsCradle example: `count` pendula, each a sphere of radius
